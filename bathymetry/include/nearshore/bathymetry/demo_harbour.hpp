@@ -1,0 +1,39 @@
+#pragma once
+// The demo harbour: a small but realistic harbour that nearshore GENERATES, in the same formats
+// users bring (so the demo needs no data from outside the repository):
+//   depth.tif        GeoTIFF, float32 depth in metres (positive down, negative = land elevation),
+//                    in the UTM zone of the site (EPSG:326xx), nodata -9999;
+//   coastline.geojson  the shoreline as LineStrings, WGS84 lon/lat (RFC 7946);
+//   land.geojson       land as Polygons, WGS84;
+//   breakwaters.geojson two rubble-mound breakwater arms as LineStrings with a 140 m gap between
+//                    them (properties: category, crest_width_m, porosity), WGS84.
+// The site: an open coast facing south with a 15 m deep approach, an elliptic shoal east of the
+// entrance (refraction), a dredged 8 m basin behind the breakwaters (diffraction through the gap)
+// and vertical quays on its north side (reflection).
+#include <filesystem>
+
+namespace nearshore::bathymetry {
+
+struct DemoHarbourOptions {
+  double centre_latitude_deg = 38.905;    ///< Dalian bay, where seed 003 baked its harbour
+  double centre_longitude_deg = 121.695;
+  double width_m = 1600.0;                ///< east-west extent of the depth grid
+  double height_m = 1200.0;               ///< north-south extent
+  double source_spacing_m = 8.0;          ///< cell size of the GeoTIFF written (the survey's resolution)
+};
+
+struct DemoHarbourFiles {
+  std::filesystem::path depth_geotiff;
+  std::filesystem::path coastline_geojson;
+  std::filesystem::path land_geojson;
+  std::filesystem::path breakwaters_geojson;
+};
+
+/// Analytic still-water depth of the demo site at local (x, y) metres from the south-west corner
+/// (positive down; negative is land elevation). Exposed so tests can check what GDAL reads back.
+double demo_harbour_depth_m(const DemoHarbourOptions& options, double x_m, double y_m);
+
+/// Writes the four files into `folder` (created if needed), each atomically. Throws nearshore::Error.
+DemoHarbourFiles write_demo_harbour(const std::filesystem::path& folder, const DemoHarbourOptions& options = {});
+
+}  // namespace nearshore::bathymetry

@@ -1,0 +1,29 @@
+# nearshore_target_defaults(TARGET): C++20, the warning set every target must be clean under,
+# and the sanitizers when NEARSHORE_SANITIZE is on (the `asan` preset).
+function(nearshore_target_defaults target)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  if(NEARSHORE_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# nearshore_add_test(NAME SOURCES... LIBS libs... LABELS labels...): one GoogleTest executable,
+# each TEST registered with ctest. Tests find ../shared through NEARSHORE_SHARED_DIR.
+function(nearshore_add_test name)
+  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  nearshore_target_defaults(${name})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    NEARSHORE_SHARED_DIR="${NEARSHORE_SHARED_DIR}"
+    NEARSHORE_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
+    NEARSHORE_BINARY_DIR="${CMAKE_BINARY_DIR}")
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 600)
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT}
+    WORKING_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}")
+endfunction()

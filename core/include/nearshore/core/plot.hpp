@@ -1,0 +1,74 @@
+#pragma once
+// Pictures a person looks at: colour maps of a field (bathymetry preview, distance matrix heat
+// map) and line plots with axes, legend and labels (gauge time series, model against data).
+// Rendering goes through OpenImageIO (text with the DejaVu font from fonts-dejavu-core); PNG files
+// are written atomically.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "nearshore/core/raster.hpp"
+
+namespace nearshore {
+
+using Rgb = std::array<float, 3>;  ///< linear 0..1 red, green, blue
+
+enum class ColourMap {
+  kViridis,     ///< perceptually uniform, for magnitudes (distance matrix, wave height)
+  kBathymetry,  ///< light cyan (shallow) to deep navy (deep), for depth in metres
+  kDiverging,   ///< blue - white - red, for signed fields (surface elevation, signed distance)
+};
+
+/// Colour of `t` in [0, 1] (clamped) on the map.
+Rgb colour_at(ColourMap map, double t);
+
+/// An RGB picture, row 0 at the TOP (as images are viewed).
+class Image {
+ public:
+  Image(int width, int height, Rgb background = {1.f, 1.f, 1.f});
+  int width() const { return width_; }
+  int height() const { return height_; }
+  void set(int x, int y, Rgb colour);
+  Rgb get(int x, int y) const;
+  void fill_rectangle(int x0, int y0, int x1, int y1, Rgb colour);
+  void draw_line(double x0, double y0, double x1, double y1, Rgb colour, int thickness = 1);
+  /// Text with its baseline-left at (x, y), height `size_px` pixels.
+  void draw_text(int x, int y, const std::string& text, Rgb colour, int size_px = 14);
+  /// Writes a PNG atomically; throws nearshore::Error naming the path on failure.
+  void write_png(const std::filesystem::path& path) const;
+  const std::vector<float>& pixels() const { return pixels_; }
+
+ private:
+  int width_, height_;
+  std::vector<float> pixels_;  // width * height * 3
+};
+
+/// A raster coloured by `map` between `low` and `high`, north (last row) at the top, with a
+/// colour bar and title. Cells where `mask` (if given, same size) is non-zero are drawn `mask_colour`.
+struct HeatMapStyle {
+  std::string title;
+  std::string value_label;  ///< e.g. "depth (m)"
+  ColourMap map = ColourMap::kViridis;
+  double low = 0.0, high = 1.0;
+  int max_image_size_px = 1200;  ///< the longer side of the field area
+  Rgb mask_colour = {0.55f, 0.47f, 0.36f};  ///< land brown
+  bool first_row_at_top = false;  ///< true for matrices (row 0 = first frame at the top)
+};
+Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style, const Raster<std::uint8_t>* mask = nullptr);
+
+struct PlotSeries {
+  std::string label;
+  std::vector<double> x, y;
+  Rgb colour = {0.12f, 0.47f, 0.71f};
+  bool markers_only = false;  ///< measured data as points, model as a line
+};
+struct LinePlot {
+  std::string title, x_label, y_label;
+  std::vector<PlotSeries> series;
+  int width_px = 1000, height_px = 560;
+};
+Image render_line_plot(const LinePlot& plot);
+
+}  // namespace nearshore
