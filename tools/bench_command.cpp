@@ -2,8 +2,15 @@
 
 namespace nearshore::tools {
 
+// `nearshore bench <stage>`: each stage's benchmark lives beside its command (bench_<stage>.cpp).
 void add_bench_command(CLI::App& app) {
-  add_unbuilt_command(app, "bench", "Measure throughput of each stage and print a table", "nearshore bench bake", "issues 3-6");
+  CLI::App* bench = app.add_subcommand("bench", "Measure throughput of a stage and print a table");
+  set_example(*bench, "nearshore bench bake");
+  bench->require_subcommand(1);
+  add_bench_bathy(*bench);
+  add_bench_bake(*bench);
+  add_bench_deepwater(*bench);
+  add_bench_loops(*bench);
 }
 
 }  // namespace nearshore::tools

@@ -1,0 +1,39 @@
+#pragma once
+// WaveComponent: one linear wave of a sea state. The deep-water FFT field (deep_water) and the
+// Boussinesq wave maker (boussinesq) are driven by the SAME list of components, so at the offshore
+// edge of a harbour the baked waves and the FFT field are the same waves (issue 5, coherence).
+//   surface elevation  eta(x, y, t) = sum_i a_i cos(k_i (x cos th_i + y sin th_i) - w_i t + phi_i)
+// with k_i from the linear dispersion relation w^2 = g k tanh(k d) at the depth d where it is used.
+#include <cstdint>
+#include <vector>
+
+namespace nearshore::bake {
+
+inline constexpr double kGravity_m_s2 = 9.81;
+
+struct WaveComponent {
+  double amplitude_m = 0.0;              ///< a_i (half the height)
+  double angular_frequency_rad_s = 0.0;  ///< w_i
+  double direction_rad = 0.0;            ///< th_i, direction of travel, counter-clockwise from +x (east)
+  double phase_rad = 0.0;                ///< phi_i
+};
+
+/// A sea state as the solver and the runtime see it: its components, and if it loops, the period
+/// every component completes a whole number of cycles in (0 = not periodic).
+struct SeaState {
+  std::vector<WaveComponent> components;
+  double loop_period_s = 0.0;
+  std::uint64_t seed = 0;  ///< the seed the phases were drawn from (recorded in every output)
+};
+
+/// Linear dispersion w^2 = g k tanh(k d): the wavenumber k (rad/m) of angular frequency w at
+/// still-water depth d (metres; d <= 0 or infinity = deep water, k = w^2/g). Newton iteration
+/// from the Eckart/Fenton start, converged to 1e-12 relative.
+double wavenumber_from_frequency(double angular_frequency_rad_s, double depth_m);
+/// The inverse: w = sqrt(g k tanh(k d)).
+double frequency_from_wavenumber(double wavenumber_rad_m, double depth_m);
+/// Phase speed w/k and group speed dw/dk at depth d.
+double phase_speed_m_s(double wavenumber_rad_m, double depth_m);
+double group_speed_m_s(double wavenumber_rad_m, double depth_m);
+
+}  // namespace nearshore::bake

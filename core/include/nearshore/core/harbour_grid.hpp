@@ -1,0 +1,37 @@
+#pragma once
+// HarbourGrid: the solver-ready harbour that `nearshore bathy` writes and `nearshore bake` reads
+// (docs/formats.md, "Harbour grid"). Stored as one OpenEXR file (depth.exr) with float channels
+//   depth            still-water depth d, metres, positive DOWN; land cells hold minus their elevation
+//   land             1 where the cell is land at still water, else 0
+//   porosity         n of seed 003 eq. (2)-(3): 1 open water, 0 < n < 1 porous structure
+//                    (rubble-mound breakwater), 0 a solid vertical wall (quay)
+//   coast_distance   signed distance to the coastline, metres, negative on land
+// and the grid geometry (GridGeometry as JSON) in the header attribute "nearshore_geometry".
+// EXR line 0 is the NORTHERN row (so image viewers show north up); Raster row 0 is the southern
+// row; the reader and writer here are the one place that flips.
+#include <cstdint>
+#include <filesystem>
+
+#include "nearshore/core/raster.hpp"
+
+namespace nearshore {
+
+struct HarbourGrid {
+  GridGeometry geometry;
+  Raster<float> still_water_depth_m;  ///< d, positive down; land = -elevation
+  Raster<std::uint8_t> land;          ///< 1 land, 0 water
+  Raster<float> porosity;             ///< 1 open water .. 0 solid wall
+  Raster<float> coast_distance_m;     ///< signed, negative on land
+
+  /// An open-water grid of the given geometry: depth `depth_m` everywhere, porosity 1,
+  /// no land, coast distance +infinity. Laboratory cases start from this.
+  static HarbourGrid open_water(const GridGeometry& geometry, float depth_m);
+};
+
+/// Writes atomically. Throws nearshore::Error naming the path on failure.
+void write_harbour_grid(const std::filesystem::path& depth_exr, const HarbourGrid& grid);
+/// Reads and validates (channels present, sizes agree, no NaN depth). Throws nearshore::Error
+/// naming the file, the problem and where.
+HarbourGrid read_harbour_grid(const std::filesystem::path& depth_exr);
+
+}  // namespace nearshore
