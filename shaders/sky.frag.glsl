@@ -1,0 +1,12 @@
+uniform mat4 u_inverse_view_projection;
+uniform vec3 u_eye_m;
+in vec2 v_ndc;
+out vec4 fragment_colour;
+void main() {
+  vec4 far_point = u_inverse_view_projection * vec4(v_ndc, 1.0, 1.0);
+  vec3 direction = normalize(far_point.xyz / far_point.w - u_eye_m);
+  vec3 radiance = sky_radiance(direction);
+  // The sun disc itself (0.53 degree across).
+  if (dot(direction, u_sun_direction) > 0.99996) radiance += u_sun_radiance * 20.0;
+  fragment_colour = vec4(to_display(radiance), 1.0);
+}

@@ -1,0 +1,81 @@
+// Offscreen renders on Mesa llvmpipe: the rendered sea matches the CPU reference of its lighting,
+// and a baked wave field shows up in the picture.
+#include "nearshore/playback/water_renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "nearshore/playback/window.hpp"
+
+namespace {
+using namespace nearshore;
+
+HarbourGrid sloping_harbour() {
+  GridGeometry geometry;
+  geometry.columns = 120;
+  geometry.rows = 100;
+  geometry.spacing_m = 5.0;
+  HarbourGrid harbour = HarbourGrid::open_water(geometry, 10.f);
+  for (int j = 0; j < geometry.rows; ++j)
+    for (int i = 0; i < geometry.columns; ++i) {
+      // 12 m deep in the south, rising to land (3 m high) in the north.
+      harbour.still_water_depth_m(i, j) = 12.f - 15.f * j / (geometry.rows - 1);
+      harbour.land(i, j) = harbour.still_water_depth_m(i, j) < 0 ? 1 : 0;
+    }
+  return harbour;
+}
+}  // namespace
+
+TEST(WaterRenderer, FlatSeaSeenFromAboveMatchesTheCpuReference) {
+  playback::GlWindow window(64, 64, "test", false);
+  const HarbourGrid harbour = sloping_harbour();
+  playback::WaterRenderer renderer(harbour);
+  renderer.set_frame(Raster<float>(120, 100, 0.f), nullptr);
+  // Straight down (nearly: the look-at needs a horizontal component) onto a cell 6 m deep.
+  playback::Camera camera;
+  const int row = 50;  // depth 12 - 15 * 50 / 99 = 4.42 m
+  const double x = 300.0, y = harbour.geometry.cell_centre_y_m(row);
+  camera.eye_m = {x, y - 0.01, 200.0};
+  camera.target_m = {x, y, 0.0};
+  camera.vertical_field_of_view_deg = 2.0;  // the centre pixel sees only that cell
+  playback::Lighting lighting;
+  renderer.render(camera, lighting, 33, 33);
+  const Image image = renderer.read_pixels();
+  const auto pixel = image.get(16, 16);
+  const double depth = harbour.still_water_depth_m(60, row);
+  const auto to_eye = playback::Vector3{0, -0.01 / std::hypot(0.01, 200.0), 200.0 / std::hypot(0.01, 200.0)};
+  const auto expected = playback::to_display(lighting, playback::shade_water(lighting, {0, 0, 1}, to_eye, depth, 0.0));
+  // 8-bit output: 2/255 for rounding plus llvmpipe's float32 vs the reference's double.
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(pixel[c], expected[c], 2.5 / 255) << "channel " << c << " on " << window.gl_description();
+}
+
+TEST(WaterRenderer, WavesLandAndSkyAllAppearInTheOverview) {
+  playback::GlWindow window(64, 64, "test", false);
+  const HarbourGrid harbour = sloping_harbour();
+  playback::WaterRenderer renderer(harbour);
+  Raster<float> eta(120, 100);
+  for (int j = 0; j < 100; ++j)
+    for (int i = 0; i < 120; ++i) eta(i, j) = 0.8f * std::sin(2 * M_PI * j * 5.0 / 40.0);  // 40 m waves
+  renderer.set_frame(eta, nullptr);
+  const playback::Camera camera = playback::Camera::overlooking(harbour.geometry);
+  renderer.render(camera, playback::Lighting{}, 320, 200);
+  const Image image = renderer.read_pixels();
+  image.write_png(std::filesystem::path(NEARSHORE_BINARY_DIR) / "playback_overview_test.png");
+  // The top rows are sky (bright, blue above red); somewhere below there is land (green above blue).
+  const auto sky = image.get(160, 2);
+  EXPECT_GT(sky[2], sky[0]);
+  EXPECT_GT(sky[2], 0.5f);
+  int land_pixels = 0;
+  double water_row_variation = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const auto p = image.get(x, y);
+      if (p[1] > p[2] + 0.05f && p[1] > p[0]) ++land_pixels;
+    }
+  for (int x = 1; x < 320; ++x) water_row_variation += std::abs(image.get(x, 190)[2] - image.get(x - 1, 190)[2]);
+  for (int y = 121; y < 200; ++y) water_row_variation += std::abs(image.get(160, y)[2] - image.get(160, y - 1)[2]);
+  EXPECT_GT(land_pixels, 100);
+  EXPECT_GT(water_row_variation, 0.5) << "the wave field should modulate the shading";
+}
