@@ -20,6 +20,13 @@ function(nearshore_add_test name)
     NEARSHORE_SHARED_DIR="${NEARSHORE_SHARED_DIR}"
     NEARSHORE_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     NEARSHORE_BINARY_DIR="${CMAKE_BINARY_DIR}")
+  if("asan" IN_LIST ARG_LABELS)
+    # The sanitizer build (scripts/test.sh) builds only these suites: target nearshore_asan_suites.
+    if(NOT TARGET nearshore_asan_suites)
+      add_custom_target(nearshore_asan_suites)
+    endif()
+    add_dependencies(nearshore_asan_suites ${name})
+  endif()
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)
   endif()

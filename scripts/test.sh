@@ -12,7 +12,7 @@ bash scripts/build.sh release
 built=$(date +%s)
 ctest --preset release --output-on-failure -LE validation
 tested=$(date +%s)
-bash scripts/build.sh asan
+bash scripts/build.sh asan nearshore_asan_suites
 ctest --preset asan --output-on-failure
 sanitized=$(date +%s)
 echo "timing: install $((installed - start)) s, build $((built - installed)) s, tests $((tested - built)) s, sanitizer build+tests $((sanitized - tested)) s"
