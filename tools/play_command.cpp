@@ -1,9 +1,94 @@
+// `nearshore play SEQ`: the OpenGL runtime on a baked sequence, in a window or as a screenshot.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <fmt/core.h>
+
 #include "command_support.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/playback/sequence_player.hpp"
+#include "nearshore/playback/water_renderer.hpp"
+#include "nearshore/playback/window.hpp"
 
 namespace nearshore::tools {
+namespace fs = std::filesystem;
+namespace {
+
+struct PlayOptions {
+  fs::path sequence_folder;
+  fs::path screenshot;
+  double time_s = 0;
+  int width_px = 1280, height_px = 720;
+  std::vector<double> eye_m, target_m;
+  double sun_azimuth_deg = 200, sun_elevation_deg = 35;
+  double seconds = 0;
+};
+
+playback::Camera camera_from(const PlayOptions& o, const GridGeometry& geometry) {
+  playback::Camera camera = playback::Camera::overlooking(geometry);
+  if (!o.eye_m.empty()) camera.eye_m = {o.eye_m[0], o.eye_m[1], o.eye_m[2]};
+  if (!o.target_m.empty()) camera.target_m = {o.target_m[0], o.target_m[1], o.target_m[2]};
+  return camera;
+}
+
+void play(const PlayOptions& o) {
+  const sequence::SequenceReader reader(o.sequence_folder);
+  const HarbourGrid harbour = reader.read_harbour_grid();
+  const bool screenshot = !o.screenshot.empty();
+  playback::GlWindow window(o.width_px, o.height_px, "nearshore play " + o.sequence_folder.string(), !screenshot);
+  playback::WaterRenderer renderer(harbour);
+  playback::SequencePlayer player(reader);
+  playback::Lighting lighting;
+  lighting.sun_azimuth_deg = o.sun_azimuth_deg;
+  lighting.sun_elevation_deg = o.sun_elevation_deg;
+  const playback::Camera camera = camera_from(o, harbour.geometry);
+  std::fprintf(stderr, "OpenGL %s; %d frames of %d x %d cells at %.3g s\n", window.gl_description().c_str(),
+               reader.frame_count(), harbour.geometry.columns, harbour.geometry.rows, reader.frame_interval_s());
+  if (screenshot) {
+    player.advance_to(o.time_s);
+    renderer.set_frame(player.surface_elevation_m(), &player.breaking());
+    renderer.render(camera, lighting, o.width_px, o.height_px);
+    renderer.read_pixels().write_png(o.screenshot);
+    std::printf("screenshot: %s (%d x %d, t = %.2f s)\n", o.screenshot.c_str(), o.width_px, o.height_px, o.time_s);
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  int frames = 0;
+  double elapsed = 0;
+  while (!window.should_close() && (o.seconds <= 0 || elapsed < o.seconds)) {
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    player.advance_to(o.time_s + elapsed);
+    renderer.set_frame(player.surface_elevation_m(), &player.breaking());
+    renderer.render(camera, lighting, window.framebuffer_width_px(), window.framebuffer_height_px());
+    renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
+    window.present();
+    ++frames;
+  }
+  std::printf("played %.1f s, %d frames drawn (%.1f fps)\n", elapsed, frames, frames / std::max(elapsed, 1e-9));
+}
+
+}  // namespace
 
 void add_play_command(CLI::App& app) {
-  add_unbuilt_command(app, "play", "Play a baked sequence back with the OpenGL runtime (window or screenshot)", "nearshore play out/bake --screenshot shot.png", "the playback issue, not filed yet");
+  auto o = std::make_shared<PlayOptions>();
+  CLI::App* cmd = app.add_subcommand("play", "Play a baked sequence with the OpenGL runtime (window or screenshot)");
+  cmd->add_option("sequence", o->sequence_folder, "Baked sequence folder (from `nearshore bake`)")->required();
+  cmd->add_option("--screenshot", o->screenshot, "Render one picture to this PNG and exit (hidden window)");
+  cmd->add_option("--time", o->time_s, "Playback time of the first picture, seconds")->capture_default_str();
+  cmd->add_option("--width", o->width_px, "Picture width, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+  cmd->add_option("--height", o->height_px, "Picture height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+  cmd->add_option("--eye", o->eye_m, "Camera position x,y,z in metres (harbour frame; default: overview)")
+      ->delimiter(',')->expected(3);
+  cmd->add_option("--target", o->target_m, "Point looked at x,y,z in metres")->delimiter(',')->expected(3);
+  cmd->add_option("--sun-azimuth", o->sun_azimuth_deg, "Sun bearing, degrees from north")->capture_default_str();
+  cmd->add_option("--sun-elevation", o->sun_elevation_deg, "Sun height above the horizon, degrees")
+      ->capture_default_str();
+  cmd->add_option("--seconds", o->seconds, "Close the window after this many seconds (0: when closed)");
+  set_example(*cmd, "xvfb-run -a nearshore play demo-out/bake --screenshot shot.png");
+  cmd->callback([o] { play(*o); });
 }
 
 }  // namespace nearshore::tools
