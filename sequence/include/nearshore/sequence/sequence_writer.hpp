@@ -12,6 +12,7 @@
 
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/raster.hpp"
+#include "nearshore/sequence/sequence_format.hpp"
 
 namespace nearshore::sequence {
 
@@ -23,6 +24,7 @@ struct SequenceDescription {
   double loop_period_s = 0;       ///< > 0 for a time-periodic bake (exact period), else 0
   nlohmann::json deep_water;      ///< the deep-water description (issue 5), may be null
   nlohmann::json solver;          ///< solver parameters, for the record
+  FrameEncoding encoding;         ///< compression and half/float per channel (default: measured choice)
 };
 
 /// One baked frame: surface elevation eta (m), depth-integrated fluxes P, Q (m^2/s) at cell

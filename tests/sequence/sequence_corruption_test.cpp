@@ -1,0 +1,142 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/sequence/checksum.hpp"
+#include "nearshore/sequence/sequence_reader.hpp"
+#include "test_sequence.hpp"
+
+namespace nearshore::sequence {
+namespace {
+using namespace testing;
+namespace fs = std::filesystem;
+
+void overwrite(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string error_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(SequenceCorruption, TruncatedFrameIsRejectedWithAndWithoutVerification) {
+  const auto folder = fresh_folder("truncated");
+  write_test_sequence(folder, 3);
+  const fs::path path = folder / "frame_000001.exr";
+  std::string bytes = read_file_bytes(path);
+  overwrite(path, bytes.substr(0, bytes.size() / 2));
+  const SequenceReader reader(folder);
+  const std::string verified = error_of([&] { reader.read_frame(1, ChannelSelection::all(), Verify::kYes); });
+  EXPECT_NE(verified.find("frame_000001.exr"), std::string::npos) << verified;
+  EXPECT_NE(verified.find("truncated"), std::string::npos) << verified;
+  const std::string unverified = error_of([&] { reader.read_frame(1); });
+  EXPECT_NE(unverified.find("frame_000001.exr: cannot be decoded"), std::string::npos) << unverified;
+  EXPECT_NE(error_of([&] { reader.verify_checksums(); }).find("frame_000001.exr"), std::string::npos);
+  EXPECT_NO_THROW(reader.read_frame(2, ChannelSelection::all(), Verify::kYes));  // the others are fine
+}
+
+TEST(SequenceCorruption, EveryFlippedByteIsCaughtByTheChecksum) {
+  const auto folder = fresh_folder("flipped");
+  write_test_sequence(folder, 2);
+  const fs::path path = folder / "frame_000000.exr";
+  const std::string original = read_file_bytes(path);
+  const SequenceReader reader(folder);
+  // Bytes in the header, the offset table and the pixel data.
+  for (std::size_t position : {std::size_t{10}, original.size() / 3, original.size() / 2, original.size() - 1}) {
+    std::string bytes = original;
+    bytes[position] = static_cast<char>(bytes[position] ^ 0x10);
+    overwrite(path, bytes);
+    const std::string message = error_of([&] { reader.read_frame(0, ChannelSelection::all(), Verify::kYes); });
+    EXPECT_NE(message.find("does not match the manifest"), std::string::npos) << position << ": " << message;
+  }
+  overwrite(path, original);
+  EXPECT_NO_THROW(reader.read_frame(0, ChannelSelection::all(), Verify::kYes));
+}
+
+TEST(SequenceCorruption, SwappedFramesAreDetectedEvenWithoutChecksums) {
+  const auto folder = fresh_folder("swapped");
+  write_test_sequence(folder, 2);
+  fs::rename(folder / "frame_000000.exr", folder / "tmp.exr");
+  fs::rename(folder / "frame_000001.exr", folder / "frame_000000.exr");
+  fs::rename(folder / "tmp.exr", folder / "frame_000001.exr");
+  const std::string message = error_of([&] { SequenceReader(folder).read_frame(0); });
+  EXPECT_NE(message.find("holds frame 1 but the manifest puts frame 0 here"), std::string::npos) << message;
+}
+
+TEST(SequenceCorruption, ManifestProblemsNameTheKey) {
+  const auto folder = fresh_folder("manifest");
+  write_test_sequence(folder, 2);
+  const fs::path path = folder / "manifest.json";
+  const std::string original = read_file_bytes(path);
+  overwrite(path, original.substr(0, original.size() - 20));
+  EXPECT_NE(error_of([&] { SequenceReader{folder}; }).find("is not valid JSON"), std::string::npos);
+  nlohmann::json json = nlohmann::json::parse(original);
+  json["version"] = 7;
+  overwrite(path, json.dump());
+  EXPECT_NE(error_of([&] { SequenceReader{folder}; }).find("format version 7"), std::string::npos);
+  json = nlohmann::json::parse(original);
+  json["frames"][1]["file"] = "../../etc/passwd";
+  overwrite(path, json.dump());
+  EXPECT_NE(error_of([&] { SequenceReader{folder}; }).find("not a plain file name"), std::string::npos);
+  json = nlohmann::json::parse(original);
+  json.erase("frame_interval_s");
+  overwrite(path, json.dump());
+  EXPECT_NE(error_of([&] { SequenceReader{folder}; }).find("has no \"frame_interval_s\""), std::string::npos);
+}
+
+// A deterministic mutation fuzz of both readers (the libFuzzer targets in tests/sequence/fuzz run
+// the same entry points for longer): random byte flips, insertions, deletions and truncations of a
+// valid manifest and a valid frame. Every outcome must be a clean parse or a nearshore::Error; a
+// crash, hang or other exception fails (and the asan build catches memory errors).
+TEST(SequenceFuzz, MutatedManifestsAndFramesFailCleanly) {
+  const auto folder = fresh_folder("fuzz");
+  write_test_sequence(folder, 1, FrameEncoding{Compression::kZip, Precision::kHalf, Precision::kHalf, Precision::kHalf},
+                      test_geometry(9, 7));
+  const std::string manifest_text = read_file_bytes(folder / "manifest.json");
+  const std::string frame_bytes = read_file_bytes(folder / "frame_000000.exr");
+  const SequenceManifest manifest = parse_manifest(manifest_text, "manifest.json");
+  std::mt19937_64 random(20261122);
+  auto mutate = [&](std::string bytes) {
+    const int edits = 1 + static_cast<int>(random() % 4);
+    for (int e = 0; e < edits && !bytes.empty(); ++e) {
+      const std::size_t at = random() % bytes.size();
+      switch (random() % 4) {
+        case 0: bytes[at] = static_cast<char>(bytes[at] ^ (1 << (random() % 8))); break;
+        case 1: bytes.insert(at, 1, static_cast<char>(random())); break;
+        case 2: bytes.erase(at, 1 + random() % 8); break;
+        default: bytes.resize(at); break;
+      }
+    }
+    return bytes;
+  };
+  int manifests_rejected = 0, frames_rejected = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    try {
+      parse_manifest(mutate(manifest_text), "manifest.json");
+    } catch (const Error&) {
+      ++manifests_rejected;
+    }
+    const std::string bytes = mutate(frame_bytes);
+    Frame frame;
+    try {
+      decode_frame(std::as_bytes(std::span(bytes.data(), bytes.size())), "frame_000000.exr", manifest, 0,
+                   ChannelSelection::all(), frame);
+    } catch (const Error&) {
+      ++frames_rejected;
+    }
+  }
+  // Most mutations must be noticed (not a silent garbage read of the header).
+  EXPECT_GT(manifests_rejected, 500);
+  EXPECT_GT(frames_rejected, 300);
+}
+
+}  // namespace
+}  // namespace nearshore::sequence

@@ -1,0 +1,167 @@
+#include <gtest/gtest.h>
+
+#include <Imath/half.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/sequence/sequence_reader.hpp"
+#include "test_sequence.hpp"
+
+namespace nearshore::sequence {
+namespace {
+using namespace testing;
+
+double max_difference(const Raster<float>& a, const Raster<float>& b) {
+  EXPECT_EQ(a.columns(), b.columns());
+  EXPECT_EQ(a.rows(), b.rows());
+  double worst = 0;
+  for (std::size_t k = 0; k < a.size() && k < b.size(); ++k)
+    worst = std::max(worst, std::abs(double(a.values()[k]) - double(b.values()[k])));
+  return worst;
+}
+
+TEST(SequenceRoundTrip, FloatFramesComeBackBitExactWithManifest) {
+  const auto folder = fresh_folder("float");
+  const FrameEncoding encoding{Compression::kZip, Precision::kFloat, Precision::kFloat, Precision::kFloat};
+  write_test_sequence(folder, 5, encoding);
+  const SequenceReader reader(folder);
+  EXPECT_EQ(reader.frame_count(), 5);
+  EXPECT_EQ(reader.manifest().seed, 0xfeedbeefcafe1234ULL);
+  EXPECT_DOUBLE_EQ(reader.frame_interval_s(), 0.25);
+  EXPECT_DOUBLE_EQ(reader.geometry().origin_y_m, 4300000.0);
+  EXPECT_EQ(reader.manifest().wave_conditions["period_s"], 8.0);
+  EXPECT_EQ(reader.manifest().encoding.compression, Compression::kZip);
+  const GridGeometry geometry = test_geometry();
+  for (int index : {3, 0, 4}) {  // random access, any order
+    const Frame frame = reader.read_frame(index, ChannelSelection::all(), Verify::kYes);
+    const TestFields expected(geometry, index);
+    EXPECT_EQ(frame.index, index);
+    EXPECT_DOUBLE_EQ(frame.time_s, 30.0 + 0.25 * index);
+    EXPECT_EQ(max_difference(frame.surface_elevation_m, expected.eta), 0.0);
+    EXPECT_EQ(max_difference(frame.flux_x_m2_s, expected.p), 0.0);
+    EXPECT_EQ(max_difference(frame.flux_y_m2_s, expected.q), 0.0);
+    EXPECT_EQ(max_difference(frame.breaking, expected.breaking), 0.0);
+  }
+  const HarbourGrid harbour = reader.read_harbour_grid(Verify::kYes);
+  EXPECT_EQ(harbour.land(0, geometry.rows - 1), 1);  // the quay is in the north, not flipped south
+  EXPECT_EQ(harbour.land(0, 0), 0);
+  EXPECT_FLOAT_EQ(harbour.still_water_depth_m(3, 4), 3.0f);
+  reader.verify_checksums();
+}
+
+// Half keeps 11 significant bits: relative error <= 2^-11 after round-to-nearest (half of the
+// 2^-10 spacing). Every lossless compression must return exactly the half values.
+TEST(SequenceRoundTrip, HalfFramesAreWithinHalfRoundingForLosslessCompressions) {
+  const GridGeometry geometry = test_geometry();
+  const TestFields expected(geometry, 2);
+  for (Compression compression : {Compression::kNone, Compression::kZip, Compression::kPiz}) {
+    const auto folder = fresh_folder(std::string("half_") + std::string(compression_name(compression)));
+    write_test_sequence(folder, 3, FrameEncoding{compression, Precision::kHalf, Precision::kHalf, Precision::kHalf});
+    const Frame frame = SequenceReader(folder).read_frame(2);
+    for (std::size_t k = 0; k < expected.eta.size(); ++k) {
+      ASSERT_EQ(frame.surface_elevation_m.values()[k], float(half(expected.eta.values()[k]))) << compression_name(compression);
+      ASSERT_EQ(frame.flux_x_m2_s.values()[k], float(half(expected.p.values()[k])));
+    }
+  }
+}
+
+// Lossy codecs decode, with errors of the size the compression table in docs/formats/sequence.md
+// reports. B44 quantises 4x4 blocks in the ordered bit space of half, which is very uneven for a
+// signed field crossing zero: ~20 % of the 0.6 m amplitude here (bound 0.15 m), which is why it
+// is not the default. DWAA (DCT, default level 45) stays under 2 % of the amplitude (12 mm).
+TEST(SequenceRoundTrip, LossyCompressionsDecodeWithTheirKnownErrors) {
+  const GridGeometry geometry = test_geometry();
+  const TestFields expected(geometry, 1);
+  const std::pair<Compression, double> bounds[] = {{Compression::kB44, 0.15}, {Compression::kDwaa, 0.012}};
+  for (const auto& [compression, bound_m] : bounds) {
+    const auto folder = fresh_folder(std::string("lossy_") + std::string(compression_name(compression)));
+    write_test_sequence(folder, 2, FrameEncoding{compression, Precision::kHalf, Precision::kHalf, Precision::kHalf});
+    const Frame frame = SequenceReader(folder).read_frame(1, ChannelSelection::all(), Verify::kYes);
+    EXPECT_LT(max_difference(frame.surface_elevation_m, expected.eta), bound_m) << compression_name(compression);
+  }
+}
+
+TEST(SequenceRoundTrip, RowStripesEqualTheFullFrame) {
+  const auto folder = fresh_folder("rows");
+  write_test_sequence(folder, 2, FrameEncoding{Compression::kZip, Precision::kFloat, Precision::kFloat, Precision::kFloat});
+  const SequenceReader reader(folder);
+  const Frame full = reader.read_frame(1);
+  Frame stripe;
+  for (int first_row : {0, 5, 17}) {
+    const int count = std::min(6, reader.geometry().rows - first_row);
+    reader.read_frame_rows(1, first_row, count, stripe, ChannelSelection::dynamics());
+    ASSERT_EQ(stripe.surface_elevation_m.rows(), count);
+    EXPECT_TRUE(stripe.breaking.empty());
+    for (int row = 0; row < count; ++row)
+      for (int column = 0; column < reader.geometry().columns; ++column) {
+        ASSERT_EQ(stripe.surface_elevation_m(column, row), full.surface_elevation_m(column, first_row + row));
+        ASSERT_EQ(stripe.flux_y_m2_s(column, row), full.flux_y_m2_s(column, first_row + row));
+      }
+  }
+}
+
+TEST(SequenceWriter, ManifestAppearsOnlyAtFinishAndMissingFramesAreRefused) {
+  const auto folder = fresh_folder("unfinished");
+  const GridGeometry geometry = test_geometry();
+  SequenceWriter writer(folder, test_harbour(geometry), test_description());
+  writer.write_frame(0, TestFields(geometry, 0).fields());
+  writer.write_frame(2, TestFields(geometry, 2).fields());
+  EXPECT_FALSE(std::filesystem::exists(folder / "manifest.json"));
+  EXPECT_THROW(SequenceReader{folder}, Error);
+  try {
+    writer.finish(3);
+    FAIL() << "finish with a missing frame must throw";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 1 of 3 was never written"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(folder / "manifest.json"));
+  writer.write_frame(1, TestFields(geometry, 1).fields());
+  writer.finish(3);
+  EXPECT_EQ(SequenceReader(folder).frame_count(), 3);
+}
+
+TEST(SequenceWriter, NonFiniteFieldIsRefusedWithItsCellAndNothingIsWritten) {
+  const auto folder = fresh_folder("nan");
+  const GridGeometry geometry = test_geometry();
+  SequenceWriter writer(folder, test_harbour(geometry), test_description());
+  TestFields fields(geometry, 0);
+  fields.p(7, 4) = std::nanf("");
+  try {
+    writer.write_frame(0, fields.fields());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("flux_x is nan at cell (7, 4)"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(folder / "frame_000000.exr"));
+  Raster<float> wrong_size(3, 3);
+  FrameFields bad = fields.fields();
+  bad.surface_elevation_m = &wrong_size;
+  EXPECT_THROW(writer.write_frame(0, bad), Error);
+}
+
+TEST(SequenceWriter, ResumeKeepsEarlierFramesAndRewritesLaterOnes) {
+  const auto folder = fresh_folder("resume");
+  const GridGeometry geometry = test_geometry();
+  const FrameEncoding exact{Compression::kZip, Precision::kFloat, Precision::kFloat, Precision::kFloat};
+  {
+    SequenceWriter first(folder, test_harbour(geometry), test_description(exact));
+    for (int index = 0; index < 4; ++index) first.write_frame(index, TestFields(geometry, index).fields());
+    // "crash": no finish()
+  }
+  SequenceWriter resumed(folder, test_harbour(geometry), test_description(exact), /*resume=*/true);
+  for (int index = 2; index < 3; ++index) resumed.write_frame(index, TestFields(geometry, index).fields());
+  resumed.finish(3);  // frames 0, 1 from the first run; frame 3 of the first run is dropped
+  EXPECT_FALSE(std::filesystem::exists(folder / "frame_000003.exr"));
+  const SequenceReader reader(folder);
+  reader.verify_checksums();
+  EXPECT_EQ(max_difference(reader.read_frame(1).flux_x_m2_s, TestFields(geometry, 1).p), 0.0);
+  // Without resume, old frames are cleared and the folder starts over.
+  SequenceWriter fresh(folder, test_harbour(geometry), test_description(exact));
+  EXPECT_FALSE(std::filesystem::exists(folder / "frame_000000.exr"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "manifest.json"));
+}
+
+}  // namespace
+}  // namespace nearshore::sequence
