@@ -1,9 +1,54 @@
+// `nearshore bake CASE.toml -o DIR`: read the case, run the bake, print a summary. The work is in
+// bake/ (bake_case.hpp, bake_run.hpp); this file only parses options and prints.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <fmt/core.h>
+
 #include "command_support.hpp"
+#include "nearshore/bake/bake_case.hpp"
+#include "nearshore/bake/bake_run.hpp"
+#include "nearshore/core/progress.hpp"
 
 namespace nearshore::tools {
 
 void add_bake_command(CLI::App& app) {
-  add_unbuilt_command(app, "bake", "Run the Boussinesq solver over a harbour and bake the wave sequence", "nearshore bake case.toml -o out/bake", "issue 4, Boussinesq solver");
+  struct Options {
+    std::string case_file, output_folder;
+    bool resume = false, json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand("bake", "Run the Boussinesq solver over a harbour and bake the wave sequence");
+  command->add_option("case", options->case_file, "Case file (.toml or .json; schema in docs/commands/bake.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", options->output_folder, "Output folder: frames, manifest, gauges.csv, checkpoint")
+      ->required();
+  command->add_flag("--resume", options->resume, "Continue a killed bake from DIR/checkpoint.bin (same result as uninterrupted)");
+  command->add_flag("--json", options->json, "Print a JSON summary on stdout (no progress bar)");
+  set_example(*command, "nearshore bake data/cases/berkhoff.toml -o out/berkhoff");
+  command->callback([options]() {
+    if (options->json) ProgressBar::set_quiet(true);
+    const bake::BakeCase bake_case = bake::read_bake_case(options->case_file);
+    bake::BakeOptions bake_options;
+    bake_options.output_folder = options->output_folder;
+    bake_options.resume = options->resume;
+    const bake::BakeSummary summary = bake::run_bake(bake_case, bake_options);
+    if (options->json) {
+      std::printf("%s\n", summary.to_json().dump(2).c_str());
+      return;
+    }
+    std::printf("%s\n", fmt::format("baked {} frames ({} s apart from t = {} s) into {}", summary.frames, summary.frame_interval_s,
+                                    summary.first_frame_time_s, summary.output_folder.string())
+                            .c_str());
+    std::printf("%s\n", fmt::format("{} cells x {} steps of {:.5g} s in {:.1f} s wall time: {:.3g} cell-updates/s{}", summary.cells,
+                                    summary.steps_this_run, summary.time_step_s, summary.wall_time_s, summary.cell_updates_per_s,
+                                    summary.resumed_from_s >= 0 ? fmt::format(" (resumed from t = {} s)", summary.resumed_from_s) : "")
+                            .c_str());
+    std::printf("gauges: %s   seed: %llu\n", summary.gauges_csv.string().c_str(),
+                static_cast<unsigned long long>(summary.seed));
+  });
 }
 
 }  // namespace nearshore::tools

@@ -1,0 +1,46 @@
+#pragma once
+// The bathymetries a bake case can ask for besides a harbour grid from `nearshore bathy`: the
+// laboratory flumes of the validation cases (docs/validation.md), and resampling a harbour grid to
+// the spacing the case wants. All depths are still-water depths d in metres, positive down;
+// negative values are dry land (elevation above still water).
+#include <utility>
+#include <vector>
+
+#include "nearshore/core/harbour_grid.hpp"
+
+namespace nearshore::bake {
+
+/// A flume `length_m` (x, along the waves) by `width_m` (y) with cells of `spacing_m`, whose depth
+/// varies only along x: piecewise linear through `profile` = (x_m, depth_m) points with increasing
+/// x, constant beyond the first and last points. Cells with depth <= 0 are marked land.
+/// Throws nearshore::Error(subject, ...) for a profile that is not increasing or a bad size.
+HarbourGrid flume_from_profile(double length_m, double width_m, double spacing_m,
+                               const std::vector<std::pair<double, double>>& profile, const std::string& subject);
+
+/// Depth of a piecewise-linear profile at x (constant beyond the ends). `profile` must be increasing in x.
+double profile_depth_m(const std::vector<std::pair<double, double>>& profile, double x_m);
+
+/// Berkhoff, Booij & Radder (1982) elliptic shoal on a plane slope, in the rotated frame of the
+/// experiment (x' across, y' pointing UP-wave, both rotated by `rotation_deg` from the grid, centre
+/// of the shoal at `centre`):
+///   slope  d = deep_depth_m                                   for y' >= slope_start_m
+///          d = deep_depth_m - slope * (slope_start_m - y')     below, clipped at minimum_depth_m
+///   shoal  d -= 0.5 sqrt(1 - (x'/5)^2 - (y'/3.75)^2) - 0.3     where (x'/4)^2 + (y'/3)^2 < 1
+/// Waves travel along +x in the grid, so y' = -(x - x_c) cos(rot) + ... (see the implementation).
+struct BerkhoffShoal {
+  double centre_x_m = 13.15, centre_y_m = 10.0;
+  double rotation_deg = 20.0;
+  double deep_depth_m = 0.45;
+  double slope = 0.02;
+  double slope_start_m = 5.84;   ///< FUNWAVE's DEPTH.F value; the paper states 5.82
+  double minimum_depth_m = 0.07;
+};
+double berkhoff_shoal_depth_m(const BerkhoffShoal& shoal, double x_m, double y_m);
+HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, double spacing_m, const BerkhoffShoal& shoal);
+
+/// The grid resampled to `spacing_m` over the same extent (bilinear depth and coast distance;
+/// nearest-cell land and porosity so walls stay walls). Returns the input unchanged when the
+/// spacing already matches to 1e-9 relative.
+HarbourGrid resample_harbour_grid(const HarbourGrid& grid, double spacing_m);
+
+}  // namespace nearshore::bake

@@ -1,0 +1,66 @@
+#pragma once
+// A bake case: everything `nearshore bake CASE.toml -o DIR` needs, read from one TOML or JSON file
+// (the same schema in both; docs/commands/bake.md documents every key with its unit).
+//
+// One road from the file to the solver (pbrt's single factory route): read_bake_case() parses and
+// checks every key, builds the harbour grid (from a depth.exr, a 1-D flume profile or the Berkhoff
+// shoal formula), and fills the solver's own SolverParameters and WaveMaker. Unknown keys are
+// errors, so a typo never passes silently; every error names the case file, the key and the fix.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "nearshore/bake/boussinesq_solver.hpp"
+#include "nearshore/core/harbour_grid.hpp"
+
+namespace nearshore::bake {
+
+/// A named point where the surface elevation is recorded every gauge interval (gauges.csv).
+struct GaugeSpec {
+  std::string name;
+  double x_m = 0.0;  ///< grid frame (GridGeometry origin included), metres
+  double y_m = 0.0;
+};
+
+/// Time control of a bake. All in seconds of simulated time.
+struct BakeTiming {
+  double duration_s = 0.0;         ///< total simulated time, spin-up included
+  double spin_up_s = 0.0;          ///< frames start at this time (the field must be developed)
+  double output_interval_s = 0.0;  ///< simulated time between frames; an integer number of time steps
+  double checkpoint_interval_s = 0.0;  ///< 0 = no checkpoints
+  double gauge_interval_s = 0.0;   ///< 0 = every time step; else an integer number of time steps
+};
+
+struct BakeCase {
+  std::filesystem::path case_file;  ///< where it was read from (named in every message)
+  HarbourGrid harbour;              ///< the grid the solver runs on
+  SolverParameters solver;          ///< time_step_s is always resolved (> 0): see resolve_time_step()
+  WaveMaker wave_maker;
+  BakeTiming timing;
+  std::vector<GaugeSpec> gauges;
+  nlohmann::json wave_conditions;   ///< the wave maker as configured, recorded in the sequence
+  nlohmann::json solver_record;     ///< the solver parameters as resolved, recorded in the sequence
+  nlohmann::json source;            ///< the parsed case document (for the checkpoint fingerprint)
+};
+
+/// Reads and checks a case file (.toml or .json). Relative paths inside it are relative to the
+/// case file's folder. Throws nearshore::Error(case file, "key `a.b` ...", fix) on any problem.
+BakeCase read_bake_case(const std::filesystem::path& case_file);
+
+/// The same from an already parsed document (tests, and JSON given in memory). `case_file` is used
+/// for messages and to resolve relative paths.
+BakeCase parse_bake_case(const nlohmann::json& document, const std::filesystem::path& case_file);
+
+/// The time step used: the requested one (time_step_s, or courant_number * dx / sqrt(g d_max) with
+/// d_max the deepest wet cell), reduced to the largest value that divides `output_interval_s` into
+/// a whole number of steps, so frames fall exactly on steps and a periodic bake repeats exactly.
+double resolve_time_step(double requested_time_step_s, double courant_number, const HarbourGrid& harbour,
+                         double output_interval_s);
+
+/// The number of steps of `step_s` in `interval_s`, if it is a whole number (to 1e-9 relative), else -1.
+long whole_steps(double interval_s, double step_s);
+
+}  // namespace nearshore::bake

@@ -1,0 +1,49 @@
+#pragma once
+// The bake run: a BakeCase through the Boussinesq solver into a sequence folder (seed 003 section
+// 3: solve, keep every frame's height and flux fields). In the output folder:
+//   the frame sequence (sequence::SequenceWriter: frames every output interval after spin-up, the
+//   manifest written LAST by finish()), gauges.csv (bake_gauges.hpp), and checkpoint.bin while the
+//   run is under way (removed when it completes).
+// Checkpoints hold the solver state, the gauge records and a fingerprint of the case; a run
+// resumed from one writes byte-identical frames and gauges to an uninterrupted run.
+#include <cstdint>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "nearshore/bake/bake_case.hpp"
+
+namespace nearshore::bake {
+
+struct BakeOptions {
+  std::filesystem::path output_folder;
+  bool resume = false;  ///< continue from output_folder/checkpoint.bin (which must exist and match the case)
+};
+
+struct BakeSummary {
+  long long cells = 0;              ///< grid cells
+  long total_steps = 0;             ///< steps of the whole bake
+  long steps_this_run = 0;          ///< steps computed by this call (fewer when resumed)
+  double time_step_s = 0.0;
+  double wall_time_s = 0.0;         ///< of this call
+  double cell_updates_per_s = 0.0;  ///< cells * steps_this_run / wall time of the stepping
+  int frames = 0;
+  double first_frame_time_s = 0.0;
+  double frame_interval_s = 0.0;
+  double resumed_from_s = -1.0;     ///< simulated time of the checkpoint resumed from, -1 if not resumed
+  std::uint64_t seed = 0;
+  double loop_period_s = 0.0;
+  std::filesystem::path output_folder, gauges_csv;
+  nlohmann::json to_json() const;
+};
+
+/// Runs the bake. Shows a ProgressBar (simulated time, wall time, ETA) on stderr.
+/// Throws nearshore::Error for bad output folders, a checkpoint that does not match the case, and
+/// when the solver becomes unstable (naming time, cell, depth and what to change; the last good
+/// checkpoint is kept).
+BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options);
+
+/// Path of the checkpoint in an output folder.
+std::filesystem::path checkpoint_path(const std::filesystem::path& output_folder);
+
+}  // namespace nearshore::bake

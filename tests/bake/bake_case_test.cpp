@@ -1,0 +1,161 @@
+// The case file parser: a valid case in TOML and JSON gives the same BakeCase, and every bad key or
+// value gives ONE nearshore::Error that names the case file, the key and a fix.
+#include <cmath>
+#include <numbers>
+#include <regex>
+
+#include <gtest/gtest.h>
+
+#include "bake_test_support.hpp"
+#include "nearshore/bake/bake_case.hpp"
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::bake {
+namespace {
+using testing::scratch_folder;
+using testing::small_flume_case;
+using testing::write_text;
+
+// Replaces the first occurrence of `from` in the small flume case (so each error case is one edit).
+std::string edited(const std::string& from, const std::string& to) {
+  std::string text = small_flume_case();
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+// The message must name the file, contain every `expected` fragment, and carry a fix after "; ".
+void expect_case_error(const std::string& text, const std::vector<std::string>& expected, const std::string& extension = ".toml") {
+  const auto file = write_text(scratch_folder() / ("case" + extension), text);
+  try {
+    read_bake_case(file);
+    ADD_FAILURE() << "no error for a case expected to fail with: " << expected.front();
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    for (const auto& fragment : expected) EXPECT_NE(message.find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << message;
+    EXPECT_NE(message.find("; "), std::string::npos) << "no fix in: " << message;
+  }
+}
+
+TEST(BakeCase, ReadsTheSmallFlume) {
+  const auto file = write_text(scratch_folder() / "case.toml", small_flume_case());
+  const BakeCase c = read_bake_case(file);
+  EXPECT_EQ(c.harbour.geometry.columns, 120);
+  EXPECT_EQ(c.harbour.geometry.rows, 6);
+  EXPECT_FLOAT_EQ(c.harbour.still_water_depth_m(60, 3), 0.5f);
+  // Courant 0.5 at d = 0.5 m, dx = 0.1 m gives 0.0226 s; reduced to divide 0.5 s: 23 steps.
+  EXPECT_EQ(whole_steps(c.timing.output_interval_s, c.solver.time_step_s), 23);
+  EXPECT_LE(c.solver.time_step_s, 0.5 * 0.1 / std::sqrt(kGravity_m_s2 * 0.5) + 1e-12);
+  ASSERT_EQ(c.wave_maker.kind, WaveMaker::Kind::kComponents);
+  ASSERT_EQ(c.wave_maker.sea_state.components.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.wave_maker.sea_state.components[0].amplitude_m, 0.01);
+  EXPECT_DOUBLE_EQ(c.wave_maker.sea_state.components[0].angular_frequency_rad_s, std::numbers::pi);
+  EXPECT_DOUBLE_EQ(c.wave_maker.sea_state.components[0].direction_rad, 0.0);  // away from the west side
+  EXPECT_EQ(c.wave_maker.facing, Side::kWest);
+  ASSERT_EQ(c.solver.sponges.size(), 2u);
+  EXPECT_EQ(c.solver.sponges[1].side, Side::kEast);
+  ASSERT_EQ(c.gauges.size(), 2u);
+  EXPECT_EQ(c.gauges[1].name, "g2");
+  EXPECT_EQ(c.wave_conditions["case"]["kind"], "regular");
+}
+
+TEST(BakeCase, JsonAndTomlGiveTheSameCase) {
+  const auto folder = scratch_folder();
+  const BakeCase from_toml = read_bake_case(write_text(folder / "case.toml", small_flume_case()));
+  const auto json_file = write_text(folder / "case.json", from_toml.source.dump(2));
+  const BakeCase from_json = read_bake_case(json_file);
+  EXPECT_EQ(from_json.source, from_toml.source);
+  EXPECT_EQ(from_json.solver.time_step_s, from_toml.solver.time_step_s);
+  EXPECT_EQ(from_json.harbour.still_water_depth_m.values(), from_toml.harbour.still_water_depth_m.values());
+  EXPECT_EQ(from_json.solver_record, from_toml.solver_record);
+}
+
+TEST(BakeCase, ResolvedTimeStepDividesTheOutputInterval) {
+  HarbourGrid grid = HarbourGrid::open_water(GridGeometry{10, 10, 2.0, 0, 0, {}, {}}, 10.f);
+  for (double interval : {0.1, 0.25, 1.0, 0.7}) {
+    const double dt = resolve_time_step(0.0, 0.5, grid, interval);
+    EXPECT_GT(whole_steps(interval, dt), 0) << interval;
+    EXPECT_LE(dt, 0.5 * 2.0 / std::sqrt(kGravity_m_s2 * 10.0) * (1 + 1e-12));
+  }
+  EXPECT_DOUBLE_EQ(resolve_time_step(0.03, 0.5, grid, 0.1), 0.025);  // 0.03 -> 4 steps per 0.1 s
+  EXPECT_DOUBLE_EQ(resolve_time_step(0.05, 0.5, grid, 0.1), 0.05);
+}
+
+TEST(BakeCase, UnknownKeysAreErrors) {
+  expect_case_error(edited("title =", "titel ="), {"key `titel`", "not a known key"});
+  expect_case_error(edited("spin_up_s", "spinup_s"), {"key `time.spinup_s`"});
+  expect_case_error(small_flume_case() + "[solver.breaking]\nonset_celerity = 0.5\n", {"key `solver.breaking.onset_celerity`"});
+  expect_case_error(edited("name = \"g1\"", "name = \"g1\"\nz_m = 1.0"), {"key `gauges[0].z_m`"});
+}
+
+TEST(BakeCase, MissingTablesAndKeysAreErrors) {
+  expect_case_error("[time]\nduration_s = 1\noutput_interval_s = 0.1\n", {"key `bathymetry`", "is missing"});
+  expect_case_error(edited("duration_s = ", "length_s = "), {"key `time.duration_s`", "is missing"});
+  expect_case_error(edited("height_m = 0.02\n", ""), {"key `wave_maker.height_m`", "is missing"});
+  expect_case_error(edited("kind = \"profile\"\n", ""), {"key `bathymetry.kind`", "is missing"});
+}
+
+TEST(BakeCase, BadValuesAreErrors) {
+  expect_case_error(edited("spacing_m = 0.1", "spacing_m = -0.1"), {"key `bathymetry.spacing_m`", "out of range"});
+  expect_case_error(edited("spacing_m = 0.1", "spacing_m = \"fine\""), {"key `bathymetry.spacing_m`", "must be a number"});
+  expect_case_error(edited("kind = \"profile\"", "kind = \"profil\""), {"key `bathymetry.kind`", "\"profil\" is not known", "profile"});
+  expect_case_error(edited("facing = \"west\"", "facing = \"up\""), {"key `wave_maker.facing`"});
+  expect_case_error(edited("spin_up_s = 2.0", "spin_up_s = 20.0"), {"key `time.spin_up_s`", "not shorter"});
+  expect_case_error(edited("courant_number = 0.5", "courant_number = 0.5\ntime_step_s = 0.01"), {"time_step_s", "both given"});
+  expect_case_error(edited("[[0.0, 0.5], [12.0, 0.5]]", "[[0.0, 0.5], [0.0, 0.4]]"), {"key `bathymetry.profile`", "strictly increasing"});
+  expect_case_error(edited("[[0.0, 0.5], [12.0, 0.5]]", "[0.0, 0.5]"), {"key `bathymetry.profile`", "not a pair"});
+  expect_case_error(edited("x_m = 5.0", "x_m = 50.0"), {"key `gauges[0].x_m`", "out of range"});
+  expect_case_error(edited("name = \"g2\"", "name = \"g1\""), {"key `gauges[1].name`", "another gauge"});
+  expect_case_error(edited("name = \"g2\"", "name = \"a,b\""), {"key `gauges[1].name`", "comma"});
+  expect_case_error(edited("width_m = 3.0", "width_m = 9.0"), {"key `sponges[1].width_m`", "out of range"});
+  expect_case_error(edited("side = \"east\"", "side = \"eats\""), {"key `sponges[1].side`"});
+  expect_case_error(edited("source_line_m = 3.0", "source_line_m = 30.0"), {"key `wave_maker.source_line_m`", "out of range"});
+  expect_case_error(small_flume_case() + "[solver.breaking]\nonset_celerity_fraction = 0.1\nstop_celerity_fraction = 0.2\n",
+                    {"key `solver.breaking.stop_celerity_fraction`", "larger than onset"});
+  expect_case_error(small_flume_case() + "[solver]\nnonlinear_iterations = 1.5\n", {"key `solver.nonlinear_iterations`", "whole number"});
+  expect_case_error(small_flume_case() + "[[porous_blocks]]\nx_range_m = [100.0, 101.0]\ny_range_m = [0.0, 1.0]\nporosity = 0.4\n",
+                    {"key `porous_blocks[0].x_range_m`", "no cell centre"});
+  expect_case_error(small_flume_case() + "[[porous_blocks]]\nx_range_m = [1.0, 2.0]\ny_range_m = [0.0, 1.0]\nporosity = 1.4\n",
+                    {"key `porous_blocks[0].porosity`", "out of range"});
+}
+
+TEST(BakeCase, LoopPeriodMustHoldWholePeriodsAndFrames) {
+  expect_case_error(edited("period_s = 2.0", "period_s = 2.0\nloop_period_s = 7.0"), {"key `wave_maker.period_s`", "does not repeat", "loop_period_s = 8"});
+}
+
+TEST(BakeCase, OutputIntervalMustDivideTheLoop) {
+  std::string text = edited("period_s = 2.0", "period_s = 2.0\nloop_period_s = 8.0");
+  text.replace(text.find("output_interval_s = 0.5"), 23, "output_interval_s = 0.3");
+  expect_case_error(text, {"key `time.output_interval_s`", "does not divide"});
+  const auto ok = write_text(scratch_folder() / "ok.toml", edited("period_s = 2.0", "period_s = 2.0\nloop_period_s = 8.0"));
+  EXPECT_DOUBLE_EQ(read_bake_case(ok).wave_maker.sea_state.loop_period_s, 8.0);
+}
+
+TEST(BakeCase, SyntaxErrorsNameTheLine) {
+  expect_case_error(small_flume_case() + "[time\n", {"not valid TOML at line"});
+  expect_case_error("{\"bathymetry\": ", {"not valid JSON"}, ".json");
+  expect_case_error("x = 1\n", {"neither a .toml nor a .json"}, ".yaml");
+}
+
+TEST(BakeCase, MissingFilesAreNamed) {
+  EXPECT_THROW(read_bake_case(scratch_folder() / "absent.toml"), Error);
+  expect_case_error(edited("kind = \"profile\"", "kind = \"harbour_grid\"\nfile = \"nowhere/depth.exr\""), {"depth.exr", "does not exist"});
+}
+
+TEST(BakeCase, IrregularSeaFromTheSpectrumBuilder) {
+  std::string text = small_flume_case();
+  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nspectrum = \"jonswap\"\nsignificant_height_m = 0.03\n"
+                                                     "peak_period_s = 1.5\nfrequency_count = 32\nseed = 42\nloop_period_s = 64.0");
+  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
+  const BakeCase c = read_bake_case(write_text(scratch_folder() / "case.toml", text));
+  EXPECT_EQ(c.wave_maker.sea_state.seed, 42u);
+  EXPECT_EQ(c.wave_maker.sea_state.components.size(), 32u);
+  EXPECT_DOUBLE_EQ(c.wave_maker.sea_state.loop_period_s, 64.0);
+  for (const auto& component : c.wave_maker.sea_state.components)  // every frequency a harmonic of 1/T_loop
+    EXPECT_GT(whole_steps(64.0, 2 * std::numbers::pi / component.angular_frequency_rad_s), 0);
+  EXPECT_EQ(c.wave_conditions["seed"], 42);
+}
+
+}  // namespace
+}  // namespace nearshore::bake

@@ -1,0 +1,150 @@
+// The inputs and outputs of a bake that need no solver: flume bathymetries, the Berkhoff shoal,
+// resampling, time-series tables, and gauges.csv.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "bake_test_support.hpp"
+#include "nearshore/bake/bake_bathymetry.hpp"
+#include "nearshore/bake/bake_gauges.hpp"
+#include "nearshore/bake/bake_time_series.hpp"
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::bake {
+namespace {
+using testing::scratch_folder;
+using testing::write_text;
+
+TEST(FlumeProfile, InterpolatesLinearlyAndMarksDryCellsAsLand) {
+  const std::vector<std::pair<double, double>> profile = {{10.0, 0.47}, {20.0, -0.03}};  // 1:20 beach
+  EXPECT_DOUBLE_EQ(profile_depth_m(profile, 0.0), 0.47);
+  EXPECT_DOUBLE_EQ(profile_depth_m(profile, 15.0), 0.22);
+  EXPECT_DOUBLE_EQ(profile_depth_m(profile, 30.0), -0.03);
+  const HarbourGrid grid = flume_from_profile(20.0, 0.12, 0.04, profile, "test");
+  EXPECT_EQ(grid.geometry.columns, 500);
+  EXPECT_EQ(grid.geometry.rows, 3);
+  EXPECT_NEAR(grid.still_water_depth_m(374, 1), 0.47 - (374.5 * 0.04 - 10.0) / 20.0, 1e-6);
+  EXPECT_EQ(grid.land(490, 0), 1);  // x = 19.62 m, beyond the still-water line at 19.4 m
+  EXPECT_EQ(grid.land(400, 0), 0);
+}
+
+TEST(BerkhoffShoal, DepthsOfThePaper) {
+  const BerkhoffShoal shoal;  // centre (13.15, 10), 20 degrees
+  // Far up-wave: the flat 0.45 m part; at the centre: the slope's 0.45 - 0.02 * 5.84 plus the shoal
+  // 0.3 - 0.5 = -0.2 m, i.e. 0.1332 m (Berkhoff et al. 1982: about 0.13 m over the top).
+  EXPECT_DOUBLE_EQ(berkhoff_shoal_depth_m(shoal, 2.0, 10.0), 0.45);
+  EXPECT_NEAR(berkhoff_shoal_depth_m(shoal, 13.15, 10.0), 0.45 - 0.02 * 5.84 - 0.2, 1e-12);
+  // Far down-wave the slope is clipped at 0.07 m.
+  EXPECT_DOUBLE_EQ(berkhoff_shoal_depth_m(shoal, 29.9, 10.0), 0.07);
+  // The contours are rotated: along the line x = x_c + 2 m the depth changes across the flume.
+  EXPECT_NE(berkhoff_shoal_depth_m(shoal, 20.0, 5.0), berkhoff_shoal_depth_m(shoal, 20.0, 15.0));
+}
+
+TEST(Resample, KeepsALinearBedAndTheExtent) {
+  HarbourGrid grid = flume_from_profile(40.0, 20.0, 1.0, {{0.0, 10.0}, {40.0, 2.0}}, "test");
+  grid.porosity(20, 10) = 0.f;  // a wall cell stays a wall
+  const HarbourGrid fine = resample_harbour_grid(grid, 0.5);
+  EXPECT_EQ(fine.geometry.columns, 80);
+  EXPECT_EQ(fine.geometry.rows, 40);
+  for (int column = 2; column < 78; column += 7)  // interior: bilinear is exact on a linear bed
+    EXPECT_NEAR(fine.still_water_depth_m(column, 5), 10.0 - 0.2 * fine.geometry.cell_centre_x_m(column), 1e-5);
+  EXPECT_EQ(fine.porosity(41, 21), 0.f);
+  EXPECT_EQ(resample_harbour_grid(grid, 1.0).geometry.columns, 40);
+}
+
+TEST(TimeSeries, ReadsOneColumnInCentimetresAndTimedColumns) {
+  const auto folder = scratch_folder();
+  const auto one = write_text(folder / "r2d.dat", "   -2.5\n   1.5\n# comment\n\n   3.0\n");
+  TimeSeriesLayout layout;
+  layout.sample_interval_s = 0.05;
+  layout.elevation_scale_to_m = 0.01;
+  TimeSeries series = read_time_series(one, layout);
+  ASSERT_EQ(series.time_s.size(), 3u);
+  EXPECT_DOUBLE_EQ(series.time_s[2], 0.1);
+  EXPECT_DOUBLE_EQ(series.elevation_m[0], -0.025);
+  layout.remove_mean = true;
+  series = read_time_series(one, layout);
+  EXPECT_NEAR(series.elevation_m[0] + series.elevation_m[1] + series.elevation_m[2], 0.0, 1e-15);
+
+  const auto timed = write_text(folder / "timed.csv", "t,eta\n0.0,0.1\n0.5,0.2\n1.0,0.3\n");
+  TimeSeriesLayout columns;
+  columns.time_column = 1;
+  columns.elevation_column = 2;
+  series = read_time_series(timed, columns);
+  EXPECT_DOUBLE_EQ(series.time_s[1], 0.5);
+  EXPECT_DOUBLE_EQ(series.elevation_m[2], 0.3);
+}
+
+TEST(TimeSeries, BadTablesNameTheLine) {
+  const auto folder = scratch_folder();
+  TimeSeriesLayout columns;
+  columns.time_column = 1;
+  columns.elevation_column = 2;
+  const auto expect_error = [&](const std::string& text, const std::string& fragment) {
+    try {
+      read_time_series(write_text(folder / "bad.csv", text), columns);
+      ADD_FAILURE() << fragment;
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("bad.csv"), std::string::npos) << error.what();
+    }
+  };
+  expect_error("0 0.1\n1 x\n", "line 2 is not a row of numbers");
+  expect_error("0 0.1\n1\n", "line 2 has 1 columns");
+  expect_error("0 0.1\n0 0.2\n", "line 2: time 0 s does not increase");
+  expect_error("0 0.1\n", "holds 1 samples");
+}
+
+TEST(Gauges, CsvRoundTripAndCheckpointState) {
+  const auto folder = scratch_folder();
+  GaugeTable table;
+  // GaugeRecorder needs a solver to sample; the file format is exercised through its writer with
+  // a recorder restored from a hand-made state.
+  GaugeRecorder recorder({{"north", 1.0, 2.0}, {"south", 3.0, 4.0}});
+  std::stringstream state;
+  {
+    const std::uint64_t names = 2, samples = 3;
+    state.write(reinterpret_cast<const char*>(&names), 8);
+    for (std::string name : {"north", "south"}) {
+      const std::uint64_t length = name.size();
+      state.write(reinterpret_cast<const char*>(&length), 8);
+      state.write(name.data(), static_cast<std::streamsize>(length));
+    }
+    state.write(reinterpret_cast<const char*>(&samples), 8);
+    const double values[9] = {0.0, 0.025, 0.05, 0.1234567891234, -1e-7, 0.0, 1.0 / 3.0, 2.5e-3, -0.75};
+    state.write(reinterpret_cast<const char*>(values), sizeof values);
+  }
+  recorder.load(state, "state");
+  recorder.write_csv(folder / "gauges.csv");
+  const GaugeTable read = read_gauges_csv(folder / "gauges.csv");
+  ASSERT_EQ(read.names, (std::vector<std::string>{"north", "south"}));
+  ASSERT_EQ(read.time_s.size(), 3u);
+  EXPECT_DOUBLE_EQ(read.time_s[1], 0.025);
+  // %.9g: nine significant digits, far below the float precision of the solver's fields.
+  EXPECT_NEAR(gauge_column(read, "north")[0], 0.1234567891234, 1e-9 * 0.1234567891234);
+  EXPECT_DOUBLE_EQ(gauge_column(read, "south")[2], -0.75);
+  EXPECT_THROW(gauge_column(read, "east"), Error);
+  // Saving and loading the binary state is exact.
+  std::stringstream again;
+  recorder.save(again);
+  GaugeRecorder copy({{"north", 1.0, 2.0}, {"south", 3.0, 4.0}});
+  copy.load(again, "again");
+  EXPECT_EQ(copy.table().elevation_m, recorder.table().elevation_m);
+  // A recorder for other gauges refuses the state.
+  std::stringstream other;
+  recorder.save(other);
+  GaugeRecorder different({{"east", 1.0, 2.0}});
+  EXPECT_THROW(different.load(other, "other"), Error);
+  // No temporary file is left beside the output.
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) EXPECT_EQ(entry.path().filename(), "gauges.csv");
+}
+
+TEST(Gauges, DamagedCsvIsNamed) {
+  const auto folder = scratch_folder();
+  EXPECT_THROW(read_gauges_csv(write_text(folder / "a.csv", "time,g\n0,1\n")), Error);
+  EXPECT_THROW(read_gauges_csv(write_text(folder / "b.csv", "t,g\n0,1,2\n")), Error);
+  EXPECT_THROW(read_gauges_csv(write_text(folder / "c.csv", "t,g\n0,x\n")), Error);
+}
+
+}  // namespace
+}  // namespace nearshore::bake

@@ -1,0 +1,193 @@
+// The bake run: frames, gauges and manifest in the output folder; resume after a REAL SIGKILL of a
+// separate process gives byte-identical frames and gauges; the stability guard stops with one
+// message naming time, cell, depth and the fix.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <iterator>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "bake_test_support.hpp"
+#include "nearshore/bake/bake_case.hpp"
+#include "nearshore/bake/bake_gauges.hpp"
+#include "nearshore/bake/bake_run.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/core/progress.hpp"
+
+namespace nearshore::bake {
+namespace {
+namespace fs = std::filesystem;
+using testing::scratch_folder;
+using testing::small_flume_case;
+using testing::write_text;
+
+std::string file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Everything in the folder except the manifest (which may carry a creation time) must be equal.
+void expect_same_outputs(const fs::path& a, const fs::path& b) {
+  int compared = 0;
+  for (const auto& entry : fs::directory_iterator(a)) {
+    const auto name = entry.path().filename();
+    if (name == "manifest.json") continue;
+    ASSERT_TRUE(fs::exists(b / name)) << name;
+    EXPECT_TRUE(file_bytes(entry.path()) == file_bytes(b / name)) << name << " differs";
+    ++compared;
+  }
+  EXPECT_GT(compared, 3);
+}
+
+pid_t start_runner(const fs::path& case_file, const fs::path& output, bool resume) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string runner = BAKE_RUNNER_PATH, c = case_file.string(), o = output.string();
+    if (resume) execl(runner.c_str(), runner.c_str(), c.c_str(), o.c_str(), "--resume", static_cast<char*>(nullptr));
+    else execl(runner.c_str(), runner.c_str(), c.c_str(), o.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+int wait_for(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+class BakeRun : public ::testing::Test {
+ protected:
+  void SetUp() override { ProgressBar::set_quiet(true); }
+};
+
+TEST_F(BakeRun, WritesFramesGaugesAndTheManifestLast) {
+  const auto folder = scratch_folder();
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", small_flume_case(8.0, 2.0)));
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  const BakeSummary summary = run_bake(c, options);
+  // Spin-up 2 s, frames every 0.5 s up to 8 s: 13 frames.
+  EXPECT_EQ(summary.frames, 13);
+  EXPECT_EQ(summary.cells, 720);
+  EXPECT_NEAR(summary.first_frame_time_s, 2.0, 1e-9);
+  EXPECT_TRUE(fs::exists(options.output_folder / "manifest.json"));
+  EXPECT_TRUE(fs::exists(options.output_folder / "frame_000012.exr"));
+  EXPECT_FALSE(fs::exists(options.output_folder / "frame_000013.exr"));
+  EXPECT_FALSE(fs::exists(checkpoint_path(options.output_folder)));  // removed once complete
+  const GaugeTable gauges = read_gauges_csv(options.output_folder / "gauges.csv");
+  ASSERT_EQ(gauges.names, (std::vector<std::string>{"g1", "g2"}));
+  ASSERT_EQ(static_cast<long>(gauges.time_s.size()), summary.total_steps + 1);
+  EXPECT_NEAR(gauges.time_s.back(), 8.0, 1e-6);
+  // The waves arrived: the gauge 2 m from the source line saw more than half the wave height.
+  double highest = 0, lowest = 0;
+  for (double eta : gauge_column(gauges, "g1")) highest = std::max(highest, eta), lowest = std::min(lowest, eta);
+  EXPECT_GT(highest - lowest, 0.01);
+  // Only finished files: no temporary names are left behind.
+  for (const auto& entry : fs::directory_iterator(options.output_folder))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  // The summary for --json.
+  const auto json = summary.to_json();
+  EXPECT_EQ(json["outputs"]["frames"], 13);
+  EXPECT_GT(json["cell_updates_per_s"].get<double>(), 0.0);
+}
+
+TEST_F(BakeRun, ResumeAfterARealKillGivesTheSameFramesAndGauges) {
+  const auto folder = scratch_folder();
+  // Long enough that the runner is still working when the first checkpoint appears; if the machine
+  // is so fast that it finishes first, the case is made longer and the kill tried again.
+  for (double duration_s = 30.0; duration_s <= 480.0; duration_s *= 4) {
+    const auto case_file = write_text(folder / "case.toml", small_flume_case(duration_s, duration_s / 6));
+    const fs::path reference = folder / "uninterrupted", killed = folder / "killed";
+    fs::remove_all(reference);
+    fs::remove_all(killed);
+    const pid_t pid = start_runner(case_file, killed, false);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!fs::exists(checkpoint_path(killed)) && std::chrono::steady_clock::now() < deadline) {
+      if (waitpid(pid, nullptr, WNOHANG) == pid) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));  // kill mid-step, between checkpoints
+    kill(pid, SIGKILL);
+    const int status = wait_for(pid);
+    if (!WIFSIGNALED(status)) continue;  // it finished before the kill: try a longer bake
+    ASSERT_TRUE(fs::exists(checkpoint_path(killed)));
+    EXPECT_FALSE(fs::exists(killed / "manifest.json"));  // the killed run does not look complete
+    // A killed run leaves complete gauges up to its last checkpoint, never a torn file.
+    const GaugeTable partial = read_gauges_csv(killed / "gauges.csv");
+    EXPECT_GT(partial.time_s.size(), 1u);
+
+    const int resumed = wait_for(start_runner(case_file, killed, true));
+    ASSERT_TRUE(WIFEXITED(resumed) && WEXITSTATUS(resumed) == 0);
+    BakeOptions options;
+    options.output_folder = reference;
+    run_bake(read_bake_case(case_file), options);
+    expect_same_outputs(reference, killed);
+    EXPECT_TRUE(fs::exists(killed / "manifest.json"));
+    return;
+  }
+  FAIL() << "the runner always finished before it could be killed";
+}
+
+TEST_F(BakeRun, ResumeRefusesAnotherCaseOrAMissingCheckpoint) {
+  const auto folder = scratch_folder();
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", small_flume_case(8.0, 2.0)));
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  options.resume = true;
+  try {
+    run_bake(c, options);
+    ADD_FAILURE() << "resumed without a checkpoint";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("nothing to resume"), std::string::npos) << error.what();
+  }
+  // A checkpoint of another case (different gauges) is refused with the fix.
+  std::string other_text = small_flume_case(8.0, 2.0);
+  other_text.replace(other_text.find("name = \"g2\""), 11, "name = \"g3\"");
+  const BakeCase other = read_bake_case(write_text(folder / "other.toml", other_text));
+  BakeOptions first;
+  first.output_folder = folder / "out";
+  const auto pid = start_runner(folder / "case.toml", first.output_folder, false);
+  while (!fs::exists(checkpoint_path(first.output_folder)) && waitpid(pid, nullptr, WNOHANG) == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  kill(pid, SIGKILL);
+  wait_for(pid);
+  if (!fs::exists(checkpoint_path(first.output_folder))) GTEST_SKIP() << "the runner finished before a checkpoint could be seen";
+  try {
+    run_bake(other, options);
+    ADD_FAILURE() << "resumed another case";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("different case"), std::string::npos) << error.what();
+  }
+}
+
+TEST_F(BakeRun, StabilityGuardNamesTimeCellDepthAndTheFix) {
+  const auto folder = scratch_folder();
+  // A threshold of |eta| > 0.001 x max(d, 1 m) = 1 mm is crossed by the 2 cm waves: the guard's
+  // whole path (detection, message, kept checkpoint) runs on an otherwise healthy bake.
+  const BakeCase c = read_bake_case(write_text(
+      folder / "case.toml", small_flume_case(8.0, 0.5) + "[solver]\nblowup_elevation_depth_ratio = 0.001\n"));
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  try {
+    run_bake(c, options);
+    ADD_FAILURE() << "the guard did not stop the run";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    for (const char* fragment : {"unstable at t = ", "cell (column ", "x = ", "still-water depth 0.500 m", "time.courant_number",
+                                 "breaking.onset_celerity_fraction", "case.toml"})
+      EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " missing in: " << message;
+    if (message.find("is kept in") != std::string::npos) {
+      EXPECT_TRUE(fs::exists(checkpoint_path(options.output_folder)));
+    }
+    EXPECT_FALSE(fs::exists(options.output_folder / "manifest.json"));
+  }
+}
+
+}  // namespace
+}  // namespace nearshore::bake

@@ -1,0 +1,41 @@
+#pragma once
+// Shared by the bake tests: a scratch folder per test and a small flume case that runs in well
+// under a second, written as TOML text so the tests go through the same parser as a user.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace nearshore::bake::testing {
+
+inline std::filesystem::path scratch_folder() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path folder =
+      std::filesystem::path(NEARSHORE_BINARY_DIR) / "tests" / "bake" / "scratch" / (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
+inline std::filesystem::path write_text(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+  return file;
+}
+
+/// A 12 m x 0.6 m flume, 0.5 m deep, regular 2 s waves from the west, sponges at both ends,
+/// two gauges: about 100 x 6 cells and 400 steps.
+inline std::string small_flume_case(double duration_s = 8.0, double checkpoint_interval_s = 0.0) {
+  return "title = \"small flume\"\n"
+         "[bathymetry]\nkind = \"profile\"\nlength_m = 12.0\nwidth_m = 0.6\nspacing_m = 0.1\n"
+         "profile = [[0.0, 0.5], [12.0, 0.5]]\n"
+         "[time]\nduration_s = " + std::to_string(duration_s) +
+         "\nspin_up_s = 2.0\noutput_interval_s = 0.5\ncourant_number = 0.5\n"
+         "checkpoint_interval_s = " + std::to_string(checkpoint_interval_s) +
+         "\n[wave_maker]\nkind = \"regular\"\nfacing = \"west\"\nsource_line_m = 3.0\nheight_m = 0.02\nperiod_s = 2.0\n"
+         "ramp_time_s = 2.0\n"
+         "[[sponges]]\nside = \"west\"\nwidth_m = 2.0\n[[sponges]]\nside = \"east\"\nwidth_m = 3.0\n"
+         "[[gauges]]\nname = \"g1\"\nx_m = 5.0\ny_m = 0.3\n[[gauges]]\nname = \"g2\"\nx_m = 7.5\ny_m = 0.3\n";
+}
+
+}  // namespace nearshore::bake::testing
