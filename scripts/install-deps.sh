@@ -12,7 +12,7 @@ packages=(
   libopenexr-dev libimath-dev
   libopenvdb-dev libblosc-dev libboost-iostreams-dev libboost-dev
   libcgal-dev libgmp-dev libmpfr-dev
-  libopenimageio-dev openimageio-tools
+  libopenimageio-dev openimageio-tools libpng-dev libfreetype-dev
   libglfw3-dev
   libgdal-dev gdal-bin
   libfftw3-dev

@@ -4,8 +4,13 @@
 #include <cmath>
 #include <limits>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include <ft2build.h>
+#include FT_FREETYPE_H
+#include <png.h>
+
+#include <cstdio>
+#include <mutex>
+
 #include <fmt/core.h>
 
 #include "nearshore/core/atomic_file.hpp"
@@ -25,9 +30,26 @@ Rgb from_stops(const std::vector<Rgb>& stops, double t) {
   return lerp(stops[index], stops[index + 1], t - index);
 }
 
-// The DejaVu font from fonts-dejavu-core (scripts/install-deps.sh); OIIO falls back to its own
-// search if the file is missing, and text is simply skipped if no font is found at all.
+// The DejaVu font from fonts-dejavu-core (scripts/install-deps.sh). Text is skipped (the picture
+// is still written) if the font cannot be loaded. PNG and text go through libpng and FreeType
+// directly, not a bigger image library, because the playback runtime links this core too.
 constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// One FreeType face for the process, loaded on first use; FreeType faces are not thread-safe, so
+// drawing text takes the lock.
+struct Font {
+  FT_Library library = nullptr;
+  FT_Face face = nullptr;
+  std::mutex mutex;
+  Font() {
+    if (FT_Init_FreeType(&library) != 0) return;
+    if (FT_New_Face(library, kFontPath, 0, &face) != 0) face = nullptr;
+  }
+};
+Font& font() {
+  static Font instance;
+  return instance;
+}
 
 // "Nice" tick spacing (1, 2, 5 x 10^k) for an axis spanning `range` with about `count` ticks.
 double tick_step(double range, int count) {
@@ -97,26 +119,43 @@ void Image::draw_line(double x0, double y0, double x1, double y1, Rgb colour, in
 }
 
 void Image::draw_text(int x, int y, const std::string& text, Rgb colour, int size_px) {
-  OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::FLOAT);
-  OIIO::ImageBuf buffer(spec, pixels_.data());  // wraps our pixels: text is drawn in place
-  OIIO::ImageBufAlgo::render_text(buffer, x, y, text, size_px, kFontPath, {colour[0], colour[1], colour[2]});
+  Font& f = font();
+  if (!f.face || text.empty()) return;
+  std::lock_guard lock(f.mutex);
+  FT_Set_Pixel_Sizes(f.face, 0, static_cast<FT_UInt>(size_px));
+  int pen_x = x;
+  for (unsigned char character : text) {  // ASCII labels; other bytes render as FreeType finds them
+    if (FT_Load_Char(f.face, character, FT_LOAD_RENDER) != 0) continue;
+    const FT_GlyphSlot glyph = f.face->glyph;
+    const FT_Bitmap& bitmap = glyph->bitmap;
+    for (unsigned row = 0; row < bitmap.rows; ++row)
+      for (unsigned column = 0; column < bitmap.width; ++column) {
+        const float coverage = bitmap.buffer[row * bitmap.pitch + column] / 255.f;
+        const int px = pen_x + glyph->bitmap_left + static_cast<int>(column);
+        const int py = y - glyph->bitmap_top + static_cast<int>(row);
+        if (coverage <= 0.f || px < 0 || py < 0 || px >= width_ || py >= height_) continue;
+        const Rgb under = get(px, py);
+        set(px, py, {under[0] + (colour[0] - under[0]) * coverage, under[1] + (colour[1] - under[1]) * coverage,
+                     under[2] + (colour[2] - under[2]) * coverage});
+      }
+    pen_x += static_cast<int>(glyph->advance.x >> 6);
+  }
 }
 
 void Image::write_png(const std::filesystem::path& path) const {
+  std::vector<unsigned char> bytes(pixels_.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    bytes[i] = static_cast<unsigned char>(std::lround(std::clamp(pixels_[i], 0.f, 1.f) * 255.f));
   write_file_atomically(path, [&](const std::filesystem::path& temporary) {
-    OIIO::ImageSpec spec(width_, height_, 3, OIIO::TypeDesc::UINT8);
-    OIIO::ImageBuf source(OIIO::ImageSpec(width_, height_, 3, OIIO::TypeDesc::FLOAT),
-                          const_cast<float*>(pixels_.data()));
-    // The temporary name has no .png suffix, so name the format explicitly.
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out || !out->open(temporary.string(), spec))
-      throw Error(path.string(), "cannot write PNG: " + (out ? out->geterror() : OIIO::geterror()),
-                  "check the folder exists and is writable");
-    std::vector<unsigned char> bytes(pixels_.size());
-    for (std::size_t i = 0; i < bytes.size(); ++i)
-      bytes[i] = static_cast<unsigned char>(std::lround(std::clamp(pixels_[i], 0.f, 1.f) * 255.f));
-    if (!out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
-      throw Error(path.string(), "writing PNG failed: " + out->geterror(), "free disk space");
+    // libpng's simplified API: one call writes the whole 8-bit RGB image.
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    image.width = static_cast<png_uint_32>(width_);
+    image.height = static_cast<png_uint_32>(height_);
+    image.format = PNG_FORMAT_RGB;
+    if (!png_image_write_to_file(&image, temporary.c_str(), 0, bytes.data(), 0, nullptr))
+      throw Error(path.string(), std::string("writing PNG failed: ") + image.message,
+                  "check the folder exists and is writable, and that the disk has space");
   });
 }
 
