@@ -1,64 +1,678 @@
-// First compiling version of the solver interface: construction and accessors only. The ADI
-// numerics follow in the next commits (docs/solver.md).
+// BoussinesqSolver: the time step (ADI, x sweep then y sweep on transposed data), the moving
+// shoreline's positivity repair, sponges, Kennedy et al. (2000) breaking, and the state I/O.
+// docs/solver.md describes the scheme; boussinesq_sweep.cpp holds the discretised equations.
 #include "nearshore/bake/boussinesq_solver.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <istream>
+#include <limits>
+#include <numbers>
 #include <ostream>
+#include <sstream>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "boussinesq_source.hpp"
+#include "boussinesq_sweep.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
 
+using detail::StaticFrame;
+using detail::SweepScratch;
+
+namespace {
+
+constexpr double kMaxCourantNumber = 2.0;  // beyond it the iterated explicit terms stop converging (docs/solver.md)
+constexpr std::uint64_t kStateMagic = 0x31535342454E534EULL;  // "NSNEBSS1"
+constexpr std::uint32_t kStateVersion = 1;
+
+std::size_t index(int c, int r, int cols) { return static_cast<std::size_t>(r) * cols + c; }
+
+double smooth_step(double t) {  // cubic 0..1 on t in [0, 1]
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// The dispersion taper of docs/solver.md: 0 at or below the cut-off, 1 from twice the cut-off.
+double dispersion_weight(double depth_m, const SolverParameters& p, double peak_angular_frequency_rad_s) {
+  if (depth_m <= 0.0) return 0.0;
+  double w = 1.0;
+  if (p.dispersion_cutoff_depth_m > 0.0) w *= smooth_step(depth_m / p.dispersion_cutoff_depth_m - 1.0);
+  if (p.dispersion_cutoff_kh > 0.0 && peak_angular_frequency_rad_s > 0.0) {
+    const double kh = wavenumber_from_frequency(peak_angular_frequency_rad_s, depth_m) * depth_m;
+    w *= smooth_step(kh / p.dispersion_cutoff_kh - 1.0);
+  }
+  return w;
+}
+
+// Builds the time-independent coefficients of one orientation from cell depth and porosity.
+StaticFrame build_frame(const std::vector<double>& depth, const std::vector<double>& porosity, int cols, int rows,
+                        double spacing_m, const SolverParameters& p, double peak_w) {
+  StaticFrame frame;
+  frame.cols = cols;
+  frame.rows = rows;
+  frame.spacing_m = spacing_m;
+  frame.depth_m = depth;
+  frame.inverse_porosity.resize(depth.size());
+  for (std::size_t i = 0; i < depth.size(); ++i)
+    frame.inverse_porosity[i] = porosity[i] >= detail::kWallPorosity ? 1.0 / std::min(porosity[i], 1.0) : 0.0;
+  const std::size_t faces = static_cast<std::size_t>(cols + 1) * rows;
+  for (auto* v : {&frame.face_depth_m, &frame.face_porosity, &frame.face_dispersion_weight, &frame.face_slope_along,
+                  &frame.face_slope_across, &frame.face_porous_laminar_s, &frame.face_porous_turbulent_m})
+    v->assign(faces, 0.0);
+  frame.face_open.assign(faces, 0);
+  // Porous resistance coefficients of seed 003 eq. (2) in the Van Gent (1995) form.
+  constexpr double kWaterKinematicViscosity_m2_s = 1.0e-6;
+  const double D = p.porous.stone_diameter_m;
+  auto slope_across = [&](int c, int r) {
+    const int rn = std::min(r + 1, rows - 1), rs = std::max(r - 1, 0);
+    return rn == rs ? 0.0 : (depth[index(c, rn, cols)] - depth[index(c, rs, cols)]) / ((rn - rs) * spacing_m);
+  };
+  for (int r = 0; r < rows; ++r)
+    for (int f = 1; f < cols; ++f) {
+      const std::size_t face = static_cast<std::size_t>(r) * (cols + 1) + f;
+      const std::size_t L = index(f - 1, r, cols), R = index(f, r, cols);
+      const bool open = frame.inverse_porosity[L] > 0.0 && frame.inverse_porosity[R] > 0.0;
+      frame.face_open[face] = open;
+      const double n = open ? 0.5 * (std::min(porosity[L], 1.0) + std::min(porosity[R], 1.0)) : 1.0;
+      const double d = 0.5 * (depth[L] + depth[R]);
+      frame.face_depth_m[face] = d;
+      frame.face_porosity[face] = n;
+      frame.face_dispersion_weight[face] = dispersion_weight(d, p, peak_w);
+      frame.face_slope_along[face] = std::clamp((depth[R] - depth[L]) / spacing_m, -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
+      frame.face_slope_across[face] = std::clamp(0.5 * (slope_across(f - 1, r) + slope_across(f, r)),
+                                                 -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
+      if (n < 1.0 && D > 0.0) {
+        const double n3 = n * n * n;
+        frame.face_porous_laminar_s[face] = p.porous.laminar_alpha * kWaterKinematicViscosity_m2_s * (1.0 - n) * (1.0 - n) / (n3 * D * D);
+        frame.face_porous_turbulent_m[face] = p.porous.turbulent_beta * (1.0 - n) / (n3 * D);
+      }
+    }
+  return frame;
+}
+
+template <class T>
+void write_pod(std::ostream& out, const T& value) {
+  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+template <class T>
+void read_pod(std::istream& in, T& value) {
+  in.read(reinterpret_cast<char*>(&value), sizeof(T));
+}
+
+// FNV-1a over bytes: the state checksum and the parameter fingerprint.
+std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t hash = 1469598103934665603ULL) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ULL;
+  return hash;
+}
+
+}  // namespace
+
 struct BoussinesqSolver::Implementation {
   GridGeometry geometry;
   SolverParameters parameters;
-  WaveMaker wave_maker;
-  double time_step_s = 0.0;
-  double time_s = 0.0;
+  int nx = 0, ny = 0;
+  double dx = 1.0, dt = 0.0, time_s = 0.0;
   long step_count = 0;
-  Raster<float> surface_elevation_m, breaking_indicator;
+  std::uint64_t fingerprint = 0;
+
+  StaticFrame frame_x, frame_y;
+  detail::SweepConstants constants;
+  std::unique_ptr<detail::SourceFunction> source;
+
+  // State (x orientation): eta at t^n and t^{n-1}, fluxes and their last increments, breaking.
+  std::vector<double> eta, eta_previous, flux_x, flux_y, flux_x_increment, flux_y_increment;
+  std::vector<double> eddy_viscosity, breaking_start_s, breaking_strength;
+  // Work arrays.
+  std::vector<double> eta_base, eta_across, normal_across, tangential_half, tangential_rate, eta_star, flux_x_new;
+  std::vector<std::uint8_t> dispersive, dispersive_t;
+  std::vector<double> t_eta_old, t_eta_base, t_eta_across, t_normal_old, t_normal_across, t_normal_guess,
+      t_tangential_half, t_tangential_rate, t_eddy, t_eta_new, t_normal_new, eta_next, flux_y_new;
+  std::vector<double> sponge_cell, sponge_face_x, sponge_face_y;  // damping factor per step (1 = none)
+  tbb::enumerable_thread_specific<SweepScratch> scratch;
+  // Output rasters.
+  Raster<float> eta_output, breaking_output;
+
+  void sweep(const StaticFrame& frame, const detail::SweepInput& input, const detail::SweepOutput& output) {
+    const int faces = frame.cols + 1;
+    tbb::parallel_for(tbb::blocked_range<int>(0, frame.rows, 8), [&](const tbb::blocked_range<int>& range) {
+      SweepScratch& s = scratch.local();
+      if (static_cast<int>(s.lower.size()) != faces) s.resize(std::max(faces, static_cast<int>(s.lower.size())));
+      for (int r = range.begin(); r < range.end(); ++r) detail::sweep_line(frame, constants, input, output, r, s);
+    });
+  }
+  void step();
+  void repair_negative_depths();
+  void apply_sponges();
+  void update_breaking(const std::vector<double>& eta_old);
+  void publish();
 };
 
 BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParameters& parameters,
                                    const WaveMaker& wave_maker)
     : implementation_(std::make_unique<Implementation>()) {
-  auto& s = *implementation_;
-  s.geometry = harbour.geometry;
+  Implementation& s = *implementation_;
+  const GridGeometry& geometry = harbour.geometry;
+  const std::string subject = "Boussinesq solver";
+  if (geometry.columns < 3 || geometry.rows < 1 || !(geometry.spacing_m > 0.0))
+    throw Error(subject, "the harbour grid is " + std::to_string(geometry.columns) + " x " + std::to_string(geometry.rows) +
+                             " cells of " + std::to_string(geometry.spacing_m) + " m", "give at least 3 x 1 cells and a positive spacing");
+  if (harbour.still_water_depth_m.columns() != geometry.columns || harbour.still_water_depth_m.rows() != geometry.rows ||
+      harbour.porosity.columns() != geometry.columns || harbour.porosity.rows() != geometry.rows)
+    throw Error(subject, "the depth and porosity rasters do not match the grid geometry", "rebuild the harbour grid with nearshore bathy");
+  s.geometry = geometry;
   s.parameters = parameters;
-  s.wave_maker = wave_maker;
-  s.surface_elevation_m = Raster<float>(harbour.geometry.columns, harbour.geometry.rows, 0.0f);
-  s.breaking_indicator = Raster<float>(harbour.geometry.columns, harbour.geometry.rows, 0.0f);
-  float max_depth_m = 0.0f;
-  for (float d : harbour.still_water_depth_m.values()) max_depth_m = std::max(max_depth_m, d);
-  s.time_step_s = parameters.time_step_s > 0.0
-                      ? parameters.time_step_s
-                      : parameters.courant_number * harbour.geometry.spacing_m / std::sqrt(kGravity_m_s2 * max_depth_m);
+  s.nx = geometry.columns;
+  s.ny = geometry.rows;
+  s.dx = geometry.spacing_m;
+  const std::size_t cells = geometry.cell_count();
+
+  std::vector<double> depth(cells), porosity(cells);
+  double max_depth = 0.0;
+  for (std::size_t i = 0; i < cells; ++i) {
+    depth[i] = harbour.still_water_depth_m.values()[i];
+    porosity[i] = std::clamp<double>(harbour.porosity.values()[i], 0.0, 1.0);
+    if (!std::isfinite(depth[i])) {
+      const int c = static_cast<int>(i % s.nx), r = static_cast<int>(i / s.nx);
+      throw Error(subject, "depth is not finite at cell (" + std::to_string(c) + ", " + std::to_string(r) + ")",
+                  "fill the hole in the bathymetry (nearshore bathy --fill nearest)");
+    }
+    max_depth = std::max(max_depth, depth[i]);
+  }
+  if (max_depth <= 0.0) throw Error(subject, "the grid holds no water (every depth <= 0)", "check the sign of the depths (positive down)");
+  const double celerity = std::sqrt(kGravity_m_s2 * max_depth);
+  s.dt = parameters.time_step_s > 0.0 ? parameters.time_step_s : parameters.courant_number * s.dx / celerity;
+  if (!(s.dt > 0.0)) throw Error(subject, "no time step: time_step_s and courant_number are both 0", "set one of them");
+  const double courant = celerity * s.dt / s.dx;
+  if (courant > kMaxCourantNumber) {
+    std::ostringstream problem;
+    problem << "time step " << s.dt << " s gives a Courant number sqrt(g d_max) dt/dx = " << courant << " (d_max " << max_depth
+            << " m, dx " << s.dx << " m), above the limit " << kMaxCourantNumber;
+    throw Error(subject, problem.str(), "use a time step of at most " + std::to_string(kMaxCourantNumber * s.dx / celerity) + " s");
+  }
+  if (parameters.nonlinear_iterations < 1) throw Error(subject, "nonlinear_iterations must be at least 1", "set it to 2");
+  for (const SpongeLayer& sponge : parameters.sponges) {
+    const double extent = (sponge.side == Side::kWest || sponge.side == Side::kEast) ? geometry.width_m() : geometry.height_m();
+    if (!(sponge.width_m >= 0.0) || sponge.width_m > 0.5 * extent)
+      throw Error(subject, "a sponge layer is " + std::to_string(sponge.width_m) + " m wide, the grid only " + std::to_string(extent) + " m",
+                  "make each sponge at most half the grid");
+  }
+
+  double peak_w = 0.0, peak_a = 0.0;
+  for (const WaveComponent& c : wave_maker.sea_state.components)
+    if (c.amplitude_m > peak_a) { peak_a = c.amplitude_m; peak_w = c.angular_frequency_rad_s; }
+  s.frame_x = build_frame(depth, porosity, s.nx, s.ny, s.dx, parameters, peak_w);
+  std::vector<double> depth_t(cells), porosity_t(cells);
+  detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
+  detail::transpose(porosity.data(), porosity_t.data(), s.nx, s.ny);
+  s.frame_y = build_frame(depth_t, porosity_t, s.ny, s.nx, s.dx, parameters, peak_w);
+
+  s.constants = {s.dt, parameters.dispersion_coefficient, parameters.dry_depth_m, parameters.chezy_coefficient,
+                 parameters.nonlinear_iterations};
+  s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters.dispersion_coefficient);
+
+  const std::size_t faces_x = static_cast<std::size_t>(s.nx + 1) * s.ny, faces_y = static_cast<std::size_t>(s.nx) * (s.ny + 1);
+  s.eta.assign(cells, 0.0);
+  for (std::size_t i = 0; i < cells; ++i)
+    if (depth[i] < 0.0) s.eta[i] = -depth[i];  // dry land: the surface is the ground (h = 0)
+  s.flux_x.assign(faces_x, 0.0);
+  s.flux_y.assign(faces_y, 0.0);
+
+  if (wave_maker.kind == WaveMaker::Kind::kSolitary) {
+    // Solitary wave of height H on depth d (the depth under the crest), travelling away from
+    // `facing`: eta = H sech^2(K (s - s0)), K = sqrt(3H / (4 d^3)), with the Boussinesq speed
+    // c = sqrt(g (d + H)) and the flux P = c eta, which satisfies the mass equation exactly for
+    // a wave of permanent form (eta_t = -c eta_s).
+    const bool along_x = wave_maker.facing == Side::kWest || wave_maker.facing == Side::kEast;
+    const double sign = (wave_maker.facing == Side::kWest || wave_maker.facing == Side::kSouth) ? 1.0 : -1.0;
+    const double H = wave_maker.solitary_height_m, s0 = wave_maker.solitary_crest_position_m;
+    const double origin = along_x ? geometry.origin_x_m : geometry.origin_y_m;
+    const int crest = std::clamp(static_cast<int>(std::floor((s0 - origin) / s.dx)), 0, (along_x ? s.nx : s.ny) - 1);
+    double d_sum = 0.0;
+    int d_count = 0;
+    for (int t = 0; t < (along_x ? s.ny : s.nx); ++t) {
+      const double d = along_x ? depth[index(crest, t, s.nx)] : depth[index(t, crest, s.nx)];
+      if (d > 0.0) { d_sum += d; ++d_count; }
+    }
+    if (!(H > 0.0) || d_count == 0)
+      throw Error("wave maker", "a solitary wave needs solitary_height_m > 0 and water under solitary_crest_position_m",
+                  "set the height and put the crest over water");
+    const double d0 = d_sum / d_count;
+    const double K = std::sqrt(3.0 * H / (4.0 * d0 * d0 * d0)), c = std::sqrt(kGravity_m_s2 * (d0 + H));
+    auto profile = [&](double position) { const double sech = 1.0 / std::cosh(K * (position - s0)); return H * sech * sech; };
+    for (int r = 0; r < s.ny; ++r)
+      for (int col = 0; col < s.nx; ++col) {
+        const std::size_t i = index(col, r, s.nx);
+        if (depth[i] <= 0.0) continue;
+        s.eta[i] = profile(along_x ? geometry.cell_centre_x_m(col) : geometry.cell_centre_y_m(r));
+      }
+    if (along_x) {
+      for (int r = 0; r < s.ny; ++r)
+        for (int f = 1; f < s.nx; ++f)
+          if (s.frame_x.face_open[static_cast<std::size_t>(r) * (s.nx + 1) + f] && s.frame_x.face_depth_m[static_cast<std::size_t>(r) * (s.nx + 1) + f] > 0.0)
+            s.flux_x[static_cast<std::size_t>(r) * (s.nx + 1) + f] = sign * c * profile(geometry.origin_x_m + f * s.dx);
+    } else {
+      for (int fr = 1; fr < s.ny; ++fr)
+        for (int col = 0; col < s.nx; ++col) {
+          const std::size_t face_t = static_cast<std::size_t>(col) * (s.ny + 1) + fr;  // y-frame normal face
+          if (s.frame_y.face_open[face_t] && s.frame_y.face_depth_m[face_t] > 0.0)
+            s.flux_y[static_cast<std::size_t>(fr) * s.nx + col] = sign * c * profile(geometry.origin_y_m + fr * s.dx);
+        }
+    }
+  }
+  s.eta_previous = s.eta;
+  s.flux_x_increment.assign(faces_x, 0.0);
+  s.flux_y_increment.assign(faces_y, 0.0);
+  s.eddy_viscosity.assign(cells, 0.0);
+  s.breaking_start_s.assign(cells, -1.0);
+  s.breaking_strength.assign(cells, 0.0);
+  for (auto* v : {&s.eta_base, &s.eta_across, &s.eta_star, &s.eta_next, &s.t_eta_old, &s.t_eta_base, &s.t_eta_across,
+                  &s.t_eddy, &s.t_eta_new})
+    v->assign(cells, 0.0);
+  for (auto* v : {&s.normal_across, &s.flux_x_new, &s.t_tangential_half, &s.t_tangential_rate}) v->assign(faces_x, 0.0);
+  for (auto* v : {&s.tangential_half, &s.tangential_rate, &s.t_normal_old, &s.t_normal_across, &s.t_normal_guess,
+                  &s.t_normal_new, &s.flux_y_new})
+    v->assign(faces_y, 0.0);
+  s.dispersive.assign(cells, 0);
+  s.dispersive_t.assign(cells, 0);
+
+  // Sponges (Larsen & Dancy 1983 in spirit): damping rate sigma = sigma_max r^2, r = 0 at the inner
+  // edge and 1 at the boundary, sigma_max = 8 sqrt(g d) / width so a wave crossing the layer
+  // and back loses e^{-5} of its amplitude; applied as a factor 1 / (1 + sigma dt) per step.
+  if (!parameters.sponges.empty()) {
+    s.sponge_cell.assign(cells, 0.0);
+    for (int r = 0; r < s.ny; ++r)
+      for (int c = 0; c < s.nx; ++c) {
+        double sigma = 0.0;
+        const double d = std::max(depth[index(c, r, s.nx)], parameters.dry_depth_m);
+        for (const SpongeLayer& sponge : parameters.sponges) {
+          if (sponge.width_m <= 0.0) continue;
+          double distance = 0.0;
+          switch (sponge.side) {
+            case Side::kWest: distance = (c + 0.5) * s.dx; break;
+            case Side::kEast: distance = (s.nx - c - 0.5) * s.dx; break;
+            case Side::kSouth: distance = (r + 0.5) * s.dx; break;
+            case Side::kNorth: distance = (s.ny - r - 0.5) * s.dx; break;
+          }
+          if (distance < sponge.width_m) {
+            const double x = 1.0 - distance / sponge.width_m;
+            sigma = std::max(sigma, 8.0 * std::sqrt(kGravity_m_s2 * d) / sponge.width_m * x * x);
+          }
+        }
+        s.sponge_cell[index(c, r, s.nx)] = sigma;
+      }
+    s.sponge_face_x.assign(faces_x, 1.0);
+    s.sponge_face_y.assign(faces_y, 1.0);
+    for (int r = 0; r < s.ny; ++r)
+      for (int f = 1; f < s.nx; ++f)
+        s.sponge_face_x[static_cast<std::size_t>(r) * (s.nx + 1) + f] =
+            1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(f - 1, r, s.nx)] + s.sponge_cell[index(f, r, s.nx)]));
+    for (int fr = 1; fr < s.ny; ++fr)
+      for (int c = 0; c < s.nx; ++c)
+        s.sponge_face_y[static_cast<std::size_t>(fr) * s.nx + c] =
+            1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(c, fr - 1, s.nx)] + s.sponge_cell[index(c, fr, s.nx)]));
+    for (double& sigma : s.sponge_cell) sigma = 1.0 / (1.0 + s.dt * sigma);
+  }
+
+  // Fingerprint of everything a saved state must agree with.
+  std::uint64_t h = fnv1a(&s.nx, sizeof s.nx);
+  h = fnv1a(&s.ny, sizeof s.ny, h);
+  h = fnv1a(&s.dx, sizeof s.dx, h);
+  h = fnv1a(&s.dt, sizeof s.dt, h);
+  h = fnv1a(depth.data(), depth.size() * sizeof(double), h);
+  s.fingerprint = h;
+
+  s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
+  s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
+  s.publish();
 }
 
 BoussinesqSolver::~BoussinesqSolver() = default;
 
-void BoussinesqSolver::step() {
-  throw Error("BoussinesqSolver", "step() is not implemented yet in this revision", "update to a later commit");
+void BoussinesqSolver::Implementation::step() {
+  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
+  const double dry = parameters.dry_depth_m;
+  const std::vector<double>& depth = frame_x.depth_m;
+
+  // 1. Wet cells and the cells where the dispersive terms apply (the cell and its 4 neighbours wet).
+  tbb::parallel_for(tbb::blocked_range<int>(0, ny, 16), [&](const tbb::blocked_range<int>& range) {
+    auto wet = [&](int c, int r) {
+      c = std::clamp(c, 0, nx - 1);
+      r = std::clamp(r, 0, ny - 1);
+      const std::size_t i = index(c, r, nx);
+      return frame_x.inverse_porosity[i] > 0.0 && depth[i] + eta[i] > dry;
+    };
+    for (int r = range.begin(); r < range.end(); ++r)
+      for (int c = 0; c < nx; ++c)
+        dispersive[index(c, r, nx)] = wet(c, r) && wet(c - 1, r) && wet(c + 1, r) && wet(c, r - 1) && wet(c, r + 1);
+  });
+
+  // 2. x sweep inputs. E = eta^n - dt/(n dx) (dP^n/dx + dQ^n/dy) dx + dt S   (seed 003 eq. 1)
+  const double ratio = dt / dx;
+  tbb::parallel_for(tbb::blocked_range<int>(0, ny, 16), [&](const tbb::blocked_range<int>& range) {
+    for (int r = range.begin(); r < range.end(); ++r)
+      for (int c = 0; c < nx; ++c) {
+        const std::size_t i = index(c, r, nx);
+        const std::size_t fx = static_cast<std::size_t>(r) * (nx + 1) + c;
+        const std::size_t fy = static_cast<std::size_t>(r) * nx + c;
+        eta_base[i] = eta[i] - ratio * frame_x.inverse_porosity[i] *
+                                   (flux_x[fx + 1] - flux_x[fx] + flux_y[fy + static_cast<std::size_t>(nx)] - flux_y[fy]);
+        eta_across[i] = eta[i] + 0.5 * (eta[i] - eta_previous[i]);
+      }
+  });
+  source->add(time_s + 0.5 * dt, dt, eta_base.data());
+  for (std::size_t f = 0; f < flux_x.size(); ++f) normal_across[f] = flux_x[f] + 0.5 * flux_x_increment[f];
+  for (std::size_t f = 0; f < flux_y.size(); ++f) {
+    tangential_half[f] = flux_y[f] + 0.5 * flux_y_increment[f];
+    tangential_rate[f] = flux_y_increment[f] / dt;
+  }
+  sweep(frame_x,
+        {eta.data(), eta_base.data(), eta_across.data(), flux_x.data(), normal_across.data(), flux_x_increment.data(),
+         tangential_half.data(), tangential_rate.data(), eddy_viscosity.data(), dispersive.data()},
+        {eta_star.data(), flux_x_new.data()});
+
+  // 3. y sweep on transposed data: E = eta*, P at t^{n+1/2} and dP/dt now known exactly.
+  for (std::size_t i = 0; i < cells; ++i) eta_across[i] = 0.5 * (eta[i] + eta_star[i]);
+  for (std::size_t f = 0; f < flux_x.size(); ++f) normal_across[f] = 0.5 * (flux_x[f] + flux_x_new[f]);  // reused: P at t^{n+1/2}
+  detail::transpose(eta.data(), t_eta_old.data(), nx, ny);
+  detail::transpose(eta_star.data(), t_eta_base.data(), nx, ny);
+  detail::transpose(eta_across.data(), t_eta_across.data(), nx, ny);
+  detail::transpose(flux_y.data(), t_normal_old.data(), nx, ny + 1);
+  detail::transpose(tangential_half.data(), t_normal_across.data(), nx, ny + 1);
+  detail::transpose(flux_y_increment.data(), t_normal_guess.data(), nx, ny + 1);
+  detail::transpose(normal_across.data(), t_tangential_half.data(), nx + 1, ny);
+  for (std::size_t f = 0; f < flux_x.size(); ++f) normal_across[f] = (flux_x_new[f] - flux_x[f]) / dt;  // dP/dt
+  detail::transpose(normal_across.data(), t_tangential_rate.data(), nx + 1, ny);
+  detail::transpose(eddy_viscosity.data(), t_eddy.data(), nx, ny);
+  detail::transpose(dispersive.data(), dispersive_t.data(), nx, ny);
+  sweep(frame_y,
+        {t_eta_old.data(), t_eta_base.data(), t_eta_across.data(), t_normal_old.data(), t_normal_across.data(),
+         t_normal_guess.data(), t_tangential_half.data(), t_tangential_rate.data(), t_eddy.data(), dispersive_t.data()},
+        {t_eta_new.data(), t_normal_new.data()});
+  detail::transpose(t_eta_new.data(), eta_next.data(), ny, nx);
+  detail::transpose(t_normal_new.data(), flux_y_new.data(), ny + 1, nx);
+
+  // 4. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
+  repair_negative_depths();
+
+  // 5. Advance the state.
+  for (std::size_t f = 0; f < flux_x.size(); ++f) {
+    flux_x_increment[f] = flux_x_new[f] - flux_x[f];
+    flux_x[f] = flux_x_new[f];
+  }
+  for (std::size_t f = 0; f < flux_y.size(); ++f) {
+    flux_y_increment[f] = flux_y_new[f] - flux_y[f];
+    flux_y[f] = flux_y_new[f];
+  }
+  eta_previous.swap(eta);
+  eta.swap(eta_next);  // eta = eta^{n+1}, eta_previous = eta^n
+  apply_sponges();
+  update_breaking(eta_previous);
+  time_s += dt;
+  ++step_count;
+  publish();
 }
+
+void BoussinesqSolver::Implementation::repair_negative_depths() {
+  // The step's mass fluxes are F = (P^n + P^{n+1})/2 (and likewise for Q). Where a cell would
+  // end below its bed, its outgoing fluxes are scaled down so it ends exactly dry; the neighbours
+  // that lose that inflow are revisited. Serial over the few shoreline cells, in a fixed order,
+  // so the result does not depend on the thread count. Mass is conserved exactly.
+  const double* depth = frame_x.depth_m.data();
+  std::vector<std::size_t> pending;
+  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
+  for (std::size_t i = 0; i < cells; ++i)
+    if (frame_x.inverse_porosity[i] > 0.0 && depth[i] + eta_next[i] < 0.0) pending.push_back(i);
+  const double ratio = dt / dx;
+  for (int pass = 0; pass < 20 && !pending.empty(); ++pass) {
+    std::vector<std::size_t> next;
+    for (std::size_t i : pending) {
+      const double h = depth[i] + eta_next[i];
+      if (h >= 0.0) continue;
+      const int c = static_cast<int>(i % nx), r = static_cast<int>(i / nx);
+      // Faces: west, east (x), south, north (y); outgoing sign for each.
+      struct FaceRef { double* new_flux; const double* old_flux; double outward; std::ptrdiff_t neighbour; };
+      const std::size_t fw = static_cast<std::size_t>(r) * (nx + 1) + c, fs = static_cast<std::size_t>(r) * nx + c;
+      FaceRef faces[4] = {
+          {&flux_x_new[fw], &flux_x[fw], -1.0, c > 0 ? static_cast<std::ptrdiff_t>(i) - 1 : -1},
+          {&flux_x_new[fw + 1], &flux_x[fw + 1], 1.0, c + 1 < nx ? static_cast<std::ptrdiff_t>(i) + 1 : -1},
+          {&flux_y_new[fs], &flux_y[fs], -1.0, r > 0 ? static_cast<std::ptrdiff_t>(i) - nx : -1},
+          {&flux_y_new[fs + nx], &flux_y[fs + nx], 1.0, r + 1 < ny ? static_cast<std::ptrdiff_t>(i) + nx : -1}};
+      double outflow = 0.0;  // metres of water level over the step (times n)
+      for (const FaceRef& face : faces) {
+        const double mass_flux = 0.5 * (*face.new_flux + *face.old_flux) * face.outward;
+        if (mass_flux > 0.0) outflow += mass_flux * ratio;
+      }
+      if (outflow <= 0.0) { eta_next[i] = -depth[i]; continue; }  // round-off only
+      const double n = 1.0 / frame_x.inverse_porosity[i];
+      const double keep = std::clamp(1.0 + n * h / outflow, 0.0, 1.0);  // fraction of the outflow kept
+      for (FaceRef& face : faces) {
+        const double mass_flux = 0.5 * (*face.new_flux + *face.old_flux) * face.outward;
+        if (mass_flux <= 0.0) continue;
+        const double removed = (1.0 - keep) * mass_flux;  // outward mass flux taken away
+        *face.new_flux -= 2.0 * removed * face.outward;
+        if (face.neighbour >= 0) {
+          const std::size_t j = static_cast<std::size_t>(face.neighbour);
+          eta_next[j] -= removed * ratio * frame_x.inverse_porosity[j];
+          if (depth[j] + eta_next[j] < 0.0) next.push_back(j);
+        }
+      }
+      eta_next[i] += (1.0 - keep) * outflow * frame_x.inverse_porosity[i];
+    }
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    pending.swap(next);
+  }
+}
+
+void BoussinesqSolver::Implementation::apply_sponges() {
+  if (sponge_cell.empty()) return;
+  const double* depth = frame_x.depth_m.data();
+  for (std::size_t i = 0; i < eta.size(); ++i)
+    if (depth[i] > 0.0 && depth[i] + eta[i] > parameters.dry_depth_m) eta[i] *= sponge_cell[i];
+  for (std::size_t f = 0; f < flux_x.size(); ++f) flux_x[f] *= sponge_face_x[f];
+  for (std::size_t f = 0; f < flux_y.size(); ++f) flux_y[f] *= sponge_face_y[f];
+}
+
+void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>& eta_old) {
+  const BreakingParameters& b = parameters.breaking;
+  if (!b.enabled) return;
+  // Kennedy et al. (2000): a cell breaks while eta_t > eta_t*, the threshold falling linearly from
+  // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
+  // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
+  // nu is capped at 0.2 dx^2/dt so the explicit cross terms of eq. (6)-(7) stay stable.
+  const double* depth = frame_x.depth_m.data();
+  const double g = kGravity_m_s2, delta2 = b.mixing_length_coefficient * b.mixing_length_coefficient;
+  const double nu_max = 0.2 * dx * dx / dt, now = time_s + dt;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, eta.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const double h = depth[i] + eta[i];
+      if (depth[i] <= 0.0 || h <= parameters.dry_depth_m || frame_x.inverse_porosity[i] == 0.0) {
+        eddy_viscosity[i] = 0.0; breaking_strength[i] = 0.0; breaking_start_s[i] = -1.0;
+        continue;
+      }
+      const double eta_t = (eta[i] - eta_old[i]) / dt, celerity = std::sqrt(g * h);
+      if (breaking_start_s[i] < 0.0 && eta_t > b.onset_celerity_fraction * celerity) breaking_start_s[i] = now;
+      double strength = 0.0;
+      if (breaking_start_s[i] >= 0.0) {
+        const double transition = b.transition_time_factor * std::sqrt(h / g);
+        const double age = std::clamp((now - breaking_start_s[i]) / transition, 0.0, 1.0);
+        const double threshold = celerity * (b.onset_celerity_fraction + age * (b.stop_celerity_fraction - b.onset_celerity_fraction));
+        strength = std::clamp(eta_t / threshold - 1.0, 0.0, 1.0);
+        if (eta_t <= threshold) breaking_start_s[i] = -1.0;  // the event is over
+      }
+      breaking_strength[i] = strength;
+      eddy_viscosity[i] = std::min(strength * delta2 * h * std::max(eta_t, 0.0), nu_max);
+    }
+  });
+}
+
+void BoussinesqSolver::Implementation::publish() {
+  for (std::size_t i = 0; i < eta.size(); ++i) {
+    eta_output.values()[i] = static_cast<float>(eta[i]);
+    breaking_output.values()[i] = static_cast<float>(breaking_strength[i]);
+  }
+}
+
+void BoussinesqSolver::set_surface_elevation(const std::function<double(double, double)>& surface_elevation_m) {
+  Implementation& s = *implementation_;
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      const std::size_t i = index(c, r, s.nx);
+      if (s.frame_x.depth_m[i] > 0.0 && s.frame_x.inverse_porosity[i] > 0.0)
+        s.eta[i] = surface_elevation_m(s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r));
+    }
+  s.eta_previous = s.eta;
+  for (auto* v : {&s.flux_x, &s.flux_y, &s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
+  s.publish();
+}
+
+void BoussinesqSolver::step() { implementation_->step(); }
 double BoussinesqSolver::time_s() const { return implementation_->time_s; }
-double BoussinesqSolver::time_step_s() const { return implementation_->time_step_s; }
+double BoussinesqSolver::time_step_s() const { return implementation_->dt; }
 long BoussinesqSolver::step_count() const { return implementation_->step_count; }
 const GridGeometry& BoussinesqSolver::geometry() const { return implementation_->geometry; }
-const Raster<float>& BoussinesqSolver::surface_elevation_m() const { return implementation_->surface_elevation_m; }
+const Raster<float>& BoussinesqSolver::surface_elevation_m() const { return implementation_->eta_output; }
+const Raster<float>& BoussinesqSolver::breaking_indicator() const { return implementation_->breaking_output; }
+
 void BoussinesqSolver::cell_centred_fluxes(Raster<float>& flux_x_m2_s, Raster<float>& flux_y_m2_s) const {
-  flux_x_m2_s = Raster<float>(implementation_->geometry.columns, implementation_->geometry.rows, 0.0f);
-  flux_y_m2_s = flux_x_m2_s;
+  const Implementation& s = *implementation_;
+  if (flux_x_m2_s.columns() != s.nx || flux_x_m2_s.rows() != s.ny) flux_x_m2_s = Raster<float>(s.nx, s.ny);
+  if (flux_y_m2_s.columns() != s.nx || flux_y_m2_s.rows() != s.ny) flux_y_m2_s = Raster<float>(s.nx, s.ny);
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      const std::size_t fx = static_cast<std::size_t>(r) * (s.nx + 1) + c;
+      flux_x_m2_s(c, r) = static_cast<float>(0.5 * (s.flux_x[fx] + s.flux_x[fx + 1]));
+      flux_y_m2_s(c, r) = static_cast<float>(0.5 * (s.flux_y[index(c, r, s.nx)] + s.flux_y[index(c, r + 1, s.nx)]));
+    }
 }
-const Raster<float>& BoussinesqSolver::breaking_indicator() const { return implementation_->breaking_indicator; }
-double BoussinesqSolver::surface_elevation_at(double, double) const { return 0.0; }
-std::optional<InstabilityReport> BoussinesqSolver::check_stability() const { return std::nullopt; }
-double BoussinesqSolver::water_volume_m3() const { return 0.0; }
-void BoussinesqSolver::save_state(std::ostream&) const {
-  throw Error("BoussinesqSolver", "save_state() is not implemented yet in this revision", "update to a later commit");
+
+double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
+  const Implementation& s = *implementation_;
+  const double u = std::clamp((x_m - s.geometry.origin_x_m) / s.dx - 0.5, 0.0, s.nx - 1.0);
+  const double v = std::clamp((y_m - s.geometry.origin_y_m) / s.dx - 0.5, 0.0, s.ny - 1.0);
+  const int c0 = std::min(static_cast<int>(u), s.nx - 1), r0 = std::min(static_cast<int>(v), s.ny - 1);
+  const int c1 = std::min(c0 + 1, s.nx - 1), r1 = std::min(r0 + 1, s.ny - 1);
+  const double a = u - c0, b = v - r0;
+  auto e = [&](int c, int r) { return s.eta[index(c, r, s.nx)]; };
+  return (1 - a) * (1 - b) * e(c0, r0) + a * (1 - b) * e(c1, r0) + (1 - a) * b * e(c0, r1) + a * b * e(c1, r1);
 }
-void BoussinesqSolver::load_state(std::istream&) {
-  throw Error("BoussinesqSolver", "load_state() is not implemented yet in this revision", "update to a later commit");
+
+std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {
+  const Implementation& s = *implementation_;
+  const double ratio = s.parameters.blowup_elevation_depth_ratio;
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      const std::size_t i = index(c, r, s.nx);
+      const double d = s.frame_x.depth_m[i], eta = s.eta[i];
+      InstabilityReport report{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r), d, eta, {}};
+      if (!std::isfinite(eta)) {
+        report.what = "surface elevation is not a number";
+        return report;
+      }
+      const double excess = d > 0.0 ? std::abs(eta) : d + eta;  // on land: the water depth
+      if (excess > ratio * std::max(d, 1.0)) {
+        std::ostringstream what;
+        what << "surface elevation " << eta << " m exceeds " << ratio << " x max(depth, 1 m)";
+        report.what = what.str();
+        return report;
+      }
+    }
+  for (std::size_t f = 0; f < s.flux_x.size(); ++f)
+    if (!std::isfinite(s.flux_x[f])) {
+      const int r = static_cast<int>(f / (s.nx + 1)), c = std::min(static_cast<int>(f % (s.nx + 1)), s.nx - 1);
+      return InstabilityReport{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r),
+                               s.frame_x.depth_m[index(c, r, s.nx)], s.flux_x[f], "flux P is not a number"};
+    }
+  for (std::size_t f = 0; f < s.flux_y.size(); ++f)
+    if (!std::isfinite(s.flux_y[f])) {
+      const int r = std::min(static_cast<int>(f / s.nx), s.ny - 1), c = static_cast<int>(f % s.nx);
+      return InstabilityReport{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r),
+                               s.frame_x.depth_m[index(c, r, s.nx)], s.flux_y[f], "flux Q is not a number"};
+    }
+  return std::nullopt;
+}
+
+double BoussinesqSolver::water_volume_m3() const {
+  // Sum of n h dx^2 in a fixed order (deterministic).
+  const Implementation& s = *implementation_;
+  double volume = 0.0;
+  for (std::size_t i = 0; i < s.eta.size(); ++i)
+    if (s.frame_x.inverse_porosity[i] > 0.0) volume += (s.frame_x.depth_m[i] + s.eta[i]) / s.frame_x.inverse_porosity[i];
+  return volume * s.dx * s.dx;
+}
+
+void BoussinesqSolver::save_state(std::ostream& out) const {
+  const Implementation& s = *implementation_;
+  const std::vector<const std::vector<double>*> arrays = {&s.eta, &s.eta_previous, &s.flux_x, &s.flux_y, &s.flux_x_increment,
+                                                          &s.flux_y_increment, &s.eddy_viscosity, &s.breaking_start_s,
+                                                          &s.breaking_strength};
+  write_pod(out, kStateMagic);
+  write_pod(out, kStateVersion);
+  write_pod(out, s.fingerprint);
+  write_pod(out, s.time_s);
+  write_pod(out, s.step_count);
+  std::uint64_t checksum = fnv1a(&s.time_s, sizeof s.time_s);
+  checksum = fnv1a(&s.step_count, sizeof s.step_count, checksum);
+  for (const auto* a : arrays) {
+    const std::uint64_t size = a->size();
+    write_pod(out, size);
+    out.write(reinterpret_cast<const char*>(a->data()), static_cast<std::streamsize>(size * sizeof(double)));
+    checksum = fnv1a(a->data(), size * sizeof(double), checksum);
+  }
+  write_pod(out, checksum);
+  if (!out) throw Error("solver state", "writing the state failed (stream error)", "check free disk space and permissions");
+}
+
+void BoussinesqSolver::load_state(std::istream& in) {
+  Implementation& s = *implementation_;
+  const std::string subject = "solver state";
+  std::uint64_t magic = 0, fingerprint = 0;
+  std::uint32_t version = 0;
+  read_pod(in, magic);
+  read_pod(in, version);
+  if (!in || magic != kStateMagic)
+    throw Error(subject, "is not a Boussinesq solver state (wrong magic number)", "give the checkpoint the bake wrote");
+  if (version != kStateVersion)
+    throw Error(subject, "has version " + std::to_string(version) + ", this solver reads version " + std::to_string(kStateVersion),
+                "resume with the nearshore build that wrote it, or start the bake again");
+  read_pod(in, fingerprint);
+  if (fingerprint != s.fingerprint)
+    throw Error(subject, "was written for a different grid, bathymetry or time step",
+                "resume with the same case file and harbour grid, or start the bake again");
+  double time = 0.0;
+  long steps = 0;
+  read_pod(in, time);
+  read_pod(in, steps);
+  std::uint64_t checksum = fnv1a(&time, sizeof time);
+  checksum = fnv1a(&steps, sizeof steps, checksum);
+  const std::vector<std::vector<double>*> arrays = {&s.eta, &s.eta_previous, &s.flux_x, &s.flux_y, &s.flux_x_increment,
+                                                    &s.flux_y_increment, &s.eddy_viscosity, &s.breaking_start_s,
+                                                    &s.breaking_strength};
+  std::vector<std::vector<double>> loaded(arrays.size());
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    std::uint64_t size = 0;
+    read_pod(in, size);
+    if (!in || size != arrays[a]->size())
+      throw Error(subject, "is truncated or corrupt (array " + std::to_string(a) + " has the wrong size)", "start the bake again from the last good checkpoint");
+    loaded[a].resize(size);
+    in.read(reinterpret_cast<char*>(loaded[a].data()), static_cast<std::streamsize>(size * sizeof(double)));
+    checksum = fnv1a(loaded[a].data(), size * sizeof(double), checksum);
+  }
+  std::uint64_t stored = 0;
+  read_pod(in, stored);
+  if (!in || stored != checksum)
+    throw Error(subject, "is truncated or corrupt (checksum mismatch)", "start the bake again from the last good checkpoint");
+  for (std::size_t a = 0; a < arrays.size(); ++a) arrays[a]->swap(loaded[a]);
+  s.time_s = time;
+  s.step_count = steps;
+  s.publish();
 }
 
 }  // namespace nearshore::bake

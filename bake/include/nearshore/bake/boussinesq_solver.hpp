@@ -16,6 +16,7 @@
 //
 // Units: metres, seconds, radians throughout. x = 0 is the west edge of the grid, y = 0 the south
 // edge (GridGeometry origin); x_m, y_m arguments are in the grid's own frame (origin included).
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -112,6 +113,10 @@ class BoussinesqSolver {
   BoussinesqSolver(const BoussinesqSolver&) = delete;
   BoussinesqSolver& operator=(const BoussinesqSolver&) = delete;
 
+  /// Replaces the surface elevation by eta(x, y) at the cell centres (metres, grid frame) on water
+  /// cells and sets every flux to rest: an initial condition for tests and hot starts (standing
+  /// waves, humps). Land cells keep h = 0. Values are not checked: check_stability() reports NaN.
+  void set_surface_elevation(const std::function<double(double x_m, double y_m)>& surface_elevation_m);
   void step();                               ///< one ADI step of time_step_s()
   double time_s() const;                     ///< simulated time, seconds
   double time_step_s() const;                ///< dt, seconds

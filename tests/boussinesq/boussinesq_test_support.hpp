@@ -1,0 +1,62 @@
+#pragma once
+// Shared set-up of the Boussinesq solver tests: quiet parameters and simple grids.
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "nearshore/bake/boussinesq_solver.hpp"
+
+namespace nearshore::bake::testing {
+
+/// A flat-bottomed flume of `columns` x `rows` cells of `spacing_m`, depth `depth_m`.
+inline HarbourGrid flume(int columns, int rows, double spacing_m, double depth_m) {
+  GridGeometry geometry;
+  geometry.columns = columns;
+  geometry.rows = rows;
+  geometry.spacing_m = spacing_m;
+  return HarbourGrid::open_water(geometry, static_cast<float>(depth_m));
+}
+
+/// Inviscid, non-breaking parameters: the linear and conservation tests check the scheme alone.
+inline SolverParameters inviscid_parameters(double courant_number = 0.5) {
+  SolverParameters parameters;
+  parameters.courant_number = courant_number;
+  parameters.chezy_coefficient = 0.0;
+  parameters.breaking.enabled = false;
+  return parameters;
+}
+
+/// Where tests write plots: <build>/validation/boussinesq/.
+inline std::filesystem::path plot_folder() {
+  std::filesystem::path folder = std::filesystem::path(NEARSHORE_BINARY_DIR) / "validation" / "boussinesq";
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
+}  // namespace nearshore::bake::testing
+
+namespace nearshore::bake::testing {
+
+/// A closed 60 x 40 basin (1 m cells) over rough bathymetry: a smooth 2-5 m bed with 0.6 m
+/// deterministic roughness, a beached island rising to 2 m above still water, a porous
+/// breakwater (n = 0.45) and a solid quay wall (n = 0). Land carries minus its elevation.
+inline HarbourGrid rough_basin() {
+  HarbourGrid harbour = flume(60, 40, 1.0, 3.0);
+  for (int r = 0; r < 40; ++r)
+    for (int c = 0; c < 60; ++c) {
+      const double x = c + 0.5, y = r + 0.5;
+      // Roughness from a hash of the cell (no <random>: identical on every platform).
+      const unsigned hash = (static_cast<unsigned>(c) * 73856093u) ^ (static_cast<unsigned>(r) * 19349663u);
+      const double noise = ((hash % 1000u) / 999.0 - 0.5) * 0.6;
+      double depth = 3.5 + 1.2 * std::sin(0.21 * x) * std::cos(0.17 * y) + noise;
+      const double island = std::hypot(x - 42.0, y - 20.0);
+      if (island < 9.0) depth = std::min(depth, -2.0 + 0.6 * island);  // beach slope 0.6 m per cell
+      harbour.still_water_depth_m(c, r) = static_cast<float>(depth);
+      harbour.land(c, r) = depth < 0.0;
+      if (c == 20 && r >= 10 && r < 30) harbour.porosity(c, r) = 0.45f;  // rubble-mound breakwater
+      if (r == 8 && c >= 5 && c < 18) harbour.porosity(c, r) = 0.0f;      // vertical quay wall
+    }
+  return harbour;
+}
+
+}  // namespace nearshore::bake::testing
