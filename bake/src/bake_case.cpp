@@ -311,7 +311,8 @@ void apply_porous_blocks(std::vector<TableReader> blocks, HarbourGrid& grid) {
     int cells = 0;
     for (int row = 0; row < grid.geometry.rows; ++row)
       for (int column = 0; column < grid.geometry.columns; ++column) {
-        const double x = grid.geometry.cell_centre_x_m(column), y = grid.geometry.cell_centre_y_m(row);
+        const double x = grid.geometry.cell_centre_x_m(column) - grid.geometry.origin_x_m;  // local frame
+        const double y = grid.geometry.cell_centre_y_m(row) - grid.geometry.origin_y_m;
         if (x >= x_range[0] && x <= x_range[1] && y >= y_range[0] && y <= y_range[1]) {
           grid.porosity(column, row) = static_cast<float>(porosity);
           ++cells;
@@ -378,8 +379,10 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   const double extent_m = along_x ? grid.geometry.width_m() : grid.geometry.height_m();
   const double origin_m = along_x ? grid.geometry.origin_x_m : grid.geometry.origin_y_m;
   const std::string where = kind == 4 ? "crest_position_m" : "source_line_m";
-  const double position_m = maker.number(where, std::nullopt, origin_m, origin_m + extent_m, false,
-                                         fmt::format("position along {} inside the grid, metres", along_x ? "x" : "y"));
+  // Case positions are metres from the grid's south-west corner; the solver's frame includes the origin.
+  const double position_m = origin_m + maker.number(where, std::nullopt, 0.0, extent_m, false,
+                                                    fmt::format("position along {} from the south-west corner, inside the grid, metres",
+                                                                along_x ? "x" : "y"));
   wave_maker.source_line_m = position_m;
   wave_maker.ramp_time_s = maker.non_negative("ramp_time_s", 0.0, "smooth start in seconds");
   const double default_direction_rad = direction_away_from(wave_maker.facing);
@@ -575,8 +578,19 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
     bake_case.solver.sponges.push_back(sponge);
   }
   bake_case.solver.courant_number = request.courant_number;
+  // The step divides the shorter of the output and gauge intervals, and that divides the longer, so
+  // frames and gauge samples fall exactly on steps.
+  const BakeTiming& timing = bake_case.timing;
+  double divided_interval_s = timing.output_interval_s;
+  if (timing.gauge_interval_s > 0) {
+    divided_interval_s = std::min(timing.output_interval_s, timing.gauge_interval_s);
+    if (whole_steps(std::max(timing.output_interval_s, timing.gauge_interval_s), divided_interval_s) < 1)
+      time.fail(time.full("gauge_interval_s"), fmt::format("= {} s neither divides time.output_interval_s = {} s nor is a multiple of it",
+                                                           timing.gauge_interval_s, timing.output_interval_s),
+                "choose a gauge interval such as output_interval_s / 10");
+  }
   bake_case.solver.time_step_s =
-      resolve_time_step(request.time_step_s, request.courant_number, bake_case.harbour, bake_case.timing.output_interval_s);
+      resolve_time_step(request.time_step_s, request.courant_number, bake_case.harbour, divided_interval_s);
 
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");
   TableReader maker = root.table("wave_maker");
@@ -591,8 +605,8 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   for (TableReader& entry : root.tables("gauges")) {
     GaugeSpec gauge;
     gauge.name = entry.string("name", std::nullopt, "gauge name");
-    gauge.x_m = entry.number("x_m", std::nullopt, geometry.origin_x_m, geometry.origin_x_m + geometry.width_m(), false, "x inside the grid, metres");
-    gauge.y_m = entry.number("y_m", std::nullopt, geometry.origin_y_m, geometry.origin_y_m + geometry.height_m(), false, "y inside the grid, metres");
+    gauge.x_m = geometry.origin_x_m + entry.number("x_m", std::nullopt, 0.0, geometry.width_m(), false, "x from the south-west corner, inside the grid, metres");
+    gauge.y_m = geometry.origin_y_m + entry.number("y_m", std::nullopt, 0.0, geometry.height_m(), false, "y from the south-west corner, inside the grid, metres");
     entry.finish();
     if (gauge.name.empty() || gauge.name.find_first_of(",\"\n") != std::string::npos)
       entry.fail(entry.full("name"), fmt::format("= \"{}\" is empty or holds a comma, quote or newline", gauge.name),
@@ -608,6 +622,8 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   bake_case.solver_record = solver_record(bake_case.solver);
   return bake_case;
 }
+
+json read_case_document(const fs::path& case_file) { return parse_document(case_file); }
 
 BakeCase read_bake_case(const fs::path& case_file) { return parse_bake_case(parse_document(case_file), case_file); }
 

@@ -4,7 +4,9 @@
 //
 // One road from the file to the solver (pbrt's single factory route): read_bake_case() parses and
 // checks every key, builds the harbour grid (from a depth.exr, a 1-D flume profile or the Berkhoff
-// shoal formula), and fills the solver's own SolverParameters and WaveMaker. Unknown keys are
+// shoal formula), and fills the solver's own SolverParameters and WaveMaker. Positions in the case
+// file (gauges, source line, porous blocks) are metres from the grid's south-west corner; BakeCase
+// holds them in the solver's frame (GridGeometry origin added, e.g. UTM eastings). Unknown keys are
 // errors, so a typo never passes silently; every error names the case file, the key and the fix.
 #include <cstdint>
 #include <filesystem>
@@ -21,7 +23,7 @@ namespace nearshore::bake {
 /// A named point where the surface elevation is recorded every gauge interval (gauges.csv).
 struct GaugeSpec {
   std::string name;
-  double x_m = 0.0;  ///< grid frame (GridGeometry origin included), metres
+  double x_m = 0.0;  ///< grid frame (GridGeometry origin included), metres; the case file gives it from the SW corner
   double y_m = 0.0;
 };
 
@@ -49,6 +51,10 @@ struct BakeCase {
 /// Reads and checks a case file (.toml or .json). Relative paths inside it are relative to the
 /// case file's folder. Throws nearshore::Error(case file, "key `a.b` ...", fix) on any problem.
 BakeCase read_bake_case(const std::filesystem::path& case_file);
+
+/// The case file as a JSON document (TOML converted, integers kept apart from floats), unchecked:
+/// for tools and tests that adjust a case (e.g. a coarser grid) before parse_bake_case().
+nlohmann::json read_case_document(const std::filesystem::path& case_file);
 
 /// The same from an already parsed document (tests, and JSON given in memory). `case_file` is used
 /// for messages and to resolve relative paths.
