@@ -61,8 +61,8 @@ TEST(BoussinesqDispersion, PhaseSpeedAgainstAiryAt20PointsPerWavelength) {
   plot.title = "Phase speed / Airy, 20 cells per wavelength, Courant 0.5";
   plot.x_label = "k h";
   plot.y_label = "c / c_Airy";
-  PlotSeries scheme{"discrete scheme (measured)", {}, {}, {0.84f, 0.15f, 0.16f}, true};
-  PlotSeries continuous{"Madsen & Sorensen B = 1/15 (continuous)", {}, {}, {0.12f, 0.47f, 0.71f}, false};
+  PlotSeries scheme{"scheme, measured", {}, {}, {0.84f, 0.15f, 0.16f}, true};
+  PlotSeries continuous{"M&S B=1/15, continuous", {}, {}, {0.12f, 0.47f, 0.71f}, false};
   PlotSeries unity{"Airy", {}, {}, {0.3f, 0.3f, 0.3f}, false};
   std::printf("   kh   c_scheme/c_airy   c_MS/c_airy\n");
   for (const DispersionPoint& p : points) {
