@@ -1,9 +1,126 @@
+// nearshore bathy: chart data in, solver-ready harbour grid out (docs/commands/bathy.md).
+// Thin: parse options, call nearshore::bathymetry::build_harbour_grid, write, print.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+
 #include "command_support.hpp"
+#include "nearshore/bathymetry/harbour_builder.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/core/progress.hpp"
 
 namespace nearshore::tools {
+namespace {
+
+std::array<double, 4> parse_box(const std::string& text, const std::string& option) {
+  std::array<double, 4> box{};
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &box[0], &box[1], &box[2], &box[3], &extra) != 4)
+    throw Error(option + " " + text, "is not four numbers separated by commas", "write e.g. " + option + " -122.46,47.25,-122.40,47.29");
+  return box;
+}
+
+// --structure NAME=WIDTH:POROSITY, e.g. breakwater=25:0.4
+void parse_structure(const std::string& text, std::map<std::string, bathymetry::StructureStyle>& styles) {
+  const auto equals = text.find('='), colon = text.find(':');
+  bathymetry::StructureStyle style;
+  try {
+    if (equals == std::string::npos || colon == std::string::npos || colon < equals) throw std::invalid_argument(text);
+    style.crest_width_m = std::stod(text.substr(equals + 1, colon - equals - 1));
+    style.porosity = std::stod(text.substr(colon + 1));
+  } catch (const std::logic_error&) {
+    throw Error("--structure " + text, "is not NAME=WIDTH_M:POROSITY", "write e.g. --structure breakwater=25:0.4");
+  }
+  if (!(style.crest_width_m > 0) || style.porosity < 0 || style.porosity > 1)
+    throw Error("--structure " + text, "needs a positive width and a porosity in [0, 1]", "write e.g. --structure quay=10:0");
+  styles[text.substr(0, equals)] = style;
+}
+
+}  // namespace
 
 void add_bathy_command(CLI::App& app) {
-  add_unbuilt_command(app, "bathy", "Turn chart data into a solver-ready harbour grid", "nearshore bathy ../shared/charts/tacoma_us5wa22m/US5WA22M.000 --spacing 10 -o out/tacoma", "issue 3, bathymetry");
+  struct Options {
+    std::vector<std::string> inputs;
+    double spacing_m = 10.0;
+    std::string bbox, bbox_m, sign = "auto", projection = "utm", output, xyz_crs;
+    std::vector<std::string> structures;
+    double minimum_depth_m = 0.5, maximum_slope = 0.0, land_elevation_m = 2.0, band_m = 200.0;
+    bool json = false, leave_one_out = false, fill_uncovered = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand("bathy", "Turn chart data into a solver-ready harbour grid");
+  command->add_option("inputs", options->inputs,
+                      "Charts (S-57 .000, updates applied), depth rasters (GeoTIFF, NetCDF, ESRI ASCII), vector files "
+                      "(GeoJSON coastline/land/breakwaters) and soundings (.xyz/.csv: x y depth); highest priority first")
+      ->required();
+  command->add_option("--spacing", options->spacing_m, "Cell size in metres")->required();
+  command->add_option("--bbox", options->bbox, "Area as LON0,LAT0,LON1,LAT1 (WGS 84 degrees); default: all the data");
+  command->add_option("--bbox-m", options->bbox_m, "Area as X0,Y0,X1,Y1 in metres of the chosen projection");
+  command->add_option("-o,--output", options->output, "Output folder (depth.tif, depth.exr, coastline.vdb, preview.png, summary.json)")
+      ->required();
+  command->add_option("--sign", options->sign, "Sign of raster and text values: auto (from metadata), depth (positive down), elevation (positive up)")
+      ->check(CLI::IsMember({"auto", "depth", "elevation"}));
+  command->add_option("--projection", options->projection, "utm (zone of the area), utm:10N (given zone), or local-tm");
+  command->add_option("--xyz-crs", options->xyz_crs, "CRS of projected x y in text soundings, e.g. EPSG:32610 (default lon lat)");
+  command->add_option("--structure", options->structures,
+                      "Porosity band of a structure category, NAME=WIDTH_M:POROSITY (breakwater, groyne, mole, pier, quay, "
+                      "sea_wall, riprap, revetment, training_wall, or a GeoJSON category); repeatable");
+  command->add_option("--min-depth", options->minimum_depth_m, "Water shallower than this (m) is deepened to it");
+  command->add_option("--max-slope", options->maximum_slope, "Smooth the sea bed where |grad d| exceeds this (0 = off)");
+  command->add_option("--land-elevation", options->land_elevation_m, "Elevation (m) of land cells where no input gives one");
+  command->add_option("--coastline-band", options->band_m, "Half-width (m) of the narrow band stored in coastline.vdb");
+  command->add_flag("--fill-uncovered", options->fill_uncovered,
+                    "Cells no input covers take the nearest covered depth (default: they become land)");
+  command->add_flag("--leave-one-out", options->leave_one_out, "Cross-validate: re-grid each chart sounding from the others");
+  command->add_flag("--json", options->json, "Print summary.json instead of the short report");
+  set_example(*command, "nearshore bathy ../shared/charts/tacoma_us5wa22m/US5WA22M.000 --spacing 10 -o out/tacoma");
+  command->callback([options]() {
+    bathymetry::BathyRequest request;
+    for (const auto& input : options->inputs) request.inputs.emplace_back(input);
+    request.spacing_m = options->spacing_m;
+    if (!options->bbox.empty()) request.bbox_lon_lat = parse_box(options->bbox, "--bbox");
+    if (!options->bbox_m.empty()) request.bbox_projected_m = parse_box(options->bbox_m, "--bbox-m");
+    request.sign = options->sign == "depth"       ? bathymetry::DepthSign::kPositiveDown
+                   : options->sign == "elevation" ? bathymetry::DepthSign::kPositiveUp
+                                                  : bathymetry::DepthSign::kAuto;
+    request.projection = options->projection;
+    request.text_crs = options->xyz_crs;
+    for (const auto& s : options->structures) parse_structure(s, request.structure_styles);
+    request.minimum_depth_m = options->minimum_depth_m;
+    request.maximum_slope = options->maximum_slope;
+    request.land_elevation_m = options->land_elevation_m;
+    request.coastline_band_m = options->band_m;
+    request.leave_one_out = options->leave_one_out;
+    request.fill_uncovered_from_nearest = options->fill_uncovered;
+    if (options->json) ProgressBar::set_quiet(true);
+    const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
+    const nlohmann::json summary = bathymetry::write_bathymetry_outputs(options->output, result, options->band_m);
+    if (options->json) {
+      std::printf("%s\n", summary.dump(2).c_str());
+      return;
+    }
+    const auto& cells = summary["cells"];
+    std::printf("%s\n", fmt::format("grid {} x {} cells at {} m in {}; water depth {:.2f} .. {:.2f} m",
+                                    summary["columns"].get<int>(), summary["rows"].get<int>(), request.spacing_m,
+                                    summary["crs"].get<std::string>(), summary["water_depth_m"]["min"].get<double>(),
+                                    summary["water_depth_m"]["max"].get<double>()).c_str());
+    std::printf("%s\n", fmt::format("cells: {} water, {} land, {} outside every input ({}), {} bounded by depth areas, "
+                                    "{} clamped to {} m, {} smoothed",
+                                    cells["water"].get<std::size_t>(), cells["land"].get<std::size_t>(),
+                                    cells["uncovered"].get<std::size_t>(), request.fill_uncovered_from_nearest ? "filled from nearest" : "land",
+                                    cells["bounded_by_depth_areas"].get<std::size_t>(),
+                                    summary["conditioning"]["minimum_depth_clamp"]["cells"].get<std::size_t>(),
+                                    request.minimum_depth_m,
+                                    summary["conditioning"]["slope_smoothing"]["cells"].get<std::size_t>()).c_str());
+    if (summary.contains("leave_one_out"))
+      std::printf("%s\n", fmt::format("leave-one-out over {} soundings: median |error| {:.2f} m, 90th percentile {:.2f} m",
+                                      summary["leave_one_out"]["soundings"].get<std::size_t>(),
+                                      summary["leave_one_out"]["median_absolute_error_m"].get<double>(),
+                                      summary["leave_one_out"]["p90_absolute_error_m"].get<double>()).c_str());
+    std::printf("wrote %s/{depth.tif, depth.exr, coastline.vdb, preview.png, summary.json}\n", options->output.c_str());
+  });
 }
 
 }  // namespace nearshore::tools

@@ -11,6 +11,8 @@
 
 #include <fmt/core.h>
 
+#include "nearshore/bathymetry/geotiff.hpp"
+#include "nearshore/bathymetry/projection.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
 
@@ -18,7 +20,6 @@ namespace nearshore::bathymetry {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kNoData = -9999.0;
 constexpr double kPi = std::numbers::pi;
 
 // --- The site, in local metres from the south-west corner (x east, y north) -------------------
@@ -60,48 +61,29 @@ struct SiteFrame {
                                    longitude);
     return {longitude, latitude};
   }
-  int epsg() const { return (northp ? 32600 : 32700) + zone; }
 };
 
 void require_gdal_ok(bool ok, const fs::path& path, const std::string& what) {
   if (!ok) throw Error(path.string(), what + ": " + CPLGetLastErrorMsg(), "check the output folder is writable");
 }
 
-void write_depth_geotiff(const fs::path& path, const DemoHarbourOptions& o, const SiteFrame& frame) {
-  const int columns = static_cast<int>(std::lround(o.width_m / o.source_spacing_m));
-  const int rows = static_cast<int>(std::lround(o.height_m / o.source_spacing_m));
-  std::vector<float> depth(static_cast<std::size_t>(columns) * rows);
-  for (int row = 0; row < rows; ++row)  // GeoTIFF row 0 is the NORTHERN edge
-    for (int column = 0; column < columns; ++column)
-      depth[static_cast<std::size_t>(row) * columns + column] = static_cast<float>(demo_harbour_depth_m(
-          o, (column + 0.5) * o.source_spacing_m, o.height_m - (row + 0.5) * o.source_spacing_m));
-  write_file_atomically(path, [&](const fs::path& temporary) {
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
-    require_gdal_ok(driver != nullptr, path, "GDAL has no GTiff driver");
-    const char* options[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", nullptr};
-    GDALDataset* dataset =
-        driver->Create(temporary.c_str(), columns, rows, 1, GDT_Float32, const_cast<char**>(options));
-    require_gdal_ok(dataset != nullptr, path, "cannot create GeoTIFF");
-    double geotransform[6] = {frame.origin_easting_m, o.source_spacing_m, 0.0,
-                              frame.origin_northing_m + rows * o.source_spacing_m, 0.0, -o.source_spacing_m};
-    dataset->SetGeoTransform(geotransform);
-    OGRSpatialReference utm;
-    utm.importFromEPSG(frame.epsg());
-    dataset->SetSpatialRef(&utm);
-    dataset->SetMetadataItem("NEARSHORE_VALUE", "depth");
-    dataset->SetMetadataItem("NEARSHORE_DEPTH_SIGN", "positive_down");
-    dataset->SetMetadataItem("NEARSHORE_VERTICAL_DATUM", "mean sea level");
-    GDALRasterBand* band = dataset->GetRasterBand(1);
-    band->SetNoDataValue(kNoData);
-    band->SetDescription("depth (m, positive down)");
-    band->SetUnitType("m");
-    const CPLErr written =
-        band->RasterIO(GF_Write, 0, 0, columns, rows, depth.data(), columns, rows, GDT_Float32, 0, 0);
-    CPLErrorReset();
-    GDALClose(dataset);  // void in GDAL 3.6: failures surface through CPLGetLastErrorType
-    const bool closed = CPLGetLastErrorType() < CE_Failure;
-    require_gdal_ok(written == CE_None && closed, path, "writing the depth band failed");
-  });
+// The survey grid, sampled from the analytic depth at cell centres, in the site's UTM frame.
+void write_survey_geotiff(const fs::path& path, const DemoHarbourOptions& o, const SiteFrame& frame) {
+  GridGeometry geometry;
+  geometry.columns = static_cast<int>(std::lround(o.width_m / o.source_spacing_m));
+  geometry.rows = static_cast<int>(std::lround(o.height_m / o.source_spacing_m));
+  geometry.spacing_m = o.source_spacing_m;
+  geometry.origin_x_m = frame.origin_easting_m;
+  geometry.origin_y_m = frame.origin_northing_m;
+  const MapProjection projection = MapProjection::utm(frame.zone, frame.northp);
+  geometry.crs_wkt = projection.crs_wkt();
+  geometry.projection = projection.to_json();
+  Raster<float> depth(geometry.columns, geometry.rows);
+  for (int row = 0; row < geometry.rows; ++row)
+    for (int column = 0; column < geometry.columns; ++column)
+      depth(column, row) = static_cast<float>(
+          demo_harbour_depth_m(o, (column + 0.5) * o.source_spacing_m, (row + 0.5) * o.source_spacing_m));
+  write_depth_geotiff(path, geometry, depth, "mean sea level");
 }
 
 // One GeoJSON file with one layer: a feature per geometry, WGS84 lon/lat as RFC 7946 requires.
@@ -206,7 +188,7 @@ DemoHarbourFiles write_demo_harbour(const fs::path& folder, const DemoHarbourOpt
   const SiteFrame frame(o);
   DemoHarbourFiles files{folder / "depth.tif", folder / "coastline.geojson", folder / "land.geojson",
                          folder / "breakwaters.geojson"};
-  write_depth_geotiff(files.depth_geotiff, o, frame);
+  write_survey_geotiff(files.depth_geotiff, o, frame);
 
   const std::vector<LocalPoint> shore = shoreline_points(o);
   std::vector<Feature> coastline;

@@ -1,0 +1,81 @@
+#pragma once
+// The bathymetry stage in one call: inputs (charts, rasters, soundings, vectors) -> a solver-ready
+// HarbourGrid plus a summary of what was done where. `nearshore bathy` and `nearshore demo` both
+// call build_harbour_grid and then write_bathymetry_outputs.
+//
+// Steps (each reported in the summary):
+//   1. read every input (sources.hpp); choose the projection (UTM zone of the area, or as asked);
+//   2. lay the grid over the bounding box (lon/lat or projected metres; default: all the data),
+//      estimating its memory before allocating anything;
+//   3. depth per input: rasters resampled bilinearly, scattered data (soundings, contour vertices,
+//      depth-area boundaries, coastline at 0 m) by Sibson natural-neighbour interpolation; combined
+//      in priority order (the first input that covers a cell wins);
+//   4. chart depth areas bound the gridded depth: DRVAL1 <= d <= DRVAL2, dredged areas d >= DRVAL1;
+//   5. cells no input covers (outside a chart's M_COVR coverage, beyond a raster) become land, or
+//      with fill_uncovered_from_nearest take the depth of the nearest covered cell (counted);
+//   6. land: land polygons and cells with depth <= 0; porosity: structures rasterised with a crest
+//      width and porosity per category; signed coastline distance (negative on land);
+//   7. conditioning for the Boussinesq solver: minimum depth clamp, optional slope limiting.
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "nearshore/bathymetry/rasterise.hpp"
+#include "nearshore/bathymetry/sources.hpp"
+#include "nearshore/core/harbour_grid.hpp"
+
+namespace nearshore::bathymetry {
+
+/// How a shoreline structure is burnt into the porosity map (seed 003 eq. (2)-(3)).
+struct StructureStyle {
+  double crest_width_m = 10.0;  ///< width of the rasterised band for line features, metres
+  double porosity = 1.0;        ///< n: 1 transparent (ignored), 0.3-0.5 rubble mound, 0 vertical wall
+};
+
+/// The defaults per category (S-57 SLCONS CATSLC mapped to names in sources.cpp; GeoJSON `category`).
+std::map<std::string, StructureStyle> default_structure_styles();
+
+struct BathyRequest {
+  std::vector<std::filesystem::path> inputs;  ///< highest priority first
+  double spacing_m = 10.0;
+  std::optional<std::array<double, 4>> bbox_lon_lat;   ///< lon0, lat0, lon1, lat1
+  std::optional<std::array<double, 4>> bbox_projected_m;  ///< x0, y0, x1, y1 in the chosen projection
+  DepthSign sign = DepthSign::kAuto;
+  std::string text_crs;               ///< CRS of projected x/y in text sounding files
+  std::string projection = "utm";     ///< "utm" (zone from the area), "utm:10N", or "local-tm"
+  std::map<std::string, StructureStyle> structure_styles = default_structure_styles();
+  double minimum_depth_m = 0.5;       ///< water shallower than this is deepened to it (solver stability)
+  double maximum_slope = 0.0;         ///< |grad d| limit for slope smoothing; 0 = off
+  double land_elevation_m = 2.0;      ///< elevation given to land cells when no input has one
+  bool fill_uncovered_from_nearest = false;  ///< cells no input covers: nearest depth, else land
+  double coastline_band_m = 200.0;    ///< half-width of the narrow band stored in coastline.vdb
+  double memory_limit_bytes = 0.0;    ///< 0 = the machine's available memory (/proc/meminfo)
+  bool leave_one_out = false;         ///< also cross-validate the chart soundings (summary "leave_one_out")
+};
+
+struct BathyResult {
+  HarbourGrid grid;
+  nlohmann::json summary;                 ///< what summary.json holds (docs/formats/harbour-grid.md)
+  std::vector<PlaneLine> coastline_m;     ///< coastline polylines in grid metres, for the preview
+  std::vector<double> leave_one_out_error_m;  ///< estimate - charted depth per sounding (if asked)
+};
+
+/// Runs steps 1-7. Throws nearshore::Error (naming the file, the problem and the fix) before
+/// anything is written: missing or unreadable input, bbox outside the data, a grid too large for
+/// memory, no water cell, ...
+BathyResult build_harbour_grid(const BathyRequest& request);
+
+/// Writes depth.tif, depth.exr, coastline.vdb, preview.png and summary.json into `folder`
+/// (created if needed), each atomically. Returns the summary with the output list added.
+nlohmann::json write_bathymetry_outputs(const std::filesystem::path& folder, const BathyResult& result,
+                                        double coastline_band_m = 200.0);
+
+/// Bytes the grid of `cells` cells needs at the peak of build_harbour_grid (an upper estimate).
+double estimated_peak_bytes(double cells, std::size_t input_count);
+
+}  // namespace nearshore::bathymetry

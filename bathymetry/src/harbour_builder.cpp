@@ -1,0 +1,696 @@
+#include "nearshore/bathymetry/harbour_builder.hpp"
+
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <unordered_map>
+
+#include <fmt/core.h>
+
+#include "nearshore/bathymetry/coastline_level_set.hpp"
+#include "nearshore/bathymetry/distance_transform.hpp"
+#include "nearshore/bathymetry/geotiff.hpp"
+#include "nearshore/bathymetry/natural_neighbour.hpp"
+#include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/core/plot.hpp"
+#include "nearshore/core/progress.hpp"
+
+namespace nearshore::bathymetry {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+constexpr std::uint8_t kNoSource = 255;
+
+// --- Projection and grid ----------------------------------------------------------------------------
+MapProjection choose_projection(const std::string& spec, LonLat centre) {
+  if (spec == "utm") return MapProjection::utm_for(centre);
+  if (spec == "local-tm") return MapProjection::local_transverse_mercator(centre);
+  if (spec.starts_with("utm:") && spec.size() >= 6) {
+    const char hemisphere = static_cast<char>(std::toupper(static_cast<unsigned char>(spec.back())));
+    try {
+      const int zone = std::stoi(spec.substr(4, spec.size() - 5));
+      if (hemisphere == 'N' || hemisphere == 'S') return MapProjection::utm(zone, hemisphere == 'N');
+    } catch (const std::logic_error&) {
+    }
+  }
+  throw Error("--projection " + spec, "is not a projection nearshore knows", "use utm, utm:10N (zone and hemisphere) or local-tm");
+}
+
+double available_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024.0;
+  return 8.0 * 1024 * 1024 * 1024;  // unknown: assume a modest 8 GiB
+}
+
+// The grid over a box in projected metres, from its south-west corner (so a grid over a survey
+// raster at a multiple of its cell size lines up with it). Memory is checked before any allocation.
+GridGeometry lay_grid(const std::array<double, 4>& box_m, double spacing_m, const MapProjection& projection,
+                      const BathyRequest& request) {
+  GridGeometry g;
+  g.spacing_m = spacing_m;
+  g.origin_x_m = box_m[0];
+  g.origin_y_m = box_m[1];
+  // The box rounded up to whole cells (a micrometre of slack so 1600 m / 20 m stays 80 cells).
+  const double columns = std::ceil((box_m[2] - g.origin_x_m) / spacing_m - 1e-9);
+  const double rows = std::ceil((box_m[3] - g.origin_y_m) / spacing_m - 1e-9);
+  const double cells = columns * rows;
+  const double needed = estimated_peak_bytes(cells, request.inputs.size());
+  const double available = request.memory_limit_bytes > 0 ? request.memory_limit_bytes : available_memory_bytes();
+  if (needed > available || columns > 1e9 || rows > 1e9)
+    throw Error(fmt::format("grid of {:.0f} x {:.0f} cells at {} m", columns, rows, spacing_m),
+                fmt::format("would need about {:.3g} GB of memory but {:.3g} GB are available", needed / 1e9, available / 1e9),
+                fmt::format("use a coarser --spacing (about {:.3g} m fits) or a smaller --bbox",
+                            spacing_m * std::sqrt(needed / available) * 1.05));
+  if (columns < 2 || rows < 2)
+    throw Error(fmt::format("grid at {} m", spacing_m), fmt::format("has only {:.0f} x {:.0f} cells", columns, rows),
+                "use a finer --spacing or a larger --bbox");
+  g.columns = static_cast<int>(columns);
+  g.rows = static_cast<int>(rows);
+  g.crs_wkt = projection.crs_wkt();
+  g.projection = projection.to_json();
+  return g;
+}
+
+// Projected bounding box of a lon/lat box: its outline sampled densely (a UTM grid is rotated
+// against meridians and parallels, so the corners alone are not enough).
+std::array<double, 4> projected_box(const std::array<double, 4>& lon_lat, const MapProjection& projection) {
+  std::array<double, 4> box{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  for (int k = 0; k <= 64; ++k) {
+    const double t = k / 64.0;
+    for (LonLat p : {LonLat{lon_lat[0] + t * (lon_lat[2] - lon_lat[0]), lon_lat[1]},
+                     LonLat{lon_lat[0] + t * (lon_lat[2] - lon_lat[0]), lon_lat[3]},
+                     LonLat{lon_lat[0], lon_lat[1] + t * (lon_lat[3] - lon_lat[1])},
+                     LonLat{lon_lat[2], lon_lat[1] + t * (lon_lat[3] - lon_lat[1])}}) {
+      const ProjectedPoint q = projection.forward(p);
+      box = {std::min(box[0], q.x_m), std::min(box[1], q.y_m), std::max(box[2], q.x_m), std::max(box[3], q.y_m)};
+    }
+  }
+  return box;
+}
+
+// Where a source's data lie in the grid's projection: a raster's own outline (exact when it is in
+// the same CRS), otherwise the outline of its lon/lat extent.
+std::array<double, 4> projected_extent(const SourceData& source, const MapProjection& projection) {
+  if (!source.raster) return projected_box(source.extent_lon_lat, projection);
+  const GeoRaster& raster = *source.raster;
+  OGRSpatialReference raster_crs, wgs84;
+  raster_crs.importFromWkt(raster.crs_wkt.c_str());
+  raster_crs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  wgs84.SetWellKnownGeogCS("WGS84");
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_wgs84(OGRCreateCoordinateTransformation(&raster_crs, &wgs84));
+  OGRSpatialReference grid_crs;
+  grid_crs.importFromWkt(projection.crs_wkt().c_str());
+  const bool same_crs = grid_crs.IsSame(&raster_crs);
+  const auto& gt = raster.geotransform;
+  std::array<double, 4> box{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  for (int k = 0; k <= 64; ++k) {
+    const double t = k / 64.0;
+    for (auto [u, v] : {std::pair{t, 0.0}, {t, 1.0}, {0.0, t}, {1.0, t}}) {
+      double x = gt[0] + u * raster.columns * gt[1], y = gt[3] + v * raster.rows * gt[5];
+      if (!same_crs) {
+        if (!to_wgs84 || !to_wgs84->Transform(1, &x, &y))
+          throw Error(source.path.string(), "cannot transform the raster's outline to WGS 84", "check its CRS");
+        const ProjectedPoint p = projection.forward({x, y});
+        x = p.x_m, y = p.y_m;
+      }
+      box = {std::min(box[0], x), std::min(box[1], y), std::max(box[2], x), std::max(box[3], y)};
+    }
+  }
+  return box;
+}
+
+// --- Projected geometry -----------------------------------------------------------------------------
+PlaneLine project_line(const GeoLine& line, const MapProjection& projection) {
+  PlaneLine out;
+  out.reserve(line.size());
+  for (const auto& p : line) out.push_back(projection.forward(p));
+  return out;
+}
+
+std::vector<PlaneLine> project_polygon(const GeoPolygon& polygon, const MapProjection& projection) {
+  std::vector<PlaneLine> rings;
+  for (const auto& ring : polygon.rings) rings.push_back(project_line(ring, projection));
+  return rings;
+}
+
+// Vertices along a line at most `step_m` apart (the constraint densification of natural_neighbour.hpp).
+void densify(const PlaneLine& line, double step_m, double depth_m, std::vector<ScatteredDepth>& out) {
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    out.push_back({line[i].x_m, line[i].y_m, depth_m});
+    if (i + 1 == line.size()) break;
+    const double dx = line[i + 1].x_m - line[i].x_m, dy = line[i + 1].y_m - line[i].y_m;
+    const int pieces = static_cast<int>(std::ceil(std::hypot(dx, dy) / step_m));
+    for (int k = 1; k < pieces; ++k)
+      out.push_back({line[i].x_m + dx * k / pieces, line[i].y_m + dy * k / pieces, depth_m});
+  }
+}
+
+// --- Depth from a raster: bilinear where the four neighbours have data, nearest where only that has ---
+Raster<float> resample_raster(const GeoRaster& raster, const GridGeometry& g, const MapProjection& projection) {
+  OGRSpatialReference grid_crs, raster_crs;
+  grid_crs.importFromWkt(g.crs_wkt.c_str());
+  raster_crs.importFromWkt(raster.crs_wkt.c_str());
+  grid_crs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  raster_crs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_raster;
+  OGRSpatialReference wgs84;
+  wgs84.SetWellKnownGeogCS("WGS84");
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  const bool same_crs = grid_crs.IsSame(&raster_crs);
+  if (!same_crs) to_raster.reset(OGRCreateCoordinateTransformation(&wgs84, &raster_crs));
+  const auto& gt = raster.geotransform;
+  auto value = [&](int column, int row) -> float {
+    if (column < 0 || row < 0 || column >= raster.columns || row >= raster.rows) return kNaNf;
+    return raster.depth_m[static_cast<std::size_t>(row) * raster.columns + column];
+  };
+  Raster<float> depth(g.columns, g.rows, kNaNf);
+  std::vector<double> xs(g.columns), ys(g.columns);
+  for (int row = 0; row < g.rows; ++row) {
+    for (int column = 0; column < g.columns; ++column) {
+      xs[column] = g.cell_centre_x_m(column);
+      ys[column] = g.cell_centre_y_m(row);
+      if (!same_crs) {
+        const LonLat p = projection.reverse({xs[column], ys[column]});
+        xs[column] = p.longitude_deg;
+        ys[column] = p.latitude_deg;
+      }
+    }
+    if (to_raster) to_raster->Transform(g.columns, xs.data(), ys.data());
+    for (int column = 0; column < g.columns; ++column) {
+      // Fractional pixel position measured from pixel centres.
+      const double u = (xs[column] - gt[0]) / gt[1] - 0.5, v = (ys[column] - gt[3]) / gt[5] - 0.5;
+      const int i = static_cast<int>(std::floor(u)), j = static_cast<int>(std::floor(v));
+      const double fu = u - i, fv = v - j;
+      const float a = value(i, j), b = value(i + 1, j), c = value(i, j + 1), d = value(i + 1, j + 1);
+      if (std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(d))
+        depth(column, row) = static_cast<float>((1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d));
+      else
+        depth(column, row) = value(static_cast<int>(std::lround(u)), static_cast<int>(std::lround(v)));
+    }
+  }
+  return depth;
+}
+
+// --- Scattered chart data ---------------------------------------------------------------------------
+struct ScatteredInput {
+  std::vector<ScatteredDepth> points;  // soundings first (they win over coincident constraint vertices)
+  std::size_t sounding_count = 0;
+  std::size_t contour_vertices = 0, depth_area_vertices = 0, coastline_vertices = 0;
+};
+
+bool inside_box(const ProjectedPoint& p, const std::array<double, 4>& box) {
+  return p.x_m >= box[0] && p.x_m <= box[2] && p.y_m >= box[1] && p.y_m <= box[3];
+}
+
+// Depth-area boundary vertices shared by two or more areas lie on the contour between them, whose
+// value is the deeper area's DRVAL1 (= the shallower one's DRVAL2): the maximum DRVAL1 of the areas
+// sharing the vertex. S-57 areas share edges exactly (one spatial record), so coordinates match bit for bit.
+void add_depth_area_vertices(const std::vector<DepthArea>& areas, const MapProjection& projection,
+                             const std::array<double, 4>& box, ScatteredInput& out) {
+  struct Shared {
+    int areas = 0;
+    double value = -INFINITY;
+    const void* last_area = nullptr;
+  };
+  std::map<std::pair<double, double>, Shared> vertices;
+  for (const auto& area : areas)
+    for (const auto& ring : area.polygon.rings)
+      for (const auto& p : ring) {
+        Shared& s = vertices[{p.longitude_deg, p.latitude_deg}];
+        if (s.last_area != &area) ++s.areas;  // a ring's closing vertex repeats the first
+        s.last_area = &area;
+        s.value = std::max(s.value, area.shallowest_m);
+      }
+  for (const auto& [place, shared] : vertices) {
+    if (shared.areas < 2) continue;
+    const ProjectedPoint p = projection.forward({place.first, place.second});
+    if (!inside_box(p, box)) continue;
+    out.points.push_back({p.x_m, p.y_m, shared.value});
+    ++out.depth_area_vertices;
+  }
+}
+
+ScatteredInput gather_scattered(const SourceData& source, const std::vector<SourceData>& all,
+                                const MapProjection& projection, const GridGeometry& g) {
+  // Data a little outside the grid still shapes the surface at its edges.
+  const double margin = 20.0 * g.spacing_m;
+  const std::array<double, 4> box{g.origin_x_m - margin, g.origin_y_m - margin, g.origin_x_m + g.width_m() + margin,
+                                  g.origin_y_m + g.height_m() + margin};
+  ScatteredInput out;
+  for (const auto& s : source.soundings) {
+    const ProjectedPoint p = projection.forward(s.place);
+    if (inside_box(p, box)) out.points.push_back({p.x_m, p.y_m, s.depth_m});
+  }
+  out.sounding_count = out.points.size();
+  auto add_line = [&](const GeoLine& line, double depth, std::size_t& counter) {
+    const std::size_t before = out.points.size();
+    std::vector<ScatteredDepth> dense;
+    densify(project_line(line, projection), g.spacing_m, depth, dense);
+    for (const auto& d : dense)
+      if (inside_box({d.x_m, d.y_m}, box)) out.points.push_back(d);
+    counter += out.points.size() - before;
+  };
+  for (const auto& c : source.contours) add_line(c.line, c.depth_m, out.contour_vertices);
+  add_depth_area_vertices(source.depth_areas, projection, box, out);
+  // The coastline (and land outlines) of every input is a depth-0 constraint.
+  for (const auto& other : all) {
+    for (const auto& line : other.coastlines) add_line(line, 0.0, out.coastline_vertices);
+    for (const auto& polygon : other.land)
+      for (const auto& ring : polygon.rings) add_line(ring, 0.0, out.coastline_vertices);
+  }
+  return out;
+}
+
+// --- Reports of changed cells -----------------------------------------------------------------------
+struct ChangeReport {
+  std::size_t cells = 0;
+  double max_change_m = 0.0;
+  int column_min = std::numeric_limits<int>::max(), row_min = std::numeric_limits<int>::max(), column_max = -1, row_max = -1;
+  int worst_column = -1, worst_row = -1;
+
+  void record(int column, int row, double change_m) {
+    ++cells;
+    column_min = std::min(column_min, column), column_max = std::max(column_max, column);
+    row_min = std::min(row_min, row), row_max = std::max(row_max, row);
+    if (std::abs(change_m) > max_change_m) max_change_m = std::abs(change_m), worst_column = column, worst_row = row;
+  }
+  nlohmann::json to_json(const GridGeometry& g, const MapProjection& projection) const {
+    nlohmann::json j{{"cells", cells}, {"max_change_m", max_change_m}};
+    if (cells == 0) return j;
+    j["x_range_m"] = {g.origin_x_m + column_min * g.spacing_m, g.origin_x_m + (column_max + 1) * g.spacing_m};
+    j["y_range_m"] = {g.origin_y_m + row_min * g.spacing_m, g.origin_y_m + (row_max + 1) * g.spacing_m};
+    const LonLat worst = projection.reverse({g.cell_centre_x_m(worst_column), g.cell_centre_y_m(worst_row)});
+    j["largest_change_at"] = {{"column", worst_column}, {"row", worst_row}, {"lon", worst.longitude_deg},
+                              {"lat", worst.latitude_deg}};
+    return j;
+  }
+};
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+double percentile(std::vector<double> values, double q) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  return values[static_cast<std::size_t>(std::min<double>(values.size() - 1, q * values.size()))];
+}
+
+}  // namespace
+
+std::map<std::string, StructureStyle> default_structure_styles() {
+  // Porosity n of seed 003 eq. (2)-(3). Rubble mounds: n ~ 0.4-0.5 (armour layer voids); vertical
+  // walls reflect fully (n = 0); piers on piles pass most of the wave (n = 0.9).
+  return {{"breakwater", {20.0, 0.45}}, {"rubble_mound_breakwater", {20.0, 0.45}}, {"groyne", {8.0, 0.45}},
+          {"mole", {15.0, 0.0}},         {"pier", {6.0, 0.9}},                       {"quay", {10.0, 0.0}},
+          {"vertical_quay", {10.0, 0.0}}, {"training_wall", {5.0, 0.45}},           {"riprap", {5.0, 0.5}},
+          {"revetment", {5.0, 0.5}},     {"sea_wall", {5.0, 0.0}}};
+}
+
+double estimated_peak_bytes(double cells, std::size_t input_count) {
+  // Per cell: depth, porosity, distance (3 x 4 B), land and masks (3 x 1 B), bounds (8 B), one
+  // float layer per input, the distance transform's working set (column pass 8 + 4 B, result 12 B,
+  // two results kept 8 B), the EXR and GeoTIFF line copies (5 x 4 B). Rounded up to 96 + 4/input.
+  return cells * (96.0 + 4.0 * static_cast<double>(input_count));
+}
+
+BathyResult build_harbour_grid(const BathyRequest& request) {
+  if (request.inputs.empty()) throw Error("nearshore bathy", "no input given", "name at least one chart, raster or sounding file");
+  if (!(request.spacing_m > 0)) throw Error("--spacing", fmt::format("{} m is not a positive spacing", request.spacing_m), "give e.g. --spacing 10");
+  // 1. Read.
+  std::vector<SourceData> sources;
+  const ReadOptions read_options{request.sign, request.text_crs};
+  std::array<double, 4> data_extent{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  for (const auto& path : request.inputs) {
+    sources.push_back(read_source(path, read_options));
+    const auto& e = sources.back().extent_lon_lat;
+    data_extent = {std::min(data_extent[0], e[0]), std::min(data_extent[1], e[1]), std::max(data_extent[2], e[2]),
+                   std::max(data_extent[3], e[3])};
+  }
+  const bool has_depth = std::any_of(sources.begin(), sources.end(), [](const SourceData& s) {
+    return s.raster.has_value() || !s.soundings.empty() || !s.contours.empty();
+  });
+  if (!has_depth)
+    throw Error(request.inputs.front().string(), "no input holds depths (only coastlines, land or structures)",
+                "add a chart, a depth raster or soundings");
+  // 2. Projection and grid.
+  std::array<double, 4> lon_lat_box = request.bbox_lon_lat.value_or(data_extent);
+  if (request.bbox_lon_lat) {
+    const auto& b = *request.bbox_lon_lat;
+    if (!(b[0] < b[2] && b[1] < b[3]))
+      throw Error(fmt::format("--bbox {},{},{},{}", b[0], b[1], b[2], b[3]), "is empty or reversed", "give LON0,LAT0,LON1,LAT1 with LON0 < LON1 and LAT0 < LAT1");
+    if (b[2] <= data_extent[0] || b[0] >= data_extent[2] || b[3] <= data_extent[1] || b[1] >= data_extent[3])
+      throw Error(fmt::format("--bbox {},{},{},{}", b[0], b[1], b[2], b[3]),
+                  fmt::format("lies outside the data, which covers lon {:.5f}..{:.5f}, lat {:.5f}..{:.5f}", data_extent[0],
+                              data_extent[2], data_extent[1], data_extent[3]),
+                  "give a box that overlaps the inputs, or omit --bbox to grid all of them");
+  }
+  const LonLat centre{0.5 * (lon_lat_box[0] + lon_lat_box[2]), 0.5 * (lon_lat_box[1] + lon_lat_box[3])};
+  const MapProjection projection = choose_projection(request.projection, centre);
+  // Default area: where the depth-bearing inputs are (coastline or structure files may reach further).
+  std::array<double, 4> data_box_m{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  for (const auto& source : sources) {
+    if (!source.raster && source.soundings.empty() && source.contours.empty()) continue;
+    const auto b = projected_extent(source, projection);
+    data_box_m = {std::min(data_box_m[0], b[0]), std::min(data_box_m[1], b[1]), std::max(data_box_m[2], b[2]),
+                  std::max(data_box_m[3], b[3])};
+  }
+  std::array<double, 4> box_m = request.bbox_projected_m.value_or(
+      request.bbox_lon_lat ? projected_box(*request.bbox_lon_lat, projection) : data_box_m);
+  if (request.bbox_projected_m) {
+    const auto& b = box_m;
+    if (!(b[0] < b[2] && b[1] < b[3]) || b[2] <= data_box_m[0] || b[0] >= data_box_m[2] || b[3] <= data_box_m[1] ||
+        b[1] >= data_box_m[3])
+      throw Error(fmt::format("--bbox-m {},{},{},{}", b[0], b[1], b[2], b[3]),
+                  fmt::format("is empty or lies outside the data, which covers x {:.0f}..{:.0f} m, y {:.0f}..{:.0f} m in {}",
+                              data_box_m[0], data_box_m[2], data_box_m[1], data_box_m[3], projection.describe()),
+                  "give X0,Y0,X1,Y1 in metres overlapping the data");
+  }
+  const GridGeometry g = lay_grid(box_m, request.spacing_m, projection, request);
+  const int columns = g.columns, rows = g.rows;
+  BathyResult result;
+  nlohmann::json inputs_json = nlohmann::json::array();
+
+  // 3. Depth per input, merged by priority. 4. Depth-area bounds.
+  Raster<float> depth(columns, rows, kNaNf);
+  Raster<std::uint8_t> source_of_cell(columns, rows, kNoSource);
+  Raster<float> lower(columns, rows, kNaNf), upper(columns, rows, kNaNf);
+  Raster<std::uint8_t> chart_water(columns, rows, 0);  // inside a depth area that is never dry
+  for (const auto& source : sources) {
+    for (const auto& area : source.depth_areas) {
+      const auto rings = project_polygon(area.polygon, projection);
+      for_each_cell_in_polygon(g, rings, [&](int c, int r) {
+        lower(c, r) = std::isnan(lower(c, r)) ? float(area.shallowest_m) : std::max(lower(c, r), float(area.shallowest_m));
+        if (std::isfinite(area.deepest_m))
+          upper(c, r) = std::isnan(upper(c, r)) ? float(area.deepest_m) : std::min(upper(c, r), float(area.deepest_m));
+        if (area.shallowest_m >= 0.0) chart_water(c, r) = 1;
+      });
+    }
+    for (const auto& area : source.dredged_areas) {  // dredged to at least DRVAL1
+      const auto rings = project_polygon(area.polygon, projection);
+      for_each_cell_in_polygon(g, rings, [&](int c, int r) {
+        lower(c, r) = std::isnan(lower(c, r)) ? float(area.shallowest_m) : std::max(lower(c, r), float(area.shallowest_m));
+        if (area.shallowest_m >= 0.0) chart_water(c, r) = 1;
+      });
+    }
+  }
+  // Land polygons first: scattered interpolation skips them (and cells outside a chart's coverage).
+  Raster<std::uint8_t> land_polygons(columns, rows, 0);
+  for (const auto& source : sources)
+    for (const auto& polygon : source.land)
+      for_each_cell_in_polygon(g, project_polygon(polygon, projection), [&](int c, int r) { land_polygons(c, r) = 1; });
+  for (std::size_t index = 0; index < sources.size(); ++index) {
+    const SourceData& source = sources[index];
+    nlohmann::json info{{"path", source.path.string()}, {"format", source.format}, {"priority", index + 1}};
+    if (!source.sign_used.empty()) info["sign"] = source.sign_used;
+    Raster<float> layer;
+    if (source.raster) {
+      info["raster_size"] = {source.raster->columns, source.raster->rows};
+      layer = resample_raster(*source.raster, g, projection);
+    } else if (!source.soundings.empty() || !source.contours.empty()) {
+      ScatteredInput scattered = gather_scattered(source, sources, projection, g);
+      info["soundings_used"] = scattered.sounding_count;
+      info["contour_vertices"] = scattered.contour_vertices;
+      info["depth_area_vertices"] = scattered.depth_area_vertices;
+      info["coastline_vertices"] = scattered.coastline_vertices;
+      if (scattered.sounding_count == 0 && scattered.contour_vertices == 0)
+        throw Error(source.path.string(), "has no soundings or contours inside the grid's area",
+                    "widen --bbox or drop this input");
+      NaturalNeighbourSurface surface(scattered.points);
+      info["triangulation_vertices"] = surface.vertex_count();
+      {
+        ProgressBar progress("gridding " + source.path.filename().string(), rows, "rows");
+        Raster<std::uint8_t> skip = land_polygons;
+        if (!source.coverage.empty()) {
+          Raster<std::uint8_t> inside(columns, rows, 0);
+          for (const auto& polygon : source.coverage)
+            for_each_cell_in_polygon(g, project_polygon(polygon, projection), [&](int c, int r) { inside(c, r) = 1; });
+          for (std::size_t i = 0; i < skip.size(); ++i) skip.values()[i] |= !inside.values()[i];
+        }
+        layer = surface.sample(g, &skip, &progress);
+      }
+      if (request.leave_one_out) {
+        // Each sounding removed in turn, interpolated from the rest, bounded like the grid is.
+        ProgressBar progress("leave-one-out", static_cast<double>(scattered.sounding_count), "soundings");
+        std::vector<double> absolute;
+        for (std::size_t k = 0; k < scattered.sounding_count; ++k) {
+          const ScatteredDepth& s = scattered.points[k];
+          double estimate = surface.leave_one_out(k);
+          const int c = static_cast<int>(std::floor((s.x_m - g.origin_x_m) / g.spacing_m));
+          const int r = static_cast<int>(std::floor((s.y_m - g.origin_y_m) / g.spacing_m));
+          if (!std::isfinite(estimate) || c < 0 || r < 0 || c >= columns || r >= rows) continue;
+          if (std::isfinite(lower(c, r))) estimate = std::max<double>(estimate, lower(c, r));
+          if (std::isfinite(upper(c, r))) estimate = std::min<double>(estimate, upper(c, r));
+          result.leave_one_out_error_m.push_back(estimate - s.depth_m);
+          absolute.push_back(std::abs(estimate - s.depth_m));
+          if (k % 64 == 0) progress.update(static_cast<double>(k));
+        }
+        progress.finish();
+        info["leave_one_out"] = {{"soundings", absolute.size()},
+                                 {"median_absolute_error_m", median(absolute)},
+                                 {"p90_absolute_error_m", percentile(absolute, 0.9)}};
+      }
+    } else {
+      inputs_json.push_back(info);
+      continue;  // coastlines, land and structures only
+    }
+    std::size_t covered = 0;
+    for (std::size_t i = 0; i < depth.size(); ++i)
+      if (source_of_cell.values()[i] == kNoSource && std::isfinite(layer.values()[i])) {
+        depth.values()[i] = layer.values()[i];
+        source_of_cell.values()[i] = static_cast<std::uint8_t>(std::min<std::size_t>(index, 254));
+        ++covered;
+      }
+    info["cells_taken"] = covered;
+    inputs_json.push_back(info);
+  }
+  // Bounds apply to chart-interpolated and uncovered cells; a survey raster is measured, not bounded.
+  ChangeReport bounded;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) {
+      const std::uint8_t s = source_of_cell(c, r);
+      if (s != kNoSource && sources[s].raster) continue;
+      const float lo = lower(c, r), hi = upper(c, r), d = depth(c, r);
+      if (std::isnan(lo) && std::isnan(hi)) continue;
+      float bounded_depth = d;
+      if (std::isnan(d)) bounded_depth = std::isnan(hi) ? lo : std::isnan(lo) ? hi : 0.5f * (lo + hi);  // no data: mid-band
+      if (!std::isnan(lo)) bounded_depth = std::max(bounded_depth, lo);
+      if (!std::isnan(hi)) bounded_depth = std::min(bounded_depth, hi);
+      if (!(bounded_depth == d)) {
+        if (std::isfinite(d)) bounded.record(c, r, bounded_depth - d);
+        depth(c, r) = bounded_depth;
+      }
+    }
+  // 5. Cells no input covers (land polygons aside): nearest covered cell, or land.
+  Raster<std::uint8_t> covered(columns, rows, 0);
+  std::size_t covered_cells = 0;
+  for (std::size_t i = 0; i < depth.size(); ++i) covered_cells += covered.values()[i] = std::isfinite(depth.values()[i]);
+  if (covered_cells == 0)
+    throw Error("grid " + projection.describe(), "no input covers any cell of the grid",
+                "check --bbox against the inputs' extent (gdalinfo / ogrinfo)");
+  ChangeReport uncovered;
+  if (covered_cells < depth.size()) {
+    std::optional<NearestSeed> nearest;
+    if (request.fill_uncovered_from_nearest) nearest = nearest_seed_transform(covered, g.spacing_m);
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < columns; ++c) {
+        if (covered(c, r) || land_polygons(c, r)) continue;
+        if (nearest) {
+          depth(c, r) = depth(nearest->nearest_column(c, r), nearest->nearest_row(c, r));
+          uncovered.record(c, r, nearest->distance_m(c, r));  // "change" = how far the value was carried
+        } else {
+          land_polygons(c, r) = 1;
+          uncovered.record(c, r, 0.0);
+        }
+      }
+  }
+  // 6. Land: land polygons, and cells at or above the datum unless a depth area says water.
+  HarbourGrid& grid = result.grid;
+  grid.geometry = g;
+  grid.land = std::move(land_polygons);
+  std::size_t land_cells = 0;
+  for (std::size_t i = 0; i < depth.size(); ++i) {
+    std::uint8_t& land = grid.land.values()[i];
+    float& d = depth.values()[i];
+    if (!land && d <= 0.0f && !chart_water.values()[i]) land = 1;
+    if (land) {
+      land_cells++;
+      if (!(d < 0.0f)) d = -static_cast<float>(request.land_elevation_m);
+    }
+  }
+  if (land_cells == depth.size())
+    throw Error("grid " + projection.describe(), "every cell is land", "move --bbox over water");
+  // 7. Conditioning: minimum depth, then optional slope limiting (water cells only).
+  ChangeReport clamped, smoothed;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c)
+      if (!grid.land(c, r) && depth(c, r) < request.minimum_depth_m) {
+        clamped.record(c, r, request.minimum_depth_m - depth(c, r));
+        depth(c, r) = static_cast<float>(request.minimum_depth_m);
+      }
+  int slope_iterations = 0;
+  if (request.maximum_slope > 0) {
+    const Raster<float> before = depth;
+    const double max_step = request.maximum_slope * g.spacing_m;
+    // Jacobi relaxation of the steep cells towards their water neighbours' mean until no step
+    // between water neighbours exceeds the limit (or 200 sweeps).
+    for (; slope_iterations < 200; ++slope_iterations) {
+      Raster<float> next = depth;
+      std::size_t steep = 0;
+      for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < columns; ++c) {
+          if (grid.land(c, r)) continue;
+          double sum = 0, worst = 0;
+          int n = 0;
+          for (auto [dc, dr] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+            const int cc = c + dc, rr = r + dr;
+            if (cc < 0 || rr < 0 || cc >= columns || rr >= rows || grid.land(cc, rr)) continue;
+            sum += depth(cc, rr), ++n;
+            worst = std::max(worst, std::abs(double(depth(cc, rr)) - depth(c, r)));
+          }
+          if (n > 0 && worst > max_step) {
+            next(c, r) = static_cast<float>(0.5 * depth(c, r) + 0.5 * sum / n);
+            ++steep;
+          }
+        }
+      depth = std::move(next);
+      if (steep == 0) break;
+    }
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < columns; ++c)
+        if (depth(c, r) != before(c, r)) smoothed.record(c, r, depth(c, r) - before(c, r));
+  }
+  grid.still_water_depth_m = std::move(depth);
+  // Porosity: each structure burnt in with its category's (or its own) width and porosity.
+  grid.porosity = Raster<float>(columns, rows, 1.0f);
+  std::map<std::string, std::size_t> structure_cells;
+  for (const auto& source : sources)
+    for (const auto& structure : source.structures) {
+      auto style_it = request.structure_styles.find(structure.category);
+      if (style_it == request.structure_styles.end() && (structure.porosity < 0 || structure.crest_width_m <= 0))
+        throw Error(source.path.string(), "structure category '" + structure.category + "' has no width and porosity",
+                    "give the feature crest_width_m and porosity properties, or --structure " + structure.category + "=WIDTH:POROSITY");
+      StructureStyle style = style_it != request.structure_styles.end() ? style_it->second : StructureStyle{};
+      if (structure.crest_width_m > 0) style.crest_width_m = structure.crest_width_m;
+      if (structure.porosity >= 0) style.porosity = structure.porosity;
+      if (style.porosity >= 1.0) continue;
+      const float n = static_cast<float>(std::clamp(style.porosity, 0.0, 1.0));
+      auto burn = [&](int c, int r) {
+        if (grid.porosity(c, r) > n) grid.porosity(c, r) = n;
+        ++structure_cells[structure.category];
+      };
+      for (const auto& line : structure.lines) for_each_cell_near_line(g, project_line(line, projection), 0.5 * style.crest_width_m, burn);
+      for (const auto& polygon : structure.polygons) {
+        const auto rings = project_polygon(polygon, projection);
+        for_each_cell_in_polygon(g, rings, burn);
+        for (const auto& ring : rings) for_each_cell_near_line(g, ring, 0.0, burn);  // thin piers still count
+      }
+    }
+  grid.coast_distance_m = signed_coast_distance(grid.land, g.spacing_m);
+  // Preview coastline: the inputs' coastlines, else the outlines of their land polygons.
+  for (const auto& source : sources) {
+    for (const auto& line : source.coastlines) result.coastline_m.push_back(project_line(line, projection));
+    if (source.coastlines.empty())
+      for (const auto& polygon : source.land)
+        for (const auto& ring : polygon.rings) result.coastline_m.push_back(project_line(ring, projection));
+  }
+  // Summary.
+  float depth_min = INFINITY, depth_max = -INFINITY;
+  for (std::size_t i = 0; i < grid.still_water_depth_m.size(); ++i)
+    if (!grid.land.values()[i])
+      depth_min = std::min(depth_min, grid.still_water_depth_m.values()[i]),
+      depth_max = std::max(depth_max, grid.still_water_depth_m.values()[i]);
+  const LonLat south_west = projection.reverse({g.origin_x_m, g.origin_y_m});
+  const LonLat north_east = projection.reverse({g.origin_x_m + g.width_m(), g.origin_y_m + g.height_m()});
+  nlohmann::json& summary = result.summary;
+  summary["format"] = "nearshore bathymetry summary 1";
+  summary["inputs"] = inputs_json;
+  summary["projection"] = projection.to_json();
+  summary["crs"] = projection.describe();
+  summary["spacing_m"] = g.spacing_m;
+  summary["columns"] = columns;
+  summary["rows"] = rows;
+  summary["extent_m"] = {{"x_min", g.origin_x_m}, {"y_min", g.origin_y_m}, {"x_max", g.origin_x_m + g.width_m()},
+                         {"y_max", g.origin_y_m + g.height_m()}};
+  summary["extent_lon_lat"] = {{"south_west", {south_west.longitude_deg, south_west.latitude_deg}},
+                               {"north_east", {north_east.longitude_deg, north_east.latitude_deg}}};
+  summary["water_depth_m"] = {{"min", depth_min}, {"max", depth_max}};
+  summary["cells"] = {{"total", g.cell_count()}, {"land", land_cells}, {"water", g.cell_count() - land_cells},
+                      {"uncovered", uncovered.cells}, {"bounded_by_depth_areas", bounded.cells}};
+  summary["structure_cells"] = structure_cells;
+  summary["uncovered"] = uncovered.to_json(g, projection);
+  summary["uncovered"]["treatment"] = request.fill_uncovered_from_nearest
+                                          ? "depth of the nearest covered cell (max_change_m: farthest carried, metres)"
+                                          : "masked as land";
+  summary["bounded_by_depth_areas"] = bounded.to_json(g, projection);
+  summary["conditioning"] = {{"minimum_depth_m", request.minimum_depth_m},
+                             {"minimum_depth_clamp", clamped.to_json(g, projection)},
+                             {"maximum_slope", request.maximum_slope},
+                             {"slope_smoothing", smoothed.to_json(g, projection)},
+                             {"slope_smoothing_sweeps", slope_iterations},
+                             {"land_elevation_m_where_unknown", request.land_elevation_m}};
+  if (request.leave_one_out && !result.leave_one_out_error_m.empty()) {
+    std::vector<double> absolute;
+    for (double e : result.leave_one_out_error_m) absolute.push_back(std::abs(e));
+    summary["leave_one_out"] = {{"soundings", absolute.size()}, {"median_absolute_error_m", median(absolute)},
+                                {"p90_absolute_error_m", percentile(absolute, 0.9)},
+                                {"median_error_m", median(result.leave_one_out_error_m)}};
+  }
+  return result;
+}
+
+nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResult& result, double coastline_band_m) {
+  const HarbourGrid& grid = result.grid;
+  const GridGeometry& g = grid.geometry;
+  // Everything that can fail on content is computed before the first file is written.
+  HeatMapStyle style;
+  style.title = "still-water depth, " + result.summary.value("crs", std::string{}) + fmt::format(", {} m cells", g.spacing_m);
+  style.value_label = "depth (m)";
+  style.map = ColourMap::kBathymetry;
+  style.low = 0.0;
+  style.high = result.summary["water_depth_m"].value("max", 1.0);
+  Image preview = render_heat_map(grid.still_water_depth_m, style, &grid.land);
+  // The field's placement inside render_heat_map's image (core/src/plot.cpp): left margin 25 px,
+  // top margin 50 px, `scale` pixels per cell, north at the top.
+  const double scale = std::min(1.0 * style.max_image_size_px / std::max(g.columns, g.rows), 8.0);
+  auto pixel_x = [&](double x_m) { return 25.0 + (x_m - g.origin_x_m) / g.spacing_m * scale; };
+  auto pixel_y = [&](double y_m) { return 50.0 + (g.rows - (y_m - g.origin_y_m) / g.spacing_m) * scale; };
+  const double right = pixel_x(g.origin_x_m + g.width_m()), bottom = pixel_y(g.origin_y_m);
+  const Rgb coast_colour{0.9f, 0.1f, 0.05f};
+  for (const auto& line : result.coastline_m)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const double x0 = pixel_x(line[i].x_m), y0 = pixel_y(line[i].y_m), x1 = pixel_x(line[i + 1].x_m), y1 = pixel_y(line[i + 1].y_m);
+      if (std::max(x0, x1) < 25 || std::min(x0, x1) > right || std::max(y0, y1) < 50 || std::min(y0, y1) > bottom) continue;
+      // Clip by points: draw only segments whose both ends are on the field.
+      if (x0 >= 25 && x0 <= right && x1 >= 25 && x1 <= right && y0 >= 50 && y0 <= bottom && y1 >= 50 && y1 <= bottom)
+        preview.draw_line(x0, y0, x1, y1, coast_colour, 1);
+    }
+  create_output_folder(folder);
+  write_depth_geotiff(folder / "depth.tif", g, grid.still_water_depth_m, "chart sounding datum of the inputs");
+  write_harbour_grid(folder / "depth.exr", grid);
+  const std::size_t voxels = write_coastline_level_set(folder / "coastline.vdb", g, grid.coast_distance_m, coastline_band_m);
+  preview.write_png(folder / "preview.png");
+  nlohmann::json summary = result.summary;
+  summary["outputs"] = {{"depth_tif", "depth.tif"}, {"depth_exr", "depth.exr"},
+                        {"coastline_vdb", {{"file", "coastline.vdb"}, {"active_voxels", voxels}, {"half_band_m", coastline_band_m}}},
+                        {"preview_png", "preview.png"}, {"summary_json", "summary.json"}};
+  write_text_atomically(folder / "summary.json", summary.dump(2) + "\n");
+  return summary;
+}
+
+}  // namespace nearshore::bathymetry

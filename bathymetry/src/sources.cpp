@@ -1,0 +1,422 @@
+#include "nearshore/bathymetry/sources.hpp"
+
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include <fmt/core.h>
+
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::bathymetry {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct DatasetCloser {
+  void operator()(GDALDataset* dataset) const { GDALClose(dataset); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+void grow_extent(std::array<double, 4>& extent, LonLat p) {
+  extent[0] = std::min(extent[0], p.longitude_deg);
+  extent[1] = std::min(extent[1], p.latitude_deg);
+  extent[2] = std::max(extent[2], p.longitude_deg);
+  extent[3] = std::max(extent[3], p.latitude_deg);
+}
+
+// --- OGR geometry -> our lon/lat lines, polygons and points --------------------------------------
+struct Pieces {
+  std::vector<GeoLine> lines;
+  std::vector<GeoPolygon> polygons;
+  std::vector<std::pair<LonLat, double>> points;  // with z (NaN if 2-D)
+};
+
+GeoLine line_of(const OGRSimpleCurve& curve) {
+  GeoLine line;
+  line.reserve(curve.getNumPoints());
+  for (int i = 0; i < curve.getNumPoints(); ++i) line.push_back({curve.getX(i), curve.getY(i)});
+  return line;
+}
+
+void collect(const OGRGeometry* geometry, Pieces& out) {
+  if (!geometry || geometry->IsEmpty()) return;
+  switch (wkbFlatten(geometry->getGeometryType())) {
+    case wkbPoint: {
+      const auto* point = geometry->toPoint();
+      out.points.push_back({{point->getX(), point->getY()}, point->Is3D() ? point->getZ() : kNaN});
+      break;
+    }
+    case wkbLineString:
+    case wkbLinearRing:
+      out.lines.push_back(line_of(*geometry->toLineString()));
+      break;
+    case wkbPolygon: {
+      GeoPolygon polygon;
+      for (const auto* ring : *geometry->toPolygon()) polygon.rings.push_back(line_of(*ring));
+      out.polygons.push_back(std::move(polygon));
+      break;
+    }
+    case wkbMultiPoint:
+    case wkbMultiLineString:
+    case wkbMultiPolygon:
+    case wkbGeometryCollection:
+      for (const auto* part : *geometry->toGeometryCollection()) collect(part, out);
+      break;
+    default: {  // curves (arcs) and the like: linearise first
+      std::unique_ptr<OGRGeometry> linear(geometry->getLinearGeometry());
+      if (linear && wkbFlatten(linear->getGeometryType()) != wkbFlatten(geometry->getGeometryType()))
+        collect(linear.get(), out);
+    }
+  }
+}
+
+// Reprojects a feature's geometry to WGS 84 lon/lat (traditional GIS order) when its layer has
+// another CRS; returns the geometry to read (owned by the feature or by `holder`).
+const OGRGeometry* in_lon_lat(OGRFeature& feature, OGRCoordinateTransformation* to_wgs84,
+                              std::unique_ptr<OGRGeometry>& holder) {
+  const OGRGeometry* geometry = feature.GetGeometryRef();
+  if (!geometry || !to_wgs84) return geometry;
+  holder.reset(geometry->clone());
+  if (holder->transform(to_wgs84) != OGRERR_NONE) return nullptr;
+  return holder.get();
+}
+
+std::unique_ptr<OGRCoordinateTransformation> transformation_to_wgs84(const OGRSpatialReference* from) {
+  if (!from) return nullptr;
+  OGRSpatialReference wgs84;
+  wgs84.SetWellKnownGeogCS("WGS84");
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  OGRSpatialReference source(*from);
+  source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (source.IsSame(&wgs84)) return nullptr;
+  return std::unique_ptr<OGRCoordinateTransformation>(OGRCreateCoordinateTransformation(&source, &wgs84));
+}
+
+double field_or_nan(OGRFeature& feature, const char* name) {
+  const int index = feature.GetFieldIndex(name);
+  if (index < 0 || !feature.IsFieldSetAndNotNull(index)) return kNaN;
+  return feature.GetFieldAsDouble(index);
+}
+
+// --- S-57 -----------------------------------------------------------------------------------------
+// SLCONS CATSLC (IHO S-57 Object Catalogue, SLCONS) -> our structure categories. Landing steps,
+// ramps, slipways and fenders are left out: they do not change how waves pass.
+std::string structure_category_of_catslc(int catslc) {
+  switch (catslc) {
+    case 1: return "breakwater";
+    case 2: return "groyne";
+    case 3: return "mole";
+    case 4: case 5: case 16: return "pier";  // pier, promenade pier, open-face wharf: on piles
+    case 6: case 15: return "quay";          // wharf (quay), solid-face wharf: vertical walls
+    case 7: return "training_wall";
+    case 8: return "riprap";
+    case 9: return "revetment";
+    case 10: return "sea_wall";
+    default: return {};
+  }
+}
+
+void read_s57(GDALDataset& dataset, SourceData& out) {
+  auto layer_features = [&](const char* name, auto&& each) {
+    OGRLayer* layer = dataset.GetLayerByName(name);
+    if (!layer) return;
+    layer->ResetReading();
+    for (auto& feature : *layer) each(*feature);
+  };
+  layer_features("SOUNDG", [&](OGRFeature& f) {
+    Pieces pieces;
+    collect(f.GetGeometryRef(), pieces);
+    const double depth_field = field_or_nan(f, "DEPTH");
+    for (const auto& [place, z] : pieces.points) {
+      const double depth = std::isfinite(z) ? z : depth_field;
+      if (std::isfinite(depth)) out.soundings.push_back({place, depth});
+    }
+  });
+  layer_features("DEPCNT", [&](OGRFeature& f) {
+    const double value = field_or_nan(f, "VALDCO");
+    if (!std::isfinite(value)) return;  // a contour without a value constrains nothing
+    Pieces pieces;
+    collect(f.GetGeometryRef(), pieces);
+    for (auto& line : pieces.lines) out.contours.push_back({std::move(line), value});
+  });
+  auto read_areas = [&](const char* name, std::vector<DepthArea>& areas) {
+    layer_features(name, [&](OGRFeature& f) {
+      const double shallowest = field_or_nan(f, "DRVAL1");
+      if (!std::isfinite(shallowest)) return;
+      Pieces pieces;
+      collect(f.GetGeometryRef(), pieces);
+      for (auto& polygon : pieces.polygons) areas.push_back({std::move(polygon), shallowest, field_or_nan(f, "DRVAL2")});
+    });
+  };
+  read_areas("DEPARE", out.depth_areas);
+  read_areas("DRGARE", out.dredged_areas);
+  layer_features("LNDARE", [&](OGRFeature& f) {
+    Pieces pieces;
+    collect(f.GetGeometryRef(), pieces);
+    for (auto& polygon : pieces.polygons) out.land.push_back(std::move(polygon));
+  });
+  layer_features("COALNE", [&](OGRFeature& f) {
+    Pieces pieces;
+    collect(f.GetGeometryRef(), pieces);
+    for (auto& line : pieces.lines) out.coastlines.push_back(std::move(line));
+  });
+  layer_features("SLCONS", [&](OGRFeature& f) {
+    const int index = f.GetFieldIndex("CATSLC");
+    const int catslc = index >= 0 && f.IsFieldSetAndNotNull(index) ? f.GetFieldAsInteger(index) : 0;
+    const std::string category = structure_category_of_catslc(catslc);
+    if (category.empty()) return;
+    Pieces pieces;
+    collect(f.GetGeometryRef(), pieces);
+    if (pieces.lines.empty() && pieces.polygons.empty()) return;
+    out.structures.push_back({category, std::move(pieces.lines), std::move(pieces.polygons)});
+  });
+  layer_features("M_COVR", [&](OGRFeature& f) {
+    const int index = f.GetFieldIndex("CATCOV");
+    if (index < 0 || f.GetFieldAsInteger(index) != 1) return;  // 1 = coverage available, 2 = none
+    Pieces pieces;
+    collect(f.GetGeometryRef(), pieces);
+    for (auto& polygon : pieces.polygons) out.coverage.push_back(std::move(polygon));
+  });
+  if (out.soundings.empty())
+    throw Error(out.path.string(), "the S-57 cell has no soundings (layer SOUNDG is empty or missing)",
+                "add a survey (GeoTIFF or XYZ soundings) as another input, or use a cell that has SOUNDG");
+}
+
+// --- Other vector files: role by `category` property, else by geometry ---------------------------
+void read_vector(GDALDataset& dataset, const ReadOptions& options, SourceData& out) {
+  for (OGRLayer* layer : dataset.GetLayers()) {
+    auto to_wgs84 = transformation_to_wgs84(layer->GetSpatialRef());
+    layer->ResetReading();
+    for (auto& feature : *layer) {
+      std::unique_ptr<OGRGeometry> holder;
+      const OGRGeometry* geometry = in_lon_lat(*feature, to_wgs84.get(), holder);
+      Pieces pieces;
+      collect(geometry, pieces);
+      const int category_index = feature->GetFieldIndex("category");
+      const std::string category =
+          category_index >= 0 && feature->IsFieldSetAndNotNull(category_index)
+              ? lower(feature->GetFieldAsString(category_index)) : std::string{};
+      const double depth_field = field_or_nan(*feature, "depth");
+      for (const auto& [place, z] : pieces.points) {
+        // A `depth` property is a depth; a bare z is a height (RFC 7946) unless --sign says otherwise.
+        double depth = depth_field;
+        if (!std::isfinite(depth) && std::isfinite(z)) depth = options.sign == DepthSign::kPositiveDown ? z : -z;
+        if (std::isfinite(depth)) out.soundings.push_back({place, depth});
+      }
+      if (category.empty() || category == "land" || category == "coastline" || category == "contour") {
+        for (auto& polygon : pieces.polygons) out.land.push_back(std::move(polygon));
+        for (auto& line : pieces.lines) {
+          if (category == "contour" && std::isfinite(depth_field)) out.contours.push_back({std::move(line), depth_field});
+          else out.coastlines.push_back(std::move(line));
+        }
+        continue;
+      }
+      ShoreStructure structure{category, std::move(pieces.lines), std::move(pieces.polygons)};
+      const double crest = field_or_nan(*feature, "crest_width_m"), porosity = field_or_nan(*feature, "porosity");
+      if (std::isfinite(crest)) structure.crest_width_m = crest;
+      if (std::isfinite(porosity)) structure.porosity = porosity;
+      if (!structure.lines.empty() || !structure.polygons.empty()) out.structures.push_back(std::move(structure));
+    }
+  }
+  if (out.soundings.empty() && out.land.empty() && out.coastlines.empty() && out.structures.empty() &&
+      out.contours.empty())
+    throw Error(out.path.string(), "has no features nearshore can use (no points with depth, lines or polygons)",
+                "check the file's layers with ogrinfo");
+}
+
+// --- Rasters ----------------------------------------------------------------------------------------
+// The sign of a raster's values: the flag, else metadata, else the name of the band or variable.
+bool raster_is_depth(GDALDataset& dataset, GDALRasterBand& band, DepthSign sign, std::string& why) {
+  if (sign != DepthSign::kAuto) {
+    why = "from --sign";
+    return sign == DepthSign::kPositiveDown;
+  }
+  if (const char* item = dataset.GetMetadataItem("NEARSHORE_DEPTH_SIGN")) {
+    why = std::string("from metadata NEARSHORE_DEPTH_SIGN=") + item;
+    return lower(item) == "positive_down";
+  }
+  for (char** md = band.GetMetadata(); md && *md; ++md) {  // NetCDF CF: "<variable>#positive=down"
+    const std::string entry = lower(*md);
+    if (entry.find("#positive=") != std::string::npos) {
+      why = "from NetCDF attribute " + std::string(*md);
+      return entry.ends_with("=down");
+    }
+  }
+  const std::string name = lower(std::string(band.GetDescription()) + " " +
+                                 (dataset.GetMetadataItem("NETCDF_VARNAME") ? dataset.GetMetadataItem("NETCDF_VARNAME") : ""));
+  if (name.find("depth") != std::string::npos) {
+    why = "from the band name '" + std::string(band.GetDescription()) + "'";
+    return true;
+  }
+  why = "default for rasters without sign metadata (elevation, as GEBCO); override with --sign";
+  return false;
+}
+
+void read_raster(GDALDataset& dataset, const ReadOptions& options, SourceData& out) {
+  GeoRaster raster;
+  raster.columns = dataset.GetRasterXSize();
+  raster.rows = dataset.GetRasterYSize();
+  if (dataset.GetGeoTransform(raster.geotransform.data()) != CE_None)
+    throw Error(out.path.string(), "the raster has no georeference (geotransform)",
+                "georeference it first, e.g. gdal_translate -a_srs EPSG:32610 -a_ullr ...");
+  if (raster.geotransform[2] != 0.0 || raster.geotransform[4] != 0.0 || raster.geotransform[5] >= 0.0)
+    throw Error(out.path.string(), "the raster is rotated or south-up", "warp it north-up with gdalwarp");
+  const OGRSpatialReference* crs = dataset.GetSpatialRef();
+  if (!crs) throw Error(out.path.string(), "the raster has no coordinate reference system", "assign one with gdal_edit.py -a_srs");
+  char* wkt = nullptr;
+  crs->exportToWkt(&wkt);
+  raster.crs_wkt = wkt ? wkt : "";
+  CPLFree(wkt);
+  GDALRasterBand* band = dataset.GetRasterBand(1);
+  std::string why;
+  const bool is_depth = raster_is_depth(dataset, *band, options.sign, why);
+  out.sign_used = std::string(is_depth ? "positive_down" : "positive_up") + " (" + why + ")";
+  raster.depth_m.resize(static_cast<std::size_t>(raster.columns) * raster.rows);
+  if (band->RasterIO(GF_Read, 0, 0, raster.columns, raster.rows, raster.depth_m.data(), raster.columns, raster.rows,
+                     GDT_Float32, 0, 0) != CE_None)
+    throw Error(out.path.string(), std::string("reading the raster failed: ") + CPLGetLastErrorMsg(), "check the file is complete");
+  int has_nodata = 0;
+  const double nodata = band->GetNoDataValue(&has_nodata);
+  const bool nan_is_nodata = has_nodata && std::isnan(nodata);
+  std::size_t nan_cells = 0, first_nan = 0;
+  for (std::size_t i = 0; i < raster.depth_m.size(); ++i) {
+    float& v = raster.depth_m[i];
+    if (std::isnan(v)) {
+      if (!nan_is_nodata && nan_cells++ == 0) first_nan = i;
+      continue;
+    }
+    if (has_nodata && v == static_cast<float>(nodata)) v = std::numeric_limits<float>::quiet_NaN();
+    else if (!is_depth) v = -v;
+  }
+  if (nan_cells > 0) {
+    const auto& gt = raster.geotransform;
+    const double column = first_nan % raster.columns + 0.5, row = first_nan / raster.columns + 0.5;
+    throw Error(out.path.string(),
+                fmt::format("{} cells are NaN but the band declares no NaN nodata, the first at pixel ({}, {}), "
+                            "x={:.1f} y={:.1f} in its CRS",
+                            nan_cells, static_cast<int>(column), static_cast<int>(row), gt[0] + column * gt[1],
+                            gt[3] + row * gt[5]),
+                "declare them nodata (gdal_edit.py -a_nodata nan) or fill them (gdal_fillnodata.py)");
+  }
+  // Extent in lon/lat from the corners and edge midpoints.
+  auto to_wgs84 = transformation_to_wgs84(crs);
+  const auto& gt = raster.geotransform;
+  for (double u : {0.0, 0.5, 1.0})
+    for (double v : {0.0, 0.5, 1.0}) {
+      double x = gt[0] + u * raster.columns * gt[1], y = gt[3] + v * raster.rows * gt[5];
+      if (to_wgs84 && !to_wgs84->Transform(1, &x, &y))
+        throw Error(out.path.string(), "cannot transform the raster's corners to WGS 84", "check its CRS");
+      grow_extent(out.extent_lon_lat, {x, y});
+    }
+  out.raster = std::move(raster);
+}
+
+// --- Text soundings: "x y depth" per line, separated by spaces, tabs, commas or semicolons ----------
+void read_text_soundings(const ReadOptions& options, SourceData& out) {
+  std::ifstream in(out.path);
+  std::unique_ptr<OGRCoordinateTransformation> to_wgs84;
+  if (!options.text_crs.empty()) {
+    OGRSpatialReference crs;
+    if (crs.SetFromUserInput(options.text_crs.c_str()) != OGRERR_NONE)
+      throw Error(out.path.string(), "the CRS '" + options.text_crs + "' is not one GDAL knows", "give it as EPSG:NNNN");
+    to_wgs84 = transformation_to_wgs84(&crs);
+  }
+  const bool elevation = options.sign == DepthSign::kPositiveUp;
+  out.sign_used = elevation ? "positive_up (from --sign)" : "positive_down (soundings are depths; override with --sign)";
+  std::string text;
+  int line_number = 0;
+  while (std::getline(in, text)) {
+    ++line_number;
+    std::replace_if(text.begin(), text.end(), [](char c) { return c == ',' || c == ';' || c == '\t'; }, ' ');
+    std::istringstream fields(text);
+    double x = 0, y = 0, value = 0;
+    if (!(fields >> x >> y >> value)) {
+      if (out.soundings.empty() && line_number == 1) continue;  // a header line
+      if (text.find_first_not_of(" \r") == std::string::npos) continue;
+      throw Error(out.path.string(), fmt::format("line {} is not 'x y depth': '{}'", line_number, text),
+                  "give three numbers per line");
+    }
+    if (!std::isfinite(value))
+      throw Error(out.path.string(), fmt::format("line {} has a NaN depth", line_number), "remove the line");
+    if (to_wgs84) {
+      if (!to_wgs84->Transform(1, &x, &y))
+        throw Error(out.path.string(), fmt::format("line {}: cannot transform ({}, {})", line_number, x, y), "check --xyz-crs");
+    } else if (std::abs(x) > 180.0 || std::abs(y) > 90.0) {
+      throw Error(out.path.string(), fmt::format("line {}: ({}, {}) is not a longitude/latitude", line_number, x, y),
+                  "projected coordinates need their CRS: --xyz-crs EPSG:NNNN");
+    }
+    out.soundings.push_back({{x, y}, elevation ? -value : value});
+  }
+  if (out.soundings.empty())
+    throw Error(out.path.string(), "has no soundings", "give lines of 'x y depth' (lon lat depth by default)");
+}
+
+}  // namespace
+
+SourceData read_source(const fs::path& path, const ReadOptions& options) {
+  require_readable_file(path, "a chart, raster or vector file");
+  GDALAllRegister();
+  SourceData out;
+  out.path = path;
+  out.extent_lon_lat = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+  const std::string extension = lower(path.extension().string());
+  const bool s57_name = extension.size() == 4 && std::isdigit(static_cast<unsigned char>(extension[1])) &&
+                        std::isdigit(static_cast<unsigned char>(extension[2])) && std::isdigit(static_cast<unsigned char>(extension[3]));
+  if (extension == ".xyz" || extension == ".csv" || extension == ".txt") {
+    out.format = "XYZ";
+    read_text_soundings(options, out);
+  } else {
+    // S-57: apply the update files, one point per sounding with its depth as an attribute.
+    const char* s57_options[] = {"UPDATES=APPLY", "SPLIT_MULTIPOINT=ON", "ADD_SOUNDG_DEPTH=ON", nullptr};
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    DatasetPtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
+                                         s57_name ? s57_options : nullptr));
+    CPLPopErrorHandler();
+    const std::string driver = dataset ? dataset->GetDriver()->GetDescription() : "";
+    if (s57_name && driver != "S57")
+      throw Error(path.string(), "is not an S-57 chart (GDAL's S57 driver cannot open it)",
+                  "give the base cell of an ENC (*.000, ISO 8211), or rename the file if it is something else");
+    if (!dataset)
+      throw Error(path.string(), "is not a chart, raster or vector file that GDAL can read",
+                  "check the file (gdalinfo / ogrinfo) or convert it to GeoTIFF or GeoJSON");
+    out.format = driver == "S57" ? "S-57" : driver;
+    if (driver == "S57") read_s57(*dataset, out);
+    else if (dataset->GetRasterCount() > 0) read_raster(*dataset, options, out);
+    else read_vector(*dataset, options, out);
+  }
+  auto grow_lines = [&](const std::vector<GeoLine>& lines) {
+    for (const auto& line : lines)
+      for (const auto& p : line) grow_extent(out.extent_lon_lat, p);
+  };
+  for (const auto& polygon : out.coverage) grow_lines(polygon.rings);
+  if (!out.coverage.empty()) return out;  // the chart's own statement of where it has data
+  for (const auto& s : out.soundings) grow_extent(out.extent_lon_lat, s.place);
+  for (const auto& c : out.contours) grow_lines({c.line});
+  for (const auto& a : out.depth_areas) grow_lines(a.polygon.rings);
+  for (const auto& polygon : out.land) grow_lines(polygon.rings);
+  grow_lines(out.coastlines);
+  for (const auto& s : out.structures) {
+    grow_lines(s.lines);
+    for (const auto& polygon : s.polygons) grow_lines(polygon.rings);
+  }
+  if (!(out.extent_lon_lat[0] <= out.extent_lon_lat[2]))
+    throw Error(path.string(), "holds no data with a position", "check the file with gdalinfo / ogrinfo");
+  return out;
+}
+
+}  // namespace nearshore::bathymetry

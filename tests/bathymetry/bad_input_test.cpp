@@ -1,0 +1,122 @@
+// Bad inputs: each gives one nearshore::Error naming the file (or option) and the problem, and
+// nothing is written to the output folder.
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <gdal_utils.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <vector>
+
+#include "nearshore/bathymetry/demo_harbour.hpp"
+#include "nearshore/bathymetry/harbour_builder.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/core/progress.hpp"
+#include "test_folder.hpp"
+
+namespace nb = nearshore::bathymetry;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kTacoma = fs::path(NEARSHORE_SHARED_DIR) / "charts/tacoma_us5wa22m/US5WA22M.000";
+
+// Runs the whole command's library path; returns the error message (empty if none was thrown)
+// and checks that the output folder was not even created.
+std::string bathy_error(const nb::BathyRequest& request, const fs::path& out) {
+  nearshore::ProgressBar::set_quiet(true);
+  std::string message;
+  try {
+    const nb::BathyResult result = nb::build_harbour_grid(request);
+    nb::write_bathymetry_outputs(out, result);
+  } catch (const nearshore::Error& e) {
+    message = e.what();
+  }
+  EXPECT_FALSE(fs::exists(out)) << "something was written for: " << message;
+  return message;
+}
+
+nb::BathyRequest request_for(std::vector<fs::path> inputs, double spacing_m = 20.0) {
+  nb::BathyRequest request;
+  request.inputs = std::move(inputs);
+  request.spacing_m = spacing_m;
+  return request;
+}
+
+}  // namespace
+
+TEST(BathyBadInput, MissingFile) {
+  const auto folder = fresh_test_folder("");
+  const std::string message = bathy_error(request_for({folder / "nowhere.000"}), folder / "out");
+  EXPECT_NE(message.find("nowhere.000"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
+}
+
+TEST(BathyBadInput, NotAChart) {
+  const auto folder = fresh_test_folder("");
+  std::ofstream(folder / "notes.000") << "This is a text file, not an ISO 8211 S-57 cell.\n";
+  const std::string message = bathy_error(request_for({folder / "notes.000"}), folder / "out");
+  EXPECT_NE(message.find("notes.000"), std::string::npos) << message;
+  EXPECT_NE(message.find("not an S-57 chart"), std::string::npos) << message;
+}
+
+TEST(BathyBadInput, ChartWithEmptySoundg) {
+  // A real S-57 cell written by GDAL's S57 driver from Tacoma's land and depth areas, no SOUNDG.
+  const auto folder = fresh_test_folder("");
+  GDALAllRegister();
+  GDALDatasetH source = GDALOpenEx(kTacoma.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  ASSERT_NE(source, nullptr);
+  const char* arguments[] = {"-f", "S57", "LNDARE", "DEPARE", "M_COVR", nullptr};
+  GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(const_cast<char**>(arguments), nullptr);
+  const fs::path chart = folder / "NOSOUNDG.000";
+  GDALDatasetH written = GDALVectorTranslate(chart.c_str(), nullptr, 1, &source, options, nullptr);
+  GDALVectorTranslateOptionsFree(options);
+  ASSERT_NE(written, nullptr);
+  GDALClose(written);
+  GDALClose(source);
+  const std::string message = bathy_error(request_for({chart}), folder / "out");
+  EXPECT_NE(message.find("NOSOUNDG.000"), std::string::npos) << message;
+  EXPECT_NE(message.find("no soundings"), std::string::npos) << message;
+}
+
+TEST(BathyBadInput, BoundingBoxOutsideTheData) {
+  const auto folder = fresh_test_folder("");
+  auto request = request_for({kTacoma});
+  request.bbox_lon_lat = std::array<double, 4>{-70.0, 41.0, -69.9, 41.1};  // Cape Cod, not Tacoma
+  const std::string message = bathy_error(request, folder / "out");
+  EXPECT_NE(message.find("--bbox"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside the data"), std::string::npos) << message;
+}
+
+TEST(BathyBadInput, NaNCellsInARaster) {
+  const auto folder = fresh_test_folder("");
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  // Copy the survey, then punch NaN holes into it without declaring NaN as nodata.
+  GDALAllRegister();
+  const fs::path holed = folder / "holed.tif";
+  {
+    GDALDataset* source = GDALDataset::Open(files.depth_geotiff.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+    ASSERT_NE(source, nullptr);
+    GDALDataset* copy = GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(holed.c_str(), source, FALSE, nullptr, nullptr, nullptr);
+    GDALClose(source);
+    ASSERT_NE(copy, nullptr);
+    std::vector<float> nan_block(12 * 3, std::numeric_limits<float>::quiet_NaN());
+    ASSERT_EQ(copy->GetRasterBand(1)->RasterIO(GF_Write, 40, 20, 12, 3, nan_block.data(), 12, 3, GDT_Float32, 0, 0), CE_None);
+    GDALClose(copy);
+  }
+  const std::string message = bathy_error(request_for({holed}), folder / "out");
+  EXPECT_NE(message.find("holed.tif"), std::string::npos) << message;
+  EXPECT_NE(message.find("36 cells are NaN"), std::string::npos) << message;
+  EXPECT_NE(message.find("pixel (40, 20)"), std::string::npos) << message;
+}
+
+TEST(BathyBadInput, GridLargerThanTheMachinesMemory) {
+  // The demo site (1.6 x 1.2 km) at 1 mm: 1.9e12 cells, ~190 TB; refused before any allocation.
+  const auto folder = fresh_test_folder("");
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  const std::string message = bathy_error(request_for({files.depth_geotiff}, 0.001), folder / "out");
+  EXPECT_NE(message.find("memory"), std::string::npos) << message;
+  EXPECT_NE(message.find("--spacing"), std::string::npos) << message;
+}
