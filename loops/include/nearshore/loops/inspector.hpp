@@ -1,0 +1,84 @@
+#pragma once
+// The loop inspector behind `nearshore loops SEQ` (and `nearshore demo`): distances, transition
+// table, plans, and for every planned transition the seam ratio
+//   R = |f(j) - f(i+1)| / median_k |f(k+1) - f(k)|     (|.| the metric of eq. 10)
+// before and after its crossfade, with the water volume and wave energy change across the seam.
+// Writes loops.json (+ loops_gram.bin) into the sequence folder; optional PNG pictures.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "nearshore/loops/distance.hpp"
+#include "nearshore/loops/plans.hpp"
+#include "nearshore/loops/transitions.hpp"
+
+namespace nearshore::loops {
+
+inline constexpr const char* kLoopsFile = "loops.json";
+inline constexpr const char* kGramFile = "loops_gram.bin";
+
+struct LoopsOptions {
+  TransitionOptions transitions;
+  GramOptions gram;
+  bool recompute = false;  ///< ignore a stored loops_gram.bin
+  bool verify = false;     ///< verify every file's checksum first
+  bool write_tables = true;  ///< write loops.json / loops_gram.bin into the sequence folder
+  std::vector<double> report_lengths_s = {10, 20, 30, 60, 120, 300};  ///< loops reported with length in [L, 1.25 L]
+  double requested_loop_s = 0;  ///< plan (b): the optimal loop of exactly this length (0: none)
+  double max_crossfade_s = 2.0;  ///< longest crossfade; sets transitions.max_crossfade_frames (0: keep that)
+  std::uint64_t random_walk_seed = 1;
+};
+
+/// One planned transition across which the player jumps.
+struct SeamReport {
+  Transition transition;
+  int run_before_frames = 0;          ///< frames shown since the previous jump landed
+  double seam_ratio_before = 0;       ///< R without crossfade
+  double seam_ratio_after = 0;        ///< R across the crossfade (crossfade.hpp)
+  double volume_jump_m3 = 0;          ///< V(j) - V(i+1): volume discontinuity without crossfade
+  double volume_jump_after_m3 = 0;    ///< the largest per-step volume deviation across the crossfade
+  double energy_jump_fraction = 0;    ///< (E(j) - E(i+1)) / mean E, E = 1/2 rho g sum eta^2 dA
+  double energy_dip_fraction = 0;     ///< min over blends of E(blend) / E(linear interpolation) - 1
+};
+
+struct LoopReport {
+  LoopPlan plan;
+  double length_s = 0;
+  std::vector<SeamReport> seams;
+  double worst_seam_ratio_before = 0, worst_seam_ratio_after = 0;
+};
+
+struct LoopsReport {
+  std::filesystem::path folder;
+  int frame_count = 0;
+  double frame_interval_s = 0;
+  double loop_period_s = 0;
+  double sigma = 0, median_step = 0, height_scale_m = 0, motion_scale_m2_s = 0;
+  double median_volume_step_m3 = 0;
+  int candidate_jumps = 0, usable_jumps = 0, first_playable_frame = 0;
+  std::vector<int> dead_ends, reachable_dead_ends;
+  std::optional<LoopReport> period;          ///< plan (c), periodic bakes
+  std::vector<LoopReport> best_by_length;    ///< one per report length that has a loop
+  std::optional<LoopReport> requested;       ///< plan (b) for requested_loop_s
+  bool gram_reused = false;
+  double distance_seconds = 0, table_seconds = 0;
+  // The matrices behind the report (for pictures and further analysis).
+  GramMatrices gram;
+  DistanceMatrices distances;
+  TransitionTable table;
+
+  /// The largest R after crossfade over all reported plans (the --max-seam gate).
+  double worst_seam_ratio_after() const;
+  nlohmann::json to_json() const;
+};
+
+/// Runs the whole analysis on a sequence folder. Throws nearshore::Error on bad input.
+LoopsReport analyse_loops(const std::filesystem::path& sequence_folder, const LoopsOptions& options = {});
+
+/// Writes distance_matrix.png, seam_ratios.png and worst_seam_gauge.png into `png_folder`.
+void write_loops_pictures(const LoopsReport& report, const std::filesystem::path& png_folder);
+
+}  // namespace nearshore::loops

@@ -1,0 +1,266 @@
+#include "nearshore/loops/inspector.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/core.h>
+
+#include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/sequence/checksum.hpp"
+
+namespace nearshore::loops {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kLoopsFormat = "nearshore loops";
+constexpr int kLoopsVersion = 1;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string file_checksum(const fs::path& path) {
+  const std::string bytes = sequence::read_file_bytes(path);
+  return sequence::checksum_text(std::as_bytes(std::span(bytes.data(), bytes.size())));
+}
+
+double median_of(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// Seam of jump i -> j with its crossfade limited by the run before it (blends must not reach
+// back across the previous jump).
+SeamReport analyse_seam(const LoopsReport& report, Transition jump, int run_before_frames) {
+  const Eigen::MatrixXd& d = report.distances.combined;
+  const Eigen::MatrixXd& g = report.gram.elevation;
+  const std::vector<double>& volume = report.gram.volume_m3;
+  const int i = jump.from, j = jump.to, next = jump.from + 1;
+  const double scale = report.median_step > 0 ? report.median_step : 1.0;
+  SeamReport seam;
+  seam.run_before_frames = run_before_frames;
+  const int longest = std::max(0, std::min(report.table.options.max_crossfade_frames, run_before_frames - 1));
+  const CrossfadeChoice fade = choose_crossfade(d, report.median_step, i, j, longest);
+  jump.crossfade_frames = fade.frames;
+  jump.seam_ratio = d(j, next) / scale;
+  jump.seam_ratio_after = fade.seam_ratio_after;
+  seam.transition = jump;
+  seam.seam_ratio_before = jump.seam_ratio;
+  seam.seam_ratio_after = jump.seam_ratio_after;
+  const int c = fade.frames;
+  seam.volume_jump_m3 = volume[static_cast<std::size_t>(j)] - volume[static_cast<std::size_t>(next)];
+  for (int k = 0; k <= c; ++k)
+    seam.volume_jump_after_m3 = std::max(seam.volume_jump_after_m3,
+                                         std::abs(volume[static_cast<std::size_t>(j - c + k)] -
+                                                  volume[static_cast<std::size_t>(next - c + k)]) / (c + 1));
+  // Potential energy 1/2 rho g sum eta^2 dA is proportional to the Gram diagonal; the common
+  // factor cancels in the fractions.
+  const double mean_energy = g.diagonal().mean();
+  if (mean_energy > 0) {
+    seam.energy_jump_fraction = (g(j, j) - g(next, next)) / mean_energy;
+    for (int k = 1; k <= c; ++k) {
+      const double alpha = static_cast<double>(k) / (c + 1);
+      const int a = i - c + k, b = j - 1 - c + k;
+      const double blended = (1 - alpha) * (1 - alpha) * g(a, a) + 2 * alpha * (1 - alpha) * g(a, b) + alpha * alpha * g(b, b);
+      const double linear = (1 - alpha) * g(a, a) + alpha * g(b, b);
+      if (linear > 0) seam.energy_dip_fraction = std::min(seam.energy_dip_fraction, blended / linear - 1);
+    }
+  }
+  return seam;
+}
+
+LoopReport analyse_plan(const LoopsReport& report, const LoopPlan& plan) {
+  LoopReport loop;
+  loop.plan = plan;
+  loop.length_s = plan.length_frames * report.frame_interval_s;
+  const std::size_t count = plan.jumps.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Transition& previous = plan.jumps[(k + count - 1) % count];
+    const int run = plan.jumps[k].from - previous.to + 1;
+    loop.seams.push_back(analyse_seam(report, plan.jumps[k], run));
+    loop.plan.jumps[k] = loop.seams.back().transition;
+    loop.worst_seam_ratio_before = std::max(loop.worst_seam_ratio_before, loop.seams.back().seam_ratio_before);
+    loop.worst_seam_ratio_after = std::max(loop.worst_seam_ratio_after, loop.seams.back().seam_ratio_after);
+  }
+  return loop;
+}
+
+nlohmann::json loop_json(const LoopReport& loop) {
+  nlohmann::json seams = nlohmann::json::array();
+  for (const SeamReport& s : loop.seams)
+    seams.push_back({{"from", s.transition.from},
+                     {"to", s.transition.to},
+                     {"crossfade_frames", s.transition.crossfade_frames},
+                     {"run_before_frames", s.run_before_frames},
+                     {"seam_ratio_before", s.seam_ratio_before},
+                     {"seam_ratio_after", s.seam_ratio_after},
+                     {"volume_jump_m3", s.volume_jump_m3},
+                     {"volume_jump_after_m3", s.volume_jump_after_m3},
+                     {"energy_jump_fraction", s.energy_jump_fraction},
+                     {"energy_dip_fraction", s.energy_dip_fraction}});
+  return {{"kind", loop.plan.kind},
+          {"start_frame", loop.plan.start_frame},
+          {"length_frames", loop.plan.length_frames},
+          {"length_s", loop.length_s},
+          {"cost", loop.plan.cost},
+          {"worst_seam_ratio_before", loop.worst_seam_ratio_before},
+          {"worst_seam_ratio_after", loop.worst_seam_ratio_after},
+          {"seams", seams}};
+}
+
+}  // namespace
+
+double LoopsReport::worst_seam_ratio_after() const {
+  double worst = 0;
+  if (period) worst = std::max(worst, period->worst_seam_ratio_after);
+  if (requested) worst = std::max(worst, requested->worst_seam_ratio_after);
+  // Of the loops by length, the gate is on the best one offered (a player would use that one).
+  if (!period && !requested && !best_by_length.empty()) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const LoopReport& loop : best_by_length) best = std::min(best, loop.worst_seam_ratio_after);
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+nlohmann::json LoopsReport::to_json() const {
+  nlohmann::json loops = nlohmann::json::array();
+  for (const LoopReport& loop : best_by_length) loops.push_back(loop_json(loop));
+  return {{"sequence", folder.string()},
+          {"frame_count", frame_count},
+          {"frame_interval_s", frame_interval_s},
+          {"loop_period_s", loop_period_s},
+          {"parameters",
+           {{"motion_weight_delta", table.options.motion_weight},
+            {"filter_half_width_frames", table.options.filter_half_width},
+            {"sigma", sigma},
+            {"sigma_factor", table.options.sigma_factor},
+            {"future_discount_alpha", table.options.future_discount},
+            {"cost_exponent_p", table.options.cost_exponent},
+            {"candidates_per_frame", table.options.candidates_per_frame},
+            {"min_jump_frames", table.options.min_jump_frames},
+            {"min_probability", table.options.min_probability},
+            {"max_crossfade_frames", table.options.max_crossfade_frames}}},
+          {"height_scale_m", height_scale_m},
+          {"motion_scale_m2_s", motion_scale_m2_s},
+          {"median_step", median_step},
+          {"median_volume_step_m3", median_volume_step_m3},
+          {"graph",
+           {{"candidate_jumps", candidate_jumps},
+            {"usable_jumps", usable_jumps},
+            {"dead_ends", dead_ends.size()},
+            {"reachable_dead_ends", reachable_dead_ends.size()},
+            {"first_playable_frame", first_playable_frame}}},
+          {"period_loop", period ? loop_json(*period) : nlohmann::json()},
+          {"requested_loop", requested ? loop_json(*requested) : nlohmann::json()},
+          {"best_loops_by_length", loops},
+          {"worst_seam_ratio_after", worst_seam_ratio_after()},
+          {"gram_reused", gram_reused},
+          {"distance_seconds", distance_seconds},
+          {"table_seconds", table_seconds}};
+}
+
+LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& options) {
+  const sequence::SequenceReader reader(sequence_folder);
+  if (options.verify) reader.verify_checksums();
+  LoopsReport report;
+  report.folder = sequence_folder;
+  report.frame_count = reader.frame_count();
+  report.frame_interval_s = reader.frame_interval_s();
+  report.loop_period_s = reader.manifest().loop_period_s;
+  const fs::path manifest_path = sequence_folder / std::string(sequence::kManifestFile);
+  const fs::path loops_path = sequence_folder / kLoopsFile, gram_path = sequence_folder / kGramFile;
+  const std::string manifest_checksum = file_checksum(manifest_path);
+
+  // 1. Gram matrices: reuse the stored ones when they belong to this very manifest.
+  auto start = std::chrono::steady_clock::now();
+  std::error_code ec;
+  if (!options.recompute && fs::exists(loops_path, ec) && fs::exists(gram_path, ec)) {
+    const nlohmann::json stored = nlohmann::json::parse(sequence::read_file_bytes(loops_path), nullptr, false);
+    if (!stored.is_discarded() && stored.value("sequence_manifest_checksum", "") == manifest_checksum &&
+        stored.value("gram_checksum", "") == file_checksum(gram_path)) {
+      report.gram = read_gram(gram_path, report.frame_count);
+      report.gram_reused = true;
+    }
+  }
+  if (!report.gram_reused) report.gram = compute_gram_matrices(reader, options.gram);
+  report.distance_seconds = seconds_since(start);
+
+  // 2. Distances (eq. 8-10) and the transition table (eq. 11 + Schödl).
+  start = std::chrono::steady_clock::now();
+  report.distances = distances_from_gram(report.gram, options.transitions.motion_weight);
+  TransitionOptions transition_options = options.transitions;
+  if (options.max_crossfade_s > 0)
+    transition_options.max_crossfade_frames =
+        std::max(1, static_cast<int>(std::lround(options.max_crossfade_s / report.frame_interval_s)));
+  report.table = build_transition_table(report.distances, transition_options);
+  report.sigma = report.table.sigma;
+  report.median_step = report.table.median_step;
+  report.height_scale_m = report.distances.height_scale;
+  report.motion_scale_m2_s = report.distances.motion_scale;
+  std::vector<double> volume_steps;
+  for (int k = 0; k + 1 < report.frame_count; ++k)
+    volume_steps.push_back(std::abs(report.gram.volume_m3[static_cast<std::size_t>(k + 1)] -
+                                    report.gram.volume_m3[static_cast<std::size_t>(k)]));
+  report.median_volume_step_m3 = median_of(volume_steps);
+  report.candidate_jumps = report.table.candidate_jump_count();
+  report.usable_jumps = report.table.usable_jump_count();
+  report.dead_ends = report.table.dead_ends();
+  report.first_playable_frame = report.table.first_playable_frame();
+  if (report.first_playable_frame >= 0)
+    report.reachable_dead_ends = report.table.reachable_dead_ends(report.first_playable_frame);
+
+  // 3. Plans: (c) the exact period, the best loops by length, (b) a requested length.
+  if (report.loop_period_s > 0)
+    report.period = analyse_plan(report, period_loop(report.table, report.distances.combined, report.loop_period_s,
+                                                     report.frame_interval_s));
+  int longest = 0;
+  for (double length_s : options.report_lengths_s)
+    longest = std::max(longest, static_cast<int>(std::lround(1.25 * length_s / report.frame_interval_s)));
+  longest = std::min(longest, report.frame_count);
+  const std::vector<std::optional<LoopPlan>> by_length = best_loops_by_length(report.table, longest);
+  for (double length_s : options.report_lengths_s) {
+    const int low = static_cast<int>(std::lround(length_s / report.frame_interval_s));
+    const int high = std::min(longest, static_cast<int>(std::lround(1.25 * length_s / report.frame_interval_s)));
+    std::optional<LoopReport> best;
+    for (int length = low; length <= high; ++length) {
+      if (!by_length[static_cast<std::size_t>(length)]) continue;
+      LoopReport loop = analyse_plan(report, *by_length[static_cast<std::size_t>(length)]);
+      if (!best || loop.worst_seam_ratio_after < best->worst_seam_ratio_after - 1e-12) best = std::move(loop);
+    }
+    if (best) report.best_by_length.push_back(std::move(*best));
+  }
+  if (options.requested_loop_s > 0) {
+    const int length = static_cast<int>(std::lround(options.requested_loop_s / report.frame_interval_s));
+    if (auto plan = optimal_loop(report.table, length)) report.requested = analyse_plan(report, *plan);
+  }
+  report.table_seconds = seconds_since(start);
+
+  // 4. The tables, beside the frames: gram first, loops.json (which vouches for it) last.
+  if (options.write_tables) {
+    if (!report.gram_reused) write_gram(gram_path, report.gram);
+    nlohmann::json tables = report.to_json();
+    tables["format"] = kLoopsFormat;
+    tables["version"] = kLoopsVersion;
+    tables["sequence_manifest_checksum"] = manifest_checksum;
+    tables["gram_file"] = kGramFile;
+    tables["gram_checksum"] = file_checksum(gram_path);
+    tables["random_walk"] = {{"start_frame", report.first_playable_frame}, {"seed", options.random_walk_seed}};
+    nlohmann::json rows = nlohmann::json::array();
+    for (const Transition& t : report.table.transitions)
+      rows.push_back({t.from, t.to, t.probability, t.cost, t.future_cost, t.crossfade_frames, t.seam_ratio,
+                      t.seam_ratio_after});
+    tables["transition_columns"] = {"from", "to", "probability", "cost", "future_cost", "crossfade_frames",
+                                    "seam_ratio", "seam_ratio_after"};
+    tables["transitions"] = rows;
+    write_text_atomically(loops_path, tables.dump(1));
+  }
+  return report;
+}
+
+}  // namespace nearshore::loops
