@@ -262,52 +262,54 @@ RunupResult run_synolakis(double height_ratio, const std::string& run_name, cons
   return result;
 }
 
-TEST(VALIDATION_SUITE(Synolakis1987), RunupOfTheNonBreakingAndBreakingSolitaryWave) {
+// One Synolakis case: run-up against the laboratory table, profiles against the snapshots, a PNG.
+void check_synolakis(double height_ratio, const std::string& case_name, const std::string& run_name, double tolerance) {
   const auto runs = read_synolakis_runup();
-  json results;
-  std::vector<double> model_h, model_r;
-  std::vector<LinePlot> plots;
-  for (const auto& [height_ratio, case_name, run_name] :
-       std::vector<std::tuple<double, std::string, std::string>>{{0.0185, "Case0_0185", "synolakis"}, {0.30, "Case0_3", "synolakis_breaking"}}) {
-    const auto snapshots = read_synolakis_profiles(case_name);
-    std::vector<int> times;
-    for (const auto& snapshot : snapshots) times.push_back(static_cast<int>(snapshot.dimensionless_time));
-    const RunupResult result = run_synolakis(height_ratio, run_name, times);
-    const double measured = measured_runup_ratio(runs, height_ratio);
-    const double relative_error = result.runup_ratio / measured - 1.0;
-    model_h.push_back(height_ratio);
-    model_r.push_back(result.runup_ratio);
-    results[run_name] = {{"height_ratio", height_ratio}, {"runup_ratio_model", result.runup_ratio}, {"runup_ratio_measured", measured},
-                         {"relative_error", relative_error}, {"runup_law", synolakis_runup_law(height_ratio, 19.85)}};
-    std::printf("Synolakis H/d = %.4f: R/d model %.4f, measured %.4f (%+.1f %%), non-breaking law %.4f\n", height_ratio,
-                result.runup_ratio, measured, 100 * relative_error, synolakis_runup_law(height_ratio, 19.85));
-    // OAR PMEL-135 (Synolakis et al. 2007), the NTHMP standard: laboratory benchmarks within 10 %.
-    // The CI grid (d/20, the case file) is the full one for the non-breaking case; the breaking
-    // bore's run-up tongue is thin and friction-free here, so CI allows 20 % there.
-    EXPECT_LE(std::abs(relative_error), height_ratio < 0.045 || kFull ? 0.10 : 0.20) << "H/d = " << height_ratio;
-    for (const auto& snapshot : snapshots) {
-      const auto found = result.profiles.find(static_cast<int>(snapshot.dimensionless_time));
-      if (found == result.profiles.end()) continue;
-      LinePlot plot;
-      plot.title = fmt::format("H/d = {}, t sqrt(g/d) = {}", height_ratio, snapshot.dimensionless_time);
-      plot.x_label = "x / d (offshore of the initial shoreline)";
-      plot.y_label = "eta / d";
-      plot.width_px = 640, plot.height_px = 360;
-      plot.series.push_back({"model", found->second.first, found->second.second, kModelColour, false});
-      plot.series.push_back({"Synolakis (1987)", snapshot.offshore_distance_ratio, snapshot.elevation_ratio, kDataColour, true});
-      plots.push_back(plot);
-    }
-  }
+  const auto snapshots = read_synolakis_profiles(case_name);
+  std::vector<int> times;
+  for (const auto& snapshot : snapshots) times.push_back(static_cast<int>(snapshot.dimensionless_time));
+  const RunupResult result = run_synolakis(height_ratio, run_name, times);
+  const double measured = measured_runup_ratio(runs, height_ratio);
+  const double relative_error = result.runup_ratio / measured - 1.0;
+  write_results(run_name, {{"height_ratio", height_ratio}, {"runup_ratio_model", result.runup_ratio}, {"runup_ratio_measured", measured},
+                           {"relative_error", relative_error}, {"runup_law", synolakis_runup_law(height_ratio, 19.85)}});
+  std::printf("Synolakis H/d = %.4f: R/d model %.4f, measured %.4f (%+.1f %%), non-breaking law %.4f\n", height_ratio,
+              result.runup_ratio, measured, 100 * relative_error, synolakis_runup_law(height_ratio, 19.85));
   std::vector<double> lab_h, lab_r, law_h, law_r;
   for (const auto& run : runs) lab_h.push_back(run.height_ratio), lab_r.push_back(run.runup_ratio);
   for (double h = 0.005; h <= 0.045; h += 0.002) law_h.push_back(h), law_r.push_back(synolakis_runup_law(h, 19.85));
-  LinePlot runup{"Synolakis (1987): maximum run-up", "H / d", "R / d", {}, 640, 360};
+  std::vector<LinePlot> plots;
+  LinePlot runup{fmt::format("maximum run-up: model {:.4f}, measured {:.4f}", result.runup_ratio, measured), "H / d", "R / d", {}, 640, 360};
   runup.series.push_back({"laboratory", lab_h, lab_r, kDataColour, true});
   runup.series.push_back({"run-up law (non-breaking)", law_h, law_r, kReferenceColour, false});
-  runup.series.push_back({"model", model_h, model_r, kModelColour, true});
-  plots.insert(plots.begin(), runup);
-  write_results("synolakis", results);
-  tile_plots(plots, 2).write_png(output_folder("synolakis") / "synolakis_runup_profiles.png");
+  runup.series.push_back({"model", {height_ratio}, {result.runup_ratio}, kModelColour, true});
+  plots.push_back(runup);
+  for (const auto& snapshot : snapshots) {
+    const auto found = result.profiles.find(static_cast<int>(snapshot.dimensionless_time));
+    if (found == result.profiles.end()) continue;
+    LinePlot plot;
+    plot.title = fmt::format("H/d = {}, t sqrt(g/d) = {}", height_ratio, snapshot.dimensionless_time);
+    plot.x_label = "x / d (offshore of the initial shoreline)";
+    plot.y_label = "eta / d";
+    plot.width_px = 640, plot.height_px = 360;
+    plot.series.push_back({"model", found->second.first, found->second.second, kModelColour, false});
+    plot.series.push_back({"Synolakis (1987)", snapshot.offshore_distance_ratio, snapshot.elevation_ratio, kDataColour, true});
+    plots.push_back(plot);
+  }
+  tile_plots(plots, 2).write_png(output_folder(run_name) / (run_name + ".png"));
+  EXPECT_LE(std::abs(relative_error), tolerance) << "H/d = " << height_ratio;
+}
+
+// OAR PMEL-135 (Synolakis et al. 2007), the NTHMP standard, asks laboratory benchmarks to be met
+// within 10 %. The case file's d/20 grid is already fine for this long wave, so CI holds 10 % too.
+TEST(VALIDATION_SUITE(Synolakis1987), RunupOfTheNonBreakingSolitaryWave) {
+  check_synolakis(0.0185, "Case0_0185", "synolakis", 0.10);
+}
+
+// The breaking wave (H/d = 0.3) collapses into a bore on the beach face: the solver's breaking
+// model and moving shoreline both work hard. NTHMP's 10 % at full resolution; CI (d/20) 20 %.
+TEST(VALIDATION_SUITE(Synolakis1987), RunupOfTheBreakingSolitaryWave) {
+  check_synolakis(0.30, "Case0_3", "synolakis_breaking", kFull ? 0.10 : 0.20);
 }
 
 }  // namespace
