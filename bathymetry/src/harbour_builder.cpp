@@ -671,7 +671,21 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
   auto pixel_x = [&](double x_m) { return 25.0 + (x_m - g.origin_x_m) / g.spacing_m * scale; };
   auto pixel_y = [&](double y_m) { return 50.0 + (g.rows - (y_m - g.origin_y_m) / g.spacing_m) * scale; };
   const double right = pixel_x(g.origin_x_m + g.width_m()), bottom = pixel_y(g.origin_y_m);
-  const Rgb coast_colour{0.9f, 0.1f, 0.05f};
+  // Structures over the depth colours: solid walls black, porous ones orange (seed 003 porosity).
+  const Rgb wall_colour{0.08f, 0.08f, 0.08f}, porous_colour{1.0f, 0.55f, 0.0f}, coast_colour{0.9f, 0.1f, 0.05f};
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.columns; ++c) {
+      const float n = grid.porosity(c, r);
+      if (n >= 1.0f) continue;
+      const double x0 = pixel_x(g.origin_x_m + c * g.spacing_m), y1 = pixel_y(g.origin_y_m + r * g.spacing_m);
+      preview.fill_rectangle(static_cast<int>(x0), static_cast<int>(y1 - scale),
+                             static_cast<int>(std::max(x0, x0 + scale - 1)), static_cast<int>(std::max(y1 - scale, y1 - 1)),
+                             n <= 0.0f ? wall_colour : porous_colour);
+    }
+  const int legend_y = static_cast<int>(bottom) + 30;
+  preview.draw_text(25, legend_y, "coastline (chart)", coast_colour, 14);
+  preview.draw_text(170, legend_y, "vertical walls (n = 0)", wall_colour, 14);
+  preview.draw_text(350, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
   for (const auto& line : result.coastline_m)
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const double x0 = pixel_x(line[i].x_m), y0 = pixel_y(line[i].y_m), x1 = pixel_x(line[i + 1].x_m), y1 = pixel_y(line[i + 1].y_m);
