@@ -150,6 +150,19 @@ std::vector<double> cascade_tile_lengths_m(double largest_tile_m, int count, dou
   return lengths;
 }
 
+std::vector<double> cascade_tile_lengths_for_m(const WavenumberSpectrum& spectrum, int grid_size, int count,
+                                               double shortest_wavelength_m) {
+  if (grid_size < 8 || count < 1 || !(shortest_wavelength_m > 0.0))
+    throw Error("cascade tile lengths", fmt::format("grid {} , {} cascades, shortest wavelength {} m", grid_size, count,
+                                                    shortest_wavelength_m),
+                "give a grid of at least 8, at least 1 cascade and a shortest wavelength > 0 m");
+  const double largest = 10.0 * 2.0 * kPi / spectrum.peak_wavenumber_rad_m();
+  if (count == 1) return {largest};
+  const double smallest = shortest_wavelength_m * grid_size / 2.0;
+  const double ratio = std::max(2.0, std::pow(largest / smallest, 1.0 / (count - 1)));
+  return cascade_tile_lengths_m(largest, count, ratio);
+}
+
 double jacobian(double dxx, double dyy, double dxy, double lambda) {
   // seed 000 eq. (3.39)-(3.44); dD_x/dy = dD_y/dx because D is a gradient field.
   return (1.0 + lambda * dxx) * (1.0 + lambda * dyy) - (lambda * dxy) * (lambda * dxy);
@@ -202,14 +215,14 @@ DeepWaterField::DeepWaterField(const DeepWaterSpecification& spec) : impl_(std::
     cascade.harmonic.assign(cells, -1);
     const double dk = cascade.spacing_rad_m;
     const CascadeBand band = cascade.band;
+    std::vector<double> variance(cells, 0.0);
     tbb::parallel_for(0, n, [&](int row) {
       const int m = signed_index(row, n);
       for (int column = 0; column < n; ++column) {
         const int nx = signed_index(column, n);
         if (std::abs(m) == n / 2 || std::abs(nx) == n / 2 || (m == 0 && nx == 0)) continue;  // Nyquist and mean
-        const double variance = cell_variance_m2(spectrum, nx, m, dk, band);
         const std::size_t index = static_cast<std::size_t>(row) * n + column;
-        cascade.amplitude_m[index] = static_cast<float>(std::sqrt(2.0 * std::max(variance, 0.0)));
+        variance[index] = cell_variance_m2(spectrum, nx, m, dk, band);
         const double w = frequency_from_wavenumber(std::hypot(nx * dk, m * dk), spec.still_water_depth_m);
         if (fundamental_rad_s > 0.0) {
           cascade.harmonic[index] = std::llround(w / fundamental_rad_s);
@@ -219,6 +232,28 @@ DeepWaterField::DeepWaterField(const DeepWaterSpecification& spec) : impl_(std::
         }
       }
     });
+    // Opposite wavevectors k and -k make a partly standing wave whose spatial variance swings
+    // with time (the cross term a_k a_-k cos(2 w t - ...)). Each pair's variance goes to the one
+    // that holds more of it (the down-wind one): the variance is kept exactly, and by Parseval
+    // every frame's spatial variance is then sum a^2/2. Only cells cut by the cross-wind line
+    // and spectra with an up-wind lobe (cos^2s, WindHalfPlane::kBothWays) have such pairs.
+    for (int row = 0; row < n; ++row)
+      for (int column = 0; column < n; ++column) {
+        const std::size_t index = static_cast<std::size_t>(row) * n + column;
+        const std::size_t mirror = static_cast<std::size_t>((n - row) % n) * n + (n - column) % n;
+        if (index >= mirror) continue;
+        double& own = variance[index];
+        double& opposite = variance[mirror];
+        if (own >= opposite) {
+          own += opposite;
+          opposite = 0.0;
+        } else {
+          opposite += own;
+          own = 0.0;
+        }
+      }
+    for (std::size_t index = 0; index < cells; ++index)
+      cascade.amplitude_m[index] = static_cast<float>(std::sqrt(2.0 * std::max(variance[index], 0.0)));
     for (int row = 0; row < n; ++row)
       for (int column = 0; column < n; ++column) {
         const double a = cascade.amplitude_m[static_cast<std::size_t>(row) * n + column];
@@ -356,6 +391,28 @@ SurfaceSample DeepWaterField::sample(double x_m, double y_m) const {
   return total;
 }
 
+FoamStatistics foam_statistics(const DeepWaterField& field, int sample_count, double threshold) {
+  // R2 sequence (Roberts 2018): x_j = frac(j / phi2), y_j = frac(j / phi2^2), phi2 the plastic number.
+  constexpr double plastic = 1.32471795724474602596;
+  const double largest_tile_m = field.specification().tile_lengths_m.front();
+  const double lambda = field.specification().choppiness;
+  FoamStatistics statistics;
+  long long breaking_count = 0;
+  double breaking_sum = 0.0;
+  for (int j = 1; j <= sample_count; ++j) {
+    const double u = std::fmod(j / plastic, 1.0), v = std::fmod(j / (plastic * plastic), 1.0);
+    const SurfaceSample s = field.sample(u * largest_tile_m, v * largest_tile_m);
+    const double jac = jacobian(s.displacement_xx, s.displacement_yy, s.displacement_xy, lambda);
+    const FoamFeatures foam = foam_features(jac, threshold);
+    breaking_count += foam.breaking > 0.0;
+    breaking_sum += foam.breaking;
+    statistics.lowest_jacobian = std::min(statistics.lowest_jacobian, jac);
+  }
+  statistics.coverage = static_cast<double>(breaking_count) / std::max(sample_count, 1);
+  statistics.mean_breaking = breaking_sum / std::max(sample_count, 1);
+  return statistics;
+}
+
 SeaState DeepWaterField::wave_components(double min_amplitude_m) const {
   SeaState sea;
   sea.loop_period_s = impl_->spec.loop_period_s;
@@ -394,7 +451,7 @@ nlohmann::json DeepWaterField::description() const {
           {"significant_wave_height_m", significant_wave_height_m()},
           {"spectrum_significant_wave_height_m", spec.spectrum->significant_wave_height_m()},
           {"unresolved_slope_variance", unresolved_slope_variance()},
-          {"foam", {{"breaking_threshold", -0.2}}},
+          {"foam", {{"breaking_jacobian", kStokesBreakingJacobian}, {"choppiness", spec.choppiness}}},
           {"cascades", cascades}};
 }
 

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "nearshore/bake/spectrum.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
@@ -64,9 +65,21 @@ BeaufortPreset beaufort_preset(int force, double wind_direction_rad, BeaufortSpe
   }
   const bool phillips = choice == BeaufortSpectrum::kPhillips || (choice == BeaufortSpectrum::kSeedChoice && force <= 4);
   if (phillips) {
-    const double amplitude =
-        PhillipsSpectrum::amplitude_for_significant_wave_height(row.wave_height_m, preset.wind_speed_10_m_s);
-    preset.spectrum = std::make_shared<PhillipsSpectrum>(amplitude, preset.wind_speed_10_m_s, wind_direction_rad);
+    // Phillips is scale-free: A fixes the steepness, Lw = U^2/g the size. At forces 1-3 the
+    // table's height is more than a fully developed sea reaches at the table's wind
+    // (Hs = 0.209 U^2 / g, PM): with that wind the sea would be steeper than any wind sea
+    // (Hs kp = 0.66 at force 1). There the length scale comes from the height instead: the wind
+    // whose developed sea has the table's height.
+    const double developed_hs = PiersonMoskowitzSpectrum::from_wind_speed(preset.wind_speed_10_m_s).significant_wave_height_m();
+    double phillips_wind = preset.wind_speed_10_m_s;
+    if (row.wave_height_m > developed_hs) {
+      phillips_wind *= std::sqrt(row.wave_height_m / developed_hs);  // Hs grows as U^2
+      preset.note = fmt::format("Phillips length scale from a {:.2f} m/s wind: at the table's {:.2f} m/s a developed "
+                                "sea is only {:.2f} m high",
+                                phillips_wind, preset.wind_speed_10_m_s, developed_hs);
+    }
+    const double amplitude = PhillipsSpectrum::amplitude_for_significant_wave_height(row.wave_height_m, phillips_wind);
+    preset.spectrum = std::make_shared<PhillipsSpectrum>(amplitude, phillips_wind, wind_direction_rad);
     return preset;
   }
   preset.inverse_wave_age = inverse_wave_age_for(preset.wind_speed_10_m_s, row.wave_height_m, wind_direction_rad);

@@ -50,6 +50,14 @@ struct DeepWaterSpecification {
 /// (e.g. 3.7) hides the tiling better: the tiles' repeats then never line up.
 std::vector<double> cascade_tile_lengths_m(double largest_tile_m, int count, double ratio = 4.0);
 
+/// Tile lengths that fit a spectrum: the largest tile holds 10 peak wavelengths (so the peak sits
+/// 10 lattice steps from the origin and the energy below half a step is negligible), the last
+/// cascade's Nyquist wavelength 2 L / N is `shortest_wavelength_m`, and the ratio between
+/// consecutive tiles is constant (at least 2; with fewer octaves to cover, the shortest
+/// resolved wave is shorter than asked).
+std::vector<double> cascade_tile_lengths_for_m(const WavenumberSpectrum& spectrum, int grid_size, int count,
+                                               double shortest_wavelength_m);
+
 /// The wavenumber band of one cascade (rad/m).
 struct CascadeBand {
   double tile_length_m = 0.0;
@@ -72,17 +80,37 @@ struct DeepWaterFrame {
   std::vector<float> flux_x_m2_s, flux_y_m2_s; ///< only with `with_flux` (the baked tile set)
 };
 
-/// Foam features from the Jacobian, seed 000 eq. (3.45)-(3.47).
+/// Foam features from the Jacobian, seed 000 eq. (3.45)-(3.47): f_b = clamp(J_b - J, 0, 1).
+/// The seed's J_b = -0.2 belongs to its J in texture units (kappa = eps / L_i^2, eq. 3.40) and a
+/// tuned eps. Here D is in metres and lambda = 1 is the physical (Gerstner) displacement, under
+/// which a single wave has J = 1 - a k cos(phase): it breaks at the Stokes limit a k = 0.443, i.e.
+/// J_b = 0.557 (kStokesBreakingJacobian, the default). Measured over the Beaufort presets this
+/// gives a coverage rising from 0.02 % (force 1) to 1.6 % (force 12); J_b = -0.2 at lambda = 1
+/// gives none at all. Both are parameters.
+inline constexpr double kStokesBreakingJacobian = 1.0 - 0.443;
 struct FoamFeatures {
-  double breaking = 0.0;      ///< f_b = clamp(threshold - J, 0, 1), threshold -0.2 in the seed
+  double breaking = 0.0;      ///< f_b = clamp(J_b - J, 0, 1)
   double stretching = 1.0;    ///< f_s = J
 };
 double jacobian(double displacement_xx, double displacement_yy, double displacement_xy, double choppiness);
-FoamFeatures foam_features(double jacobian_value, double breaking_threshold = -0.2);
+FoamFeatures foam_features(double jacobian_value, double breaking_threshold = kStokesBreakingJacobian);
 /// f_t after one step of dt (s): f_t = exp(-dt / decay_time) f_t_previous + f_b, clamped to [0, 1].
 /// Seed 000 eq. (3.46) writes f_t^t = alpha f_b^{t-1} + f_b^t; the recursive form keeps the
 /// decaying trail behind a crest for longer than one frame, with alpha = exp(-dt / decay_time).
 double turbulent_foam(double previous_turbulent, double breaking, double dt_s, double decay_time_s);
+
+class DeepWaterField;
+
+/// Foam statistics of the last synthesised frame, over `sample_count` points of the largest
+/// tile placed on a 2-D Kronecker (R2) low-discrepancy sequence, so they never alias with the
+/// smaller tiles' periods. J uses the field's choppiness.
+struct FoamStatistics {
+  double coverage = 0.0;       ///< fraction of the surface with f_b > 0 (J < breaking_threshold)
+  double mean_breaking = 0.0;  ///< mean f_b
+  double lowest_jacobian = 1.0;
+};
+FoamStatistics foam_statistics(const DeepWaterField& field, int sample_count,
+                               double breaking_threshold = kStokesBreakingJacobian);
 
 /// All cascades summed at a point, each sampled bilinearly from its periodic tile.
 struct SurfaceSample {

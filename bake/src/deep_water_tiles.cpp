@@ -1,0 +1,70 @@
+#include "nearshore/bake/deep_water_tiles.hpp"
+
+#include <fmt/format.h>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/core/progress.hpp"
+#include "nearshore/sequence/sequence_writer.hpp"
+
+namespace nearshore::bake {
+
+TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int frames_per_loop,
+                                         const std::filesystem::path& folder, const sequence::FrameEncoding& encoding) {
+  const DeepWaterSpecification& spec = field.specification();
+  if (!(spec.loop_period_s > 0.0))
+    throw Error(folder.string(), "the deep-water field does not loop, so a baked tile set would not repeat",
+                "set a loop period (T_loop > 0 s) in the deep-water specification");
+  if (cascade < 0 || cascade >= field.cascade_count())
+    throw Error(folder.string(), fmt::format("cascade {} does not exist (the field has {})", cascade, field.cascade_count()),
+                fmt::format("give a cascade from 0 to {}", field.cascade_count() - 1));
+  if (frames_per_loop < 1)
+    throw Error(folder.string(), fmt::format("{} frames per loop", frames_per_loop), "give at least 1 frame per loop");
+
+  const int n = spec.grid_size;
+  const double length_m = spec.tile_lengths_m[cascade];
+  GridGeometry geometry;
+  geometry.columns = n;
+  geometry.rows = n;
+  geometry.spacing_m = length_m / n;
+  geometry.origin_x_m = -0.5 * geometry.spacing_m;  // cell centres on the FFT nodes x = i L / N
+  geometry.origin_y_m = -0.5 * geometry.spacing_m;
+  const float depth_m = spec.still_water_depth_m > 0.0 ? static_cast<float>(spec.still_water_depth_m) : 1000.0f;
+  const HarbourGrid open_water = HarbourGrid::open_water(geometry, depth_m);
+
+  sequence::SequenceDescription description;
+  description.frame_interval_s = spec.loop_period_s / frames_per_loop;
+  description.loop_period_s = spec.loop_period_s;
+  description.seed = spec.seed;
+  description.deep_water = field.description();
+  description.deep_water["tile_set_cascade"] = cascade;
+  description.wave_conditions = {{"source", "deep-water FFT field"}, {"spectrum", spec.spectrum->to_json()}};
+  description.encoding = encoding;
+  sequence::SequenceWriter writer(folder, open_water, description);
+
+  Raster<float> elevation(n, n), flux_x(n, n), flux_y(n, n), breaking(n, n);
+  ProgressBar progress("deep-water tiles", frames_per_loop, "frames");
+  for (int index = 0; index < frames_per_loop; ++index) {
+    field.synthesise(index * description.frame_interval_s, /*with_flux=*/true);
+    const DeepWaterFrame& frame = field.frame(cascade);
+    // Raster row 0 is the southern row, as the frame's row 0 (y = 0): the layouts agree.
+    elevation.values() = frame.surface_elevation_m;
+    flux_x.values() = frame.flux_x_m2_s;
+    flux_y.values() = frame.flux_y_m2_s;
+    for (std::size_t i = 0; i < breaking.size(); ++i)
+      breaking.values()[i] = static_cast<float>(
+          foam_features(jacobian(frame.displacement_xx[i], frame.displacement_yy[i], frame.displacement_xy[i], spec.choppiness))
+              .breaking);
+    writer.write_frame(index, {&elevation, &flux_x, &flux_y, &breaking});
+    progress.update(index + 1);
+  }
+  writer.finish(frames_per_loop);
+  progress.finish();
+
+  TileSetSummary summary{frames_per_loop, description.frame_interval_s, 0};
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.is_regular_file()) summary.bytes += entry.file_size();
+  return summary;
+}
+
+}  // namespace nearshore::bake
