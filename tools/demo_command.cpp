@@ -1,59 +1,134 @@
 // `nearshore demo`: the main job on the generated demo harbour, stage by stage:
 //   1 chart     generate the georeferenced demo chart inputs (GeoTIFF + GeoJSON)
-//   2 bathy     grid them into a solver-ready harbour grid
-//   3 bake      run the Boussinesq solver with a time-periodic wave maker
-//   4 loops     build the loop tables and inspect the seams
-//   5 play      render a playback screenshot
-// Each stage prints where its outputs are and how long it took. A stage whose issue is still open
-// stops the demo with the plain "not built yet" message (exit 3) instead of pretending.
+//   2 bathy     grid them into a solver-ready harbour grid (nearshore bathy)
+//   3 bake      bake a time-periodic swell over it (nearshore bake, case data/cases/harbour.toml)
+//   4 loops     build the loop tables and inspect the seams (nearshore loops)
+//   5 play      render a playback screenshot (nearshore play)
+// Each stage prints where its outputs are and how long it took; the same library calls as the
+// individual commands, so the demo exercises exactly what users run.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <fmt/core.h>
 
 #include "command_support.hpp"
+#include "nearshore/bake/bake_case.hpp"
+#include "nearshore/bake/bake_run.hpp"
 #include "nearshore/bathymetry/demo_harbour.hpp"
+#include "nearshore/bathymetry/harbour_builder.hpp"
+#include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
+#include "nearshore/loops/inspector.hpp"
+#include "nearshore/playback/sequence_player.hpp"
+#include "nearshore/playback/water_renderer.hpp"
+#include "nearshore/playback/window.hpp"
 
 namespace nearshore::tools {
+
+/// data/cases/harbour.toml, embedded at build time (tools/CMakeLists.txt), so the demo bakes exactly
+/// the documented example case.
+extern const char* const kDemoHarbourCase;
+
 namespace fs = std::filesystem;
 namespace {
 
 struct DemoOptions {
   fs::path output_folder = "demo-out";
-};
-
-struct StageResult {
-  std::string name, outputs;
-  double seconds = 0;
+  double spacing_m = 8.0;
 };
 
 // Runs one stage, timing it; `run` returns a one-line description of where the outputs are.
-StageResult run_stage(const std::string& name, const std::function<std::string()>& run) {
+void run_stage(const std::string& name, const std::function<std::string()>& run) {
   std::fprintf(stderr, "== demo stage: %s\n", name.c_str());
   const auto start = std::chrono::steady_clock::now();
-  StageResult result{name, run(), 0};
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%-6s %10s  %s\n", name.c_str(), format_duration(result.seconds).c_str(), result.outputs.c_str());
+  const std::string outputs = run();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("%-6s %10s  %s\n", name.c_str(), format_duration(seconds).c_str(), outputs.c_str());
   std::fflush(stdout);
-  return result;
+}
+
+// The embedded case with its bathymetry path pointed at this run's harbour grid.
+fs::path write_demo_case(const fs::path& folder, const fs::path& harbour_exr) {
+  std::string text = kDemoHarbourCase;
+  const std::string placeholder = "\"../../demo-out/harbour/depth.exr\"";
+  const auto at = text.find(placeholder);
+  if (at == std::string::npos)
+    throw Error("data/cases/harbour.toml", "no longer names ../../demo-out/harbour/depth.exr as its bathymetry",
+                "keep that path in the example case (the demo substitutes its own)");
+  text.replace(at, placeholder.size(), "\"" + fs::absolute(harbour_exr).string() + "\"");
+  const fs::path case_file = folder / "harbour.toml";
+  write_text_atomically(case_file, text);
+  return case_file;
 }
 
 void run_demo(const DemoOptions& options) {
-  const fs::path chart_folder = options.output_folder / "chart";
+  const fs::path out = options.output_folder;
+  const fs::path chart_folder = out / "chart", harbour_folder = out / "harbour", bake_folder = out / "bake",
+                 loops_folder = out / "loops", screenshot = out / "screenshot.png";
+  create_output_folder(out);
   std::printf("%-6s %10s  %s\n", "stage", "time", "outputs");
+
+  bathymetry::DemoHarbourFiles chart;
   run_stage("chart", [&] {
-    const auto files = bathymetry::write_demo_harbour(chart_folder);
-    return fmt::format("{} (+ coastline, land, breakwaters .geojson)", files.depth_geotiff.string());
+    chart = bathymetry::write_demo_harbour(chart_folder);
+    return fmt::format("{}/ (depth.tif, coastline, land, breakwaters .geojson)", chart_folder.string());
   });
-  std::fprintf(stderr,
-               "nearshore demo: the next stage (bathymetry gridding, issue 3) is not built yet. "
-               "The chart inputs above were written; nothing else was computed.\n");
-  throw ExitStatus{3};
+
+  run_stage("bathy", [&] {
+    bathymetry::BathyRequest request;
+    request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson, chart.coastline_geojson};
+    request.spacing_m = options.spacing_m;
+    const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
+    bathymetry::write_bathymetry_outputs(harbour_folder, result);
+    return fmt::format("{}/ ({} x {} cells at {} m; preview.png)", harbour_folder.string(),
+                       result.grid.geometry.columns, result.grid.geometry.rows, result.grid.geometry.spacing_m);
+  });
+
+  bake::BakeSummary baked;
+  run_stage("bake", [&] {
+    const fs::path case_file = write_demo_case(out, harbour_folder / "depth.exr");
+    const bake::BakeCase bake_case = bake::read_bake_case(case_file);
+    bake::BakeOptions bake_options;
+    bake_options.output_folder = bake_folder;
+    bake_options.resume = fs::exists(bake::checkpoint_path(bake_folder));  // an interrupted demo continues
+    baked = bake::run_bake(bake_case, bake_options);
+    return fmt::format("{}/ ({} frames every {} s, loop period {} s; {:.3g} cell-updates/s; gauges.csv)",
+                       bake_folder.string(), baked.frames, baked.frame_interval_s, baked.loop_period_s,
+                       baked.cell_updates_per_s);
+  });
+
+  loops::LoopsReport report;
+  run_stage("loops", [&] {
+    loops::LoopsOptions loops_options;
+    report = loops::analyse_loops(bake_folder, loops_options);
+    loops::write_loops_pictures(report, loops_folder);
+    write_text_atomically(loops_folder / "loops_report.json", report.to_json().dump(2));
+    const double period_seam = report.period ? report.period->worst_seam_ratio_after : -1.0;
+    return fmt::format("{}/ (period loop seam ratio R = {:.3g}; {} usable transitions; loops.json in the bake)",
+                       loops_folder.string(), period_seam, report.usable_jumps);
+  });
+
+  run_stage("play", [&] {
+    const sequence::SequenceReader reader(bake_folder);
+    const HarbourGrid harbour = reader.read_harbour_grid();
+    playback::GlWindow window(1280, 720, "nearshore demo", false);
+    playback::WaterRenderer renderer(harbour);
+    std::vector<int> order;
+    if (report.period) order = report.period->plan.frames();
+    playback::SequencePlayer player(reader, order);
+    player.advance_to(0.0);
+    renderer.set_frame(player.surface_elevation_m(), &player.breaking());
+    renderer.render(playback::Camera::overlooking(harbour.geometry), playback::Lighting{}, 1280, 720);
+    renderer.read_pixels().write_png(screenshot);
+    return fmt::format("{} (1280 x 720, {})", screenshot.string(), window.gl_description());
+  });
 }
 
 }  // namespace
@@ -64,7 +139,8 @@ void add_demo_command(CLI::App& app) {
       "demo", "Generate the demo harbour and run chart -> bathymetry -> bake -> loops -> screenshot");
   demo->add_option("-o,--output", options->output_folder, "Folder for every output of the demo")
       ->capture_default_str();
-  set_example(*demo, "nearshore demo -o demo-out");
+  demo->add_option("--spacing", options->spacing_m, "Harbour grid cell size, metres")->capture_default_str();
+  set_example(*demo, "xvfb-run -a nearshore demo -o demo-out");
   demo->callback([options] { run_demo(*options); });
 }
 
