@@ -284,7 +284,7 @@ struct ChangeReport {
     ++cells;
     column_min = std::min(column_min, column), column_max = std::max(column_max, column);
     row_min = std::min(row_min, row), row_max = std::max(row_max, row);
-    if (std::abs(change_m) > max_change_m) max_change_m = std::abs(change_m), worst_column = column, worst_row = row;
+    if (worst_column < 0 || std::abs(change_m) > max_change_m) max_change_m = std::abs(change_m), worst_column = column, worst_row = row;
   }
   nlohmann::json to_json(const GridGeometry& g, const MapProjection& projection) const {
     nlohmann::json j{{"cells", cells}, {"max_change_m", max_change_m}};
