@@ -42,8 +42,9 @@ void add_bake_command(CLI::App& app) {
     std::printf("%s\n", fmt::format("baked {} frames ({} s apart from t = {} s) into {}", summary.frames, summary.frame_interval_s,
                                     summary.first_frame_time_s, summary.output_folder.string())
                             .c_str());
-    std::printf("%s\n", fmt::format("{} cells x {} steps of {:.5g} s in {:.1f} s wall time: {:.3g} cell-updates/s{}", summary.cells,
-                                    summary.steps_this_run, summary.time_step_s, summary.wall_time_s, summary.cell_updates_per_s,
+    std::printf("%s\n", fmt::format("{} cells x {} steps of {:.5g} s in {:.1f} s wall time ({:.1f} s writing outputs): {:.3g} cell-updates/s{}",
+                                    summary.cells, summary.steps_this_run, summary.time_step_s, summary.wall_time_s,
+                                    summary.output_wall_time_s, summary.cell_updates_per_s,
                                     summary.resumed_from_s >= 0 ? fmt::format(" (resumed from t = {} s)", summary.resumed_from_s) : "")
                             .c_str());
     std::printf("gauges: %s   seed: %llu\n", summary.gauges_csv.string().c_str(),

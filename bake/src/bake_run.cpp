@@ -103,6 +103,7 @@ nlohmann::json BakeSummary::to_json() const {
           {"time_step_s", time_step_s},
           {"wall_time_s", wall_time_s},
           {"cell_updates_per_s", cell_updates_per_s},
+          {"output_wall_time_s", output_wall_time_s},
           {"resumed_from_s", resumed_from_s},
           {"seed", seed},
           {"loop_period_s", loop_period_s},
@@ -145,6 +146,12 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   sequence::SequenceWriter writer(folder, bake_case.harbour, description, options.resume);
 
   Raster<float> flux_x, flux_y;
+  double output_s = 0.0;  // wall time spent writing frames, gauges and checkpoints
+  const auto timed = [&output_s](const auto& write) {
+    const auto start = std::chrono::steady_clock::now();
+    write();
+    output_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   const auto frame_index_at = [&](long step) -> long {
     if (step < plan.first_frame || (step - plan.first_frame) % plan.per_frame != 0) return -1;
     return (step - plan.first_frame) / plan.per_frame;
@@ -163,11 +170,13 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
       fields.flux_x_m2_s = &flux_x;
       fields.flux_y_m2_s = &flux_y;
       fields.breaking = &solver.breaking_indicator();
-      writer.write_frame(static_cast<int>(frame), fields);
+      timed([&] { writer.write_frame(static_cast<int>(frame), fields); });
     }
     if (checkpoint_due) {
-      gauges.write_csv(folder / "gauges.csv");  // a killed run still leaves the gauges up to here
-      write_checkpoint(checkpoint, fingerprint, solver, gauges);
+      timed([&] {
+        gauges.write_csv(folder / "gauges.csv");  // a killed run still leaves the gauges up to here
+        write_checkpoint(checkpoint, fingerprint, solver, gauges);
+      });
       checkpoint_time_s = solver.time_s();
     }
   };
@@ -195,6 +204,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   summary.steps_this_run = plan.total - first_step;
   summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   summary.cell_updates_per_s = stepping_s > 0 ? static_cast<double>(summary.cells) * summary.steps_this_run / stepping_s : 0.0;
+  summary.output_wall_time_s = output_s;
   summary.first_frame_time_s = description.first_frame_time_s;
   summary.frame_interval_s = description.frame_interval_s;
   summary.seed = description.seed;

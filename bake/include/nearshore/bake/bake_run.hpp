@@ -26,7 +26,8 @@ struct BakeSummary {
   long steps_this_run = 0;          ///< steps computed by this call (fewer when resumed)
   double time_step_s = 0.0;
   double wall_time_s = 0.0;         ///< of this call
-  double cell_updates_per_s = 0.0;  ///< cells * steps_this_run / wall time of the stepping
+  double cell_updates_per_s = 0.0;  ///< cells * steps_this_run / wall time of the run loop (outputs included)
+  double output_wall_time_s = 0.0;  ///< of that, the wall time spent writing frames, gauges.csv and checkpoints
   int frames = 0;
   double first_frame_time_s = 0.0;
   double frame_interval_s = 0.0;
