@@ -50,7 +50,8 @@ double dispersion_weight(double depth_m, const SolverParameters& p, double peak_
   return w;
 }
 
-// Builds the time-independent coefficients of one orientation from cell depth and porosity.
+// Builds the time-independent coefficients of one orientation from cell depth and porosity given
+// in the frame's layout (cell (c along, l line) at c * rows + l; boussinesq_sweep.hpp).
 StaticFrame build_frame(const std::vector<double>& depth, const std::vector<double>& porosity, int cols, int rows,
                         double spacing_m, const SolverParameters& p, double peak_w) {
   StaticFrame frame;
@@ -62,30 +63,34 @@ StaticFrame build_frame(const std::vector<double>& depth, const std::vector<doub
   for (std::size_t i = 0; i < depth.size(); ++i)
     frame.inverse_porosity[i] = porosity[i] >= detail::kWallPorosity ? 1.0 / std::min(porosity[i], 1.0) : 0.0;
   const std::size_t faces = static_cast<std::size_t>(cols + 1) * rows;
-  for (auto* v : {&frame.face_depth_m, &frame.face_porosity, &frame.face_dispersion_weight, &frame.face_slope_along,
-                  &frame.face_slope_across, &frame.face_porous_laminar_s, &frame.face_porous_turbulent_m})
+  for (auto* v : {&frame.face_depth_m, &frame.face_dispersion_weight, &frame.face_slope_along, &frame.face_slope_across,
+                  &frame.face_porous_laminar_s, &frame.face_porous_turbulent_m})
     v->assign(faces, 0.0);
-  frame.face_open.assign(faces, 0);
+  frame.face_porosity.assign(faces, 1.0);
+  frame.face_inverse_porosity.assign(faces, 1.0);
+  frame.face_open.assign(faces, 0.0);
   // Porous resistance coefficients of seed 003 eq. (2) in the Van Gent (1995) form.
   constexpr double kWaterKinematicViscosity_m2_s = 1.0e-6;
   const double D = p.porous.stone_diameter_m;
-  auto slope_across = [&](int c, int r) {
-    const int rn = std::min(r + 1, rows - 1), rs = std::max(r - 1, 0);
-    return rn == rs ? 0.0 : (depth[index(c, rn, cols)] - depth[index(c, rs, cols)]) / ((rn - rs) * spacing_m);
+  auto cell = [rows](int c, int l) { return static_cast<std::size_t>(c) * rows + l; };
+  auto slope_across = [&](int c, int l) {
+    const int ln = std::min(l + 1, rows - 1), ls = std::max(l - 1, 0);
+    return ln == ls ? 0.0 : (depth[cell(c, ln)] - depth[cell(c, ls)]) / ((ln - ls) * spacing_m);
   };
-  for (int r = 0; r < rows; ++r)
-    for (int f = 1; f < cols; ++f) {
-      const std::size_t face = static_cast<std::size_t>(r) * (cols + 1) + f;
-      const std::size_t L = index(f - 1, r, cols), R = index(f, r, cols);
+  for (int f = 1; f < cols; ++f)
+    for (int l = 0; l < rows; ++l) {
+      const std::size_t face = static_cast<std::size_t>(f) * rows + l;
+      const std::size_t L = cell(f - 1, l), R = cell(f, l);
       const bool open = frame.inverse_porosity[L] > 0.0 && frame.inverse_porosity[R] > 0.0;
-      frame.face_open[face] = open;
+      frame.face_open[face] = open ? 1.0 : 0.0;
       const double n = open ? 0.5 * (std::min(porosity[L], 1.0) + std::min(porosity[R], 1.0)) : 1.0;
       const double d = 0.5 * (depth[L] + depth[R]);
       frame.face_depth_m[face] = d;
       frame.face_porosity[face] = n;
+      frame.face_inverse_porosity[face] = 1.0 / n;
       frame.face_dispersion_weight[face] = dispersion_weight(d, p, peak_w);
       frame.face_slope_along[face] = std::clamp((depth[R] - depth[L]) / spacing_m, -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
-      frame.face_slope_across[face] = std::clamp(0.5 * (slope_across(f - 1, r) + slope_across(f, r)),
+      frame.face_slope_across[face] = std::clamp(0.5 * (slope_across(f - 1, l) + slope_across(f, l)),
                                                  -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
       if (n < 1.0 && D > 0.0) {
         const double n3 = n * n * n;
@@ -122,31 +127,39 @@ struct BoussinesqSolver::Implementation {
   long step_count = 0;
   std::uint64_t fingerprint = 0;
 
+  // frame_x: the x sweep's layout (transposed, columns slow); frame_y: the natural layout.
   StaticFrame frame_x, frame_y;
   detail::SweepConstants constants;
   std::unique_ptr<detail::SourceFunction> source;
 
-  // State (x orientation): eta at t^n and t^{n-1}, fluxes and their last increments, breaking.
-  std::vector<double> eta, eta_previous, flux_x, flux_y, flux_x_increment, flux_y_increment;
+  // State. eta, Q and the cell fields in the natural layout (row-major, index r * nx + c);
+  // P in the x sweep's layout (index f * ny + r); eta^{n-1} transposed (only the x sweep uses it).
+  std::vector<double> eta, eta_previous_t, flux_x, flux_y, flux_x_increment, flux_y_increment;
   std::vector<double> eddy_viscosity, breaking_start_s, breaking_strength;
-  // Work arrays.
-  std::vector<double> eta_base, eta_across, normal_across, tangential_half, tangential_rate, eta_star, flux_x_new;
-  std::vector<std::uint8_t> dispersive, dispersive_t;
-  std::vector<double> t_eta_old, t_eta_base, t_eta_across, t_normal_old, t_normal_across, t_normal_guess,
-      t_tangential_half, t_tangential_rate, t_eddy, t_eta_new, t_normal_new, eta_next, flux_y_new;
+  // Work arrays (suffix _t: x sweep layout).
+  std::vector<double> eta_t, eta_base_t, eta_across_t, eta_star_t, flux_x_across, flux_x_new, flux_y_t, flux_y_increment_t,
+      tangential_half_t, tangential_rate_t, eddy_t;
+  std::vector<double> eta_star, eta_across, flux_y_across, flux_x_half, flux_x_rate, eta_next, flux_y_new;
+  std::vector<double> dispersive, dispersive_t;
   std::vector<double> sponge_cell, sponge_face_x, sponge_face_y;  // damping factor per step (1 = none)
   tbb::enumerable_thread_specific<SweepScratch> scratch;
   // Output rasters.
   Raster<float> eta_output, breaking_output;
 
+  std::size_t px(int f, int r) const { return static_cast<std::size_t>(f) * ny + r; }  // P face west of cell (f, r)
+  std::size_t qy(int c, int k) const { return static_cast<std::size_t>(k) * nx + c; }  // Q face south of cell (c, k)
+
   void sweep(const StaticFrame& frame, const detail::SweepInput& input, const detail::SweepOutput& output) {
-    const int faces = frame.cols + 1;
-    tbb::parallel_for(tbb::blocked_range<int>(0, frame.rows, 8), [&](const tbb::blocked_range<int>& range) {
+    const int blocks = (frame.rows + detail::kBlockLines - 1) / detail::kBlockLines;
+    tbb::parallel_for(0, blocks, [&](int block) {
       SweepScratch& s = scratch.local();
-      if (static_cast<int>(s.lower.size()) != faces) s.resize(std::max(faces, static_cast<int>(s.lower.size())));
-      for (int r = range.begin(); r < range.end(); ++r) detail::sweep_line(frame, constants, input, output, r, s);
+      const std::size_t needed = static_cast<std::size_t>(frame.cols + 5) * detail::kBlockLines;
+      if (s.lower.size() < needed) s.resize(frame.cols);
+      const int begin = block * detail::kBlockLines;
+      detail::sweep_lines(frame, constants, input, output, begin, std::min(frame.rows, begin + detail::kBlockLines), s);
     });
   }
+  void mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask);
   void step();
   void repair_negative_depths();
   void apply_sponges();
@@ -207,11 +220,11 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   double peak_w = 0.0, peak_a = 0.0;
   for (const WaveComponent& c : wave_maker.sea_state.components)
     if (c.amplitude_m > peak_a) { peak_a = c.amplitude_m; peak_w = c.angular_frequency_rad_s; }
-  s.frame_x = build_frame(depth, porosity, s.nx, s.ny, s.dx, parameters, peak_w);
   std::vector<double> depth_t(cells), porosity_t(cells);
   detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
   detail::transpose(porosity.data(), porosity_t.data(), s.nx, s.ny);
-  s.frame_y = build_frame(depth_t, porosity_t, s.ny, s.nx, s.dx, parameters, peak_w);
+  s.frame_x = build_frame(depth_t, porosity_t, s.nx, s.ny, s.dx, parameters, peak_w);
+  s.frame_y = build_frame(depth, porosity, s.ny, s.nx, s.dx, parameters, peak_w);
 
   s.constants = {s.dt, parameters.dispersion_coefficient, parameters.dry_depth_m, parameters.chezy_coefficient,
                  parameters.nonlinear_iterations};
@@ -253,34 +266,31 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
         s.eta[i] = profile(along_x ? geometry.cell_centre_x_m(col) : geometry.cell_centre_y_m(r));
       }
     if (along_x) {
-      for (int r = 0; r < s.ny; ++r)
-        for (int f = 1; f < s.nx; ++f)
-          if (s.frame_x.face_open[static_cast<std::size_t>(r) * (s.nx + 1) + f] && s.frame_x.face_depth_m[static_cast<std::size_t>(r) * (s.nx + 1) + f] > 0.0)
-            s.flux_x[static_cast<std::size_t>(r) * (s.nx + 1) + f] = sign * c * profile(geometry.origin_x_m + f * s.dx);
+      for (int f = 1; f < s.nx; ++f)
+        for (int r = 0; r < s.ny; ++r)
+          if (s.frame_x.face_open[s.px(f, r)] && s.frame_x.face_depth_m[s.px(f, r)] > 0.0)
+            s.flux_x[s.px(f, r)] = sign * c * profile(geometry.origin_x_m + f * s.dx);
     } else {
-      for (int fr = 1; fr < s.ny; ++fr)
-        for (int col = 0; col < s.nx; ++col) {
-          const std::size_t face_t = static_cast<std::size_t>(col) * (s.ny + 1) + fr;  // y-frame normal face
-          if (s.frame_y.face_open[face_t] && s.frame_y.face_depth_m[face_t] > 0.0)
-            s.flux_y[static_cast<std::size_t>(fr) * s.nx + col] = sign * c * profile(geometry.origin_y_m + fr * s.dx);
-        }
+      for (int k = 1; k < s.ny; ++k)
+        for (int col = 0; col < s.nx; ++col)
+          if (s.frame_y.face_open[s.qy(col, k)] && s.frame_y.face_depth_m[s.qy(col, k)] > 0.0)
+            s.flux_y[s.qy(col, k)] = sign * c * profile(geometry.origin_y_m + k * s.dx);
     }
   }
-  s.eta_previous = s.eta;
+  s.eta_previous_t.assign(cells, 0.0);
+  detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
   s.flux_x_increment.assign(faces_x, 0.0);
   s.flux_y_increment.assign(faces_y, 0.0);
   s.eddy_viscosity.assign(cells, 0.0);
   s.breaking_start_s.assign(cells, -1.0);
   s.breaking_strength.assign(cells, 0.0);
-  for (auto* v : {&s.eta_base, &s.eta_across, &s.eta_star, &s.eta_next, &s.t_eta_old, &s.t_eta_base, &s.t_eta_across,
-                  &s.t_eddy, &s.t_eta_new})
+  for (auto* v : {&s.eta_t, &s.eta_base_t, &s.eta_across_t, &s.eta_star_t, &s.eddy_t, &s.eta_star, &s.eta_across, &s.eta_next})
     v->assign(cells, 0.0);
-  for (auto* v : {&s.normal_across, &s.flux_x_new, &s.t_tangential_half, &s.t_tangential_rate}) v->assign(faces_x, 0.0);
-  for (auto* v : {&s.tangential_half, &s.tangential_rate, &s.t_normal_old, &s.t_normal_across, &s.t_normal_guess,
-                  &s.t_normal_new, &s.flux_y_new})
+  for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate}) v->assign(faces_x, 0.0);
+  for (auto* v : {&s.flux_y_t, &s.flux_y_increment_t, &s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across, &s.flux_y_new})
     v->assign(faces_y, 0.0);
-  s.dispersive.assign(cells, 0);
-  s.dispersive_t.assign(cells, 0);
+  s.dispersive.assign(cells, 0.0);
+  s.dispersive_t.assign(cells, 0.0);
 
   // Sponges (Larsen & Dancy 1983 in spirit): damping rate sigma = sigma_max r^2, r = 0 at the inner
   // edge and 1 at the boundary, sigma_max = 8 sqrt(g d) / width so a wave crossing the layer
@@ -309,14 +319,12 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
       }
     s.sponge_face_x.assign(faces_x, 1.0);
     s.sponge_face_y.assign(faces_y, 1.0);
-    for (int r = 0; r < s.ny; ++r)
-      for (int f = 1; f < s.nx; ++f)
-        s.sponge_face_x[static_cast<std::size_t>(r) * (s.nx + 1) + f] =
-            1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(f - 1, r, s.nx)] + s.sponge_cell[index(f, r, s.nx)]));
-    for (int fr = 1; fr < s.ny; ++fr)
+    for (int f = 1; f < s.nx; ++f)
+      for (int r = 0; r < s.ny; ++r)
+        s.sponge_face_x[s.px(f, r)] = 1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(f - 1, r, s.nx)] + s.sponge_cell[index(f, r, s.nx)]));
+    for (int k = 1; k < s.ny; ++k)
       for (int c = 0; c < s.nx; ++c)
-        s.sponge_face_y[static_cast<std::size_t>(fr) * s.nx + c] =
-            1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(c, fr - 1, s.nx)] + s.sponge_cell[index(c, fr, s.nx)]));
+        s.sponge_face_y[s.qy(c, k)] = 1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(c, k - 1, s.nx)] + s.sponge_cell[index(c, k, s.nx)]));
     for (double& sigma : s.sponge_cell) sigma = 1.0 / (1.0 + s.dt * sigma);
   }
 
@@ -335,73 +343,72 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
 
 BoussinesqSolver::~BoussinesqSolver() = default;
 
+void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask) {
+  // The dispersive terms apply where the cell and its 4 neighbours are wet (docs/solver.md).
+  const int cols = frame.cols, rows = frame.rows;
+  const double dry = parameters.dry_depth_m;
+  tbb::parallel_for(0, cols, [&](int c) {
+    auto wet = [&](int cc, int l) {
+      cc = std::clamp(cc, 0, cols - 1);
+      l = std::clamp(l, 0, rows - 1);
+      const std::size_t i = static_cast<std::size_t>(cc) * rows + l;
+      return frame.inverse_porosity[i] > 0.0 && frame.depth_m[i] + eta_frame[i] > dry;
+    };
+    for (int l = 0; l < rows; ++l)
+      mask[static_cast<std::size_t>(c) * rows + l] = wet(c, l) && wet(c - 1, l) && wet(c + 1, l) && wet(c, l - 1) && wet(c, l + 1) ? 1.0 : 0.0;
+  });
+}
+
 void BoussinesqSolver::Implementation::step() {
   const std::size_t cells = static_cast<std::size_t>(nx) * ny;
-  const double dry = parameters.dry_depth_m;
-  const std::vector<double>& depth = frame_x.depth_m;
-
-  // 1. Wet cells and the cells where the dispersive terms apply (the cell and its 4 neighbours wet).
-  tbb::parallel_for(tbb::blocked_range<int>(0, ny, 16), [&](const tbb::blocked_range<int>& range) {
-    auto wet = [&](int c, int r) {
-      c = std::clamp(c, 0, nx - 1);
-      r = std::clamp(r, 0, ny - 1);
-      const std::size_t i = index(c, r, nx);
-      return frame_x.inverse_porosity[i] > 0.0 && depth[i] + eta[i] > dry;
-    };
-    for (int r = range.begin(); r < range.end(); ++r)
-      for (int c = 0; c < nx; ++c)
-        dispersive[index(c, r, nx)] = wet(c, r) && wet(c - 1, r) && wet(c + 1, r) && wet(c, r - 1) && wet(c, r + 1);
-  });
-
-  // 2. x sweep inputs. E = eta^n - dt/(n dx) (dP^n/dx + dQ^n/dy) dx + dt S   (seed 003 eq. 1)
   const double ratio = dt / dx;
-  tbb::parallel_for(tbb::blocked_range<int>(0, ny, 16), [&](const tbb::blocked_range<int>& range) {
-    for (int r = range.begin(); r < range.end(); ++r)
-      for (int c = 0; c < nx; ++c) {
-        const std::size_t i = index(c, r, nx);
-        const std::size_t fx = static_cast<std::size_t>(r) * (nx + 1) + c;
-        const std::size_t fy = static_cast<std::size_t>(r) * nx + c;
-        eta_base[i] = eta[i] - ratio * frame_x.inverse_porosity[i] *
-                                   (flux_x[fx + 1] - flux_x[fx] + flux_y[fy + static_cast<std::size_t>(nx)] - flux_y[fy]);
-        eta_across[i] = eta[i] + 0.5 * (eta[i] - eta_previous[i]);
-      }
+
+  // 1. x sweep (layout: columns slow, rows fast). E = eta^n - dt/(n dx) (dP^n + dQ^n) + dt S  (seed 003 eq. 1)
+  detail::transpose(eta.data(), eta_t.data(), nx, ny);
+  detail::transpose(flux_y.data(), flux_y_t.data(), nx, ny + 1);
+  detail::transpose(flux_y_increment.data(), flux_y_increment_t.data(), nx, ny + 1);
+  detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
+  mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
+  tbb::parallel_for(0, nx, [&](int c) {
+    const std::size_t t0 = static_cast<std::size_t>(c) * (ny + 1);
+    for (int r = 0; r < ny; ++r) {
+      const std::size_t i = static_cast<std::size_t>(c) * ny + r;
+      eta_base_t[i] = eta_t[i] - ratio * frame_x.inverse_porosity[i] *
+                                     (flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y_t[t0 + r + 1] - flux_y_t[t0 + r]);
+      eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]);
+    }
+    for (int k = 0; k <= ny; ++k) {
+      tangential_half_t[t0 + k] = flux_y_t[t0 + k] + 0.5 * flux_y_increment_t[t0 + k];
+      tangential_rate_t[t0 + k] = flux_y_increment_t[t0 + k] / dt;
+    }
   });
-  source->add(time_s + 0.5 * dt, dt, eta_base.data());
-  for (std::size_t f = 0; f < flux_x.size(); ++f) normal_across[f] = flux_x[f] + 0.5 * flux_x_increment[f];
-  for (std::size_t f = 0; f < flux_y.size(); ++f) {
-    tangential_half[f] = flux_y[f] + 0.5 * flux_y_increment[f];
-    tangential_rate[f] = flux_y_increment[f] / dt;
-  }
+  source->add(time_s + 0.5 * dt, dt, eta_base_t.data(), static_cast<std::size_t>(ny), 1);
+  for (std::size_t f = 0; f < flux_x.size(); ++f) flux_x_across[f] = flux_x[f] + 0.5 * flux_x_increment[f];
   sweep(frame_x,
-        {eta.data(), eta_base.data(), eta_across.data(), flux_x.data(), normal_across.data(), flux_x_increment.data(),
-         tangential_half.data(), tangential_rate.data(), eddy_viscosity.data(), dispersive.data()},
-        {eta_star.data(), flux_x_new.data()});
+        {eta_t.data(), eta_base_t.data(), eta_across_t.data(), flux_x.data(), flux_x_across.data(), flux_x_increment.data(),
+         tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data()},
+        {eta_star_t.data(), flux_x_new.data()});
 
-  // 3. y sweep on transposed data: E = eta*, P at t^{n+1/2} and dP/dt now known exactly.
+  // 2. y sweep in the natural layout: E = eta*, P at t^{n+1/2} and dP/dt now known exactly.
+  detail::transpose(eta_star_t.data(), eta_star.data(), ny, nx);
+  for (std::size_t f = 0; f < flux_x.size(); ++f) {
+    flux_x_across[f] = 0.5 * (flux_x[f] + flux_x_new[f]);  // reused: P at t^{n+1/2}
+    flux_x_rate[f] = (flux_x_new[f] - flux_x[f]) / dt;
+  }
+  detail::transpose(flux_x_across.data(), flux_x_half.data(), ny, nx + 1);
+  detail::transpose(flux_x_rate.data(), flux_x_across.data(), ny, nx + 1);  // reused: dP/dt, natural layout
   for (std::size_t i = 0; i < cells; ++i) eta_across[i] = 0.5 * (eta[i] + eta_star[i]);
-  for (std::size_t f = 0; f < flux_x.size(); ++f) normal_across[f] = 0.5 * (flux_x[f] + flux_x_new[f]);  // reused: P at t^{n+1/2}
-  detail::transpose(eta.data(), t_eta_old.data(), nx, ny);
-  detail::transpose(eta_star.data(), t_eta_base.data(), nx, ny);
-  detail::transpose(eta_across.data(), t_eta_across.data(), nx, ny);
-  detail::transpose(flux_y.data(), t_normal_old.data(), nx, ny + 1);
-  detail::transpose(tangential_half.data(), t_normal_across.data(), nx, ny + 1);
-  detail::transpose(flux_y_increment.data(), t_normal_guess.data(), nx, ny + 1);
-  detail::transpose(normal_across.data(), t_tangential_half.data(), nx + 1, ny);
-  for (std::size_t f = 0; f < flux_x.size(); ++f) normal_across[f] = (flux_x_new[f] - flux_x[f]) / dt;  // dP/dt
-  detail::transpose(normal_across.data(), t_tangential_rate.data(), nx + 1, ny);
-  detail::transpose(eddy_viscosity.data(), t_eddy.data(), nx, ny);
-  detail::transpose(dispersive.data(), dispersive_t.data(), nx, ny);
+  for (std::size_t f = 0; f < flux_y.size(); ++f) flux_y_across[f] = flux_y[f] + 0.5 * flux_y_increment[f];
+  mark_dispersive(frame_y, eta.data(), dispersive.data());
   sweep(frame_y,
-        {t_eta_old.data(), t_eta_base.data(), t_eta_across.data(), t_normal_old.data(), t_normal_across.data(),
-         t_normal_guess.data(), t_tangential_half.data(), t_tangential_rate.data(), t_eddy.data(), dispersive_t.data()},
-        {t_eta_new.data(), t_normal_new.data()});
-  detail::transpose(t_eta_new.data(), eta_next.data(), ny, nx);
-  detail::transpose(t_normal_new.data(), flux_y_new.data(), ny + 1, nx);
+        {eta.data(), eta_star.data(), eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_increment.data(),
+         flux_x_half.data(), flux_x_across.data(), eddy_viscosity.data(), dispersive.data()},
+        {eta_next.data(), flux_y_new.data()});
 
-  // 4. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
+  // 3. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
   repair_negative_depths();
 
-  // 5. Advance the state.
+  // 4. Advance the state.
   for (std::size_t f = 0; f < flux_x.size(); ++f) {
     flux_x_increment[f] = flux_x_new[f] - flux_x[f];
     flux_x[f] = flux_x_new[f];
@@ -410,10 +417,11 @@ void BoussinesqSolver::Implementation::step() {
     flux_y_increment[f] = flux_y_new[f] - flux_y[f];
     flux_y[f] = flux_y_new[f];
   }
-  eta_previous.swap(eta);
-  eta.swap(eta_next);  // eta = eta^{n+1}, eta_previous = eta^n
+  eta_previous_t.swap(eta_t);  // eta^n, transposed
+  eta_star.swap(eta);          // eta_star now holds eta^n (natural), for the breaking model
+  eta.swap(eta_next);          // eta = eta^{n+1}
   apply_sponges();
-  update_breaking(eta_previous);
+  update_breaking(eta_star);
   time_s += dt;
   ++step_count;
   publish();
@@ -424,11 +432,11 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
   // end below its bed, its outgoing fluxes are scaled down so it ends exactly dry; the neighbours
   // that lose that inflow are revisited. Serial over the few shoreline cells, in a fixed order,
   // so the result does not depend on the thread count. Mass is conserved exactly.
-  const double* depth = frame_x.depth_m.data();
+  const double* depth = frame_y.depth_m.data();
   std::vector<std::size_t> pending;
   const std::size_t cells = static_cast<std::size_t>(nx) * ny;
   for (std::size_t i = 0; i < cells; ++i)
-    if (frame_x.inverse_porosity[i] > 0.0 && depth[i] + eta_next[i] < 0.0) pending.push_back(i);
+    if (frame_y.inverse_porosity[i] > 0.0 && depth[i] + eta_next[i] < 0.0) pending.push_back(i);
   const double ratio = dt / dx;
   for (int pass = 0; pass < 20 && !pending.empty(); ++pass) {
     std::vector<std::size_t> next;
@@ -438,19 +446,19 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
       const int c = static_cast<int>(i % nx), r = static_cast<int>(i / nx);
       // Faces: west, east (x), south, north (y); outgoing sign for each.
       struct FaceRef { double* new_flux; const double* old_flux; double outward; std::ptrdiff_t neighbour; };
-      const std::size_t fw = static_cast<std::size_t>(r) * (nx + 1) + c, fs = static_cast<std::size_t>(r) * nx + c;
+      const std::size_t fw = px(c, r), fe = px(c + 1, r), fs = qy(c, r), fn = qy(c, r + 1);
       FaceRef faces[4] = {
           {&flux_x_new[fw], &flux_x[fw], -1.0, c > 0 ? static_cast<std::ptrdiff_t>(i) - 1 : -1},
-          {&flux_x_new[fw + 1], &flux_x[fw + 1], 1.0, c + 1 < nx ? static_cast<std::ptrdiff_t>(i) + 1 : -1},
+          {&flux_x_new[fe], &flux_x[fe], 1.0, c + 1 < nx ? static_cast<std::ptrdiff_t>(i) + 1 : -1},
           {&flux_y_new[fs], &flux_y[fs], -1.0, r > 0 ? static_cast<std::ptrdiff_t>(i) - nx : -1},
-          {&flux_y_new[fs + nx], &flux_y[fs + nx], 1.0, r + 1 < ny ? static_cast<std::ptrdiff_t>(i) + nx : -1}};
+          {&flux_y_new[fn], &flux_y[fn], 1.0, r + 1 < ny ? static_cast<std::ptrdiff_t>(i) + nx : -1}};
       double outflow = 0.0;  // metres of water level over the step (times n)
       for (const FaceRef& face : faces) {
         const double mass_flux = 0.5 * (*face.new_flux + *face.old_flux) * face.outward;
         if (mass_flux > 0.0) outflow += mass_flux * ratio;
       }
       if (outflow <= 0.0) { eta_next[i] = -depth[i]; continue; }  // round-off only
-      const double n = 1.0 / frame_x.inverse_porosity[i];
+      const double n = 1.0 / frame_y.inverse_porosity[i];
       const double keep = std::clamp(1.0 + n * h / outflow, 0.0, 1.0);  // fraction of the outflow kept
       for (FaceRef& face : faces) {
         const double mass_flux = 0.5 * (*face.new_flux + *face.old_flux) * face.outward;
@@ -459,11 +467,11 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
         *face.new_flux -= 2.0 * removed * face.outward;
         if (face.neighbour >= 0) {
           const std::size_t j = static_cast<std::size_t>(face.neighbour);
-          eta_next[j] -= removed * ratio * frame_x.inverse_porosity[j];
+          eta_next[j] -= removed * ratio * frame_y.inverse_porosity[j];
           if (depth[j] + eta_next[j] < 0.0) next.push_back(j);
         }
       }
-      eta_next[i] += (1.0 - keep) * outflow * frame_x.inverse_porosity[i];
+      eta_next[i] += (1.0 - keep) * outflow * frame_y.inverse_porosity[i];
     }
     std::sort(next.begin(), next.end());
     next.erase(std::unique(next.begin(), next.end()), next.end());
@@ -473,7 +481,7 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
 
 void BoussinesqSolver::Implementation::apply_sponges() {
   if (sponge_cell.empty()) return;
-  const double* depth = frame_x.depth_m.data();
+  const double* depth = frame_y.depth_m.data();
   for (std::size_t i = 0; i < eta.size(); ++i)
     if (depth[i] > 0.0 && depth[i] + eta[i] > parameters.dry_depth_m) eta[i] *= sponge_cell[i];
   for (std::size_t f = 0; f < flux_x.size(); ++f) flux_x[f] *= sponge_face_x[f];
@@ -487,13 +495,13 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
   // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
   // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
   // nu is capped at 0.2 dx^2/dt so the explicit cross terms of eq. (6)-(7) stay stable.
-  const double* depth = frame_x.depth_m.data();
+  const double* depth = frame_y.depth_m.data();
   const double g = kGravity_m_s2, delta2 = b.mixing_length_coefficient * b.mixing_length_coefficient;
   const double nu_max = 0.2 * dx * dx / dt, now = time_s + dt;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, eta.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const double h = depth[i] + eta[i];
-      if (depth[i] <= 0.0 || h <= parameters.dry_depth_m || frame_x.inverse_porosity[i] == 0.0) {
+      if (depth[i] <= 0.0 || h <= parameters.dry_depth_m || frame_y.inverse_porosity[i] == 0.0) {
         eddy_viscosity[i] = 0.0; breaking_strength[i] = 0.0; breaking_start_s[i] = -1.0;
         continue;
       }
@@ -525,10 +533,10 @@ void BoussinesqSolver::set_surface_elevation(const std::function<double(double, 
   for (int r = 0; r < s.ny; ++r)
     for (int c = 0; c < s.nx; ++c) {
       const std::size_t i = index(c, r, s.nx);
-      if (s.frame_x.depth_m[i] > 0.0 && s.frame_x.inverse_porosity[i] > 0.0)
+      if (s.frame_y.depth_m[i] > 0.0 && s.frame_y.inverse_porosity[i] > 0.0)
         s.eta[i] = surface_elevation_m(s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r));
     }
-  s.eta_previous = s.eta;
+  detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
   for (auto* v : {&s.flux_x, &s.flux_y, &s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
   s.publish();
 }
@@ -547,8 +555,7 @@ void BoussinesqSolver::cell_centred_fluxes(Raster<float>& flux_x_m2_s, Raster<fl
   if (flux_y_m2_s.columns() != s.nx || flux_y_m2_s.rows() != s.ny) flux_y_m2_s = Raster<float>(s.nx, s.ny);
   for (int r = 0; r < s.ny; ++r)
     for (int c = 0; c < s.nx; ++c) {
-      const std::size_t fx = static_cast<std::size_t>(r) * (s.nx + 1) + c;
-      flux_x_m2_s(c, r) = static_cast<float>(0.5 * (s.flux_x[fx] + s.flux_x[fx + 1]));
+      flux_x_m2_s(c, r) = static_cast<float>(0.5 * (s.flux_x[s.px(c, r)] + s.flux_x[s.px(c + 1, r)]));
       flux_y_m2_s(c, r) = static_cast<float>(0.5 * (s.flux_y[index(c, r, s.nx)] + s.flux_y[index(c, r + 1, s.nx)]));
     }
 }
@@ -570,7 +577,7 @@ std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {
   for (int r = 0; r < s.ny; ++r)
     for (int c = 0; c < s.nx; ++c) {
       const std::size_t i = index(c, r, s.nx);
-      const double d = s.frame_x.depth_m[i], eta = s.eta[i];
+      const double d = s.frame_y.depth_m[i], eta = s.eta[i];
       InstabilityReport report{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r), d, eta, {}};
       if (!std::isfinite(eta)) {
         report.what = "surface elevation is not a number";
@@ -586,15 +593,15 @@ std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {
     }
   for (std::size_t f = 0; f < s.flux_x.size(); ++f)
     if (!std::isfinite(s.flux_x[f])) {
-      const int r = static_cast<int>(f / (s.nx + 1)), c = std::min(static_cast<int>(f % (s.nx + 1)), s.nx - 1);
+      const int r = static_cast<int>(f % s.ny), c = std::min(static_cast<int>(f / s.ny), s.nx - 1);
       return InstabilityReport{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r),
-                               s.frame_x.depth_m[index(c, r, s.nx)], s.flux_x[f], "flux P is not a number"};
+                               s.frame_y.depth_m[index(c, r, s.nx)], s.flux_x[f], "flux P is not a number"};
     }
   for (std::size_t f = 0; f < s.flux_y.size(); ++f)
     if (!std::isfinite(s.flux_y[f])) {
       const int r = std::min(static_cast<int>(f / s.nx), s.ny - 1), c = static_cast<int>(f % s.nx);
       return InstabilityReport{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r),
-                               s.frame_x.depth_m[index(c, r, s.nx)], s.flux_y[f], "flux Q is not a number"};
+                               s.frame_y.depth_m[index(c, r, s.nx)], s.flux_y[f], "flux Q is not a number"};
     }
   return std::nullopt;
 }
@@ -604,13 +611,13 @@ double BoussinesqSolver::water_volume_m3() const {
   const Implementation& s = *implementation_;
   double volume = 0.0;
   for (std::size_t i = 0; i < s.eta.size(); ++i)
-    if (s.frame_x.inverse_porosity[i] > 0.0) volume += (s.frame_x.depth_m[i] + s.eta[i]) / s.frame_x.inverse_porosity[i];
+    if (s.frame_y.inverse_porosity[i] > 0.0) volume += (s.frame_y.depth_m[i] + s.eta[i]) / s.frame_y.inverse_porosity[i];
   return volume * s.dx * s.dx;
 }
 
 void BoussinesqSolver::save_state(std::ostream& out) const {
   const Implementation& s = *implementation_;
-  const std::vector<const std::vector<double>*> arrays = {&s.eta, &s.eta_previous, &s.flux_x, &s.flux_y, &s.flux_x_increment,
+  const std::vector<const std::vector<double>*> arrays = {&s.eta, &s.eta_previous_t, &s.flux_x, &s.flux_y, &s.flux_x_increment,
                                                           &s.flux_y_increment, &s.eddy_viscosity, &s.breaking_start_s,
                                                           &s.breaking_strength};
   write_pod(out, kStateMagic);
@@ -652,7 +659,7 @@ void BoussinesqSolver::load_state(std::istream& in) {
   read_pod(in, steps);
   std::uint64_t checksum = fnv1a(&time, sizeof time);
   checksum = fnv1a(&steps, sizeof steps, checksum);
-  const std::vector<std::vector<double>*> arrays = {&s.eta, &s.eta_previous, &s.flux_x, &s.flux_y, &s.flux_x_increment,
+  const std::vector<std::vector<double>*> arrays = {&s.eta, &s.eta_previous_t, &s.flux_x, &s.flux_y, &s.flux_x_increment,
                                                     &s.flux_y_increment, &s.eddy_viscosity, &s.breaking_start_s,
                                                     &s.breaking_strength};
   std::vector<std::vector<double>> loaded(arrays.size());

@@ -169,7 +169,7 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
     }
 }
 
-void SourceFunction::add(double time_s, double dt, double* eta_base) {
+void SourceFunction::add(double time_s, double dt, double* eta_base, std::size_t x_stride, std::size_t y_stride) {
   if (components_.empty()) return;
   const double r = ramp(time_s, ramp_time_s_);
   if (r == 0.0) return;
@@ -189,7 +189,8 @@ void SourceFunction::add(double time_s, double dt, double* eta_base) {
   for (int i = strip_begin_; i < strip_end_; ++i) {
     const double p = scale * profile_[static_cast<std::size_t>(i - strip_begin_)];
     for (int j = 0; j < tangential_count; ++j) {
-      const std::size_t cell = normal_is_x_ ? static_cast<std::size_t>(j) * cols_ + i : static_cast<std::size_t>(i) * cols_ + j;
+      const std::size_t cell = normal_is_x_ ? static_cast<std::size_t>(j) * y_stride + static_cast<std::size_t>(i) * x_stride
+                                            : static_cast<std::size_t>(i) * y_stride + static_cast<std::size_t>(j) * x_stride;
       if (water_[static_cast<std::size_t>(i - strip_begin_) * tangential_count + j])
         eta_base[cell] += p * line_[static_cast<std::size_t>(j)];
     }

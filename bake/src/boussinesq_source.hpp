@@ -20,8 +20,9 @@ class SourceFunction {
   SourceFunction(const WaveMaker& wave_maker, const GridGeometry& geometry, const std::vector<double>& depth_m,
                  double dispersion_coefficient);
   bool empty() const { return components_.empty(); }
-  /// eta_base[cell] += dt * S(x, y, time_s) for every cell of the source strip.
-  void add(double time_s, double dt, double* eta_base);
+  /// eta_base[cell] += dt * S(x, y, time_s) for every cell of the source strip; cell (column c,
+  /// row r) is eta_base[c * x_stride + r * y_stride].
+  void add(double time_s, double dt, double* eta_base, std::size_t x_stride, std::size_t y_stride);
   /// The components actually generated (after decomposition of a time series), for the record.
   std::size_t component_count() const { return components_.size(); }
 

@@ -6,249 +6,301 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "nearshore/bake/wave_component.hpp"
 
 namespace nearshore::bake::detail {
 
-void SweepScratch::resize(int faces) {
+void SweepScratch::resize(int cols) {
+  const std::size_t size = static_cast<std::size_t>(cols + 5) * kBlockLines;
   for (auto* v : {&lower, &diagonal, &upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
-                  &tangential_squared, &active})
-    v->assign(static_cast<std::size_t>(faces), 0.0);
+                  &tangential_squared, &active, &magnitude})
+    v->assign(size, 0.0);
 }
 
-namespace {
-
-// Solves lower[i] x[i-1] + diagonal[i] x[i] + upper[i] x[i+1] = right[i], i = 0..n-1, by the
-// double sweep (Thomas algorithm). The systems here are diagonally dominant (docs/solver.md), so
-// no pivoting is needed. Overwrites upper and right; the solution is written to x.
-void solve_tridiagonal(int n, const double* lower, const double* diagonal, double* upper, double* right, double* x) {
-  upper[0] /= diagonal[0];
-  right[0] /= diagonal[0];
-  for (int i = 1; i < n; ++i) {
-    const double inverse_pivot = 1.0 / (diagonal[i] - lower[i] * upper[i - 1]);
-    upper[i] *= inverse_pivot;
-    right[i] = (right[i] - lower[i] * right[i - 1]) * inverse_pivot;
-  }
-  x[n - 1] = right[n - 1];
-  for (int i = n - 2; i >= 0; --i) x[i] = right[i] - upper[i] * x[i + 1];
-}
-
-}  // namespace
-
-void sweep_line(const StaticFrame& frame, const SweepConstants& k, const SweepInput& in, const SweepOutput& out,
-                int r, SweepScratch& s) {
-  const int cols = frame.cols, rows = frame.rows, faces = cols + 1;
+void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepInput& in, const SweepOutput& out,
+                 const int lb, const int le, SweepScratch& s) {
+  constexpr int W = kBlockLines;
+  const int cols = frame.cols, rows = frame.rows, faces = cols + 1, n = le - lb;
+  const std::size_t stride = static_cast<std::size_t>(rows), tstride = static_cast<std::size_t>(rows) + 1;
   const double dx = frame.spacing_m, inv_dx = 1.0 / dx, inv_dx2 = inv_dx * inv_dx, inv_dx3 = inv_dx2 * inv_dx;
   const double dt = k.time_step_s, g = kGravity_m_s2;
   const double B = k.dispersion_coefficient, B3 = B + 1.0 / 3.0;
   const double dry = k.dry_depth_m;
   const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
-  const int r_north = std::min(r + 1, rows - 1), r_south = std::max(r - 1, 0);
-  const bool has_north = r + 1 < rows, has_south = r > 0;
 
-  const std::size_t cell0 = static_cast<std::size_t>(r) * cols;
-  const std::size_t face0 = static_cast<std::size_t>(r) * faces;
-  const double* depth = frame.depth_m.data() + cell0;
-  const double* inv_n = frame.inverse_porosity.data() + cell0;
-  const double* eta_old = in.eta_old + cell0;
-  const double* eta_base = in.eta_base + cell0;
-  const double* normal_old = in.normal_old + face0;
-  const double* nu = in.eddy_viscosity + cell0;
-  double* eta_new = out.eta_new + cell0;
-
-  auto cell = [cols](int c, int row) { return static_cast<std::size_t>(row) * cols + c; };
-  auto across_eta = [&](int c, int row) { return in.eta_across[cell(c, row)]; };
-  auto across_depth = [&](int c, int row) {
-    return std::max(frame.depth_m[cell(c, row)] + in.eta_across[cell(c, row)], dry);
-  };
-  auto across_normal = [&](int f, int row) { return in.normal_across[static_cast<std::size_t>(row) * faces + f]; };
-  auto tangential = [&](int c, int face_row) { return in.tangential_half[static_cast<std::size_t>(face_row) * cols + c]; };
-  auto tangential_rate = [&](int c, int face_row) { return in.tangential_rate[static_cast<std::size_t>(face_row) * cols + c]; };
+  const double* __restrict depth = frame.depth_m.data();
+  const double* __restrict inv_n = frame.inverse_porosity.data();
+  const double* __restrict eta_old = in.eta_old;
+  const double* __restrict eta_base = in.eta_base;
+  const double* __restrict eta_across = in.eta_across;
+  const double* __restrict normal_old = in.normal_old;
+  const double* __restrict normal_across = in.normal_across;
+  const double* __restrict tangential = in.tangential_half;
+  const double* __restrict tangential_rate = in.tangential_rate;
+  const double* __restrict nu = in.eddy_viscosity;
+  const double* __restrict dispersive = in.dispersive;
+  const double* __restrict face_open = frame.face_open.data();
+  const double* __restrict face_porosity = frame.face_porosity.data();
+  const double* __restrict face_inverse_porosity = frame.face_inverse_porosity.data();
+  const double* __restrict face_depth = frame.face_depth_m.data();
+  const double* __restrict face_weight = frame.face_dispersion_weight.data();
+  const double* __restrict face_slope_along = frame.face_slope_along.data();
+  const double* __restrict face_slope_across = frame.face_slope_across.data();
+  const double* __restrict face_laminar = frame.face_porous_laminar_s.data();
+  const double* __restrict face_turbulent = frame.face_porous_turbulent_m.data();
+  const double* __restrict normal_guess = in.normal_guess;
+  double* __restrict eta_new = out.eta_new;
+  double* __restrict normal_new = out.normal_new;
+  double* __restrict increment = s.increment.data();
+  double* __restrict active = s.active.data();
+  double* __restrict fixed_term = s.fixed_term.data();
+  double* __restrict tangential_squared = s.tangential_squared.data();
+  double* __restrict magnitude = s.magnitude.data();
+  double* __restrict eta_half = s.eta_half.data() + 2 * W;  // two ghost cells before and after the line
+  double* __restrict flux_half = s.flux_half.data();
+  double* __restrict cell_term = s.cell_term.data();
+  double* __restrict lower = s.lower.data();
+  double* __restrict diagonal = s.diagonal.data();
+  double* __restrict upper = s.upper.data();
+  double* __restrict right = s.right.data();
 
   // 1. Which faces carry flux this step (moving shoreline, docs/solver.md "Wet and dry"): a face
   // is active when it is open and the water above the higher of its two beds is deeper than
   // dry_depth_m (so water can run up onto a dry cell, and a lake at rest stays at rest).
-  std::vector<double>& increment = s.increment;
-  for (int f = 0; f < faces; ++f) {
-    const std::size_t face = face0 + f;
-    bool active = frame.face_open[face] != 0;
-    if (active) {
-      const int left = f - 1, right = f;
-      const double surface = std::max(eta_old[left], eta_old[right]);
-      const double bed = std::min(depth[left], depth[right]);
-      active = surface + bed > dry;
+  #pragma GCC ivdep
+  for (int j = 0; j < n; ++j)
+    for (int f : {0, cols}) {  // grid edges: walls
+      active[f * W + j] = 0.0;
+      increment[f * W + j] = -normal_old[f * stride + lb + j];
     }
-    // diagonal < 0 marks an inactive face for the assembly below; its flux goes to 0.
-    s.diagonal[f] = active ? 1.0 : -1.0;
-    increment[f] = active ? in.normal_guess[face0 + f] : -normal_old[f];
-  }
+  for (int f = 1; f < cols; ++f)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      const std::size_t face = f * stride + lb + j, L = face - stride, R = face;
+      const double wet = std::max(eta_old[L], eta_old[R]) + std::min(depth[L], depth[R]) > dry ? 1.0 : 0.0;
+      const double on = face_open[face] * wet;
+      active[f * W + j] = on;
+      const double guess = normal_guess[face], closed = -normal_old[face];
+      increment[f * W + j] = on != 0.0 ? guess : closed;
+    }
 
   // 2. The explicit terms built only from values ACROSS the lines (they do not change during the
   // iteration): cross convection (PQ/h)_y, the cross-derivative dispersive terms of Psi (eq. 4),
-  // and the cross part of the eddy-viscosity stress (eq. 6).
-  for (int f = 1; f < cols; ++f) {
-    s.fixed_term[f] = 0.0;
-    s.tangential_squared[f] = 0.0;
-    if (s.diagonal[f] < 0.0) continue;
-    const std::size_t face = face0 + f;
+  // and the cross part of the eddy-viscosity stress (eq. 6). Edges of the grid are walls: the
+  // tangential flux there is 0 and eta is mirrored (clamped neighbour index).
+  // The same face term serves the interior lines (neighbours l-1, l+1: contiguous, vectorised)
+  // and the two edge lines of the grid (clamped neighbours, scalar).
+  auto fixed_face = [&](int f, int j, int l, int ln, int ls, double north, double south) __attribute__((always_inline)) {
     const int L = f - 1, R = f;
-    const double n_f = frame.face_porosity[face], inv_n_f = 1.0 / n_f;
-    const double d = frame.face_depth_m[face];
-    // (PQ/h)_y at the face from the two corners north and south of it.
-    double corner_north = 0.0, corner_south = 0.0;
-    if (has_north) {
-      const double flux_t = 0.5 * (tangential(L, r + 1) + tangential(R, r + 1));
-      const double flux_n = 0.5 * (across_normal(f, r) + across_normal(f, r + 1));
-      const double h = 0.25 * (across_depth(L, r) + across_depth(R, r) + across_depth(L, r + 1) + across_depth(R, r + 1));
-      corner_north = flux_n * flux_t / h;
-    }
-    if (has_south) {
-      const double flux_t = 0.5 * (tangential(L, r) + tangential(R, r));
-      const double flux_n = 0.5 * (across_normal(f, r) + across_normal(f, r - 1));
-      const double h = 0.25 * (across_depth(L, r) + across_depth(R, r) + across_depth(L, r - 1) + across_depth(R, r - 1));
-      corner_south = flux_n * flux_t / h;
-    }
-    double term = -inv_n_f * (corner_north - corner_south) * inv_dx;
+      const std::size_t face = f * stride + l;
+      auto c_at = [stride](int c, int line) { return c * stride + line; };
+      auto t_at = [tstride](int c, int k2) { return c * tstride + k2; };
+      auto h_at = [&](int c, int line) { return std::max(depth[c_at(c, line)] + eta_across[c_at(c, line)], dry); };
+      const double n_f = face_porosity[face], inv_n_f = face_inverse_porosity[face];
+      const double d = face_depth[face];
+      // (PQ/h)_y at the face from the two corners north and south of it.
+      const double h_north = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ln) + h_at(R, ln));
+      const double h_south = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ls) + h_at(R, ls));
+      const double corner_north = north * 0.25 * (tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]) *
+                                  (normal_across[face] + normal_across[f * stride + ln]) / h_north;
+      const double corner_south = south * 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)]) *
+                                  (normal_across[face] + normal_across[f * stride + ls]) / h_south;
+      double term = -inv_n_f * (corner_north - corner_south) * inv_dx;
 
-    // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
-    //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
-    const double w = frame.face_dispersion_weight[face] * (in.dispersive[cell0 + L] & in.dispersive[cell0 + R]);
-    if (w > 0.0) {
-      auto eta_yy = [&](int c) { return (across_eta(c, r_north) - 2.0 * across_eta(c, r) + across_eta(c, r_south)) * inv_dx2; };
-      auto eta_y = [&](int c) { return (across_eta(c, r_north) - across_eta(c, r_south)) * 0.5 * inv_dx; };
-      auto flux_yt = [&](int c) { return (tangential_rate(c, r + 1) - tangential_rate(c, r)) * inv_dx; };
-      const double eta_yy_L = eta_yy(L), eta_yy_R = eta_yy(R);
+      // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
+      //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
+      const double w = face_weight[face] * (dispersive[c_at(L, l)] * dispersive[c_at(R, l)]);
+      const double eta_yy_L = (eta_across[c_at(L, ln)] - 2.0 * eta_across[c_at(L, l)] + eta_across[c_at(L, ls)]) * inv_dx2;
+      const double eta_yy_R = (eta_across[c_at(R, ln)] - 2.0 * eta_across[c_at(R, l)] + eta_across[c_at(R, ls)]) * inv_dx2;
+      const double eta_y_L = (eta_across[c_at(L, ln)] - eta_across[c_at(L, ls)]) * 0.5 * inv_dx;
+      const double eta_y_R = (eta_across[c_at(R, ln)] - eta_across[c_at(R, ls)]) * 0.5 * inv_dx;
+      const double flux_yt_L = (tangential_rate[t_at(L, l + 1)] - tangential_rate[t_at(L, l)]) * inv_dx;
+      const double flux_yt_R = (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(R, l)]) * inv_dx;
       const double eta_xyy = (eta_yy_R - eta_yy_L) * inv_dx;
       const double eta_yy_face = 0.5 * (eta_yy_L + eta_yy_R);
-      const double eta_xy = (eta_y(R) - eta_y(L)) * inv_dx;
-      const double flux_yt_L = flux_yt(L), flux_yt_R = flux_yt(R);
+      const double eta_xy = (eta_y_R - eta_y_L) * inv_dx;
       const double flux_xyt = (flux_yt_R - flux_yt_L) * inv_dx;
       const double flux_yt_face = 0.5 * (flux_yt_L + flux_yt_R);
-      const double flux_xt = 0.5 * ((tangential_rate(R, r) - tangential_rate(L, r)) +
-                                    (tangential_rate(R, r + 1) - tangential_rate(L, r + 1))) * inv_dx;
-      const double slope_along = frame.face_slope_along[face], slope_across = frame.face_slope_across[face];
+      const double flux_xt = 0.5 * ((tangential_rate[t_at(R, l)] - tangential_rate[t_at(L, l)]) +
+                                    (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(L, l + 1)])) * inv_dx;
+      const double slope_along = face_slope_along[face], slope_across = face_slope_across[face];
       const double nBgd = n_f * B * g * d;
       const double psi = -B3 * d * d * flux_xyt - nBgd * d * d * eta_xyy -
                          d * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
                          d * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
       term -= w * psi;
-    }
 
-    // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
-    const double nu_north = has_north ? 0.25 * (nu[L] + nu[R] + in.eddy_viscosity[cell(L, r + 1)] + in.eddy_viscosity[cell(R, r + 1)]) : 0.0;
-    const double nu_south = has_south ? 0.25 * (nu[L] + nu[R] + in.eddy_viscosity[cell(L, r - 1)] + in.eddy_viscosity[cell(R, r - 1)]) : 0.0;
-    if (nu_north > 0.0 || nu_south > 0.0) {
-      const double stress_north = has_north ? nu_north * ((across_normal(f, r + 1) - across_normal(f, r)) +
-                                                          (tangential(R, r + 1) - tangential(L, r + 1))) * inv_dx : 0.0;
-      const double stress_south = has_south ? nu_south * ((across_normal(f, r) - across_normal(f, r - 1)) +
-                                                          (tangential(R, r) - tangential(L, r))) * inv_dx : 0.0;
+      // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
+      const double nu_here = nu[c_at(L, l)] + nu[c_at(R, l)];
+      const double nu_north = north * 0.25 * (nu_here + nu[c_at(L, ln)] + nu[c_at(R, ln)]);
+      const double nu_south = south * 0.25 * (nu_here + nu[c_at(L, ls)] + nu[c_at(R, ls)]);
+      const double stress_north = nu_north * ((normal_across[f * stride + ln] - normal_across[face]) +
+                                              (tangential[t_at(R, l + 1)] - tangential[t_at(L, l + 1)])) * inv_dx;
+      const double stress_south = nu_south * ((normal_across[face] - normal_across[f * stride + ls]) +
+                                              (tangential[t_at(R, l)] - tangential[t_at(L, l)])) * inv_dx;
       term += inv_n_f * (stress_north - stress_south) * inv_dx;
-    }
-    s.fixed_term[f] = term;
-    const double flux_t = 0.25 * (tangential(L, r) + tangential(R, r) + tangential(L, r + 1) + tangential(R, r + 1));
-    s.tangential_squared[f] = flux_t * flux_t;
+      fixed_term[f * W + j] = term;
+      const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);
+      tangential_squared[f * W + j] = flux_t * flux_t;
+  };
+  const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
+  for (int f = 1; f < cols; ++f) {
+    #pragma GCC ivdep
+    for (int j = j_first; j < j_last; ++j) fixed_face(f, j, lb + j, lb + j + 1, lb + j - 1, 1.0, 1.0);
+    if (j_first == 1) fixed_face(f, 0, 0, std::min(1, rows - 1), 0, rows > 1 ? 1.0 : 0.0, 0.0);
+    if (j_last == n - 1 && !(j_first == 1 && n == 1))
+      fixed_face(f, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0), 0.0, rows > 1 ? 1.0 : 0.0);
   }
 
-  // 3. Iterate the time-centred terms that depend on this line's own unknowns.
+  // 3. Iterate the time-centred terms that depend on the lines' own unknowns.
   auto update_eta = [&]() {
     // seed 003 eq. (1): n (eta - E)/dt = -(1/2) d(increment)/dx  (the Crank-Nicolson half of the new flux)
     for (int c = 0; c < cols; ++c)
-      eta_new[c] = eta_base[c] - 0.5 * dt * inv_dx * inv_n[c] * (increment[c + 1] - increment[c]);
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const std::size_t i = c * stride + lb + j;
+        eta_new[i] = eta_base[i] - 0.5 * dt * inv_dx * inv_n[i] * (increment[(c + 1) * W + j] - increment[c * W + j]);
+      }
   };
-  double* saved_active = s.active.data();
-  for (int f = 0; f < faces; ++f) saved_active[f] = s.diagonal[f];
-
   const int iterations = std::max(1, k.iterations);
   for (int iteration = 0; iteration < iterations; ++iteration) {
     update_eta();
-    for (int c = 0; c < cols; ++c) s.eta_half[c] = 0.5 * (eta_old[c] + eta_new[c]);
-    for (int f = 0; f < faces; ++f) s.flux_half[f] = normal_old[f] + 0.5 * increment[f];
-    for (int c = 0; c < cols; ++c) {
-      const double flux_c = 0.5 * (s.flux_half[c] + s.flux_half[c + 1]);
-      const double h_c = std::max(depth[c] + s.eta_half[c], dry);
-      s.cell_term[c] = flux_c * flux_c / h_c;  // P^2/h at the cell centre
-    }
+    for (int c = 0; c < cols; ++c)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const std::size_t i = c * stride + lb + j;
+        eta_half[c * W + j] = 0.5 * (eta_old[i] + eta_new[i]);
+      }
     // Beyond the ends of the line the grid edge is a wall: mirror ghost cells (-1 -> 0, -2 -> 1).
-    auto eta_half_at = [&](int c) {
-      if (c < 0) c = std::min(-1 - c, cols - 1);
-      if (c >= cols) c = std::max(2 * cols - 1 - c, 0);
-      return s.eta_half[c];
-    };
-
-    s.lower[0] = 0.0; s.upper[0] = 0.0; s.right[0] = -normal_old[0];
-    s.lower[faces - 1] = 0.0; s.upper[faces - 1] = 0.0; s.right[faces - 1] = -normal_old[faces - 1];
-    double* diagonal = s.diagonal.data();
-    diagonal[0] = 1.0; diagonal[faces - 1] = 1.0;
-    for (int f = 1; f < cols; ++f) {
-      if (saved_active[f] < 0.0) {
-        s.lower[f] = 0.0; s.upper[f] = 0.0; diagonal[f] = 1.0; s.right[f] = -normal_old[f];
-        continue;
-      }
-      const std::size_t face = face0 + f;
-      const int L = f - 1, R = f;
-      const double n_f = frame.face_porosity[face], inv_n_f = 1.0 / n_f;
-      const double d = frame.face_depth_m[face];
-      const double h_L = depth[L] + s.eta_half[L], h_R = depth[R] + s.eta_half[R];
-      double h_f = (h_L > dry && h_R > dry) ? d + 0.5 * (s.eta_half[L] + s.eta_half[R])
-                                             : std::max(s.eta_half[L], s.eta_half[R]) + std::min(depth[L], depth[R]);
-      h_f = std::max(h_f, dry);
-
-      // Along-line explicit terms: convection (P^2/h)_x / n and the along parts of Psi_x:
-      //   -n B g d^3 eta_xxx - d d_x n B g d 2 eta_xx   (time-centred, iterated)
-      double along = -inv_n_f * (s.cell_term[R] - s.cell_term[L]) * inv_dx;
-      const double w = frame.face_dispersion_weight[face] * (in.dispersive[cell0 + L] & in.dispersive[cell0 + R]);
-      double D2 = 0.0, S1 = 0.0;
-      if (w > 0.0) {
-        const double e_m2 = eta_half_at(f - 2), e_m1 = s.eta_half[L], e_0 = s.eta_half[R], e_p1 = eta_half_at(f + 1);
-        const double eta_xxx = (e_p1 - 3.0 * e_0 + 3.0 * e_m1 - e_m2) * inv_dx3;
-        const double eta_xx = 0.5 * (e_p1 - e_0 - e_m1 + e_m2) * inv_dx2;
-        const double slope_along = frame.face_slope_along[face];
-        along += w * n_f * B * g * d * d * (d * eta_xxx + 2.0 * slope_along * eta_xx);
-        // Implicit parts of Psi_x: -(B+1/3) d^2 P_xxt - (1/3) d d_x P_xt
-        D2 = w * B3 * d * d * inv_dx2;
-        S1 = w * d * slope_along * inv_dx / 6.0;
-      }
-
-      // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
-      // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
-      const double flux_magnitude = std::sqrt(s.flux_half[f] * s.flux_half[f] + s.tangential_squared[f]);
-      const double resistance = g * flux_magnitude * inverse_chezy2 * inv_n_f / (h_f * h_f) +
-                                n_f * (frame.face_porous_laminar_s[face] + frame.face_porous_turbulent_m[face] * flux_magnitude / h_f);
-
-      // Gravity n g h eta_x at t^{n+1/2} with eta* = E - dt/(2 n dx) d(increment): couples three faces.
-      const double G = n_f * g * h_f * dt * dt * inv_dx2 * 0.25;
-      // Eddy viscosity along the line, (1/n) d/dx (nu dP/dx), Crank-Nicolson.
-      const double V_L = 0.5 * dt * nu[L] * inv_n_f * inv_dx2, V_R = 0.5 * dt * nu[R] * inv_n_f * inv_dx2;
-
-      s.lower[f] = -D2 + S1 - G * inv_n[L] - V_L;
-      s.upper[f] = -D2 - S1 - G * inv_n[R] - V_R;
-      diagonal[f] = 1.0 + 2.0 * D2 + G * (inv_n[L] + inv_n[R]) + V_L + V_R + resistance * dt;
-      const double gravity = -dt * n_f * g * h_f * 0.5 * inv_dx * (eta_base[R] - eta_base[L] + eta_old[R] - eta_old[L]);
-      const double eddy_old = 2.0 * (V_R * (normal_old[f + 1] - normal_old[f]) - V_L * (normal_old[f] - normal_old[f - 1]));
-      s.right[f] = gravity + dt * (s.fixed_term[f] + along) - resistance * dt * normal_old[f] + eddy_old;
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      eta_half[-1 * W + j] = eta_half[0 * W + j];
+      eta_half[-2 * W + j] = eta_half[std::min(1, cols - 1) * W + j];
+      eta_half[cols * W + j] = eta_half[(cols - 1) * W + j];
+      eta_half[(cols + 1) * W + j] = eta_half[std::max(cols - 2, 0) * W + j];
     }
-    solve_tridiagonal(faces, s.lower.data(), diagonal, s.upper.data(), s.right.data(), increment.data());
+    for (int f = 0; f < faces; ++f)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) flux_half[f * W + j] = normal_old[f * stride + lb + j] + 0.5 * increment[f * W + j];
+    for (int c = 0; c < cols; ++c)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const double flux_c = 0.5 * (flux_half[c * W + j] + flux_half[(c + 1) * W + j]);
+        const double h_c = std::max(depth[c * stride + lb + j] + eta_half[c * W + j], dry);
+        cell_term[c * W + j] = flux_c * flux_c / h_c;  // P^2/h at the cell centre
+      }
+
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {  // the grid edges: walls, flux 0
+      for (int f : {0, cols}) {
+        lower[f * W + j] = 0.0; upper[f * W + j] = 0.0; diagonal[f * W + j] = 1.0;
+        right[f * W + j] = -normal_old[f * stride + lb + j];
+      }
+    }
+    // |(P, Q)| for the resistance terms, in its own loop: sqrt carries errno handling that would
+    // keep the assembly loop below from vectorising.
+    for (int f = 1; f < cols; ++f)
+      for (int j = 0; j < n; ++j) {
+        const double flux_f = flux_half[f * W + j];
+        magnitude[f * W + j] = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
+      }
+    for (int f = 1; f < cols; ++f) {
+      const int L = f - 1, R = f;
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const std::size_t face = f * stride + lb + j, cL = L * stride + lb + j, cR = R * stride + lb + j;
+        const double n_f = face_porosity[face], inv_n_f = face_inverse_porosity[face];
+        const double d = face_depth[face];
+        const double e_L = eta_half[L * W + j], e_R = eta_half[R * W + j];
+        // Total depth at the face: the larger of the mean depth and the water above the higher bed
+        // (the latter governs a face next to a dry cell: flooding), never below dry_depth_m.
+        const double h_mean = d + 0.5 * (e_L + e_R), h_above_bed = std::max(e_L, e_R) + std::min(depth[cL], depth[cR]);
+        const double h_f = std::max(std::max(h_mean, h_above_bed), dry);
+        const double inv_h_f = 1.0 / h_f;
+
+        // Along-line explicit terms: convection (P^2/h)_x / n and the along parts of Psi_x:
+        //   -n B g d^3 eta_xxx - d d_x n B g d 2 eta_xx   (time-centred, iterated)
+        const double w = face_weight[face] * (dispersive[cL] * dispersive[cR]);
+        const double e_m2 = eta_half[(f - 2) * W + j], e_p1 = eta_half[(f + 1) * W + j];
+        const double eta_xxx = (e_p1 - 3.0 * e_R + 3.0 * e_L - e_m2) * inv_dx3;
+        const double eta_xx = 0.5 * (e_p1 - e_R - e_L + e_m2) * inv_dx2;
+        const double slope_along = face_slope_along[face];
+        const double along = -inv_n_f * (cell_term[R * W + j] - cell_term[L * W + j]) * inv_dx +
+                             w * n_f * B * g * d * d * (d * eta_xxx + 2.0 * slope_along * eta_xx);
+        // Implicit parts of Psi_x: -(B+1/3) d^2 P_xxt - (1/3) d d_x P_xt
+        const double D2 = w * B3 * d * d * inv_dx2;
+        const double S1 = w * d * slope_along * inv_dx / 6.0;
+
+        // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
+        // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
+        const double flux_magnitude = magnitude[f * W + j];
+        const double resistance = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f +
+                                  n_f * (face_laminar[face] + face_turbulent[face] * flux_magnitude * inv_h_f);
+
+        // Gravity n g h eta_x at t^{n+1/2} with eta* = E - dt/(2 n dx) d(increment): couples three faces.
+        const double G = n_f * g * h_f * dt * dt * inv_dx2 * 0.25;
+        // Eddy viscosity along the line, (1/n) d/dx (nu dP/dx), Crank-Nicolson.
+        const double V_L = 0.5 * dt * nu[cL] * inv_n_f * inv_dx2, V_R = 0.5 * dt * nu[cR] * inv_n_f * inv_dx2;
+
+        const double gravity = -dt * n_f * g * h_f * 0.5 * inv_dx * (eta_base[cR] - eta_base[cL] + eta_old[cR] - eta_old[cL]);
+        const double old_f = normal_old[face];
+        const double eddy_old = 2.0 * (V_R * (normal_old[face + stride] - old_f) - V_L * (old_f - normal_old[face - stride]));
+        // Inactive faces get the identity row (flux to 0), selected arithmetically so the loop
+        // has no branch and vectorises.
+        const double on = active[f * W + j];  // 1 or 0: blended arithmetically, no branch
+        const double lower_f = -D2 + S1 - G * inv_n[cL] - V_L, upper_f = -D2 - S1 - G * inv_n[cR] - V_R;
+        const double diagonal_f = 1.0 + 2.0 * D2 + G * (inv_n[cL] + inv_n[cR]) + V_L + V_R + resistance * dt;
+        const double right_f = gravity + dt * (fixed_term[f * W + j] + along) - resistance * dt * old_f + eddy_old;
+        lower[f * W + j] = on * lower_f;
+        upper[f * W + j] = on * upper_f;
+        diagonal[f * W + j] = on * diagonal_f + (1.0 - on);
+        right[f * W + j] = on * right_f - (1.0 - on) * old_f;
+      }
+    }
+    // Double sweep (Thomas algorithm) of all lines of the block in lock-step. The systems are
+    // diagonally dominant (docs/solver.md), so no pivoting is needed.
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      upper[j] /= diagonal[j];
+      right[j] /= diagonal[j];
+    }
+    for (int f = 1; f < faces; ++f)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const double inverse_pivot = 1.0 / (diagonal[f * W + j] - lower[f * W + j] * upper[(f - 1) * W + j]);
+        upper[f * W + j] *= inverse_pivot;
+        right[f * W + j] = (right[f * W + j] - lower[f * W + j] * right[(f - 1) * W + j]) * inverse_pivot;
+      }
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) increment[(faces - 1) * W + j] = right[(faces - 1) * W + j];
+    for (int f = faces - 2; f >= 0; --f)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) increment[f * W + j] = right[f * W + j] - upper[f * W + j] * increment[(f + 1) * W + j];
   }
   update_eta();
-  double* normal_new = out.normal_new + face0;
-  for (int f = 0; f < faces; ++f) normal_new[f] = normal_old[f] + increment[f];
+  for (int f = 0; f < faces; ++f)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) normal_new[f * stride + lb + j] = normal_old[f * stride + lb + j] + increment[f * W + j];
 }
 
 namespace {
 template <class T>
 void transpose_blocked(const T* in, T* out, int cols, int rows) {
   constexpr int kBlock = 32;
-  for (int r0 = 0; r0 < rows; r0 += kBlock)
+  tbb::parallel_for(0, (rows + kBlock - 1) / kBlock, [&](int block) {
+    const int r0 = block * kBlock;
     for (int c0 = 0; c0 < cols; c0 += kBlock) {
       const int r1 = std::min(rows, r0 + kBlock), c1 = std::min(cols, c0 + kBlock);
       for (int r = r0; r < r1; ++r)
         for (int c = c0; c < c1; ++c)
           out[static_cast<std::size_t>(c) * rows + r] = in[static_cast<std::size_t>(r) * cols + c];
     }
+  });
 }
 }  // namespace
 
 void transpose(const double* in, double* out, int cols, int rows) { transpose_blocked(in, out, cols, rows); }
-void transpose(const std::uint8_t* in, std::uint8_t* out, int cols, int rows) { transpose_blocked(in, out, cols, rows); }
 
 }  // namespace nearshore::bake::detail

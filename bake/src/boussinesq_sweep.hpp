@@ -1,13 +1,14 @@
 #pragma once
-// The one line sweep of the ADI scheme (docs/solver.md, "Discretisation"). The x sweep runs it on
-// the harbour in its natural orientation (lines = rows, normal flux = P, tangential flux = Q); the
-// y sweep runs the SAME code on transposed copies (lines = columns, normal flux = Q, tangential
-// flux = P), so both directions share every line of the discretisation.
-//
-// Layout of a frame (cols cells along the sweep, rows lines):
-//   cells         cols x rows,        index row * cols + col
-//   normal faces  (cols + 1) x rows,  index row * (cols + 1) + face; face f lies between cells f-1, f
-//   tangential    cols x (rows + 1),  index face_row * cols + col; face_row r lies between rows r-1, r
+// The one line sweep of the ADI scheme (docs/solver.md, "Discretisation"), run by both sweeps.
+// Its frame puts the sweep direction on the SLOW index and the lines on the FAST index, so a
+// block of neighbouring lines is solved in lock-step and every loop runs over contiguous lanes
+// (vectorised, and the Thomas recurrences of different lines overlap in the pipeline).
+//   y sweep: the harbour's natural layout (rows slow, columns fast), normal flux Q, tangential P
+//   x sweep: the transposed layout (columns slow, rows fast), normal flux P, tangential Q
+// Layout of a frame (`cols` cells along the sweep, `rows` lines):
+//   cells         index c * rows + l
+//   normal faces  index f * rows + l, f = 0..cols; face f lies between cells f-1 and f
+//   tangential    index c * (rows + 1) + k, k = 0..rows; face k lies between lines k-1 and k
 #include <cstdint>
 #include <vector>
 
@@ -21,7 +22,8 @@ struct StaticFrame {
   std::vector<double> inverse_porosity;    ///< 1/n per cell, 0 for solid walls (n below kWallPorosity)
   std::vector<double> face_depth_m;        ///< d at normal faces (mean of the two cells)
   std::vector<double> face_porosity;       ///< n at normal faces (mean of the two cells)
-  std::vector<std::uint8_t> face_open;     ///< 0: grid edge or next to a wall, flux is always 0
+  std::vector<double> face_inverse_porosity;
+  std::vector<double> face_open;           ///< 0: grid edge or next to a wall, flux is always 0; else 1
   std::vector<double> face_dispersion_weight;  ///< taper of docs/solver.md, 0..1
   std::vector<double> face_slope_along;    ///< d_x at the face (clamped, see kMaxDispersiveSlope)
   std::vector<double> face_slope_across;   ///< d_y at the face (clamped)
@@ -34,8 +36,10 @@ inline constexpr double kWallPorosity = 0.05;
 /// The bed-slope terms of Madsen & Sorensen (1992) assume mild slopes; steeper slopes are clamped
 /// to this value inside the dispersive terms only, so charts with quays and dredged channels stay stable.
 inline constexpr double kMaxDispersiveSlope = 0.5;
+/// Lines solved together in one block.
+inline constexpr int kBlockLines = 32;
 
-/// The time-dependent input of one sweep, all in the frame's orientation.
+/// The time-dependent input of one sweep, all in the frame's layout.
 struct SweepInput {
   const double* eta_old;          ///< eta^n, cells
   const double* eta_base;         ///< E: eta after every explicit flux of this sweep, cells
@@ -46,7 +50,7 @@ struct SweepInput {
   const double* tangential_half;  ///< tangential flux at t^{n+1/2}, tangential faces
   const double* tangential_rate;  ///< its time derivative at t^{n+1/2}, (m^2/s)/s
   const double* eddy_viscosity;   ///< nu of eq. (6)-(7), m^2/s, cells
-  const std::uint8_t* dispersive; ///< 1 where the cell and its 4 neighbours are wet
+  const double* dispersive;       ///< 1 where the cell and its 4 neighbours are wet, else 0
 };
 
 struct SweepOutput {
@@ -62,21 +66,22 @@ struct SweepConstants {
   int iterations = 2;
 };
 
-/// Per-thread scratch of one line (allocated once per thread, reused every step).
+/// Per-thread scratch of one block (allocated once per thread, reused every step).
 struct SweepScratch {
   std::vector<double> lower, diagonal, upper, right, increment, eta_half, flux_half, cell_term, fixed_term,
-      tangential_squared, active;
-  void resize(int faces);
+      tangential_squared, active, magnitude;
+  void resize(int cols);
 };
 
-/// Solves line `row` of the frame: the tridiagonal system of docs/solver.md for the normal flux
-/// increment, iterated `iterations` times for the time-centred non-linear and dispersive terms,
-/// then eta from the mass equation. Reads only `input`, writes only line `row` of `output`.
-void sweep_line(const StaticFrame& frame, const SweepConstants& constants, const SweepInput& input,
-                const SweepOutput& output, int row, SweepScratch& scratch);
+/// Solves lines [line_begin, line_end) (at most kBlockLines) of the frame: the tridiagonal system
+/// of docs/solver.md for the normal flux increment, iterated `iterations` times for the
+/// time-centred non-linear and dispersive terms, then eta from the mass equation. Reads only
+/// `input`, writes only those lines of `output`.
+void sweep_lines(const StaticFrame& frame, const SweepConstants& constants, const SweepInput& input,
+                 const SweepOutput& output, int line_begin, int line_end, SweepScratch& scratch);
 
 /// out[c * rows + r] = in[r * cols + c]: in is cols x rows (row-major), out is rows x cols.
+/// Parallel over blocks; the result does not depend on the thread count.
 void transpose(const double* in, double* out, int cols, int rows);
-void transpose(const std::uint8_t* in, std::uint8_t* out, int cols, int rows);
 
 }  // namespace nearshore::bake::detail

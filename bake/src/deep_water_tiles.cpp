@@ -1,5 +1,7 @@
 #include "nearshore/bake/deep_water_tiles.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "nearshore/core/error.hpp"
@@ -10,7 +12,8 @@
 namespace nearshore::bake {
 
 TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int frames_per_loop,
-                                         const std::filesystem::path& folder, const sequence::FrameEncoding& encoding) {
+                                         const std::filesystem::path& folder, const sequence::FrameEncoding& encoding,
+                                         int frame_limit) {
   const DeepWaterSpecification& spec = field.specification();
   if (!(spec.loop_period_s > 0.0))
     throw Error(folder.string(), "the deep-water field does not loop, so a baked tile set would not repeat",
@@ -32,9 +35,10 @@ TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int
   const float depth_m = spec.still_water_depth_m > 0.0 ? static_cast<float>(spec.still_water_depth_m) : 1000.0f;
   const HarbourGrid open_water = HarbourGrid::open_water(geometry, depth_m);
 
+  const int frame_count = frame_limit > 0 ? std::min(frame_limit, frames_per_loop) : frames_per_loop;
   sequence::SequenceDescription description;
   description.frame_interval_s = spec.loop_period_s / frames_per_loop;
-  description.loop_period_s = spec.loop_period_s;
+  description.loop_period_s = frame_count == frames_per_loop ? spec.loop_period_s : 0.0;
   description.seed = spec.seed;
   description.deep_water = field.description();
   description.deep_water["tile_set_cascade"] = cascade;
@@ -43,8 +47,8 @@ TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int
   sequence::SequenceWriter writer(folder, open_water, description);
 
   Raster<float> elevation(n, n), flux_x(n, n), flux_y(n, n), breaking(n, n);
-  ProgressBar progress("deep-water tiles", frames_per_loop, "frames");
-  for (int index = 0; index < frames_per_loop; ++index) {
+  ProgressBar progress("deep-water tiles", frame_count, "frames");
+  for (int index = 0; index < frame_count; ++index) {
     field.synthesise(index * description.frame_interval_s, /*with_flux=*/true);
     const DeepWaterFrame& frame = field.frame(cascade);
     // Raster row 0 is the southern row, as the frame's row 0 (y = 0): the layouts agree.
@@ -58,10 +62,12 @@ TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int
     writer.write_frame(index, {&elevation, &flux_x, &flux_y, &breaking});
     progress.update(index + 1);
   }
-  writer.finish(frames_per_loop);
+  writer.finish(frame_count);
   progress.finish();
 
-  TileSetSummary summary{frames_per_loop, description.frame_interval_s, 0};
+  TileSetSummary summary{frame_count, description.frame_interval_s, 0, 0};
+  for (int index = 0; index < frame_count; ++index)
+    summary.frame_bytes += std::filesystem::file_size(folder / sequence::frame_file_name(index));
   for (const auto& entry : std::filesystem::directory_iterator(folder))
     if (entry.is_regular_file()) summary.bytes += entry.file_size();
   return summary;
