@@ -26,7 +26,7 @@ std::string edited(const std::string& from, const std::string& to) {
 
 // The message must name the file, contain every `expected` fragment, and carry a fix after "; ".
 void expect_case_error(const std::string& text, const std::vector<std::string>& expected, const std::string& extension = ".toml") {
-  const auto file = write_text(scratch_folder() / ("case" + extension), text);
+  const auto file = write_text(testing::current_scratch_folder() / ("case" + extension), text);
   try {
     read_bake_case(file);
     ADD_FAILURE() << "no error for a case expected to fail with: " << expected.front();
@@ -141,6 +141,54 @@ TEST(BakeCase, SyntaxErrorsNameTheLine) {
 TEST(BakeCase, MissingFilesAreNamed) {
   EXPECT_THROW(read_bake_case(scratch_folder() / "absent.toml"), Error);
   expect_case_error(edited("kind = \"profile\"", "kind = \"harbour_grid\"\nfile = \"nowhere/depth.exr\""), {"depth.exr", "does not exist"});
+}
+
+TEST(BakeCase, GaugeIntervalFallsOnWholeSteps) {
+  const BakeCase c = read_bake_case(write_text(scratch_folder() / "case.toml", edited("courant_number = 0.5", "courant_number = 0.5\ngauge_interval_s = 0.05")));
+  EXPECT_GT(whole_steps(0.05, c.solver.time_step_s), 0);
+  EXPECT_GT(whole_steps(0.5, c.solver.time_step_s), 0);
+  expect_case_error(edited("courant_number = 0.5", "courant_number = 0.5\ngauge_interval_s = 0.3"), {"key `time.gauge_interval_s`", "neither divides"});
+}
+
+TEST(BakeCase, TimeSeriesWaveMakerReadsItsTable) {
+  const auto folder = scratch_folder();
+  write_text(folder / "eta.dat", "1.0\n2.0\n-3.0\n");
+  std::string text = small_flume_case();
+  text.replace(text.find("kind = \"regular\""), 16, "kind = \"time_series\"\nfile = \"eta.dat\"\nsample_interval_s = 0.05\nelevation_scale_to_m = 0.01");
+  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
+  ASSERT_EQ(c.wave_maker.kind, WaveMaker::Kind::kTimeSeries);
+  ASSERT_EQ(c.wave_maker.series_elevation_m.size(), 3u);
+  EXPECT_NEAR(c.wave_maker.series_elevation_m[0], 0.01, 1e-15);  // remove_mean by default: (1 + 2 - 3) / 3 = 0
+  EXPECT_DOUBLE_EQ(c.wave_maker.series_time_s[2], 0.1);
+  std::string missing = text;
+  missing.replace(missing.find("eta.dat"), 7, "none.dat");
+  expect_case_error(missing, {"key `wave_maker.file`", "none.dat", "does not exist"});
+  write_text(folder / "bad.dat", "1.0\nx\n");
+  std::string bad = text;
+  bad.replace(bad.find("eta.dat"), 7, "bad.dat");
+  expect_case_error(bad, {"key `wave_maker.file`", "line 2"});
+}
+
+TEST(BakeCase, HarbourGridPositionsAreFromTheSouthWestCorner) {
+  const auto folder = scratch_folder();
+  // A 400 m x 300 m grid at 10 m in UTM, origin at easting 500000, northing 4300000.
+  HarbourGrid grid = HarbourGrid::open_water(GridGeometry{40, 30, 10.0, 500000.0, 4300000.0, {}, {}}, 12.f);
+  write_harbour_grid(folder / "depth.exr", grid);
+  const std::string text =
+      "[bathymetry]\nkind = \"harbour_grid\"\nfile = \"depth.exr\"\nspacing_m = 20.0\n"
+      "[time]\nduration_s = 60\noutput_interval_s = 1\n"
+      "[wave_maker]\nkind = \"regular\"\nfacing = \"south\"\nsource_line_m = 50.0\nheight_m = 1.0\nperiod_s = 8.0\n"
+      "[[gauges]]\nname = \"mid\"\nx_m = 200.0\ny_m = 150.0\n";
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
+  EXPECT_EQ(c.harbour.geometry.columns, 20);  // resampled to 20 m
+  EXPECT_DOUBLE_EQ(c.gauges[0].x_m, 500200.0);
+  EXPECT_DOUBLE_EQ(c.gauges[0].y_m, 4300150.0);
+  EXPECT_DOUBLE_EQ(c.wave_maker.source_line_m, 4300050.0);
+  EXPECT_NEAR(c.wave_maker.sea_state.components[0].direction_rad, std::numbers::pi / 2, 1e-12);  // travels north
+  std::string outside = text;
+  outside.replace(outside.find("x_m = 200.0"), 11, "x_m = 500200.0");
+  expect_case_error(outside, {"key `gauges[0].x_m`", "south-west corner"});
 }
 
 TEST(BakeCase, IrregularSeaFromTheSpectrumBuilder) {

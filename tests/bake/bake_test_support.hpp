@@ -9,13 +9,19 @@
 
 namespace nearshore::bake::testing {
 
-inline std::filesystem::path scratch_folder() {
+/// The current test's scratch folder (created if needed, contents kept).
+inline std::filesystem::path current_scratch_folder() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::filesystem::path folder =
       std::filesystem::path(NEARSHORE_BINARY_DIR) / "tests" / "bake" / "scratch" / (std::string(info->test_suite_name()) + "." + info->name());
-  std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   return folder;
+}
+
+/// The current test's scratch folder, emptied.
+inline std::filesystem::path scratch_folder() {
+  std::filesystem::remove_all(current_scratch_folder());
+  return current_scratch_folder();
 }
 
 inline std::filesystem::path write_text(const std::filesystem::path& file, const std::string& text) {
