@@ -78,8 +78,9 @@ class TableReader {
  public:
   TableReader(const json& table, std::string prefix, std::string subject)
       : table_(table), prefix_(std::move(prefix)), subject_(std::move(subject)) {
-    if (!table_.is_object()) fail(prefix_.empty() ? "the document" : "key `" + trimmed_prefix() + "`",
-                                  "is not a table", "write it as a [table] (TOML) or an object (JSON)");
+    if (!table_.is_object())
+      throw Error(subject_, (prefix_.empty() ? std::string("the document") : "key `" + trimmed_prefix() + "`") + " is not a table",
+                  "write it as a [table] (TOML) or an object (JSON)");
   }
 
   bool has(const std::string& key) const { return table_.contains(key); }
@@ -219,9 +220,7 @@ class TableReader {
              "check its spelling against docs/commands/bake.md (known here: " + list(asked_) + ")");
   }
   [[noreturn]] void fail(const std::string& what, const std::string& problem, const std::string& fix) const {
-    throw Error(subject_, what.rfind("key ", 0) == 0 || what.rfind("the ", 0) == 0 ? what + " " + problem
-                                                                                     : "key `" + what + "` " + problem,
-                fix);
+    throw Error(subject_, "key `" + what + "` " + problem, fix);
   }
   std::string full(const std::string& key) const { return prefix_ + key; }
 

@@ -94,6 +94,7 @@ TEST(BakeCase, MissingTablesAndKeysAreErrors) {
   expect_case_error(edited("duration_s = ", "length_s = "), {"key `time.duration_s`", "is missing"});
   expect_case_error(edited("height_m = 0.02\n", ""), {"key `wave_maker.height_m`", "is missing"});
   expect_case_error(edited("kind = \"profile\"\n", ""), {"key `bathymetry.kind`", "is missing"});
+  expect_case_error("bathymetry = 3\n", {"key `bathymetry` is not a table"});
 }
 
 TEST(BakeCase, BadValuesAreErrors) {
