@@ -19,14 +19,17 @@ namespace nearshore::bake {
 struct TileSetSummary {
   int frame_count = 0;
   double frame_interval_s = 0.0;
-  std::uintmax_t bytes = 0;  ///< all files of the folder
+  std::uintmax_t bytes = 0;        ///< all files of the folder
+  std::uintmax_t frame_bytes = 0;  ///< the frame files alone
 };
 
 /// Writes cascade `cascade` of `field` over one loop (the field must loop: T_loop > 0) with
 /// `frames_per_loop` frames into `folder`; the manifest's deep_water entry is field.description().
+/// frame_limit > 0 writes only the first frame_limit frames, as a sample (e.g. to measure the
+/// bytes per frame): that sequence is then not a loop (loop_period_s = 0 in its manifest).
 /// Throws nearshore::Error for a field that does not loop or a bad cascade index.
 TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int frames_per_loop,
                                          const std::filesystem::path& folder,
-                                         const sequence::FrameEncoding& encoding = {});
+                                         const sequence::FrameEncoding& encoding = {}, int frame_limit = 0);
 
 }  // namespace nearshore::bake
