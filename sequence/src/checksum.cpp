@@ -3,6 +3,10 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fstream>
 
 #include <fmt/core.h>
@@ -95,6 +99,33 @@ std::string read_file_bytes(const std::filesystem::path& path) {
   if (size > 0 && !in.read(bytes.data(), size))
     throw Error(path.string(), fmt::format("reading {} bytes failed", size), "check the disk and the file");
   return bytes;
+}
+
+void read_file_into(const std::filesystem::path& path, FileBuffer& buffer) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0)
+    throw Error(path.string(), std::string("cannot be opened for reading: ") + std::strerror(errno),
+                "check that it exists and is readable");
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) {
+    const int error = errno;
+    ::close(fd);
+    throw Error(path.string(), std::string("cannot be inspected: ") + std::strerror(error), "check the disk");
+  }
+  const std::size_t size = static_cast<std::size_t>(status.st_size);
+  if (size > buffer.capacity) {
+    buffer.data = std::make_unique_for_overwrite<std::byte[]>(size);
+    buffer.capacity = size;
+  }
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::read(fd, buffer.data.get() + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // shrunk while reading: keep what is there, the checks downstream see it
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  buffer.size = done;
 }
 
 }  // namespace nearshore::sequence

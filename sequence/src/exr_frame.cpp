@@ -100,15 +100,9 @@ Raster<float>* selected_raster(Frame& frame, ChannelSelection selection, int cha
   }
 }
 
-void flip_rows(Raster<float>& raster) {
-  const int columns = raster.columns();
-  for (int low = 0, high = raster.rows() - 1; low < high; ++low, --high)
-    std::swap_ranges(&raster(0, low), &raster(0, low) + columns, &raster(0, high));
-}
-
-// Validates the header against the manifest and decodes raster rows [first_row, first_row+count).
-void decode(Imf::InputFile& file, const std::string& source, const SequenceManifest& manifest, int expected_index,
-            int first_row, int row_count, ChannelSelection selection, Frame& frame) {
+// Checks a frame's header against the manifest: format, frame index, size, channels.
+void validate_header(Imf::InputFile& file, const std::string& source, const SequenceManifest& manifest,
+                     int expected_index) {
   const Imf::Header& header = file.header();
   const auto* format = header.findTypedAttribute<Imf::StringAttribute>(kFormatAttribute);
   if (!format || format->value() != kFrameFormat)
@@ -118,7 +112,6 @@ void decode(Imf::InputFile& file, const std::string& source, const SequenceManif
     throw Error(source, fmt::format("holds frame {} but the manifest puts frame {} here",
                                     index ? std::to_string(index->value()) : std::string("(none)"), expected_index),
                 "the folder's files were renamed or mixed; rewrite the sequence");
-  const auto* time = header.findTypedAttribute<Imf::DoubleAttribute>(kTimeAttribute);
   const int columns = manifest.geometry.columns, rows = manifest.geometry.rows;
   const Imath::Box2i window = header.dataWindow();
   if (window.min.x != 0 || window.min.y != 0 || window.max.x != columns - 1 || window.max.y != rows - 1)
@@ -133,12 +126,27 @@ void decode(Imf::InputFile& file, const std::string& source, const SequenceManif
       throw Error(source, fmt::format("has no full-resolution half/float '{}' channel", kChannelNames[c]),
                   "rewrite the sequence with `nearshore bake`");
   }
+}
+
+// Validates the header against the manifest and decodes raster rows [first_row, first_row+count).
+void decode(Imf::InputFile& file, const std::string& source, const SequenceManifest& manifest, int expected_index,
+            int first_row, int row_count, ChannelSelection selection, Frame& frame) {
+  validate_header(file, source, manifest, expected_index);
+  const Imf::Header& header = file.header();
+  const auto* time = header.findTypedAttribute<Imf::DoubleAttribute>(kTimeAttribute);
+  const int columns = manifest.geometry.columns, rows = manifest.geometry.rows;
   frame.index = expected_index;
   frame.time_s = time ? time->value() : manifest.frame_time_s(expected_index);
   // Raster rows [first_row, first_row + row_count) are EXR lines [rows - first_row - row_count, rows - first_row).
+  // OpenEXR copies each channel in its stored type into a scratch buffer (a plain copy, no
+  // per-pixel conversion); one pass then converts half to float and flips north-up lines into
+  // south-up rows.
   const int first_line = rows - first_row - row_count;
-  const std::ptrdiff_t row_stride = static_cast<std::ptrdiff_t>(columns) * static_cast<std::ptrdiff_t>(sizeof(float));
+  const std::size_t cells = static_cast<std::size_t>(columns) * static_cast<std::size_t>(row_count);
+  thread_local std::vector<half> half_scratch[4];
+  thread_local std::vector<float> float_scratch[4];
   Imf::FrameBuffer frame_buffer;
+  bool stored_half[4] = {};
   for (int c = 0; c < 4; ++c) {
     Raster<float>* raster = selected_raster(frame, selection, c);
     if (!raster) {
@@ -146,14 +154,133 @@ void decode(Imf::InputFile& file, const std::string& source, const SequenceManif
       continue;
     }
     if (raster->columns() != columns || raster->rows() != row_count) *raster = Raster<float>(columns, row_count);
-    char* base = reinterpret_cast<char*>(raster->data()) - first_line * row_stride;
-    frame_buffer.insert(kChannelNames[c],
-                        Imf::Slice(Imf::FLOAT, base, sizeof(float), static_cast<std::size_t>(row_stride)));
+    stored_half[c] = header.channels().findChannel(kChannelNames[c])->type == Imf::HALF;
+    const std::size_t size = stored_half[c] ? sizeof(half) : sizeof(float);
+    char* scratch;
+    if (stored_half[c]) {
+      half_scratch[c].resize(cells);
+      scratch = reinterpret_cast<char*>(half_scratch[c].data());
+    } else {
+      float_scratch[c].resize(cells);
+      scratch = reinterpret_cast<char*>(float_scratch[c].data());
+    }
+    const std::ptrdiff_t line_bytes = static_cast<std::ptrdiff_t>(columns) * static_cast<std::ptrdiff_t>(size);
+    frame_buffer.insert(kChannelNames[c], Imf::Slice(stored_half[c] ? Imf::HALF : Imf::FLOAT,
+                                                     scratch - first_line * line_bytes, size,
+                                                     static_cast<std::size_t>(line_bytes)));
   }
   file.setFrameBuffer(frame_buffer);
   file.readPixels(first_line, first_line + row_count - 1);
-  for (int c = 0; c < 4; ++c)
-    if (Raster<float>* raster = selected_raster(frame, selection, c)) flip_rows(*raster);
+  for (int c = 0; c < 4; ++c) {
+    Raster<float>* raster = selected_raster(frame, selection, c);
+    if (!raster) continue;
+    for (int line = 0; line < row_count; ++line) {
+      float* target = &(*raster)(0, row_count - 1 - line);
+      const std::size_t offset = static_cast<std::size_t>(line) * static_cast<std::size_t>(columns);
+      if (stored_half[c]) {
+        const half* source = half_scratch[c].data() + offset;
+        for (int column = 0; column < columns; ++column) target[column] = source[column];
+      } else {
+        std::copy_n(float_scratch[c].data() + offset, columns, target);
+      }
+    }
+  }
+}
+
+
+// Uncompressed frames (the measured default, docs/formats/sequence.md) are read straight from the
+// file layout of the OpenEXR specification: magic and version (8 bytes), attributes up to a null
+// byte, one 64-bit offset per scan line, then per line: int32 y, int32 byte count, and each channel's
+// samples in channel-name order. One pass converts half to float and flips north-up lines to
+// south-up rows; every offset and size is checked against the buffer (the reader is fuzzed).
+void decode_uncompressed(std::span<const std::byte> bytes, const Imf::Header& header, const std::string& source,
+                         const SequenceManifest& manifest, int expected_index, ChannelSelection selection,
+                         Frame& frame) {
+  const int columns = manifest.geometry.columns, rows = manifest.geometry.rows;
+  const std::size_t size = bytes.size();
+  const unsigned char* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  auto corrupt = [&](const std::string& what) {
+    return Error(source, "cannot be decoded: " + what,
+                 "the frame is truncated or corrupt; check it with `nearshore loops --verify` and re-bake");
+  };
+  auto load32 = [&](std::size_t at) {
+    std::int32_t value;
+    std::memcpy(&value, data + at, 4);
+    return value;
+  };
+  if (size < 9) throw corrupt("too short");
+  std::uint32_t version;
+  std::memcpy(&version, data + 4, 4);
+  if ((version & ~0xffu & ~0x400u) != 0) throw corrupt("not a single-part scanline file");
+  std::size_t at = 8;
+  while (true) {  // attributes: name\0 type\0 int32 size value
+    if (at >= size) throw corrupt("header runs past the end");
+    if (data[at] == 0) {
+      ++at;
+      break;
+    }
+    for (int field = 0; field < 2; ++field) {
+      const void* end = std::memchr(data + at, 0, size - at);
+      if (!end) throw corrupt("header runs past the end");
+      at = static_cast<std::size_t>(static_cast<const unsigned char*>(end) - data) + 1;
+    }
+    if (at + 4 > size) throw corrupt("header runs past the end");
+    const std::int32_t attribute_size = load32(at);
+    if (attribute_size < 0 || static_cast<std::size_t>(attribute_size) > size - at - 4) throw corrupt("bad attribute size");
+    at += 4 + static_cast<std::size_t>(attribute_size);
+  }
+  if (rows < 0 || at + static_cast<std::size_t>(rows) * 8 > size) throw corrupt("line offset table is truncated");
+  const std::size_t table = at;
+  // Channels in file order (ChannelList iterates by name) and where each lies within a line.
+  struct Part {
+    Raster<float>* raster;
+    bool is_half;
+    std::size_t offset;
+  };
+  std::vector<Part> parts;
+  std::size_t line_bytes = 0;
+  for (auto channel = header.channels().begin(); channel != header.channels().end(); ++channel) {
+    const bool is_half = channel.channel().type == Imf::HALF;
+    if (!is_half && channel.channel().type != Imf::FLOAT) throw corrupt("unexpected channel type");
+    Raster<float>* raster = nullptr;
+    for (int c = 0; c < 4; ++c)
+      if (std::strcmp(channel.name(), kChannelNames[c]) == 0) raster = selected_raster(frame, selection, c);
+    parts.push_back({raster, is_half, line_bytes});
+    line_bytes += static_cast<std::size_t>(columns) * (is_half ? 2 : 4);
+  }
+  for (int c = 0; c < 4; ++c) {
+    Raster<float>* raster = selected_raster(frame, selection, c);
+    if (!raster) {
+      if (Raster<float>* unused = selected_raster(frame, ChannelSelection::all(), c)) *unused = Raster<float>();
+    } else if (raster->columns() != columns || raster->rows() != rows) {
+      *raster = Raster<float>(columns, rows);
+    }
+  }
+  for (int line = 0; line < rows; ++line) {
+    std::uint64_t offset;
+    std::memcpy(&offset, data + table + static_cast<std::size_t>(line) * 8, 8);
+    if (offset > size || size - offset < 8 || size - offset - 8 < line_bytes) throw corrupt(fmt::format("line {} lies outside the file", line));
+    if (load32(offset) != line || load32(offset + 4) != static_cast<std::int32_t>(line_bytes))
+      throw corrupt(fmt::format("line {} has a wrong header", line));
+    const unsigned char* samples = data + offset + 8;
+    for (const Part& part : parts) {
+      if (!part.raster) continue;
+      float* target = &(*part.raster)(0, rows - 1 - line);
+      const unsigned char* source_bytes = samples + part.offset;
+      if (part.is_half) {
+        for (int column = 0; column < columns; ++column) {
+          std::uint16_t bits;
+          std::memcpy(&bits, source_bytes + 2 * column, 2);
+          target[column] = imath_half_to_float(bits);
+        }
+      } else {
+        std::memcpy(target, source_bytes, static_cast<std::size_t>(columns) * 4);
+      }
+    }
+  }
+  const auto* time = header.findTypedAttribute<Imf::DoubleAttribute>(kTimeAttribute);
+  frame.index = expected_index;
+  frame.time_s = time ? time->value() : manifest.frame_time_s(expected_index);
 }
 
 }  // namespace
@@ -229,6 +356,12 @@ void decode_frame(std::span<const std::byte> bytes, const std::string& source, c
   try {
     MemoryInput input(bytes, source);
     Imf::InputFile file(input);
+    if (file.header().compression() == Imf::NO_COMPRESSION && file.header().channels().begin() != file.header().channels().end()) {
+      // Validate exactly as the general path does (header, index, size, channels), then copy.
+      validate_header(file, source, manifest, expected_index);
+      decode_uncompressed(bytes, file.header(), source, manifest, expected_index, channels, frame);
+      return;
+    }
     decode(file, source, manifest, expected_index, 0, manifest.geometry.rows, channels, frame);
   } catch (const Error&) {
     throw;
@@ -238,4 +371,10 @@ void decode_frame(std::span<const std::byte> bytes, const std::string& source, c
   }
 }
 
+}  // namespace nearshore::sequence
+
+#include <OpenEXR/ImfThreading.h>
+
+namespace nearshore::sequence {
+void set_exr_worker_threads(int threads) { Imf::setGlobalThreadCount(std::max(0, threads)); }
 }  // namespace nearshore::sequence

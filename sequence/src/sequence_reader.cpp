@@ -30,21 +30,20 @@ fs::path SequenceReader::frame_path(int index) const {
   return folder_ / manifest_.frames[static_cast<std::size_t>(index)].file;
 }
 
-std::string SequenceReader::read_checked(const FileEntry& entry, Verify verify) const {
+void SequenceReader::read_checked(const FileEntry& entry, Verify verify, FileBuffer& buffer) const {
   const fs::path path = folder_ / entry.file;
-  std::string bytes = read_file_bytes(path);
+  read_file_into(path, buffer);
   if (verify == Verify::kYes) {
-    if (bytes.size() != entry.bytes)
+    if (buffer.size != entry.bytes)
       throw Error(path.string(), fmt::format("is {} bytes but the manifest says {} (truncated or replaced)",
-                                             bytes.size(), entry.bytes),
+                                             buffer.size, entry.bytes),
                   "re-bake the sequence or restore the file");
-    const std::string checksum = checksum_text(std::as_bytes(std::span(bytes.data(), bytes.size())));
+    const std::string checksum = checksum_text(buffer.bytes());
     if (checksum != entry.checksum)
       throw Error(path.string(), fmt::format("checksum {} does not match the manifest's {} (corrupt)", checksum,
                                              entry.checksum),
                   "re-bake the sequence or restore the file");
   }
-  return bytes;
 }
 
 Frame SequenceReader::read_frame(int index, ChannelSelection channels, Verify verify) const {
@@ -55,8 +54,9 @@ Frame SequenceReader::read_frame(int index, ChannelSelection channels, Verify ve
 
 void SequenceReader::read_frame_into(int index, Frame& frame, ChannelSelection channels, Verify verify) const {
   const fs::path path = frame_path(index);
-  const std::string bytes = read_checked(manifest_.frames[static_cast<std::size_t>(index)], verify);
-  decode_frame(std::as_bytes(std::span(bytes.data(), bytes.size())), path.string(), manifest_, index, channels, frame);
+  thread_local FileBuffer buffer;  // one per decoding thread, reused frame after frame
+  read_checked(manifest_.frames[static_cast<std::size_t>(index)], verify, buffer);
+  decode_frame(buffer.bytes(), path.string(), manifest_, index, channels, frame);
 }
 
 void SequenceReader::read_frame_rows(int index, int first_row, int row_count, Frame& frame,
@@ -66,7 +66,10 @@ void SequenceReader::read_frame_rows(int index, int first_row, int row_count, Fr
 
 HarbourGrid SequenceReader::read_harbour_grid(Verify verify) const {
   const fs::path path = folder_ / manifest_.harbour_grid.file;
-  if (verify == Verify::kYes) read_checked(manifest_.harbour_grid, verify);
+  if (verify == Verify::kYes) {
+    FileBuffer buffer;
+    read_checked(manifest_.harbour_grid, verify, buffer);
+  }
   HarbourGrid grid = nearshore::read_harbour_grid(path);
   if (grid.geometry.columns != manifest_.geometry.columns || grid.geometry.rows != manifest_.geometry.rows)
     throw Error(path.string(), fmt::format("is {} x {} cells but the sequence is {} x {}", grid.geometry.columns,
@@ -77,9 +80,10 @@ HarbourGrid SequenceReader::read_harbour_grid(Verify verify) const {
 
 void SequenceReader::verify_checksums() const {
   ProgressBar progress("verifying checksums", manifest_.frame_count + 1.0, "files");
-  read_checked(manifest_.harbour_grid, Verify::kYes);
+  FileBuffer buffer;
+  read_checked(manifest_.harbour_grid, Verify::kYes, buffer);
   for (int index = 0; index < manifest_.frame_count; ++index) {
-    read_checked(manifest_.frames[static_cast<std::size_t>(index)], Verify::kYes);
+    read_checked(manifest_.frames[static_cast<std::size_t>(index)], Verify::kYes, buffer);
     progress.update(index + 2.0);
   }
   progress.finish();

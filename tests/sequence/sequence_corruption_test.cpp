@@ -96,9 +96,13 @@ TEST(SequenceCorruption, ManifestProblemsNameTheKey) {
 // the same entry points for longer): random byte flips, insertions, deletions and truncations of a
 // valid manifest and a valid frame. Every outcome must be a clean parse or a nearshore::Error; a
 // crash, hang or other exception fails (and the asan build catches memory errors).
-TEST(SequenceFuzz, MutatedManifestsAndFramesFailCleanly) {
-  const auto folder = fresh_folder("fuzz");
-  write_test_sequence(folder, 1, FrameEncoding{Compression::kZip, Precision::kHalf, Precision::kHalf, Precision::kHalf},
+// Both frame decoders are fuzzed: OpenEXR's (ZIP) and nearshore's own reader of uncompressed
+// frames (NONE, the default), whose offsets and sizes must all be bounds-checked.
+class SequenceFuzz : public ::testing::TestWithParam<Compression> {};
+
+TEST_P(SequenceFuzz, MutatedManifestsAndFramesFailCleanly) {
+  const auto folder = fresh_folder(std::string("fuzz_") + std::string(compression_name(GetParam())));
+  write_test_sequence(folder, 1, FrameEncoding{GetParam(), Precision::kHalf, Precision::kFloat, Precision::kHalf},
                       test_geometry(9, 7));
   const std::string manifest_text = read_file_bytes(folder / "manifest.json");
   const std::string frame_bytes = read_file_bytes(folder / "frame_000000.exr");
@@ -137,6 +141,9 @@ TEST(SequenceFuzz, MutatedManifestsAndFramesFailCleanly) {
   EXPECT_GT(manifests_rejected, 500);
   EXPECT_GT(frames_rejected, 300);
 }
+
+INSTANTIATE_TEST_SUITE_P(Codecs, SequenceFuzz, ::testing::Values(Compression::kNone, Compression::kZip),
+                         [](const auto& info) { return std::string(compression_name(info.param)); });
 
 }  // namespace
 }  // namespace nearshore::sequence

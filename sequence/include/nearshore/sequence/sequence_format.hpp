@@ -34,7 +34,7 @@ enum class Precision { kHalf, kFloat };
 
 /// How frames are encoded. Half keeps 3 significant decimal digits: 0.5 mm on a 1 m wave.
 struct FrameEncoding {
-  Compression compression = Compression::kPiz;
+  Compression compression = Compression::kNone;
   Precision surface_elevation = Precision::kHalf;
   Precision flux = Precision::kHalf;
   Precision breaking = Precision::kHalf;

@@ -9,6 +9,7 @@
 
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/raster.hpp"
+#include "nearshore/sequence/checksum.hpp"
 #include "nearshore/sequence/sequence_format.hpp"
 
 namespace nearshore::sequence {
@@ -68,7 +69,7 @@ class SequenceReader {
   void verify_checksums() const;
 
  private:
-  std::string read_checked(const FileEntry& entry, Verify verify) const;
+  void read_checked(const FileEntry& entry, Verify verify, FileBuffer& buffer) const;
   std::filesystem::path folder_;
   SequenceManifest manifest_;
 };
@@ -78,4 +79,10 @@ class SequenceReader {
 void decode_frame(std::span<const std::byte> bytes, const std::string& source, const SequenceManifest& manifest,
                   int expected_index, ChannelSelection channels, Frame& frame);
 
+}  // namespace nearshore::sequence
+
+namespace nearshore::sequence {
+/// OpenEXR's own worker threads for decoding (0: decode on the calling thread only). A player
+/// decoding in a background thread wants 0; a batch tool may use more.
+void set_exr_worker_threads(int threads);
 }  // namespace nearshore::sequence
