@@ -46,7 +46,7 @@ void add_bathy_command(CLI::App& app) {
     double spacing_m = 10.0;
     std::string bbox, bbox_m, sign = "auto", projection = "utm", output, xyz_crs;
     std::vector<std::string> structures;
-    double minimum_depth_m = 0.5, maximum_slope = 0.0, land_elevation_m = 2.0, band_m = 200.0;
+    double water_level_m = 0.0, minimum_depth_m = 0.5, maximum_slope = 0.0, land_elevation_m = 2.0, band_m = 200.0;
     bool json = false, leave_one_out = false, fill_uncovered = false;
   };
   auto options = std::make_shared<Options>();
@@ -67,6 +67,8 @@ void add_bathy_command(CLI::App& app) {
   command->add_option("--structure", options->structures,
                       "Porosity band of a structure category, NAME=WIDTH_M:POROSITY (breakwater, groyne, mole, pier, quay, "
                       "sea_wall, riprap, revetment, training_wall, or a GeoJSON category); repeatable");
+  command->add_option("--water-level", options->water_level_m,
+                      "Still water in metres above the sounding datum (e.g. mean sea level over MLLW); default 0");
   command->add_option("--min-depth", options->minimum_depth_m, "Water shallower than this (m) is deepened to it");
   command->add_option("--max-slope", options->maximum_slope, "Smooth the sea bed where |grad d| exceeds this (0 = off)");
   command->add_option("--land-elevation", options->land_elevation_m, "Elevation (m) of land cells where no input gives one");
@@ -88,6 +90,7 @@ void add_bathy_command(CLI::App& app) {
     request.projection = options->projection;
     request.text_crs = options->xyz_crs;
     for (const auto& s : options->structures) parse_structure(s, request.structure_styles);
+    request.water_level_m = options->water_level_m;
     request.minimum_depth_m = options->minimum_depth_m;
     request.maximum_slope = options->maximum_slope;
     request.land_elevation_m = options->land_elevation_m;

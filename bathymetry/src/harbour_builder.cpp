@@ -519,7 +519,11 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
         }
       }
   }
-  // 6. Land: land polygons, and cells at or above the datum unless a depth area says water.
+  // 6. Still water at water_level_m above the sounding datum: every depth (and land elevation)
+  //    is measured from it. Then land: land polygons, and cells at or above still water unless a
+  //    depth area that never dries says water.
+  if (request.water_level_m != 0.0)
+    for (float& d : depth.values()) d += static_cast<float>(request.water_level_m);
   HarbourGrid& grid = result.grid;
   grid.geometry = g;
   grid.land = std::move(land_polygons);
@@ -527,7 +531,8 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   for (std::size_t i = 0; i < depth.size(); ++i) {
     std::uint8_t& land = grid.land.values()[i];
     float& d = depth.values()[i];
-    if (!land && d <= 0.0f && !chart_water.values()[i]) land = 1;
+    // A depth area with DRVAL1 >= 0 is wet at the datum, so wet at any still water above it.
+    if (!land && d <= 0.0f && !(chart_water.values()[i] && request.water_level_m >= 0.0)) land = 1;
     if (land) {
       land_cells++;
       if (!(d < 0.0f)) d = -static_cast<float>(request.land_elevation_m);
@@ -638,6 +643,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
                                           ? "depth of the nearest covered cell (max_change_m: farthest carried, metres)"
                                           : "masked as land";
   summary["bounded_by_depth_areas"] = bounded.to_json(g, projection);
+  summary["water_level_m"] = request.water_level_m;
   summary["conditioning"] = {{"minimum_depth_m", request.minimum_depth_m},
                              {"minimum_depth_clamp", clamped.to_json(g, projection)},
                              {"maximum_slope", request.maximum_slope},

@@ -166,3 +166,26 @@ TEST(BathyOutputs, SlopeLimitAndMinimumDepthAreAppliedAndReported) {
   // Relaxation stops when no step exceeds the limit, or after 200 sweeps (then within a little of it).
   EXPECT_LT(steepest, 0.05 * 1.5);
 }
+
+TEST(BathyOutputs, WaterLevelDeepensEveryCellAndFloodsLowLand) {
+  const auto folder = fresh_test_folder("");
+  nearshore::ProgressBar::set_quiet(true);
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  nb::BathyRequest request;
+  request.inputs = {files.depth_geotiff};
+  request.spacing_m = 40.0;
+  request.minimum_depth_m = 0.0;
+  const nb::BathyResult datum = nb::build_harbour_grid(request);
+  request.water_level_m = 1.5;
+  const nb::BathyResult raised = nb::build_harbour_grid(request);
+  const auto& a = datum.grid;
+  const auto& b = raised.grid;
+  int flooded = 0;
+  for (std::size_t i = 0; i < a.still_water_depth_m.size(); ++i) {
+    EXPECT_NEAR(b.still_water_depth_m.values()[i], a.still_water_depth_m.values()[i] + 1.5f, 1e-5);
+    EXPECT_LE(b.land.values()[i], a.land.values()[i]);  // raising the water never makes land
+    flooded += a.land.values()[i] && !b.land.values()[i];
+  }
+  EXPECT_GT(flooded, 0);  // the 1:15 beach above the shoreline goes under
+  EXPECT_EQ(raised.summary["water_level_m"], 1.5);
+}

@@ -13,7 +13,8 @@
 //   4. chart depth areas bound the gridded depth: DRVAL1 <= d <= DRVAL2, dredged areas d >= DRVAL1;
 //   5. cells no input covers (outside a chart's M_COVR coverage, beyond a raster) become land, or
 //      with fill_uncovered_from_nearest take the depth of the nearest covered cell (counted);
-//   6. land: land polygons and cells with depth <= 0; porosity: structures rasterised with a crest
+//   6. still water raised by water_level_m above the sounding datum (depths grow by it); land: land
+//      polygons and cells with depth <= 0; porosity: structures rasterised with a crest
 //      width and porosity per category; signed coastline distance (negative on land);
 //   7. conditioning for the Boussinesq solver: minimum depth clamp, optional slope limiting.
 #include <array>
@@ -49,6 +50,7 @@ struct BathyRequest {
   std::string text_crs;               ///< CRS of projected x/y in text sounding files
   std::string projection = "utm";     ///< "utm" (zone from the area), "utm:10N", or "local-tm"
   std::map<std::string, StructureStyle> structure_styles = default_structure_styles();
+  double water_level_m = 0.0;         ///< still water above the sounding datum (e.g. MSL over MLLW), metres
   double minimum_depth_m = 0.5;       ///< water shallower than this is deepened to it (solver stability)
   double maximum_slope = 0.0;         ///< |grad d| limit for slope smoothing; 0 = off
   double land_elevation_m = 2.0;      ///< elevation given to land cells when no input has one
