@@ -33,6 +33,15 @@ constexpr std::uint32_t kStateVersion = 1;
 
 std::size_t index(int c, int r, int cols) { return static_cast<std::size_t>(r) * cols + c; }
 
+// body(i) for i in [0, count), in parallel chunks: element-wise work, so the result does not
+// depend on the thread count.
+template <class Body>
+void for_each_index(std::size_t count, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) body(i);
+  });
+}
+
 double smooth_step(double t) {  // cubic 0..1 on t in [0, 1]
   t = std::clamp(t, 0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
@@ -383,7 +392,7 @@ void BoussinesqSolver::Implementation::step() {
     }
   });
   source->add(time_s + 0.5 * dt, dt, eta_base_t.data(), static_cast<std::size_t>(ny), 1);
-  for (std::size_t f = 0; f < flux_x.size(); ++f) flux_x_across[f] = flux_x[f] + 0.5 * flux_x_increment[f];
+  for_each_index(flux_x.size(), [&](std::size_t f) { flux_x_across[f] = flux_x[f] + 0.5 * flux_x_increment[f]; });
   sweep(frame_x,
         {eta_t.data(), eta_base_t.data(), eta_across_t.data(), flux_x.data(), flux_x_across.data(), flux_x_increment.data(),
          tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data()},
@@ -391,14 +400,14 @@ void BoussinesqSolver::Implementation::step() {
 
   // 2. y sweep in the natural layout: E = eta*, P at t^{n+1/2} and dP/dt now known exactly.
   detail::transpose(eta_star_t.data(), eta_star.data(), ny, nx);
-  for (std::size_t f = 0; f < flux_x.size(); ++f) {
+  for_each_index(flux_x.size(), [&](std::size_t f) {
     flux_x_across[f] = 0.5 * (flux_x[f] + flux_x_new[f]);  // reused: P at t^{n+1/2}
     flux_x_rate[f] = (flux_x_new[f] - flux_x[f]) / dt;
-  }
+  });
   detail::transpose(flux_x_across.data(), flux_x_half.data(), ny, nx + 1);
   detail::transpose(flux_x_rate.data(), flux_x_across.data(), ny, nx + 1);  // reused: dP/dt, natural layout
-  for (std::size_t i = 0; i < cells; ++i) eta_across[i] = 0.5 * (eta[i] + eta_star[i]);
-  for (std::size_t f = 0; f < flux_y.size(); ++f) flux_y_across[f] = flux_y[f] + 0.5 * flux_y_increment[f];
+  for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_star[i]); });
+  for_each_index(flux_y.size(), [&](std::size_t f) { flux_y_across[f] = flux_y[f] + 0.5 * flux_y_increment[f]; });
   mark_dispersive(frame_y, eta.data(), dispersive.data());
   sweep(frame_y,
         {eta.data(), eta_star.data(), eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_increment.data(),
@@ -409,14 +418,14 @@ void BoussinesqSolver::Implementation::step() {
   repair_negative_depths();
 
   // 4. Advance the state.
-  for (std::size_t f = 0; f < flux_x.size(); ++f) {
+  for_each_index(flux_x.size(), [&](std::size_t f) {
     flux_x_increment[f] = flux_x_new[f] - flux_x[f];
     flux_x[f] = flux_x_new[f];
-  }
-  for (std::size_t f = 0; f < flux_y.size(); ++f) {
+  });
+  for_each_index(flux_y.size(), [&](std::size_t f) {
     flux_y_increment[f] = flux_y_new[f] - flux_y[f];
     flux_y[f] = flux_y_new[f];
-  }
+  });
   eta_previous_t.swap(eta_t);  // eta^n, transposed
   eta_star.swap(eta);          // eta_star now holds eta^n (natural), for the breaking model
   eta.swap(eta_next);          // eta = eta^{n+1}
@@ -482,10 +491,11 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
 void BoussinesqSolver::Implementation::apply_sponges() {
   if (sponge_cell.empty()) return;
   const double* depth = frame_y.depth_m.data();
-  for (std::size_t i = 0; i < eta.size(); ++i)
+  for_each_index(eta.size(), [&](std::size_t i) {
     if (depth[i] > 0.0 && depth[i] + eta[i] > parameters.dry_depth_m) eta[i] *= sponge_cell[i];
-  for (std::size_t f = 0; f < flux_x.size(); ++f) flux_x[f] *= sponge_face_x[f];
-  for (std::size_t f = 0; f < flux_y.size(); ++f) flux_y[f] *= sponge_face_y[f];
+  });
+  for_each_index(flux_x.size(), [&](std::size_t f) { flux_x[f] *= sponge_face_x[f]; });
+  for_each_index(flux_y.size(), [&](std::size_t f) { flux_y[f] *= sponge_face_y[f]; });
 }
 
 void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>& eta_old) {
@@ -522,10 +532,10 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
 }
 
 void BoussinesqSolver::Implementation::publish() {
-  for (std::size_t i = 0; i < eta.size(); ++i) {
+  for_each_index(eta.size(), [&](std::size_t i) {
     eta_output.values()[i] = static_cast<float>(eta[i]);
     breaking_output.values()[i] = static_cast<float>(breaking_strength[i]);
-  }
+  });
 }
 
 void BoussinesqSolver::set_surface_elevation(const std::function<double(double, double)>& surface_elevation_m) {

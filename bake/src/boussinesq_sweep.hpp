@@ -37,7 +37,7 @@ inline constexpr double kWallPorosity = 0.05;
 /// to this value inside the dispersive terms only, so charts with quays and dredged channels stay stable.
 inline constexpr double kMaxDispersiveSlope = 0.5;
 /// Lines solved together in one block.
-inline constexpr int kBlockLines = 32;
+inline constexpr int kBlockLines = 16;
 
 /// The time-dependent input of one sweep, all in the frame's layout.
 struct SweepInput {
