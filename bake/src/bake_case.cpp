@@ -356,6 +356,28 @@ void check_loop_period(TableReader& maker, const std::string& key, double loop_p
                            period_s * std::max(1.0, std::round(loop_period_s / period_s))));
 }
 
+// The grid can carry a component only if it is long enough: at the deepest still water, k d <= 3
+// (the range where the B = 1/15 equations hold linear dispersion within 2 %, Madsen & Sorensen 1992)
+// and at least `cells_per_wavelength` cells per wavelength. Shorter waves are not waves the bake can
+// make: they alias, or blow up at the source line, so the case says so instead.
+void check_resolvable(TableReader& maker, const SeaState& sea, const HarbourGrid& grid, int cells_per_wavelength) {
+  float deepest_m = 0.f;
+  for (float depth : grid.still_water_depth_m.values()) deepest_m = std::max(deepest_m, depth);
+  const double k_max = std::min(3.0 / std::max(static_cast<double>(deepest_m), 1e-3),
+                                2 * std::numbers::pi / (cells_per_wavelength * grid.geometry.spacing_m));
+  const double w_max = frequency_from_wavenumber(k_max, deepest_m);
+  double highest = 0, lowest = std::numeric_limits<double>::infinity();
+  for (const WaveComponent& component : sea.components)
+    highest = std::max(highest, component.angular_frequency_rad_s), lowest = std::min(lowest, component.angular_frequency_rad_s);
+  if (highest > w_max * (1 + 1e-9))
+    maker.fail("wave_maker", fmt::format("(irregular) has components up to {:.3f} Hz, but the grid carries waves only up to {:.3f} Hz "
+                                         "(k d <= 3 at the deepest {:.2f} m and {} cells of {} m per wavelength)",
+                                         highest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi), deepest_m,
+                                         cells_per_wavelength, grid.geometry.spacing_m),
+               fmt::format("give the band explicitly, e.g. min_frequency_hz = {:.3f} and max_frequency_hz = {:.3f}, or use a finer grid",
+                           lowest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi)));
+}
+
 WaveComponent component_from(TableReader& reader, const std::string& amplitude_key, double amplitude_factor,
                              double default_direction_rad) {
   WaveComponent component;
@@ -419,11 +441,17 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
       maker.fail(maker.full("direction_count"), "is above 1 for a long-crested sea (spreading_s = 0)", "set spreading_s > 0 or direction_count = 1");
     specification.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
     specification.seed = maker.unsigned_integer("seed", 1, "phase seed");
+    if (maker.has("min_frequency_hz") || maker.has("max_frequency_hz")) {
+      specification.min_frequency_rad_s = 2 * std::numbers::pi * maker.positive("min_frequency_hz", std::nullopt, "lowest frequency in Hz");
+      specification.max_frequency_rad_s = 2 * std::numbers::pi * maker.positive("max_frequency_hz", std::nullopt, "highest frequency in Hz");
+    }
+    const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000, "cells per wavelength the grid must give every component");
     try {
       sea = build_sea_state(specification);
     } catch (const Error& error) {
       maker.fail("wave_maker", "(irregular) cannot be built: " + error.problem(), error.fix());
     }
+    check_resolvable(maker, sea, grid, cells_per_wavelength);
   } else if (kind == 2) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
     sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");

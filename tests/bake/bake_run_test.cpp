@@ -18,6 +18,7 @@
 #include "nearshore/bake/bake_run.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
+#include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::bake {
 namespace {
@@ -95,6 +96,27 @@ TEST_F(BakeRun, WritesFramesGaugesAndTheManifestLast) {
   const auto json = summary.to_json();
   EXPECT_EQ(json["outputs"]["frames"], 13);
   EXPECT_GT(json["cell_updates_per_s"].get<double>(), 0.0);
+}
+
+TEST_F(BakeRun, PeriodicIrregularBakeRecordsLoopPeriodSeedAndComponents) {
+  const auto folder = scratch_folder();
+  std::string text = small_flume_case(6.0);
+  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nsignificant_height_m = 0.02\npeak_period_s = 1.5\n"
+                                                     "frequency_count = 16\nseed = 1234\nloop_period_s = 32.0\n"
+                                                     "min_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
+  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  const BakeSummary summary = run_bake(c, options);
+  EXPECT_EQ(summary.seed, 1234u);
+  const sequence::SequenceReader reader(options.output_folder);
+  EXPECT_EQ(reader.manifest().seed, 1234u);
+  EXPECT_DOUBLE_EQ(reader.manifest().loop_period_s, 32.0);
+  EXPECT_EQ(reader.manifest().wave_conditions["components"].size(), 16u);
+  EXPECT_EQ(reader.manifest().wave_conditions["case"]["kind"], "irregular");
+  EXPECT_DOUBLE_EQ(reader.manifest().solver["time_step_s"].get<double>(), summary.time_step_s);
+  EXPECT_EQ(reader.frame_count(), summary.frames);
 }
 
 TEST_F(BakeRun, ResumeAfterARealKillGivesTheSameFramesAndGauges) {
