@@ -22,7 +22,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 const char* const kSubject = "deep-water specification";
 
-using Complex = std::complex<double>;
 
 /// The channels one synthesis fills, each the real field Re sum_k m(k) c_k e^{ik.x} of one
 /// multiplier m(k) (see deep_water.hpp).
@@ -31,14 +30,21 @@ enum Channel : int {
   kDisplacementXX, kDisplacementYY, kDisplacementXY, kFluxX, kFluxY, kChannelCount
 };
 
-Complex multiplier(int channel, double kx, double ky, double w) {
+/// m(k) = i^imaginary * real_multiplier(k). Every multiplier but the fluxes' has
+/// conj(m(-k)) = m(k), so the channel's half spectrum is m(k) (c_k + conj(c_-k)) / 2; the fluxes'
+/// are odd and real, conj(m(-k)) = -m(k): m(k) (c_k - conj(c_-k)) / 2.
+bool is_imaginary(int channel) { return channel >= kDisplacementX && channel <= kSlopeY; }
+bool is_odd_real(int channel) { return channel == kFluxX || channel == kFluxY; }
+
+double real_multiplier(int channel, double kx, double ky, double w) {
   const double k = std::hypot(kx, ky);
+  if (!(k > 0.0)) return 0.0;
   switch (channel) {
     case kElevation: return 1.0;
-    case kDisplacementX: return {0.0, kx / k};
-    case kDisplacementY: return {0.0, ky / k};
-    case kSlopeX: return {0.0, kx};
-    case kSlopeY: return {0.0, ky};
+    case kDisplacementX: return kx / k;
+    case kDisplacementY: return ky / k;
+    case kSlopeX: return kx;
+    case kSlopeY: return ky;
     case kDisplacementXX: return -kx * kx / k;
     case kDisplacementYY: return -ky * ky / k;
     case kDisplacementXY: return -kx * ky / k;
@@ -131,6 +137,10 @@ struct Cascade {
   std::array<fftwf_complex*, kChannelCount> input{};
   std::array<float*, kChannelCount> output{};
   std::vector<std::complex<float>> coefficient;  // c_k(t), N*N
+  // On the half spectrum N x (N/2+1): (c_k + conj(c_-k))/2, (c_k - conj(c_-k))/2, and each
+  // channel's real multiplier (see real_multiplier), precomputed once.
+  std::vector<std::complex<float>> even_part, odd_part;
+  std::array<std::vector<float>, kChannelCount> multiplier;
 };
 
 }  // namespace
@@ -268,6 +278,18 @@ DeepWaterField::DeepWaterField(const DeepWaterSpecification& spec) : impl_(std::
       cascade.output[channel] = fftwf_alloc_real(cells);
     }
     cascade.coefficient.resize(cells);
+    const std::size_t half_cells = static_cast<std::size_t>(n) * (n / 2 + 1);
+    cascade.even_part.resize(half_cells);
+    cascade.odd_part.resize(half_cells);
+    for (int channel = 0; channel < kChannelCount; ++channel) {
+      std::vector<float>& multiplier = cascade.multiplier[channel];
+      multiplier.resize(half_cells);
+      for (int row = 0; row < n; ++row)
+        for (int column = 0; column <= n / 2; ++column)
+          multiplier[static_cast<std::size_t>(row) * (n / 2 + 1) + column] = static_cast<float>(real_multiplier(
+              channel, signed_index(column, n) * dk, signed_index(row, n) * dk,
+              cascade.frequency_rad_s[static_cast<std::size_t>(row) * n + column]));
+    }
     cascade.frame.grid_size = n;
     cascade.frame.tile_length_m = length;
   }
@@ -310,7 +332,6 @@ void DeepWaterField::synthesise(double time_s, bool with_flux) {
   for (Cascade& cascade : impl_->cascades) {
     const int n = cascade.n;
     const int half = n / 2 + 1;
-    const double dk = cascade.spacing_rad_m;
     // 1. c_k(t) = a e^{i(phi - w t)}. With a loop, w t = 2 pi frac(h t / T) exactly periodic in T.
     tbb::parallel_for(0, n, [&](int row) {
       for (int column = 0; column < n; ++column) {
@@ -330,27 +351,33 @@ void DeepWaterField::synthesise(double time_s, bool with_flux) {
         cascade.coefficient[index] = std::polar(a, static_cast<float>(cascade.phase_rad[index] - advance_rad));
       }
     });
-    // 2. Per channel: H_m(k) = (m(k) c_k + conj(m(-k) c_{-k})) / 2 on the half spectrum, then c2r.
+    // 2. The even and odd parts (c_k +- conj(c_-k)) / 2 on the half spectrum.
+    tbb::parallel_for(0, n, [&](int row) {
+      const int mirror_row = (n - row) % n;
+      for (int column = 0; column < half; ++column) {
+        const std::complex<float> own = cascade.coefficient[static_cast<std::size_t>(row) * n + column];
+        const std::complex<float> opposite =
+            std::conj(cascade.coefficient[static_cast<std::size_t>(mirror_row) * n + (n - column) % n]);
+        const std::size_t j = static_cast<std::size_t>(row) * half + column;
+        cascade.even_part[j] = 0.5f * (own + opposite);
+        cascade.odd_part[j] = 0.5f * (own - opposite);
+      }
+    });
+    // 3. Per channel: H_m = m(k) times the even (or, for the fluxes, odd) part, then c2r.
     tbb::parallel_for(0, channels, [&](int channel) {
       fftwf_complex* input = cascade.input[channel];
-      for (int row = 0; row < n; ++row) {
-        const int m = signed_index(row, n);
-        const int mirror_row = (n - row) % n;
-        for (int column = 0; column < half; ++column) {
-          const int nx = signed_index(column, n);
-          const std::size_t index = static_cast<std::size_t>(row) * n + column;
-          const std::size_t mirror = static_cast<std::size_t>(mirror_row) * n + (n - column) % n;
-          const std::complex<float> own = cascade.coefficient[index], opposite = cascade.coefficient[mirror];
-          std::complex<float> h = 0.0f;
-          if (own != 0.0f || opposite != 0.0f) {
-            const double kx = nx * dk, ky = m * dk;
-            const Complex m_own = multiplier(channel, kx, ky, cascade.frequency_rad_s[index]);
-            const Complex m_opposite = multiplier(channel, -kx, -ky, cascade.frequency_rad_s[mirror]);
-            const Complex value = 0.5 * (m_own * Complex(own) + std::conj(m_opposite * Complex(opposite)));
-            h = std::complex<float>(value);
-          }
-          input[static_cast<std::size_t>(row) * half + column][0] = h.real();
-          input[static_cast<std::size_t>(row) * half + column][1] = h.imag();
+      const std::vector<std::complex<float>>& part = is_odd_real(channel) ? cascade.odd_part : cascade.even_part;
+      const std::vector<float>& multiplier = cascade.multiplier[channel];
+      const bool imaginary = is_imaginary(channel);
+      const std::size_t half_cells = part.size();
+      for (std::size_t j = 0; j < half_cells; ++j) {
+        const float r = multiplier[j];
+        if (imaginary) {  // i r (x + i y) = -r y + i r x
+          input[j][0] = -r * part[j].imag();
+          input[j][1] = r * part[j].real();
+        } else {
+          input[j][0] = r * part[j].real();
+          input[j][1] = r * part[j].imag();
         }
       }
       fftwf_execute_dft_c2r(impl_->plan, input, cascade.output[channel]);
