@@ -86,5 +86,34 @@ TEST(BoussinesqDispersion, PhaseSpeedAgainstAiryAt20PointsPerWavelength) {
   }
 }
 
+
+// The same in two dimensions: the mode cos(kx x) cos(ky y) with kx = ky (waves at 45 degrees) is an
+// eigenmode of the closed basin; its period tests the cross-derivative dispersive terms
+// (Q_xyt, eta_xyy) and the ADI splitting, which a 1-D wave never sees.
+TEST(BoussinesqDispersion, ObliqueStandingWaveAgainstAiry) {
+  for (double kh : {0.5, 1.5, 2.5}) {
+    const double wavelength_m = 10.0, k = 2.0 * kPi / wavelength_m, depth_m = kh / k;
+    const double k_axis = k / std::sqrt(2.0);
+    const int cells = 28;  // per axis wavelength 2 pi / k_axis = sqrt(2) L: 19.8 cells per wavelength
+    const double spacing_m = 2.0 * kPi / k_axis / cells;
+    const HarbourGrid harbour = testing::flume(cells, cells, spacing_m, depth_m);
+    BoussinesqSolver solver(harbour, testing::inviscid_parameters(0.5), WaveMaker{});
+    const double amplitude_m = 1e-5 * depth_m;
+    solver.set_surface_elevation([&](double x, double y) { return amplitude_m * std::cos(k_axis * x) * std::cos(k_axis * y); });
+    std::vector<double> crossings;
+    double previous = solver.surface_elevation_at(0.0, 0.0);
+    while (crossings.size() < 9) {
+      solver.step();
+      const double now = solver.surface_elevation_at(0.0, 0.0);
+      if ((previous > 0.0) != (now > 0.0)) crossings.push_back(solver.time_s() - solver.time_step_s() * now / (now - previous));
+      previous = now;
+    }
+    const double period_s = 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1.0);
+    const double error = 2.0 * kPi / period_s / k / phase_speed_m_s(k, depth_m) - 1.0;
+    std::printf("45 deg, kh = %.1f: c/c_Airy - 1 = %+.3f %%\n", kh, 100 * error);
+    EXPECT_LT(std::abs(error), 0.02) << "kh = " << kh;  // the bound, as along an axis
+  }
+}
+
 }  // namespace
 }  // namespace nearshore::bake
