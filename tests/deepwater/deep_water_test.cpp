@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -304,6 +305,7 @@ TEST(DeepWaterField, FoamCoverageGrowsWithBeaufort) {
     }
     coverage.push_back(0.5 * sum);
   }
+  for (int force = 0; force <= 12; ++force) std::printf("foam coverage at Beaufort %d: %.4f %%\n", force, 100.0 * coverage[force]);
   for (int force = 1; force <= 12; ++force) {
     const double noise = 3.0 * std::sqrt(coverage[force - 1] / (2.0 * 65536.0));
     EXPECT_GE(coverage[force], coverage[force - 1] - noise) << "force " << force;

@@ -85,7 +85,7 @@ struct DeepWaterFrame {
 /// tuned eps. Here D is in metres and lambda = 1 is the physical (Gerstner) displacement, under
 /// which a single wave has J = 1 - a k cos(phase): it breaks at the Stokes limit a k = 0.443, i.e.
 /// J_b = 0.557 (kStokesBreakingJacobian, the default). Measured over the Beaufort presets this
-/// gives a coverage rising from 0.02 % (force 1) to 1.6 % (force 12); J_b = -0.2 at lambda = 1
+/// gives a coverage rising from 0.011 % (force 1) to 1.5 % (force 12); J_b = -0.2 at lambda = 1
 /// gives none at all. Both are parameters.
 inline constexpr double kStokesBreakingJacobian = 1.0 - 0.443;
 struct FoamFeatures {
