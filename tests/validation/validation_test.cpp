@@ -224,12 +224,13 @@ struct RunupResult {
 // the highest surface elevation of any wet cell (total depth above the dry threshold) landward of
 // the initial shoreline, over all frames.
 RunupResult run_synolakis(double height_ratio, const std::string& run_name, const std::vector<int>& profile_times) {
-  constexpr double kDepth_m = 0.30, kCotBeta = 19.85, kShorelineX_m = 15.0;
+  constexpr double kDepth_m = 0.30, kCotBeta = 19.85, kShorelineX_m = 21.0;  // data/cases/synolakis.toml
   double dry_depth_m = 0;
   bake_case("synolakis", run_name, [&](json& document) {
-    // The crest starts at X1 = 19.85 d + L/2 offshore, L = arccosh(sqrt(20)) / gamma (NTHMP BP4).
+    // The crest starts at X1 = X0 + L offshore, X0 = 19.85 d the toe and L = arccosh(sqrt(20)) / gamma
+    // the crest-to-5 % half-length (OAR PMEL-135, BP4; the case file explains the README's L/2).
     const double gamma = std::sqrt(3.0 * height_ratio / 4.0) / kDepth_m;
-    const double x1_m = kCotBeta * kDepth_m + 0.5 * std::acosh(std::sqrt(20.0)) / gamma;
+    const double x1_m = kCotBeta * kDepth_m + std::acosh(std::sqrt(20.0)) / gamma;
     document["wave_maker"]["height_m"] = height_ratio * kDepth_m;
     document["wave_maker"]["crest_position_m"] = kShorelineX_m - x1_m;
     if (kFull) document["bathymetry"]["spacing_m"] = 0.0075;  // d / 40
@@ -253,8 +254,9 @@ RunupResult run_synolakis(double height_ratio, const std::string& run_name, cons
         auto& [xs, etas] = result.profiles[wanted];
         for (int column = 0; column < grid.geometry.columns; ++column) {
           const double depth = grid.still_water_depth_m(column, row), eta = frame.surface_elevation_m(column, row);
-          if (eta + depth <= dry_depth_m) continue;
-          xs.push_back((kShorelineX_m - grid.geometry.cell_centre_x_m(column)) / kDepth_m);
+          const double offshore_ratio = (kShorelineX_m - grid.geometry.cell_centre_x_m(column)) / kDepth_m;
+          if (eta + depth <= dry_depth_m || offshore_ratio > 30.0) continue;  // the measured profiles reach 20 d
+          xs.push_back(offshore_ratio);
           etas.push_back(eta / kDepth_m);
         }
       }
