@@ -11,8 +11,10 @@
 #include <numbers>
 
 #include "nearshore/bake/deep_water.hpp"
+#include "nearshore/bake/deep_water_tiles.hpp"
 #include "nearshore/bake/sea_state_beaufort.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/sequence/sequence_reader.hpp"
 
 using namespace nearshore::bake;
 constexpr double kPi = std::numbers::pi;
@@ -388,4 +390,37 @@ TEST(DeepWaterField, BadSpecificationsNameTheFix) {
   } catch (const nearshore::Error& error) {
     EXPECT_NE(std::string(error.what()).find("choppiness"), std::string::npos);
   }
+}
+
+TEST(DeepWaterTiles, TileSetIsASequenceOfTheCascadeOverOneLoop) {
+  // One cascade over one 20 s loop in 8 frames, float channels: frame i holds the field at
+  // i T / 8 (frame 4 = the field at 10 s, to 1e-6 m: float storage), the manifest says it loops
+  // and carries the deep_water description. A field that does not loop, or a cascade that does
+  // not exist, is an error.
+  DeepWaterSpecification spec = specification_for(std::make_shared<PmIttcSpectrum>(6.0, 0.0), 16, 80.0, 2);
+  spec.loop_period_s = 20.0;
+  DeepWaterField field(spec);
+  const auto folder = std::filesystem::path(NEARSHORE_BINARY_DIR) / "tests" / "deepwater" / "tile_set";
+  std::filesystem::remove_all(folder);
+  nearshore::sequence::FrameEncoding encoding;
+  encoding.surface_elevation = nearshore::sequence::Precision::kFloat;
+  encoding.flux = nearshore::sequence::Precision::kFloat;
+  const TileSetSummary summary = write_deep_water_tile_set(field, 1, 8, folder, encoding);
+  EXPECT_EQ(summary.frame_count, 8);
+  EXPECT_DOUBLE_EQ(summary.frame_interval_s, 2.5);
+  EXPECT_GT(summary.frame_bytes, 0u);
+  const nearshore::sequence::SequenceReader reader(folder);
+  EXPECT_EQ(reader.frame_count(), 8);
+  EXPECT_DOUBLE_EQ(reader.manifest().loop_period_s, 20.0);
+  EXPECT_EQ(reader.manifest().deep_water["tile_set_cascade"], 1);
+  EXPECT_EQ(reader.geometry().columns, 16);
+  EXPECT_DOUBLE_EQ(reader.geometry().spacing_m, 20.0 / 16.0);
+  const auto frame = reader.read_frame(4, nearshore::sequence::ChannelSelection::all(), nearshore::sequence::Verify::kYes);
+  field.synthesise(10.0);
+  const auto& expected = field.frame(1).surface_elevation_m;
+  for (std::size_t i = 0; i < expected.size(); ++i) ASSERT_NEAR(frame.surface_elevation_m.values()[i], expected[i], 1e-6);
+  spec.loop_period_s = 0.0;
+  DeepWaterField not_looping(spec);
+  EXPECT_THROW(write_deep_water_tile_set(not_looping, 0, 8, folder / "x"), nearshore::Error);
+  EXPECT_THROW(write_deep_water_tile_set(field, 5, 8, folder / "y"), nearshore::Error);
 }
