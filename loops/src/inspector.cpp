@@ -223,7 +223,12 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   for (double length_s : options.report_lengths_s)
     longest = std::max(longest, static_cast<int>(std::lround(1.25 * length_s / report.frame_interval_s)));
   longest = std::min(longest, report.frame_count);
-  const std::vector<std::optional<LoopPlan>> by_length = best_loops_by_length(report.table, longest);
+  std::vector<char> wanted(static_cast<std::size_t>(longest) + 1, 0);
+  for (double length_s : options.report_lengths_s)
+    for (long length = std::lround(length_s / report.frame_interval_s);
+         length <= std::min<long>(longest, std::lround(1.25 * length_s / report.frame_interval_s)); ++length)
+      if (length >= 0) wanted[static_cast<std::size_t>(length)] = 1;
+  const std::vector<std::optional<LoopPlan>> by_length = best_loops_for_lengths(report.table, wanted);
   for (double length_s : options.report_lengths_s) {
     const int low = static_cast<int>(std::lround(length_s / report.frame_interval_s));
     const int high = std::min(longest, static_cast<int>(std::lround(1.25 * length_s / report.frame_interval_s)));

@@ -136,6 +136,13 @@ std::vector<int> LoopPlan::frames() const {
 
 std::vector<std::optional<LoopPlan>> best_loops_by_length(const TransitionTable& table, int max_length_frames,
                                                           int max_jumps) {
+  return best_loops_for_lengths(
+      table, std::vector<char>(static_cast<std::size_t>(std::min(max_length_frames, table.frame_count)) + 1, 1), max_jumps);
+}
+
+std::vector<std::optional<LoopPlan>> best_loops_for_lengths(const TransitionTable& table, const std::vector<char>& wanted,
+                                                            int max_jumps) {
+  int max_length_frames = static_cast<int>(wanted.size()) - 1;
   const std::vector<Transition> jumps = loop_jumps(table, max_jumps);
   std::vector<double> cost;
   for (const Transition& t : jumps) cost.push_back(std::pow(t.cost, table.options.cost_exponent));
@@ -154,7 +161,7 @@ std::vector<std::optional<LoopPlan>> best_loops_by_length(const TransitionTable&
   }
   std::vector<std::optional<LoopPlan>> plans(best.size());
   for (std::size_t length = 1; length < best.size(); ++length)
-    if (best_start[length] >= 0)
+    if (best_start[length] >= 0 && wanted[length])
       plans[length] = backtrack(table, jumps, cost, best_start[length], static_cast<int>(length));
   return plans;
 }

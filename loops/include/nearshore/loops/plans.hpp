@@ -30,6 +30,10 @@ struct LoopPlan {
 /// `max_jumps` of them, the best few per diagonal i - j (one diagonal = one loop length).
 std::vector<std::optional<LoopPlan>> best_loops_by_length(const TransitionTable& table, int max_length_frames,
                                                           int max_jumps = 256);
+/// The same, but only the lengths flagged in `wanted` (index = length) are reconstructed (one
+/// dynamic programme for all lengths, one backtrack per wanted length).
+std::vector<std::optional<LoopPlan>> best_loops_for_lengths(const TransitionTable& table, const std::vector<char>& wanted,
+                                                            int max_jumps = 256);
 /// The optimal loop of exactly `length_frames`, or nullopt if none exists.
 std::optional<LoopPlan> optimal_loop(const TransitionTable& table, int length_frames, int max_jumps = 256);
 
