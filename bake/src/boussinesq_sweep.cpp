@@ -94,56 +94,56 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
   // and the two edge lines of the grid (clamped neighbours, scalar).
   auto fixed_face = [&](int f, int j, int l, int ln, int ls, double north, double south) __attribute__((always_inline)) {
     const int L = f - 1, R = f;
-      const std::size_t face = f * stride + l;
-      auto c_at = [stride](int c, int line) { return c * stride + line; };
-      auto t_at = [tstride](int c, int k2) { return c * tstride + k2; };
-      auto h_at = [&](int c, int line) { return std::max(depth[c_at(c, line)] + eta_across[c_at(c, line)], dry); };
-      const double n_f = face_porosity[face], inv_n_f = face_inverse_porosity[face];
-      const double d = face_depth[face];
-      // (PQ/h)_y at the face from the two corners north and south of it.
-      const double h_north = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ln) + h_at(R, ln));
-      const double h_south = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ls) + h_at(R, ls));
-      const double corner_north = north * 0.25 * (tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]) *
-                                  (normal_across[face] + normal_across[f * stride + ln]) / h_north;
-      const double corner_south = south * 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)]) *
-                                  (normal_across[face] + normal_across[f * stride + ls]) / h_south;
-      double term = -inv_n_f * (corner_north - corner_south) * inv_dx;
+    const std::size_t face = f * stride + l;
+    auto c_at = [stride](int c, int line) { return c * stride + line; };
+    auto t_at = [tstride](int c, int k2) { return c * tstride + k2; };
+    auto h_at = [&](int c, int line) { return std::max(depth[c_at(c, line)] + eta_across[c_at(c, line)], dry); };
+    const double n_f = face_porosity[face], inv_n_f = face_inverse_porosity[face];
+    const double d = face_depth[face];
+    // (PQ/h)_y at the face from the two corners north and south of it.
+    const double h_north = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ln) + h_at(R, ln));
+    const double h_south = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ls) + h_at(R, ls));
+    const double corner_north = north * 0.25 * (tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]) *
+                                (normal_across[face] + normal_across[f * stride + ln]) / h_north;
+    const double corner_south = south * 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)]) *
+                                (normal_across[face] + normal_across[f * stride + ls]) / h_south;
+    double term = -inv_n_f * (corner_north - corner_south) * inv_dx;
 
-      // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
-      //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
-      const double w = face_weight[face] * (dispersive[c_at(L, l)] * dispersive[c_at(R, l)]);
-      const double eta_yy_L = (eta_across[c_at(L, ln)] - 2.0 * eta_across[c_at(L, l)] + eta_across[c_at(L, ls)]) * inv_dx2;
-      const double eta_yy_R = (eta_across[c_at(R, ln)] - 2.0 * eta_across[c_at(R, l)] + eta_across[c_at(R, ls)]) * inv_dx2;
-      const double eta_y_L = (eta_across[c_at(L, ln)] - eta_across[c_at(L, ls)]) * 0.5 * inv_dx;
-      const double eta_y_R = (eta_across[c_at(R, ln)] - eta_across[c_at(R, ls)]) * 0.5 * inv_dx;
-      const double flux_yt_L = (tangential_rate[t_at(L, l + 1)] - tangential_rate[t_at(L, l)]) * inv_dx;
-      const double flux_yt_R = (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(R, l)]) * inv_dx;
-      const double eta_xyy = (eta_yy_R - eta_yy_L) * inv_dx;
-      const double eta_yy_face = 0.5 * (eta_yy_L + eta_yy_R);
-      const double eta_xy = (eta_y_R - eta_y_L) * inv_dx;
-      const double flux_xyt = (flux_yt_R - flux_yt_L) * inv_dx;
-      const double flux_yt_face = 0.5 * (flux_yt_L + flux_yt_R);
-      const double flux_xt = 0.5 * ((tangential_rate[t_at(R, l)] - tangential_rate[t_at(L, l)]) +
-                                    (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(L, l + 1)])) * inv_dx;
-      const double slope_along = face_slope_along[face], slope_across = face_slope_across[face];
-      const double nBgd = n_f * B * g * d;
-      const double psi = -B3 * d * d * flux_xyt - nBgd * d * d * eta_xyy -
-                         d * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
-                         d * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
-      term -= w * psi;
+    // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
+    //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
+    const double w = face_weight[face] * (dispersive[c_at(L, l)] * dispersive[c_at(R, l)]);
+    const double eta_yy_L = (eta_across[c_at(L, ln)] - 2.0 * eta_across[c_at(L, l)] + eta_across[c_at(L, ls)]) * inv_dx2;
+    const double eta_yy_R = (eta_across[c_at(R, ln)] - 2.0 * eta_across[c_at(R, l)] + eta_across[c_at(R, ls)]) * inv_dx2;
+    const double eta_y_L = (eta_across[c_at(L, ln)] - eta_across[c_at(L, ls)]) * 0.5 * inv_dx;
+    const double eta_y_R = (eta_across[c_at(R, ln)] - eta_across[c_at(R, ls)]) * 0.5 * inv_dx;
+    const double flux_yt_L = (tangential_rate[t_at(L, l + 1)] - tangential_rate[t_at(L, l)]) * inv_dx;
+    const double flux_yt_R = (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(R, l)]) * inv_dx;
+    const double eta_xyy = (eta_yy_R - eta_yy_L) * inv_dx;
+    const double eta_yy_face = 0.5 * (eta_yy_L + eta_yy_R);
+    const double eta_xy = (eta_y_R - eta_y_L) * inv_dx;
+    const double flux_xyt = (flux_yt_R - flux_yt_L) * inv_dx;
+    const double flux_yt_face = 0.5 * (flux_yt_L + flux_yt_R);
+    const double flux_xt = 0.5 * ((tangential_rate[t_at(R, l)] - tangential_rate[t_at(L, l)]) +
+                                  (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(L, l + 1)])) * inv_dx;
+    const double slope_along = face_slope_along[face], slope_across = face_slope_across[face];
+    const double nBgd = n_f * B * g * d;
+    const double psi = -B3 * d * d * flux_xyt - nBgd * d * d * eta_xyy -
+                       d * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
+                       d * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
+    term -= w * psi;
 
-      // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
-      const double nu_here = nu[c_at(L, l)] + nu[c_at(R, l)];
-      const double nu_north = north * 0.25 * (nu_here + nu[c_at(L, ln)] + nu[c_at(R, ln)]);
-      const double nu_south = south * 0.25 * (nu_here + nu[c_at(L, ls)] + nu[c_at(R, ls)]);
-      const double stress_north = nu_north * ((normal_across[f * stride + ln] - normal_across[face]) +
-                                              (tangential[t_at(R, l + 1)] - tangential[t_at(L, l + 1)])) * inv_dx;
-      const double stress_south = nu_south * ((normal_across[face] - normal_across[f * stride + ls]) +
-                                              (tangential[t_at(R, l)] - tangential[t_at(L, l)])) * inv_dx;
-      term += inv_n_f * (stress_north - stress_south) * inv_dx;
-      fixed_term[f * W + j] = term;
-      const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);
-      tangential_squared[f * W + j] = flux_t * flux_t;
+    // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
+    const double nu_here = nu[c_at(L, l)] + nu[c_at(R, l)];
+    const double nu_north = north * 0.25 * (nu_here + nu[c_at(L, ln)] + nu[c_at(R, ln)]);
+    const double nu_south = south * 0.25 * (nu_here + nu[c_at(L, ls)] + nu[c_at(R, ls)]);
+    const double stress_north = nu_north * ((normal_across[f * stride + ln] - normal_across[face]) +
+                                            (tangential[t_at(R, l + 1)] - tangential[t_at(L, l + 1)])) * inv_dx;
+    const double stress_south = nu_south * ((normal_across[face] - normal_across[f * stride + ls]) +
+                                            (tangential[t_at(R, l)] - tangential[t_at(L, l)])) * inv_dx;
+    term += inv_n_f * (stress_north - stress_south) * inv_dx;
+    fixed_term[f * W + j] = term;
+    const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);
+    tangential_squared[f * W + j] = flux_t * flux_t;
   };
   const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
   for (int f = 1; f < cols; ++f) {
