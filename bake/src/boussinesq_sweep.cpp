@@ -15,7 +15,8 @@ namespace nearshore::bake::detail {
 void SweepScratch::resize(int cols) {
   const std::size_t size = static_cast<std::size_t>(cols + 5) * kBlockLines;
   for (auto* v : {&lower, &diagonal, &upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
-                  &tangential_squared, &active, &magnitude})
+                  &tangential_squared, &active, &magnitude, &h_pair_north, &h_pair_south, &cell_eta_yy,
+                  &cell_eta_y, &cell_flux_yt, &nu_pair_north, &nu_pair_south})
     v->assign(size, 0.0);
 }
 
@@ -92,17 +93,44 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
   // tangential flux there is 0 and eta is mirrored (clamped neighbour index).
   // The same face term serves the interior lines (neighbours l-1, l+1: contiguous, vectorised)
   // and the two edge lines of the grid (clamped neighbours, scalar).
+  // Per-cell pieces of the cross terms, computed once per cell (each serves the faces on both
+  // sides): corner depth sums, eta_yy, eta_y, Q_yt and eddy-viscosity sums.
+  double* __restrict h_pair_north = s.h_pair_north.data();
+  double* __restrict h_pair_south = s.h_pair_south.data();
+  double* __restrict cell_eta_yy = s.cell_eta_yy.data();
+  double* __restrict cell_eta_y = s.cell_eta_y.data();
+  double* __restrict cell_flux_yt = s.cell_flux_yt.data();
+  double* __restrict nu_pair_north = s.nu_pair_north.data();
+  double* __restrict nu_pair_south = s.nu_pair_south.data();
+  auto cell_terms = [&](int c, int j, int l, int ln, int ls) __attribute__((always_inline)) {
+    const std::size_t i = c * stride + l, in_ = c * stride + ln, is = c * stride + ls;
+    const double h_here = std::max(depth[i] + eta_across[i], dry);
+    h_pair_north[c * W + j] = h_here + std::max(depth[in_] + eta_across[in_], dry);
+    h_pair_south[c * W + j] = h_here + std::max(depth[is] + eta_across[is], dry);
+    cell_eta_yy[c * W + j] = (eta_across[in_] - 2.0 * eta_across[i] + eta_across[is]) * inv_dx2;
+    cell_eta_y[c * W + j] = (eta_across[in_] - eta_across[is]) * 0.5 * inv_dx;
+    cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dx;
+    nu_pair_north[c * W + j] = nu[i] + nu[in_];
+    nu_pair_south[c * W + j] = nu[i] + nu[is];
+  };
+  const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
+  for (int c = 0; c < cols; ++c) {
+    #pragma GCC ivdep
+    for (int j = j_first; j < j_last; ++j) cell_terms(c, j, lb + j, lb + j + 1, lb + j - 1);
+    if (j_first == 1) cell_terms(c, 0, 0, std::min(1, rows - 1), 0);
+    if (j_last == n - 1 && !(j_first == 1 && n == 1)) cell_terms(c, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0));
+  }
+
   auto fixed_face = [&](int f, int j, int l, int ln, int ls, double north, double south) __attribute__((always_inline)) {
     const int L = f - 1, R = f;
     const std::size_t face = f * stride + l;
     auto c_at = [stride](int c, int line) { return c * stride + line; };
     auto t_at = [tstride](int c, int k2) { return c * tstride + k2; };
-    auto h_at = [&](int c, int line) { return std::max(depth[c_at(c, line)] + eta_across[c_at(c, line)], dry); };
     const double n_f = face_porosity[face], inv_n_f = face_inverse_porosity[face];
     const double d = face_depth[face];
     // (PQ/h)_y at the face from the two corners north and south of it.
-    const double h_north = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ln) + h_at(R, ln));
-    const double h_south = 0.25 * (h_at(L, l) + h_at(R, l) + h_at(L, ls) + h_at(R, ls));
+    const double h_north = 0.25 * (h_pair_north[L * W + j] + h_pair_north[R * W + j]);
+    const double h_south = 0.25 * (h_pair_south[L * W + j] + h_pair_south[R * W + j]);
     const double corner_north = north * 0.25 * (tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]) *
                                 (normal_across[face] + normal_across[f * stride + ln]) / h_north;
     const double corner_south = south * 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)]) *
@@ -112,12 +140,9 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
     // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
     //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
     const double w = face_weight[face] * (dispersive[c_at(L, l)] * dispersive[c_at(R, l)]);
-    const double eta_yy_L = (eta_across[c_at(L, ln)] - 2.0 * eta_across[c_at(L, l)] + eta_across[c_at(L, ls)]) * inv_dx2;
-    const double eta_yy_R = (eta_across[c_at(R, ln)] - 2.0 * eta_across[c_at(R, l)] + eta_across[c_at(R, ls)]) * inv_dx2;
-    const double eta_y_L = (eta_across[c_at(L, ln)] - eta_across[c_at(L, ls)]) * 0.5 * inv_dx;
-    const double eta_y_R = (eta_across[c_at(R, ln)] - eta_across[c_at(R, ls)]) * 0.5 * inv_dx;
-    const double flux_yt_L = (tangential_rate[t_at(L, l + 1)] - tangential_rate[t_at(L, l)]) * inv_dx;
-    const double flux_yt_R = (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(R, l)]) * inv_dx;
+    const double eta_yy_L = cell_eta_yy[L * W + j], eta_yy_R = cell_eta_yy[R * W + j];
+    const double eta_y_L = cell_eta_y[L * W + j], eta_y_R = cell_eta_y[R * W + j];
+    const double flux_yt_L = cell_flux_yt[L * W + j], flux_yt_R = cell_flux_yt[R * W + j];
     const double eta_xyy = (eta_yy_R - eta_yy_L) * inv_dx;
     const double eta_yy_face = 0.5 * (eta_yy_L + eta_yy_R);
     const double eta_xy = (eta_y_R - eta_y_L) * inv_dx;
@@ -133,9 +158,8 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
     term -= w * psi;
 
     // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
-    const double nu_here = nu[c_at(L, l)] + nu[c_at(R, l)];
-    const double nu_north = north * 0.25 * (nu_here + nu[c_at(L, ln)] + nu[c_at(R, ln)]);
-    const double nu_south = south * 0.25 * (nu_here + nu[c_at(L, ls)] + nu[c_at(R, ls)]);
+    const double nu_north = north * 0.25 * (nu_pair_north[L * W + j] + nu_pair_north[R * W + j]);
+    const double nu_south = south * 0.25 * (nu_pair_south[L * W + j] + nu_pair_south[R * W + j]);
     const double stress_north = nu_north * ((normal_across[f * stride + ln] - normal_across[face]) +
                                             (tangential[t_at(R, l + 1)] - tangential[t_at(L, l + 1)])) * inv_dx;
     const double stress_south = nu_south * ((normal_across[face] - normal_across[f * stride + ls]) +
@@ -145,7 +169,6 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
     const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);
     tangential_squared[f * W + j] = flux_t * flux_t;
   };
-  const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
   for (int f = 1; f < cols; ++f) {
     #pragma GCC ivdep
     for (int j = j_first; j < j_last; ++j) fixed_face(f, j, lb + j, lb + j + 1, lb + j - 1, 1.0, 1.0);
