@@ -504,10 +504,10 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
   // Kennedy et al. (2000): a cell breaks while eta_t > eta_t*, the threshold falling linearly from
   // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
   // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
-  // nu is capped at 0.2 dx^2/dt so the explicit cross terms of eq. (6)-(7) stay stable.
+  // (The sweeps cap nu at 0.2 dx^2/dt in the explicit cross terms of eq. (6)-(7) only.)
   const double* depth = frame_y.depth_m.data();
   const double g = kGravity_m_s2, delta2 = b.mixing_length_coefficient * b.mixing_length_coefficient;
-  const double nu_max = 0.2 * dx * dx / dt, now = time_s + dt;
+  const double now = time_s + dt;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, eta.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const double h = depth[i] + eta[i];
@@ -526,7 +526,7 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
         if (eta_t <= threshold) breaking_start_s[i] = -1.0;  // the event is over
       }
       breaking_strength[i] = strength;
-      eddy_viscosity[i] = std::min(strength * delta2 * h * std::max(eta_t, 0.0), nu_max);
+      eddy_viscosity[i] = strength * delta2 * h * std::max(eta_t, 0.0);
     }
   });
 }

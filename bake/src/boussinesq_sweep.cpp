@@ -29,6 +29,7 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
   const double dt = k.time_step_s, g = kGravity_m_s2;
   const double B = k.dispersion_coefficient, B3 = B + 1.0 / 3.0;
   const double dry = k.dry_depth_m;
+  const double nu_explicit_max = 0.2 * dx * dx / dt;
   const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
 
   const double* __restrict depth = frame.depth_m.data();
@@ -110,8 +111,11 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
     cell_eta_yy[c * W + j] = (eta_across[in_] - 2.0 * eta_across[i] + eta_across[is]) * inv_dx2;
     cell_eta_y[c * W + j] = (eta_across[in_] - eta_across[is]) * 0.5 * inv_dx;
     cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dx;
-    nu_pair_north[c * W + j] = nu[i] + nu[in_];
-    nu_pair_south[c * W + j] = nu[i] + nu[is];
+    // The cross stress is explicit: its viscosity is capped for stability (nu dt/dx^2 <= 0.2);
+    // the along-line stress is implicit and uses nu in full.
+    const double nu_i = std::min(nu[i], nu_explicit_max);
+    nu_pair_north[c * W + j] = nu_i + std::min(nu[in_], nu_explicit_max);
+    nu_pair_south[c * W + j] = nu_i + std::min(nu[is], nu_explicit_max);
   };
   const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
   for (int c = 0; c < cols; ++c) {
@@ -207,12 +211,21 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
     for (int f = 0; f < faces; ++f)
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) flux_half[f * W + j] = normal_old[f * stride + lb + j] + 0.5 * increment[f * W + j];
+    // Momentum flux P^2/h through the cell centre, momentum-conservative first-order upwind
+    // (Stelling & Duinmeijer 2003): the mean mass flux q of the cell times the velocity P/h of
+    // the upwind face. Central differences here let bores in the surf zone and run-up blow up.
+    for (int f = 0; f < faces; ++f)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const double h_face = std::max(face_depth[f * stride + lb + j] + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
+        magnitude[f * W + j] = flux_half[f * W + j] / h_face;  // reused: face velocity
+      }
     for (int c = 0; c < cols; ++c)
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
         const double flux_c = 0.5 * (flux_half[c * W + j] + flux_half[(c + 1) * W + j]);
-        const double h_c = std::max(depth[c * stride + lb + j] + eta_half[c * W + j], dry);
-        cell_term[c * W + j] = flux_c * flux_c / h_c;  // P^2/h at the cell centre
+        const double u_west = magnitude[c * W + j], u_east = magnitude[(c + 1) * W + j];
+        cell_term[c * W + j] = flux_c * (flux_c > 0.0 ? u_west : u_east);
       }
 
     #pragma GCC ivdep
@@ -302,6 +315,19 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& k, const SweepI
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) increment[f * W + j] = right[f * W + j] - upper[f * W + j] * increment[(f + 1) * W + j];
   }
+  // Thin-film guard of the moving shoreline: the flux of a face may not exceed a Froude number of
+  // kMaxFroude (|P| <= Fr h sqrt(g h)). Only thin swash and backwash layers ever reach it; without
+  // it their velocities P/h grow without bound as h -> dry_depth_m. Applied to the increment before
+  // eta is computed from it, so mass stays conserved.
+  for (int f = 1; f < cols; ++f)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      const double h_face = std::max(face_depth[f * stride + lb + j] + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
+      const double limit = kMaxFroude * h_face * std::sqrt(g * h_face);
+      const double old_f = normal_old[f * stride + lb + j];
+      const double flux_new = std::clamp(old_f + increment[f * W + j], -limit, limit);
+      increment[f * W + j] = flux_new - old_f;
+    }
   update_eta();
   for (int f = 0; f < faces; ++f)
     #pragma GCC ivdep

@@ -36,6 +36,8 @@ inline constexpr double kWallPorosity = 0.05;
 /// The bed-slope terms of Madsen & Sorensen (1992) assume mild slopes; steeper slopes are clamped
 /// to this value inside the dispersive terms only, so charts with quays and dredged channels stay stable.
 inline constexpr double kMaxDispersiveSlope = 0.5;
+/// Largest Froude number |P| / (h sqrt(g h)) of a face flux (thin-film guard of the shoreline).
+inline constexpr double kMaxFroude = 3.0;
 /// Lines solved together in one block.
 inline constexpr int kBlockLines = 16;
 
