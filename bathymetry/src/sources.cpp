@@ -246,17 +246,25 @@ bool raster_is_depth(GDALDataset& dataset, GDALRasterBand& band, DepthSign sign,
     why = "from --sign";
     return sign == DepthSign::kPositiveDown;
   }
-  if (const char* item = dataset.GetMetadataItem("NEARSHORE_DEPTH_SIGN")) {
-    why = std::string("from metadata NEARSHORE_DEPTH_SIGN=") + item;
-    return lower(item) == "positive_down";
-  }
-  for (char** md = band.GetMetadata(); md && *md; ++md) {  // NetCDF CF: "<variable>#positive=down"
-    const std::string entry = lower(*md);
-    if (entry.find("#positive=") != std::string::npos) {
-      why = "from NetCDF attribute " + std::string(*md);
-      return entry.ends_with("=down");
+  // Our own tag, also as GDAL's netCDF driver renames it (NC_GLOBAL#GDAL_NEARSHORE_DEPTH_SIGN).
+  for (char** md = dataset.GetMetadata(); md && *md; ++md) {
+    const std::string entry = *md;
+    const auto equals = entry.find('=');
+    if (equals != std::string::npos && entry.substr(0, equals).ends_with("NEARSHORE_DEPTH_SIGN")) {
+      why = "from metadata " + entry;
+      return lower(entry.substr(equals + 1)) == "positive_down";
     }
   }
+  // NetCDF CF: the variable's `positive` attribute ("down" = depth), band key "positive" or
+  // dataset key "<variable>#positive".
+  for (char** md : {band.GetMetadata(), dataset.GetMetadata()})
+    for (; md && *md; ++md) {
+      const std::string entry = lower(*md);
+      if (entry.starts_with("positive=") || entry.find("#positive=") != std::string::npos) {
+        why = "from NetCDF attribute " + std::string(*md);
+        return entry.ends_with("=down");
+      }
+    }
   const std::string name = lower(std::string(band.GetDescription()) + " " +
                                  (dataset.GetMetadataItem("NETCDF_VARNAME") ? dataset.GetMetadataItem("NETCDF_VARNAME") : ""));
   if (name.find("depth") != std::string::npos) {

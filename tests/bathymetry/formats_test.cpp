@@ -76,3 +76,25 @@ TEST(BathyFormats, TextSoundingsListedFirstWinOverTheRaster) {
   EXPECT_LT(result.grid.still_water_depth_m(std::lround(outside.column), std::lround(outside.row)), 20.0f);
   EXPECT_EQ(result.summary["inputs"][0]["soundings_used"], 15);
 }
+
+TEST(BathyFormats, NetCdfCopyOfTheSurveyKeepsItsDepthSign) {
+  nearshore::ProgressBar::set_quiet(true);
+  const auto folder = fresh_test_folder("");
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  GDALAllRegister();
+  GDALDataset* source = GDALDataset::Open(files.depth_geotiff.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+  const fs::path nc = folder / "depth.nc";
+  GDALDriver* netcdf = GetGDALDriverManager()->GetDriverByName("netCDF");
+  ASSERT_NE(netcdf, nullptr);
+  GDALClose(netcdf->CreateCopy(nc.c_str(), source, FALSE, nullptr, nullptr, nullptr));
+  GDALClose(source);
+  fs::remove(fs::path(nc.string() + ".aux.xml"));  // only what is inside the NetCDF file counts
+  nb::BathyRequest request;
+  request.inputs = {nc};
+  request.spacing_m = 40.0;
+  const auto result = nb::build_harbour_grid(request);
+  // GDAL stores our tag as the global attribute GDAL_NEARSHORE_DEPTH_SIGN: read as depth.
+  EXPECT_EQ(result.summary["inputs"][0]["sign"].get<std::string>().rfind("positive_down", 0), 0u)
+      << result.summary["inputs"][0]["sign"];
+  EXPECT_NEAR(result.grid.still_water_depth_m(0, 0), 15.0, 0.5);
+}
