@@ -27,7 +27,7 @@ void add_bake_command(CLI::App& app) {
       ->required();
   command->add_flag("--resume", options->resume, "Continue a killed bake from DIR/checkpoint.bin (same result as uninterrupted)");
   command->add_flag("--json", options->json, "Print a JSON summary on stdout (no progress bar)");
-  set_example(*command, "nearshore bake data/cases/berkhoff.toml -o out/berkhoff");
+  set_example(*command, "nearshore bake data/cases/synolakis.toml -o out/synolakis");
   command->callback([options]() {
     if (options->json) ProgressBar::set_quiet(true);
     const bake::BakeCase bake_case = bake::read_bake_case(options->case_file);
