@@ -43,6 +43,8 @@ void print_report(const loops::LoopsReport& report) {
   if (report.requested) {
     std::printf("requested loop:\n");
     print_loop(*report.requested);
+  } else if (report.requested_loop_s > 0) {
+    std::printf("requested loop: none of exactly %.1f s can be made from the table's jumps\n", report.requested_loop_s);
   }
   std::printf("best loops by length:\n");
   if (report.best_by_length.empty()) std::printf("  (none: no candidate jumps give loops of the reported lengths)\n");

@@ -157,6 +157,7 @@ nlohmann::json LoopsReport::to_json() const {
             {"reachable_dead_ends", reachable_dead_ends.size()},
             {"first_playable_frame", first_playable_frame}}},
           {"period_loop", period ? loop_json(*period) : nlohmann::json()},
+          {"requested_loop_s", requested_loop_s},
           {"requested_loop", requested ? loop_json(*requested) : nlohmann::json()},
           {"best_loops_by_length", loops},
           {"worst_seam_ratio_after", worst_seam_ratio_after()},
@@ -240,6 +241,7 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
     }
     if (best) report.best_by_length.push_back(std::move(*best));
   }
+  report.requested_loop_s = options.requested_loop_s;
   if (options.requested_loop_s > 0) {
     const int length = static_cast<int>(std::lround(options.requested_loop_s / report.frame_interval_s));
     if (auto plan = optimal_loop(report.table, length)) report.requested = analyse_plan(report, *plan);

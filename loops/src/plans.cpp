@@ -45,8 +45,13 @@ std::vector<Transition> loop_jumps(const TransitionTable& table, int max_jumps) 
 // records which jump reached each target at each step, for backtracking.
 class LoopProgramme {
  public:
+  // Each jump also costs kJumpPenalty, so of two loops with the same jump cost (e.g. both exact)
+  // the one with fewer jumps wins; reported costs leave it out.
+  static constexpr double kJumpPenalty = 1e-9;
   LoopProgramme(int frame_count, const std::vector<Transition>& jumps, const std::vector<double>& jump_cost)
-      : n_(frame_count), jumps_(jumps), cost_(jump_cost) {}
+      : n_(frame_count), jumps_(jumps), cost_(jump_cost) {
+    for (double& c : cost_) c += kJumpPenalty;
+  }
 
   std::vector<double> run(int start, int max_length, std::vector<std::vector<int>>* choices) {
     ring_.assign(static_cast<std::size_t>(n_), kInfinity);
@@ -80,7 +85,7 @@ class LoopProgramme {
   int n_;
   long step_ = 0;
   const std::vector<Transition>& jumps_;
-  const std::vector<double>& cost_;
+  std::vector<double> cost_;
   std::vector<double> ring_;
 };
 

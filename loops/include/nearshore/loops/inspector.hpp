@@ -63,6 +63,7 @@ struct LoopsReport {
   std::optional<LoopReport> period;          ///< plan (c), periodic bakes
   std::vector<LoopReport> best_by_length;    ///< one per report length that has a loop
   std::optional<LoopReport> requested;       ///< plan (b) for requested_loop_s
+  double requested_loop_s = 0;               ///< what was asked for (0: nothing)
   bool gram_reused = false;
   double distance_seconds = 0, table_seconds = 0;
   // The matrices behind the report (for pictures and further analysis).
