@@ -3,7 +3,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <regex>
+#include <string_view>
 
 #include <fmt/core.h>
 
@@ -27,9 +27,13 @@ FileEntry entry_for_file(const fs::path& path) {
 
 // Index of a frame file name ("frame_000123.exr" -> 123), or -1.
 int frame_index_of(const std::string& name) {
-  static const std::regex pattern(R"(frame_(\d{6,9})\.exr)");
-  std::smatch match;
-  return std::regex_match(name, match, pattern) ? std::stoi(match[1].str()) : -1;
+  constexpr std::string_view prefix = "frame_", suffix = ".exr";
+  if (name.size() < prefix.size() + 6 + suffix.size() || name.size() > prefix.size() + 9 + suffix.size() ||
+      name.rfind(prefix, 0) != 0 || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return -1;
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::stoi(digits);
 }
 
 }  // namespace
