@@ -29,8 +29,10 @@ struct PlayOptions {
 
 playback::Camera camera_from(const PlayOptions& o, const GridGeometry& geometry) {
   playback::Camera camera = playback::Camera::overlooking(geometry);
-  if (!o.eye_m.empty()) camera.eye_m = {o.eye_m[0], o.eye_m[1], o.eye_m[2]};
-  if (!o.target_m.empty()) camera.target_m = {o.target_m[0], o.target_m[1], o.target_m[2]};
+  // Given from the grid's south-west corner, like every position in a case file.
+  const double x0 = geometry.origin_x_m, y0 = geometry.origin_y_m;
+  if (!o.eye_m.empty()) camera.eye_m = {x0 + o.eye_m[0], y0 + o.eye_m[1], o.eye_m[2]};
+  if (!o.target_m.empty()) camera.target_m = {x0 + o.target_m[0], y0 + o.target_m[1], o.target_m[2]};
   return camera;
 }
 
@@ -80,7 +82,7 @@ void add_play_command(CLI::App& app) {
   cmd->add_option("--time", o->time_s, "Playback time of the first picture, seconds")->capture_default_str();
   cmd->add_option("--width", o->width_px, "Picture width, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
   cmd->add_option("--height", o->height_px, "Picture height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
-  cmd->add_option("--eye", o->eye_m, "Camera position x,y,z in metres (harbour frame; default: overview)")
+  cmd->add_option("--eye", o->eye_m, "Camera position x,y,z in metres from the grid's south-west corner, z up (default: overview)")
       ->delimiter(',')->expected(3);
   cmd->add_option("--target", o->target_m, "Point looked at x,y,z in metres")->delimiter(',')->expected(3);
   cmd->add_option("--sun-azimuth", o->sun_azimuth_deg, "Sun bearing, degrees from north")->capture_default_str();

@@ -290,8 +290,16 @@ void WaterRenderer::render(const Camera& camera, const Lighting& lighting, int w
   glClearColor(0, 0, 0, 1);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  const Eigen::Matrix4f matrix = view_projection(camera, double(width_px) / height_px);
-  const float origin_x = float(s.geometry.origin_x_m), origin_y = float(s.geometry.origin_y_m);
+  // Georeferenced grids sit at UTM coordinates of ~10^6 m, where float32 (the GPU's precision)
+  // resolves only ~0.5 m: the GPU works in the grid's own frame (origin at its south-west corner),
+  // and the camera is moved into it here, in double precision.
+  Camera local = camera;
+  for (Vector3* point : {&local.eye_m, &local.target_m}) {
+    (*point)[0] -= s.geometry.origin_x_m;
+    (*point)[1] -= s.geometry.origin_y_m;
+  }
+  const Eigen::Matrix4f matrix = view_projection(local, double(width_px) / height_px);
+  const float origin_x = 0.f, origin_y = 0.f;
   const float size_x = float(s.geometry.width_m()), size_y = float(s.geometry.height_m());
   auto bind = [](int unit, GLuint texture) {
     glActiveTexture(GL_TEXTURE0 + unit);
@@ -308,7 +316,7 @@ void WaterRenderer::render(const Camera& camera, const Lighting& lighting, int w
   glUseProgram(s.sky_program);
   set_lighting_uniforms(s.sky_program, lighting);
   set_uniform(s.sky_program, "u_inverse_view_projection", Eigen::Matrix4f(matrix.inverse()));
-  set_uniform(s.sky_program, "u_eye_m", Radiance{camera.eye_m[0], camera.eye_m[1], camera.eye_m[2]});
+  set_uniform(s.sky_program, "u_eye_m", local.eye_m);
   glBindVertexArray(s.empty_vertex_array);
   glDepthMask(GL_FALSE);
   glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -330,7 +338,7 @@ void WaterRenderer::render(const Camera& camera, const Lighting& lighting, int w
   glUseProgram(s.water_program);
   set_lighting_uniforms(s.water_program, lighting);
   set_uniform(s.water_program, "u_view_projection", matrix);
-  set_uniform(s.water_program, "u_eye_m", Radiance{camera.eye_m[0], camera.eye_m[1], camera.eye_m[2]});
+  set_uniform(s.water_program, "u_eye_m", local.eye_m);
   set_sampler(s.water_program, "u_surface_elevation", 0);
   set_sampler(s.water_program, "u_still_water_depth", 1);
   set_sampler(s.water_program, "u_breaking", 3);

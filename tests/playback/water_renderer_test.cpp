@@ -79,3 +79,29 @@ TEST(WaterRenderer, WavesLandAndSkyAllAppearInTheOverview) {
   EXPECT_GT(land_pixels, 100);
   EXPECT_GT(water_row_variation, 0.5) << "the wave field should modulate the shading";
 }
+
+TEST(WaterRenderer, GeoreferencedGridRendersLikeTheSameGridAtTheOrigin) {
+  // A UTM origin (~10^6 m) is beyond float32's metre resolution; the renderer must work in the
+  // grid's own frame, so the picture cannot depend on where on Earth the grid lies.
+  playback::GlWindow window(64, 64, "test", false);
+  HarbourGrid harbour = sloping_harbour();
+  Raster<float> eta(120, 100);
+  for (int j = 0; j < 100; ++j)
+    for (int i = 0; i < 120; ++i) eta(i, j) = 0.5f * std::sin(2 * M_PI * (i * 0.3 + j) * 5.0 / 60.0);
+  auto render = [&](double origin_x_m, double origin_y_m) {
+    harbour.geometry.origin_x_m = origin_x_m;
+    harbour.geometry.origin_y_m = origin_y_m;
+    playback::WaterRenderer renderer(harbour);
+    renderer.set_frame(eta, nullptr);
+    renderer.render(playback::Camera::overlooking(harbour.geometry), playback::Lighting{}, 160, 100);
+    return renderer.read_pixels();
+  };
+  const Image at_origin = render(0, 0);
+  const Image in_utm = render(386128.0, 4306447.0);
+  double largest_difference = 0;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 160; ++x)
+      for (int c = 0; c < 3; ++c)
+        largest_difference = std::max(largest_difference, double(std::abs(at_origin.get(x, y)[c] - in_utm.get(x, y)[c])));
+  EXPECT_LT(largest_difference, 3.0 / 255) << "rasterisation may differ by rounding only";
+}
