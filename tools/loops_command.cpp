@@ -10,6 +10,7 @@
 #include "command_support.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/inspector.hpp"
+#include "nearshore/loops/sequence_vdb.hpp"
 
 namespace nearshore::tools {
 namespace {
@@ -55,7 +56,7 @@ void print_report(const loops::LoopsReport& report) {
 
 void add_loops_command(CLI::App& app) {
   struct Options {
-    std::string sequence, png;
+    std::string sequence, png, vdb;
     bool json = false, recompute = false, verify = false, no_write = false;
     double max_seam = std::numeric_limits<double>::infinity();
     double loop_s = 0, max_crossfade_s = 2.0, memory_mb = 1024;
@@ -70,6 +71,8 @@ void add_loops_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingDirectory);
   command->add_option("--png", options->png, "Write distance_matrix.png, seam_ratios.png, worst_seam_gauge.png here");
+  command->add_option("--vdb", options->vdb,
+                      "Also export the sequence as an OpenVDB volume (x, y, frame) for Houdini or Blender");
   command->add_flag("--json", options->json, "Print the report as JSON (for scripts) instead of text");
   command->add_option("--max-seam", options->max_seam,
                       "Exit with status 2 if the planned loop's worst seam ratio after crossfade exceeds this");
@@ -102,6 +105,7 @@ void add_loops_command(CLI::App& app) {
     analysis.max_crossfade_s = options->max_crossfade_s;
     analysis.gram.memory_budget_bytes = static_cast<std::size_t>(std::max(16.0, options->memory_mb) * (1 << 20));
     analysis.gram.threads = options->threads;
+    if (!options->vdb.empty()) loops::export_sequence_vdb(options->sequence, options->vdb);
     const loops::LoopsReport report = loops::analyse_loops(options->sequence, analysis);
     if (!options->png.empty()) loops::write_loops_pictures(report, options->png);
     if (options->json)
