@@ -15,6 +15,7 @@
 #include <Imath/half.h>
 
 #include <algorithm>
+#include <fstream>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #if defined(__x86_64__)
@@ -96,6 +97,41 @@ class MemoryInput : public Imf::IStream {
   std::size_t size_;
   std::size_t position_ = 0;
 };
+
+// OpenEXR 3.1 sizes an attribute's buffer from the size field in the file before it reads the
+// value, so one flipped bit in a header can ask for gigabytes (found by the libFuzzer target).
+// Walk the single-part header ourselves first (OpenEXR file layout: magic, version, then
+// attributes "name\0 type\0 int32 size, value" up to an empty name) and refuse any attribute
+// whose value would run past the end of the file. `header_bytes` may be a prefix of the file;
+// the walk stops where it ends (sizes are still bounded by `file_size`).
+void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::uint64_t file_size,
+                                  const std::string& source) {
+  const auto corrupt = [&](const std::string& problem) {
+    return Error(source, problem, "the frame is truncated or corrupt; check it with `nearshore loops --verify` and re-bake");
+  };
+  const std::size_t available = header_bytes.size();
+  const auto byte_at = [&](std::size_t k) { return static_cast<unsigned char>(header_bytes[k]); };
+  std::size_t position = 8;  // magic number and version field
+  while (position < available) {
+    if (byte_at(position) == 0) return;  // end of header
+    std::size_t name_end = position;
+    int terminators = 0;
+    std::size_t type_end = position;
+    for (std::size_t k = position; k < available && terminators < 2; ++k)
+      if (byte_at(k) == 0) (terminators++ == 0 ? name_end : type_end) = k;
+    if (terminators < 2 || type_end + 4 >= available) return;  // beyond the prefix: OpenEXR checks the rest
+    const std::int32_t size = static_cast<std::int32_t>(static_cast<std::uint32_t>(byte_at(type_end + 1)) |
+                                                        static_cast<std::uint32_t>(byte_at(type_end + 2)) << 8 |
+                                                        static_cast<std::uint32_t>(byte_at(type_end + 3)) << 16 |
+                                                        static_cast<std::uint32_t>(byte_at(type_end + 4)) << 24);
+    const std::size_t value_start = type_end + 5;
+    if (size < 0 || static_cast<std::uint64_t>(size) > file_size - std::min<std::uint64_t>(file_size, value_start))
+      throw corrupt(fmt::format("header attribute '{}' claims {} bytes but the file has {} bytes in all",
+                                std::string(reinterpret_cast<const char*>(header_bytes.data()) + position, name_end - position),
+                                size, file_size));
+    position = value_start + static_cast<std::size_t>(size);
+  }
+}
 
 Raster<float>* selected_raster(Frame& frame, ChannelSelection selection, int channel) {
   switch (channel) {
@@ -378,6 +414,12 @@ void decode_frame_rows(const std::filesystem::path& path, const SequenceManifest
                                            first_row + row_count - 1, manifest.geometry.rows),
                 "ask for rows inside the grid");
   try {
+    // The header of a nearshore frame is a few hundred bytes; 64 KiB covers any real one.
+    std::vector<std::byte> header(65536);
+    std::ifstream stream(path, std::ios::binary);
+    stream.read(reinterpret_cast<char*>(header.data()), static_cast<std::streamsize>(header.size()));
+    check_header_attribute_sizes(std::span(header.data(), static_cast<std::size_t>(stream.gcount())),
+                                 std::filesystem::file_size(path), path.string());
     Imf::InputFile file(path.c_str());
     decode(file, path.string(), manifest, expected_index, first_row, row_count, selection, frame);
   } catch (const Error&) {
@@ -393,6 +435,7 @@ void decode_frame_rows(const std::filesystem::path& path, const SequenceManifest
 void decode_frame(std::span<const std::byte> bytes, const std::string& source, const SequenceManifest& manifest,
                   int expected_index, ChannelSelection channels, Frame& frame) {
   try {
+    check_header_attribute_sizes(bytes, bytes.size(), source);
     MemoryInput input(bytes, source);
     Imf::InputFile file(input);
     if (file.header().compression() == Imf::NO_COMPRESSION && file.header().channels().begin() != file.header().channels().end()) {

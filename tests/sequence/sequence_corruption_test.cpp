@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 #include <random>
 
@@ -90,6 +91,34 @@ TEST(SequenceCorruption, ManifestProblemsNameTheKey) {
   json.erase("frame_interval_s");
   overwrite(path, json.dump());
   EXPECT_NE(error_of([&] { SequenceReader{folder}; }).find("has no \"frame_interval_s\""), std::string::npos);
+}
+
+// Found by the libFuzzer target: OpenEXR 3.1 allocates an attribute's buffer from the size the
+// header declares, so one corrupt size field asked for 1.9 GB. Both decoders must refuse it first.
+TEST(SequenceCorruption, HeaderAttributeClaimingMoreThanTheFileIsRejectedBeforeAllocation) {
+  const auto folder = fresh_folder("oversized_attribute");
+  write_test_sequence(folder, 1, FrameEncoding{Compression::kZip, Precision::kHalf, Precision::kFloat, Precision::kHalf},
+                      test_geometry(9, 7));
+  const SequenceManifest manifest = parse_manifest(read_file_bytes(folder / "manifest.json"), "manifest.json");
+  std::string bytes = read_file_bytes(folder / "frame_000000.exr");
+  // The first attribute starts after magic + version: "name\0type\0" then its int32 size.
+  const std::size_t name_end = bytes.find('\0', 8);
+  const std::size_t type_end = bytes.find('\0', name_end + 1);
+  ASSERT_NE(type_end, std::string::npos);
+  const std::uint32_t huge = 0x73000000u;  // 1.9 GB
+  std::memcpy(bytes.data() + type_end + 1, &huge, sizeof huge);  // little-endian, as EXR is
+  Frame frame;
+  const std::string message = error_of([&] {
+    decode_frame(std::as_bytes(std::span(bytes.data(), bytes.size())), "frame_000000.exr", manifest, 0,
+                 ChannelSelection::all(), frame);
+  });
+  EXPECT_NE(message.find("claims 1929379840 bytes"), std::string::npos) << message;
+  EXPECT_NE(message.find("frame_000000.exr"), std::string::npos) << message;
+  // The same through the file reader (row stripes), without checksum verification.
+  overwrite(folder / "frame_000000.exr", bytes);
+  const SequenceReader reader(folder);
+  const std::string rows_message = error_of([&] { reader.read_frame_rows(0, 0, 3, frame, ChannelSelection::all()); });
+  EXPECT_NE(rows_message.find("claims"), std::string::npos) << rows_message;
 }
 
 // A deterministic mutation fuzz of both readers (the libFuzzer targets in tests/sequence/fuzz run
