@@ -6,6 +6,8 @@
 //   5 play      render a playback screenshot (nearshore play)
 // Each stage prints where its outputs are and how long it took; the same library calls as the
 // individual commands, so the demo exercises exactly what users run.
+#include <fmt/core.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -14,8 +16,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <fmt/core.h>
 
 #include "command_support.hpp"
 #include "nearshore/bake/bake_case.hpp"
@@ -35,6 +35,7 @@ namespace nearshore::tools {
 /// data/cases/harbour.toml, embedded at build time (tools/CMakeLists.txt), so the demo bakes exactly
 /// the documented example case.
 extern const char* const kDemoHarbourCase;
+extern const char* const kDemoIrregularCase;
 
 namespace fs = std::filesystem;
 namespace {
@@ -50,30 +51,43 @@ void run_stage(const std::string& name, const std::function<std::string()>& run)
   const auto start = std::chrono::steady_clock::now();
   const std::string outputs = run();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%-6s %10s  %s\n", name.c_str(), format_duration(seconds).c_str(), outputs.c_str());
+  std::printf("%-9s %10s  %s\n", name.c_str(), format_duration(seconds).c_str(), outputs.c_str());
   std::fflush(stdout);
 }
 
 // The embedded case with its bathymetry path pointed at this run's harbour grid.
-fs::path write_demo_case(const fs::path& folder, const fs::path& harbour_exr) {
-  std::string text = kDemoHarbourCase;
+// Writes the embedded example case `case_name` (data/cases/<case_name>.toml) into `folder` with
+// its bathymetry pointed at the demo's own harbour grid.
+fs::path write_demo_case(const fs::path& folder, const fs::path& harbour_exr, const std::string& case_name,
+                         std::string text) {
   const std::string placeholder = "\"../../demo-out/harbour/depth.exr\"";
   const auto at = text.find(placeholder);
   if (at == std::string::npos)
-    throw Error("data/cases/harbour.toml", "no longer names ../../demo-out/harbour/depth.exr as its bathymetry",
+    throw Error("data/cases/" + case_name + ".toml",
+                "no longer names ../../demo-out/harbour/depth.exr as its bathymetry",
                 "keep that path in the example case (the demo substitutes its own)");
   text.replace(at, placeholder.size(), "\"" + fs::absolute(harbour_exr).string() + "\"");
-  const fs::path case_file = folder / "harbour.toml";
+  const fs::path case_file = folder / (case_name + ".toml");
   write_text_atomically(case_file, text);
   return case_file;
+}
+
+bake::BakeSummary bake_demo_case(const fs::path& case_file, const fs::path& bake_folder) {
+  const bake::BakeCase bake_case = bake::read_bake_case(case_file);
+  bake::BakeOptions bake_options;
+  bake_options.output_folder = bake_folder;
+  bake_options.resume = fs::exists(bake::checkpoint_path(bake_folder));  // an interrupted demo continues
+  return bake::run_bake(bake_case, bake_options);
 }
 
 void run_demo(const DemoOptions& options) {
   const fs::path out = options.output_folder;
   const fs::path chart_folder = out / "chart", harbour_folder = out / "harbour", bake_folder = out / "bake",
-                 loops_folder = out / "loops", screenshot = out / "screenshot.png";
+                 loops_folder = out / "loops", screenshot = out / "screenshot.png",
+                 irregular_bake_folder = out / "bake-irregular",
+                 irregular_loops_folder = out / "loops-irregular";
   create_output_folder(out);
-  std::printf("%-6s %10s  %s\n", "stage", "time", "outputs");
+  std::printf("%-9s %10s  %s\n", "stage", "time", "outputs");
 
   bathymetry::DemoHarbourFiles chart;
   run_stage("chart", [&] {
@@ -83,22 +97,20 @@ void run_demo(const DemoOptions& options) {
 
   run_stage("bathy", [&] {
     bathymetry::BathyRequest request;
-    request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson, chart.coastline_geojson};
+    request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson,
+                      chart.coastline_geojson};
     request.spacing_m = options.spacing_m;
     const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
     bathymetry::write_bathymetry_outputs(harbour_folder, result);
     return fmt::format("{}/ ({} x {} cells at {} m; preview.png)", harbour_folder.string(),
-                       result.grid.geometry.columns, result.grid.geometry.rows, result.grid.geometry.spacing_m);
+                       result.grid.geometry.columns, result.grid.geometry.rows,
+                       result.grid.geometry.spacing_m);
   });
 
   bake::BakeSummary baked;
   run_stage("bake", [&] {
-    const fs::path case_file = write_demo_case(out, harbour_folder / "depth.exr");
-    const bake::BakeCase bake_case = bake::read_bake_case(case_file);
-    bake::BakeOptions bake_options;
-    bake_options.output_folder = bake_folder;
-    bake_options.resume = fs::exists(bake::checkpoint_path(bake_folder));  // an interrupted demo continues
-    baked = bake::run_bake(bake_case, bake_options);
+    baked = bake_demo_case(write_demo_case(out, harbour_folder / "depth.exr", "harbour", kDemoHarbourCase),
+                           bake_folder);
     return fmt::format("{}/ ({} frames every {} s, loop period {} s; {:.3g} cell-updates/s; gauges.csv)",
                        bake_folder.string(), baked.frames, baked.frame_interval_s, baked.loop_period_s,
                        baked.cell_updates_per_s);
@@ -111,8 +123,31 @@ void run_demo(const DemoOptions& options) {
     loops::write_loops_pictures(report, loops_folder);
     write_text_atomically(loops_folder / "loops_report.json", report.to_json().dump(2));
     const double period_seam = report.period ? report.period->worst_seam_ratio_after : -1.0;
-    return fmt::format("{}/ (period loop seam ratio R = {:.3g}; {} usable transitions; loops.json in the bake)",
-                       loops_folder.string(), period_seam, report.usable_jumps);
+    return fmt::format(
+        "{}/ (period loop seam ratio R = {:.3g}; {} usable transitions; loops.json in the bake)",
+        loops_folder.string(), period_seam, report.usable_jumps);
+  });
+
+  // The same swell without time-periodic forcing: loops must be found by matching frames.
+  run_stage("irregular", [&] {
+    const bake::BakeSummary irregular = bake_demo_case(
+        write_demo_case(out, harbour_folder / "depth.exr", "harbour_irregular", kDemoIrregularCase),
+        irregular_bake_folder);
+    loops::LoopsOptions loops_options;
+    loops_options.report_lengths_s = {30, 60, 120};
+    const loops::LoopsReport irregular_report = loops::analyse_loops(irregular_bake_folder, loops_options);
+    loops::write_loops_pictures(irregular_report, irregular_loops_folder);
+    write_text_atomically(irregular_loops_folder / "loops_report.json", irregular_report.to_json().dump(2));
+    std::string best = "no loop of 60 s or more";
+    double best_seam = 0;
+    for (const loops::LoopReport& loop : irregular_report.best_by_length)
+      if (loop.length_s >= 60 && (best_seam == 0 || loop.worst_seam_ratio_after < best_seam)) {
+        best_seam = loop.worst_seam_ratio_after;
+        best = fmt::format("best loop of 60 s or more: {:.1f} s, seam ratio R = {:.2f} after crossfade",
+                           loop.length_s, best_seam);
+      }
+    return fmt::format("{}/, {}/ ({} frames, not periodic; {})", irregular_bake_folder.string(),
+                       irregular_loops_folder.string(), irregular.frames, best);
   });
 
   run_stage("play", [&] {

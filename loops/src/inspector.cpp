@@ -1,11 +1,11 @@
 #include "nearshore/loops/inspector.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-
-#include <fmt/core.h>
 
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
@@ -36,7 +36,8 @@ double median_of(std::vector<double> values) {
 
 // Seam of jump i -> j with its crossfade limited by the run before it (blends must not reach
 // back across the previous jump).
-SeamReport analyse_seam(const LoopsReport& report, Transition jump, int run_before_frames) {
+SeamReport analyse_seam(const LoopsReport& report, Transition jump, int run_before_frames,
+                        int max_crossfade_frames) {
   const Eigen::MatrixXd& d = report.distances.combined;
   const Eigen::MatrixXd& g = report.gram.elevation;
   const std::vector<double>& volume = report.gram.volume_m3;
@@ -44,7 +45,7 @@ SeamReport analyse_seam(const LoopsReport& report, Transition jump, int run_befo
   const double scale = report.median_step > 0 ? report.median_step : 1.0;
   SeamReport seam;
   seam.run_before_frames = run_before_frames;
-  const int longest = std::max(0, std::min(report.table.options.max_crossfade_frames, run_before_frames - 1));
+  const int longest = std::max(0, std::min(max_crossfade_frames, run_before_frames - 1));
   const CrossfadeChoice fade = choose_crossfade(d, report.median_step, i, j, longest);
   jump.crossfade_frames = fade.frames;
   jump.seam_ratio = d(j, next) / scale;
@@ -55,9 +56,10 @@ SeamReport analyse_seam(const LoopsReport& report, Transition jump, int run_befo
   const int c = fade.frames;
   seam.volume_jump_m3 = volume[static_cast<std::size_t>(j)] - volume[static_cast<std::size_t>(next)];
   for (int k = 0; k <= c; ++k)
-    seam.volume_jump_after_m3 = std::max(seam.volume_jump_after_m3,
-                                         std::abs(volume[static_cast<std::size_t>(j - c + k)] -
-                                                  volume[static_cast<std::size_t>(next - c + k)]) / (c + 1));
+    seam.volume_jump_after_m3 =
+        std::max(seam.volume_jump_after_m3, std::abs(volume[static_cast<std::size_t>(j - c + k)] -
+                                                     volume[static_cast<std::size_t>(next - c + k)]) /
+                                                (c + 1));
   // Potential energy 1/2 rho g sum eta^2 dA is proportional to the Gram diagonal; the common
   // factor cancels in the fractions.
   const double mean_energy = g.diagonal().mean();
@@ -66,7 +68,8 @@ SeamReport analyse_seam(const LoopsReport& report, Transition jump, int run_befo
     for (int k = 1; k <= c; ++k) {
       const double alpha = static_cast<double>(k) / (c + 1);
       const int a = i - c + k, b = j - 1 - c + k;
-      const double blended = (1 - alpha) * (1 - alpha) * g(a, a) + 2 * alpha * (1 - alpha) * g(a, b) + alpha * alpha * g(b, b);
+      const double blended =
+          (1 - alpha) * (1 - alpha) * g(a, a) + 2 * alpha * (1 - alpha) * g(a, b) + alpha * alpha * g(b, b);
       const double linear = (1 - alpha) * g(a, a) + alpha * g(b, b);
       if (linear > 0) seam.energy_dip_fraction = std::min(seam.energy_dip_fraction, blended / linear - 1);
     }
@@ -74,7 +77,7 @@ SeamReport analyse_seam(const LoopsReport& report, Transition jump, int run_befo
   return seam;
 }
 
-LoopReport analyse_plan(const LoopsReport& report, const LoopPlan& plan) {
+LoopReport analyse_plan(const LoopsReport& report, const LoopPlan& plan, int max_crossfade_frames) {
   LoopReport loop;
   loop.plan = plan;
   loop.length_s = plan.length_frames * report.frame_interval_s;
@@ -82,9 +85,10 @@ LoopReport analyse_plan(const LoopsReport& report, const LoopPlan& plan) {
   for (std::size_t k = 0; k < count; ++k) {
     const Transition& previous = plan.jumps[(k + count - 1) % count];
     const int run = plan.jumps[k].from - previous.to + 1;
-    loop.seams.push_back(analyse_seam(report, plan.jumps[k], run));
+    loop.seams.push_back(analyse_seam(report, plan.jumps[k], run, max_crossfade_frames));
     loop.plan.jumps[k] = loop.seams.back().transition;
-    loop.worst_seam_ratio_before = std::max(loop.worst_seam_ratio_before, loop.seams.back().seam_ratio_before);
+    loop.worst_seam_ratio_before =
+        std::max(loop.worst_seam_ratio_before, loop.seams.back().seam_ratio_before);
     loop.worst_seam_ratio_after = std::max(loop.worst_seam_ratio_after, loop.seams.back().seam_ratio_after);
   }
   return loop;
@@ -145,7 +149,8 @@ nlohmann::json LoopsReport::to_json() const {
             {"candidates_per_frame", table.options.candidates_per_frame},
             {"min_jump_frames", table.options.min_jump_frames},
             {"min_probability", table.options.min_probability},
-            {"max_crossfade_frames", table.options.max_crossfade_frames}}},
+            {"max_crossfade_frames", table.options.max_crossfade_frames},
+            {"period_crossfade_frames", period_crossfade_frames}}},
           {"height_scale_m", height_scale_m},
           {"motion_scale_m2_s", motion_scale_m2_s},
           {"median_step", median_step},
@@ -182,7 +187,8 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   auto start = std::chrono::steady_clock::now();
   std::error_code ec;
   if (!options.recompute && fs::exists(loops_path, ec) && fs::exists(gram_path, ec)) {
-    const nlohmann::json stored = nlohmann::json::parse(sequence::read_file_bytes(loops_path), nullptr, false);
+    const nlohmann::json stored =
+        nlohmann::json::parse(sequence::read_file_bytes(loops_path), nullptr, false);
     if (!stored.is_discarded() && stored.value("sequence_manifest_checksum", "") == manifest_checksum &&
         stored.value("gram_checksum", "") == file_checksum(gram_path)) {
       report.gram = read_gram(gram_path, report.frame_count);
@@ -217,9 +223,19 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
     report.reachable_dead_ends = report.table.reachable_dead_ends(report.first_playable_frame);
 
   // 3. Plans: (c) the exact period, the best loops by length, (b) a requested length.
-  if (report.loop_period_s > 0)
-    report.period = analyse_plan(report, period_loop(report.table, report.distances.combined, report.loop_period_s,
-                                                     report.frame_interval_s));
+  const int jump_crossfade_frames = report.table.options.max_crossfade_frames;
+  if (report.loop_period_s > 0) {
+    // Across the exact-period jump both timelines are in phase for every forced component, so a
+    // long crossfade blends two nearly equal fields (no ghost crests); it only has to hide what
+    // the forcing does not fix: the slow, chaotic part (wave-driven eddies at breaking zones and
+    // breakwater heads), which drifts apart over a period. Hence its own, longer limit.
+    report.period_crossfade_frames =
+        std::max(0, static_cast<int>(std::lround(options.period_crossfade_s / report.frame_interval_s)));
+    report.period = analyse_plan(
+        report,
+        period_loop(report.table, report.distances.combined, report.loop_period_s, report.frame_interval_s),
+        std::max(jump_crossfade_frames, report.period_crossfade_frames));
+  }
   int longest = 0;
   for (double length_s : options.report_lengths_s)
     longest = std::max(longest, static_cast<int>(std::lround(1.25 * length_s / report.frame_interval_s)));
@@ -232,11 +248,16 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   const std::vector<std::optional<LoopPlan>> by_length = best_loops_for_lengths(report.table, wanted);
   for (double length_s : options.report_lengths_s) {
     const int low = static_cast<int>(std::lround(length_s / report.frame_interval_s));
-    const int high = std::min(longest, static_cast<int>(std::lround(1.25 * length_s / report.frame_interval_s)));
+    const int high =
+        std::min(longest, static_cast<int>(std::lround(1.25 * length_s / report.frame_interval_s)));
     std::optional<LoopReport> best;
     for (int length = low; length <= high; ++length) {
-      if (!by_length[static_cast<std::size_t>(length)]) continue;
-      LoopReport loop = analyse_plan(report, *by_length[static_cast<std::size_t>(length)]);
+      const std::optional<LoopPlan>& plan = by_length[static_cast<std::size_t>(length)];
+      // A plan that replays a stretch of frames within one cycle (in the worst case a shorter
+      // loop several times over) shows the viewer a shorter repeat than its length: it does not
+      // count as a loop of this length.
+      if (!plan || !plan->shows_each_frame_once()) continue;
+      LoopReport loop = analyse_plan(report, *plan, jump_crossfade_frames);
       if (!best || loop.worst_seam_ratio_after < best->worst_seam_ratio_after - 1e-12) best = std::move(loop);
     }
     if (best) report.best_by_length.push_back(std::move(*best));
@@ -244,7 +265,8 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   report.requested_loop_s = options.requested_loop_s;
   if (options.requested_loop_s > 0) {
     const int length = static_cast<int>(std::lround(options.requested_loop_s / report.frame_interval_s));
-    if (auto plan = optimal_loop(report.table, length)) report.requested = analyse_plan(report, *plan);
+    if (auto plan = optimal_loop(report.table, length))
+      report.requested = analyse_plan(report, *plan, jump_crossfade_frames);
   }
   report.table_seconds = seconds_since(start);
 
@@ -257,13 +279,16 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
     tables["sequence_manifest_checksum"] = manifest_checksum;
     tables["gram_file"] = kGramFile;
     tables["gram_checksum"] = file_checksum(gram_path);
-    tables["random_walk"] = {{"start_frame", report.first_playable_frame}, {"seed", options.random_walk_seed}};
+    tables["random_walk"] = {{"start_frame", report.first_playable_frame},
+                             {"seed", options.random_walk_seed}};
     nlohmann::json rows = nlohmann::json::array();
     for (const Transition& t : report.table.transitions)
       rows.push_back({t.from, t.to, t.probability, t.cost, t.future_cost, t.crossfade_frames, t.seam_ratio,
                       t.seam_ratio_after});
-    tables["transition_columns"] = {"from", "to", "probability", "cost", "future_cost", "crossfade_frames",
-                                    "seam_ratio", "seam_ratio_after"};
+    tables["transition_columns"] = {"from",        "to",
+                                    "probability", "cost",
+                                    "future_cost", "crossfade_frames",
+                                    "seam_ratio",  "seam_ratio_after"};
     tables["transitions"] = rows;
     write_text_atomically(loops_path, tables.dump(1));
   }

@@ -1,12 +1,12 @@
 #include "nearshore/loops/plans.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <random>
-
-#include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
 
@@ -23,17 +23,20 @@ std::vector<Transition> loop_jumps(const TransitionTable& table, int max_jumps) 
     if (!t.natural() && std::isfinite(t.cost)) by_diagonal[t.to - t.from].push_back(t);
   std::vector<Transition> jumps;
   for (auto& [offset, diagonal] : by_diagonal) {
-    std::sort(diagonal.begin(), diagonal.end(), [](const Transition& a, const Transition& b) { return a.cost < b.cost; });
+    std::sort(diagonal.begin(), diagonal.end(),
+              [](const Transition& a, const Transition& b) { return a.cost < b.cost; });
     std::vector<Transition> kept;
     for (const Transition& t : diagonal) {
       // Neighbours on a diagonal are nearly the same jump; keep ones at least 8 frames apart.
-      if (std::all_of(kept.begin(), kept.end(), [&](const Transition& k) { return std::abs(k.from - t.from) >= 8; }))
+      if (std::all_of(kept.begin(), kept.end(),
+                      [&](const Transition& k) { return std::abs(k.from - t.from) >= 8; }))
         kept.push_back(t);
       if (kept.size() == 3) break;
     }
     jumps.insert(jumps.end(), kept.begin(), kept.end());
   }
-  std::sort(jumps.begin(), jumps.end(), [](const Transition& a, const Transition& b) { return a.cost < b.cost; });
+  std::sort(jumps.begin(), jumps.end(),
+            [](const Transition& a, const Transition& b) { return a.cost < b.cost; });
   if (static_cast<int>(jumps.size()) > max_jumps) jumps.resize(static_cast<std::size_t>(max_jumps));
   return jumps;
 }
@@ -89,8 +92,8 @@ class LoopProgramme {
   std::vector<double> ring_;
 };
 
-LoopPlan backtrack(const TransitionTable& table, const std::vector<Transition>& jumps, const std::vector<double>& cost,
-                   int start, int length) {
+LoopPlan backtrack(const TransitionTable& table, const std::vector<Transition>& jumps,
+                   const std::vector<double>& cost, int start, int length) {
   LoopProgramme programme(table.frame_count, jumps, cost);
   std::vector<std::vector<int>> choices;
   programme.run(start, length, &choices);
@@ -121,6 +124,24 @@ LoopPlan backtrack(const TransitionTable& table, const std::vector<Transition>& 
 
 }  // namespace
 
+int LoopPlan::repetitions() const {
+  const std::size_t count = jumps.size();
+  for (std::size_t pattern = 1; pattern < count; ++pattern) {
+    if (count % pattern != 0) continue;
+    bool repeats = true;
+    for (std::size_t k = pattern; k < count && repeats; ++k)
+      repeats = jumps[k].from == jumps[k - pattern].from && jumps[k].to == jumps[k - pattern].to;
+    if (repeats) return static_cast<int>(count / pattern);
+  }
+  return 1;
+}
+
+bool LoopPlan::shows_each_frame_once() const {
+  std::vector<int> shown = frames();
+  std::sort(shown.begin(), shown.end());
+  return std::adjacent_find(shown.begin(), shown.end()) == shown.end();
+}
+
 std::vector<int> LoopPlan::frames() const {
   std::vector<int> order;
   order.reserve(static_cast<std::size_t>(length_frames));
@@ -142,11 +163,13 @@ std::vector<int> LoopPlan::frames() const {
 std::vector<std::optional<LoopPlan>> best_loops_by_length(const TransitionTable& table, int max_length_frames,
                                                           int max_jumps) {
   return best_loops_for_lengths(
-      table, std::vector<char>(static_cast<std::size_t>(std::min(max_length_frames, table.frame_count)) + 1, 1), max_jumps);
+      table,
+      std::vector<char>(static_cast<std::size_t>(std::min(max_length_frames, table.frame_count)) + 1, 1),
+      max_jumps);
 }
 
-std::vector<std::optional<LoopPlan>> best_loops_for_lengths(const TransitionTable& table, const std::vector<char>& wanted,
-                                                            int max_jumps) {
+std::vector<std::optional<LoopPlan>> best_loops_for_lengths(const TransitionTable& table,
+                                                            const std::vector<char>& wanted, int max_jumps) {
   int max_length_frames = static_cast<int>(wanted.size()) - 1;
   const std::vector<Transition> jumps = loop_jumps(table, max_jumps);
   std::vector<double> cost;
@@ -215,8 +238,9 @@ LoopPlan period_loop(const TransitionTable& table, const Eigen::MatrixXd& distan
   plan.cost = std::pow(jump.cost, table.options.cost_exponent);
   const double scale = table.median_step > 0 ? table.median_step : 1.0;
   jump.seam_ratio = distances(jump.to, jump.from + 1) / scale;
-  const CrossfadeChoice fade = choose_crossfade(distances, table.median_step, jump.from, jump.to,
-                                                std::min(table.options.max_crossfade_frames, plan.length_frames - 1));
+  const CrossfadeChoice fade =
+      choose_crossfade(distances, table.median_step, jump.from, jump.to,
+                       std::min(table.options.max_crossfade_frames, plan.length_frames - 1));
   jump.crossfade_frames = fade.frames;
   jump.seam_ratio_after = fade.seam_ratio_after;
   plan.jumps = {jump};

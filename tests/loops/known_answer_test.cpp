@@ -24,8 +24,8 @@ struct PeriodicCase {
   DistanceMatrices distances;
   TransitionTable table;
   PeriodicCase() {
-    write_sea_sequence(folder, periodic_sea(kPeriodFrames * kInterval, 4, 1.0, 6.0, 11), small_geometry(), kFrames,
-                       kInterval, kPeriodFrames * kInterval, kExact);
+    write_sea_sequence(folder, periodic_sea(kPeriodFrames * kInterval, 4, 1.0, 6.0, 11), small_geometry(),
+                       kFrames, kInterval, kPeriodFrames * kInterval, kExact);
     distances = distances_from_gram(compute_gram_matrices(sequence::SequenceReader(folder)), 1.0);
     table = build_transition_table(distances, TransitionOptions{});
   }
@@ -114,7 +114,8 @@ TEST(KnownAnswer, PlantedRepeatIsFoundExactly) {
   const auto folder = fresh_folder("planted");
   constexpr int kSource = 30, kCopy = 110, kLength = 40, kFrames = 180;
   write_planted_repeat_sequence(folder, small_geometry(16, 12), kFrames, kSource, kCopy, kLength, 0.05, 3);
-  const DistanceMatrices d = distances_from_gram(compute_gram_matrices(sequence::SequenceReader(folder)), 1.0);
+  const DistanceMatrices d =
+      distances_from_gram(compute_gram_matrices(sequence::SequenceReader(folder)), 1.0);
   for (int i = 0; i < kFrames; ++i)
     for (int j = i + 1; j < kFrames; ++j) {
       const bool planted = j - i == kCopy - kSource && i >= kSource && i < kSource + kLength;
@@ -150,6 +151,45 @@ TEST(KnownAnswer, PlantedRepeatIsFoundExactly) {
   const std::vector<int> walk = random_walk(table, table.first_playable_frame(), 20000, 99);
   EXPECT_EQ(walk.size(), 20000u);
   EXPECT_TRUE(table.reachable_dead_ends(table.first_playable_frame()).empty());
+}
+
+// The compound loop the dynamic programme found on the demo's irregular bake: a 24 s loop
+// (23 .. 70, jump 70 -> 23) three times over is no 72 s loop; a loop of two different jumps that
+// revisits frames is not simple either; a single backward jump is.
+TEST(LoopPlanShape, RepeatedAndReplayingLoopsAreRecognised) {
+  LoopPlan thrice;
+  thrice.start_frame = 23;
+  thrice.length_frames = 3 * 48;
+  Transition back;
+  back.from = 70;
+  back.to = 23;
+  thrice.jumps = {back, back, back};
+  EXPECT_EQ(thrice.repetitions(), 3);
+  EXPECT_FALSE(thrice.shows_each_frame_once());
+
+  LoopPlan replaying;  // the 71 s "loop" found there: 33 .. 79 shown twice
+  replaying.start_frame = 23;
+  Transition first, second;
+  first.from = 79;
+  first.to = 33;
+  second.from = 70;
+  second.to = 23;
+  replaying.jumps = {first, first, second};
+  replaying.length_frames = 57 + 47 + 38;  // 23..79, 33..79, 33..70
+  EXPECT_EQ(replaying.repetitions(), 1);
+  EXPECT_FALSE(replaying.shows_each_frame_once());
+
+  LoopPlan simple;
+  simple.start_frame = 32;
+  simple.length_frames = 250;
+  Transition jump;
+  jump.from = 281;
+  jump.to = 32;
+  simple.jumps = {jump};
+  EXPECT_EQ(simple.repetitions(), 1);
+  EXPECT_TRUE(simple.shows_each_frame_once());
+  EXPECT_EQ(simple.frames().front(), 32);
+  EXPECT_EQ(simple.frames().back(), 281);
 }
 
 }  // namespace

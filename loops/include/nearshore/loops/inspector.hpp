@@ -6,10 +6,9 @@
 // Writes loops.json (+ loops_gram.bin) into the sequence folder; optional PNG pictures.
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "nearshore/loops/distance.hpp"
 #include "nearshore/loops/plans.hpp"
@@ -23,25 +22,30 @@ inline constexpr const char* kGramFile = "loops_gram.bin";
 struct LoopsOptions {
   TransitionOptions transitions;
   GramOptions gram;
-  bool recompute = false;  ///< ignore a stored loops_gram.bin
-  bool verify = false;     ///< verify every file's checksum first
+  bool recompute = false;    ///< ignore a stored loops_gram.bin
+  bool verify = false;       ///< verify every file's checksum first
   bool write_tables = true;  ///< write loops.json / loops_gram.bin into the sequence folder
-  std::vector<double> report_lengths_s = {10, 20, 30, 60, 120, 300};  ///< loops reported with length in [L, 1.25 L]
-  double requested_loop_s = 0;  ///< plan (b): the optimal loop of exactly this length (0: none)
+  std::vector<double> report_lengths_s = {10, 20,  30,
+                                          60, 120, 300};  ///< loops reported with length in [L, 1.25 L]
+  double requested_loop_s = 0;   ///< plan (b): the optimal loop of exactly this length (0: none)
   double max_crossfade_s = 2.0;  ///< longest crossfade; sets transitions.max_crossfade_frames (0: keep that)
+  /// Longest crossfade across the exact-period jump of a periodic bake (plan c). Both sides of that
+  /// jump are in phase, so it may be much longer than a jump between unrelated frames; the bake must
+  /// hold this many frames beyond one period for it (docs/commands/loops.md).
+  double period_crossfade_s = 10.0;
   std::uint64_t random_walk_seed = 1;
 };
 
 /// One planned transition across which the player jumps.
 struct SeamReport {
   Transition transition;
-  int run_before_frames = 0;          ///< frames shown since the previous jump landed
-  double seam_ratio_before = 0;       ///< R without crossfade
-  double seam_ratio_after = 0;        ///< R across the crossfade (crossfade.hpp)
-  double volume_jump_m3 = 0;          ///< V(j) - V(i+1): volume discontinuity without crossfade
-  double volume_jump_after_m3 = 0;    ///< the largest per-step volume deviation across the crossfade
-  double energy_jump_fraction = 0;    ///< (E(j) - E(i+1)) / mean E, E = 1/2 rho g sum eta^2 dA
-  double energy_dip_fraction = 0;     ///< min over blends of E(blend) / E(linear interpolation) - 1
+  int run_before_frames = 0;        ///< frames shown since the previous jump landed
+  double seam_ratio_before = 0;     ///< R without crossfade
+  double seam_ratio_after = 0;      ///< R across the crossfade (crossfade.hpp)
+  double volume_jump_m3 = 0;        ///< V(j) - V(i+1): volume discontinuity without crossfade
+  double volume_jump_after_m3 = 0;  ///< the largest per-step volume deviation across the crossfade
+  double energy_jump_fraction = 0;  ///< (E(j) - E(i+1)) / mean E, E = 1/2 rho g sum eta^2 dA
+  double energy_dip_fraction = 0;   ///< min over blends of E(blend) / E(linear interpolation) - 1
 };
 
 struct LoopReport {
@@ -56,14 +60,15 @@ struct LoopsReport {
   int frame_count = 0;
   double frame_interval_s = 0;
   double loop_period_s = 0;
+  int period_crossfade_frames = 0;  ///< the crossfade limit used for plan (c)
   double sigma = 0, median_step = 0, height_scale_m = 0, motion_scale_m2_s = 0;
   double median_volume_step_m3 = 0;
   int candidate_jumps = 0, usable_jumps = 0, first_playable_frame = 0;
   std::vector<int> dead_ends, reachable_dead_ends;
-  std::optional<LoopReport> period;          ///< plan (c), periodic bakes
-  std::vector<LoopReport> best_by_length;    ///< one per report length that has a loop
-  std::optional<LoopReport> requested;       ///< plan (b) for requested_loop_s
-  double requested_loop_s = 0;               ///< what was asked for (0: nothing)
+  std::optional<LoopReport> period;        ///< plan (c), periodic bakes
+  std::vector<LoopReport> best_by_length;  ///< one per report length that has a loop
+  std::optional<LoopReport> requested;     ///< plan (b) for requested_loop_s
+  double requested_loop_s = 0;             ///< what was asked for (0: nothing)
   bool gram_reused = false;
   double distance_seconds = 0, table_seconds = 0;
   // The matrices behind the report (for pictures and further analysis).

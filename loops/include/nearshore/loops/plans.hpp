@@ -15,14 +15,20 @@
 namespace nearshore::loops {
 
 struct LoopPlan {
-  std::string kind;          ///< "optimal" or "period"
-  int start_frame = 0;       ///< a cycle starts here (the target of its last jump)
-  int length_frames = 0;     ///< frames shown per cycle
-  double cost = 0;           ///< sum over jumps of C^p
+  std::string kind;               ///< "optimal" or "period"
+  int start_frame = 0;            ///< a cycle starts here (the target of its last jump)
+  int length_frames = 0;          ///< frames shown per cycle
+  double cost = 0;                ///< sum over jumps of C^p
   std::vector<Transition> jumps;  ///< in play order; after jumps[k].from the player shows jumps[k].to
 
   /// The frames of one cycle, in order, starting at start_frame.
   std::vector<int> frames() const;
+  /// How many times the cycle plays one shorter loop over: the largest n such that the jump list
+  /// is n copies of its first jumps.size() / n jumps (1 for a loop that does not repeat itself).
+  int repetitions() const;
+  /// True if no frame is shown twice in one cycle: the viewer never sees a stretch of the loop
+  /// again before the whole loop has played (a compound loop of Schödl et al. may replay one).
+  bool shows_each_frame_once() const;
 };
 
 /// best[L] = the cheapest loop of exactly L frames (L = 0 .. max_length_frames), if any. Loops use
@@ -32,7 +38,8 @@ std::vector<std::optional<LoopPlan>> best_loops_by_length(const TransitionTable&
                                                           int max_jumps = 256);
 /// The same, but only the lengths flagged in `wanted` (index = length) are reconstructed (one
 /// dynamic programme for all lengths, one backtrack per wanted length).
-std::vector<std::optional<LoopPlan>> best_loops_for_lengths(const TransitionTable& table, const std::vector<char>& wanted,
+std::vector<std::optional<LoopPlan>> best_loops_for_lengths(const TransitionTable& table,
+                                                            const std::vector<char>& wanted,
                                                             int max_jumps = 256);
 /// The optimal loop of exactly `length_frames`, or nullopt if none exists.
 std::optional<LoopPlan> optimal_loop(const TransitionTable& table, int length_frames, int max_jumps = 256);
