@@ -2,6 +2,7 @@
 // (docs/commands/loops.md). Thin: parse options, call nearshore::loops::analyse_loops, print.
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -44,6 +45,18 @@ void print_report(const loops::LoopsReport& report) {
   std::printf(
       "seam ratio R = |f(j) - f(i+1)| / median step, before -> after crossfade; dV volume jump, dE energy "
       "jump\n");
+  const loops::DetectedPeriod& detected = report.detected_period;
+  if (detected.found)
+    std::printf("period found in the frames: %.1f s (%d frames; frame %d matches frame %d with R %.2f)%s\n",
+                detected.lag_s, detected.lag_frames, detected.matched_frame,
+                detected.matched_frame + detected.lag_frames, detected.seam_ratio,
+                report.loop_period_s <= 0 ? ""
+                : std::abs(detected.lag_s - report.loop_period_s) < 0.5 * report.frame_interval_s
+                    ? ", as the manifest says"
+                    : ", NOT the manifest's period: the bake has not settled into its forcing");
+  else
+    std::printf("no period in the frames: the best repeat, after %.1f s, is %.2f steps away%s\n", detected.lag_s,
+                detected.seam_ratio, report.loop_period_s > 0 ? " (the manifest claims one: spin-up too short?)" : "");
   if (report.period) {
     std::printf("exact period loop:\n");
     print_loop(*report.period);

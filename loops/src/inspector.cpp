@@ -119,6 +119,25 @@ nlohmann::json loop_json(const LoopReport& loop) {
 
 }  // namespace
 
+DetectedPeriod detect_period(const Eigen::MatrixXd& distances, double median_step, double frame_interval_s,
+                             double min_lag_s) {
+  DetectedPeriod best;
+  const int count = static_cast<int>(distances.rows());
+  const double scale = median_step > 0 ? median_step : 1.0;
+  const int min_lag = std::max(2, static_cast<int>(std::lround(min_lag_s / frame_interval_s)));
+  best.seam_ratio = std::numeric_limits<double>::infinity();
+  for (int lag = min_lag; lag < count; ++lag)
+    for (int k = 0; k + lag < count; ++k)
+      if (distances(k, k + lag) / scale < best.seam_ratio) {
+        best.seam_ratio = distances(k, k + lag) / scale;
+        best.lag_frames = lag;
+        best.matched_frame = k;
+      }
+  best.lag_s = best.lag_frames * frame_interval_s;
+  best.found = best.seam_ratio <= 1.0;
+  return best;
+}
+
 double LoopsReport::worst_seam_ratio_after() const {
   double worst = 0;
   if (period) worst = std::max(worst, period->worst_seam_ratio_after);
@@ -161,6 +180,12 @@ nlohmann::json LoopsReport::to_json() const {
             {"dead_ends", dead_ends.size()},
             {"reachable_dead_ends", reachable_dead_ends.size()},
             {"first_playable_frame", first_playable_frame}}},
+          {"detected_period",
+           {{"found", detected_period.found},
+            {"lag_frames", detected_period.lag_frames},
+            {"lag_s", detected_period.lag_s},
+            {"seam_ratio", detected_period.seam_ratio},
+            {"matched_frame", detected_period.matched_frame}}},
           {"period_loop", period ? loop_json(*period) : nlohmann::json()},
           {"requested_loop_s", requested_loop_s},
           {"requested_loop", requested ? loop_json(*requested) : nlohmann::json()},
@@ -223,6 +248,7 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
     report.reachable_dead_ends = report.table.reachable_dead_ends(report.first_playable_frame);
 
   // 3. Plans: (c) the exact period, the best loops by length, (b) a requested length.
+  report.detected_period = detect_period(report.distances.combined, report.median_step, report.frame_interval_s);
   const int jump_crossfade_frames = report.table.options.max_crossfade_frames;
   if (report.loop_period_s > 0) {
     // Across the exact-period jump both timelines are in phase for every forced component, so a

@@ -54,6 +54,9 @@ class DemoHarbourLoops : public ::testing::Test {
 TEST_F(DemoHarbourLoops, PeriodicBakeRepeatsWithSeamRatioBelowATenth) {
   const fs::path sequence = bake_example("harbour");
   const loops::LoopsReport report = loops::analyse_loops(sequence);
+  // Found in the frames themselves, not only read from the manifest.
+  EXPECT_TRUE(report.detected_period.found);
+  EXPECT_DOUBLE_EQ(report.detected_period.lag_s, 600.0);
   ASSERT_TRUE(report.period.has_value()) << "the inspector did not find the period of a periodic bake";
   EXPECT_DOUBLE_EQ(report.period->length_s, 600.0);
   const loops::SeamReport& seam = report.period->seams.at(0);
@@ -74,6 +77,8 @@ TEST_F(DemoHarbourLoops, IrregularSixMinuteBakeOffersALoopOfAMinuteWithSeamRatio
   options.report_lengths_s = {60, 120};
   const loops::LoopsReport report = loops::analyse_loops(sequence, options);
   EXPECT_FALSE(report.period.has_value());
+  EXPECT_FALSE(report.detected_period.found)
+      << "an irregular sea repeats after " << report.detected_period.lag_s << " s";
   EXPECT_GE(report.frame_count * report.frame_interval_s, 300.0);
   const loops::LoopReport* best = nullptr;
   for (const loops::LoopReport& loop : report.best_by_length) {

@@ -48,6 +48,19 @@ struct SeamReport {
   double energy_dip_fraction = 0;   ///< min over blends of E(blend) / E(linear interpolation) - 1
 };
 
+/// The period read off the frames themselves (independent of the manifest): the lag L (frames)
+/// whose best match min_k D(k, k + L) is smallest, searched from `min_lag_s` to the whole bake. A
+/// lag counts as a period when that match is no larger than an ordinary step (ratio <= 1).
+struct DetectedPeriod {
+  bool found = false;
+  int lag_frames = 0;     ///< the best lag (also reported when not found)
+  double lag_s = 0;
+  double seam_ratio = 0;  ///< min_k D(k, k + lag) / median step
+  int matched_frame = 0;  ///< the k of that minimum
+};
+DetectedPeriod detect_period(const Eigen::MatrixXd& distances, double median_step, double frame_interval_s,
+                             double min_lag_s = 10.0);
+
 struct LoopReport {
   LoopPlan plan;
   double length_s = 0;
@@ -65,7 +78,8 @@ struct LoopsReport {
   double median_volume_step_m3 = 0;
   int candidate_jumps = 0, usable_jumps = 0, first_playable_frame = 0;
   std::vector<int> dead_ends, reachable_dead_ends;
-  std::optional<LoopReport> period;        ///< plan (c), periodic bakes
+  DetectedPeriod detected_period;            ///< the period found in the frames (cross-checks the manifest)
+  std::optional<LoopReport> period;          ///< plan (c), periodic bakes
   std::vector<LoopReport> best_by_length;  ///< one per report length that has a loop
   std::optional<LoopReport> requested;     ///< plan (b) for requested_loop_s
   double requested_loop_s = 0;             ///< what was asked for (0: nothing)
