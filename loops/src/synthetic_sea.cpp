@@ -7,25 +7,10 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/linear_waves.hpp"
 
 namespace nearshore::loops {
 namespace {
-
-constexpr double kGravity_m_s2 = 9.81;
-
-// Inverts omega^2 = g k tanh(k d) for k by Newton's method (monotone, converges from deep water).
-double wavenumber_for(double omega_rad_s, double depth_m) {
-  double k = omega_rad_s * omega_rad_s / kGravity_m_s2;
-  for (int iteration = 0; iteration < 50; ++iteration) {
-    const double t = std::tanh(k * depth_m);
-    const double f = kGravity_m_s2 * k * t - omega_rad_s * omega_rad_s;
-    const double df = kGravity_m_s2 * (t + k * depth_m * (1 - t * t));
-    const double step = f / df;
-    k -= step;
-    if (std::abs(step) < 1e-14 * k) break;
-  }
-  return k;
-}
 
 // Hs = 4 sqrt(m0), m0 = sum a^2 / 2: scale amplitudes to the requested significant height.
 void scale_to_significant_height(SyntheticSea& sea, double significant_height_m) {
@@ -36,14 +21,14 @@ void scale_to_significant_height(SyntheticSea& sea, double significant_height_m)
 }
 
 WaveComponent component(double omega, double direction_rad, double amplitude, double phase, double depth_m) {
-  const double k = wavenumber_for(omega, depth_m);
+  const double k = wavenumber_from_frequency(omega, depth_m);
   return WaveComponent{amplitude, k * std::cos(direction_rad), k * std::sin(direction_rad), omega, phase};
 }
 
 }  // namespace
 
 double linear_dispersion_omega_rad_s(double wavenumber_rad_m, double depth_m) {
-  return std::sqrt(kGravity_m_s2 * wavenumber_rad_m * std::tanh(wavenumber_rad_m * depth_m));
+  return frequency_from_wavenumber(wavenumber_rad_m, depth_m);
 }
 
 SyntheticSea periodic_sea(double period_s, int component_count, double significant_height_m, double depth_m,

@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "nearshore/core/linear_waves.hpp"
+
 namespace nearshore::bake {
 
-inline constexpr double kGravity_m_s2 = 9.81;
+using nearshore::kGravity_m_s2;
 
 struct WaveComponent {
   double amplitude_m = 0.0;              ///< a_i (half the height)
@@ -26,14 +28,10 @@ struct SeaState {
   std::uint64_t seed = 0;  ///< the seed the phases were drawn from (recorded in every output)
 };
 
-/// Linear dispersion w^2 = g k tanh(k d): the wavenumber k (rad/m) of angular frequency w at
-/// still-water depth d (metres; d <= 0 or infinity = deep water, k = w^2/g). Newton iteration
-/// from the Eckart/Fenton start, converged to 1e-12 relative.
-double wavenumber_from_frequency(double angular_frequency_rad_s, double depth_m);
-/// The inverse: w = sqrt(g k tanh(k d)).
-double frequency_from_wavenumber(double wavenumber_rad_m, double depth_m);
-/// Phase speed w/k and group speed dw/dk at depth d.
-double phase_speed_m_s(double wavenumber_rad_m, double depth_m);
-double group_speed_m_s(double wavenumber_rad_m, double depth_m);
+// The dispersion relation lives in core (the loop tools use it too); the bake names it as before.
+using nearshore::frequency_from_wavenumber;
+using nearshore::group_speed_m_s;
+using nearshore::phase_speed_m_s;
+using nearshore::wavenumber_from_frequency;
 
 }  // namespace nearshore::bake

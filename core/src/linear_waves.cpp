@@ -1,9 +1,9 @@
-#include "nearshore/bake/wave_component.hpp"
+#include "nearshore/core/linear_waves.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace nearshore::bake {
+namespace nearshore {
 namespace {
 bool is_deep(double depth_m) { return !(depth_m > 0.0) || std::isinf(depth_m); }
 }  // namespace
@@ -46,4 +46,4 @@ double group_speed_m_s(double k, double depth_m) {
   return n * c;
 }
 
-}  // namespace nearshore::bake
+}  // namespace nearshore
