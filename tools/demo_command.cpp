@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@
 #include "nearshore/playback/sequence_player.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
+#include "nearshore/sequence/loop_playback.hpp"
 
 namespace nearshore::tools {
 
@@ -155,9 +157,9 @@ void run_demo(const DemoOptions& options) {
     const HarbourGrid harbour = reader.read_harbour_grid();
     playback::GlWindow window(1280, 720, "nearshore demo", false);
     playback::WaterRenderer renderer(harbour);
-    std::vector<int> order;
-    if (report.period) order = report.period->plan.frames();
-    playback::SequencePlayer player(reader, order);
+    // The loop the inspector wrote into loops.json, crossfade included, as `nearshore play` does.
+    const std::optional<sequence::LoopSchedule> loop = sequence::read_loop_schedule(bake_folder);
+    playback::SequencePlayer player = loop ? playback::SequencePlayer(reader, *loop) : playback::SequencePlayer(reader);
     player.advance_to(0.0);
     renderer.set_frame(player.surface_elevation_m(), &player.breaking());
     renderer.render(playback::Camera::overlooking(harbour.geometry), playback::Lighting{}, 1280, 720);

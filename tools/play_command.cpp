@@ -1,6 +1,7 @@
 // `nearshore play SEQ`: the OpenGL runtime on a baked sequence, in a window or as a screenshot.
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "nearshore/playback/sequence_player.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
+#include "nearshore/sequence/loop_playback.hpp"
 
 namespace nearshore::tools {
 namespace fs = std::filesystem;
@@ -42,7 +44,15 @@ void play(const PlayOptions& o) {
   const bool screenshot = !o.screenshot.empty();
   playback::GlWindow window(o.width_px, o.height_px, "nearshore play " + o.sequence_folder.string(), !screenshot);
   playback::WaterRenderer renderer(harbour);
-  playback::SequencePlayer player(reader);
+  // The loop `nearshore loops` planned (with its crossfades), else the frames in order.
+  const std::optional<sequence::LoopSchedule> loop = sequence::read_loop_schedule(o.sequence_folder);
+  playback::SequencePlayer player = loop ? playback::SequencePlayer(reader, *loop) : playback::SequencePlayer(reader);
+  if (loop)
+    std::fprintf(stderr, "playing the %s loop of loops.json: %.1f s, %zu steps\n", loop->kind.c_str(), loop->length_s,
+                 loop->shown.size());
+  else
+    std::fprintf(stderr, "no loops.json: playing frames 0..%d in order (run `nearshore loops` for a seamless loop)\n",
+                 reader.frame_count() - 1);
   playback::Lighting lighting;
   lighting.sun_azimuth_deg = o.sun_azimuth_deg;
   lighting.sun_elevation_deg = o.sun_elevation_deg;

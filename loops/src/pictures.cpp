@@ -7,7 +7,7 @@
 
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/plot.hpp"
-#include "nearshore/loops/crossfade.hpp"
+#include "nearshore/sequence/loop_playback.hpp"
 #include "nearshore/loops/inspector.hpp"
 
 namespace nearshore::loops {
@@ -112,9 +112,9 @@ void write_worst_seam_gauge(const LoopsReport& report, const fs::path& path) {
                                : target[static_cast<std::size_t>(j + k - 1 - target_first)];
     cut.x.push_back(t);
     cut.y.push_back(hard);
-    BlendSource blend;
+    sequence::BlendSource blend;
     double shown = hard;
-    if (k <= 0 && crossfade_blend(i, j, c, 1 - k, blend) && blend.target_frame >= target_first) {
+    if (k <= 0 && sequence::crossfade_blend(i, j, c, 1 - k, blend) && blend.target_frame >= target_first) {
       const double a = source[static_cast<std::size_t>(blend.source_frame - (i - before + 1))];
       const double b = target[static_cast<std::size_t>(blend.target_frame - target_first)];
       shown = (1 - blend.target_weight) * a + blend.target_weight * b;

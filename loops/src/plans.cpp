@@ -142,22 +142,14 @@ bool LoopPlan::shows_each_frame_once() const {
   return std::adjacent_find(shown.begin(), shown.end()) == shown.end();
 }
 
-std::vector<int> LoopPlan::frames() const {
-  std::vector<int> order;
-  order.reserve(static_cast<std::size_t>(length_frames));
-  // From start_frame (where the last jump lands) the first jump taken is jumps[0].
-  std::size_t next_jump = 0;
-  int frame = start_frame;
-  for (int shown = 0; shown < length_frames; ++shown) {
-    order.push_back(frame);
-    if (!jumps.empty() && frame == jumps[next_jump].from) {
-      frame = jumps[next_jump].to;
-      next_jump = (next_jump + 1) % jumps.size();
-    } else {
-      ++frame;
-    }
-  }
-  return order;
+std::vector<int> LoopPlan::frames() const { return schedule().frames(); }
+
+sequence::LoopSchedule LoopPlan::schedule() const {
+  std::vector<sequence::PlannedJump> planned;
+  for (const Transition& jump : jumps) planned.push_back({jump.from, jump.to, jump.crossfade_frames});
+  sequence::LoopSchedule shown = sequence::schedule_loop(start_frame, length_frames, planned);
+  shown.kind = kind;
+  return shown;
 }
 
 std::vector<std::optional<LoopPlan>> best_loops_by_length(const TransitionTable& table, int max_length_frames,

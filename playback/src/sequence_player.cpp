@@ -8,21 +8,50 @@
 
 namespace nearshore::playback {
 
+namespace {
+sequence::LoopSchedule plain_schedule(const sequence::SequenceReader& reader,
+                                      const std::vector<int>& frame_order) {
+  sequence::LoopSchedule schedule;
+  schedule.kind = "frame order";
+  if (frame_order.empty())
+    for (int frame = 0; frame < reader.frame_count(); ++frame) schedule.shown.push_back({frame, frame, 0.0});
+  else
+    for (int frame : frame_order) schedule.shown.push_back({frame, frame, 0.0});
+  schedule.length_s = static_cast<double>(schedule.shown.size()) * reader.frame_interval_s();
+  return schedule;
+}
+}  // namespace
+
 SequencePlayer::SequencePlayer(const sequence::SequenceReader& reader, std::vector<int> frame_order)
-    : reader_(reader), order_(std::move(frame_order)) {
+    : SequencePlayer(reader, plain_schedule(reader, frame_order)) {}
+
+SequencePlayer::SequencePlayer(const sequence::SequenceReader& reader, sequence::LoopSchedule schedule)
+    : reader_(reader), schedule_(std::move(schedule)), order_(schedule_.frames()) {
   if (reader_.frame_count() < 1)
     throw Error(reader_.folder().string(), "has no frames", "bake it again with a longer duration");
-  if (order_.empty()) {
-    order_.resize(reader_.frame_count());
-    std::iota(order_.begin(), order_.end(), 0);
-  }
-  for (int index : order_)
-    if (index < 0 || index >= reader_.frame_count())
-      throw Error(reader_.folder().string(),
-                  "the frame order names frame " + std::to_string(index) + " but the sequence has " +
-                      std::to_string(reader_.frame_count()),
-                  "rebuild the loop tables with `nearshore loops`");
+  if (schedule_.shown.empty())
+    throw Error(reader_.folder().string(), "the loop to play has no frames",
+                "rebuild the loop tables with `nearshore loops`");
+  for (const sequence::BlendSource& step : schedule_.shown)
+    for (int index : {step.source_frame, step.target_frame})
+      if (index < 0 || index >= reader_.frame_count())
+        throw Error(reader_.folder().string(),
+                    "the loop to play names frame " + std::to_string(index) + " but the sequence has " +
+                        std::to_string(reader_.frame_count()),
+                    "rebuild the loop tables with `nearshore loops`");
   advance_to(0.0);
+}
+
+sequence::Frame SequencePlayer::shown_frame(int position) const {
+  const sequence::BlendSource& step = schedule_.shown[static_cast<std::size_t>(position)];
+  sequence::Frame source = reader_.read_frame(step.source_frame, sequence::ChannelSelection::display());
+  if (step.target_weight <= 0.0) return source;
+  // A crossfade step: the same weight for every channel, so the shown water volume is the
+  // weighted volume of the two frames (loop_playback.hpp).
+  const sequence::Frame target = reader_.read_frame(step.target_frame, sequence::ChannelSelection::display());
+  sequence::Frame blended;
+  sequence::blend_frames(source, target, step.target_weight, blended);
+  return blended;
 }
 
 SequencePlayer::~SequencePlayer() {
@@ -38,15 +67,13 @@ void SequencePlayer::load_pair(int position) {
     next_ = prefetch_.get();
   } else {
     if (prefetch_.valid()) prefetch_.wait();
-    current_ = reader_.read_frame(order_[position], sequence::ChannelSelection::display());
-    next_ = reader_.read_frame(order_[next_position], sequence::ChannelSelection::display());
+    current_ = shown_frame(position);
+    next_ = shown_frame(next_position);
   }
   // Decode the frame after next while this pair is on screen.
   prefetch_position_ = next_position;
-  const int ahead = order_[(next_position + 1) % count];
-  prefetch_ = std::async(std::launch::async, [this, ahead] {
-    return reader_.read_frame(ahead, sequence::ChannelSelection::display());
-  });
+  const int ahead = (next_position + 1) % count;
+  prefetch_ = std::async(std::launch::async, [this, ahead] { return shown_frame(ahead); });
   position_ = position;
 }
 
@@ -67,7 +94,8 @@ void SequencePlayer::advance_to(double time_s) {
   const auto blend = [this](const Raster<float>& a, const Raster<float>& b, Raster<float>& out) {
     if (out.columns() != a.columns() || out.rows() != a.rows()) out = Raster<float>(a.columns(), a.rows());
     const float w = static_cast<float>(fraction_);
-    for (std::size_t i = 0; i < a.size(); ++i) out.values()[i] = (1.f - w) * a.values()[i] + w * b.values()[i];
+    for (std::size_t i = 0; i < a.size(); ++i)
+      out.values()[i] = (1.f - w) * a.values()[i] + w * b.values()[i];
   };
   blend(current_.surface_elevation_m, next_.surface_elevation_m, blended_.surface_elevation_m);
   blend(current_.breaking, next_.breaking, blended_.breaking);

@@ -3,11 +3,16 @@
 #include <cmath>
 #include <numeric>
 
-#include "nearshore/loops/crossfade.hpp"
+#include "nearshore/loops/plans.hpp"
 #include "nearshore/loops/transitions.hpp"
+#include "nearshore/sequence/loop_playback.hpp"
 
 namespace nearshore::loops {
 namespace {
+using sequence::blend_frames;
+using sequence::BlendSource;
+using sequence::crossfade_blend;
+using sequence::crossfade_weight;
 
 sequence::Frame constant_frame(float eta, float p, float q) {
   sequence::Frame frame;
@@ -67,6 +72,44 @@ TEST(Crossfade, ChoiceSpreadsTheSeamOverTheBlend) {
   const CrossfadeChoice none = choose_crossfade(d, 1.0, 30, 10, 0);
   EXPECT_EQ(none.frames, 0);
   EXPECT_DOUBLE_EQ(none.seam_ratio_after, 3.0);
+}
+
+// A player's schedule of a planned loop: the frames of the plan, with the last c frames before each
+// jump replaced by the blends crossfade_blend names (and nothing else blended).
+TEST(Crossfade, LoopScheduleBlendsTheLastFramesBeforeEachJump) {
+  LoopPlan plan;
+  plan.kind = "optimal";
+  plan.start_frame = 10;
+  plan.length_frames = (30 - 10 + 1) + (50 - 20 + 1);  // 10..30, jump to 20, 20..50, jump to 10
+  Transition first, second;
+  first.from = 30;
+  first.to = 20;
+  first.crossfade_frames = 3;
+  second.from = 50;
+  second.to = 10;
+  second.crossfade_frames = 2;
+  plan.jumps = {first, second};
+  const sequence::LoopSchedule schedule = plan.schedule();
+  ASSERT_EQ(schedule.shown.size(), static_cast<std::size_t>(plan.length_frames));
+  EXPECT_EQ(schedule.frames(), plan.frames());
+  EXPECT_EQ(schedule.kind, "optimal");
+  int blends = 0;
+  for (std::size_t step = 0; step < schedule.shown.size(); ++step) {
+    const BlendSource& shown = schedule.shown[step];
+    if (shown.target_weight == 0) continue;
+    ++blends;
+    const Transition& jump = step < 21 ? first : second;
+    BlendSource expected;
+    ASSERT_TRUE(crossfade_blend(jump.from, jump.to, jump.crossfade_frames, jump.from - shown.source_frame + 1,
+                                expected));
+    EXPECT_EQ(shown.target_frame, expected.target_frame);
+    EXPECT_DOUBLE_EQ(shown.target_weight, expected.target_weight);
+  }
+  EXPECT_EQ(blends, 3 + 2);
+  // The last frame before the first jump is 3/4 the way to the target timeline: (1 - 3/4) f(30) + 3/4 f(19).
+  EXPECT_EQ(schedule.shown[20].source_frame, 30);
+  EXPECT_EQ(schedule.shown[20].target_frame, 19);
+  EXPECT_DOUBLE_EQ(schedule.shown[20].target_weight, 0.75);
 }
 
 }  // namespace

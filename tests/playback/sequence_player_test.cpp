@@ -15,7 +15,10 @@ namespace fs = std::filesystem;
 
 // Frame k holds eta = k / 8 m everywhere (exact in half precision), breaking = 0.
 fs::path write_ramp_sequence(int frame_count) {
-  const fs::path folder = fs::temp_directory_path() / "nearshore_player_test";
+  // One folder per test: ctest runs the tests of this executable in parallel.
+  const fs::path folder =
+      fs::temp_directory_path() / (std::string("nearshore_player_test_") +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(folder);
   GridGeometry geometry;
   geometry.columns = 8;
@@ -57,5 +60,22 @@ TEST(SequencePlayer, FollowsAGivenFrameOrder) {
     const int expected = std::vector<int>{4, 2, 3}[step % 3];
     EXPECT_FLOAT_EQ(player.surface_elevation_m()(1, 1), expected / 8.f) << "step " << step;
   }
-  EXPECT_THROW(playback::SequencePlayer(reader, {0, 9}), nearshore::Error);
+  EXPECT_THROW(playback::SequencePlayer(reader, std::vector<int>{0, 9}), nearshore::Error);
+}
+
+// A planned loop 4 .. 9 with the jump 9 -> 4 crossfaded over 2 frames: the last two steps before
+// the jump show (2/3) f(8) + (1/3) f(2) and (1/3) f(9) + (2/3) f(3) (loop_playback.hpp), so eta
+// steps 0.5, 0.625, 0.75, 0.875, 0.75, 0.625, then back to 0.5: no hard cut from 1.125 to 0.5.
+TEST(SequencePlayer, PlaysTheCrossfadeBlendsOfALoopSchedule) {
+  const sequence::SequenceReader reader(write_ramp_sequence(12));
+  playback::SequencePlayer player(reader, sequence::schedule_loop(4, 6, {{9, 4, 2}}));
+  const std::vector<float> expected = {0.5f, 0.625f, 0.75f, 0.875f, 0.75f, 0.625f, 0.5f};
+  for (int step = 0; step < 7; ++step) {
+    player.advance_to(step * 0.5);
+    EXPECT_NEAR(player.surface_elevation_m()(2, 3), expected[static_cast<std::size_t>(step)], 1e-6)
+        << "step " << step;
+  }
+  EXPECT_EQ(player.frame_order(), (std::vector<int>{4, 5, 6, 7, 8, 9}));
+  EXPECT_THROW(playback::SequencePlayer(reader, sequence::schedule_loop(4, 6, {{9, 1, 3}})),
+               nearshore::Error);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "nearshore/loops/transitions.hpp"
+#include "nearshore/sequence/loop_playback.hpp"
 
 namespace nearshore::loops {
 
@@ -23,6 +24,8 @@ struct LoopPlan {
 
   /// The frames of one cycle, in order, starting at start_frame.
   std::vector<int> frames() const;
+  /// What a player shows per step, crossfade blends included (sequence/loop_playback.hpp).
+  sequence::LoopSchedule schedule() const;
   /// How many times the cycle plays one shorter loop over: the largest n such that the jump list
   /// is n copies of its first jumps.size() / n jumps (1 for a loop that does not repeat itself).
   int repetitions() const;

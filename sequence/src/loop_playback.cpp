@@ -1,0 +1,127 @@
+#include "nearshore/sequence/loop_playback.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <span>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/sequence/checksum.hpp"
+
+namespace nearshore::sequence {
+
+double crossfade_weight(int k, int crossfade_frames) {
+  return static_cast<double>(k) / (crossfade_frames + 1);
+}
+
+bool crossfade_blend(int from, int to, int crossfade_frames, int frames_before_jump, BlendSource& blend) {
+  if (frames_before_jump < 1 || frames_before_jump > crossfade_frames) return false;
+  const int k = crossfade_frames + 1 - frames_before_jump;  // 1 .. c
+  blend.source_frame = from - crossfade_frames + k;
+  blend.target_frame = to - 1 - crossfade_frames + k;
+  blend.target_weight = crossfade_weight(k, crossfade_frames);
+  return true;
+}
+
+void blend_frames(const Frame& a, const Frame& b, double alpha, Frame& out) {
+  const float wa = static_cast<float>(1.0 - alpha), wb = static_cast<float>(alpha);
+  auto blend = [&](const Raster<float>& x, const Raster<float>& y, Raster<float>& z, const char* name) {
+    if (x.empty() || y.empty()) {
+      z = Raster<float>();
+      return;
+    }
+    if (x.columns() != y.columns() || x.rows() != y.rows())
+      throw Error(fmt::format("crossfade of frames {} and {}", a.index, b.index),
+                  fmt::format("{} is {} x {} in one and {} x {} in the other", name, x.columns(), x.rows(),
+                              y.columns(), y.rows()),
+                  "blend frames of the same sequence");
+    if (z.columns() != x.columns() || z.rows() != x.rows()) z = Raster<float>(x.columns(), x.rows());
+    const float* px = x.data();
+    const float* py = y.data();
+    float* pz = z.data();
+    for (std::size_t k = 0; k < x.size(); ++k) pz[k] = wa * px[k] + wb * py[k];
+  };
+  blend(a.surface_elevation_m, b.surface_elevation_m, out.surface_elevation_m, "surface_elevation");
+  blend(a.flux_x_m2_s, b.flux_x_m2_s, out.flux_x_m2_s, "flux_x");
+  blend(a.flux_y_m2_s, b.flux_y_m2_s, out.flux_y_m2_s, "flux_y");
+  blend(a.breaking, b.breaking, out.breaking, "breaking");
+  out.index = -1;
+  out.time_s = (1.0 - alpha) * a.time_s + alpha * b.time_s;
+}
+
+std::vector<int> LoopSchedule::frames() const {
+  std::vector<int> order;
+  order.reserve(shown.size());
+  for (const BlendSource& step : shown) order.push_back(step.source_frame);
+  return order;
+}
+
+LoopSchedule schedule_loop(int start_frame, int length_frames, const std::vector<PlannedJump>& jumps) {
+  LoopSchedule schedule;
+  schedule.shown.reserve(static_cast<std::size_t>(std::max(length_frames, 0)));
+  std::size_t next_jump = 0;
+  int frame = start_frame;
+  for (int step = 0; step < length_frames; ++step) {
+    BlendSource shown{frame, frame, 0.0};
+    if (!jumps.empty()) {
+      const PlannedJump& jump = jumps[next_jump];
+      // Frames of the run that ends at jump.from: the last crossfade_frames of them are blends.
+      if (frame <= jump.from)
+        crossfade_blend(jump.from, jump.to, jump.crossfade_frames, jump.from - frame + 1, shown);
+    }
+    schedule.shown.push_back(shown);
+    if (!jumps.empty() && frame == jumps[next_jump].from) {
+      frame = jumps[next_jump].to;
+      next_jump = (next_jump + 1) % jumps.size();
+    } else {
+      ++frame;
+    }
+  }
+  return schedule;
+}
+
+namespace {
+LoopSchedule schedule_from_json(const nlohmann::json& loop) {
+  std::vector<PlannedJump> jumps;
+  for (const nlohmann::json& seam : loop.at("seams"))
+    jumps.push_back(
+        {seam.at("from").get<int>(), seam.at("to").get<int>(), seam.at("crossfade_frames").get<int>()});
+  LoopSchedule schedule =
+      schedule_loop(loop.at("start_frame").get<int>(), loop.at("length_frames").get<int>(), jumps);
+  schedule.kind = loop.at("kind").get<std::string>();
+  schedule.length_s = loop.at("length_s").get<double>();
+  return schedule;
+}
+}  // namespace
+
+std::optional<LoopSchedule> read_loop_schedule(const std::filesystem::path& folder) {
+  const std::filesystem::path path = folder / "loops.json";
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  const std::string text = read_file_bytes(path);
+  const std::string manifest = read_file_bytes(folder / "manifest.json");
+  try {
+    const nlohmann::json tables = nlohmann::json::parse(text);
+    if (tables.value("sequence_manifest_checksum", "") !=
+        checksum_text(std::as_bytes(std::span(manifest.data(), manifest.size()))))
+      throw Error(path.string(), "was made for another bake of this folder (its manifest checksum differs)",
+                  "run `nearshore loops " + folder.string() + "` again");
+    if (tables.contains("period_loop") && !tables["period_loop"].is_null())
+      return schedule_from_json(tables["period_loop"]);
+    if (tables.contains("requested_loop") && !tables["requested_loop"].is_null())
+      return schedule_from_json(tables["requested_loop"]);
+    const nlohmann::json best_by_length = tables.value("best_loops_by_length", nlohmann::json::array());
+    const nlohmann::json* longest = nullptr;
+    for (const nlohmann::json& loop : best_by_length)
+      if (loop.at("worst_seam_ratio_after").get<double>() <= 1.0 &&
+          (!longest || loop.at("length_s").get<double>() > longest->at("length_s").get<double>()))
+        longest = &loop;
+    if (longest) return schedule_from_json(*longest);
+    return std::nullopt;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path.string(), std::string("is not a valid loops table: ") + e.what(),
+                "run `nearshore loops " + folder.string() + "` again");
+  }
+}
+
+}  // namespace nearshore::sequence

@@ -1,0 +1,98 @@
+// loops.json -> the schedule a player follows (sequence/loop_playback.hpp): which plan is chosen,
+// its crossfades, and a loops table made for another bake refused.
+#include "nearshore/sequence/loop_playback.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/sequence/checksum.hpp"
+#include "test_sequence.hpp"
+
+namespace nearshore::sequence {
+namespace {
+namespace fs = std::filesystem;
+using namespace testing;
+
+nlohmann::json loop(const std::string& kind, int start, int length, double worst_after,
+                    const std::vector<PlannedJump>& jumps) {
+  nlohmann::json seams = nlohmann::json::array();
+  for (const PlannedJump& jump : jumps)
+    seams.push_back({{"from", jump.from}, {"to", jump.to}, {"crossfade_frames", jump.crossfade_frames}});
+  return {{"kind", kind},
+          {"start_frame", start},
+          {"length_frames", length},
+          {"length_s", 0.5 * length},
+          {"worst_seam_ratio_after", worst_after},
+          {"seams", seams}};
+}
+
+void write_loops(const fs::path& folder, const nlohmann::json& tables) {
+  std::ofstream(folder / "loops.json") << tables.dump();
+}
+
+nlohmann::json tables_for(const fs::path& folder) {
+  const std::string manifest = read_file_bytes(folder / "manifest.json");
+  return {{"sequence_manifest_checksum",
+           checksum_text(std::as_bytes(std::span(manifest.data(), manifest.size())))},
+          {"period_loop", nullptr},
+          {"requested_loop", nullptr},
+          {"best_loops_by_length", nlohmann::json::array()}};
+}
+
+TEST(LoopPlayback, ThePeriodLoopIsPlayedWhenThereIsOne) {
+  const fs::path folder = fresh_folder("loop_schedule_period");
+  write_test_sequence(folder, 20);
+  EXPECT_FALSE(read_loop_schedule(folder).has_value());  // no loops.json yet
+  nlohmann::json tables = tables_for(folder);
+  tables["best_loops_by_length"].push_back(loop("optimal", 3, 10, 0.5, {{12, 3, 2}}));
+  tables["period_loop"] = loop("period", 5, 13, 0.03, {{17, 5, 4}});
+  write_loops(folder, tables);
+  const auto schedule = read_loop_schedule(folder);
+  ASSERT_TRUE(schedule.has_value());
+  EXPECT_EQ(schedule->kind, "period");
+  ASSERT_EQ(schedule->shown.size(), 13u);
+  EXPECT_EQ(schedule->shown.front().source_frame, 5);
+  EXPECT_EQ(schedule->shown.back().source_frame, 17);
+  // The last frame before the jump 17 -> 5 is the 4th blend of 4: weight 4/5 on target frame 4.
+  EXPECT_EQ(schedule->shown.back().target_frame, 4);
+  EXPECT_DOUBLE_EQ(schedule->shown.back().target_weight, 0.8);
+  EXPECT_EQ(schedule->shown[8].target_weight, 0.0);  // frame 13: before the crossfade
+}
+
+TEST(LoopPlayback, OtherwiseTheLongestLoopWhoseSeamsAreNoWorseThanAStep) {
+  const fs::path folder = fresh_folder("loop_schedule_best");
+  write_test_sequence(folder, 30);
+  nlohmann::json tables = tables_for(folder);
+  tables["best_loops_by_length"].push_back(loop("optimal", 3, 10, 0.5, {{12, 3, 2}}));
+  tables["best_loops_by_length"].push_back(loop("optimal", 1, 25, 0.9, {{25, 1, 2}}));
+  tables["best_loops_by_length"].push_back(loop("optimal", 0, 28, 1.7, {{27, 0, 2}}));  // seam too visible
+  write_loops(folder, tables);
+  const auto schedule = read_loop_schedule(folder);
+  ASSERT_TRUE(schedule.has_value());
+  EXPECT_EQ(schedule->shown.size(), 25u);
+  EXPECT_EQ(schedule->shown.front().source_frame, 1);
+}
+
+TEST(LoopPlayback, ALoopsTableOfAnotherBakeIsRefused) {
+  const fs::path folder = fresh_folder("loop_schedule_stale");
+  write_test_sequence(folder, 20);
+  nlohmann::json tables = tables_for(folder);
+  tables["sequence_manifest_checksum"] = "xxh64:0000000000000000";
+  tables["period_loop"] = loop("period", 5, 13, 0.03, {{17, 5, 4}});
+  write_loops(folder, tables);
+  try {
+    read_loop_schedule(folder);
+    FAIL() << "a stale loops.json was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("another bake"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nearshore loops"), std::string::npos) << e.what();
+  }
+  std::ofstream(folder / "loops.json") << "{ not json";
+  EXPECT_THROW(read_loop_schedule(folder), Error);
+}
+
+}  // namespace
+}  // namespace nearshore::sequence
