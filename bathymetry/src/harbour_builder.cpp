@@ -671,11 +671,11 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
   style.low = 0.0;
   style.high = result.summary["water_depth_m"].value("max", 1.0);
   Image preview = render_heat_map(grid.still_water_depth_m, style, &grid.land);
-  // The field's placement inside render_heat_map's image (core/src/plot.cpp): left margin 25 px,
-  // top margin 50 px, `scale` pixels per cell, north at the top.
-  const double scale = std::min(1.0 * style.max_image_size_px / std::max(g.columns, g.rows), 8.0);
-  auto pixel_x = [&](double x_m) { return 25.0 + (x_m - g.origin_x_m) / g.spacing_m * scale; };
-  auto pixel_y = [&](double y_m) { return 50.0 + (g.rows - (y_m - g.origin_y_m) / g.spacing_m) * scale; };
+  // Overlays go where render_heat_map put the field (north at the top).
+  const HeatMapPlacement placement = heat_map_placement(g.columns, g.rows, style);
+  const double scale = placement.pixels_per_cell, left = placement.left_px, top = placement.top_px;
+  auto pixel_x = [&](double x_m) { return left + (x_m - g.origin_x_m) / g.spacing_m * scale; };
+  auto pixel_y = [&](double y_m) { return top + (g.rows - (y_m - g.origin_y_m) / g.spacing_m) * scale; };
   const double right = pixel_x(g.origin_x_m + g.width_m()), bottom = pixel_y(g.origin_y_m);
   // Structures over the depth colours: solid walls black, porous ones orange (seed 003 porosity).
   const Rgb wall_colour{0.08f, 0.08f, 0.08f}, porous_colour{1.0f, 0.55f, 0.0f}, coast_colour{0.9f, 0.1f, 0.05f};
@@ -689,15 +689,17 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
                              n <= 0.0f ? wall_colour : porous_colour);
     }
   const int legend_y = static_cast<int>(bottom) + 30;
-  preview.draw_text(25, legend_y, "coastline (chart)", coast_colour, 14);
+  preview.draw_text(static_cast<int>(left), legend_y, "coastline (chart)", coast_colour, 14);
   preview.draw_text(170, legend_y, "vertical walls (n = 0)", wall_colour, 14);
   preview.draw_text(350, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
   for (const auto& line : result.coastline_m)
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const double x0 = pixel_x(line[i].x_m), y0 = pixel_y(line[i].y_m), x1 = pixel_x(line[i + 1].x_m), y1 = pixel_y(line[i + 1].y_m);
-      if (std::max(x0, x1) < 25 || std::min(x0, x1) > right || std::max(y0, y1) < 50 || std::min(y0, y1) > bottom) continue;
+      if (std::max(x0, x1) < left || std::min(x0, x1) > right || std::max(y0, y1) < top || std::min(y0, y1) > bottom)
+        continue;
       // Clip by points: draw only segments whose both ends are on the field.
-      if (x0 >= 25 && x0 <= right && x1 >= 25 && x1 <= right && y0 >= 50 && y0 <= bottom && y1 >= 50 && y1 <= bottom)
+      if (x0 >= left && x0 <= right && x1 >= left && x1 <= right && y0 >= top && y0 <= bottom && y1 >= top &&
+          y1 <= bottom)
         preview.draw_line(x0, y0, x1, y1, coast_colour, 1);
     }
   create_output_folder(folder);

@@ -1,17 +1,16 @@
 #include "nearshore/core/plot.hpp"
 
+#include <ft2build.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <ft2build.h>
 #include FT_FREETYPE_H
+#include <fmt/core.h>
 #include <png.h>
 
 #include <cstdio>
 #include <mutex>
-
-#include <fmt/core.h>
 
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
@@ -70,16 +69,25 @@ std::string tick_label(double value, double step) {
 Rgb colour_at(ColourMap map, double t) {
   switch (map) {
     case ColourMap::kViridis:  // sampled from matplotlib's viridis at 0, 0.25, 0.5, 0.75, 1
-      return from_stops({{0.267f, 0.005f, 0.329f}, {0.229f, 0.322f, 0.546f}, {0.128f, 0.567f, 0.551f},
-                         {0.369f, 0.789f, 0.383f}, {0.993f, 0.906f, 0.144f}},
+      return from_stops({{0.267f, 0.005f, 0.329f},
+                         {0.229f, 0.322f, 0.546f},
+                         {0.128f, 0.567f, 0.551f},
+                         {0.369f, 0.789f, 0.383f},
+                         {0.993f, 0.906f, 0.144f}},
                         t);
     case ColourMap::kBathymetry:
-      return from_stops({{0.80f, 0.95f, 0.97f}, {0.45f, 0.78f, 0.90f}, {0.16f, 0.50f, 0.78f},
-                         {0.05f, 0.25f, 0.55f}, {0.02f, 0.08f, 0.28f}},
+      return from_stops({{0.80f, 0.95f, 0.97f},
+                         {0.45f, 0.78f, 0.90f},
+                         {0.16f, 0.50f, 0.78f},
+                         {0.05f, 0.25f, 0.55f},
+                         {0.02f, 0.08f, 0.28f}},
                         t);
     case ColourMap::kDiverging:
-      return from_stops({{0.02f, 0.19f, 0.58f}, {0.57f, 0.77f, 0.87f}, {0.97f, 0.97f, 0.97f},
-                         {0.96f, 0.65f, 0.51f}, {0.65f, 0.0f, 0.15f}},
+      return from_stops({{0.02f, 0.19f, 0.58f},
+                         {0.57f, 0.77f, 0.87f},
+                         {0.97f, 0.97f, 0.97f},
+                         {0.96f, 0.65f, 0.51f},
+                         {0.65f, 0.0f, 0.15f}},
                         t);
   }
   return {0, 0, 0};
@@ -88,7 +96,8 @@ Rgb colour_at(ColourMap map, double t) {
 Image::Image(int width, int height, Rgb background)
     : width_(width), height_(height), pixels_(static_cast<std::size_t>(width) * height * 3) {
   if (width <= 0 || height <= 0) throw Error("image", fmt::format("invalid size {} x {} px", width, height));
-  for (std::size_t i = 0; i < pixels_.size(); i += 3) std::copy(background.begin(), background.end(), &pixels_[i]);
+  for (std::size_t i = 0; i < pixels_.size(); i += 3)
+    std::copy(background.begin(), background.end(), &pixels_[i]);
 }
 
 void Image::set(int x, int y, Rgb colour) {
@@ -103,7 +112,8 @@ Rgb Image::get(int x, int y) const {
 
 void Image::fill_rectangle(int x0, int y0, int x1, int y1, Rgb colour) {
   for (int y = std::max(0, std::min(y0, y1)); y <= std::min(height_ - 1, std::max(y0, y1)); ++y)
-    for (int x = std::max(0, std::min(x0, x1)); x <= std::min(width_ - 1, std::max(x0, x1)); ++x) set(x, y, colour);
+    for (int x = std::max(0, std::min(x0, x1)); x <= std::min(width_ - 1, std::max(x0, x1)); ++x)
+      set(x, y, colour);
 }
 
 void Image::draw_line(double x0, double y0, double x1, double y1, Rgb colour, int thickness) {
@@ -135,8 +145,9 @@ void Image::draw_text(int x, int y, const std::string& text, Rgb colour, int siz
         const int py = y - glyph->bitmap_top + static_cast<int>(row);
         if (coverage <= 0.f || px < 0 || py < 0 || px >= width_ || py >= height_) continue;
         const Rgb under = get(px, py);
-        set(px, py, {under[0] + (colour[0] - under[0]) * coverage, under[1] + (colour[1] - under[1]) * coverage,
-                     under[2] + (colour[2] - under[2]) * coverage});
+        set(px, py,
+            {under[0] + (colour[0] - under[0]) * coverage, under[1] + (colour[1] - under[1]) * coverage,
+             under[2] + (colour[2] - under[2]) * coverage});
       }
     pen_x += static_cast<int>(glyph->advance.x >> 6);
   }
@@ -159,12 +170,27 @@ void Image::write_png(const std::filesystem::path& path) const {
   });
 }
 
-Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style, const Raster<std::uint8_t>* mask) {
+namespace {
+constexpr int kHeatMapMargin = 50, kHeatMapBarWidth = 24, kHeatMapRight = 110;
+}  // namespace
+
+HeatMapPlacement heat_map_placement(int columns, int rows, const HeatMapStyle& style) {
+  HeatMapPlacement placement;
+  placement.pixels_per_cell = std::min(1.0 * style.max_image_size_px / std::max({columns, rows, 1}), 8.0);
+  placement.left_px = kHeatMapMargin / 2;
+  placement.top_px = kHeatMapMargin;
+  placement.width_px = std::max(1, static_cast<int>(columns * placement.pixels_per_cell));
+  placement.height_px = std::max(1, static_cast<int>(rows * placement.pixels_per_cell));
+  return placement;
+}
+
+Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
+                      const Raster<std::uint8_t>* mask) {
   if (field.empty()) throw Error("heat map '" + style.title + "'", "the field is empty");
-  const double scale = std::min(1.0 * style.max_image_size_px / std::max(field.columns(), field.rows()), 8.0);
-  const int field_w = std::max(1, static_cast<int>(field.columns() * scale));
-  const int field_h = std::max(1, static_cast<int>(field.rows() * scale));
-  const int margin = 50, bar_w = 24, right = 110;
+  const HeatMapPlacement placement = heat_map_placement(field.columns(), field.rows(), style);
+  const double scale = placement.pixels_per_cell;
+  const int field_w = placement.width_px, field_h = placement.height_px;
+  const int margin = kHeatMapMargin, bar_w = kHeatMapBarWidth, right = kHeatMapRight;
   Image image(field_w + margin + bar_w + right, field_h + 2 * margin);
   const double span = style.high - style.low == 0 ? 1.0 : style.high - style.low;
   for (int py = 0; py < field_h; ++py) {
@@ -206,7 +232,10 @@ Image render_line_plot(const LinePlot& plot) {
     }
   if (!std::isfinite(x_min)) throw Error("plot '" + plot.title + "'", "has no finite data points");
   if (x_max == x_min) x_max = x_min + 1;
-  if (y_max == y_min) { y_max += 0.5; y_min -= 0.5; }
+  if (y_max == y_min) {
+    y_max += 0.5;
+    y_min -= 0.5;
+  }
   const double y_pad = 0.05 * (y_max - y_min);
   y_min -= y_pad;
   y_max += y_pad;

@@ -52,11 +52,21 @@ struct HeatMapStyle {
   std::string value_label;  ///< e.g. "depth (m)"
   ColourMap map = ColourMap::kViridis;
   double low = 0.0, high = 1.0;
-  int max_image_size_px = 1200;  ///< the longer side of the field area
+  int max_image_size_px = 1200;             ///< the longer side of the field area
   Rgb mask_colour = {0.55f, 0.47f, 0.36f};  ///< land brown
-  bool first_row_at_top = false;  ///< true for matrices (row 0 = first frame at the top)
+  bool first_row_at_top = false;            ///< true for matrices (row 0 = first frame at the top)
 };
-Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style, const Raster<std::uint8_t>* mask = nullptr);
+Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
+                      const Raster<std::uint8_t>* mask = nullptr);
+
+/// Where render_heat_map puts the field in its image, for drawing over it (coastlines, markers):
+/// cell (column, row) covers x from left_px + column * pixels_per_cell, and the field's rows run
+/// down from top_px (north, the last row, at the top unless first_row_at_top).
+struct HeatMapPlacement {
+  double left_px = 0, top_px = 0, pixels_per_cell = 1;
+  int width_px = 0, height_px = 0;  ///< the field's area
+};
+HeatMapPlacement heat_map_placement(int columns, int rows, const HeatMapStyle& style);
 
 struct PlotSeries {
   std::string label;
