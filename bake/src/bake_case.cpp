@@ -494,6 +494,7 @@ SolverParameters read_solver(TableReader& solver) {
   p.dry_depth_m = solver.positive("dry_depth_m", p.dry_depth_m, "wet/dry threshold in metres");
   p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
   p.nonlinear_iterations = solver.integer("nonlinear_iterations", p.nonlinear_iterations, 1, 20, "iterations per half step");
+  p.adi_passes = solver.integer("adi_passes", p.adi_passes, 1, 4, "x + y sweep pairs per step");
   p.blowup_elevation_depth_ratio = solver.positive("blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio, "|eta| / depth ratio that stops the run");
   TableReader breaking = solver.table("breaking");
   p.breaking.enabled = breaking.boolean("enabled", p.breaking.enabled);
@@ -522,6 +523,7 @@ json solver_record(const SolverParameters& p) {
           {"dry_depth_m", p.dry_depth_m},
           {"chezy_coefficient", p.chezy_coefficient},
           {"nonlinear_iterations", p.nonlinear_iterations},
+          {"adi_passes", p.adi_passes},
           {"blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio},
           {"breaking",
            {{"enabled", p.breaking.enabled},

@@ -149,6 +149,7 @@ struct BoussinesqSolver::Implementation {
   std::vector<double> eta_t, eta_base_t, eta_across_t, eta_star_t, flux_x_across, flux_x_new, flux_y_t, flux_y_increment_t,
       tangential_half_t, tangential_rate_t, eddy_t;
   std::vector<double> eta_star, eta_across, flux_y_across, flux_x_half, flux_x_rate, eta_next, flux_y_new;
+  std::vector<double> flux_x_guess, flux_y_guess, eta_previous_pass_t;  // ADI passes > 1
   std::vector<double> dispersive, dispersive_t;
   std::vector<double> sponge_cell, sponge_face_x, sponge_face_y;  // damping factor per step (1 = none)
   tbb::enumerable_thread_specific<SweepScratch> scratch;
@@ -219,6 +220,7 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     throw Error(subject, problem.str(), "use a time step of at most " + std::to_string(kMaxCourantNumber * s.dx / celerity) + " s");
   }
   if (parameters.nonlinear_iterations < 1) throw Error(subject, "nonlinear_iterations must be at least 1", "set it to 2");
+  if (parameters.adi_passes < 1) throw Error(subject, "adi_passes must be at least 1", "set it to 1 (or 2 on fine grids)");
   for (const SpongeLayer& sponge : parameters.sponges) {
     const double extent = (sponge.side == Side::kWest || sponge.side == Side::kEast) ? geometry.width_m() : geometry.height_m();
     if (!(sponge.width_m >= 0.0) || sponge.width_m > 0.5 * extent)
@@ -293,10 +295,12 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.eddy_viscosity.assign(cells, 0.0);
   s.breaking_start_s.assign(cells, -1.0);
   s.breaking_strength.assign(cells, 0.0);
-  for (auto* v : {&s.eta_t, &s.eta_base_t, &s.eta_across_t, &s.eta_star_t, &s.eddy_t, &s.eta_star, &s.eta_across, &s.eta_next})
+  for (auto* v : {&s.eta_t, &s.eta_base_t, &s.eta_across_t, &s.eta_star_t, &s.eddy_t, &s.eta_star, &s.eta_across,
+                  &s.eta_next, &s.eta_previous_pass_t})
     v->assign(cells, 0.0);
-  for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate}) v->assign(faces_x, 0.0);
-  for (auto* v : {&s.flux_y_t, &s.flux_y_increment_t, &s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across, &s.flux_y_new})
+  for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate, &s.flux_x_guess}) v->assign(faces_x, 0.0);
+  for (auto* v : {&s.flux_y_t, &s.flux_y_increment_t, &s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across,
+                  &s.flux_y_new, &s.flux_y_guess})
     v->assign(faces_y, 0.0);
   s.dispersive.assign(cells, 0.0);
   s.dispersive_t.assign(cells, 0.0);
@@ -373,46 +377,79 @@ void BoussinesqSolver::Implementation::step() {
   const double ratio = dt / dx;
 
   // 1. x sweep (layout: columns slow, rows fast). E = eta^n - dt/(n dx) (dP^n + dQ^n) + dt S  (seed 003 eq. 1)
+  // 2. y sweep in the natural layout: E = eta*, P at t^{n+1/2} and dP/dt now known exactly.
+  // With adi_passes > 1 the pair is solved again, the x sweep's across terms (Q and dQ/dt at
+  // t^{n+1/2}, eta at t^{n+1/2}) now from the previous pass instead of lagged from the last step:
+  // the lag of the mixed dispersive term -(B+1/3) d^2 Q_xyt lets short two-dimensional modes grow
+  // where d/dx is large (docs/solver.md, "ADI passes").
   detail::transpose(eta.data(), eta_t.data(), nx, ny);
   detail::transpose(flux_y.data(), flux_y_t.data(), nx, ny + 1);
-  detail::transpose(flux_y_increment.data(), flux_y_increment_t.data(), nx, ny + 1);
   detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
-  tbb::parallel_for(0, nx, [&](int c) {
-    const std::size_t t0 = static_cast<std::size_t>(c) * (ny + 1);
-    for (int r = 0; r < ny; ++r) {
-      const std::size_t i = static_cast<std::size_t>(c) * ny + r;
-      eta_base_t[i] = eta_t[i] - ratio * frame_x.inverse_porosity[i] *
-                                     (flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y_t[t0 + r + 1] - flux_y_t[t0 + r]);
-      eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]);
+  for (int pass = 0; pass < parameters.adi_passes; ++pass) {
+    if (pass == 0) {
+      detail::transpose(flux_y_increment.data(), flux_y_increment_t.data(), nx, ny + 1);
+    } else {
+      // This step's Q increment and eta^{n+1} from the previous pass; its P increment is the
+      // first guess of the new x sweep.
+      for_each_index(flux_y.size(), [&](std::size_t f) { flux_y_across[f] = flux_y_new[f] - flux_y[f]; });
+      detail::transpose(flux_y_across.data(), flux_y_increment_t.data(), nx, ny + 1);
+      for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
+      detail::transpose(eta_across.data(), eta_previous_pass_t.data(), nx, ny);
     }
-    for (int k = 0; k <= ny; ++k) {
-      tangential_half_t[t0 + k] = flux_y_t[t0 + k] + 0.5 * flux_y_increment_t[t0 + k];
-      tangential_rate_t[t0 + k] = flux_y_increment_t[t0 + k] / dt;
+    tbb::parallel_for(0, nx, [&](int c) {
+      const std::size_t t0 = static_cast<std::size_t>(c) * (ny + 1);
+      for (int r = 0; r < ny; ++r) {
+        const std::size_t i = static_cast<std::size_t>(c) * ny + r;
+        eta_base_t[i] = eta_t[i] - ratio * frame_x.inverse_porosity[i] *
+                                       (flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y_t[t0 + r + 1] - flux_y_t[t0 + r]);
+        eta_across_t[i] = pass == 0 ? eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]) : eta_previous_pass_t[i];
+      }
+      for (int k = 0; k <= ny; ++k) {
+        tangential_half_t[t0 + k] = flux_y_t[t0 + k] + 0.5 * flux_y_increment_t[t0 + k];
+        tangential_rate_t[t0 + k] = flux_y_increment_t[t0 + k] / dt;
+      }
+    });
+    source->add(time_s + 0.5 * dt, dt, eta_base_t.data(), static_cast<std::size_t>(ny), 1);
+    if (pass == 0) {
+      for_each_index(flux_x.size(), [&](std::size_t f) { flux_x_across[f] = flux_x[f] + 0.5 * flux_x_increment[f]; });
+      for_each_index(flux_x.size(), [&](std::size_t f) { flux_x_guess[f] = flux_x_increment[f]; });
+    } else {
+      for_each_index(flux_x.size(), [&](std::size_t f) {
+        flux_x_guess[f] = flux_x_new[f] - flux_x[f];
+        flux_x_across[f] = flux_x[f] + 0.5 * flux_x_guess[f];
+      });
     }
-  });
-  source->add(time_s + 0.5 * dt, dt, eta_base_t.data(), static_cast<std::size_t>(ny), 1);
-  for_each_index(flux_x.size(), [&](std::size_t f) { flux_x_across[f] = flux_x[f] + 0.5 * flux_x_increment[f]; });
-  sweep(frame_x,
-        {eta_t.data(), eta_base_t.data(), eta_across_t.data(), flux_x.data(), flux_x_across.data(), flux_x_increment.data(),
-         tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data()},
-        {eta_star_t.data(), flux_x_new.data()});
+    sweep(frame_x,
+          {eta_t.data(), eta_base_t.data(), eta_across_t.data(), flux_x.data(), flux_x_across.data(), flux_x_guess.data(),
+           tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data()},
+          {eta_star_t.data(), flux_x_new.data()});
 
-  // 2. y sweep in the natural layout: E = eta*, P at t^{n+1/2} and dP/dt now known exactly.
-  detail::transpose(eta_star_t.data(), eta_star.data(), ny, nx);
-  for_each_index(flux_x.size(), [&](std::size_t f) {
-    flux_x_across[f] = 0.5 * (flux_x[f] + flux_x_new[f]);  // reused: P at t^{n+1/2}
-    flux_x_rate[f] = (flux_x_new[f] - flux_x[f]) / dt;
-  });
-  detail::transpose(flux_x_across.data(), flux_x_half.data(), ny, nx + 1);
-  detail::transpose(flux_x_rate.data(), flux_x_across.data(), ny, nx + 1);  // reused: dP/dt, natural layout
-  for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_star[i]); });
-  for_each_index(flux_y.size(), [&](std::size_t f) { flux_y_across[f] = flux_y[f] + 0.5 * flux_y_increment[f]; });
-  mark_dispersive(frame_y, eta.data(), dispersive.data());
-  sweep(frame_y,
-        {eta.data(), eta_star.data(), eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_increment.data(),
-         flux_x_half.data(), flux_x_across.data(), eddy_viscosity.data(), dispersive.data()},
-        {eta_next.data(), flux_y_new.data()});
+    detail::transpose(eta_star_t.data(), eta_star.data(), ny, nx);
+    for_each_index(flux_x.size(), [&](std::size_t f) {
+      flux_x_across[f] = 0.5 * (flux_x[f] + flux_x_new[f]);  // reused: P at t^{n+1/2}
+      flux_x_rate[f] = (flux_x_new[f] - flux_x[f]) / dt;
+    });
+    detail::transpose(flux_x_across.data(), flux_x_half.data(), ny, nx + 1);
+    detail::transpose(flux_x_rate.data(), flux_x_across.data(), ny, nx + 1);  // reused: dP/dt, natural layout
+    for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_star[i]); });
+    if (pass == 0) {
+      for_each_index(flux_y.size(), [&](std::size_t f) {
+        flux_y_guess[f] = flux_y_increment[f];
+        flux_y_across[f] = flux_y[f] + 0.5 * flux_y_increment[f];
+      });
+      mark_dispersive(frame_y, eta.data(), dispersive.data());
+    } else {
+      for_each_index(flux_y.size(), [&](std::size_t f) {
+        flux_y_guess[f] = flux_y_new[f] - flux_y[f];
+        flux_y_across[f] = flux_y[f] + 0.5 * flux_y_guess[f];
+      });
+    }
+    sweep(frame_y,
+          {eta.data(), eta_star.data(), eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_guess.data(),
+           flux_x_half.data(), flux_x_across.data(), eddy_viscosity.data(), dispersive.data()},
+          {eta_next.data(), flux_y_new.data()});
+  }
 
   // 3. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
   repair_negative_depths();

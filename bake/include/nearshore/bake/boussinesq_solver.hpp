@@ -93,6 +93,7 @@ struct SolverParameters {
   PorousResistance porous;
   std::vector<SpongeLayer> sponges;
   int nonlinear_iterations = 2;       ///< passes of the time-centred (Crank-Nicolson) iteration per half step
+  int adi_passes = 1;                 ///< x + y sweep pairs per step; 2 re-solves with this step's across terms (fine grids)
   double blowup_elevation_depth_ratio = 5.0;   ///< |eta| > ratio * max(d, 1 m) => unstable
 };
 
