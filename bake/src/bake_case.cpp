@@ -18,6 +18,7 @@
 #include "nearshore/bake/bake_time_series.hpp"
 #include "nearshore/bake/sea_state_builder.hpp"
 #include "nearshore/bake/spectrum.hpp"
+#include "nearshore/bake/spectrum_wavenumber.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
@@ -390,7 +391,13 @@ WaveComponent component_from(TableReader& reader, const std::string& amplitude_k
   return component;
 }
 
-WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base) {
+// The irregular maker's spectrum and spreading, which [deep_water] shares.
+struct IrregularSpectrum {
+  std::shared_ptr<const FrequencySpectrum> spectrum;
+  std::shared_ptr<const DirectionalSpreading> spreading;
+};
+
+WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base, IrregularSpectrum& irregular) {
   WaveMaker wave_maker;
   const std::size_t kind =
       maker.choice("kind", std::nullopt, {"none", "regular", "components", "time_series", "solitary", "irregular"});
@@ -445,6 +452,7 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
       specification.min_frequency_rad_s = 2 * std::numbers::pi * maker.positive("min_frequency_hz", std::nullopt, "lowest frequency in Hz");
       specification.max_frequency_rad_s = 2 * std::numbers::pi * maker.positive("max_frequency_hz", std::nullopt, "highest frequency in Hz");
     }
+    irregular = {specification.spectrum, specification.spreading};
     const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000, "cells per wavelength the grid must give every component");
     try {
       sea = build_sea_state(specification);
@@ -573,6 +581,56 @@ double resolve_time_step(double requested_time_step_s, double courant_number, co
   return output_interval_s / std::max(1.0, steps_per_output);
 }
 
+// Still-water depth the waves are made in: the mean over the wet cells of the source line.
+double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
+  const GridGeometry& g = grid.geometry;
+  const bool along_x = maker.facing == Side::kWest || maker.facing == Side::kEast;
+  double sum_m = 0.0;
+  int wet = 0;
+  if (along_x) {
+    const int column = std::clamp(static_cast<int>((maker.source_line_m - g.origin_x_m) / g.spacing_m), 0, g.columns - 1);
+    for (int row = 0; row < g.rows; ++row)
+      if (grid.still_water_depth_m(column, row) > 0.0) sum_m += grid.still_water_depth_m(column, row), ++wet;
+  } else {
+    const int row = std::clamp(static_cast<int>((maker.source_line_m - g.origin_y_m) / g.spacing_m), 0, g.rows - 1);
+    for (int column = 0; column < g.columns; ++column)
+      if (grid.still_water_depth_m(column, row) > 0.0) sum_m += grid.still_water_depth_m(column, row), ++wet;
+  }
+  return wet > 0 ? sum_m / wet : 0.0;
+}
+
+// [deep_water] (docs/commands/bake.md): the FFT field beyond the harbour, from the irregular wave
+// maker's spectrum and spreading (DirectionalWavenumberSpectrum at the source line's depth), its
+// loop period and seed, so both sides describe one sea.
+DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker, const IrregularSpectrum& irregular,
+                                       const HarbourGrid& grid) {
+  if (!irregular.spectrum)
+    deep.fail("deep_water", "needs an irregular wave maker: the deep-water field shares its spectrum, spreading, loop period and seed",
+              "set wave_maker.kind = \"irregular\", or remove [deep_water]");
+  DeepWaterSpecification specification;
+  specification.grid_size = deep.integer("grid_size", 256, 8, 4096, "samples per tile side, a power of two");
+  if ((specification.grid_size & (specification.grid_size - 1)) != 0)
+    deep.fail(deep.full("grid_size"), fmt::format("= {} is not a power of two", specification.grid_size), "use 64, 128, 256 or 512");
+  const int cascade_count = deep.integer("cascade_count", 3, 1, 8, "number of cascades (tiles of decreasing length)");
+  const double shortest_wavelength_m =
+      deep.positive("shortest_wavelength_m", 0.5, "shortest wavelength the last cascade resolves, metres");
+  specification.choppiness = deep.number("choppiness", 1.0, 0.0, 2.0, false, "lambda of the choppy displacement (0 = none)");
+  const double default_depth_m = source_line_depth_m(maker, grid);
+  specification.still_water_depth_m =
+      deep.non_negative("depth_m", default_depth_m, "still-water depth of the dispersion relation, metres (0 = deep water)");
+  specification.loop_period_s = maker.sea_state.loop_period_s;
+  specification.seed = maker.sea_state.seed;
+  specification.spectrum =
+      std::make_shared<DirectionalWavenumberSpectrum>(irregular.spectrum, irregular.spreading, specification.still_water_depth_m);
+  try {
+    specification.tile_lengths_m =
+        cascade_tile_lengths_for_m(*specification.spectrum, specification.grid_size, cascade_count, shortest_wavelength_m);
+  } catch (const Error& error) {
+    deep.fail("deep_water", "cannot be laid out: " + error.problem(), error.fix());
+  }
+  return specification;
+}
+
 BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   const std::string subject = case_file.string();
   const fs::path base = case_file.parent_path();
@@ -623,8 +681,14 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
 
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");
   TableReader maker = root.table("wave_maker");
-  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base);
+  IrregularSpectrum irregular;
+  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, irregular);
   maker.finish();
+  if (root.has("deep_water")) {
+    TableReader deep = root.table("deep_water");
+    bake_case.deep_water = read_deep_water(deep, bake_case.wave_maker, irregular, bake_case.harbour);
+    deep.finish();
+  }
   const double loop_period_s = bake_case.wave_maker.sea_state.loop_period_s;
   if (loop_period_s > 0 && whole_steps(loop_period_s, bake_case.timing.output_interval_s) < 1)
     time.fail(time.full("output_interval_s"), fmt::format("= {} s does not divide wave_maker.loop_period_s = {} s",

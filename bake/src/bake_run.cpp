@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "nearshore/bake/bake_gauges.hpp"
+#include "nearshore/bake/deep_water.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
@@ -143,6 +144,16 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   description.seed = bake_case.wave_maker.sea_state.seed;
   description.loop_period_s = bake_case.wave_maker.sea_state.loop_period_s;
   description.solver = bake_case.solver_record;
+  if (bake_case.deep_water) {
+    // What the runtime needs to synthesise the sea beyond the baked domain (docs/deep-water.md):
+    // the cascades' coefficients beside the frames, their description in the manifest.
+    try {
+      const DeepWaterField field(*bake_case.deep_water);
+      description.deep_water = field.write_coefficients(folder);
+    } catch (const Error& error) {
+      throw Error(bake_case.case_file.string(), "[deep_water] " + error.problem(), error.fix());
+    }
+  }
   sequence::SequenceWriter writer(folder, bake_case.harbour, description, options.resume);
 
   Raster<float> flux_x, flux_y;

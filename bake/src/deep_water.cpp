@@ -15,6 +15,7 @@
 #include "nearshore/bake/sea_state_builder.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/sequence/checksum.hpp"
 
 namespace nearshore::bake {
 namespace {
@@ -510,6 +511,8 @@ nlohmann::json DeepWaterField::write_coefficients(const std::filesystem::path& f
     const std::string name = fmt::format("deep_water_cascade_{}.bin", i);
     write_bytes_atomically(folder / name, bytes);
     description["cascades"][i]["coefficients_file"] = name;
+    description["cascades"][i]["coefficients_bytes"] = bytes.size();
+    description["cascades"][i]["coefficients_checksum"] = sequence::checksum_text(bytes);  // XXH64, as the frames
   }
   return description;
 }

@@ -86,6 +86,13 @@ void SequenceReader::verify_checksums() const {
     read_checked(manifest_.frames[static_cast<std::size_t>(index)], Verify::kYes, buffer);
     progress.update(index + 2.0);
   }
+  // The deep-water coefficient files the bake wrote beside the frames (manifest `deep_water`).
+  if (manifest_.deep_water.is_object() && manifest_.deep_water.contains("cascades"))
+    for (const nlohmann::json& cascade : manifest_.deep_water["cascades"])
+      if (cascade.contains("coefficients_file") && cascade.contains("coefficients_checksum"))
+        read_checked({cascade["coefficients_file"].get<std::string>(), cascade.value("coefficients_bytes", std::uint64_t{0}),
+                      cascade["coefficients_checksum"].get<std::string>()},
+                     Verify::kYes, buffer);
   progress.finish();
 }
 

@@ -18,6 +18,7 @@
 #include "nearshore/bake/bake_run.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
+#include "nearshore/sequence/checksum.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::bake {
@@ -117,6 +118,68 @@ TEST_F(BakeRun, PeriodicIrregularBakeRecordsLoopPeriodSeedAndComponents) {
   EXPECT_EQ(reader.manifest().wave_conditions["case"]["kind"], "irregular");
   EXPECT_DOUBLE_EQ(reader.manifest().solver["time_step_s"].get<double>(), summary.time_step_s);
   EXPECT_EQ(reader.frame_count(), summary.frames);
+}
+
+// [deep_water]: the FFT sea beyond the domain from the irregular maker's own spectrum, spreading,
+// loop period and seed; its coefficients beside the frames (checksummed), its description in the
+// manifest, and the same significant wave height as the maker's spectrum (issue 5: Hs of the
+// field within 3 % of the spectrum's integral).
+TEST_F(BakeRun, DeepWaterSectionWritesTheFieldTheRuntimeSynthesisesBeyondTheDomain) {
+  const auto folder = scratch_folder();
+  std::string text = small_flume_case(4.0);
+  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nsignificant_height_m = 0.02\npeak_period_s = 1.5\n"
+                                                     "frequency_count = 16\nseed = 99\nloop_period_s = 32.0\n"
+                                                     "min_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
+  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
+  text += "[deep_water]\ngrid_size = 64\ncascade_count = 2\nshortest_wavelength_m = 0.05\n";
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
+  ASSERT_TRUE(c.deep_water.has_value());
+  EXPECT_DOUBLE_EQ(c.deep_water->still_water_depth_m, 0.5);  // the flume's depth at the source line
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  run_bake(c, options);
+  const sequence::SequenceReader reader(options.output_folder);
+  const nlohmann::json& deep = reader.manifest().deep_water;
+  ASSERT_TRUE(deep.is_object());
+  EXPECT_EQ(deep["seed"], 99u);
+  EXPECT_DOUBLE_EQ(deep["loop_period_s"].get<double>(), 32.0);
+  EXPECT_NEAR(deep["significant_wave_height_m"].get<double>(), 0.02, 0.03 * 0.02);
+  ASSERT_EQ(deep["cascades"].size(), 2u);
+  for (const nlohmann::json& cascade : deep["cascades"]) {
+    const std::string bytes = sequence::read_file_bytes(options.output_folder / cascade["coefficients_file"].get<std::string>());
+    EXPECT_EQ(bytes.size(), cascade["coefficients_bytes"].get<std::size_t>());
+    EXPECT_EQ(sequence::checksum_text(std::as_bytes(std::span(bytes.data(), bytes.size()))),
+              cascade["coefficients_checksum"].get<std::string>());
+  }
+  EXPECT_NO_THROW(reader.verify_checksums());
+  // A corrupt coefficient file is caught by the same verification as the frames.
+  const fs::path coefficients = options.output_folder / deep["cascades"][1]["coefficients_file"].get<std::string>();
+  std::string bytes = sequence::read_file_bytes(coefficients);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x40);
+  std::ofstream(coefficients, std::ios::binary) << bytes;
+  EXPECT_THROW(reader.verify_checksums(), Error);
+}
+
+TEST_F(BakeRun, DeepWaterNeedsAnIrregularWaveMakerAndAPowerOfTwoGrid) {
+  const auto folder = scratch_folder();
+  const auto message_of = [&](const std::string& text) {
+    try {
+      read_bake_case(write_text(folder / "case.toml", text));
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string regular = message_of(small_flume_case() + "[deep_water]\n");
+  EXPECT_NE(regular.find("irregular"), std::string::npos) << regular;
+  EXPECT_NE(regular.find("case.toml"), std::string::npos) << regular;
+  std::string text = small_flume_case();
+  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nsignificant_height_m = 0.02\npeak_period_s = 1.5\n"
+                                                     "frequency_count = 16\nmin_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
+  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
+  const std::string odd = message_of(text + "[deep_water]\ngrid_size = 100\n");
+  EXPECT_NE(odd.find("deep_water.grid_size"), std::string::npos) << odd;
+  EXPECT_NE(odd.find("power of two"), std::string::npos) << odd;
 }
 
 TEST_F(BakeRun, ResumeAfterARealKillGivesTheSameFramesAndGauges) {

@@ -10,12 +10,14 @@
 // errors, so a typo never passes silently; every error names the case file, the key and the fix.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "nearshore/bake/boussinesq_solver.hpp"
+#include "nearshore/bake/deep_water.hpp"
 #include "nearshore/core/harbour_grid.hpp"
 
 namespace nearshore::bake {
@@ -46,6 +48,10 @@ struct BakeCase {
   nlohmann::json wave_conditions;   ///< the wave maker as configured, recorded in the sequence
   nlohmann::json solver_record;     ///< the solver parameters as resolved, recorded in the sequence
   nlohmann::json source;            ///< the parsed case document (for the checkpoint fingerprint)
+  /// [deep_water]: the FFT field the runtime shows beyond the baked domain (issue 5), made from the
+  /// irregular wave maker's own spectrum, spreading, loop period and seed. The bake writes its
+  /// coefficients beside the frames and its description into the manifest's `deep_water`.
+  std::optional<DeepWaterSpecification> deep_water;
 };
 
 /// Reads and checks a case file (.toml or .json). Relative paths inside it are relative to the
