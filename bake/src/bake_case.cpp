@@ -603,7 +603,7 @@ double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
 // maker's spectrum and spreading (DirectionalWavenumberSpectrum at the source line's depth), its
 // loop period and seed, so both sides describe one sea.
 DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker, const IrregularSpectrum& irregular,
-                                       const HarbourGrid& grid) {
+                                       const HarbourGrid& grid, bool& drive_wave_maker) {
   if (!irregular.spectrum)
     deep.fail("deep_water", "needs an irregular wave maker: the deep-water field shares its spectrum, spreading, loop period and seed",
               "set wave_maker.kind = \"irregular\", or remove [deep_water]");
@@ -618,6 +618,7 @@ DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker
   const double default_depth_m = source_line_depth_m(maker, grid);
   specification.still_water_depth_m =
       deep.non_negative("depth_m", default_depth_m, "still-water depth of the dispersion relation, metres (0 = deep water)");
+  drive_wave_maker = deep.boolean("drive_wave_maker", false);
   specification.loop_period_s = maker.sea_state.loop_period_s;
   specification.seed = maker.sea_state.seed;
   specification.spectrum =
@@ -629,6 +630,42 @@ DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker
     deep.fail("deep_water", "cannot be laid out: " + error.problem(), error.fix());
   }
   return specification;
+}
+
+// deep_water.drive_wave_maker: the wave maker gets the FFT field's own lattice components instead of
+// its own discretisation of the spectrum (issue 5, coherence), so at the offshore edge the baked
+// waves and the field are the same waves to linear order. Kept: components travelling into the
+// domain from the maker's side within 78 degrees of its normal, inside the frequency band the maker's own discretisation chose (the
+// band the grid carries), above 1e-3 of the largest amplitude. Phases are moved from the field's
+// origin, placed at the grid's south-west corner, to the solver's frame: phi' = phi - k . origin.
+// Returns the fraction of the field's variance the maker carries.
+double drive_maker_from_field(WaveMaker& maker, const DeepWaterSpecification& specification, const HarbourGrid& grid) {
+  const DeepWaterField field(specification);
+  double lowest_rad_s = std::numeric_limits<double>::infinity(), highest_rad_s = 0.0;
+  for (const WaveComponent& c : maker.sea_state.components)
+    lowest_rad_s = std::min(lowest_rad_s, c.angular_frequency_rad_s), highest_rad_s = std::max(highest_rad_s, c.angular_frequency_rad_s);
+  const double inward_rad = direction_away_from(maker.facing);
+  const SeaState all = field.wave_components();
+  double largest_m = 0.0, total_variance = 0.0;
+  for (const WaveComponent& c : all.components) largest_m = std::max(largest_m, c.amplitude_m), total_variance += 0.5 * c.amplitude_m * c.amplitude_m;
+  SeaState kept;
+  kept.loop_period_s = maker.sea_state.loop_period_s;
+  kept.seed = maker.sea_state.seed;
+  double kept_variance = 0.0;
+  const double depth_m = specification.still_water_depth_m;
+  for (WaveComponent c : all.components) {
+    const double w = c.angular_frequency_rad_s;
+    // The source line radiates components within 78 degrees of its normal (cos > 0.2, boussinesq_source.cpp).
+    if (std::cos(c.direction_rad - inward_rad) < 0.21 || w < lowest_rad_s * (1 - 1e-9) || w > highest_rad_s * (1 + 1e-9) ||
+        c.amplitude_m < 1e-3 * largest_m)
+      continue;
+    const double k = wavenumber_from_frequency(w, depth_m);
+    c.phase_rad -= k * (std::cos(c.direction_rad) * grid.geometry.origin_x_m + std::sin(c.direction_rad) * grid.geometry.origin_y_m);
+    kept.components.push_back(c);
+    kept_variance += 0.5 * c.amplitude_m * c.amplitude_m;
+  }
+  maker.sea_state = std::move(kept);
+  return total_variance > 0 ? kept_variance / total_variance : 0.0;
 }
 
 BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
@@ -682,12 +719,24 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");
   TableReader maker = root.table("wave_maker");
   IrregularSpectrum irregular;
+  double deep_water_variance_fraction = -1.0;  // set when the deep-water field drives the maker
   bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, irregular);
   maker.finish();
   if (root.has("deep_water")) {
     TableReader deep = root.table("deep_water");
-    bake_case.deep_water = read_deep_water(deep, bake_case.wave_maker, irregular, bake_case.harbour);
+    bool drive_wave_maker = false;
+    bake_case.deep_water = read_deep_water(deep, bake_case.wave_maker, irregular, bake_case.harbour, drive_wave_maker);
     deep.finish();
+    if (drive_wave_maker) {
+      try {
+        deep_water_variance_fraction = drive_maker_from_field(bake_case.wave_maker, *bake_case.deep_water, bake_case.harbour);
+      } catch (const Error& error) {
+        deep.fail("deep_water", "cannot be built: " + error.problem(), error.fix());
+      }
+      if (bake_case.wave_maker.sea_state.components.empty())
+        deep.fail(deep.full("drive_wave_maker"), "leaves the wave maker no component (none inside its band travelling into the domain)",
+                  "widen wave_maker.min_frequency_hz .. max_frequency_hz or use a larger deep_water tile (fewer, finer lattice cells)");
+    }
   }
   const double loop_period_s = bake_case.wave_maker.sea_state.loop_period_s;
   if (loop_period_s > 0 && whole_steps(loop_period_s, bake_case.timing.output_interval_s) < 1)
@@ -712,6 +761,10 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   root.finish();
 
   bake_case.wave_conditions = wave_record(bake_case.wave_maker, document.value("wave_maker", json::object()));
+  if (deep_water_variance_fraction >= 0) {
+    bake_case.wave_conditions["driven_by_deep_water"] = true;
+    bake_case.wave_conditions["deep_water_variance_fraction"] = deep_water_variance_fraction;
+  }
   bake_case.solver_record = solver_record(bake_case.solver);
   return bake_case;
 }

@@ -5,7 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <thread>
@@ -16,6 +18,7 @@
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/bake/bake_run.hpp"
+#include "nearshore/bake/deep_water.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/sequence/checksum.hpp"
@@ -158,6 +161,41 @@ TEST_F(BakeRun, DeepWaterSectionWritesTheFieldTheRuntimeSynthesisesBeyondTheDoma
   bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x40);
   std::ofstream(coefficients, std::ios::binary) << bytes;
   EXPECT_THROW(reader.verify_checksums(), Error);
+}
+
+// deep_water.drive_wave_maker: the maker's components ARE the field's (issue 5, coherence): each one
+// is a lattice component of the field with the same amplitude, direction, frequency and (the flume's
+// origin being 0) phase; only those travelling into the domain inside the maker's band are kept.
+TEST_F(BakeRun, DeepWaterCanDriveTheWaveMakerWithTheFieldsOwnComponents) {
+  const auto folder = scratch_folder();
+  std::string text = small_flume_case(4.0);
+  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nsignificant_height_m = 0.02\npeak_period_s = 1.5\n"
+                                                     "frequency_count = 16\nseed = 5\nloop_period_s = 32.0\nspreading_s = 10.0\n"
+                                                     "direction_count = 8\nmin_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
+  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
+  text += "[deep_water]\ngrid_size = 64\ncascade_count = 1\nshortest_wavelength_m = 0.5\ndrive_wave_maker = true\n";
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
+  ASSERT_TRUE(c.deep_water.has_value());
+  EXPECT_EQ(c.wave_conditions["driven_by_deep_water"], true);
+  const double fraction = c.wave_conditions["deep_water_variance_fraction"].get<double>();
+  EXPECT_GT(fraction, 0.5);
+  EXPECT_LE(fraction, 1.0);
+  const DeepWaterField field(*c.deep_water);
+  const std::vector<WaveComponent> lattice = field.wave_components().components;
+  ASSERT_FALSE(c.wave_maker.sea_state.components.empty());
+  for (const WaveComponent& maker : c.wave_maker.sea_state.components) {
+    EXPECT_GT(std::cos(maker.direction_rad), 0.2);  // eastward, away from the west source line
+    EXPECT_GE(maker.angular_frequency_rad_s, 2 * 3.14159265 * 0.3 * 0.999);
+    const bool found = std::any_of(lattice.begin(), lattice.end(), [&](const WaveComponent& l) {
+      return l.amplitude_m == maker.amplitude_m && l.direction_rad == maker.direction_rad &&
+             l.angular_frequency_rad_s == maker.angular_frequency_rad_s && std::abs(l.phase_rad - maker.phase_rad) < 1e-12;
+    });
+    EXPECT_TRUE(found) << "a maker component is not one of the field's";
+  }
+  EXPECT_DOUBLE_EQ(c.wave_maker.sea_state.loop_period_s, 32.0);
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  EXPECT_NO_THROW(run_bake(c, options));
 }
 
 TEST_F(BakeRun, DeepWaterNeedsAnIrregularWaveMakerAndAPowerOfTwoGrid) {
