@@ -603,7 +603,7 @@ double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
 // maker's spectrum and spreading (DirectionalWavenumberSpectrum at the source line's depth), its
 // loop period and seed, so both sides describe one sea.
 DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker, const IrregularSpectrum& irregular,
-                                       const HarbourGrid& grid, bool& drive_wave_maker) {
+                                       const HarbourGrid& grid, bool& drive_wave_maker, BakeCase& bake_case) {
   if (!irregular.spectrum)
     deep.fail("deep_water", "needs an irregular wave maker: the deep-water field shares its spectrum, spreading, loop period and seed",
               "set wave_maker.kind = \"irregular\", or remove [deep_water]");
@@ -619,6 +619,18 @@ DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker
   specification.still_water_depth_m =
       deep.non_negative("depth_m", default_depth_m, "still-water depth of the dispersion relation, metres (0 = deep water)");
   drive_wave_maker = deep.boolean("drive_wave_maker", false);
+  bake_case.deep_water_tile_set_frame_interval_s =
+      deep.non_negative("tile_set_frame_interval_s", 0.0, "frame interval of the baked tile set in seconds (0 = none)");
+  bake_case.deep_water_tile_set_cascade = deep.integer("tile_set_cascade", 0, 0, cascade_count - 1, "the cascade the tile set bakes");
+  if (bake_case.deep_water_tile_set_frame_interval_s > 0) {
+    const double loop_s = maker.sea_state.loop_period_s;
+    const double frames = loop_s / bake_case.deep_water_tile_set_frame_interval_s;
+    if (loop_s <= 0 || std::abs(frames - std::round(frames)) > 1e-9 * frames || frames < 2)
+      deep.fail(deep.full("tile_set_frame_interval_s"),
+                fmt::format("= {} s must divide wave_maker.loop_period_s = {} s into 2 or more frames (a tile set is one loop)",
+                            bake_case.deep_water_tile_set_frame_interval_s, loop_s),
+                "set wave_maker.loop_period_s and a frame interval that divides it, or remove tile_set_frame_interval_s");
+  }
   specification.loop_period_s = maker.sea_state.loop_period_s;
   specification.seed = maker.sea_state.seed;
   specification.spectrum =
@@ -725,7 +737,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   if (root.has("deep_water")) {
     TableReader deep = root.table("deep_water");
     bool drive_wave_maker = false;
-    bake_case.deep_water = read_deep_water(deep, bake_case.wave_maker, irregular, bake_case.harbour, drive_wave_maker);
+    bake_case.deep_water = read_deep_water(deep, bake_case.wave_maker, irregular, bake_case.harbour, drive_wave_maker, bake_case);
     deep.finish();
     if (drive_wave_maker) {
       try {

@@ -9,6 +9,7 @@
 
 #include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/bake/deep_water.hpp"
+#include "nearshore/bake/deep_water_tiles.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
@@ -148,8 +149,19 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     // What the runtime needs to synthesise the sea beyond the baked domain (docs/deep-water.md):
     // the cascades' coefficients beside the frames, their description in the manifest.
     try {
-      const DeepWaterField field(*bake_case.deep_water);
+      DeepWaterField field(*bake_case.deep_water);
       description.deep_water = field.write_coefficients(folder);
+      if (bake_case.deep_water_tile_set_frame_interval_s > 0) {
+        const int frames_per_loop = static_cast<int>(
+            std::lround(bake_case.deep_water->loop_period_s / bake_case.deep_water_tile_set_frame_interval_s));
+        const TileSetSummary tiles =
+            write_deep_water_tile_set(field, bake_case.deep_water_tile_set_cascade, frames_per_loop, folder / "deep_water_tiles");
+        description.deep_water["tile_set"] = {{"folder", "deep_water_tiles"},
+                                              {"cascade", bake_case.deep_water_tile_set_cascade},
+                                              {"frames", tiles.frame_count},
+                                              {"frame_interval_s", tiles.frame_interval_s},
+                                              {"bytes", tiles.bytes}};
+      }
     } catch (const Error& error) {
       throw Error(bake_case.case_file.string(), "[deep_water] " + error.problem(), error.fix());
     }

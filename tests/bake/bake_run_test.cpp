@@ -134,7 +134,8 @@ TEST_F(BakeRun, DeepWaterSectionWritesTheFieldTheRuntimeSynthesisesBeyondTheDoma
                                                      "frequency_count = 16\nseed = 99\nloop_period_s = 32.0\n"
                                                      "min_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
   text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
-  text += "[deep_water]\ngrid_size = 64\ncascade_count = 2\nshortest_wavelength_m = 0.05\n";
+  text += "[deep_water]\ngrid_size = 64\ncascade_count = 2\nshortest_wavelength_m = 0.05\ntile_set_frame_interval_s = 4.0\n"
+          "tile_set_cascade = 1\n";
   const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
   ASSERT_TRUE(c.deep_water.has_value());
   EXPECT_DOUBLE_EQ(c.deep_water->still_water_depth_m, 0.5);  // the flume's depth at the source line
@@ -155,6 +156,11 @@ TEST_F(BakeRun, DeepWaterSectionWritesTheFieldTheRuntimeSynthesisesBeyondTheDoma
               cascade["coefficients_checksum"].get<std::string>());
   }
   EXPECT_NO_THROW(reader.verify_checksums());
+  // The optional baked tile set: cascade 1 over the 32 s loop every 4 s, itself a sequence.
+  const sequence::SequenceReader tiles(options.output_folder / "deep_water_tiles");
+  EXPECT_EQ(tiles.frame_count(), 8);
+  EXPECT_EQ(deep["tile_set"]["frames"], 8);
+  EXPECT_EQ(tiles.manifest().deep_water["tile_set_cascade"], 1);
   // A corrupt coefficient file is caught by the same verification as the frames.
   const fs::path coefficients = options.output_folder / deep["cascades"][1]["coefficients_file"].get<std::string>();
   std::string bytes = sequence::read_file_bytes(coefficients);

@@ -52,6 +52,10 @@ struct BakeCase {
   /// irregular wave maker's own spectrum, spreading, loop period and seed. The bake writes its
   /// coefficients beside the frames and its description into the manifest's `deep_water`.
   std::optional<DeepWaterSpecification> deep_water;
+  /// [deep_water] tile_set_frame_interval_s > 0: also bake cascade `deep_water_tile_set_cascade`
+  /// over one loop into DIR/deep_water_tiles/ (a sequence, for engines that cannot run an FFT).
+  double deep_water_tile_set_frame_interval_s = 0.0;
+  int deep_water_tile_set_cascade = 0;
 };
 
 /// Reads and checks a case file (.toml or .json). Relative paths inside it are relative to the
