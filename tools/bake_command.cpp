@@ -49,6 +49,27 @@ void add_bake_command(CLI::App& app) {
                             .c_str());
     std::printf("gauges: %s   seed: %llu\n", summary.gauges_csv.string().c_str(),
                 static_cast<unsigned long long>(summary.seed));
+    if (const nlohmann::json& deep = summary.deep_water; deep.is_object()) {
+      std::string line =
+          fmt::format("deep water: {} cascades of {}^2, Hs {:.2f} m, {:.1f} MiB of coefficients",
+                      deep["cascades"].get<int>(), deep["grid_size"].get<int>(),
+                      deep["significant_wave_height_m"].get<double>(),
+                      deep["coefficients_bytes"].get<double>() / (1 << 20));
+      if (deep.contains("variance_fraction")) {
+        const nlohmann::json& zone = deep["blending"];
+        line += fmt::format(
+            "; the wave maker makes {} of its waves, {:.1f} % of its variance (Hs {:.2f} m); "
+            "blending zone {:.0f}-{:.0f} m inland of the source line, predicted mismatch {:.3f} at its end: "
+            "{} (criterion {}, docs/deep-water.md)",
+            deep["wave_maker_components"].get<int>(), 100.0 * deep["variance_fraction"].get<double>(),
+            deep["carried_significant_wave_height_m"].get<double>(), zone["start_m"].get<double>(),
+            zone["start_m"].get<double>() + zone["width_m"].get<double>(),
+            zone["predicted_relative_rms_end"].get<double>(),
+            zone["seamless"].get<bool>() ? "seamless" : "NOT seamless",
+            zone["seamless_relative_rms"].get<double>());
+      }
+      std::printf("%s\n", line.c_str());
+    }
   });
 }
 

@@ -16,6 +16,8 @@
 
 #include "nearshore/bake/bake_bathymetry.hpp"
 #include "nearshore/bake/bake_time_series.hpp"
+#include "nearshore/bake/deep_water_coupling.hpp"
+#include "nearshore/bake/sea_state_beaufort.hpp"
 #include "nearshore/bake/sea_state_builder.hpp"
 #include "nearshore/bake/spectrum.hpp"
 #include "nearshore/bake/spectrum_wavenumber.hpp"
@@ -263,6 +265,12 @@ double direction_away_from(Side facing) {
   return 0.0;
 }
 
+double deepest_still_water_m(const HarbourGrid& grid) {
+  float deepest_m = 0.f;
+  for (float depth : grid.still_water_depth_m.values()) deepest_m = std::max(deepest_m, depth);
+  return deepest_m;
+}
+
 // ---- bathymetry ----------------------------------------------------------------------------------
 HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base) {
   const std::size_t kind = bathymetry.choice("kind", std::nullopt, {"harbour_grid", "profile", "berkhoff_shoal"});
@@ -360,22 +368,34 @@ void check_loop_period(TableReader& maker, const std::string& key, double loop_p
 // The grid can carry a component only if it is long enough: at the deepest still water, k d <= 3
 // (the range where the B = 1/15 equations hold linear dispersion within 2 %, Madsen & Sorensen 1992)
 // and at least `cells_per_wavelength` cells per wavelength. Shorter waves are not waves the bake can
-// make: they alias, or blow up at the source line, so the case says so instead.
-void check_resolvable(TableReader& maker, const SeaState& sea, const HarbourGrid& grid, int cells_per_wavelength) {
-  float deepest_m = 0.f;
-  for (float depth : grid.still_water_depth_m.values()) deepest_m = std::max(deepest_m, depth);
-  const double k_max = std::min(3.0 / std::max(static_cast<double>(deepest_m), 1e-3),
+// make: they alias, or blow up at the source line. Returns that highest frequency (rad/s).
+double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength) {
+  const double deepest_m = deepest_still_water_m(grid);
+  const double k_max = std::min(3.0 / std::max(deepest_m, 1e-3),
                                 2 * std::numbers::pi / (cells_per_wavelength * grid.geometry.spacing_m));
-  const double w_max = frequency_from_wavenumber(k_max, deepest_m);
+  return frequency_from_wavenumber(k_max, deepest_m);
+}
+
+std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength) {
+  return fmt::format("k d <= 3 at the deepest {:.2f} m and {} cells of {} m per wavelength",
+                     deepest_still_water_m(grid), cells_per_wavelength, grid.geometry.spacing_m);
+}
+
+// An irregular maker whose components the grid cannot carry is refused with the band to give.
+void check_resolvable(TableReader& maker, const SeaState& sea, const HarbourGrid& grid,
+                      int cells_per_wavelength) {
+  const double w_max = highest_carried_frequency_rad_s(grid, cells_per_wavelength);
   double highest = 0, lowest = std::numeric_limits<double>::infinity();
   for (const WaveComponent& component : sea.components)
     highest = std::max(highest, component.angular_frequency_rad_s), lowest = std::min(lowest, component.angular_frequency_rad_s);
   if (highest > w_max * (1 + 1e-9))
-    maker.fail("wave_maker", fmt::format("(irregular) has components up to {:.3f} Hz, but the grid carries waves only up to {:.3f} Hz "
-                                         "(k d <= 3 at the deepest {:.2f} m and {} cells of {} m per wavelength)",
-                                         highest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi), deepest_m,
-                                         cells_per_wavelength, grid.geometry.spacing_m),
-               fmt::format("give the band explicitly, e.g. min_frequency_hz = {:.3f} and max_frequency_hz = {:.3f}, or use a finer grid",
+    maker.fail("wave_maker",
+               fmt::format("(irregular) has components up to {:.3f} Hz, but the grid carries waves only up "
+                           "to {:.3f} Hz ({})",
+                           highest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi),
+                           carried_band_reason(grid, cells_per_wavelength)),
+               fmt::format("give the band explicitly, e.g. min_frequency_hz = {:.3f} and max_frequency_hz = "
+                           "{:.3f}, or use a finer grid",
                            lowest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi)));
 }
 
@@ -391,16 +411,41 @@ WaveComponent component_from(TableReader& reader, const std::string& amplitude_k
   return component;
 }
 
-// The irregular maker's spectrum and spreading, which [deep_water] shares.
-struct IrregularSpectrum {
-  std::shared_ptr<const FrequencySpectrum> spectrum;
-  std::shared_ptr<const DirectionalSpreading> spreading;
+// A frequency spectrum of `spectrum` kind 0 "jonswap", 1 "pierson_moskowitz" or 2 "tma" from
+// its keys: what the irregular maker and [deep_water] both read, with the same keys.
+std::shared_ptr<const FrequencySpectrum> read_frequency_spectrum(TableReader& table, std::size_t spectrum) {
+  const double hs_m =
+      table.positive("significant_height_m", std::nullopt, "significant wave height Hs in metres");
+  const double tp_s = table.positive("peak_period_s", std::nullopt, "peak period Tp in seconds");
+  const double gamma =
+      table.number("peak_enhancement", 3.3, 1.0, 20.0, false, "JONSWAP gamma (1 = Pierson-Moskowitz)");
+  std::shared_ptr<const FrequencySpectrum> deep;
+  if (spectrum == 1)
+    deep = std::make_shared<PiersonMoskowitzSpectrum>(hs_m, tp_s);
+  else
+    deep = std::make_shared<JonswapSpectrum>(hs_m, tp_s, gamma);
+  if (spectrum == 2)
+    deep = std::make_shared<TmaSpectrum>(
+        deep, table.positive("tma_depth_m", std::nullopt, "depth of the TMA transformation in metres"));
+  return deep;
+}
+
+// What the [wave_maker] table asks of the sea beyond the single maker: the irregular maker's spectrum
+// and spreading (which [deep_water] shares), or for kind "deep_water" the band of the field it makes.
+struct MakerRequest {
+  bool from_deep_water = false;  // kind = "deep_water": the components come from [deep_water]
+  std::shared_ptr<const FrequencySpectrum> spectrum;      // irregular
+  std::shared_ptr<const DirectionalSpreading> spreading;  // irregular
+  bool long_crested = false;                              // irregular with spreading_s = 0
+  WaveMakerBand band;                                     // deep_water
 };
 
-WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base, IrregularSpectrum& irregular) {
+WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
+                          MakerRequest& request) {
   WaveMaker wave_maker;
   const std::size_t kind =
-      maker.choice("kind", std::nullopt, {"none", "regular", "components", "time_series", "solitary", "irregular"});
+      maker.choice("kind", std::nullopt,
+                   {"none", "regular", "components", "time_series", "solitary", "irregular", "deep_water"});
   if (kind == 0) return wave_maker;
   wave_maker.facing = side_from_index(maker.choice("facing", std::nullopt, kSideNames));
   const bool along_x = wave_maker.facing == Side::kWest || wave_maker.facing == Side::kEast;
@@ -428,16 +473,8 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   } else if (kind == 5) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
     DirectionalSeaSpecification specification;
-    const std::size_t spectrum = maker.choice("spectrum", "jonswap", {"jonswap", "pierson_moskowitz", "tma"});
-    const double hs_m = maker.positive("significant_height_m", std::nullopt, "significant wave height Hs in metres");
-    const double tp_s = maker.positive("peak_period_s", std::nullopt, "peak period Tp in seconds");
-    const double gamma = maker.number("peak_enhancement", 3.3, 1.0, 20.0, false, "JONSWAP gamma (1 = Pierson-Moskowitz)");
-    std::shared_ptr<const FrequencySpectrum> deep;
-    if (spectrum == 1) deep = std::make_shared<PiersonMoskowitzSpectrum>(hs_m, tp_s);
-    else deep = std::make_shared<JonswapSpectrum>(hs_m, tp_s, gamma);
-    if (spectrum == 2)
-      deep = std::make_shared<TmaSpectrum>(deep, maker.positive("tma_depth_m", std::nullopt, "depth of the TMA transformation in metres"));
-    specification.spectrum = deep;
+    specification.spectrum = read_frequency_spectrum(
+        maker, maker.choice("spectrum", "jonswap", {"jonswap", "pierson_moskowitz", "tma"}));
     const double mean_direction_rad = kDegree * maker.number("mean_direction_deg", default_direction_rad / kDegree, -360.0, 360.0,
                                                              false, "mean direction of travel in degrees counter-clockwise from +x");
     const double spreading_s = maker.non_negative("spreading_s", 0.0, "cos^2s exponent s (0 = long-crested)");
@@ -452,7 +489,9 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
       specification.min_frequency_rad_s = 2 * std::numbers::pi * maker.positive("min_frequency_hz", std::nullopt, "lowest frequency in Hz");
       specification.max_frequency_rad_s = 2 * std::numbers::pi * maker.positive("max_frequency_hz", std::nullopt, "highest frequency in Hz");
     }
-    irregular = {specification.spectrum, specification.spreading};
+    request.spectrum = specification.spectrum;
+    request.spreading = specification.spreading;
+    request.long_crested = spreading_s == 0;
     const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000, "cells per wavelength the grid must give every component");
     try {
       sea = build_sea_state(specification);
@@ -460,6 +499,39 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
       maker.fail("wave_maker", "(irregular) cannot be built: " + error.problem(), error.fix());
     }
     check_resolvable(maker, sea, grid, cells_per_wavelength);
+  } else if (kind == 6) {
+    // The components are the [deep_water] field's (read_deep_water, couple_wave_maker): here only
+    // the loop period both share and the band of the field the grid carries.
+    wave_maker.kind = WaveMaker::Kind::kComponents;
+    request.from_deep_water = true;
+    sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000,
+                                                   "cells per wavelength the grid must give every component");
+    const double carried_rad_s = highest_carried_frequency_rad_s(grid, cells_per_wavelength);
+    request.band.min_frequency_rad_s =
+        2 * std::numbers::pi * maker.non_negative("min_frequency_hz", 0.0, "lowest frequency in Hz");
+    request.band.max_frequency_rad_s =
+        2 * std::numbers::pi *
+        maker.positive("max_frequency_hz", carried_rad_s / (2 * std::numbers::pi), "highest frequency in Hz");
+    if (request.band.max_frequency_rad_s > carried_rad_s * (1 + 1e-9))
+      maker.fail(maker.full("max_frequency_hz"),
+                 fmt::format("= {:.4f} Hz is above what the grid carries ({:.4f} Hz: {})",
+                             request.band.max_frequency_rad_s / (2 * std::numbers::pi),
+                             carried_rad_s / (2 * std::numbers::pi),
+                             carried_band_reason(grid, cells_per_wavelength)),
+                 "leave max_frequency_hz out (the grid's limit is the default), or use a finer grid");
+    if (!(request.band.max_frequency_rad_s > request.band.min_frequency_rad_s))
+      maker.fail(maker.full("min_frequency_hz"), "is not below the highest frequency the maker makes",
+                 "lower min_frequency_hz");
+    // A narrower fan than the source line's 78 degrees, e.g. 0 in a flume whose side walls would
+    // reflect oblique waves.
+    const double max_angle_rad =
+        kDegree * maker.number("max_angle_from_normal_deg", 78.0, 0.0, 78.0, false,
+                               "largest angle between a made wave and the source line's normal, degrees");
+    request.band.min_normal_fraction = std::max(request.band.min_normal_fraction, std::cos(max_angle_rad));
+    if (maker.has("seed"))
+      maker.fail(maker.full("seed"), "is the deep-water field's when kind = \"deep_water\"",
+                 "move seed into [deep_water]");
   } else if (kind == 2) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
     sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
@@ -490,7 +562,8 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     wave_maker.solitary_height_m = maker.positive("height_m", std::nullopt, "solitary wave height above still water, metres");
     wave_maker.solitary_crest_position_m = position_m;
   }
-  if (kind != 5) sea.seed = maker.unsigned_integer("seed", 0, "phase seed (recorded; used by irregular seas)");
+  if (kind != 5 && kind != 6)
+    sea.seed = maker.unsigned_integer("seed", 0, "phase seed (recorded; used by irregular seas)");
   return wave_maker;
 }
 
@@ -581,49 +654,168 @@ double resolve_time_step(double requested_time_step_s, double courant_number, co
   return output_interval_s / std::max(1.0, steps_per_output);
 }
 
-// Still-water depth the waves are made in: the mean over the wet cells of the source line.
-double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
-  const GridGeometry& g = grid.geometry;
-  const bool along_x = maker.facing == Side::kWest || maker.facing == Side::kEast;
-  double sum_m = 0.0;
-  int wet = 0;
-  if (along_x) {
-    const int column = std::clamp(static_cast<int>((maker.source_line_m - g.origin_x_m) / g.spacing_m), 0, g.columns - 1);
-    for (int row = 0; row < g.rows; ++row)
-      if (grid.still_water_depth_m(column, row) > 0.0) sum_m += grid.still_water_depth_m(column, row), ++wet;
-  } else {
-    const int row = std::clamp(static_cast<int>((maker.source_line_m - g.origin_y_m) / g.spacing_m), 0, g.rows - 1);
-    for (int column = 0; column < g.columns; ++column)
-      if (grid.still_water_depth_m(column, row) > 0.0) sum_m += grid.still_water_depth_m(column, row), ++wet;
+namespace {
+
+// [deep_water] spectrum (docs/commands/bake.md) when the field defines the sea (wave_maker.kind =
+// "deep_water"): a frequency spectrum with cos^2s spreading (as the irregular maker's, converted to
+// wavenumbers at `depth_m`), a wind spectrum, or a Beaufort preset (seed 000 table 3.1). Wind and
+// mean directions default to away from the maker's side.
+std::shared_ptr<const WavenumberSpectrum> read_deep_water_spectrum(TableReader& deep,
+                                                                   double default_direction_rad,
+                                                                   double depth_m) {
+  // The keys are checked here; a spectrum that still cannot be built says why under deep_water.spectrum.
+  const auto built = [&deep](auto&& make) -> std::shared_ptr<const WavenumberSpectrum> {
+    try {
+      return make();
+    } catch (const Error& error) {
+      deep.fail(deep.full("spectrum"), "cannot be built: " + error.problem(), error.fix());
+    }
+  };
+  const std::size_t kind =
+      deep.choice("spectrum", std::nullopt,
+                  {"jonswap", "pierson_moskowitz", "tma", "phillips", "unified", "pm_ittc", "beaufort"});
+  const auto direction_rad = [&](const std::string& key) {
+    return kDegree * deep.number(key, default_direction_rad / kDegree, -360.0, 360.0, false,
+                                 "direction of travel in degrees counter-clockwise from +x (east)");
+  };
+  if (kind <= 2) {
+    std::shared_ptr<const FrequencySpectrum> spectrum = read_frequency_spectrum(deep, kind);
+    const double mean_direction_rad = direction_rad("mean_direction_deg");
+    const double spreading_s =
+        deep.number("spreading_s", 20.0, 1.0, 1000.0, false, "cos^2s exponent s (10-25 wind sea, 75 swell)");
+    return built([&] {
+      return std::make_shared<DirectionalWavenumberSpectrum>(
+          spectrum, std::make_shared<CosineSquaredSpreading>(mean_direction_rad, spreading_s), depth_m);
+    });
   }
-  return wet > 0 ? sum_m / wet : 0.0;
+  if (kind == 3) {
+    const double wind_m_s =
+        deep.positive("wind_speed_m_s", std::nullopt, "wind speed U of Lw = U^2 / g in m/s");
+    const double hs_m =
+        deep.positive("significant_height_m", std::nullopt, "significant wave height Hs in metres (sets A)");
+    const double wind_direction_rad = direction_rad("wind_direction_deg");
+    return built([&] {
+      return std::make_shared<PhillipsSpectrum>(
+          PhillipsSpectrum::amplitude_for_significant_wave_height(hs_m, wind_m_s), wind_m_s,
+          wind_direction_rad);
+    });
+  }
+  if (kind == 4) {
+    const double wind_m_s =
+        deep.positive("wind_speed_10_m_s", std::nullopt, "wind speed 10 m above the sea in m/s");
+    if (deep.has("inverse_wave_age") && deep.has("fetch_m"))
+      deep.fail(deep.full("inverse_wave_age"), "and deep_water.fetch_m are both given",
+                "give one of them (the fetch sets the inverse wave age)");
+    const double fetch_m = deep.positive("fetch_m", 0.0, "fetch in metres");
+    const double given_age = deep.number("inverse_wave_age", 0.84, 0.84, 5.0, false,
+                                         "Omega_c = U10 / c_p (0.84 fully developed .. 5 young)");
+    const double wind_direction_rad = direction_rad("wind_direction_deg");
+    return built([&] {
+      const double inverse_wave_age =
+          fetch_m > 0 ? UnifiedSpectrum::inverse_wave_age_from_fetch(wind_m_s, fetch_m) : given_age;
+      return std::make_shared<UnifiedSpectrum>(wind_m_s, inverse_wave_age, wind_direction_rad);
+    });
+  }
+  if (kind == 5) {
+    const double wind_m_s =
+        deep.positive("wind_speed_10_m_s", std::nullopt, "wind speed 10 m above the sea in m/s");
+    const double wind_direction_rad = direction_rad("wind_direction_deg");
+    return built([&] { return std::make_shared<PmIttcSpectrum>(wind_m_s, wind_direction_rad); });
+  }
+  const int force = deep.integer("beaufort_force", std::nullopt, 1, 12,
+                                 "Beaufort force (1 light air .. 12 hurricane; 0 is a flat sea)");
+  const std::size_t choice = deep.choice("beaufort_spectrum", "seed", {"seed", "phillips", "unified"});
+  const double wind_direction_rad = direction_rad("wind_direction_deg");
+  return built([&] {
+    return beaufort_preset(force, wind_direction_rad, static_cast<BeaufortSpectrum>(choice)).spectrum;
+  });
 }
 
-// [deep_water] (docs/commands/bake.md): the FFT field beyond the harbour, from the irregular wave
-// maker's spectrum and spreading (DirectionalWavenumberSpectrum at the source line's depth), its
-// loop period and seed, so both sides describe one sea.
-DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker, const IrregularSpectrum& irregular,
-                                       const HarbourGrid& grid, bool& drive_wave_maker, BakeCase& bake_case) {
-  if (!irregular.spectrum)
-    deep.fail("deep_water", "needs an irregular wave maker: the deep-water field shares its spectrum, spreading, loop period and seed",
-              "set wave_maker.kind = \"irregular\", or remove [deep_water]");
+// Whether the deep-water field gives the wave maker its components, and in which band.
+struct DeepWaterDrive {
+  bool drives_wave_maker = false;
+  WaveMakerBand band;
+};
+
+// [deep_water] (docs/commands/bake.md): the FFT field beyond the harbour. With an irregular wave
+// maker it is made from the maker's spectrum and spreading (DirectionalWavenumberSpectrum at the
+// source line's depth), loop period and seed, so both sides describe one sea; with
+// wave_maker.kind = "deep_water" it has its own spectrum and seed and gives the maker its waves.
+DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker, const MakerRequest& request,
+                                       const HarbourGrid& grid, DeepWaterDrive& drive, BakeCase& bake_case) {
+  if (!request.spectrum && !request.from_deep_water)
+    deep.fail("deep_water",
+              "needs a wave maker that makes the same sea: an irregular one (whose spectrum, spreading, loop "
+              "period and "
+              "seed the field shares) or one made from the field",
+              "set wave_maker.kind = \"irregular\" or \"deep_water\", or remove [deep_water]");
+  if (request.long_crested)
+    deep.fail("deep_water",
+              "cannot share a long-crested irregular wave maker's sea (wave_maker.spreading_s = 0): the FFT "
+              "lattice needs "
+              "a directional spread",
+              "set wave_maker.spreading_s (e.g. 75 for a swell, 20 for a wind sea)");
+  if (request.spectrum)
+    for (const char* key : {"spectrum", "seed"})
+      if (deep.has(key))
+        deep.fail(deep.full(key), "is the irregular wave maker's, which the field shares",
+                  "set it in [wave_maker], or use wave_maker.kind = \"deep_water\" for a field with its own "
+                  "spectrum");
   DeepWaterSpecification specification;
   specification.grid_size = deep.integer("grid_size", 256, 8, 4096, "samples per tile side, a power of two");
   if ((specification.grid_size & (specification.grid_size - 1)) != 0)
     deep.fail(deep.full("grid_size"), fmt::format("= {} is not a power of two", specification.grid_size), "use 64, 128, 256 or 512");
-  const int cascade_count = deep.integer("cascade_count", 3, 1, 8, "number of cascades (tiles of decreasing length)");
+  const bool explicit_tiles = deep.has("tile_lengths_m");
+  if (explicit_tiles && (deep.has("cascade_count") || deep.has("shortest_wavelength_m")))
+    deep.fail(deep.full("tile_lengths_m"), "is given with cascade_count or shortest_wavelength_m",
+              "give either the tile lengths or the cascade count and shortest wavelength (which lay the "
+              "tiles out)");
+  if (explicit_tiles) {
+    specification.tile_lengths_m =
+        deep.numbers("tile_lengths_m", 0, "[L_0, L_1, ...] in metres, strictly decreasing");
+    for (std::size_t i = 0; i < specification.tile_lengths_m.size(); ++i)
+      if (!(specification.tile_lengths_m[i] > 0.0) ||
+          (i > 0 && !(specification.tile_lengths_m[i] < specification.tile_lengths_m[i - 1])))
+        deep.fail(deep.full("tile_lengths_m"),
+                  fmt::format("has {} m at position {}, not positive and below the one before",
+                              specification.tile_lengths_m[i], i),
+                  "list the tile lengths in metres from the largest down, e.g. [1000.0, 270.0, 73.0]");
+    if (specification.tile_lengths_m.size() > 8)
+      deep.fail(deep.full("tile_lengths_m"), fmt::format("has {} tiles", specification.tile_lengths_m.size()),
+                "use at most 8 cascades");
+  }
+  const int cascade_count = explicit_tiles ? static_cast<int>(specification.tile_lengths_m.size())
+                                           : deep.integer("cascade_count", 3, 1, 8,
+                                                          "number of cascades (tiles of decreasing length)");
   const double shortest_wavelength_m =
-      deep.positive("shortest_wavelength_m", 0.5, "shortest wavelength the last cascade resolves, metres");
+      explicit_tiles ? 0.0
+                     : deep.positive("shortest_wavelength_m", 0.5,
+                                     "shortest wavelength the last cascade resolves, metres");
   specification.choppiness = deep.number("choppiness", 1.0, 0.0, 2.0, false, "lambda of the choppy displacement (0 = none)");
+  drive.drives_wave_maker = request.from_deep_water || deep.boolean("drive_wave_maker", false);
+  if (request.from_deep_water && !deep.boolean("drive_wave_maker", true))
+    deep.fail(deep.full("drive_wave_maker"),
+              "= false, but wave_maker.kind = \"deep_water\" takes its waves from the field",
+              "remove drive_wave_maker, or give the wave maker its own kind");
   const double default_depth_m = source_line_depth_m(maker, grid);
+  if (drive.drives_wave_maker && deep.has("depth_m"))
+    deep.fail(
+        deep.full("depth_m"),
+        fmt::format(
+            "is given, but a field that drives the wave maker must use the source line's depth ({:.3f} m)",
+            default_depth_m),
+        "remove depth_m: the field and the baked waves then share one dispersion relation at the offshore "
+        "edge");
   specification.still_water_depth_m =
       deep.non_negative("depth_m", default_depth_m, "still-water depth of the dispersion relation, metres (0 = deep water)");
-  drive_wave_maker = deep.boolean("drive_wave_maker", false);
+  specification.loop_period_s = maker.sea_state.loop_period_s;
+  specification.seed =
+      request.from_deep_water ? deep.unsigned_integer("seed", 1, "phase seed") : maker.sea_state.seed;
   bake_case.deep_water_tile_set_frame_interval_s =
       deep.non_negative("tile_set_frame_interval_s", 0.0, "frame interval of the baked tile set in seconds (0 = none)");
   bake_case.deep_water_tile_set_cascade = deep.integer("tile_set_cascade", 0, 0, cascade_count - 1, "the cascade the tile set bakes");
   if (bake_case.deep_water_tile_set_frame_interval_s > 0) {
-    const double loop_s = maker.sea_state.loop_period_s;
+    const double loop_s = specification.loop_period_s;
     const double frames = loop_s / bake_case.deep_water_tile_set_frame_interval_s;
     if (loop_s <= 0 || std::abs(frames - std::round(frames)) > 1e-9 * frames || frames < 2)
       deep.fail(deep.full("tile_set_frame_interval_s"),
@@ -631,54 +823,34 @@ DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker
                             bake_case.deep_water_tile_set_frame_interval_s, loop_s),
                 "set wave_maker.loop_period_s and a frame interval that divides it, or remove tile_set_frame_interval_s");
   }
-  specification.loop_period_s = maker.sea_state.loop_period_s;
-  specification.seed = maker.sea_state.seed;
-  specification.spectrum =
-      std::make_shared<DirectionalWavenumberSpectrum>(irregular.spectrum, irregular.spreading, specification.still_water_depth_m);
+  specification.spectrum = request.from_deep_water
+                               ? read_deep_water_spectrum(deep, direction_away_from(maker.facing),
+                                                          specification.still_water_depth_m)
+                               : std::make_shared<DirectionalWavenumberSpectrum>(
+                                     request.spectrum, request.spreading, specification.still_water_depth_m);
   try {
-    specification.tile_lengths_m =
-        cascade_tile_lengths_for_m(*specification.spectrum, specification.grid_size, cascade_count, shortest_wavelength_m);
+    if (!explicit_tiles)
+      specification.tile_lengths_m = cascade_tile_lengths_for_m(
+          *specification.spectrum, specification.grid_size, cascade_count, shortest_wavelength_m);
   } catch (const Error& error) {
     deep.fail("deep_water", "cannot be laid out: " + error.problem(), error.fix());
+  }
+  // The band of the field the maker makes: kind "deep_water" says it; an irregular maker driven by
+  // the field keeps the band its own discretisation chose (what the grid carries, checked above).
+  drive.band = request.band;
+  if (!request.from_deep_water && !maker.sea_state.components.empty()) {
+    const auto [lowest, highest] =
+        std::minmax_element(maker.sea_state.components.begin(), maker.sea_state.components.end(),
+                            [](const WaveComponent& a, const WaveComponent& b) {
+                              return a.angular_frequency_rad_s < b.angular_frequency_rad_s;
+                            });
+    drive.band.min_frequency_rad_s = lowest->angular_frequency_rad_s * (1 - 1e-9);
+    drive.band.max_frequency_rad_s = highest->angular_frequency_rad_s * (1 + 1e-9);
   }
   return specification;
 }
 
-// deep_water.drive_wave_maker: the wave maker gets the FFT field's own lattice components instead of
-// its own discretisation of the spectrum (issue 5, coherence), so at the offshore edge the baked
-// waves and the field are the same waves to linear order. Kept: components travelling into the
-// domain from the maker's side within 78 degrees of its normal, inside the frequency band the maker's own discretisation chose (the
-// band the grid carries), above 1e-3 of the largest amplitude. Phases are moved from the field's
-// origin, placed at the grid's south-west corner, to the solver's frame: phi' = phi - k . origin.
-// Returns the fraction of the field's variance the maker carries.
-double drive_maker_from_field(WaveMaker& maker, const DeepWaterSpecification& specification, const HarbourGrid& grid) {
-  const DeepWaterField field(specification);
-  double lowest_rad_s = std::numeric_limits<double>::infinity(), highest_rad_s = 0.0;
-  for (const WaveComponent& c : maker.sea_state.components)
-    lowest_rad_s = std::min(lowest_rad_s, c.angular_frequency_rad_s), highest_rad_s = std::max(highest_rad_s, c.angular_frequency_rad_s);
-  const double inward_rad = direction_away_from(maker.facing);
-  const SeaState all = field.wave_components();
-  double largest_m = 0.0, total_variance = 0.0;
-  for (const WaveComponent& c : all.components) largest_m = std::max(largest_m, c.amplitude_m), total_variance += 0.5 * c.amplitude_m * c.amplitude_m;
-  SeaState kept;
-  kept.loop_period_s = maker.sea_state.loop_period_s;
-  kept.seed = maker.sea_state.seed;
-  double kept_variance = 0.0;
-  const double depth_m = specification.still_water_depth_m;
-  for (WaveComponent c : all.components) {
-    const double w = c.angular_frequency_rad_s;
-    // The source line radiates components within 78 degrees of its normal (cos > 0.2, boussinesq_source.cpp).
-    if (std::cos(c.direction_rad - inward_rad) < 0.21 || w < lowest_rad_s * (1 - 1e-9) || w > highest_rad_s * (1 + 1e-9) ||
-        c.amplitude_m < 1e-3 * largest_m)
-      continue;
-    const double k = wavenumber_from_frequency(w, depth_m);
-    c.phase_rad -= k * (std::cos(c.direction_rad) * grid.geometry.origin_x_m + std::sin(c.direction_rad) * grid.geometry.origin_y_m);
-    kept.components.push_back(c);
-    kept_variance += 0.5 * c.amplitude_m * c.amplitude_m;
-  }
-  maker.sea_state = std::move(kept);
-  return total_variance > 0 ? kept_variance / total_variance : 0.0;
-}
+}  // namespace
 
 BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   const std::string subject = case_file.string();
@@ -730,24 +902,37 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
 
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");
   TableReader maker = root.table("wave_maker");
-  IrregularSpectrum irregular;
-  double deep_water_variance_fraction = -1.0;  // set when the deep-water field drives the maker
-  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, irregular);
+  MakerRequest maker_request;
+  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, maker_request);
   maker.finish();
+  if (maker_request.from_deep_water && !root.has("deep_water"))
+    root.fail("deep_water", "is missing, but wave_maker.kind = \"deep_water\" takes its waves from it",
+              "add a [deep_water] table with a spectrum (docs/commands/bake.md), or give the wave maker "
+              "another kind");
   if (root.has("deep_water")) {
     TableReader deep = root.table("deep_water");
-    bool drive_wave_maker = false;
-    bake_case.deep_water = read_deep_water(deep, bake_case.wave_maker, irregular, bake_case.harbour, drive_wave_maker, bake_case);
+    DeepWaterDrive drive;
+    bake_case.deep_water =
+        read_deep_water(deep, bake_case.wave_maker, maker_request, bake_case.harbour, drive, bake_case);
     deep.finish();
-    if (drive_wave_maker) {
+    if (drive.drives_wave_maker) {
+      // The maker makes the field's own waves, phases moved to the solver's frame
+      // (deep_water_coupling.hpp): at the offshore edge both are the same waves to linear order.
       try {
-        deep_water_variance_fraction = drive_maker_from_field(bake_case.wave_maker, *bake_case.deep_water, bake_case.harbour);
+        const DeepWaterField field(*bake_case.deep_water);
+        bake_case.deep_water_maker =
+            couple_wave_maker(field, bake_case.wave_maker, bake_case.harbour, bake_case.solver, drive.band);
       } catch (const Error& error) {
         deep.fail("deep_water", "cannot be built: " + error.problem(), error.fix());
       }
+      bake_case.wave_maker.sea_state = bake_case.deep_water_maker->sea_state;
       if (bake_case.wave_maker.sea_state.components.empty())
-        deep.fail(deep.full("drive_wave_maker"), "leaves the wave maker no component (none inside its band travelling into the domain)",
-                  "widen wave_maker.min_frequency_hz .. max_frequency_hz or use a larger deep_water tile (fewer, finer lattice cells)");
+        deep.fail("deep_water",
+                  "leaves the wave maker no component (none inside its band travelling into the domain "
+                  "within 78 degrees)",
+                  "turn the waves towards the domain (wave_maker.facing, the spectrum's direction), widen "
+                  "the maker's frequency band, "
+                  "or use a larger deep_water tile (finer lattice cells)");
     }
   }
   const double loop_period_s = bake_case.wave_maker.sea_state.loop_period_s;
@@ -773,9 +958,10 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   root.finish();
 
   bake_case.wave_conditions = wave_record(bake_case.wave_maker, document.value("wave_maker", json::object()));
-  if (deep_water_variance_fraction >= 0) {
+  if (bake_case.deep_water_maker) {
     bake_case.wave_conditions["driven_by_deep_water"] = true;
-    bake_case.wave_conditions["deep_water_variance_fraction"] = deep_water_variance_fraction;
+    bake_case.wave_conditions["deep_water_variance_fraction"] =
+        bake_case.deep_water_maker->variance_fraction();
   }
   bake_case.solver_record = solver_record(bake_case.solver);
   return bake_case;

@@ -94,6 +94,47 @@ void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, Boussinesq
   solver.load_state(in);
 }
 
+// How the deep-water field sits on the harbour grid and meets the bake (docs/deep-water.md,
+// "Coherence"): the manifest's deep_water.coupling, for the runtime.
+nlohmann::json deep_water_coupling(const BakeCase& bake_case) {
+  const GridGeometry& geometry = bake_case.harbour.geometry;
+  nlohmann::json coupling = {
+      {"origin_x_m", geometry.origin_x_m},
+      {"origin_y_m", geometry.origin_y_m},
+      {"frame",
+       "the field's x = 0, y = 0 is the harbour grid's south-west corner (geometry origin_x_m, origin_y_m); "
+       "x east, y north, m"},
+      {"time",
+       "the field's t is the bake's simulated time: frame k is at first_frame_time_s + k frame_interval_s"},
+      {"drives_wave_maker", bake_case.deep_water_maker.has_value()}};
+  if (bake_case.deep_water_maker) {
+    coupling["wave_maker"] = bake_case.deep_water_maker->to_json();
+    coupling["blending"] = bake_case.deep_water_maker->blending.to_json();
+  }
+  return coupling;
+}
+
+// The summary's deep_water: what the runtime got and how much of the field the wave maker carries.
+nlohmann::json deep_water_summary(const nlohmann::json& description) {
+  std::uintmax_t bytes = 0;
+  for (const nlohmann::json& cascade : description["cascades"])
+    bytes += cascade.value("coefficients_bytes", std::uintmax_t{0});
+  nlohmann::json summary = {{"cascades", description["cascades"].size()},
+                            {"grid_size", description["cascades"][0]["grid_size"]},
+                            {"significant_wave_height_m", description["significant_wave_height_m"]},
+                            {"coefficients_bytes", bytes},
+                            {"drives_wave_maker", description["coupling"]["drives_wave_maker"]}};
+  if (description["coupling"].contains("wave_maker")) {
+    const nlohmann::json& maker = description["coupling"]["wave_maker"];
+    summary["wave_maker_components"] = maker["components"];
+    summary["variance_fraction"] = maker["variance_fraction"];
+    summary["carried_significant_wave_height_m"] = maker["carried_significant_wave_height_m"];
+    summary["blending"] = description["coupling"]["blending"];
+  }
+  if (description.contains("tile_set")) summary["tile_set"] = description["tile_set"];
+  return summary;
+}
+
 }  // namespace
 
 fs::path checkpoint_path(const fs::path& output_folder) { return output_folder / "checkpoint.bin"; }
@@ -114,7 +155,8 @@ nlohmann::json BakeSummary::to_json() const {
             {"frames", frames},
             {"first_frame_time_s", first_frame_time_s},
             {"frame_interval_s", frame_interval_s},
-            {"gauges_csv", gauges_csv.string()}}}};
+            {"gauges_csv", gauges_csv.string()}}},
+          {"deep_water", deep_water}};
 }
 
 BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
@@ -151,6 +193,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     try {
       DeepWaterField field(*bake_case.deep_water);
       description.deep_water = field.write_coefficients(folder);
+      description.deep_water["coupling"] = deep_water_coupling(bake_case);
       if (bake_case.deep_water_tile_set_frame_interval_s > 0) {
         const int frames_per_loop = static_cast<int>(
             std::lround(bake_case.deep_water->loop_period_s / bake_case.deep_water_tile_set_frame_interval_s));
@@ -166,6 +209,8 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
       throw Error(bake_case.case_file.string(), "[deep_water] " + error.problem(), error.fix());
     }
   }
+  nlohmann::json deep_water_summary_json =
+      bake_case.deep_water ? deep_water_summary(description.deep_water) : nlohmann::json();
   sequence::SequenceWriter writer(folder, bake_case.harbour, description, options.resume);
 
   Raster<float> flux_x, flux_y;
@@ -234,6 +279,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   summary.loop_period_s = description.loop_period_s;
   summary.output_folder = folder;
   summary.gauges_csv = folder / "gauges.csv";
+  summary.deep_water = std::move(deep_water_summary_json);
   return summary;
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <complex>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 #include <random>
 
@@ -441,10 +443,8 @@ FoamStatistics foam_statistics(const DeepWaterField& field, int sample_count, do
   return statistics;
 }
 
-SeaState DeepWaterField::wave_components(double min_amplitude_m) const {
-  SeaState sea;
-  sea.loop_period_s = impl_->spec.loop_period_s;
-  sea.seed = impl_->spec.seed;
+std::vector<LatticeWave> DeepWaterField::lattice_waves(double min_amplitude_m) const {
+  std::vector<LatticeWave> waves;
   for (const Cascade& cascade : impl_->cascades) {
     const int n = cascade.n;
     for (int row = 0; row < n; ++row)
@@ -453,10 +453,29 @@ SeaState DeepWaterField::wave_components(double min_amplitude_m) const {
         const double a = cascade.amplitude_m[index];
         if (a <= 0.0 || a < min_amplitude_m) continue;
         const double kx = signed_index(column, n) * cascade.spacing_rad_m, ky = signed_index(row, n) * cascade.spacing_rad_m;
-        sea.components.push_back({a, cascade.frequency_rad_s[index], std::atan2(ky, kx), cascade.phase_rad[index]});
+        waves.push_back(
+            {{a, cascade.frequency_rad_s[index], std::atan2(ky, kx), cascade.phase_rad[index]}, kx, ky});
       }
   }
+  return waves;
+}
+
+SeaState DeepWaterField::wave_components(double min_amplitude_m) const {
+  SeaState sea;
+  sea.loop_period_s = impl_->spec.loop_period_s;
+  sea.seed = impl_->spec.seed;
+  for (const LatticeWave& lattice : lattice_waves(min_amplitude_m)) sea.components.push_back(lattice.wave);
   return sea;
+}
+
+double surface_elevation_m(const std::vector<LatticeWave>& waves, double x_m, double y_m, double time_s) {
+  double eta = 0.0;
+  for (const LatticeWave& lattice : waves) {
+    const WaveComponent& c = lattice.wave;
+    eta += c.amplitude_m * std::cos(lattice.wavenumber_x_rad_m * x_m + lattice.wavenumber_y_rad_m * y_m -
+                                    c.angular_frequency_rad_s * time_s + c.phase_rad);
+  }
+  return eta;
 }
 
 nlohmann::json DeepWaterField::description() const {
@@ -515,6 +534,51 @@ nlohmann::json DeepWaterField::write_coefficients(const std::filesystem::path& f
     description["cascades"][i]["coefficients_checksum"] = sequence::checksum_text(bytes);  // XXH64, as the frames
   }
   return description;
+}
+
+DeepWaterCoefficients read_deep_water_coefficients(const std::filesystem::path& file) {
+  require_readable_file(file,
+                        "a deep-water coefficient file (deep_water_cascade_<i>.bin, docs/deep-water.md)");
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8, kRecordBytes = 16;
+  const std::string subject = file.string();
+  if (bytes.size() < kHeaderBytes || bytes.compare(0, 8, "NSDWCOEF") != 0)
+    throw Error(subject, "is not a nearshore deep-water coefficient file (no NSDWCOEF header)",
+                "give a deep_water_cascade_<i>.bin written by nearshore bake");
+  std::size_t offset = 8;
+  auto read = [&](auto& value) {
+    std::memcpy(&value, bytes.data() + offset, sizeof value);
+    offset += sizeof value;
+  };
+  std::uint32_t version = 0, n = 0;
+  DeepWaterCoefficients coefficients;
+  read(version);
+  read(n);
+  read(coefficients.tile_length_m);
+  read(coefficients.loop_period_s);
+  if (version != 1)
+    throw Error(subject, fmt::format("has format version {}; this reader knows version 1", version),
+                "read it with the nearshore version that wrote it, or bake again");
+  const std::size_t records = static_cast<std::size_t>(n) * n;
+  if (n < 8 || n > 4096 || bytes.size() != kHeaderBytes + records * kRecordBytes)
+    throw Error(subject,
+                fmt::format("holds {} bytes, but a grid of N = {} needs {}", bytes.size(), n,
+                            kHeaderBytes + records * kRecordBytes),
+                "the file is truncated or corrupt: bake again (nearshore loops --verify checks it against "
+                "the manifest)");
+  coefficients.grid_size = static_cast<int>(n);
+  coefficients.amplitude_m.resize(records);
+  coefficients.phase_rad.resize(records);
+  coefficients.angular_frequency_rad_s.resize(records);
+  coefficients.harmonic.resize(records);
+  for (std::size_t index = 0; index < records; ++index) {
+    read(coefficients.amplitude_m[index]);
+    read(coefficients.phase_rad[index]);
+    read(coefficients.angular_frequency_rad_s[index]);
+    read(coefficients.harmonic[index]);
+  }
+  return coefficients;
 }
 
 }  // namespace nearshore::bake

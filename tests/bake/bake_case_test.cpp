@@ -12,6 +12,7 @@
 
 namespace nearshore::bake {
 namespace {
+using testing::expect_case_error;
 using testing::scratch_folder;
 using testing::small_flume_case;
 using testing::write_text;
@@ -22,20 +23,6 @@ std::string edited(const std::string& from, const std::string& to) {
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   return text.replace(at, from.size(), to);
-}
-
-// The message must name the file, contain every `expected` fragment, and carry a fix after "; ".
-void expect_case_error(const std::string& text, const std::vector<std::string>& expected, const std::string& extension = ".toml") {
-  const auto file = write_text(testing::current_scratch_folder() / ("case" + extension), text);
-  try {
-    read_bake_case(file);
-    ADD_FAILURE() << "no error for a case expected to fail with: " << expected.front();
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
-    for (const auto& fragment : expected) EXPECT_NE(message.find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << message;
-    EXPECT_NE(message.find("; "), std::string::npos) << "no fix in: " << message;
-  }
 }
 
 TEST(BakeCase, ReadsTheSmallFlume) {

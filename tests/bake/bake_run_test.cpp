@@ -18,10 +18,8 @@
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/bake/bake_run.hpp"
-#include "nearshore/bake/deep_water.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
-#include "nearshore/sequence/checksum.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::bake {
@@ -121,109 +119,6 @@ TEST_F(BakeRun, PeriodicIrregularBakeRecordsLoopPeriodSeedAndComponents) {
   EXPECT_EQ(reader.manifest().wave_conditions["case"]["kind"], "irregular");
   EXPECT_DOUBLE_EQ(reader.manifest().solver["time_step_s"].get<double>(), summary.time_step_s);
   EXPECT_EQ(reader.frame_count(), summary.frames);
-}
-
-// [deep_water]: the FFT sea beyond the domain from the irregular maker's own spectrum, spreading,
-// loop period and seed; its coefficients beside the frames (checksummed), its description in the
-// manifest, and the same significant wave height as the maker's spectrum (issue 5: Hs of the
-// field within 3 % of the spectrum's integral).
-TEST_F(BakeRun, DeepWaterSectionWritesTheFieldTheRuntimeSynthesisesBeyondTheDomain) {
-  const auto folder = scratch_folder();
-  std::string text = small_flume_case(4.0);
-  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nsignificant_height_m = 0.02\npeak_period_s = 1.5\n"
-                                                     "frequency_count = 16\nseed = 99\nloop_period_s = 32.0\n"
-                                                     "min_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
-  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
-  text += "[deep_water]\ngrid_size = 64\ncascade_count = 2\nshortest_wavelength_m = 0.05\ntile_set_frame_interval_s = 4.0\n"
-          "tile_set_cascade = 1\n";
-  const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
-  ASSERT_TRUE(c.deep_water.has_value());
-  EXPECT_DOUBLE_EQ(c.deep_water->still_water_depth_m, 0.5);  // the flume's depth at the source line
-  BakeOptions options;
-  options.output_folder = folder / "out";
-  run_bake(c, options);
-  const sequence::SequenceReader reader(options.output_folder);
-  const nlohmann::json& deep = reader.manifest().deep_water;
-  ASSERT_TRUE(deep.is_object());
-  EXPECT_EQ(deep["seed"], 99u);
-  EXPECT_DOUBLE_EQ(deep["loop_period_s"].get<double>(), 32.0);
-  EXPECT_NEAR(deep["significant_wave_height_m"].get<double>(), 0.02, 0.03 * 0.02);
-  ASSERT_EQ(deep["cascades"].size(), 2u);
-  for (const nlohmann::json& cascade : deep["cascades"]) {
-    const std::string bytes = sequence::read_file_bytes(options.output_folder / cascade["coefficients_file"].get<std::string>());
-    EXPECT_EQ(bytes.size(), cascade["coefficients_bytes"].get<std::size_t>());
-    EXPECT_EQ(sequence::checksum_text(std::as_bytes(std::span(bytes.data(), bytes.size()))),
-              cascade["coefficients_checksum"].get<std::string>());
-  }
-  EXPECT_NO_THROW(reader.verify_checksums());
-  // The optional baked tile set: cascade 1 over the 32 s loop every 4 s, itself a sequence.
-  const sequence::SequenceReader tiles(options.output_folder / "deep_water_tiles");
-  EXPECT_EQ(tiles.frame_count(), 8);
-  EXPECT_EQ(deep["tile_set"]["frames"], 8);
-  EXPECT_EQ(tiles.manifest().deep_water["tile_set_cascade"], 1);
-  // A corrupt coefficient file is caught by the same verification as the frames.
-  const fs::path coefficients = options.output_folder / deep["cascades"][1]["coefficients_file"].get<std::string>();
-  std::string bytes = sequence::read_file_bytes(coefficients);
-  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x40);
-  std::ofstream(coefficients, std::ios::binary) << bytes;
-  EXPECT_THROW(reader.verify_checksums(), Error);
-}
-
-// deep_water.drive_wave_maker: the maker's components ARE the field's (issue 5, coherence): each one
-// is a lattice component of the field with the same amplitude, direction, frequency and (the flume's
-// origin being 0) phase; only those travelling into the domain inside the maker's band are kept.
-TEST_F(BakeRun, DeepWaterCanDriveTheWaveMakerWithTheFieldsOwnComponents) {
-  const auto folder = scratch_folder();
-  std::string text = small_flume_case(4.0);
-  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nsignificant_height_m = 0.02\npeak_period_s = 1.5\n"
-                                                     "frequency_count = 16\nseed = 5\nloop_period_s = 32.0\nspreading_s = 10.0\n"
-                                                     "direction_count = 8\nmin_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
-  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
-  text += "[deep_water]\ngrid_size = 64\ncascade_count = 1\nshortest_wavelength_m = 0.5\ndrive_wave_maker = true\n";
-  const BakeCase c = read_bake_case(write_text(folder / "case.toml", text));
-  ASSERT_TRUE(c.deep_water.has_value());
-  EXPECT_EQ(c.wave_conditions["driven_by_deep_water"], true);
-  const double fraction = c.wave_conditions["deep_water_variance_fraction"].get<double>();
-  EXPECT_GT(fraction, 0.5);
-  EXPECT_LE(fraction, 1.0);
-  const DeepWaterField field(*c.deep_water);
-  const std::vector<WaveComponent> lattice = field.wave_components().components;
-  ASSERT_FALSE(c.wave_maker.sea_state.components.empty());
-  for (const WaveComponent& maker : c.wave_maker.sea_state.components) {
-    EXPECT_GT(std::cos(maker.direction_rad), 0.2);  // eastward, away from the west source line
-    EXPECT_GE(maker.angular_frequency_rad_s, 2 * 3.14159265 * 0.3 * 0.999);
-    const bool found = std::any_of(lattice.begin(), lattice.end(), [&](const WaveComponent& l) {
-      return l.amplitude_m == maker.amplitude_m && l.direction_rad == maker.direction_rad &&
-             l.angular_frequency_rad_s == maker.angular_frequency_rad_s && std::abs(l.phase_rad - maker.phase_rad) < 1e-12;
-    });
-    EXPECT_TRUE(found) << "a maker component is not one of the field's";
-  }
-  EXPECT_DOUBLE_EQ(c.wave_maker.sea_state.loop_period_s, 32.0);
-  BakeOptions options;
-  options.output_folder = folder / "out";
-  EXPECT_NO_THROW(run_bake(c, options));
-}
-
-TEST_F(BakeRun, DeepWaterNeedsAnIrregularWaveMakerAndAPowerOfTwoGrid) {
-  const auto folder = scratch_folder();
-  const auto message_of = [&](const std::string& text) {
-    try {
-      read_bake_case(write_text(folder / "case.toml", text));
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  const std::string regular = message_of(small_flume_case() + "[deep_water]\n");
-  EXPECT_NE(regular.find("irregular"), std::string::npos) << regular;
-  EXPECT_NE(regular.find("case.toml"), std::string::npos) << regular;
-  std::string text = small_flume_case();
-  text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nsignificant_height_m = 0.02\npeak_period_s = 1.5\n"
-                                                     "frequency_count = 16\nmin_frequency_hz = 0.3\nmax_frequency_hz = 1.2");
-  text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
-  const std::string odd = message_of(text + "[deep_water]\ngrid_size = 100\n");
-  EXPECT_NE(odd.find("deep_water.grid_size"), std::string::npos) << odd;
-  EXPECT_NE(odd.find("power of two"), std::string::npos) << odd;
 }
 
 TEST_F(BakeRun, ResumeAfterARealKillGivesTheSameFramesAndGauges) {

@@ -1,11 +1,16 @@
 #pragma once
-// Shared by the bake tests: a scratch folder per test and a small flume case that runs in well
-// under a second, written as TOML text so the tests go through the same parser as a user.
+// Shared by the bake tests: a scratch folder per test, a small flume case that runs in well under a
+// second, written as TOML text so the tests go through the same parser as a user, and the check
+// that a bad case fails with one message naming the file, the key and the fix.
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
+
+#include "nearshore/bake/bake_case.hpp"
+#include "nearshore/core/error.hpp"
 
 namespace nearshore::bake::testing {
 
@@ -42,6 +47,23 @@ inline std::string small_flume_case(double duration_s = 8.0, double checkpoint_i
          "ramp_time_s = 2.0\n"
          "[[sponges]]\nside = \"west\"\nwidth_m = 2.0\n[[sponges]]\nside = \"east\"\nwidth_m = 3.0\n"
          "[[gauges]]\nname = \"g1\"\nx_m = 5.0\ny_m = 0.3\n[[gauges]]\nname = \"g2\"\nx_m = 7.5\ny_m = 0.3\n";
+}
+
+/// The case text must fail to read with ONE nearshore::Error whose message names the case file,
+/// contains every `expected` fragment, and carries a fix after "; ".
+inline void expect_case_error(const std::string& text, const std::vector<std::string>& expected,
+                              const std::string& extension = ".toml") {
+  const auto file = write_text(current_scratch_folder() / ("case" + extension), text);
+  try {
+    read_bake_case(file);
+    ADD_FAILURE() << "no error for a case expected to fail with: " << expected.front();
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    for (const auto& fragment : expected)
+      EXPECT_NE(message.find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << message;
+    EXPECT_NE(message.find("; "), std::string::npos) << "no fix in: " << message;
+  }
 }
 
 }  // namespace nearshore::bake::testing

@@ -18,6 +18,7 @@
 
 #include "nearshore/bake/boussinesq_solver.hpp"
 #include "nearshore/bake/deep_water.hpp"
+#include "nearshore/bake/deep_water_coupling.hpp"
 #include "nearshore/core/harbour_grid.hpp"
 
 namespace nearshore::bake {
@@ -49,9 +50,13 @@ struct BakeCase {
   nlohmann::json solver_record;     ///< the solver parameters as resolved, recorded in the sequence
   nlohmann::json source;            ///< the parsed case document (for the checkpoint fingerprint)
   /// [deep_water]: the FFT field the runtime shows beyond the baked domain (issue 5), made from the
-  /// irregular wave maker's own spectrum, spreading, loop period and seed. The bake writes its
-  /// coefficients beside the frames and its description into the manifest's `deep_water`.
+  /// irregular wave maker's own spectrum, spreading, loop period and seed, or (wave_maker.kind =
+  /// "deep_water") from its own spectrum and seed. The bake writes its coefficients beside the
+  /// frames and its description into the manifest's `deep_water`.
   std::optional<DeepWaterSpecification> deep_water;
+  /// Set when the field gives the wave maker its waves (kind "deep_water", or drive_wave_maker):
+  /// which waves, the variance fraction they carry and the blending zone (deep_water_coupling.hpp).
+  std::optional<CoupledWaveMaker> deep_water_maker;
   /// [deep_water] tile_set_frame_interval_s > 0: also bake cascade `deep_water_tile_set_cascade`
   /// over one loop into DIR/deep_water_tiles/ (a sequence, for engines that cannot run an FFT).
   double deep_water_tile_set_frame_interval_s = 0.0;

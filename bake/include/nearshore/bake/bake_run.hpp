@@ -35,6 +35,10 @@ struct BakeSummary {
   std::uint64_t seed = 0;
   double loop_period_s = 0.0;
   std::filesystem::path output_folder, gauges_csv;
+  /// null unless the case has [deep_water]: cascades, grid size, Hs, coefficient bytes, and when the
+  /// field drives the wave maker its component count, the variance fraction it carries, the carried
+  /// Hs and the blending zone (deep_water_coupling.hpp); the tile set when baked.
+  nlohmann::json deep_water;
   nlohmann::json to_json() const;
 };
 

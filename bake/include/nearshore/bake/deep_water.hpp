@@ -119,6 +119,19 @@ struct SurfaceSample {
   double displacement_xx = 0.0, displacement_yy = 0.0, displacement_xy = 0.0;
 };
 
+/// One lattice component of the field with its wavevector: the WaveComponent alone cannot give it
+/// back when the field loops (w is then the harmonic of 2 pi / T_loop nearest w(|k|), not w(|k|)).
+struct LatticeWave {
+  WaveComponent wave;               ///< a, w (possibly loop-quantised), direction of k, phi
+  double wavenumber_x_rad_m = 0.0;  ///< k_x = n 2 pi / L
+  double wavenumber_y_rad_m = 0.0;  ///< k_y = m 2 pi / L
+};
+
+/// eta(x, t) = sum a cos(k . x - w t + phi) over `waves` (m), by direct summation at one point of
+/// the field's frame: the field itself, exactly, without the FFT's bilinear sampling. For tests,
+/// gauges and the coherence measurement; a frame of the runtime uses the FFT.
+double surface_elevation_m(const std::vector<LatticeWave>& waves, double x_m, double y_m, double time_s);
+
 class DeepWaterField {
  public:
   /// Integrates the spectrum over every lattice cell (the long part: N^2 cells per cascade) and
@@ -151,6 +164,8 @@ class DeepWaterField {
   /// possibly loop-quantised w_k), amplitude >= min_amplitude_m, for the harbour wave maker:
   /// at the offshore edge the baked waves and this field are then the same waves.
   SeaState wave_components(double min_amplitude_m = 0.0) const;
+  /// The same components with their lattice wavevectors, cascade by cascade in FFT order.
+  std::vector<LatticeWave> lattice_waves(double min_amplitude_m = 0.0) const;
 
   /// The `deep_water` entry of a sequence manifest: spectrum, wind, depth, T_loop, seed,
   /// choppiness, each cascade's band, variance and coefficient file, the unresolved slope variance.
@@ -163,5 +178,18 @@ class DeepWaterField {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// One deep_water_cascade_<i>.bin as the runtime reads it (format in docs/deep-water.md "Output"):
+/// N x N records in FFT order (row = ky index, column = kx index, indices above N/2 negative).
+struct DeepWaterCoefficients {
+  int grid_size = 0;           ///< N
+  double tile_length_m = 0.0;  ///< L
+  double loop_period_s = 0.0;  ///< T_loop, 0 = none
+  std::vector<float> amplitude_m, phase_rad, angular_frequency_rad_s;
+  std::vector<std::int32_t> harmonic;  ///< w = harmonic 2 pi / T_loop when looping, else -1
+};
+/// Reads a coefficient file written by DeepWaterField::write_coefficients. Throws nearshore::Error
+/// naming the file for a missing file, another magic or version, or a size that does not match N.
+DeepWaterCoefficients read_deep_water_coefficients(const std::filesystem::path& file);
 
 }  // namespace nearshore::bake
