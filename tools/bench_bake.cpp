@@ -133,16 +133,24 @@ void add_bench_bake(CLI::App& bench) {
   set_example(*command, "nearshore bench bake --berkhoff-steps 200 --harbour-steps 5");
   struct Options {
     int berkhoff_steps = 200, harbour_steps = 5;
+    int adi_passes = 2, nonlinear_iterations = 1;  // data/cases/berkhoff.toml's solver settings
     bool json = false, skip_harbour = false;
   };
   auto options = std::make_shared<Options>();
   command->add_option("--berkhoff-steps", options->berkhoff_steps, "time steps timed on the Berkhoff grid")->check(CLI::PositiveNumber);
   command->add_option("--harbour-steps", options->harbour_steps, "time steps timed on the 2000 x 2000 grid")->check(CLI::PositiveNumber);
+  command->add_option("--adi-passes", options->adi_passes, "x + y sweep pairs per step (solver.adi_passes)")->capture_default_str()->check(CLI::PositiveNumber);
+  command->add_option("--iterations", options->nonlinear_iterations, "non-linear iterations per sweep (solver.nonlinear_iterations)")->capture_default_str()
+      ->check(CLI::PositiveNumber);
   command->add_flag("--skip-harbour", options->skip_harbour, "only the Berkhoff grid");
   command->add_flag("--json", options->json, "print the table as JSON");
   command->callback([options]() {
     std::vector<BenchCase> cases = {berkhoff_case(options->berkhoff_steps)};
     if (!options->skip_harbour) cases.push_back(harbour_case(options->harbour_steps));
+    for (BenchCase& bench : cases) {
+      bench.parameters.adi_passes = options->adi_passes;
+      bench.parameters.nonlinear_iterations = options->nonlinear_iterations;
+    }
     std::vector<Measurement> results;
     for (const BenchCase& bench : cases)
       for (int threads : {1, 2}) results.push_back(measure(bench, threads));

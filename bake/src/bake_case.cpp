@@ -576,6 +576,9 @@ SolverParameters read_solver(TableReader& solver) {
   p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
   p.nonlinear_iterations = solver.integer("nonlinear_iterations", p.nonlinear_iterations, 1, 20, "iterations per half step");
   p.adi_passes = solver.integer("adi_passes", p.adi_passes, 1, 4, "x + y sweep pairs per step");
+  p.shapiro_filter_order = solver.integer("shapiro_filter_order", p.shapiro_filter_order, 0, 16, "order of the grid-scale flux filter (even, 0 = off)");
+  if (p.shapiro_filter_order % 2 != 0)
+    solver.fail(solver.full("shapiro_filter_order"), "is odd", "give an even order: 8 (the default), or 0 to turn the filter off");
   p.blowup_elevation_depth_ratio = solver.positive("blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio, "|eta| / depth ratio that stops the run");
   TableReader breaking = solver.table("breaking");
   p.breaking.enabled = breaking.boolean("enabled", p.breaking.enabled);
@@ -605,6 +608,7 @@ json solver_record(const SolverParameters& p) {
           {"chezy_coefficient", p.chezy_coefficient},
           {"nonlinear_iterations", p.nonlinear_iterations},
           {"adi_passes", p.adi_passes},
+          {"shapiro_filter_order", p.shapiro_filter_order},
           {"blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio},
           {"breaking",
            {{"enabled", p.breaking.enabled},

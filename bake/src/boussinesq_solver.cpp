@@ -151,6 +151,7 @@ struct BoussinesqSolver::Implementation {
   std::vector<double> eta_star, eta_across, flux_y_across, flux_x_half, flux_x_rate, eta_next, flux_y_new;
   std::vector<double> flux_x_guess, flux_y_guess, eta_previous_pass_t;  // ADI passes > 1
   std::vector<double> dispersive, dispersive_t;
+  std::vector<unsigned char> filterable_x, filterable_y;  // grid-scale filter masks (P and Q faces)
   std::vector<double> sponge_cell, sponge_face_x, sponge_face_y;  // damping factor per step (1 = none)
   tbb::enumerable_thread_specific<SweepScratch> scratch;
   // Output rasters.
@@ -172,6 +173,7 @@ struct BoussinesqSolver::Implementation {
   void mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask);
   void step();
   void repair_negative_depths();
+  void filter_grid_scale_fluxes();
   void apply_sponges();
   void update_breaking(const std::vector<double>& eta_old);
   void publish();
@@ -220,6 +222,9 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     throw Error(subject, problem.str(), "use a time step of at most " + std::to_string(kMaxCourantNumber * s.dx / celerity) + " s");
   }
   if (parameters.nonlinear_iterations < 1) throw Error(subject, "nonlinear_iterations must be at least 1", "set it to 2");
+  if (parameters.shapiro_filter_order < 0 || parameters.shapiro_filter_order % 2 != 0 || parameters.shapiro_filter_order > 16)
+    throw Error(subject, "shapiro_filter_order is " + std::to_string(parameters.shapiro_filter_order) + ", not an even order from 0 to 16",
+                "set it to 8 (the default) or 0 to turn the filter off");
   if (parameters.adi_passes < 1) throw Error(subject, "adi_passes must be at least 1", "set it to 1 (or 2 on fine grids)");
   for (const SpongeLayer& sponge : parameters.sponges) {
     const double extent = (sponge.side == Side::kWest || sponge.side == Side::kEast) ? geometry.width_m() : geometry.height_m();
@@ -454,7 +459,10 @@ void BoussinesqSolver::Implementation::step() {
   // 3. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
   repair_negative_depths();
 
-  // 4. Advance the state.
+  // 4. Shapiro filter of the fluxes against the fine-grid two-dimensional mode (docs/solver.md).
+  filter_grid_scale_fluxes();
+
+  // 5. Advance the state.
   for_each_index(flux_x.size(), [&](std::size_t f) {
     flux_x_increment[f] = flux_x_new[f] - flux_x[f];
     flux_x[f] = flux_x_new[f];
@@ -523,6 +531,94 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
     next.erase(std::unique(next.begin(), next.end()), next.end());
     pending.swap(next);
   }
+}
+
+namespace {
+
+// Shapiro (1970) low-pass filter of order 2p along one line of `count` values (stride `stride`):
+// u <- u - (-delta^2/4)^p u, whose response 1 - sin^{2p}(k dx/2) removes 2 dx waves and leaves
+// resolved waves all but untouched (p = 4: 3.5e-7 per application at 20 points per wavelength).
+// `wall_normal`: the line's ends are walls through which this flux is normal (faces 0 and count-1
+// hold 0), so ghosts are odd about them; otherwise the values sit between the walls (cell-like)
+// and ghosts are even. A value is filtered only if every value of its stencil is `filterable`.
+void shapiro_filter_line(double* values, std::size_t stride, int count, bool wall_normal, const unsigned char* filterable,
+                         std::size_t filterable_stride, int order, std::vector<double>& buffer, std::vector<double>& work) {
+  const int p = order, n = count + 2 * p;
+  buffer.resize(n);
+  work.resize(n);
+  for (int i = 0; i < count; ++i) buffer[p + i] = values[i * stride];
+  for (int j = 1; j <= p; ++j) {
+    if (wall_normal) {  // odd about faces 0 and count-1
+      buffer[p - j] = count > j ? -buffer[p + j] : 0.0;
+      buffer[p + count - 1 + j] = count - 1 - j >= 0 ? -buffer[p + count - 1 - j] : 0.0;
+    } else {            // even about the half-way points beyond the ends
+      buffer[p - j] = buffer[p + std::min(j - 1, count - 1)];
+      buffer[p + count - 1 + j] = buffer[p + std::max(count - j, 0)];
+    }
+  }
+  // delta^{2p} by p applications of the second difference; the valid part shrinks by one each time.
+  for (int a = 1; a <= p; ++a) {
+    for (int i = a; i < n - a; ++i) work[i] = buffer[i - 1] - 2.0 * buffer[i] + buffer[i + 1];
+    for (int i = a; i < n - a; ++i) buffer[i] = work[i];
+  }
+  const double scale = (p % 2 == 0 ? 1.0 : -1.0) / std::pow(4.0, p);  // (-1/4)^p
+  int bad_in_window = 0;  // stencil check by a sliding count of non-filterable values
+  auto bad = [&](int i) { return i >= 0 && i < count && !filterable[i * filterable_stride] ? 1 : 0; };
+  for (int i = -p; i < p; ++i) bad_in_window += bad(i);
+  for (int i = 0; i < count; ++i) {
+    bad_in_window += bad(i + p);
+    if (bad_in_window == 0) values[i * stride] -= scale * buffer[p + i];
+    bad_in_window -= bad(i - p);
+  }
+}
+
+}  // namespace
+
+void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
+  const int order = parameters.shapiro_filter_order / 2;  // p
+  if (order <= 0) return;
+  // A face may be filtered where it is open (or a grid-edge wall, which the odd ghosts describe)
+  // and the cells on both sides are wet with every neighbour wet: never across a shoreline or quay.
+  const double* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
+  const double* wet_y = dispersive.data();
+  filterable_x.resize(flux_x.size());
+  filterable_y.resize(flux_y.size());
+  tbb::parallel_for(0, nx + 1, [&](int f) {
+    for (int r = 0; r < ny; ++r) {
+      const std::size_t face = px(f, r);
+      const bool edge = f == 0 || f == nx;
+      const bool wet = edge || (wet_x[px(f - 1, r)] > 0.0 && wet_x[px(f, r)] > 0.0);
+      filterable_x[face] = (edge || frame_x.face_open[face] > 0.0) && wet;
+    }
+  });
+  tbb::parallel_for(0, ny + 1, [&](int k) {
+    for (int c = 0; c < nx; ++c) {
+      const std::size_t face = qy(c, k);
+      const bool edge = k == 0 || k == ny;
+      const bool wet = edge || (wet_y[index(c, k - 1, nx)] > 0.0 && wet_y[index(c, k, nx)] > 0.0);
+      filterable_y[face] = (edge || frame_y.face_open[face] > 0.0) && wet;
+    }
+  });
+  struct Buffers { std::vector<double> line, work; };
+  tbb::enumerable_thread_specific<Buffers> buffers;
+  // P along x (rows: stride ny, normal to the west and east walls) and along y (faces: contiguous).
+  tbb::parallel_for(0, ny, [&](int r) {
+    Buffers& b = buffers.local();
+    shapiro_filter_line(&flux_x_new[px(0, r)], ny, nx + 1, true, &filterable_x[px(0, r)], ny, order, b.line, b.work);
+  });
+  tbb::parallel_for(0, nx + 1, [&](int f) {
+    Buffers& b = buffers.local();
+    shapiro_filter_line(&flux_x_new[px(f, 0)], 1, ny, false, &filterable_x[px(f, 0)], 1, order, b.line, b.work);
+  });
+  // Q along y (columns: stride nx, normal to the south and north walls) and along x (contiguous).
+  tbb::parallel_for(0, nx, [&](int c) {
+    Buffers& b = buffers.local();
+    shapiro_filter_line(&flux_y_new[qy(c, 0)], nx, ny + 1, true, &filterable_y[qy(c, 0)], nx, order, b.line, b.work);
+  });
+  tbb::parallel_for(0, ny + 1, [&](int k) {
+    Buffers& b = buffers.local();
+    shapiro_filter_line(&flux_y_new[qy(0, k)], 1, nx, false, &filterable_y[qy(0, k)], 1, order, b.line, b.work);
+  });
 }
 
 void BoussinesqSolver::Implementation::apply_sponges() {
