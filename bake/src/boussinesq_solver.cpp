@@ -165,7 +165,7 @@ struct BoussinesqSolver::Implementation {
     tbb::parallel_for(0, blocks, [&](int block) {
       SweepScratch& s = scratch.local();
       const std::size_t needed = static_cast<std::size_t>(frame.cols + 5) * detail::kBlockLines;
-      if (s.lower.size() < needed) s.resize(frame.cols);
+      if (s.upper.size() < needed) s.resize(frame.cols);
       const int begin = block * detail::kBlockLines;
       detail::sweep_lines(frame, constants, input, output, begin, std::min(frame.rows, begin + detail::kBlockLines), s);
     });

@@ -14,8 +14,8 @@ namespace nearshore::bake::detail {
 
 void SweepScratch::resize(int cols) {
   const std::size_t size = static_cast<std::size_t>(cols + 5) * kBlockLines;
-  for (auto* v : {&lower, &diagonal, &upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
-                  &tangential_squared, &active, &magnitude, &h_pair_north, &h_pair_south, &cell_eta_yy,
+  for (auto* v : {&upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
+                  &tangential_squared, &active, &face_velocity, &h_pair_north, &h_pair_south, &cell_eta_yy,
                   &cell_eta_y, &cell_flux_yt, &nu_pair_north, &nu_pair_south})
     v->assign(size, 0.0);
 }
@@ -66,12 +66,10 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   double* __restrict active = s.active.data();
   double* __restrict fixed_term = s.fixed_term.data();
   double* __restrict tangential_squared = s.tangential_squared.data();
-  double* __restrict magnitude = s.magnitude.data();
+  double* __restrict face_velocity = s.face_velocity.data();
   double* __restrict eta_half = s.eta_half.data() + 2 * W;  // two ghost cells before and after the line
   double* __restrict flux_half = s.flux_half.data();
   double* __restrict cell_term = s.cell_term.data();
-  double* __restrict lower = s.lower.data();
-  double* __restrict diagonal = s.diagonal.data();
   double* __restrict upper = s.upper.data();
   double* __restrict right = s.right.data();
 
@@ -200,12 +198,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   };
   const int iterations = std::max(1, k.iterations);
   for (int iteration = 0; iteration < iterations; ++iteration) {
-    update_eta();
+    // eta at t^{n+1/2} from this iterate (update_eta and the time average in one pass).
     for (int c = 0; c < cols; ++c)
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
         const std::size_t i = c * stride + lb + j;
-        eta_half[c * W + j] = 0.5 * (eta_old[i] + eta_new[i]);
+        const double eta_iterate = eta_base[i] - 0.5 * dt * inv_dx * inv_n[i] * (increment[(c + 1) * W + j] - increment[c * W + j]);
+        eta_half[c * W + j] = 0.5 * (eta_old[i] + eta_iterate);
       }
     // Beyond the ends of the line the grid edge is a wall: mirror ghost cells (-1 -> 0, -2 -> 1).
     #pragma GCC ivdep
@@ -215,9 +214,6 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       eta_half[cols * W + j] = eta_half[(cols - 1) * W + j];
       eta_half[(cols + 1) * W + j] = eta_half[std::max(cols - 2, 0) * W + j];
     }
-    for (int f = 0; f < faces; ++f)
-      #pragma GCC ivdep
-      for (int j = 0; j < n; ++j) flux_half[f * W + j] = normal_old[f * stride + lb + j] + 0.5 * increment[f * W + j];
     // Momentum flux P^2/h through the cell centre, momentum-conservative first-order upwind
     // (Stelling & Duinmeijer 2003): the mean mass flux q of the cell times the velocity P/h of
     // the upwind face. Central differences here let bores in the surf zone and run-up blow up.
@@ -225,7 +221,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
         const double h_face = std::max(face_depth[f * stride + lb + j] + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
-        magnitude[f * W + j] = flux_half[f * W + j] / h_face;  // reused: face velocity
+        const double flux_f = normal_old[f * stride + lb + j] + 0.5 * increment[f * W + j];
+        flux_half[f * W + j] = flux_f;
+        face_velocity[f * W + j] = flux_f / h_face;
       }
     // Upwinding is first order: applied everywhere it damps non-breaking waves ~20 % over the
     // Berkhoff shoal. So it is blended in by the local Froude number Fr = |u| / sqrt(g h): central
@@ -236,7 +234,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
         const double flux_c = 0.5 * (flux_half[c * W + j] + flux_half[(c + 1) * W + j]);
-        const double u_west = magnitude[c * W + j], u_east = magnitude[(c + 1) * W + j];
+        const double u_west = face_velocity[c * W + j], u_east = face_velocity[(c + 1) * W + j];
         const double u_upwind = flux_c > 0.0 ? u_west : u_east, u_central = 0.5 * (u_west + u_east);
         const double h_cell = std::max(depth[c * stride + lb + j] + eta_half[c * W + j], dry);
         const double froude2 = std::max(u_west * u_west, u_east * u_east) / (g * h_cell);
@@ -244,20 +242,14 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
         cell_term[c * W + j] = flux_c * (u_central + upwind_weight * (u_upwind - u_central));
       }
 
+    // The tridiagonal rows are assembled and eliminated in one pass (the forward half of the
+    // double sweep below): each row is used the moment it is built. Row 0 (the west grid edge) is
+    // the identity with right side -P_old (a wall: flux 0), already in eliminated form.
     #pragma GCC ivdep
-    for (int j = 0; j < n; ++j) {  // the grid edges: walls, flux 0
-      for (int f : {0, cols}) {
-        lower[f * W + j] = 0.0; upper[f * W + j] = 0.0; diagonal[f * W + j] = 1.0;
-        right[f * W + j] = -normal_old[f * stride + lb + j];
-      }
+    for (int j = 0; j < n; ++j) {
+      upper[j] = 0.0;
+      right[j] = -normal_old[lb + j];
     }
-    // |(P, Q)| for the resistance terms, in its own loop: sqrt carries errno handling that would
-    // keep the assembly loop below from vectorising.
-    for (int f = 1; f < cols; ++f)
-      for (int j = 0; j < n; ++j) {
-        const double flux_f = flux_half[f * W + j];
-        magnitude[f * W + j] = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
-      }
     for (int f = 1; f < cols; ++f) {
       const int L = f - 1, R = f;
       #pragma GCC ivdep
@@ -287,7 +279,8 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
 
         // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
         // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
-        const double flux_magnitude = magnitude[f * W + j];
+        const double flux_f = flux_half[f * W + j];  // |(P, Q)|; sqrt vectorises (-fno-math-errno)
+        const double flux_magnitude = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
         const double resistance = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f +
                                   n_f * (face_laminar[face] + face_turbulent[face] * flux_magnitude * inv_h_f);
 
@@ -305,26 +298,20 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
         const double lower_f = -D2 + S1 - G * inv_n[cL] - V_L, upper_f = -D2 - S1 - G * inv_n[cR] - V_R;
         const double diagonal_f = 1.0 + 2.0 * D2 + G * (inv_n[cL] + inv_n[cR]) + V_L + V_R + resistance * dt;
         const double right_f = gravity + dt * (fixed_term[f * W + j] + along) - resistance * dt * old_f + eddy_old;
-        lower[f * W + j] = on * lower_f;
-        upper[f * W + j] = on * upper_f;
-        diagonal[f * W + j] = on * diagonal_f + (1.0 - on);
-        right[f * W + j] = on * right_f - (1.0 - on) * old_f;
+        const double row_lower = on * lower_f, row_upper = on * upper_f;
+        const double row_diagonal = on * diagonal_f + (1.0 - on), row_right = on * right_f - (1.0 - on) * old_f;
+        // Double sweep (Thomas algorithm), forward elimination, all lines of the block in lock-step.
+        // The systems are diagonally dominant (docs/solver.md), so no pivoting is needed.
+        const double inverse_pivot = 1.0 / (row_diagonal - row_lower * upper[(f - 1) * W + j]);
+        upper[f * W + j] = row_upper * inverse_pivot;
+        right[f * W + j] = (row_right - row_lower * right[(f - 1) * W + j]) * inverse_pivot;
       }
     }
-    // Double sweep (Thomas algorithm) of all lines of the block in lock-step. The systems are
-    // diagonally dominant (docs/solver.md), so no pivoting is needed.
     #pragma GCC ivdep
-    for (int j = 0; j < n; ++j) {
-      upper[j] /= diagonal[j];
-      right[j] /= diagonal[j];
+    for (int j = 0; j < n; ++j) {  // row `cols`, the east grid edge: identity, flux 0
+      upper[cols * W + j] = 0.0;
+      right[cols * W + j] = -normal_old[cols * stride + lb + j];
     }
-    for (int f = 1; f < faces; ++f)
-      #pragma GCC ivdep
-      for (int j = 0; j < n; ++j) {
-        const double inverse_pivot = 1.0 / (diagonal[f * W + j] - lower[f * W + j] * upper[(f - 1) * W + j]);
-        upper[f * W + j] *= inverse_pivot;
-        right[f * W + j] = (right[f * W + j] - lower[f * W + j] * right[(f - 1) * W + j]) * inverse_pivot;
-      }
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) increment[(faces - 1) * W + j] = right[(faces - 1) * W + j];
     for (int f = faces - 2; f >= 0; --f)

@@ -70,8 +70,8 @@ struct SweepConstants {
 
 /// Per-thread scratch of one block (allocated once per thread, reused every step).
 struct SweepScratch {
-  std::vector<double> lower, diagonal, upper, right, increment, eta_half, flux_half, cell_term, fixed_term,
-      tangential_squared, active, magnitude, h_pair_north, h_pair_south, cell_eta_yy, cell_eta_y, cell_flux_yt,
+  std::vector<double> upper, right, increment, eta_half, flux_half, cell_term, fixed_term,
+      tangential_squared, active, face_velocity, h_pair_north, h_pair_south, cell_eta_yy, cell_eta_y, cell_flux_yt,
       nu_pair_north, nu_pair_south;
   void resize(int cols);
 };
