@@ -576,6 +576,7 @@ SolverParameters read_solver(TableReader& solver) {
   p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
   p.nonlinear_iterations = solver.integer("nonlinear_iterations", p.nonlinear_iterations, 1, 20, "iterations per half step");
   p.adi_passes = solver.integer("adi_passes", p.adi_passes, 1, 4, "x + y sweep pairs per step");
+  p.alternate_sweep_order = solver.boolean("alternate_sweep_order", p.alternate_sweep_order);
   p.shapiro_filter_order = solver.integer("shapiro_filter_order", p.shapiro_filter_order, 0, 16, "order of the grid-scale flux filter (even, 0 = off)");
   if (p.shapiro_filter_order % 2 != 0)
     solver.fail(solver.full("shapiro_filter_order"), "is odd", "give an even order: 8 (the default), or 0 to turn the filter off");
@@ -609,6 +610,7 @@ json solver_record(const SolverParameters& p) {
           {"nonlinear_iterations", p.nonlinear_iterations},
           {"adi_passes", p.adi_passes},
           {"shapiro_filter_order", p.shapiro_filter_order},
+          {"alternate_sweep_order", p.alternate_sweep_order},
           {"blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio},
           {"breaking",
            {{"enabled", p.breaking.enabled},

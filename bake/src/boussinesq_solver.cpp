@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <atomic>
 #include <cstring>
 #include <istream>
 #include <limits>
@@ -18,6 +19,7 @@
 
 #include "boussinesq_source.hpp"
 #include "boussinesq_sweep.hpp"
+#include "shapiro_filter.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
@@ -107,6 +109,14 @@ StaticFrame build_frame(const std::vector<double>& depth, const std::vector<doub
         frame.face_porous_turbulent_m[face] = p.porous.turbulent_beta * (1.0 - n) / (n3 * D);
       }
     }
+  // Blocks of lines with a porous face run the sweep with the porous terms (boussinesq_sweep.cpp).
+  frame.block_is_porous.assign(static_cast<std::size_t>((rows + detail::kBlockLines - 1) / detail::kBlockLines), 0);
+  for (int f = 0; f <= cols; ++f)
+    for (int l = 0; l < rows; ++l) {
+      const std::size_t face = static_cast<std::size_t>(f) * rows + l;
+      if (frame.face_porosity[face] != 1.0 || frame.face_porous_laminar_s[face] != 0.0 || frame.face_porous_turbulent_m[face] != 0.0)
+        frame.block_is_porous[static_cast<std::size_t>(l / detail::kBlockLines)] = 1;
+    }
   return frame;
 }
 
@@ -145,13 +155,16 @@ struct BoussinesqSolver::Implementation {
   // P in the x sweep's layout (index f * ny + r); eta^{n-1} transposed (only the x sweep uses it).
   std::vector<double> eta, eta_previous_t, flux_x, flux_y, flux_x_increment, flux_y_increment;
   std::vector<double> eddy_viscosity, breaking_start_s, breaking_strength;
+  // Whether eddy_viscosity may hold a non-zero value; when not, eddy_t is all zeros and the
+  // transpose is skipped (most of a bake's steps break nowhere, laboratory flumes never).
+  bool eddy_viscosity_active = true;
   // Work arrays (suffix _t: x sweep layout).
-  std::vector<double> eta_t, eta_base_t, eta_across_t, eta_star_t, flux_x_across, flux_x_new, flux_y_t, flux_y_increment_t,
+  std::vector<double> eta_t, eta_base_t, eta_across_t, eta_star_t, flux_x_across, flux_x_new,
       tangential_half_t, tangential_rate_t, eddy_t;
   std::vector<double> eta_star, eta_across, flux_y_across, flux_x_half, flux_x_rate, eta_next, flux_y_new;
-  std::vector<double> flux_x_guess, flux_y_guess, eta_previous_pass_t;  // ADI passes > 1
-  std::vector<double> dispersive, dispersive_t;
-  std::vector<unsigned char> filterable_x, filterable_y;  // grid-scale filter masks (P and Q faces)
+  std::vector<double> flux_x_guess, flux_y_guess, eta_base;
+  std::vector<double> dispersive, dispersive_t, wet_cells;
+  std::vector<double> filterable_x, filterable_y;  // grid-scale filter masks (P and Q faces), 0 or 1
   std::vector<double> sponge_cell, sponge_face_x, sponge_face_y;  // damping factor per step (1 = none)
   tbb::enumerable_thread_specific<SweepScratch> scratch;
   // Output rasters.
@@ -301,11 +314,13 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.breaking_start_s.assign(cells, -1.0);
   s.breaking_strength.assign(cells, 0.0);
   for (auto* v : {&s.eta_t, &s.eta_base_t, &s.eta_across_t, &s.eta_star_t, &s.eddy_t, &s.eta_star, &s.eta_across,
-                  &s.eta_next, &s.eta_previous_pass_t})
+                  &s.eta_next, &s.eta_base})
     v->assign(cells, 0.0);
-  for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate, &s.flux_x_guess}) v->assign(faces_x, 0.0);
-  for (auto* v : {&s.flux_y_t, &s.flux_y_increment_t, &s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across,
-                  &s.flux_y_new, &s.flux_y_guess})
+  for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate, &s.flux_x_guess})
+    v->assign(faces_x, 0.0);
+  s.filterable_x.assign(faces_x, 0.0);
+  s.filterable_y.assign(faces_y, 0.0);
+  for (auto* v : {&s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across, &s.flux_y_new, &s.flux_y_guess})
     v->assign(faces_y, 0.0);
   s.dispersive.assign(cells, 0.0);
   s.dispersive_t.assign(cells, 0.0);
@@ -362,18 +377,26 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
 BoussinesqSolver::~BoussinesqSolver() = default;
 
 void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask) {
-  // The dispersive terms apply where the cell and its 4 neighbours are wet (docs/solver.md).
+  // The dispersive terms apply where the cell and its 4 neighbours are wet (docs/solver.md); beyond
+  // the grid edges the neighbour is the edge cell itself. Two passes (wet cells, then the 5-point
+  // product) so both loops run over contiguous lanes and vectorise.
   const int cols = frame.cols, rows = frame.rows;
   const double dry = parameters.dry_depth_m;
+  wet_cells.resize(static_cast<std::size_t>(cols) * rows);
+  double* wet = wet_cells.data();
   tbb::parallel_for(0, cols, [&](int c) {
-    auto wet = [&](int cc, int l) {
-      cc = std::clamp(cc, 0, cols - 1);
-      l = std::clamp(l, 0, rows - 1);
-      const std::size_t i = static_cast<std::size_t>(cc) * rows + l;
-      return frame.inverse_porosity[i] > 0.0 && frame.depth_m[i] + eta_frame[i] > dry;
-    };
+    const std::size_t line = static_cast<std::size_t>(c) * rows;
     for (int l = 0; l < rows; ++l)
-      mask[static_cast<std::size_t>(c) * rows + l] = wet(c, l) && wet(c - 1, l) && wet(c + 1, l) && wet(c, l - 1) && wet(c, l + 1) ? 1.0 : 0.0;
+      wet[line + l] = frame.inverse_porosity[line + l] > 0.0 && frame.depth_m[line + l] + eta_frame[line + l] > dry ? 1.0 : 0.0;
+  });
+  tbb::parallel_for(0, cols, [&](int c) {
+    const double* here = wet + static_cast<std::size_t>(c) * rows;
+    const double* before = wet + static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
+    const double* after = wet + static_cast<std::size_t>(std::min(c + 1, cols - 1)) * rows;
+    double* out = mask + static_cast<std::size_t>(c) * rows;
+    for (int l = 1; l + 1 < rows; ++l) out[l] = here[l] * before[l] * after[l] * here[l - 1] * here[l + 1];
+    out[0] = here[0] * before[0] * after[0] * here[std::min(1, rows - 1)];
+    if (rows > 1) out[rows - 1] = here[rows - 1] * before[rows - 1] * after[rows - 1] * here[rows - 2];
   });
 }
 
@@ -381,79 +404,119 @@ void BoussinesqSolver::Implementation::step() {
   const std::size_t cells = static_cast<std::size_t>(nx) * ny;
   const double ratio = dt / dx;
 
-  // 1. x sweep (layout: columns slow, rows fast). E = eta^n - dt/(n dx) (dP^n + dQ^n) + dt S  (seed 003 eq. 1)
-  // 2. y sweep in the natural layout: E = eta*, P at t^{n+1/2} and dP/dt now known exactly.
-  // With adi_passes > 1 the pair is solved again, the x sweep's across terms (Q and dQ/dt at
-  // t^{n+1/2}, eta at t^{n+1/2}) now from the previous pass instead of lagged from the last step:
-  // the lag of the mixed dispersive term -(B+1/3) d^2 Q_xyt lets short two-dimensional modes grow
-  // where d/dx is large (docs/solver.md, "ADI passes").
+  // One ADI step is a pair of sweeps, x then y on even steps and y then x on odd steps when
+  // `alternate_sweep_order` is set (docs/solver.md, "Sweep order"). The FIRST sweep of a pair has
+  //   E = eta^n - dt/(n dx) (dP^n + dQ^n) + dt S   (seed 003 eq. 1, the flux across the lines explicit)
+  // and estimates everything ACROSS its lines at t^{n+1/2}: on pass 0 from the last steps (the other
+  // flux at t^n + its last increment / 2, its rate lagged half a step as its last increment / dt,
+  // eta extrapolated from eta^{n-1} and eta^n); on later passes (`adi_passes` > 1) from the previous
+  // pass. The SECOND sweep has E = eta* (the first sweep's result) and the other flux at t^{n+1/2}
+  // and its rate exactly. Layouts: the x sweep works on transposed arrays (suffix _t), the y sweep
+  // on the natural row-major ones (boussinesq_sweep.hpp).
+  const bool x_first = !parameters.alternate_sweep_order || step_count % 2 == 0;
   detail::transpose(eta.data(), eta_t.data(), nx, ny);
-  detail::transpose(flux_y.data(), flux_y_t.data(), nx, ny + 1);
-  detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
+  if (eddy_viscosity_active) detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
-  for (int pass = 0; pass < parameters.adi_passes; ++pass) {
-    if (pass == 0) {
-      detail::transpose(flux_y_increment.data(), flux_y_increment_t.data(), nx, ny + 1);
-    } else {
-      // This step's Q increment and eta^{n+1} from the previous pass; its P increment is the
-      // first guess of the new x sweep.
-      for_each_index(flux_y.size(), [&](std::size_t f) { flux_y_across[f] = flux_y_new[f] - flux_y[f]; });
-      detail::transpose(flux_y_across.data(), flux_y_increment_t.data(), nx, ny + 1);
-      for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
-      detail::transpose(eta_across.data(), eta_previous_pass_t.data(), nx, ny);
-    }
-    tbb::parallel_for(0, nx, [&](int c) {
-      const std::size_t t0 = static_cast<std::size_t>(c) * (ny + 1);
-      for (int r = 0; r < ny; ++r) {
-        const std::size_t i = static_cast<std::size_t>(c) * ny + r;
-        eta_base_t[i] = eta_t[i] - ratio * frame_x.inverse_porosity[i] *
-                                       (flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y_t[t0 + r + 1] - flux_y_t[t0 + r]);
-        eta_across_t[i] = pass == 0 ? eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]) : eta_previous_pass_t[i];
-      }
-      for (int k = 0; k <= ny; ++k) {
-        tangential_half_t[t0 + k] = flux_y_t[t0 + k] + 0.5 * flux_y_increment_t[t0 + k];
-        tangential_rate_t[t0 + k] = flux_y_increment_t[t0 + k] / dt;
+  mark_dispersive(frame_y, eta.data(), dispersive.data());
+
+  // The normal flux's first guess and its t^{n+1/2} estimate: last step's increment on pass 0,
+  // this step's previous pass afterwards.
+  auto prepare_normal = [&](int pass, const std::vector<double>& old_flux, const std::vector<double>& last_increment,
+                            const std::vector<double>& new_flux, std::vector<double>& guess, std::vector<double>& across) {
+    for_each_index(old_flux.size(), [&](std::size_t f) {
+      guess[f] = pass == 0 ? last_increment[f] : new_flux[f] - old_flux[f];
+      across[f] = old_flux[f] + 0.5 * guess[f];
+    });
+  };
+  // E of the first sweep: eta^n minus the divergence of the fluxes at t^n, plus the wave maker.
+  auto explicit_base = [&](const double* eta_layout, double* base, bool x_layout) {
+    tbb::parallel_for(0, ny, [&](int r) {
+      for (int c = 0; c < nx; ++c) {
+        const std::size_t i = x_layout ? px(c, r) : index(c, r, nx);
+        const double divergence = flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y[qy(c, r + 1)] - flux_y[qy(c, r)];
+        base[i] = eta_layout[i] - ratio * frame_y.inverse_porosity[index(c, r, nx)] * divergence;
       }
     });
-    source->add(time_s + 0.5 * dt, dt, eta_base_t.data(), static_cast<std::size_t>(ny), 1);
-    if (pass == 0) {
-      for_each_index(flux_x.size(), [&](std::size_t f) { flux_x_across[f] = flux_x[f] + 0.5 * flux_x_increment[f]; });
-      for_each_index(flux_x.size(), [&](std::size_t f) { flux_x_guess[f] = flux_x_increment[f]; });
+    if (x_layout)
+      source->add(time_s + 0.5 * dt, dt, base, static_cast<std::size_t>(ny), 1);
+    else
+      source->add(time_s + 0.5 * dt, dt, base, 1, static_cast<std::size_t>(nx));
+  };
+  // The other flux at t^{n+1/2} and its rate, in the sweep's tangential layout (transposed: the
+  // x-face P into the y sweep's layout, the y-face Q into the x sweep's). Exact when the other sweep
+  // has run this pass (from its new flux); otherwise estimated from its change over the last step
+  // (pass 0) or over this step's previous pass.
+  enum class Across { kEstimate, kExact };
+  auto tangential_from = [&](Across kind, int pass, const std::vector<double>& old_flux, const std::vector<double>& new_flux,
+                             const std::vector<double>& last_increment, int cols, int rows, std::vector<double>& half,
+                             std::vector<double>& rate) {
+    if (kind == Across::kExact)
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromNewFlux, old_flux.data(), new_flux.data(), dt, half.data(),
+                                      rate.data(), cols, rows);
+    else if (pass == 0)
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromIncrement, old_flux.data(), last_increment.data(), dt,
+                                      half.data(), rate.data(), cols, rows);
+    else
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromPass, old_flux.data(), new_flux.data(), dt, half.data(),
+                                      rate.data(), cols, rows);
+  };
+
+  auto sweep_x = [&](bool first, int pass) {
+    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_y, flux_y_new, flux_y_increment, nx, ny + 1,
+                    tangential_half_t, tangential_rate_t);
+    if (first) {
+      explicit_base(eta_t.data(), eta_base_t.data(), true);
+      if (pass == 0) {
+        for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]); });
+      } else {
+        for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
+        detail::transpose(eta_across.data(), eta_across_t.data(), nx, ny);
+      }
     } else {
-      for_each_index(flux_x.size(), [&](std::size_t f) {
-        flux_x_guess[f] = flux_x_new[f] - flux_x[f];
-        flux_x_across[f] = flux_x[f] + 0.5 * flux_x_guess[f];
-      });
+      // After the y sweep: E = eta*, Q at t^{n+1/2} and dQ/dt exact.
+      detail::transpose(eta_star.data(), eta_base_t.data(), nx, ny);
+      for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = 0.5 * (eta_t[i] + eta_base_t[i]); });
     }
+    prepare_normal(pass, flux_x, flux_x_increment, flux_x_new, flux_x_guess, flux_x_across);
     sweep(frame_x,
           {eta_t.data(), eta_base_t.data(), eta_across_t.data(), flux_x.data(), flux_x_across.data(), flux_x_guess.data(),
-           tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data()},
+           tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data(), eddy_viscosity_active},
           {eta_star_t.data(), flux_x_new.data()});
+    // The x sweep's eta: eta* when it came first, eta^{n+1} when second (both to the natural layout).
+    detail::transpose(eta_star_t.data(), first ? eta_star.data() : eta_next.data(), ny, nx);
+  };
 
-    detail::transpose(eta_star_t.data(), eta_star.data(), ny, nx);
-    for_each_index(flux_x.size(), [&](std::size_t f) {
-      flux_x_across[f] = 0.5 * (flux_x[f] + flux_x_new[f]);  // reused: P at t^{n+1/2}
-      flux_x_rate[f] = (flux_x_new[f] - flux_x[f]) / dt;
-    });
-    detail::transpose(flux_x_across.data(), flux_x_half.data(), ny, nx + 1);
-    detail::transpose(flux_x_rate.data(), flux_x_across.data(), ny, nx + 1);  // reused: dP/dt, natural layout
-    for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_star[i]); });
-    if (pass == 0) {
-      for_each_index(flux_y.size(), [&](std::size_t f) {
-        flux_y_guess[f] = flux_y_increment[f];
-        flux_y_across[f] = flux_y[f] + 0.5 * flux_y_increment[f];
-      });
-      mark_dispersive(frame_y, eta.data(), dispersive.data());
+  auto sweep_y = [&](bool first, int pass) {
+    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_x, flux_x_new, flux_x_increment, ny, nx + 1,
+                    flux_x_half, flux_x_rate);
+    const double* base = eta_star.data();
+    if (first) {
+      explicit_base(eta.data(), eta_base.data(), false);
+      base = eta_base.data();
+      if (pass == 0) {
+        for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]); });
+        detail::transpose(eta_across_t.data(), eta_across.data(), ny, nx);
+      } else {
+        for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
+      }
     } else {
-      for_each_index(flux_y.size(), [&](std::size_t f) {
-        flux_y_guess[f] = flux_y_new[f] - flux_y[f];
-        flux_y_across[f] = flux_y[f] + 0.5 * flux_y_guess[f];
-      });
+      for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_star[i]); });
     }
+    prepare_normal(pass, flux_y, flux_y_increment, flux_y_new, flux_y_guess, flux_y_across);
     sweep(frame_y,
-          {eta.data(), eta_star.data(), eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_guess.data(),
-           flux_x_half.data(), flux_x_across.data(), eddy_viscosity.data(), dispersive.data()},
-          {eta_next.data(), flux_y_new.data()});
+          {eta.data(), base, eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_guess.data(),
+           flux_x_half.data(), flux_x_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active},
+          {first ? eta_star.data() : eta_next.data(), flux_y_new.data()});
+  };
+
+  for (int pass = 0; pass < parameters.adi_passes; ++pass) {
+    if (x_first) {
+      sweep_x(true, pass);
+      sweep_y(false, pass);
+    } else {
+      sweep_y(true, pass);
+      sweep_x(false, pass);
+    }
   }
 
   // 3. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
@@ -533,92 +596,39 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
   }
 }
 
-namespace {
-
-// Shapiro (1970) low-pass filter of order 2p along one line of `count` values (stride `stride`):
-// u <- u - (-delta^2/4)^p u, whose response 1 - sin^{2p}(k dx/2) removes 2 dx waves and leaves
-// resolved waves all but untouched (p = 4: 3.5e-7 per application at 20 points per wavelength).
-// `wall_normal`: the line's ends are walls through which this flux is normal (faces 0 and count-1
-// hold 0), so ghosts are odd about them; otherwise the values sit between the walls (cell-like)
-// and ghosts are even. A value is filtered only if every value of its stencil is `filterable`.
-void shapiro_filter_line(double* values, std::size_t stride, int count, bool wall_normal, const unsigned char* filterable,
-                         std::size_t filterable_stride, int order, std::vector<double>& buffer, std::vector<double>& work) {
-  const int p = order, n = count + 2 * p;
-  buffer.resize(n);
-  work.resize(n);
-  for (int i = 0; i < count; ++i) buffer[p + i] = values[i * stride];
-  for (int j = 1; j <= p; ++j) {
-    if (wall_normal) {  // odd about faces 0 and count-1
-      buffer[p - j] = count > j ? -buffer[p + j] : 0.0;
-      buffer[p + count - 1 + j] = count - 1 - j >= 0 ? -buffer[p + count - 1 - j] : 0.0;
-    } else {            // even about the half-way points beyond the ends
-      buffer[p - j] = buffer[p + std::min(j - 1, count - 1)];
-      buffer[p + count - 1 + j] = buffer[p + std::max(count - j, 0)];
-    }
-  }
-  // delta^{2p} by p applications of the second difference; the valid part shrinks by one each time.
-  for (int a = 1; a <= p; ++a) {
-    for (int i = a; i < n - a; ++i) work[i] = buffer[i - 1] - 2.0 * buffer[i] + buffer[i + 1];
-    for (int i = a; i < n - a; ++i) buffer[i] = work[i];
-  }
-  const double scale = (p % 2 == 0 ? 1.0 : -1.0) / std::pow(4.0, p);  // (-1/4)^p
-  int bad_in_window = 0;  // stencil check by a sliding count of non-filterable values
-  auto bad = [&](int i) { return i >= 0 && i < count && !filterable[i * filterable_stride] ? 1 : 0; };
-  for (int i = -p; i < p; ++i) bad_in_window += bad(i);
-  for (int i = 0; i < count; ++i) {
-    bad_in_window += bad(i + p);
-    if (bad_in_window == 0) values[i * stride] -= scale * buffer[p + i];
-    bad_in_window -= bad(i - p);
-  }
-}
-
-}  // namespace
-
 void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
-  const int order = parameters.shapiro_filter_order / 2;  // p
-  if (order <= 0) return;
+  const detail::ShapiroFilter filter{parameters.shapiro_filter_order / 2};
+  if (filter.half_order <= 0) return;
   // A face may be filtered where it is open (or a grid-edge wall, which the odd ghosts describe)
   // and the cells on both sides are wet with every neighbour wet: never across a shoreline or quay.
   const double* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
   const double* wet_y = dispersive.data();
-  filterable_x.resize(flux_x.size());
-  filterable_y.resize(flux_y.size());
   tbb::parallel_for(0, nx + 1, [&](int f) {
-    for (int r = 0; r < ny; ++r) {
-      const std::size_t face = px(f, r);
-      const bool edge = f == 0 || f == nx;
-      const bool wet = edge || (wet_x[px(f - 1, r)] > 0.0 && wet_x[px(f, r)] > 0.0);
-      filterable_x[face] = (edge || frame_x.face_open[face] > 0.0) && wet;
+    double* out = filterable_x.data() + px(f, 0);
+    if (f == 0 || f == nx) {
+      std::fill(out, out + ny, 1.0);
+      return;
     }
+    const double* open = frame_x.face_open.data() + px(f, 0);
+    const double *west = wet_x + px(f - 1, 0), *east = wet_x + px(f, 0);
+    for (int r = 0; r < ny; ++r) out[r] = open[r] * west[r] * east[r];
   });
   tbb::parallel_for(0, ny + 1, [&](int k) {
-    for (int c = 0; c < nx; ++c) {
-      const std::size_t face = qy(c, k);
-      const bool edge = k == 0 || k == ny;
-      const bool wet = edge || (wet_y[index(c, k - 1, nx)] > 0.0 && wet_y[index(c, k, nx)] > 0.0);
-      filterable_y[face] = (edge || frame_y.face_open[face] > 0.0) && wet;
+    double* out = filterable_y.data() + qy(0, k);
+    if (k == 0 || k == ny) {
+      std::fill(out, out + nx, 1.0);
+      return;
     }
+    const double* open = frame_y.face_open.data() + qy(0, k);
+    const double *south = wet_y + index(0, k - 1, nx), *north = wet_y + index(0, k, nx);
+    for (int c = 0; c < nx; ++c) out[c] = open[c] * south[c] * north[c];
   });
-  struct Buffers { std::vector<double> line, work; };
-  tbb::enumerable_thread_specific<Buffers> buffers;
-  // P along x (rows: stride ny, normal to the west and east walls) and along y (faces: contiguous).
-  tbb::parallel_for(0, ny, [&](int r) {
-    Buffers& b = buffers.local();
-    shapiro_filter_line(&flux_x_new[px(0, r)], ny, nx + 1, true, &filterable_x[px(0, r)], ny, order, b.line, b.work);
-  });
-  tbb::parallel_for(0, nx + 1, [&](int f) {
-    Buffers& b = buffers.local();
-    shapiro_filter_line(&flux_x_new[px(f, 0)], 1, ny, false, &filterable_x[px(f, 0)], 1, order, b.line, b.work);
-  });
-  // Q along y (columns: stride nx, normal to the south and north walls) and along x (contiguous).
-  tbb::parallel_for(0, nx, [&](int c) {
-    Buffers& b = buffers.local();
-    shapiro_filter_line(&flux_y_new[qy(c, 0)], nx, ny + 1, true, &filterable_y[qy(c, 0)], nx, order, b.line, b.work);
-  });
-  tbb::parallel_for(0, ny + 1, [&](int k) {
-    Buffers& b = buffers.local();
-    shapiro_filter_line(&flux_y_new[qy(0, k)], 1, nx, false, &filterable_y[qy(0, k)], 1, order, b.line, b.work);
-  });
+  // P: along x is its slow index (normal to the west and east walls), along y its fast index.
+  filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
+  filter.along_fast(flux_x_new.data(), filterable_x.data(), nx + 1, ny, false);
+  // Q: along y is its slow index (normal to the south and north walls), along x its fast index.
+  filter.along_slow(flux_y_new.data(), filterable_y.data(), ny + 1, nx, true);
+  filter.along_fast(flux_y_new.data(), filterable_y.data(), ny + 1, nx, false);
 }
 
 void BoussinesqSolver::Implementation::apply_sponges() {
@@ -633,7 +643,10 @@ void BoussinesqSolver::Implementation::apply_sponges() {
 
 void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>& eta_old) {
   const BreakingParameters& b = parameters.breaking;
-  if (!b.enabled) return;
+  if (!b.enabled) {  // nu never changes: eddy_t, transposed this step, stays right
+    eddy_viscosity_active = false;
+    return;
+  }
   // Kennedy et al. (2000): a cell breaks while eta_t > eta_t*, the threshold falling linearly from
   // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
   // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
@@ -641,7 +654,9 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
   const double* depth = frame_y.depth_m.data();
   const double g = kGravity_m_s2, delta2 = b.mixing_length_coefficient * b.mixing_length_coefficient;
   const double now = time_s + dt;
+  std::atomic<bool> any_viscosity{false};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, eta.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    bool block_viscosity = false;
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const double h = depth[i] + eta[i];
       if (depth[i] <= 0.0 || h <= parameters.dry_depth_m || frame_y.inverse_porosity[i] == 0.0) {
@@ -660,8 +675,13 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
       }
       breaking_strength[i] = strength;
       eddy_viscosity[i] = strength * delta2 * h * std::max(eta_t, 0.0);
+      block_viscosity = block_viscosity || eddy_viscosity[i] != 0.0;
     }
+    if (block_viscosity) any_viscosity.store(true, std::memory_order_relaxed);
   });
+  // When the last breaking cell stops, eddy_t is cleared once; afterwards the transpose is skipped.
+  if (eddy_viscosity_active && !any_viscosity.load()) std::fill(eddy_t.begin(), eddy_t.end(), 0.0);
+  eddy_viscosity_active = any_viscosity.load();
 }
 
 void BoussinesqSolver::Implementation::publish() {
@@ -822,6 +842,7 @@ void BoussinesqSolver::load_state(std::istream& in) {
   for (std::size_t a = 0; a < arrays.size(); ++a) arrays[a]->swap(loaded[a]);
   s.time_s = time;
   s.step_count = steps;
+  s.eddy_viscosity_active = true;  // the loaded nu is transposed on the next step
   s.publish();
 }
 

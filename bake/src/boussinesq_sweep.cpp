@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <tbb/parallel_for.h>
 
@@ -24,8 +25,10 @@ namespace {
 
 // The body of sweep_lines. kFullBlock: the block holds exactly kBlockLines lines, so every
 // lock-step loop over the lines has a trip count the compiler knows (whole vectors, no remainder).
+// kOpenWater: no face of the block is porous and no cell breaks (n = 1, alpha = beta = nu = 0), so
+// those arrays are not read; the arithmetic left is the same, so the results are the same bits.
 // Always inlined into sweep_lines, so each of its instruction-set clones gets its own copy.
-template <bool kFullBlock>
+template <bool kFullBlock, bool kOpenWater>
 __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame, const SweepConstants& k,
                                                        const SweepInput& in, const SweepOutput& out, const int lb,
                                                        const int le, SweepScratch& s) {
@@ -118,6 +121,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dx;
     // The cross stress is explicit: its viscosity is capped for stability (nu dt/dx^2 <= 0.2);
     // the along-line stress is implicit and uses nu in full.
+    if (kOpenWater) return;
     const double nu_i = std::min(nu[i], nu_explicit_max);
     nu_pair_north[c * W + j] = nu_i + std::min(nu[in_], nu_explicit_max);
     nu_pair_south[c * W + j] = nu_i + std::min(nu[is], nu_explicit_max);
@@ -135,7 +139,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const std::size_t face = f * stride + l;
     auto c_at = [stride](int c, int line) { return c * stride + line; };
     auto t_at = [tstride](int c, int k2) { return c * tstride + k2; };
-    const double n_f = face_porosity[face], inv_n_f = face_inverse_porosity[face];
+    const double n_f = kOpenWater ? 1.0 : face_porosity[face], inv_n_f = kOpenWater ? 1.0 : face_inverse_porosity[face];
     const double d = face_depth[face];
     // (PQ/h)_y at the face from the two corners north and south of it.
     const double h_north = 0.25 * (h_pair_north[L * W + j] + h_pair_north[R * W + j]);
@@ -167,6 +171,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     term -= w * psi;
 
     // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
+    if (!kOpenWater) {
     const double nu_north = north * 0.25 * (nu_pair_north[L * W + j] + nu_pair_north[R * W + j]);
     const double nu_south = south * 0.25 * (nu_pair_south[L * W + j] + nu_pair_south[R * W + j]);
     const double stress_north = nu_north * ((normal_across[f * stride + ln] - normal_across[face]) +
@@ -174,6 +179,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const double stress_south = nu_south * ((normal_across[face] - normal_across[f * stride + ls]) +
                                             (tangential[t_at(R, l)] - tangential[t_at(L, l)])) * inv_dx;
     term += inv_n_f * (stress_north - stress_south) * inv_dx;
+    }
     fixed_term[f * W + j] = term;
     const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);
     tangential_squared[f * W + j] = flux_t * flux_t;
@@ -255,7 +261,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
         const std::size_t face = f * stride + lb + j, cL = L * stride + lb + j, cR = R * stride + lb + j;
-        const double n_f = face_porosity[face], inv_n_f = face_inverse_porosity[face];
+        const double n_f = kOpenWater ? 1.0 : face_porosity[face], inv_n_f = kOpenWater ? 1.0 : face_inverse_porosity[face];
         const double d = face_depth[face];
         const double e_L = eta_half[L * W + j], e_R = eta_half[R * W + j];
         // Total depth at the face: the larger of the mean depth and the water above the higher bed
@@ -281,17 +287,20 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
         // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
         const double flux_f = flux_half[f * W + j];  // |(P, Q)|; sqrt vectorises (-fno-math-errno)
         const double flux_magnitude = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
-        const double resistance = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f +
-                                  n_f * (face_laminar[face] + face_turbulent[face] * flux_magnitude * inv_h_f);
+        const double friction = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f;
+        const double resistance =
+            kOpenWater ? friction : friction + n_f * (face_laminar[face] + face_turbulent[face] * flux_magnitude * inv_h_f);
 
         // Gravity n g h eta_x at t^{n+1/2} with eta* = E - dt/(2 n dx) d(increment): couples three faces.
         const double G = n_f * g * h_f * dt * dt * inv_dx2 * 0.25;
         // Eddy viscosity along the line, (1/n) d/dx (nu dP/dx), Crank-Nicolson.
-        const double V_L = 0.5 * dt * nu[cL] * inv_n_f * inv_dx2, V_R = 0.5 * dt * nu[cR] * inv_n_f * inv_dx2;
+        const double V_L = kOpenWater ? 0.0 : 0.5 * dt * nu[cL] * inv_n_f * inv_dx2;
+        const double V_R = kOpenWater ? 0.0 : 0.5 * dt * nu[cR] * inv_n_f * inv_dx2;
 
         const double gravity = -dt * n_f * g * h_f * 0.5 * inv_dx * (eta_base[cR] - eta_base[cL] + eta_old[cR] - eta_old[cL]);
         const double old_f = normal_old[face];
-        const double eddy_old = 2.0 * (V_R * (normal_old[face + stride] - old_f) - V_L * (old_f - normal_old[face - stride]));
+        const double eddy_old =
+            kOpenWater ? 0.0 : 2.0 * (V_R * (normal_old[face + stride] - old_f) - V_L * (old_f - normal_old[face - stride]));
         // Inactive faces get the identity row (flux to 0), selected arithmetically so the loop
         // has no branch and vectorises.
         const double on = active[f * W + j];  // 1 or 0: blended arithmetically, no branch
@@ -348,28 +357,135 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 void sweep_lines(const StaticFrame& frame, const SweepConstants& constants, const SweepInput& input,
                  const SweepOutput& output, const int line_begin, const int line_end, SweepScratch& scratch) {
-  if (line_end - line_begin == kBlockLines)
-    sweep_block<true>(frame, constants, input, output, line_begin, line_end, scratch);
-  else
-    sweep_block<false>(frame, constants, input, output, line_begin, line_end, scratch);
+  const bool open_water = !input.viscous && !frame.block_is_porous[static_cast<std::size_t>(line_begin / kBlockLines)];
+  if (line_end - line_begin == kBlockLines) {
+    if (open_water)
+      sweep_block<true, true>(frame, constants, input, output, line_begin, line_end, scratch);
+    else
+      sweep_block<true, false>(frame, constants, input, output, line_begin, line_end, scratch);
+  } else {
+    if (open_water)
+      sweep_block<false, true>(frame, constants, input, output, line_begin, line_end, scratch);
+    else
+      sweep_block<false, false>(frame, constants, input, output, line_begin, line_end, scratch);
+  }
 }
 
 namespace {
-template <class T>
-void transpose_blocked(const T* in, T* out, int cols, int rows) {
-  constexpr int kBlock = 32;
-  tbb::parallel_for(0, (rows + kBlock - 1) / kBlock, [&](int block) {
-    const int r0 = block * kBlock;
-    for (int c0 = 0; c0 < cols; c0 += kBlock) {
-      const int r1 = std::min(rows, r0 + kBlock), c1 = std::min(cols, c0 + kBlock);
-      for (int r = r0; r < r1; ++r)
-        for (int c = c0; c < c1; ++c)
-          out[static_cast<std::size_t>(c) * rows + r] = in[static_cast<std::size_t>(r) * cols + c];
-    }
-  });
+
+constexpr int kTransposeTile = 32;
+
+// 4 x 4 blocks of doubles are transposed in registers (GCC vector extensions: two shuffle stages),
+// so both the loads (a row's 4 values) and the stores (a column's 4 values) are whole vectors.
+using Quad = double __attribute__((vector_size(32)));
+using QuadMask = long long __attribute__((vector_size(32)));
+
+// By reference, not by value: a 32-byte vector passed by value changes the ABI between clones.
+__attribute__((always_inline)) inline void load_quad(Quad& v, const double* p) { std::memcpy(&v, p, sizeof v); }
+__attribute__((always_inline)) inline void store_quad(double* p, const Quad& v) { std::memcpy(p, &v, sizeof v); }
+
+// rows[i] = row i of a 4 x 4 block; afterwards rows[j] holds column j.
+__attribute__((always_inline)) inline void transpose_quads(Quad rows[4]) {
+  const Quad t0 = __builtin_shuffle(rows[0], rows[1], QuadMask{0, 4, 2, 6});
+  const Quad t1 = __builtin_shuffle(rows[0], rows[1], QuadMask{1, 5, 3, 7});
+  const Quad t2 = __builtin_shuffle(rows[2], rows[3], QuadMask{0, 4, 2, 6});
+  const Quad t3 = __builtin_shuffle(rows[2], rows[3], QuadMask{1, 5, 3, 7});
+  rows[0] = __builtin_shuffle(t0, t2, QuadMask{0, 1, 4, 5});
+  rows[1] = __builtin_shuffle(t1, t3, QuadMask{0, 1, 4, 5});
+  rows[2] = __builtin_shuffle(t0, t2, QuadMask{2, 3, 6, 7});
+  rows[3] = __builtin_shuffle(t1, t3, QuadMask{2, 3, 6, 7});
 }
+
+// Walks rows [r0, r1) of a cols x rows -> rows x cols transpose tile by tile (kTransposeTile squared
+// stays in the L1 cache), 4 x 4 blocks in registers, the ragged edges element by element.
+// `element(i, o)` moves input element i to output position o; `block(in_offsets, out_offsets)` does
+// the same for a 4 x 4 block (row r of the block starts at in_offsets[r], column c at out_offsets[c]).
+template <class Element, class Block>
+__attribute__((always_inline)) inline void walk_transpose(int cols, int rows, int r0, int r1, const Element& element,
+                                                          const Block& block) {
+  for (int c0 = 0; c0 < cols; c0 += kTransposeTile) {
+    const int c1 = std::min(cols, c0 + kTransposeTile);
+    int r = r0;
+    for (; r + 4 <= r1; r += 4) {
+      int c = c0;
+      for (; c + 4 <= c1; c += 4) {
+        std::size_t in_offsets[4], out_offsets[4];
+        for (int k = 0; k < 4; ++k) {
+          in_offsets[k] = static_cast<std::size_t>(r + k) * cols + c;
+          out_offsets[k] = static_cast<std::size_t>(c + k) * rows + r;
+        }
+        block(in_offsets, out_offsets);
+      }
+      for (; c < c1; ++c)
+        for (int k = 0; k < 4; ++k)
+          element(static_cast<std::size_t>(r + k) * cols + c, static_cast<std::size_t>(c) * rows + r + k);
+    }
+    for (; r < r1; ++r)
+      for (int c = c0; c < c1; ++c) element(static_cast<std::size_t>(r) * cols + c, static_cast<std::size_t>(c) * rows + r);
+  }
+}
+
+// Cloned per instruction set like the sweep (AVX2 and AVX-512 do a Quad in one register).
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void transpose_rows(const double* __restrict in, double* __restrict out, int cols, int rows, int r0, int r1) {
+  walk_transpose(
+      cols, rows, r0, r1, [&](std::size_t i, std::size_t o) { out[o] = in[i]; },
+      [&](const std::size_t* in_offsets, const std::size_t* out_offsets) {
+        Quad block[4];
+        for (int k = 0; k < 4; ++k) load_quad(block[k], in + in_offsets[k]);
+        transpose_quads(block);
+        for (int k = 0; k < 4; ++k) store_quad(out + out_offsets[k], block[k]);
+      });
+}
+
+// The same walk for the across flux at t^{n+1/2} and its rate (HalfAndRate in boussinesq_sweep.hpp);
+// the arithmetic is element-wise, so the blocks give the same bits as the single elements.
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void half_and_rate_rows(HalfAndRate kind, const double* __restrict old_flux, const double* __restrict other, double dt,
+                        double* __restrict half, double* __restrict rate, int cols, int rows, int r0, int r1) {
+  auto transform = [&](auto old_value, auto other_value, auto& half_value, auto& rate_value) {
+    if (kind == HalfAndRate::kFromNewFlux) {
+      half_value = 0.5 * (old_value + other_value);
+      rate_value = (other_value - old_value) / dt;
+    } else {
+      const auto increment = kind == HalfAndRate::kFromIncrement ? other_value : other_value - old_value;
+      half_value = old_value + 0.5 * increment;
+      rate_value = increment / dt;
+    }
+  };
+  walk_transpose(
+      cols, rows, r0, r1, [&](std::size_t i, std::size_t o) { transform(old_flux[i], other[i], half[o], rate[o]); },
+      [&](const std::size_t* in_offsets, const std::size_t* out_offsets) {
+        Quad half_block[4], rate_block[4];
+        for (int k = 0; k < 4; ++k) {
+          Quad old_values, other_values;
+          load_quad(old_values, old_flux + in_offsets[k]);
+          load_quad(other_values, other + in_offsets[k]);
+          transform(old_values, other_values, half_block[k], rate_block[k]);
+        }
+        transpose_quads(half_block);
+        transpose_quads(rate_block);
+        for (int k = 0; k < 4; ++k) {
+          store_quad(half + out_offsets[k], half_block[k]);
+          store_quad(rate + out_offsets[k], rate_block[k]);
+        }
+      });
+}
+
 }  // namespace
 
-void transpose(const double* in, double* out, int cols, int rows) { transpose_blocked(in, out, cols, rows); }
+void transpose(const double* in, double* out, int cols, int rows) {
+  tbb::parallel_for(0, (rows + kTransposeTile - 1) / kTransposeTile, [&](int block) {
+    transpose_rows(in, out, cols, rows, block * kTransposeTile, std::min(rows, (block + 1) * kTransposeTile));
+  });
+}
+
+void transpose_half_and_rate(HalfAndRate kind, const double* old_flux, const double* other, double time_step_s,
+                             double* half, double* rate, int cols, int rows) {
+  tbb::parallel_for(0, (rows + kTransposeTile - 1) / kTransposeTile, [&](int block) {
+    half_and_rate_rows(kind, old_flux, other, time_step_s, half, rate, cols, rows, block * kTransposeTile,
+                       std::min(rows, (block + 1) * kTransposeTile));
+  });
+}
 
 }  // namespace nearshore::bake::detail

@@ -29,6 +29,9 @@ struct StaticFrame {
   std::vector<double> face_slope_across;   ///< d_y at the face (clamped)
   std::vector<double> face_porous_laminar_s;   ///< alpha (1/s) of seed 003 eq. (2), 0 in open water
   std::vector<double> face_porous_turbulent_m; ///< beta (1/m), 0 in open water
+  /// Per block of kBlockLines lines: 1 when a face of the block is porous (0 < n < 1), else 0.
+  /// Blocks of open water run a sweep without the porous terms (fewer arrays streamed).
+  std::vector<unsigned char> block_is_porous;
 };
 
 /// Porosity below which a cell is a solid wall (no flux through its faces).
@@ -53,6 +56,7 @@ struct SweepInput {
   const double* tangential_rate;  ///< its time derivative at t^{n+1/2}, (m^2/s)/s
   const double* eddy_viscosity;   ///< nu of eq. (6)-(7), m^2/s, cells
   const double* dispersive;       ///< 1 where the cell and its 4 neighbours are wet, else 0
+  bool viscous = true;            ///< false: eddy_viscosity is 0 everywhere (no cell breaks)
 };
 
 struct SweepOutput {
@@ -86,5 +90,16 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& constants, cons
 /// out[c * rows + r] = in[r * cols + c]: in is cols x rows (row-major), out is rows x cols.
 /// Parallel over blocks; the result does not depend on the thread count.
 void transpose(const double* in, double* out, int cols, int rows);
+
+/// How transpose_half_and_rate gets the flux's change over the step from `other`.
+enum class HalfAndRate {
+  kFromNewFlux,    ///< other = the flux at t^{n+1}: half = (old + new) / 2, rate = (new - old) / dt
+  kFromIncrement,  ///< other = an increment estimate: half = old + increment / 2, rate = increment / dt
+  kFromPass,       ///< other = the previous pass's new flux, used as an increment estimate (new - old)
+};
+/// The flux at t^{n+1/2} and its rate d/dt, transposed like `transpose` (in one pass): the across
+/// flux a sweep needs, in its tangential layout.
+void transpose_half_and_rate(HalfAndRate kind, const double* old_flux, const double* other, double time_step_s,
+                             double* half, double* rate, int cols, int rows);
 
 }  // namespace nearshore::bake::detail

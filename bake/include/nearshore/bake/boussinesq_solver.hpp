@@ -94,6 +94,9 @@ struct SolverParameters {
   std::vector<SpongeLayer> sponges;
   int nonlinear_iterations = 2;       ///< passes of the time-centred (Crank-Nicolson) iteration per half step
   int adi_passes = 1;                 ///< x + y sweep pairs per step; 2 re-solves with this step's across terms (fine grids)
+  /// Sweep order x-y on even steps, y-x on odd steps, so the lag of the across terms in the first
+  /// sweep falls on each direction in turn (docs/solver.md, "Sweep order").
+  bool alternate_sweep_order = false;
   /// Order 2p of the Shapiro (1970) filter applied to P and Q every step (even, 0 = off): it removes
   /// the grid-scale two-dimensional mode of fine grids and leaves resolved waves alone (response
   /// 1 - sin^{2p}(k dx/2); docs/solver.md, "Grid-scale filter").
