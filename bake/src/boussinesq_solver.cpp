@@ -174,15 +174,23 @@ struct BoussinesqSolver::Implementation {
   std::size_t qy(int c, int k) const { return static_cast<std::size_t>(k) * nx + c; }  // Q face south of cell (c, k)
 
   void sweep(const StaticFrame& frame, const detail::SweepInput& input, const detail::SweepOutput& output) {
+    // One task per block (simple_partitioner): a sweep has only 13 blocks on the Berkhoff grid's x
+    // sweep, and whole-block stealing balances the two cores better than grouped chunks.
     const int blocks = (frame.rows + detail::kBlockLines - 1) / detail::kBlockLines;
-    tbb::parallel_for(0, blocks, [&](int block) {
-      SweepScratch& s = scratch.local();
-      const std::size_t needed = static_cast<std::size_t>(frame.cols + 5) * detail::kBlockLines;
-      if (s.upper.size() < needed) s.resize(frame.cols);
-      const int begin = block * detail::kBlockLines;
-      detail::sweep_lines(frame, constants, input, output, begin, std::min(frame.rows, begin + detail::kBlockLines), s);
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, blocks, 1),
+        [&](const tbb::blocked_range<int>& range) {
+          SweepScratch& s = scratch.local();
+          const std::size_t needed = static_cast<std::size_t>(frame.cols + 5) * detail::kBlockLines;
+          if (s.upper.size() < needed) s.resize(frame.cols);
+          for (int block = range.begin(); block < range.end(); ++block) {
+            const int begin = block * detail::kBlockLines;
+            detail::sweep_lines(frame, constants, input, output, begin, std::min(frame.rows, begin + detail::kBlockLines), s);
+          }
+        },
+        tbb::simple_partitioner());
   }
+
   void mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask);
   void step();
   void repair_negative_depths();
