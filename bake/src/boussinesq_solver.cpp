@@ -1,5 +1,6 @@
-// BoussinesqSolver: the time step (ADI, x sweep then y sweep on transposed data), the moving
-// shoreline's positivity repair, sponges, Kennedy et al. (2000) breaking, and the state I/O.
+// BoussinesqSolver: the time step (ADI: an x sweep on transposed data and a y sweep, in alternating
+// order if asked), the moving shoreline's positivity repair, the grid-scale flux filter, sponges,
+// Kennedy et al. (2000) breaking, and the state I/O.
 // docs/solver.md describes the scheme; boussinesq_sweep.cpp holds the discretised equations.
 #include "nearshore/bake/boussinesq_solver.hpp"
 

@@ -1,11 +1,11 @@
 // The Shapiro (1970) filter of the face fluxes (shapiro_filter.hpp, docs/solver.md).
 #include "shapiro_filter.hpp"
 
-#include <algorithm>
-#include <cmath>
-
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace nearshore::bake::detail {
 namespace {
@@ -47,9 +47,9 @@ std::vector<double> ShapiroFilter::weights() const {
 namespace {
 
 // Corrections of slow line s of a [slow][fast] array: out = (all filterable) * sum_k w_k u_{s+k}.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void slow_line_correction(const double* values, const double* filterable, int s, int slow_count, int fast_count,
-                          bool wall_normal, const double* w, int p, double* __restrict out, double* __restrict ok_line) {
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4"))) void slow_line_correction(
+    const double* values, const double* filterable, int s, int slow_count, int fast_count, bool wall_normal,
+    const double* w, int p, double* __restrict out, double* __restrict ok_line) {
   for (int f = 0; f < fast_count; ++f) {
     out[f] = 0.0;
     ok_line[f] = 1.0;
@@ -69,9 +69,9 @@ void slow_line_correction(const double* values, const double* filterable, int s,
 }
 
 // One line filtered along itself: `line` and `ok` hold it with p ghosts on each side.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void fast_line_filter(double* __restrict row, const double* __restrict line, const double* __restrict ok, int fast_count,
-                      const double* w, int p, double* __restrict sum, double* __restrict all_filterable) {
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4"))) void fast_line_filter(
+    double* __restrict row, const double* __restrict line, const double* __restrict ok, int fast_count,
+    const double* w, int p, double* __restrict sum, double* __restrict all_filterable) {
   for (int f = 0; f < fast_count; ++f) {
     sum[f] = 0.0;
     all_filterable[f] = 1.0;
@@ -105,9 +105,10 @@ void ShapiroFilter::along_slow(double* values, const double* filterable, int slo
     slow_line_correction(values, filterable, s, slow_count, fast_count, wall_normal, w.data(), p,
                          corrections + static_cast<std::size_t>(s) * fast_count, ok_line.data());
   });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size, 16384), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i) values[i] -= corrections[i];
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size, 16384),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i < range.end(); ++i) values[i] -= corrections[i];
+                    });
 }
 
 void ShapiroFilter::along_fast(double* values, const double* filterable, int slow_count, int fast_count,

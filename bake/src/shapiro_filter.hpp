@@ -17,9 +17,11 @@ namespace nearshore::bake::detail {
 struct ShapiroFilter {
   int half_order = 4;  ///< p; the filter's order is 2p
   /// Along the slow index: all fast lanes in lock-step (contiguous, vectorised).
-  void along_slow(double* values, const double* filterable, int slow_count, int fast_count, bool wall_normal) const;
+  void along_slow(double* values, const double* filterable, int slow_count, int fast_count,
+                  bool wall_normal) const;
   /// Along the fast index, each slow line on its own.
-  void along_fast(double* values, const double* filterable, int slow_count, int fast_count, bool wall_normal) const;
+  void along_fast(double* values, const double* filterable, int slow_count, int fast_count,
+                  bool wall_normal) const;
   /// The stencil (-delta^2)^p / 4^p with the filter's sign: u_new = u - sum_k weight_k u_{i+k}.
   std::vector<double> weights() const;
 };

@@ -2,12 +2,12 @@
 // the Shapiro (1970) filter of the fluxes: without it a grid-scale mode of P and Q grows in a narrow
 // flume at d/dx = 12 (the Mase & Kirby grid) until the run blows up (t = 198 s here); with it the
 // mode stays at noise level and the resolved waves keep their height.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "boussinesq_test_support.hpp"
 
@@ -46,7 +46,8 @@ FlumeRun run_narrow_flume(int shapiro_filter_order) {
   while (solver.time_s() < 120.0) {
     solver.step();
     const double t = solver.time_s();
-    if (const auto report = solver.check_stability()) ADD_FAILURE() << "unstable at t = " << report->time_s << " s: " << report->what;
+    if (const auto report = solver.check_stability())
+      ADD_FAILURE() << "unstable at t = " << report->time_s << " s: " << report->what;
     if ((t > 15.0 && t <= 20.0) || t > 115.0) {
       solver.cell_centred_fluxes(flux_x, flux_y);
       double across = 0.0;
@@ -68,11 +69,14 @@ FlumeRun run_narrow_flume(int shapiro_filter_order) {
 TEST(BoussinesqGridScale, ShapiroFilterStopsTheFineGridModeAndKeepsTheWaves) {
   const FlumeRun unfiltered = run_narrow_flume(0);
   const FlumeRun filtered = run_narrow_flume(8);
-  std::printf("narrow flume, d/dx = 12: max|Q| 15-20 s -> 115-120 s: unfiltered %.2e -> %.2e m^2/s, filtered %.2e -> %.2e m^2/s\n",
-              unfiltered.across_flux_early_m2_s, unfiltered.across_flux_late_m2_s, filtered.across_flux_early_m2_s,
-              filtered.across_flux_late_m2_s);
-  std::printf("wave height x = 6-14 m: unfiltered %.5f m, filtered %.5f m (%+.3f %%)\n", unfiltered.wave_height_m,
-              filtered.wave_height_m, 100.0 * (filtered.wave_height_m / unfiltered.wave_height_m - 1.0));
+  std::printf(
+      "narrow flume, d/dx = 12: max|Q| 15-20 s -> 115-120 s: unfiltered %.2e -> %.2e m^2/s, filtered %.2e -> "
+      "%.2e m^2/s\n",
+      unfiltered.across_flux_early_m2_s, unfiltered.across_flux_late_m2_s, filtered.across_flux_early_m2_s,
+      filtered.across_flux_late_m2_s);
+  std::printf("wave height x = 6-14 m: unfiltered %.5f m, filtered %.5f m (%+.3f %%)\n",
+              unfiltered.wave_height_m, filtered.wave_height_m,
+              100.0 * (filtered.wave_height_m / unfiltered.wave_height_m - 1.0));
   // The mode exists: a 1-D wave in a straight flume has no across flux, yet it grows ~30-fold in
   // 100 s without the filter (it doubles about every 10 s and ends the run at t = 198 s).
   EXPECT_GT(unfiltered.across_flux_late_m2_s, 10.0 * unfiltered.across_flux_early_m2_s);
