@@ -166,6 +166,7 @@ struct BoussinesqSolver::Implementation {
   std::vector<double> flux_x_guess, flux_y_guess, eta_base;
   std::vector<double> dispersive, dispersive_t, wet_cells;
   std::vector<double> filterable_x, filterable_y;  // grid-scale filter masks (P and Q faces), 0 or 1
+  detail::ShapiroFilter flux_filter;  // order solver.shapiro_filter_order, its stencil built once
   std::vector<double> sponge_cell, sponge_face_x, sponge_face_y;  // damping factor per step (1 = none)
   tbb::enumerable_thread_specific<SweepScratch> scratch;
   // Output rasters.
@@ -327,6 +328,7 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     v->assign(cells, 0.0);
   for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate, &s.flux_x_guess})
     v->assign(faces_x, 0.0);
+  s.flux_filter = detail::ShapiroFilter(parameters.shapiro_filter_order / 2);
   s.filterable_x.assign(faces_x, 0.0);
   s.filterable_y.assign(faces_y, 0.0);
   for (auto* v : {&s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across, &s.flux_y_new, &s.flux_y_guess})
@@ -606,8 +608,7 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
 }
 
 void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
-  const detail::ShapiroFilter filter{parameters.shapiro_filter_order / 2};
-  if (filter.half_order <= 0) return;
+  if (flux_filter.half_order() <= 0) return;
   // A face may be filtered where it is open (or a grid-edge wall, which the odd ghosts describe)
   // and the cells on both sides are wet with every neighbour wet: never across a shoreline or quay.
   const double* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
@@ -633,11 +634,11 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
     for (int c = 0; c < nx; ++c) out[c] = open[c] * south[c] * north[c];
   });
   // P: along x is its slow index (normal to the west and east walls), along y its fast index.
-  filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
-  filter.along_fast(flux_x_new.data(), filterable_x.data(), nx + 1, ny, false);
+  flux_filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
+  flux_filter.along_fast(flux_x_new.data(), filterable_x.data(), nx + 1, ny, false);
   // Q: along y is its slow index (normal to the south and north walls), along x its fast index.
-  filter.along_slow(flux_y_new.data(), filterable_y.data(), ny + 1, nx, true);
-  filter.along_fast(flux_y_new.data(), filterable_y.data(), ny + 1, nx, false);
+  flux_filter.along_slow(flux_y_new.data(), filterable_y.data(), ny + 1, nx, true);
+  flux_filter.along_fast(flux_y_new.data(), filterable_y.data(), ny + 1, nx, false);
 }
 
 void BoussinesqSolver::Implementation::apply_sponges() {

@@ -193,24 +193,18 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   }
 
   // 3. Iterate the time-centred terms that depend on the lines' own unknowns.
-  auto update_eta = [&]() {
-    // seed 003 eq. (1): n (eta - E)/dt = -(1/2) d(increment)/dx  (the Crank-Nicolson half of the new flux)
-    for (int c = 0; c < cols; ++c)
-      #pragma GCC ivdep
-      for (int j = 0; j < n; ++j) {
-        const std::size_t i = c * stride + lb + j;
-        eta_new[i] = eta_base[i] - 0.5 * dt * inv_dx * inv_n[i] * (increment[(c + 1) * W + j] - increment[c * W + j]);
-      }
+  // seed 003 eq. (1): n (eta - E)/dt = -(1/2) d(increment)/dx  (the Crank-Nicolson half of the new flux)
+  auto eta_from_increment = [&](int c, int j) __attribute__((always_inline)) {
+    const std::size_t i = c * stride + lb + j;
+    return eta_base[i] - 0.5 * dt * inv_dx * inv_n[i] * (increment[(c + 1) * W + j] - increment[c * W + j]);
   };
   const int iterations = std::max(1, k.iterations);
   for (int iteration = 0; iteration < iterations; ++iteration) {
-    // eta at t^{n+1/2} from this iterate (update_eta and the time average in one pass).
+    // eta at t^{n+1/2} from this iterate (eq. 1 and the time average in one pass).
     for (int c = 0; c < cols; ++c)
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
-        const std::size_t i = c * stride + lb + j;
-        const double eta_iterate = eta_base[i] - 0.5 * dt * inv_dx * inv_n[i] * (increment[(c + 1) * W + j] - increment[c * W + j]);
-        eta_half[c * W + j] = 0.5 * (eta_old[i] + eta_iterate);
+        eta_half[c * W + j] = 0.5 * (eta_old[c * stride + lb + j] + eta_from_increment(c, j));
       }
     // Beyond the ends of the line the grid edge is a wall: mirror ghost cells (-1 -> 0, -2 -> 1).
     #pragma GCC ivdep
@@ -340,7 +334,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       const double flux_new = std::clamp(old_f + increment[f * W + j], -limit, limit);
       increment[f * W + j] = flux_new - old_f;
     }
-  update_eta();
+  for (int c = 0; c < cols; ++c)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) eta_new[c * stride + lb + j] = eta_from_increment(c, j);
   for (int f = 0; f < faces; ++f)
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) normal_new[f * stride + lb + j] = normal_old[f * stride + lb + j] + increment[f * W + j];

@@ -28,17 +28,16 @@ Ghost ghost(int s, int count, bool wall_normal) {
 
 }  // namespace
 
-std::vector<double> ShapiroFilter::weights() const {
-  const int p = half_order;
-  std::vector<double> w(2 * p + 1);
+ShapiroFilter::ShapiroFilter(int half_order) : half_order_(std::max(half_order, 0)) {
+  const int p = half_order_;
+  weights_.resize(2 * p + 1);
   double binomial = 1.0;  // C(2p, j)
   const double scale = 1.0 / std::pow(4.0, p);
   for (int j = 0; j <= 2 * p; ++j) {
     const int k = j - p;
-    w[j] = ((k % 2 == 0) ? 1.0 : -1.0) * binomial * scale;
+    weights_[j] = ((k % 2 == 0) ? 1.0 : -1.0) * binomial * scale;
     binomial = binomial * (2 * p - j) / (j + 1);
   }
-  return w;
 }
 
 // The per-line kernels, compiled per instruction set like the sweep (boussinesq_sweep.cpp) and
@@ -92,9 +91,9 @@ __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4"))) vo
 
 void ShapiroFilter::along_slow(double* values, const double* filterable, int slow_count, int fast_count,
                                bool wall_normal) const {
-  const int p = half_order;
+  const int p = half_order_;
   if (p <= 0) return;
-  const std::vector<double> w = weights();
+  const double* w = weights_.data();
   const std::size_t size = static_cast<std::size_t>(slow_count) * fast_count;
   thread_local std::vector<double> correction;  // the original values are read while corrections build
   correction.resize(size);
@@ -102,7 +101,7 @@ void ShapiroFilter::along_slow(double* values, const double* filterable, int slo
   tbb::parallel_for(0, slow_count, [&](int s) {
     thread_local std::vector<double> ok_line;
     ok_line.resize(fast_count);
-    slow_line_correction(values, filterable, s, slow_count, fast_count, wall_normal, w.data(), p,
+    slow_line_correction(values, filterable, s, slow_count, fast_count, wall_normal, w, p,
                          corrections + static_cast<std::size_t>(s) * fast_count, ok_line.data());
   });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size, 16384),
@@ -113,9 +112,9 @@ void ShapiroFilter::along_slow(double* values, const double* filterable, int slo
 
 void ShapiroFilter::along_fast(double* values, const double* filterable, int slow_count, int fast_count,
                                bool wall_normal) const {
-  const int p = half_order;
+  const int p = half_order_;
   if (p <= 0) return;
-  const std::vector<double> w = weights();
+  const double* w = weights_.data();
   tbb::parallel_for(0, slow_count, [&](int s) {
     // The line with p ghosts on each side and its filterable flags (ghosts 1).
     thread_local std::vector<double> line, ok, sum, all_filterable;
@@ -134,7 +133,7 @@ void ShapiroFilter::along_fast(double* values, const double* filterable, int slo
         line[i + p] = g.sign * row[g.source];
         ok[i + p] = 1.0;
       }
-    fast_line_filter(row, line.data(), ok.data(), fast_count, w.data(), p, sum.data(), all_filterable.data());
+    fast_line_filter(row, line.data(), ok.data(), fast_count, w, p, sum.data(), all_filterable.data());
   });
 }
 

@@ -14,8 +14,11 @@
 
 namespace nearshore::bake::detail {
 
-struct ShapiroFilter {
-  int half_order = 4;  ///< p; the filter's order is 2p
+class ShapiroFilter {
+ public:
+  /// Order 2 * half_order (half_order = p >= 0; 0 = no filter). The stencil is built here, once.
+  explicit ShapiroFilter(int half_order = 4);
+  int half_order() const { return half_order_; }
   /// Along the slow index: all fast lanes in lock-step (contiguous, vectorised).
   void along_slow(double* values, const double* filterable, int slow_count, int fast_count,
                   bool wall_normal) const;
@@ -23,7 +26,11 @@ struct ShapiroFilter {
   void along_fast(double* values, const double* filterable, int slow_count, int fast_count,
                   bool wall_normal) const;
   /// The stencil (-delta^2)^p / 4^p with the filter's sign: u_new = u - sum_k weight_k u_{i+k}.
-  std::vector<double> weights() const;
+  const std::vector<double>& weights() const { return weights_; }
+
+ private:
+  int half_order_ = 4;
+  std::vector<double> weights_;
 };
 
 }  // namespace nearshore::bake::detail
