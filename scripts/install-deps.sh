@@ -19,7 +19,7 @@ packages=(
   libeigen3-dev
   libtbb-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
-  libspdlog-dev libfmt-dev
+  libspdlog-dev libfmt-dev libxxhash-dev
   libgtest-dev libbenchmark-dev
   xvfb xauth mesa-utils libgl1-mesa-dri libegl1-mesa-dev libegl-dev libgl-dev libgles-dev
   python3 python3-glad fonts-dejavu-core

@@ -38,6 +38,27 @@ void parse_structure(const std::string& text, std::map<std::string, bathymetry::
   styles[text.substr(0, equals)] = style;
 }
 
+// The flag of each parameter that library errors may name (command_support.hpp), as the options
+// below set them: BathyRequest, and the ReadOptions build_harbour_grid passes on to read_source.
+FlagTable bathy_flags() {
+  return {{"BathyRequest::spacing_m", "--spacing"},
+          {"BathyRequest::bbox_lon_lat", "--bbox"},
+          {"BathyRequest::bbox_projected_m", "--bbox-m"},
+          {"BathyRequest::sign", "--sign"},
+          {"ReadOptions::sign", "--sign"},
+          {"BathyRequest::text_crs", "--xyz-crs"},
+          {"ReadOptions::text_crs", "--xyz-crs"},
+          {"BathyRequest::projection", "--projection"},
+          {"BathyRequest::structure_styles", "--structure NAME=WIDTH_M:POROSITY"},
+          {"BathyRequest::water_level_m", "--water-level"},
+          {"BathyRequest::minimum_depth_m", "--min-depth"},
+          {"BathyRequest::maximum_slope", "--max-slope"},
+          {"BathyRequest::land_elevation_m", "--land-elevation"},
+          {"BathyRequest::fill_uncovered_from_nearest", "--fill-uncovered"},
+          {"BathyRequest::coastline_band_m", "--coastline-band"},
+          {"BathyRequest::leave_one_out", "--leave-one-out"}};
+}
+
 }  // namespace
 
 void add_bathy_command(CLI::App& app) {
@@ -78,7 +99,7 @@ void add_bathy_command(CLI::App& app) {
   command->add_flag("--leave-one-out", options->leave_one_out, "Cross-validate: re-grid each chart sounding from the others");
   command->add_flag("--json", options->json, "Print summary.json instead of the short report");
   set_example(*command, "nearshore bathy ../shared/charts/tacoma_us5wa22m/US5WA22M.000 --spacing 10 -o out/tacoma");
-  command->callback([options]() {
+  command->callback(naming_flags_in_errors(bathy_flags(), [options]() {
     bathymetry::BathyRequest request;
     for (const auto& input : options->inputs) request.inputs.emplace_back(input);
     request.spacing_m = options->spacing_m;
@@ -123,7 +144,7 @@ void add_bathy_command(CLI::App& app) {
                                       summary["leave_one_out"]["median_absolute_error_m"].get<double>(),
                                       summary["leave_one_out"]["p90_absolute_error_m"].get<double>()).c_str());
     std::printf("wrote %s/{depth.tif, depth.exr, coastline.vdb, preview.png, summary.json}\n", options->output.c_str());
-  });
+  }));
 }
 
 }  // namespace nearshore::tools

@@ -15,19 +15,19 @@
 #include <tbb/global_control.h>
 
 #include "command_support.hpp"
-#include "nearshore/bake/boussinesq_solver.hpp"
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::tools {
 namespace {
 
-using bake::BoussinesqSolver;
+using boussinesq::BoussinesqSolver;
 
 struct BenchCase {
   std::string name;
   HarbourGrid harbour;
-  bake::SolverParameters parameters;
-  bake::WaveMaker wave_maker;
+  boussinesq::SolverParameters parameters;
+  boussinesq::WaveMaker wave_maker;
   int steps = 0;
 };
 
@@ -54,11 +54,11 @@ BenchCase berkhoff_case(int steps) {
       bench.harbour.still_water_depth_m(c, r) = static_cast<float>(std::clamp(0.45 - (x - 8.0) / 50.0, 0.10, 0.45));
     }
   bench.parameters.time_step_s = 0.01;
-  bench.parameters.sponges = {{bake::Side::kWest, 1.5}, {bake::Side::kEast, 2.0}};
-  bench.wave_maker.kind = bake::WaveMaker::Kind::kComponents;
+  bench.parameters.sponges = {{boussinesq::Side::kWest, 1.5}, {boussinesq::Side::kEast, 2.0}};
+  bench.wave_maker.kind = boussinesq::WaveMaker::Kind::kComponents;
   bench.wave_maker.sea_state.components = {{0.0116, 2.0 * std::numbers::pi, 0.0, 0.0}};
   bench.wave_maker.source_line_m = 2.5;
-  bench.wave_maker.facing = bake::Side::kWest;
+  bench.wave_maker.facing = boussinesq::Side::kWest;
   return bench;
 }
 
@@ -79,13 +79,13 @@ BenchCase harbour_case(int steps) {
     }
   bench.parameters.courant_number = 0.5;
   bench.parameters.dispersion_cutoff_depth_m = 0.5;
-  bench.parameters.sponges = {{bake::Side::kSouth, 200.0}, {bake::Side::kWest, 200.0}, {bake::Side::kEast, 200.0}};
-  bench.wave_maker.kind = bake::WaveMaker::Kind::kComponents;
+  bench.parameters.sponges = {{boussinesq::Side::kSouth, 200.0}, {boussinesq::Side::kWest, 200.0}, {boussinesq::Side::kEast, 200.0}};
+  bench.wave_maker.kind = boussinesq::WaveMaker::Kind::kComponents;
   for (int i = 0; i < 40; ++i)
     bench.wave_maker.sea_state.components.push_back(
         {0.05, 2.0 * std::numbers::pi / (8.0 + 0.1 * i), 0.5 * std::numbers::pi + 0.02 * (i - 20), 0.7 * i});
   bench.wave_maker.source_line_m = 400.0;
-  bench.wave_maker.facing = bake::Side::kSouth;
+  bench.wave_maker.facing = boussinesq::Side::kSouth;
   return bench;
 }
 

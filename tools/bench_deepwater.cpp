@@ -15,9 +15,9 @@
 #include <tbb/global_control.h>
 
 #include "command_support.hpp"
-#include "nearshore/bake/deep_water.hpp"
+#include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/bake/deep_water_tiles.hpp"
-#include "nearshore/bake/sea_state_beaufort.hpp"
+#include "nearshore/ocean/sea_state_beaufort.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
 
@@ -64,7 +64,7 @@ void add_bench_deepwater(CLI::App& bench) {
       throw Error("nearshore bench deepwater", "needs --frames, --cascades, --sample-frames >= 1 and --fps > 0",
                   "use the defaults");
     ProgressBar::set_quiet(options->json);
-    const bake::BeaufortPreset preset = bake::beaufort_preset(options->beaufort);
+    const ocean::BeaufortPreset preset = ocean::beaufort_preset(options->beaufort);
     if (!preset.spectrum)
       throw Error("nearshore bench deepwater", "Beaufort 0 is a flat sea: there is nothing to synthesise",
                   "use --beaufort 1 to 12");
@@ -76,14 +76,14 @@ void add_bench_deepwater(CLI::App& bench) {
 
     nlohmann::json results = nlohmann::json::array();
     for (int grid_size : options->grid_sizes) {
-      bake::DeepWaterSpecification spec;
+      ocean::DeepWaterSpecification spec;
       spec.spectrum = preset.spectrum;
       spec.grid_size = grid_size;
       spec.tile_lengths_m =
-          bake::cascade_tile_lengths_for_m(*preset.spectrum, grid_size, options->cascades, options->shortest_wavelength_m);
+          ocean::cascade_tile_lengths_for_m(*preset.spectrum, grid_size, options->cascades, options->shortest_wavelength_m);
       spec.loop_period_s = options->loop_period_s;
       const auto build_start = std::chrono::steady_clock::now();
-      bake::DeepWaterField field(spec);
+      ocean::DeepWaterField field(spec);
       const double build_s = seconds_since(build_start);
 
       std::vector<double> frame_s;

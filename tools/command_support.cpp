@@ -1,8 +1,16 @@
 #include "command_support.hpp"
 
+#include <cctype>
 #include <cstdio>
 
+#include "nearshore/core/error.hpp"
+
 namespace nearshore::tools {
+namespace {
+
+bool is_identifier_character(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+}  // namespace
 
 void set_example(CLI::App& command, const std::string& example) {
   command.footer("\nExample:\n  " + example + "\n\nMore: docs/commands/" + command.get_name() + ".md");
@@ -19,6 +27,33 @@ CLI::App* add_unbuilt_command(CLI::App& app, const std::string& name, const std:
     throw ExitStatus{3};
   });
   return command;
+}
+
+std::string name_flags(const std::string& text, const FlagTable& flags) {
+  std::string named = text;
+  for (const auto& [parameter, flag] : flags) {
+    const std::string replacement = parameter + " (" + flag + ")";
+    std::size_t at = named.find(parameter);
+    while (at != std::string::npos) {
+      // Whole names only: BathyRequest::sign is not the start of BathyRequest::signature.
+      const std::size_t end = at + parameter.size();
+      const bool whole = (at == 0 || !is_identifier_character(named[at - 1])) &&
+                         (end == named.size() || !is_identifier_character(named[end]));
+      if (whole) named.replace(at, parameter.size(), replacement);
+      at = named.find(parameter, whole ? at + replacement.size() : end);
+    }
+  }
+  return named;
+}
+
+std::function<void()> naming_flags_in_errors(FlagTable flags, std::function<void()> callback) {
+  return [flags = std::move(flags), callback = std::move(callback)]() {
+    try {
+      callback();
+    } catch (const Error& e) {
+      throw Error(name_flags(e.subject(), flags), name_flags(e.problem(), flags), name_flags(e.fix(), flags));
+    }
+  };
 }
 
 }  // namespace nearshore::tools

@@ -1,7 +1,11 @@
 #pragma once
-// What every subcommand of `nearshore` shares: its registration function and the plain
-// "not built yet" answer for a subcommand whose issue is still open.
+// What every subcommand of `nearshore` shares: its registration function, the plain "not built
+// yet" answer for a subcommand whose issue is still open, and the translation of library errors
+// into the command's own flags.
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -32,5 +36,18 @@ CLI::App* add_unbuilt_command(CLI::App& app, const std::string& name, const std:
 
 /// The example line shown at the end of a subcommand's --help.
 void set_example(CLI::App& command, const std::string& example);
+
+/// Library errors name the C++ parameter at fault ("BathyRequest::spacing_m = 0: ..."), never a
+/// command-line flag, so that a host engine behind the API can act on them. A command that sets
+/// parameters from its own flags lists them, {parameter, flag}, and its users read both:
+/// "BathyRequest::spacing_m (--spacing) = 0: ...".
+using FlagTable = std::vector<std::pair<std::string, std::string>>;
+
+/// `text` with " (flag)" after every whole occurrence of a parameter of `flags`.
+std::string name_flags(const std::string& text, const FlagTable& flags);
+
+/// `callback` (a subcommand's), rethrowing any nearshore::Error it throws with its subject, problem
+/// and fix passed through name_flags: command->callback(naming_flags_in_errors(flags, [...] {...})).
+std::function<void()> naming_flags_in_errors(FlagTable flags, std::function<void()> callback);
 
 }  // namespace nearshore::tools

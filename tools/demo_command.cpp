@@ -29,6 +29,7 @@
 #include "nearshore/loops/inspector.hpp"
 #include "nearshore/playback/sequence_player.hpp"
 #include "nearshore/playback/water_renderer.hpp"
+#include "nearshore/plot/plot.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/sequence/loop_playback.hpp"
 
@@ -163,7 +164,7 @@ void run_demo(const DemoOptions& options) {
     player.advance_to(0.0);
     renderer.set_frame(player.surface_elevation_m(), &player.breaking());
     renderer.render(playback::Camera::overlooking(harbour.geometry), playback::Lighting{}, 1280, 720);
-    renderer.read_pixels().write_png(screenshot);
+    write_png(renderer.read_pixels(), screenshot);
     return fmt::format("{} (1280 x 720, {})", screenshot.string(), window.gl_description());
   });
 }

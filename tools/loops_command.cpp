@@ -74,6 +74,28 @@ void print_report(const loops::LoopsReport& report) {
   for (const loops::LoopReport& loop : report.best_by_length) print_loop(loop);
 }
 
+// The flag of each parameter that library errors may name (command_support.hpp), as the options
+// below set them, and the bake's own, which the user of this command gives to `nearshore bake`.
+FlagTable loops_flags() {
+  return {{"LoopsOptions::recompute", "--recompute"},
+          {"LoopsOptions::verify", "--verify"},
+          {"SequenceReader::verify_checksums", "--verify"},
+          {"LoopsOptions::report_lengths_s", "--lengths-s"},
+          {"LoopsOptions::requested_loop_s", "--loop-s"},
+          {"LoopsOptions::max_crossfade_s", "--max-crossfade-s"},
+          {"LoopsOptions::period_crossfade_s", "--period-crossfade-s"},
+          {"TransitionOptions::motion_weight", "--delta"},
+          {"TransitionOptions::sigma", "--sigma"},
+          {"TransitionOptions::filter_half_width", "--filter-width"},
+          {"TransitionOptions::future_discount", "--alpha"},
+          {"TransitionOptions::candidates_per_frame", "--candidates"},
+          {"TransitionOptions::min_probability", "--min-probability"},
+          {"GramOptions::memory_budget_bytes", "--memory-mb"},
+          {"GramOptions::threads", "--threads"},
+          {"BakeOptions::output_folder", "nearshore bake -o"},
+          {"BakeOptions::resume", "nearshore bake --resume"}};
+}
+
 }  // namespace
 
 void add_loops_command(CLI::App& app) {
@@ -130,7 +152,7 @@ void add_loops_command(CLI::App& app) {
   command->add_flag("--verify", options->verify, "Verify every file's checksum first");
   command->add_flag("--no-write", options->no_write, "Do not write loops.json / loops_gram.bin");
   set_example(*command, "nearshore loops out/bake --png out/loops --max-seam 1.0");
-  command->callback([options]() {
+  command->callback(naming_flags_in_errors(loops_flags(), [options]() {
     if (options->json) ProgressBar::set_quiet(true);
     loops::LoopsOptions analysis;
     analysis.transitions = options->transitions;
@@ -157,7 +179,7 @@ void add_loops_command(CLI::App& app) {
                    worst, options->max_seam);
       throw ExitStatus{2};
     }
-  });
+  }));
 }
 
 }  // namespace nearshore::tools

@@ -12,6 +12,7 @@
 #include "nearshore/core/error.hpp"
 #include "nearshore/playback/sequence_player.hpp"
 #include "nearshore/playback/water_renderer.hpp"
+#include "nearshore/plot/plot.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/sequence/loop_playback.hpp"
 
@@ -63,7 +64,7 @@ void play(const PlayOptions& o) {
     player.advance_to(o.time_s);
     renderer.set_frame(player.surface_elevation_m(), &player.breaking());
     renderer.render(camera, lighting, o.width_px, o.height_px);
-    renderer.read_pixels().write_png(o.screenshot);
+    write_png(renderer.read_pixels(), o.screenshot);
     std::printf("screenshot: %s (%d x %d, t = %.2f s)\n", o.screenshot.c_str(), o.width_px, o.height_px, o.time_s);
     return;
   }

@@ -8,30 +8,34 @@
 #include <fmt/core.h>
 
 #include "nearshore/bake/bake_gauges.hpp"
-#include "nearshore/bake/deep_water.hpp"
+#include "nearshore/ocean/deep_water.hpp"
+#include "nearshore/bake/deep_water_record.hpp"
+#include "nearshore/boussinesq/initial_conditions.hpp"
 #include "nearshore/bake/deep_water_tiles.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/hash.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/sequence/sequence_writer.hpp"
 
 namespace nearshore::bake {
+
+using namespace nearshore::ocean;       // spectra, sea states, the deep-water field
+using namespace nearshore::boussinesq;  // the solver and its parameters
 namespace fs = std::filesystem;
 namespace {
 
-constexpr char kCheckpointMagic[16] = "nearshore-ckpt1";
+// Version 2: the case fingerprint and the solver state's checksums are XXH64 (were FNV-1a).
+constexpr char kCheckpointMagic[16] = "nearshore-ckpt2";
 // The stability guard looks at the whole field after every step: a scan costs a few per cent of a
 // step, and a blow-up caught in its first step names the cell where it starts, before the implicit
 // sweeps have carried NaN along the whole row.
 constexpr long kStabilityCheckSteps = 1;
 
-// FNV-1a over the canonical dump of the case document: a checkpoint only resumes the case it was
-// written for (the solver itself also checks grid, dt and its parameters on load).
+// XXH64 (core/hash.hpp) of the canonical dump of the case document: a checkpoint only resumes the
+// case it was written for (the solver itself also checks grid, dt and its parameters on load).
 std::uint64_t case_fingerprint(const BakeCase& bake_case) {
-  std::uint64_t hash = 14695981039346656037ull;
-  const std::string text = bake_case.source.dump() + fmt::format("|dt={:.17g}", bake_case.solver.time_step_s);
-  for (unsigned char c : text) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
+  return xxh64(bake_case.source.dump() + fmt::format("|dt={:.17g}", bake_case.solver.time_step_s));
 }
 
 struct StepPlan {
@@ -81,57 +85,56 @@ void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const Bou
 void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, BoussinesqSolver& solver, GaugeRecorder& gauges) {
   const std::string subject = file.string();
   if (!fs::exists(file))
-    throw Error(subject, "does not exist, so there is nothing to resume", "bake again without --resume");
+    throw Error(subject, "does not exist, so there is nothing to resume", "bake again from the start (BakeOptions::resume = false)");
   std::ifstream in(file, std::ios::binary);
   char magic[sizeof kCheckpointMagic] = {};
   std::uint64_t stored = 0;
-  if (!in.read(magic, sizeof magic) || std::string(magic, sizeof magic) != std::string(kCheckpointMagic, sizeof magic))
-    throw Error(subject, "is not a nearshore bake checkpoint", "delete it and bake again without --resume");
+  const bool magic_read = static_cast<bool>(in.read(magic, sizeof magic));
+  if (magic_read && std::string(magic) == "nearshore-ckpt1")
+    throw Error(subject, "is a checkpoint of an older nearshore (version 1, FNV-1a fingerprints)",
+                "bake again from the start (BakeOptions::resume = false)");
+  if (!magic_read || std::string(magic, sizeof magic) != std::string(kCheckpointMagic, sizeof magic))
+    throw Error(subject, "is not a nearshore bake checkpoint", "delete it and bake again from the start (BakeOptions::resume = false)");
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != fingerprint)
     throw Error(subject, "was written for a different case file or time step",
-                "bake again without --resume (a checkpoint only continues the exact case that wrote it)");
+                "bake again from the start, BakeOptions::resume = false (a checkpoint only continues the exact case that wrote it)");
   gauges.load(in, subject);
   solver.load_state(in);
 }
 
 // How the deep-water field sits on the harbour grid and meets the bake (docs/deep-water.md,
 // "Coherence"): the manifest's deep_water.coupling, for the runtime.
-nlohmann::json deep_water_coupling(const BakeCase& bake_case) {
-  const GridGeometry& geometry = bake_case.harbour.geometry;
-  nlohmann::json coupling = {
-      {"origin_x_m", geometry.origin_x_m},
-      {"origin_y_m", geometry.origin_y_m},
-      {"frame",
-       "the field's x = 0, y = 0 is the harbour grid's south-west corner (geometry origin_x_m, origin_y_m); "
-       "x east, y north, m"},
-      {"time",
-       "the field's t is the bake's simulated time: frame k is at first_frame_time_s + k frame_interval_s"},
-      {"drives_wave_maker", bake_case.deep_water_maker.has_value()}};
+sequence::DeepWaterCouplingRecord deep_water_coupling(const BakeCase& bake_case) {
+  sequence::DeepWaterCouplingRecord coupling;
+  coupling.origin_x_m = bake_case.harbour.geometry.origin_x_m;
+  coupling.origin_y_m = bake_case.harbour.geometry.origin_y_m;
+  coupling.drives_wave_maker = bake_case.deep_water_maker.has_value();
   if (bake_case.deep_water_maker) {
-    coupling["wave_maker"] = bake_case.deep_water_maker->to_json();
-    coupling["blending"] = bake_case.deep_water_maker->blending.to_json();
+    coupling.wave_maker = bake_case.deep_water_maker->record();
+    coupling.blending = bake_case.deep_water_maker->blending.record();
   }
   return coupling;
 }
 
 // The summary's deep_water: what the runtime got and how much of the field the wave maker carries.
-nlohmann::json deep_water_summary(const nlohmann::json& description) {
+nlohmann::json deep_water_summary(const sequence::DeepWaterSection& section) {
   std::uintmax_t bytes = 0;
-  for (const nlohmann::json& cascade : description["cascades"])
-    bytes += cascade.value("coefficients_bytes", std::uintmax_t{0});
-  nlohmann::json summary = {{"cascades", description["cascades"].size()},
-                            {"grid_size", description["cascades"][0]["grid_size"]},
-                            {"significant_wave_height_m", description["significant_wave_height_m"]},
+  for (const sequence::DeepWaterCascadeRecord& cascade : section.cascades)
+    if (cascade.coefficients) bytes += cascade.coefficients->bytes;
+  const nlohmann::json recorded = sequence::deep_water_section_to_json(section);
+  nlohmann::json summary = {{"cascades", section.cascades.size()},
+                            {"grid_size", section.cascades.front().grid_size},
+                            {"significant_wave_height_m", section.significant_wave_height_m},
                             {"coefficients_bytes", bytes},
-                            {"drives_wave_maker", description["coupling"]["drives_wave_maker"]}};
-  if (description["coupling"].contains("wave_maker")) {
-    const nlohmann::json& maker = description["coupling"]["wave_maker"];
-    summary["wave_maker_components"] = maker["components"];
-    summary["variance_fraction"] = maker["variance_fraction"];
-    summary["carried_significant_wave_height_m"] = maker["carried_significant_wave_height_m"];
-    summary["blending"] = description["coupling"]["blending"];
+                            {"drives_wave_maker", section.coupling && section.coupling->drives_wave_maker}};
+  if (section.coupling && section.coupling->wave_maker) {
+    const sequence::DeepWaterMakerRecord& maker = *section.coupling->wave_maker;
+    summary["wave_maker_components"] = maker.components;
+    summary["variance_fraction"] = maker.variance_fraction;
+    summary["carried_significant_wave_height_m"] = maker.carried_significant_wave_height_m;
+    summary["blending"] = recorded["coupling"]["blending"];
   }
-  if (description.contains("tile_set")) summary["tile_set"] = description["tile_set"];
+  if (section.tile_set) summary["tile_set"] = recorded["tile_set"];
   return summary;
 }
 
@@ -177,6 +180,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   } else {
     std::error_code ignored;
     fs::remove(checkpoint, ignored);  // a stale checkpoint of an earlier run must never be resumed
+    if (bake_case.solitary_wave) start_solitary_wave(solver, bake_case.harbour, *bake_case.solitary_wave);
   }
   double checkpoint_time_s = options.resume ? solver.time_s() : -1.0;
 
@@ -192,25 +196,24 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     // the cascades' coefficients beside the frames, their description in the manifest.
     try {
       DeepWaterField field(*bake_case.deep_water);
-      description.deep_water = field.write_coefficients(folder);
-      description.deep_water["coupling"] = deep_water_coupling(bake_case);
+      sequence::DeepWaterSection section = describe_deep_water_field(field);
+      write_deep_water_coefficient_files(field, folder, section);
+      section.coupling = deep_water_coupling(bake_case);
       if (bake_case.deep_water_tile_set_frame_interval_s > 0) {
         const int frames_per_loop = static_cast<int>(
             std::lround(bake_case.deep_water->loop_period_s / bake_case.deep_water_tile_set_frame_interval_s));
         const TileSetSummary tiles =
             write_deep_water_tile_set(field, bake_case.deep_water_tile_set_cascade, frames_per_loop, folder / "deep_water_tiles");
-        description.deep_water["tile_set"] = {{"folder", "deep_water_tiles"},
-                                              {"cascade", bake_case.deep_water_tile_set_cascade},
-                                              {"frames", tiles.frame_count},
-                                              {"frame_interval_s", tiles.frame_interval_s},
-                                              {"bytes", tiles.bytes}};
+        section.tile_set = sequence::DeepWaterTileSetRecord{"deep_water_tiles", bake_case.deep_water_tile_set_cascade,
+                                                            tiles.frame_count, tiles.frame_interval_s, tiles.bytes};
       }
+      description.deep_water = std::move(section);
     } catch (const Error& error) {
       throw Error(bake_case.case_file.string(), "[deep_water] " + error.problem(), error.fix());
     }
   }
   nlohmann::json deep_water_summary_json =
-      bake_case.deep_water ? deep_water_summary(description.deep_water) : nlohmann::json();
+      description.deep_water ? deep_water_summary(*description.deep_water) : nlohmann::json();
   sequence::SequenceWriter writer(folder, bake_case.harbour, description, options.resume);
 
   Raster<float> flux_x, flux_y;

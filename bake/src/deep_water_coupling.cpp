@@ -1,15 +1,19 @@
 #include "nearshore/bake/deep_water_coupling.hpp"
 
+#include "nearshore/boussinesq/model_dispersion.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include <fmt/format.h>
 
-#include "boussinesq_source.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
+
+using namespace nearshore::ocean;       // spectra, sea states, the deep-water field
+using namespace nearshore::boussinesq;  // the solver and its parameters
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -42,7 +46,7 @@ double discrete_normal_wavenumber_rad_m(double w, double l, double d, const Inla
   if (!(d > 0.0)) return 0.0;
   const double dx = model.spacing_m, dt = model.time_step_s;
   const double w_continuous = dt > 0.0 ? 2.0 / dt * std::tan(0.5 * w * dt) : w;  // Crank-Nicolson phase lag
-  const double k = detail::boussinesq_wavenumber(w_continuous, d, model.dispersion_coefficient);
+  const double k = boussinesq_wavenumber(w_continuous, d, model.dispersion_coefficient);
   const double l_grid = 2.0 / dx * std::sin(0.5 * l * dx);  // staggered differences: k -> (2/dx) sin(k dx/2)
   const double normal_grid_squared = k * k - l_grid * l_grid;
   if (!(normal_grid_squared > 0.0)) return 0.0;
@@ -52,7 +56,7 @@ double discrete_normal_wavenumber_rad_m(double w, double l, double d, const Inla
 // cos(theta) of the continuous wave at depth d with tangential wavenumber l (Snell), 0 if evanescent.
 double normal_cosine(double w, double l, double d, double dispersion_coefficient) {
   if (!(d > 0.0)) return 0.0;
-  const double k = detail::boussinesq_wavenumber(w, d, dispersion_coefficient);
+  const double k = boussinesq_wavenumber(w, d, dispersion_coefficient);
   return k > std::abs(l) ? std::sqrt(1.0 - (l / k) * (l / k)) : 0.0;
 }
 
@@ -69,19 +73,10 @@ double BlendingZone::baked_weight(double distance_inland_m) const {
   return s * s;
 }
 
-nlohmann::json BlendingZone::to_json() const {
-  return {{"side", side_name(side)},
-          {"axis", normal_is_x(side) ? "x" : "y"},
-          {"source_line_m", source_line_m},
-          {"start_m", start_m},
-          {"width_m", width_m},
-          {"weight",
-           "w(s) = 0 for s <= start_m, sin^2(pi/2 (s - start_m) / width_m) inside, 1 beyond; shown = (1 - w) "
-           "fft + w baked"},
-          {"predicted_relative_rms_start", predicted_relative_rms_start},
-          {"predicted_relative_rms_end", predicted_relative_rms_end},
-          {"seamless", seamless},
-          {"seamless_relative_rms", kSeamlessRelativeRms}};
+sequence::DeepWaterBlendingRecord BlendingZone::record() const {
+  return {side_name(side),        normal_is_x(side) ? "x" : "y",  source_line_m, start_m,
+          width_m,                predicted_relative_rms_start,   predicted_relative_rms_end,
+          seamless,               kSeamlessRelativeRms};
 }
 
 double CoupledWaveMaker::relative_rms_drift(double distance_inland_m) const {
@@ -117,7 +112,7 @@ double CoupledWaveMaker::relative_rms_drift(double distance_inland_m) const {
   return reference > 0 ? std::sqrt(difference / reference) : 0.0;
 }
 
-nlohmann::json CoupledWaveMaker::to_json() const {
+sequence::DeepWaterMakerRecord CoupledWaveMaker::record() const {
   double lowest = 0.0, highest = 0.0;
   if (!sea_state.components.empty()) {
     const auto [low, high] =
@@ -128,14 +123,14 @@ nlohmann::json CoupledWaveMaker::to_json() const {
     lowest = low->angular_frequency_rad_s;
     highest = high->angular_frequency_rad_s;
   }
-  return {{"components", sea_state.components.size()},
-          {"variance_fraction", variance_fraction()},
-          {"field_variance_m2", field_variance_m2},
-          {"carried_variance_m2", carried_variance_m2},
-          {"carried_significant_wave_height_m", 4.0 * std::sqrt(carried_variance_m2)},
-          {"source_depth_m", source_depth_m},
-          {"min_frequency_hz", lowest / (2 * kPi)},
-          {"max_frequency_hz", highest / (2 * kPi)}};
+  return {sea_state.components.size(),
+          variance_fraction(),
+          field_variance_m2,
+          carried_variance_m2,
+          4.0 * std::sqrt(carried_variance_m2),
+          source_depth_m,
+          lowest / (2 * kPi),
+          highest / (2 * kPi)};
 }
 
 double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
@@ -198,7 +193,7 @@ CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker&
     if (lattice_normal * sign <= 0.0 || w < band.min_frequency_rad_s || w > band.max_frequency_rad_s ||
         c.amplitude_m < band.min_amplitude_ratio * largest_m)
       continue;
-    const double k_model = detail::boussinesq_wavenumber(w, d, dispersion_coefficient);
+    const double k_model = boussinesq_wavenumber(w, d, dispersion_coefficient);
     const double normal_squared = k_model * k_model - l * l;
     if (normal_squared < std::pow(band.min_normal_fraction * k_model, 2))
       continue;  // beyond the largest angle to the normal
@@ -250,7 +245,7 @@ CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker&
         coupled.sea_state.components.begin(), coupled.sea_state.components.end(),
         [](const WaveComponent& a, const WaveComponent& b) { return a.amplitude_m < b.amplitude_m; });
     const double peak_wavelength_m =
-        2 * kPi / detail::boussinesq_wavenumber(peak->angular_frequency_rad_s, d, dispersion_coefficient);
+        2 * kPi / boussinesq_wavenumber(peak->angular_frequency_rad_s, d, dispersion_coefficient);
     zone.start_m = 3.0 * peak_wavelength_m / std::sqrt(20.0);
     zone.width_m = peak_wavelength_m;
     const auto end_error = [&](double width_m) { return coupled.relative_rms_drift(zone.start_m + width_m); };

@@ -1,5 +1,7 @@
 #include "nearshore/bake/deep_water_tiles.hpp"
 
+#include "nearshore/bake/deep_water_record.hpp"
+
 #include <algorithm>
 
 #include <fmt/format.h>
@@ -10,6 +12,8 @@
 #include "nearshore/sequence/sequence_writer.hpp"
 
 namespace nearshore::bake {
+
+using namespace nearshore::ocean;  // the deep-water field
 
 TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int frames_per_loop,
                                          const std::filesystem::path& folder, const sequence::FrameEncoding& encoding,
@@ -40,8 +44,9 @@ TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int
   description.frame_interval_s = spec.loop_period_s / frames_per_loop;
   description.loop_period_s = frame_count == frames_per_loop ? spec.loop_period_s : 0.0;
   description.seed = spec.seed;
-  description.deep_water = field.description();
-  description.deep_water["tile_set_cascade"] = cascade;
+  sequence::DeepWaterSection section = describe_deep_water_field(field);
+  section.tile_set_cascade = cascade;
+  description.deep_water = std::move(section);
   description.wave_conditions = {{"source", "deep-water FFT field"}, {"spectrum", spec.spectrum->to_json()}};
   description.encoding = encoding;
   sequence::SequenceWriter writer(folder, open_water, description);

@@ -18,7 +18,7 @@
 #include "nearshore/bathymetry/natural_neighbour.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
-#include "nearshore/core/plot.hpp"
+#include "nearshore/plot/plot.hpp"
 #include "nearshore/core/progress.hpp"
 
 namespace nearshore::bathymetry {
@@ -40,7 +40,8 @@ MapProjection choose_projection(const std::string& spec, LonLat centre) {
     } catch (const std::logic_error&) {
     }
   }
-  throw Error("--projection " + spec, "is not a projection nearshore knows", "use utm, utm:10N (zone and hemisphere) or local-tm");
+  throw Error("BathyRequest::projection = '" + spec + "'", "is not a projection nearshore knows",
+              "use utm, utm:10N (zone and hemisphere) or local-tm");
 }
 
 double available_memory_bytes() {
@@ -70,11 +71,12 @@ GridGeometry lay_grid(const std::array<double, 4>& box_m, double spacing_m, cons
   if (needed > available || columns > 1e9 || rows > 1e9)
     throw Error(fmt::format("grid of {:.0f} x {:.0f} cells at {} m", columns, rows, spacing_m),
                 fmt::format("would need about {:.3g} GB of memory but {:.3g} GB are available", needed / 1e9, available / 1e9),
-                fmt::format("use a coarser --spacing (about {:.3g} m fits) or a smaller --bbox",
+                fmt::format("use a BathyRequest::spacing_m of about {:.3g} m or more, or a smaller "
+                            "BathyRequest::bbox_lon_lat",
                             spacing_m * std::sqrt(needed / available) * 1.05));
   if (columns < 2 || rows < 2)
     throw Error(fmt::format("grid at {} m", spacing_m), fmt::format("has only {:.0f} x {:.0f} cells", columns, rows),
-                "use a finer --spacing or a larger --bbox");
+                "use a finer BathyRequest::spacing_m or a larger BathyRequest::bbox_lon_lat");
   g.columns = static_cast<int>(columns);
   g.rows = static_cast<int>(rows);
   g.crs_wkt = projection.crs_wkt();
@@ -330,8 +332,11 @@ double estimated_peak_bytes(double cells, std::size_t input_count) {
 }
 
 BathyResult build_harbour_grid(const BathyRequest& request) {
-  if (request.inputs.empty()) throw Error("nearshore bathy", "no input given", "name at least one chart, raster or sounding file");
-  if (!(request.spacing_m > 0)) throw Error("--spacing", fmt::format("{} m is not a positive spacing", request.spacing_m), "give e.g. --spacing 10");
+  if (request.inputs.empty())
+    throw Error("BathyRequest::inputs", "is empty", "name at least one chart, raster or sounding file");
+  if (!(request.spacing_m > 0))
+    throw Error(fmt::format("BathyRequest::spacing_m = {}", request.spacing_m), "is not a positive cell size",
+                "give the cell size in metres, e.g. 10");
   // 1. Read.
   std::vector<SourceData> sources;
   const ReadOptions read_options{request.sign, request.text_crs};
@@ -353,12 +358,13 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   if (request.bbox_lon_lat) {
     const auto& b = *request.bbox_lon_lat;
     if (!(b[0] < b[2] && b[1] < b[3]))
-      throw Error(fmt::format("--bbox {},{},{},{}", b[0], b[1], b[2], b[3]), "is empty or reversed", "give LON0,LAT0,LON1,LAT1 with LON0 < LON1 and LAT0 < LAT1");
+      throw Error(fmt::format("BathyRequest::bbox_lon_lat = {},{},{},{}", b[0], b[1], b[2], b[3]),
+                  "is empty or reversed", "give LON0,LAT0,LON1,LAT1 with LON0 < LON1 and LAT0 < LAT1");
     if (b[2] <= data_extent[0] || b[0] >= data_extent[2] || b[3] <= data_extent[1] || b[1] >= data_extent[3])
-      throw Error(fmt::format("--bbox {},{},{},{}", b[0], b[1], b[2], b[3]),
+      throw Error(fmt::format("BathyRequest::bbox_lon_lat = {},{},{},{}", b[0], b[1], b[2], b[3]),
                   fmt::format("lies outside the data, which covers lon {:.5f}..{:.5f}, lat {:.5f}..{:.5f}", data_extent[0],
                               data_extent[2], data_extent[1], data_extent[3]),
-                  "give a box that overlaps the inputs, or omit --bbox to grid all of them");
+                  "give a box that overlaps the inputs, or leave BathyRequest::bbox_lon_lat unset to grid all of them");
   }
   const LonLat centre{0.5 * (lon_lat_box[0] + lon_lat_box[2]), 0.5 * (lon_lat_box[1] + lon_lat_box[3])};
   const MapProjection projection = choose_projection(request.projection, centre);
@@ -376,7 +382,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
     const auto& b = box_m;
     if (!(b[0] < b[2] && b[1] < b[3]) || b[2] <= data_box_m[0] || b[0] >= data_box_m[2] || b[3] <= data_box_m[1] ||
         b[1] >= data_box_m[3])
-      throw Error(fmt::format("--bbox-m {},{},{},{}", b[0], b[1], b[2], b[3]),
+      throw Error(fmt::format("BathyRequest::bbox_projected_m = {},{},{},{}", b[0], b[1], b[2], b[3]),
                   fmt::format("is empty or lies outside the data, which covers x {:.0f}..{:.0f} m, y {:.0f}..{:.0f} m in {}",
                               data_box_m[0], data_box_m[2], data_box_m[1], data_box_m[3], projection.describe()),
                   "give X0,Y0,X1,Y1 in metres overlapping the data");
@@ -430,7 +436,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
       info["coastline_vertices"] = scattered.coastline_vertices;
       if (scattered.sounding_count == 0 && scattered.contour_vertices == 0)
         throw Error(source.path.string(), "has no soundings or contours inside the grid's area",
-                    "widen --bbox or drop this input");
+                    "widen BathyRequest::bbox_lon_lat or drop this input");
       NaturalNeighbourSurface surface(scattered.points);
       info["triangulation_vertices"] = surface.vertex_count();
       {
@@ -502,7 +508,8 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   for (std::size_t i = 0; i < depth.size(); ++i) covered_cells += covered.values()[i] = std::isfinite(depth.values()[i]);
   if (covered_cells == 0)
     throw Error("grid " + projection.describe(), "no input covers any cell of the grid",
-                "check --bbox against the inputs' extent (gdalinfo / ogrinfo)");
+                "check BathyRequest::bbox_lon_lat or BathyRequest::bbox_projected_m against the inputs' extent "
+                "(gdalinfo / ogrinfo)");
   ChangeReport uncovered;
   if (covered_cells < depth.size()) {
     std::optional<NearestSeed> nearest;
@@ -539,7 +546,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
     }
   }
   if (land_cells == depth.size())
-    throw Error("grid " + projection.describe(), "every cell is land", "move --bbox over water");
+    throw Error("grid " + projection.describe(), "every cell is land", "move BathyRequest::bbox_lon_lat over water");
   // 7. Conditioning: minimum depth, then optional slope limiting (water cells only).
   ChangeReport clamped, smoothed;
   for (int r = 0; r < rows; ++r)
@@ -589,7 +596,8 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
       auto style_it = request.structure_styles.find(structure.category);
       if (style_it == request.structure_styles.end() && (structure.porosity < 0 || structure.crest_width_m <= 0))
         throw Error(source.path.string(), "structure category '" + structure.category + "' has no width and porosity",
-                    "give the feature crest_width_m and porosity properties, or --structure " + structure.category + "=WIDTH:POROSITY");
+                    "give the feature crest_width_m and porosity properties, or add '" + structure.category +
+                        "' with a crest width and porosity to BathyRequest::structure_styles");
       StructureStyle style = style_it != request.structure_styles.end() ? style_it->second : StructureStyle{};
       if (structure.crest_width_m > 0) style.crest_width_m = structure.crest_width_m;
       if (structure.porosity >= 0) style.porosity = structure.porosity;
@@ -689,9 +697,9 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
                              n <= 0.0f ? wall_colour : porous_colour);
     }
   const int legend_y = static_cast<int>(bottom) + 30;
-  preview.draw_text(static_cast<int>(left), legend_y, "coastline (chart)", coast_colour, 14);
-  preview.draw_text(170, legend_y, "vertical walls (n = 0)", wall_colour, 14);
-  preview.draw_text(350, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
+  draw_text(preview, static_cast<int>(left), legend_y, "coastline (chart)", coast_colour, 14);
+  draw_text(preview, 170, legend_y, "vertical walls (n = 0)", wall_colour, 14);
+  draw_text(preview, 350, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
   for (const auto& line : result.coastline_m)
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const double x0 = pixel_x(line[i].x_m), y0 = pixel_y(line[i].y_m), x1 = pixel_x(line[i + 1].x_m), y1 = pixel_y(line[i + 1].y_m);
@@ -700,13 +708,13 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
       // Clip by points: draw only segments whose both ends are on the field.
       if (x0 >= left && x0 <= right && x1 >= left && x1 <= right && y0 >= top && y0 <= bottom && y1 >= top &&
           y1 <= bottom)
-        preview.draw_line(x0, y0, x1, y1, coast_colour, 1);
+        draw_line(preview, x0, y0, x1, y1, coast_colour, 1);
     }
   create_output_folder(folder);
   write_depth_geotiff(folder / "depth.tif", g, grid.still_water_depth_m, "chart sounding datum of the inputs");
   write_harbour_grid(folder / "depth.exr", grid);
   const std::size_t voxels = write_coastline_level_set(folder / "coastline.vdb", g, grid.coast_distance_m, coastline_band_m);
-  preview.write_png(folder / "preview.png");
+  write_png(preview, folder / "preview.png");
   nlohmann::json summary = result.summary;
   summary["outputs"] = {{"depth_tif", "depth.tif"}, {"depth_exr", "depth.exr"},
                         {"coastline_vdb", {{"file", "coastline.vdb"}, {"active_voxels", voxels}, {"half_band_m", coastline_band_m}}},

@@ -37,7 +37,7 @@ MapProjection MapProjection::utm_for(LonLat centre) {
   const int zone = GeographicLib::UTMUPS::StandardZone(centre.latitude_deg, centre.longitude_deg);
   if (zone == GeographicLib::UTMUPS::UPS)
     throw Error("projection", fmt::format("latitude {:.4f} lies in a polar (UPS) region", centre.latitude_deg),
-                "use --projection local-tm");
+                "set BathyRequest::projection to local-tm (a transverse Mercator centred on the area)");
   return utm(zone, centre.latitude_deg >= 0.0);
 }
 
@@ -59,7 +59,7 @@ MapProjection MapProjection::from_json(const nlohmann::json& json, const std::st
     if (json.value("scale_factor", 1.0) != 1.0 || json.value("false_easting_m", 0.0) != 0.0 ||
         json.value("false_northing_m", 0.0) != 0.0)
       throw Error(subject, "transverse_mercator projection with scale or false origin other than 1/0/0",
-                  "write it with nearshore bathy --projection local-tm");
+                  "regrid it with BathyRequest::projection set to local-tm");
     return local_transverse_mercator({json.value("central_meridian_deg", 0.0), json.value("origin_latitude_deg", 0.0)});
   }
   throw Error(subject, "projection '" + json.dump() + "' is neither utm nor transverse_mercator",

@@ -240,10 +240,10 @@ void read_vector(GDALDataset& dataset, const ReadOptions& options, SourceData& o
 }
 
 // --- Rasters ----------------------------------------------------------------------------------------
-// The sign of a raster's values: the flag, else metadata, else the name of the band or variable.
+// The sign of a raster's values: as requested, else metadata, else the name of the band or variable.
 bool raster_is_depth(GDALDataset& dataset, GDALRasterBand& band, DepthSign sign, std::string& why) {
   if (sign != DepthSign::kAuto) {
-    why = "from --sign";
+    why = "from ReadOptions::sign";
     return sign == DepthSign::kPositiveDown;
   }
   // Our own tag, also as GDAL's netCDF driver renames it (NC_GLOBAL#GDAL_NEARSHORE_DEPTH_SIGN).
@@ -271,7 +271,7 @@ bool raster_is_depth(GDALDataset& dataset, GDALRasterBand& band, DepthSign sign,
     why = "from the band name '" + std::string(band.GetDescription()) + "'";
     return true;
   }
-  why = "default for rasters without sign metadata (elevation, as GEBCO); override with --sign";
+  why = "default for rasters without sign metadata (elevation, as GEBCO); override with ReadOptions::sign";
   return false;
 }
 
@@ -345,7 +345,8 @@ void read_text_soundings(const ReadOptions& options, SourceData& out) {
     to_wgs84 = transformation_to_wgs84(&crs);
   }
   const bool elevation = options.sign == DepthSign::kPositiveUp;
-  out.sign_used = elevation ? "positive_up (from --sign)" : "positive_down (soundings are depths; override with --sign)";
+  out.sign_used = elevation ? "positive_up (from ReadOptions::sign)"
+                            : "positive_down (soundings are depths; override with ReadOptions::sign)";
   std::string text;
   int line_number = 0;
   while (std::getline(in, text)) {
@@ -363,10 +364,11 @@ void read_text_soundings(const ReadOptions& options, SourceData& out) {
       throw Error(out.path.string(), fmt::format("line {} has a NaN depth", line_number), "remove the line");
     if (to_wgs84) {
       if (!to_wgs84->Transform(1, &x, &y))
-        throw Error(out.path.string(), fmt::format("line {}: cannot transform ({}, {})", line_number, x, y), "check --xyz-crs");
+        throw Error(out.path.string(), fmt::format("line {}: cannot transform ({}, {})", line_number, x, y),
+                    "check ReadOptions::text_crs, the CRS of the file's x y");
     } else if (std::abs(x) > 180.0 || std::abs(y) > 90.0) {
       throw Error(out.path.string(), fmt::format("line {}: ({}, {}) is not a longitude/latitude", line_number, x, y),
-                  "projected coordinates need their CRS: --xyz-crs EPSG:NNNN");
+                  "projected coordinates need their CRS in ReadOptions::text_crs, e.g. EPSG:32610");
     }
     out.soundings.push_back({{x, y}, elevation ? -value : value});
   }

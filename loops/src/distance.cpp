@@ -152,7 +152,7 @@ GramMatrices read_gram(const fs::path& path, int expected_frames) {
   if (n != expected_frames || bytes.size() != newline + 1 + 3 * matrix_bytes + n * sizeof(double))
     throw Error(path.string(), fmt::format("holds {} frames ({} bytes) but the sequence has {}", n, bytes.size(),
                                            expected_frames),
-                "the sequence changed since; run `nearshore loops --recompute`");
+                "the sequence changed since; recompute the distances with LoopsOptions::recompute");
   GramMatrices gram;
   gram.cell_area_m2 = area;
   const char* in = bytes.data() + newline + 1;

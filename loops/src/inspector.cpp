@@ -7,16 +7,14 @@
 #include <cmath>
 #include <limits>
 
-#include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/statistics.hpp"
 #include "nearshore/sequence/checksum.hpp"
+#include "nearshore/sequence/loops_file.hpp"
 
 namespace nearshore::loops {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr const char* kLoopsFormat = "nearshore loops";
-constexpr int kLoopsVersion = 1;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -25,13 +23,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 std::string file_checksum(const fs::path& path) {
   const std::string bytes = sequence::read_file_bytes(path);
   return sequence::checksum_text(std::as_bytes(std::span(bytes.data(), bytes.size())));
-}
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 // Seam of jump i -> j with its crossfade limited by the run before it (blends must not reach
@@ -94,27 +85,77 @@ LoopReport analyse_plan(const LoopsReport& report, const LoopPlan& plan, int max
   return loop;
 }
 
-nlohmann::json loop_json(const LoopReport& loop) {
-  nlohmann::json seams = nlohmann::json::array();
+sequence::LoopsFile::Loop stored_loop(const LoopReport& loop) {
+  sequence::LoopsFile::Loop stored;
+  stored.kind = loop.plan.kind;
+  stored.start_frame = loop.plan.start_frame;
+  stored.length_frames = loop.plan.length_frames;
+  stored.length_s = loop.length_s;
+  stored.cost = loop.plan.cost;
+  stored.worst_seam_ratio_before = loop.worst_seam_ratio_before;
+  stored.worst_seam_ratio_after = loop.worst_seam_ratio_after;
   for (const SeamReport& s : loop.seams)
-    seams.push_back({{"from", s.transition.from},
-                     {"to", s.transition.to},
-                     {"crossfade_frames", s.transition.crossfade_frames},
-                     {"run_before_frames", s.run_before_frames},
-                     {"seam_ratio_before", s.seam_ratio_before},
-                     {"seam_ratio_after", s.seam_ratio_after},
-                     {"volume_jump_m3", s.volume_jump_m3},
-                     {"volume_jump_after_m3", s.volume_jump_after_m3},
-                     {"energy_jump_fraction", s.energy_jump_fraction},
-                     {"energy_dip_fraction", s.energy_dip_fraction}});
-  return {{"kind", loop.plan.kind},
-          {"start_frame", loop.plan.start_frame},
-          {"length_frames", loop.plan.length_frames},
-          {"length_s", loop.length_s},
-          {"cost", loop.plan.cost},
-          {"worst_seam_ratio_before", loop.worst_seam_ratio_before},
-          {"worst_seam_ratio_after", loop.worst_seam_ratio_after},
-          {"seams", seams}};
+    stored.seams.push_back({.from = s.transition.from,
+                            .to = s.transition.to,
+                            .crossfade_frames = s.transition.crossfade_frames,
+                            .run_before_frames = s.run_before_frames,
+                            .seam_ratio_before = s.seam_ratio_before,
+                            .seam_ratio_after = s.seam_ratio_after,
+                            .volume_jump_m3 = s.volume_jump_m3,
+                            .volume_jump_after_m3 = s.volume_jump_after_m3,
+                            .energy_jump_fraction = s.energy_jump_fraction,
+                            .energy_dip_fraction = s.energy_dip_fraction});
+  return stored;
+}
+
+std::optional<sequence::LoopsFile::Loop> stored_loop(const std::optional<LoopReport>& loop) {
+  if (!loop) return std::nullopt;
+  return stored_loop(*loop);
+}
+
+// The report as loops.json (and `nearshore loops --json`) carries it.
+sequence::LoopsFile::Report stored_report(const LoopsReport& report) {
+  sequence::LoopsFile::Report stored;
+  stored.sequence = report.folder.string();
+  stored.frame_count = report.frame_count;
+  stored.frame_interval_s = report.frame_interval_s;
+  stored.loop_period_s = report.loop_period_s;
+  const TransitionOptions& options = report.table.options;
+  stored.parameters = {.motion_weight_delta = options.motion_weight,
+                       .filter_half_width_frames = options.filter_half_width,
+                       .sigma = report.sigma,
+                       .sigma_factor = options.sigma_factor,
+                       .future_discount_alpha = options.future_discount,
+                       .cost_exponent_p = options.cost_exponent,
+                       .candidates_per_frame = options.candidates_per_frame,
+                       .min_jump_frames = options.min_jump_frames,
+                       .min_probability = options.min_probability,
+                       .max_crossfade_frames = options.max_crossfade_frames,
+                       .period_crossfade_frames = report.period_crossfade_frames};
+  stored.height_scale_m = report.height_scale_m;
+  stored.motion_scale_m2_s = report.motion_scale_m2_s;
+  stored.median_step = report.median_step;
+  stored.median_volume_step_m3 = report.median_volume_step_m3;
+  stored.graph = {.candidate_jumps = report.candidate_jumps,
+                  .usable_jumps = report.usable_jumps,
+                  .dead_end_count = static_cast<int>(report.dead_ends.size()),
+                  .reachable_dead_end_count = static_cast<int>(report.reachable_dead_ends.size()),
+                  .first_playable_frame = report.first_playable_frame};
+  stored.detected_period = {.found = report.detected_period.found,
+                            .lag_frames = report.detected_period.lag_frames,
+                            .lag_s = report.detected_period.lag_s,
+                            .seam_ratio = report.detected_period.seam_ratio,
+                            .matched_frame = report.detected_period.matched_frame};
+  stored.period_loop = stored_loop(report.period);
+  stored.requested_loop_s = report.requested_loop_s;
+  stored.requested_loop = stored_loop(report.requested);
+  for (const LoopReport& loop : report.best_by_length)
+    stored.best_loops_by_length.push_back(stored_loop(loop));
+  stored.worst_seam_ratio_after = report.worst_seam_ratio_after();
+  stored.gram_reused = report.gram_reused;
+  stored.distance_seconds = report.distance_seconds;
+  stored.table_seconds = report.table_seconds;
+  return stored;
 }
 
 }  // namespace
@@ -152,48 +193,7 @@ double LoopsReport::worst_seam_ratio_after() const {
 }
 
 nlohmann::json LoopsReport::to_json() const {
-  nlohmann::json loops = nlohmann::json::array();
-  for (const LoopReport& loop : best_by_length) loops.push_back(loop_json(loop));
-  return {{"sequence", folder.string()},
-          {"frame_count", frame_count},
-          {"frame_interval_s", frame_interval_s},
-          {"loop_period_s", loop_period_s},
-          {"parameters",
-           {{"motion_weight_delta", table.options.motion_weight},
-            {"filter_half_width_frames", table.options.filter_half_width},
-            {"sigma", sigma},
-            {"sigma_factor", table.options.sigma_factor},
-            {"future_discount_alpha", table.options.future_discount},
-            {"cost_exponent_p", table.options.cost_exponent},
-            {"candidates_per_frame", table.options.candidates_per_frame},
-            {"min_jump_frames", table.options.min_jump_frames},
-            {"min_probability", table.options.min_probability},
-            {"max_crossfade_frames", table.options.max_crossfade_frames},
-            {"period_crossfade_frames", period_crossfade_frames}}},
-          {"height_scale_m", height_scale_m},
-          {"motion_scale_m2_s", motion_scale_m2_s},
-          {"median_step", median_step},
-          {"median_volume_step_m3", median_volume_step_m3},
-          {"graph",
-           {{"candidate_jumps", candidate_jumps},
-            {"usable_jumps", usable_jumps},
-            {"dead_ends", dead_ends.size()},
-            {"reachable_dead_ends", reachable_dead_ends.size()},
-            {"first_playable_frame", first_playable_frame}}},
-          {"detected_period",
-           {{"found", detected_period.found},
-            {"lag_frames", detected_period.lag_frames},
-            {"lag_s", detected_period.lag_s},
-            {"seam_ratio", detected_period.seam_ratio},
-            {"matched_frame", detected_period.matched_frame}}},
-          {"period_loop", period ? loop_json(*period) : nlohmann::json()},
-          {"requested_loop_s", requested_loop_s},
-          {"requested_loop", requested ? loop_json(*requested) : nlohmann::json()},
-          {"best_loops_by_length", loops},
-          {"worst_seam_ratio_after", worst_seam_ratio_after()},
-          {"gram_reused", gram_reused},
-          {"distance_seconds", distance_seconds},
-          {"table_seconds", table_seconds}};
+  return sequence::loops_report_to_json(stored_report(*this));
 }
 
 LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& options) {
@@ -212,10 +212,15 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   auto start = std::chrono::steady_clock::now();
   std::error_code ec;
   if (!options.recompute && fs::exists(loops_path, ec) && fs::exists(gram_path, ec)) {
-    const nlohmann::json stored =
-        nlohmann::json::parse(sequence::read_file_bytes(loops_path), nullptr, false);
-    if (!stored.is_discarded() && stored.value("sequence_manifest_checksum", "") == manifest_checksum &&
-        stored.value("gram_checksum", "") == file_checksum(gram_path)) {
+    // A stored table that cannot be read (corrupt, another version) is simply recomputed and
+    // overwritten below.
+    std::optional<sequence::LoopsFile> stored;
+    try {
+      stored = sequence::read_loops_file(sequence_folder);
+    } catch (const Error&) {
+    }
+    if (stored && stored->sequence_manifest_checksum == manifest_checksum &&
+        stored->gram_checksum == file_checksum(gram_path)) {
       report.gram = read_gram(gram_path, report.frame_count);
       report.gram_reused = true;
     }
@@ -299,24 +304,23 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   // 4. The tables, beside the frames: gram first, loops.json (which vouches for it) last.
   if (options.write_tables) {
     if (!report.gram_reused) write_gram(gram_path, report.gram);
-    nlohmann::json tables = report.to_json();
-    tables["format"] = kLoopsFormat;
-    tables["version"] = kLoopsVersion;
-    tables["sequence_manifest_checksum"] = manifest_checksum;
-    tables["gram_file"] = kGramFile;
-    tables["gram_checksum"] = file_checksum(gram_path);
-    tables["random_walk"] = {{"start_frame", report.first_playable_frame},
-                             {"seed", options.random_walk_seed}};
-    nlohmann::json rows = nlohmann::json::array();
+    sequence::LoopsFile tables;
+    tables.report = stored_report(report);
+    tables.sequence_manifest_checksum = manifest_checksum;
+    tables.gram_file = kGramFile;
+    tables.gram_checksum = file_checksum(gram_path);
+    tables.random_walk = {.start_frame = report.first_playable_frame, .seed = options.random_walk_seed};
+    tables.transitions.reserve(report.table.transitions.size());
     for (const Transition& t : report.table.transitions)
-      rows.push_back({t.from, t.to, t.probability, t.cost, t.future_cost, t.crossfade_frames, t.seam_ratio,
-                      t.seam_ratio_after});
-    tables["transition_columns"] = {"from",        "to",
-                                    "probability", "cost",
-                                    "future_cost", "crossfade_frames",
-                                    "seam_ratio",  "seam_ratio_after"};
-    tables["transitions"] = rows;
-    write_text_atomically(loops_path, tables.dump(1));
+      tables.transitions.push_back({.from = t.from,
+                                    .to = t.to,
+                                    .probability = t.probability,
+                                    .cost = t.cost,
+                                    .future_cost = t.future_cost,
+                                    .crossfade_frames = t.crossfade_frames,
+                                    .seam_ratio = t.seam_ratio,
+                                    .seam_ratio_after = t.seam_ratio_after});
+    sequence::write_loops_file(sequence_folder, tables);
   }
   return report;
 }

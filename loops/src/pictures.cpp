@@ -1,4 +1,4 @@
-// The inspector's pictures (core/plot.hpp): the distance matrix, the seam ratio of every planned
+// The inspector's pictures (plot/plot.hpp): the distance matrix, the seam ratio of every planned
 // transition before and after its crossfade, and a gauge time series across the worst seam.
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/atomic_file.hpp"
-#include "nearshore/core/plot.hpp"
+#include "nearshore/plot/plot.hpp"
 #include "nearshore/sequence/loop_playback.hpp"
 #include "nearshore/loops/inspector.hpp"
 
@@ -36,7 +36,7 @@ void write_distance_matrix(const LoopsReport& report, const fs::path& path) {
   style.high = std::max(1e-12, d.maxCoeff());
   style.first_row_at_top = true;
   style.max_image_size_px = 900;
-  render_heat_map(field, style).write_png(path);
+  write_png(render_heat_map(field, style), path);
 }
 
 void write_seam_ratios(const LoopsReport& report, const fs::path& path) {
@@ -59,7 +59,7 @@ void write_seam_ratios(const LoopsReport& report, const fs::path& path) {
   one.x = {-0.5, std::max(0.5, index - 0.5)};
   one.y = {1.0, 1.0};
   plot.series = {one, before, after};
-  render_line_plot(plot).write_png(path);
+  write_png(render_line_plot(plot), path);
 }
 
 // eta at one gauge around the worst seam: what the bake did (source timeline continuing past i),
@@ -74,7 +74,7 @@ void write_worst_seam_gauge(const LoopsReport& report, const fs::path& path) {
   plot.y_label = "surface elevation at the gauge (m)";
   if (!worst) {
     plot.title = "No planned transition to show";
-    render_line_plot(plot).write_png(path);
+    write_png(render_line_plot(plot), path);
     return;
   }
   const sequence::SequenceReader reader(report.folder);
@@ -126,7 +126,7 @@ void write_worst_seam_gauge(const LoopsReport& report, const fs::path& path) {
                            g.cell_centre_x_m(gauge_column), g.cell_centre_y_m(gauge_row), i, j,
                            worst->seam_ratio_before, worst->seam_ratio_after);
   plot.series = {bake, cut, faded};
-  render_line_plot(plot).write_png(path);
+  write_png(render_line_plot(plot), path);
 }
 
 }  // namespace

@@ -7,28 +7,31 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
-#include "nearshore/core/linear_waves.hpp"
+#include "nearshore/ocean/linear_waves.hpp"
+#include "nearshore/ocean/spectrum.hpp"
 
 namespace nearshore::loops {
 namespace {
 
+using ocean::LatticeWave;
+
 // Hs = 4 sqrt(m0), m0 = sum a^2 / 2: scale amplitudes to the requested significant height.
 void scale_to_significant_height(SyntheticSea& sea, double significant_height_m) {
   double m0 = 0;
-  for (const WaveComponent& c : sea.components) m0 += 0.5 * c.amplitude_m * c.amplitude_m;
+  for (const LatticeWave& c : sea.components) m0 += 0.5 * c.wave.amplitude_m * c.wave.amplitude_m;
   const double scale = m0 > 0 ? significant_height_m / (4.0 * std::sqrt(m0)) : 0.0;
-  for (WaveComponent& c : sea.components) c.amplitude_m *= scale;
+  for (LatticeWave& c : sea.components) c.wave.amplitude_m *= scale;
 }
 
-WaveComponent component(double omega, double direction_rad, double amplitude, double phase, double depth_m) {
-  const double k = wavenumber_from_frequency(omega, depth_m);
-  return WaveComponent{amplitude, k * std::cos(direction_rad), k * std::sin(direction_rad), omega, phase};
+LatticeWave component(double omega, double direction_rad, double amplitude, double phase, double depth_m) {
+  const double k = ocean::wavenumber_from_frequency(omega, depth_m);
+  return LatticeWave{{amplitude, omega, direction_rad, phase}, k * std::cos(direction_rad), k * std::sin(direction_rad)};
 }
 
 }  // namespace
 
 double linear_dispersion_omega_rad_s(double wavenumber_rad_m, double depth_m) {
-  return frequency_from_wavenumber(wavenumber_rad_m, depth_m);
+  return ocean::frequency_from_wavenumber(wavenumber_rad_m, depth_m);
 }
 
 SyntheticSea periodic_sea(double period_s, int component_count, double significant_height_m, double depth_m,
@@ -51,13 +54,12 @@ SyntheticSea irregular_sea(double peak_period_s, int component_count, double sig
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   SyntheticSea sea{depth_m, {}};
   const double peak_omega = 2 * std::numbers::pi / peak_period_s;
+  // Only the shape matters (amplitudes are scaled to Hs below): JONSWAP with gamma 3.3.
+  const ocean::JonswapSpectrum jonswap(significant_height_m > 0 ? significant_height_m : 1.0, peak_period_s, 3.3);
   for (int n = 0; n < component_count; ++n) {
     // Frequencies spread over 0.6..2.5 omega_p, jittered so no two are commensurate.
     const double omega = peak_omega * (0.6 + 1.9 * (n + uniform(random)) / component_count);
-    // JONSWAP shape S(omega) ~ omega^-5 exp(-1.25 (omega_p/omega)^4) gamma^r (Hasselmann et al. 1973).
-    const double sigma = omega <= peak_omega ? 0.07 : 0.09;
-    const double r = std::exp(-std::pow(omega - peak_omega, 2) / (2 * sigma * sigma * peak_omega * peak_omega));
-    const double spectrum = std::pow(omega, -5) * std::exp(-1.25 * std::pow(peak_omega / omega, 4)) * std::pow(3.3, r);
+    const double spectrum = jonswap.density_m2_s_rad(omega);
     const double direction = mean_direction_rad + (uniform(random) - 0.5) * 2 * (40.0 * std::numbers::pi / 180.0);
     sea.components.push_back(
         component(omega, direction, std::sqrt(spectrum), 2 * std::numbers::pi * uniform(random), depth_m));
@@ -78,14 +80,16 @@ void evaluate_sea(const SyntheticSea& sea, const GridGeometry& geometry, double 
     std::fill(p.begin(), p.end(), 0.0);
     std::fill(q.begin(), q.end(), 0.0);
     const double y = geometry.cell_centre_y_m(row) - geometry.origin_y_m;
-    for (const WaveComponent& c : sea.components) {
-      const double k = std::hypot(c.wavenumber_x_rad_m, c.wavenumber_y_rad_m);
+    for (const LatticeWave& lattice : sea.components) {
+      const ocean::WaveComponent& c = lattice.wave;
+      const double kx = lattice.wavenumber_x_rad_m, ky = lattice.wavenumber_y_rad_m;
+      const double k = std::hypot(kx, ky);
       const double speed = c.angular_frequency_rad_s / k;  // omega / k: depth-integrated u per unit eta
-      const double ux = speed * c.wavenumber_x_rad_m / k, uy = speed * c.wavenumber_y_rad_m / k;
+      const double ux = speed * kx / k, uy = speed * ky / k;
       // cos(phi0 + kx * column * dx) by rotation, so the inner loop has no trigonometry.
-      const double phase0 = c.wavenumber_x_rad_m * (0.5 * geometry.spacing_m) + c.wavenumber_y_rad_m * y -
+      const double phase0 = kx * (0.5 * geometry.spacing_m) + ky * y -
                             c.angular_frequency_rad_s * time_s + c.phase_rad;
-      const double step = c.wavenumber_x_rad_m * geometry.spacing_m;
+      const double step = kx * geometry.spacing_m;
       double cr = std::cos(phase0), ci = std::sin(phase0);
       const double sr = std::cos(step), si = std::sin(step);
       for (int column = 0; column < columns; ++column) {
@@ -114,10 +118,10 @@ void write_sea_sequence(const std::filesystem::path& folder, const SyntheticSea&
   description.loop_period_s = loop_period_s;
   description.encoding = encoding;
   nlohmann::json components = nlohmann::json::array();
-  for (const WaveComponent& c : sea.components)
-    components.push_back({{"amplitude_m", c.amplitude_m}, {"kx_rad_m", c.wavenumber_x_rad_m},
-                          {"ky_rad_m", c.wavenumber_y_rad_m}, {"omega_rad_s", c.angular_frequency_rad_s},
-                          {"phase_rad", c.phase_rad}});
+  for (const ocean::LatticeWave& c : sea.components)
+    components.push_back({{"amplitude_m", c.wave.amplitude_m}, {"kx_rad_m", c.wavenumber_x_rad_m},
+                          {"ky_rad_m", c.wavenumber_y_rad_m}, {"omega_rad_s", c.wave.angular_frequency_rad_s},
+                          {"phase_rad", c.wave.phase_rad}});
   description.wave_conditions = {{"kind", "synthetic linear sea"}, {"components", components}};
   sequence::SequenceWriter writer(folder, HarbourGrid::open_water(geometry, static_cast<float>(sea.still_water_depth_m)),
                                   description);

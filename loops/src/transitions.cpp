@@ -8,18 +8,12 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/statistics.hpp"
 
 namespace nearshore::loops {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 }  // namespace
 
@@ -121,7 +115,7 @@ TransitionTable build_transition_table(const DistanceMatrices& distances, const 
   if (n < 2 * m + 3)
     throw Error(fmt::format("sequence of {} frames", n),
                 fmt::format("is too short for transitions with a filter half-width of {}", m),
-                "bake more frames or pass a smaller --filter-width");
+                "bake more frames or give a smaller TransitionOptions::filter_half_width");
   TransitionTable table;
   table.options = options;
   table.frame_count = n;

@@ -34,6 +34,9 @@ namespace {
 constexpr const char* kFormatAttribute = "nearshore_format";
 constexpr const char* kIndexAttribute = "nearshore_frame_index";
 constexpr const char* kTimeAttribute = "nearshore_time_s";
+constexpr const char* kCorruptFrameFix =
+    "the frame is truncated or corrupt; verify the sequence's checksums with SequenceReader::verify_checksums "
+    "and re-bake";
 
 Imf::Compression to_exr(Compression compression) {
   switch (compression) {
@@ -107,7 +110,7 @@ class MemoryInput : public Imf::IStream {
 void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::uint64_t file_size,
                                   const std::string& source) {
   const auto corrupt = [&](const std::string& problem) {
-    return Error(source, problem, "the frame is truncated or corrupt; check it with `nearshore loops --verify` and re-bake");
+    return Error(source, problem, kCorruptFrameFix);
   };
   const std::size_t available = header_bytes.size();
   const auto byte_at = [&](std::size_t k) { return static_cast<unsigned char>(header_bytes[k]); };
@@ -279,8 +282,7 @@ void decode_uncompressed(std::span<const std::byte> bytes, const Imf::Header& he
   const std::size_t size = bytes.size();
   const unsigned char* data = reinterpret_cast<const unsigned char*>(bytes.data());
   auto corrupt = [&](const std::string& what) {
-    return Error(source, "cannot be decoded: " + what,
-                 "the frame is truncated or corrupt; check it with `nearshore loops --verify` and re-bake");
+    return Error(source, "cannot be decoded: " + what, kCorruptFrameFix);
   };
   auto load32 = [&](std::size_t at) {
     std::int32_t value;
@@ -425,8 +427,7 @@ void decode_frame_rows(const std::filesystem::path& path, const SequenceManifest
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(path.string(), std::string("cannot be decoded: ") + e.what(),
-                "the frame is truncated or corrupt; check it with `nearshore loops --verify` and re-bake");
+    throw Error(path.string(), std::string("cannot be decoded: ") + e.what(), kCorruptFrameFix);
   }
 }
 
@@ -448,8 +449,7 @@ void decode_frame(std::span<const std::byte> bytes, const std::string& source, c
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(source, std::string("cannot be decoded: ") + e.what(),
-                "the frame is truncated or corrupt; check it with `nearshore loops --verify` and re-bake");
+    throw Error(source, std::string("cannot be decoded: ") + e.what(), kCorruptFrameFix);
   }
 }
 

@@ -3,11 +3,12 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <span>
 
 #include "nearshore/core/error.hpp"
 #include "nearshore/sequence/checksum.hpp"
+#include "nearshore/sequence/loops_file.hpp"
+#include "nearshore/sequence/sequence_format.hpp"
 
 namespace nearshore::sequence {
 
@@ -82,46 +83,54 @@ LoopSchedule schedule_loop(int start_frame, int length_frames, const std::vector
 }
 
 namespace {
-LoopSchedule schedule_from_json(const nlohmann::json& loop) {
+
+LoopSchedule schedule_of(const LoopsFile::Loop& loop) {
   std::vector<PlannedJump> jumps;
-  for (const nlohmann::json& seam : loop.at("seams"))
-    jumps.push_back(
-        {seam.at("from").get<int>(), seam.at("to").get<int>(), seam.at("crossfade_frames").get<int>()});
-  LoopSchedule schedule =
-      schedule_loop(loop.at("start_frame").get<int>(), loop.at("length_frames").get<int>(), jumps);
-  schedule.kind = loop.at("kind").get<std::string>();
-  schedule.length_s = loop.at("length_s").get<double>();
+  jumps.reserve(loop.seams.size());
+  for (const LoopsFile::Seam& seam : loop.seams) jumps.push_back({seam.from, seam.to, seam.crossfade_frames});
+  LoopSchedule schedule = schedule_loop(loop.start_frame, loop.length_frames, jumps);
+  schedule.kind = loop.kind;
+  schedule.length_s = loop.length_s;
   return schedule;
 }
+
+// The exact period of a periodic bake, else the requested loop, else the longest reported loop
+// whose seams are no larger than an ordinary step after crossfade (R <= 1); nullptr if none.
+const LoopsFile::Loop* loop_to_play(const LoopsFile& tables) {
+  if (tables.report.period_loop) return &*tables.report.period_loop;
+  if (tables.report.requested_loop) return &*tables.report.requested_loop;
+  const LoopsFile::Loop* longest = nullptr;
+  for (const LoopsFile::Loop& loop : tables.report.best_loops_by_length)
+    if (loop.worst_seam_ratio_after <= 1.0 && (!longest || loop.length_s > longest->length_s))
+      longest = &loop;
+  return longest;
+}
+
 }  // namespace
 
 std::optional<LoopSchedule> read_loop_schedule(const std::filesystem::path& folder) {
-  const std::filesystem::path path = folder / "loops.json";
-  if (!std::filesystem::exists(path)) return std::nullopt;
-  const std::string text = read_file_bytes(path);
-  const std::string manifest = read_file_bytes(folder / "manifest.json");
-  try {
-    const nlohmann::json tables = nlohmann::json::parse(text);
-    if (tables.value("sequence_manifest_checksum", "") !=
-        checksum_text(std::as_bytes(std::span(manifest.data(), manifest.size()))))
-      throw Error(path.string(), "was made for another bake of this folder (its manifest checksum differs)",
-                  "run `nearshore loops " + folder.string() + "` again");
-    if (tables.contains("period_loop") && !tables["period_loop"].is_null())
-      return schedule_from_json(tables["period_loop"]);
-    if (tables.contains("requested_loop") && !tables["requested_loop"].is_null())
-      return schedule_from_json(tables["requested_loop"]);
-    const nlohmann::json best_by_length = tables.value("best_loops_by_length", nlohmann::json::array());
-    const nlohmann::json* longest = nullptr;
-    for (const nlohmann::json& loop : best_by_length)
-      if (loop.at("worst_seam_ratio_after").get<double>() <= 1.0 &&
-          (!longest || loop.at("length_s").get<double>() > longest->at("length_s").get<double>()))
-        longest = &loop;
-    if (longest) return schedule_from_json(*longest);
-    return std::nullopt;
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string(), std::string("is not a valid loops table: ") + e.what(),
-                "run `nearshore loops " + folder.string() + "` again");
-  }
+  const std::filesystem::path path = folder / kLoopsFileName;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  const LoopsFile tables = read_loops_file(folder);
+  const std::filesystem::path manifest_path = folder / kManifestFile;
+  const std::string manifest = read_file_bytes(manifest_path);
+  const std::string rerun = fmt::format("run `nearshore loops {}` again", folder.string());
+  if (tables.sequence_manifest_checksum !=
+      checksum_text(std::as_bytes(std::span(manifest.data(), manifest.size()))))
+    throw Error(path.string(), "was made for another bake of this folder (its manifest checksum differs)",
+                rerun);
+  // The same manifest means the same frames; a count that differs means the table itself is
+  // corrupt, and its frame indices (checked against its own count) might lie outside the bake.
+  const int frame_count = parse_manifest(manifest, manifest_path.string()).frame_count;
+  if (tables.report.frame_count != frame_count)
+    throw Error(path.string(),
+                fmt::format("counts {} frames but {} lists {}", tables.report.frame_count,
+                            manifest_path.string(), frame_count),
+                rerun);
+  const LoopsFile::Loop* loop = loop_to_play(tables);
+  if (!loop) return std::nullopt;
+  return schedule_of(*loop);
 }
 
 }  // namespace nearshore::sequence

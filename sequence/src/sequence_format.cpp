@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
+#include "json_fields.hpp"
 
 namespace nearshore::sequence {
 namespace {
@@ -18,35 +19,6 @@ Precision parse_precision(const nlohmann::json& value, const std::string& source
   if (value == "float") return Precision::kFloat;
   throw Error(source, fmt::format("\"{}\" is {} but must be \"half\" or \"float\"", key, value.dump()),
               "rewrite the sequence with `nearshore bake`");
-}
-
-// Typed access with a message naming the key: malformed manifests must never escape as
-// nlohmann exceptions or crash (the manifest reader is fuzzed).
-const nlohmann::json& require(const nlohmann::json& object, const char* key, nlohmann::json::value_t type,
-                              const std::string& source) {
-  const auto it = object.find(key);
-  if (it == object.end())
-    throw Error(source, fmt::format("has no \"{}\"", key), "the manifest is incomplete; rewrite the sequence");
-  const bool number_wanted = type == nlohmann::json::value_t::number_float;
-  const bool ok = number_wanted ? it->is_number()
-                  : type == nlohmann::json::value_t::number_unsigned ? it->is_number_unsigned() ||
-                                                                           (it->is_number_integer() && *it >= 0)
-                                                                     : it->type() == type;
-  if (!ok)
-    throw Error(source, fmt::format("\"{}\" has the wrong type ({})", key, it->type_name()),
-                "the manifest is corrupt; rewrite the sequence");
-  return *it;
-}
-
-double require_number(const nlohmann::json& object, const char* key, const std::string& source) {
-  const double value = require(object, key, nlohmann::json::value_t::number_float, source).get<double>();
-  if (!std::isfinite(value))
-    throw Error(source, fmt::format("\"{}\" is not a finite number", key), "rewrite the sequence");
-  return value;
-}
-
-std::string require_string(const nlohmann::json& object, const char* key, const std::string& source) {
-  return require(object, key, nlohmann::json::value_t::string, source).get<std::string>();
 }
 
 FileEntry parse_file_entry(const nlohmann::json& entry, const std::string& source, const std::string& where) {
@@ -121,7 +93,7 @@ nlohmann::json manifest_to_json(const SequenceManifest& manifest) {
       {"frame_file_pattern", "frame_{index:06d}.exr"},
       {"exr_line_order", "EXR line 0 is the northern row (Raster row rows-1)"},
       {"wave_conditions", manifest.wave_conditions},
-      {"deep_water", manifest.deep_water},
+      {"deep_water", manifest.deep_water ? deep_water_section_to_json(*manifest.deep_water) : nlohmann::json()},
       {"solver", manifest.solver},
       {"harbour_grid", file_json(manifest.harbour_grid)},
       {"frames", frames},
@@ -194,7 +166,8 @@ SequenceManifest parse_manifest(std::string_view text, const std::string& source
   manifest.encoding.flux = precisions[1];
   manifest.encoding.breaking = precisions[3];
   manifest.wave_conditions = json.value("wave_conditions", nlohmann::json());
-  manifest.deep_water = json.value("deep_water", nlohmann::json());
+  if (const auto deep = json.find("deep_water"); deep != json.end() && !deep->is_null())
+    manifest.deep_water = parse_deep_water_section(*deep, source);
   manifest.solver = json.value("solver", nlohmann::json());
   manifest.harbour_grid = parse_file_entry(require(json, "harbour_grid", nlohmann::json::value_t::object, source),
                                            source, "\"harbour_grid\"");

@@ -13,11 +13,11 @@ namespace fs = std::filesystem;
 SequenceReader::SequenceReader(const fs::path& folder) : folder_(folder) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec))
-    throw Error(folder.string(), "is not a folder", "give the sequence folder written by `nearshore bake -o DIR`");
+    throw Error(folder.string(), "is not a folder", "give the folder a bake wrote, its BakeOptions::output_folder");
   const fs::path manifest_path = folder / std::string(kManifestFile);
   if (!fs::exists(manifest_path, ec))
     throw Error(manifest_path.string(), "does not exist, so the bake never finished (the manifest is written last)",
-                "finish or resume the bake (`nearshore bake ... --resume`)");
+                "finish the bake, or continue it with BakeOptions::resume");
   const std::string text = read_file_bytes(manifest_path);
   manifest_ = parse_manifest(text, manifest_path.string());
 }
@@ -87,12 +87,9 @@ void SequenceReader::verify_checksums() const {
     progress.update(index + 2.0);
   }
   // The deep-water coefficient files the bake wrote beside the frames (manifest `deep_water`).
-  if (manifest_.deep_water.is_object() && manifest_.deep_water.contains("cascades"))
-    for (const nlohmann::json& cascade : manifest_.deep_water["cascades"])
-      if (cascade.contains("coefficients_file") && cascade.contains("coefficients_checksum"))
-        read_checked({cascade["coefficients_file"].get<std::string>(), cascade.value("coefficients_bytes", std::uint64_t{0}),
-                      cascade["coefficients_checksum"].get<std::string>()},
-                     Verify::kYes, buffer);
+  if (manifest_.deep_water)
+    for (const DeepWaterCascadeRecord& cascade : manifest_.deep_water->cascades)
+      if (cascade.coefficients) read_checked(*cascade.coefficients, Verify::kYes, buffer);
   progress.finish();
 }
 

@@ -13,7 +13,7 @@
 #include "bake_test_support.hpp"
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/bake/bake_run.hpp"
-#include "nearshore/bake/deep_water.hpp"
+#include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/bake/deep_water_coupling.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/harbour_grid.hpp"
@@ -22,6 +22,9 @@
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::bake {
+
+using namespace nearshore::ocean;
+using namespace nearshore::boussinesq;
 namespace {
 namespace fs = std::filesystem;
 using testing::expect_case_error;
@@ -55,12 +58,11 @@ const std::string kIrregularMaker =
 
 // eta at (x, y, t) from the coefficient files alone, as a runtime that reads them would: every
 // record a cos(k . x - w t + phi), k from its FFT indices, w from its harmonic when the field loops.
-double elevation_from_coefficient_files(const fs::path& folder, const nlohmann::json& deep_water, double x_m,
-                                        double y_m, double t_s) {
+double elevation_from_coefficient_files(const fs::path& folder, const sequence::DeepWaterSection& deep_water,
+                                        double x_m, double y_m, double t_s) {
   double eta = 0.0;
-  for (const nlohmann::json& cascade : deep_water["cascades"]) {
-    const DeepWaterCoefficients c =
-        read_deep_water_coefficients(folder / cascade["coefficients_file"].get<std::string>());
+  for (const sequence::DeepWaterCascadeRecord& cascade : deep_water.cascades) {
+    const sequence::DeepWaterCoefficients c = sequence::read_deep_water_coefficients(folder / cascade.coefficients->file);
     const int n = c.grid_size;
     const double dk = 2 * kPi / c.tile_length_m;
     for (int row = 0; row < n; ++row)
@@ -98,7 +100,10 @@ TEST_F(BakeDeepWater, IrregularMakerSharesItsSeaWithTheFieldBeyondTheDomain) {
   options.output_folder = folder / "out";
   const BakeSummary summary = run_bake(c, options);
   const sequence::SequenceReader reader(options.output_folder);
-  const nlohmann::json& deep = reader.manifest().deep_water;
+  ASSERT_TRUE(reader.manifest().deep_water.has_value());
+  const sequence::DeepWaterSection& deep_section = *reader.manifest().deep_water;
+  // The section as written in manifest.json (its keys are sequence/'s; the test reads them as a user would).
+  const nlohmann::json deep = sequence::deep_water_section_to_json(deep_section);
   ASSERT_TRUE(deep.is_object());
   EXPECT_EQ(deep["seed"], 99u);
   EXPECT_DOUBLE_EQ(deep["loop_period_s"].get<double>(), 32.0);
@@ -118,7 +123,7 @@ TEST_F(BakeDeepWater, IrregularMakerSharesItsSeaWithTheFieldBeyondTheDomain) {
   // Read back, the files are the field: eta from them equals the field's own sum (float records).
   const DeepWaterField field(*c.deep_water);
   for (const double t : {0.0, 7.3, 31.9})
-    EXPECT_NEAR(elevation_from_coefficient_files(options.output_folder, deep, 1.7, 0.2, t),
+    EXPECT_NEAR(elevation_from_coefficient_files(options.output_folder, deep_section, 1.7, 0.2, t),
                 surface_elevation_m(field.lattice_waves(), 1.7, 0.2, t), 1e-5 * 0.02);
   EXPECT_EQ(summary.deep_water["cascades"], 2);
   EXPECT_EQ(summary.deep_water["drives_wave_maker"], false);
@@ -126,7 +131,7 @@ TEST_F(BakeDeepWater, IrregularMakerSharesItsSeaWithTheFieldBeyondTheDomain) {
   const sequence::SequenceReader tiles(options.output_folder / "deep_water_tiles");
   EXPECT_EQ(tiles.frame_count(), 8);
   EXPECT_EQ(deep["tile_set"]["frames"], 8);
-  EXPECT_EQ(tiles.manifest().deep_water["tile_set_cascade"], 1);
+  EXPECT_EQ(tiles.manifest().deep_water->tile_set_cascade, 1);
   // A corrupt coefficient file is caught by the same verification as the frames, and by the reader.
   const fs::path coefficients =
       options.output_folder / deep["cascades"][1]["coefficients_file"].get<std::string>();
@@ -136,7 +141,7 @@ TEST_F(BakeDeepWater, IrregularMakerSharesItsSeaWithTheFieldBeyondTheDomain) {
   EXPECT_THROW(reader.verify_checksums(), Error);
   std::ofstream(coefficients, std::ios::binary) << bytes.substr(0, 1000);
   try {
-    read_deep_water_coefficients(coefficients);
+    sequence::read_deep_water_coefficients(coefficients);
     ADD_FAILURE() << "a truncated coefficient file was read";
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("deep_water_cascade_1.bin"), std::string::npos) << error.what();
@@ -182,7 +187,10 @@ TEST_F(BakeDeepWater, DeepWaterMakerBakeWritesTheFieldAndReportsTheVarianceItCar
   options.output_folder = folder / "out";
   const BakeSummary summary = run_bake(c, options);
   const sequence::SequenceReader reader(options.output_folder);
-  const nlohmann::json& deep = reader.manifest().deep_water;
+  ASSERT_TRUE(reader.manifest().deep_water.has_value());
+  const sequence::DeepWaterSection& deep_section = *reader.manifest().deep_water;
+  // The section as written in manifest.json (its keys are sequence/'s; the test reads them as a user would).
+  const nlohmann::json deep = sequence::deep_water_section_to_json(deep_section);
   ASSERT_TRUE(deep.is_object());
   EXPECT_EQ(deep["seed"], 5u);
   EXPECT_EQ(deep["spectrum"]["name"], "jonswap+cos2s");
@@ -195,7 +203,7 @@ TEST_F(BakeDeepWater, DeepWaterMakerBakeWritesTheFieldAndReportsTheVarianceItCar
   EXPECT_DOUBLE_EQ(coupling["blending"]["start_m"].get<double>(), zone.start_m);
   EXPECT_NO_THROW(reader.verify_checksums());
   const DeepWaterField field(*c.deep_water);
-  EXPECT_NEAR(elevation_from_coefficient_files(options.output_folder, deep, 5.0, 0.3, 12.0),
+  EXPECT_NEAR(elevation_from_coefficient_files(options.output_folder, deep_section, 5.0, 0.3, 12.0),
               surface_elevation_m(field.lattice_waves(), 5.0, 0.3, 12.0), 1e-5 * 0.02);
   // --json: the summary carries the same figures.
   const nlohmann::json json = summary.to_json();

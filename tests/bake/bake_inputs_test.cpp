@@ -11,6 +11,9 @@
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
+
+using namespace nearshore::ocean;
+using namespace nearshore::boussinesq;
 namespace {
 using testing::scratch_folder;
 using testing::write_text;

@@ -23,6 +23,9 @@
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::bake {
+
+using namespace nearshore::ocean;
+using namespace nearshore::boussinesq;
 namespace {
 namespace fs = std::filesystem;
 using testing::scratch_folder;

@@ -14,6 +14,9 @@
 
 namespace nearshore::bake::testing {
 
+using namespace nearshore::ocean;
+using namespace nearshore::boussinesq;
+
 /// The current test's scratch folder (created if needed, contents kept).
 inline std::filesystem::path current_scratch_folder() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();

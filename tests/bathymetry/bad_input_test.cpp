@@ -1,5 +1,5 @@
-// Bad inputs: each gives one nearshore::Error naming the file (or option) and the problem, and
-// nothing is written to the output folder.
+// Bad inputs: each gives one nearshore::Error naming the file (or the BathyRequest field, never a
+// command-line flag) and the problem, and nothing is written to the output folder.
 #include <gtest/gtest.h>
 
 #include <gdal_priv.h>
@@ -86,7 +86,7 @@ TEST(BathyBadInput, BoundingBoxOutsideTheData) {
   auto request = request_for({kTacoma});
   request.bbox_lon_lat = std::array<double, 4>{-70.0, 41.0, -69.9, 41.1};  // Cape Cod, not Tacoma
   const std::string message = bathy_error(request, folder / "out");
-  EXPECT_NE(message.find("--bbox"), std::string::npos) << message;
+  EXPECT_NE(message.find("BathyRequest::bbox_lon_lat"), std::string::npos) << message;
   EXPECT_NE(message.find("outside the data"), std::string::npos) << message;
 }
 
@@ -118,5 +118,5 @@ TEST(BathyBadInput, GridLargerThanTheMachinesMemory) {
   const auto files = nb::write_demo_harbour(folder / "demo");
   const std::string message = bathy_error(request_for({files.depth_geotiff}, 0.001), folder / "out");
   EXPECT_NE(message.find("memory"), std::string::npos) << message;
-  EXPECT_NE(message.find("--spacing"), std::string::npos) << message;
+  EXPECT_NE(message.find("BathyRequest::spacing_m"), std::string::npos) << message;
 }

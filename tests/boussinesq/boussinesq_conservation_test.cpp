@@ -14,7 +14,9 @@
 
 #include "boussinesq_test_support.hpp"
 
-namespace nearshore::bake {
+namespace nearshore::boussinesq {
+
+using namespace nearshore::ocean;
 namespace {
 
 TEST(BoussinesqBalance, LakeAtRestOverRoughBathymetryStaysAtRest) {
@@ -157,4 +159,4 @@ TEST(BoussinesqSweepOrder, DiagonalSymmetryOfAHumpStaysWithinAPercent) {
 }
 
 }  // namespace
-}  // namespace nearshore::bake
+}  // namespace nearshore::boussinesq

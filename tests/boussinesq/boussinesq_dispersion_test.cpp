@@ -10,9 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "boussinesq_test_support.hpp"
-#include "nearshore/core/plot.hpp"
+#include "nearshore/plot/plot.hpp"
 
-namespace nearshore::bake {
+namespace nearshore::boussinesq {
+
+using namespace nearshore::ocean;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -72,7 +74,7 @@ TEST(BoussinesqDispersion, PhaseSpeedAgainstAiryAt20PointsPerWavelength) {
     unity.x.push_back(p.kh); unity.y.push_back(1.0);
   }
   plot.series = {unity, continuous, scheme};
-  render_line_plot(plot).write_png(testing::plot_folder() / "dispersion.png");
+  write_png(render_line_plot(plot), testing::plot_folder() / "dispersion.png");
   for (const DispersionPoint& p : points) {
     // The bound, 2 % of Airy at 20 points per wavelength, holds up to kh = 2.9. At kh = 3
     // the continuous B = 1/15 equations themselves are 2.40 % fast; the scheme (2.08 % measured)
@@ -116,4 +118,4 @@ TEST(BoussinesqDispersion, ObliqueStandingWaveAgainstAiry) {
 }
 
 }  // namespace
-}  // namespace nearshore::bake
+}  // namespace nearshore::boussinesq

@@ -11,7 +11,9 @@
 
 #include "boussinesq_test_support.hpp"
 
-namespace nearshore::bake {
+namespace nearshore::boussinesq {
+
+using namespace nearshore::ocean;
 namespace {
 
 struct FlumeRun {
@@ -89,4 +91,4 @@ TEST(BoussinesqGridScale, ShapiroFilterStopsTheFineGridModeAndKeepsTheWaves) {
 }
 
 }  // namespace
-}  // namespace nearshore::bake
+}  // namespace nearshore::boussinesq

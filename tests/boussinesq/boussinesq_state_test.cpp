@@ -10,7 +10,9 @@
 #include "boussinesq_test_support.hpp"
 #include "nearshore/core/error.hpp"
 
-namespace nearshore::bake {
+namespace nearshore::boussinesq {
+
+using namespace nearshore::ocean;
 namespace {
 
 WaveMaker regular_waves() {
@@ -144,4 +146,4 @@ TEST(BoussinesqStability, ReportsAnElevationBeyondTheDepthRatio) {
 }
 
 }  // namespace
-}  // namespace nearshore::bake
+}  // namespace nearshore::boussinesq

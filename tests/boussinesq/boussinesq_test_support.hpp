@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <string>
 
-#include "nearshore/bake/boussinesq_solver.hpp"
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
 
-namespace nearshore::bake::testing {
+namespace nearshore::boussinesq::testing {
 
 /// A flat-bottomed flume of `columns` x `rows` cells of `spacing_m`, depth `depth_m`.
 inline HarbourGrid flume(int columns, int rows, double spacing_m, double depth_m) {
@@ -33,9 +33,9 @@ inline std::filesystem::path plot_folder() {
   return folder;
 }
 
-}  // namespace nearshore::bake::testing
+}  // namespace nearshore::boussinesq::testing
 
-namespace nearshore::bake::testing {
+namespace nearshore::boussinesq::testing {
 
 /// A closed 60 x 40 basin (1 m cells) over rough bathymetry: a smooth 2-5 m bed with 0.6 m
 /// deterministic roughness, a beached island rising to 2 m above still water, a porous
@@ -59,4 +59,4 @@ inline HarbourGrid rough_basin() {
   return harbour;
 }
 
-}  // namespace nearshore::bake::testing
+}  // namespace nearshore::boussinesq::testing

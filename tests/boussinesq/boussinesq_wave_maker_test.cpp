@@ -9,10 +9,13 @@
 #include <gtest/gtest.h>
 
 #include "boussinesq_test_support.hpp"
+#include "nearshore/boussinesq/initial_conditions.hpp"
 #include "nearshore/core/error.hpp"
-#include "nearshore/core/plot.hpp"
+#include "nearshore/plot/plot.hpp"
 
-namespace nearshore::bake {
+namespace nearshore::boussinesq {
+
+using namespace nearshore::ocean;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -138,7 +141,7 @@ TEST(BoussinesqShoaling, MildSlopeFollowsLinearShoaling) {
   plot.x_label = "x (m)";
   plot.y_label = "H / H0";
   plot.series = {green, linear, model};
-  render_line_plot(plot).write_png(testing::plot_folder() / "shoaling.png");
+  write_png(render_line_plot(plot), testing::plot_folder() / "shoaling.png");
   // 3 %: the Madsen & Sorensen shoaling gradient is within 1-2 % of linear theory for kh < 1
   // (their 1992 paper, fig. 6); sponge and slope reflections and the generated-height error
   // (0.4 %, test above) take the rest.
@@ -152,12 +155,8 @@ TEST(BoussinesqSolitaryWave, TravelsAtItsSpeedKeepingItsHeight) {
   const double depth_m = 1.0, height_m = 0.1;
   const HarbourGrid harbour = testing::flume(800, 1, 0.1, depth_m);
   SolverParameters parameters = testing::inviscid_parameters(0.3);
-  WaveMaker maker;
-  maker.kind = WaveMaker::Kind::kSolitary;
-  maker.solitary_height_m = height_m;
-  maker.solitary_crest_position_m = 15.0;
-  maker.facing = Side::kWest;
-  BoussinesqSolver solver(harbour, parameters, maker);
+  BoussinesqSolver solver(harbour, parameters, WaveMaker{});
+  start_solitary_wave(solver, harbour, SolitaryWave{height_m, 15.0, Side::kWest});
   auto crest = [&]() {  // position (parabola through the highest cell and its neighbours) and height
     const auto& eta = solver.surface_elevation_m().values();
     const std::size_t i = std::max_element(eta.begin() + 1, eta.end() - 1) - eta.begin();
@@ -180,4 +179,4 @@ TEST(BoussinesqSolitaryWave, TravelsAtItsSpeedKeepingItsHeight) {
 }
 
 }  // namespace
-}  // namespace nearshore::bake
+}  // namespace nearshore::boussinesq

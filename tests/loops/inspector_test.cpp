@@ -1,10 +1,13 @@
+#include "nearshore/loops/inspector.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "loops_test_support.hpp"
-#include "nearshore/loops/inspector.hpp"
 #include "nearshore/loops/synthetic_sea.hpp"
+#include "nearshore/sequence/checksum.hpp"
+#include "nearshore/sequence/loops_file.hpp"
 
 namespace nearshore::loops {
 namespace {
@@ -32,13 +35,29 @@ TEST(Inspector, PeriodicSequenceLoopsAtItsPeriodAndTablesAreReused) {
   EXPECT_EQ(first.best_by_length[0].plan.length_frames, 32);
   EXPECT_EQ(first.best_by_length[1].plan.length_frames, 64);
   EXPECT_LE(first.best_by_length[1].worst_seam_ratio_before, 0.1);
+  // loops.json reads back through its type, and that type holds all of it: written again, the
+  // same bytes.
+  const sequence::LoopsFile stored = sequence::read_loops_file(folder);
+  EXPECT_EQ(sequence::loops_file_to_json(stored).dump(1), sequence::read_file_bytes(folder / "loops.json"));
+  EXPECT_DOUBLE_EQ(stored.report.parameters.sigma, first.sigma);
+  EXPECT_EQ(stored.report.parameters.filter_half_width_frames, 2);
+  EXPECT_EQ(stored.random_walk.start_frame, first.first_playable_frame);
+  EXPECT_EQ(stored.transitions.size(), first.table.transitions.size());
+  ASSERT_TRUE(stored.report.period_loop);
+  EXPECT_EQ(stored.report.period_loop->length_frames, 32);
   const LoopsReport second = analyse_loops(folder, options);
   EXPECT_TRUE(second.gram_reused);
-  EXPECT_EQ(second.to_json()["best_loops_by_length"], first.to_json()["best_loops_by_length"]);
-  const nlohmann::json stored = nlohmann::json::parse(std::ifstream(folder / "loops.json"));
-  EXPECT_EQ(stored["format"], "nearshore loops");
-  EXPECT_DOUBLE_EQ(stored["parameters"]["sigma"].get<double>(), first.sigma);
-  EXPECT_EQ(stored["parameters"]["filter_half_width_frames"], 2);
+  const sequence::LoopsFile stored_again = sequence::read_loops_file(folder);
+  EXPECT_TRUE(stored_again.report.gram_reused);
+  EXPECT_EQ(stored_again.report.best_loops_by_length, stored.report.best_loops_by_length);
+  EXPECT_EQ(stored_again.transitions, stored.transitions);
+  EXPECT_EQ(second.to_json(), sequence::loops_report_to_json(stored_again.report));
+  // A stored table that cannot be read (here: truncated) vouches for nothing: the Gram matrices are
+  // computed again and a good table replaces it.
+  std::ofstream(folder / "loops.json") << "{ \"format\": \"nearshore loops\", ";
+  const LoopsReport third = analyse_loops(folder, options);
+  EXPECT_FALSE(third.gram_reused);
+  EXPECT_EQ(sequence::read_loops_file(folder).transitions.size(), stored.transitions.size());
   write_loops_pictures(first, folder / "png");
   for (const char* name : {"distance_matrix.png", "seam_ratios.png", "worst_seam_gauge.png"})
     EXPECT_TRUE(std::filesystem::exists(folder / "png" / name)) << name;

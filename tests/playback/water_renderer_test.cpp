@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "nearshore/playback/window.hpp"
+#include "nearshore/plot/plot.hpp"
 
 namespace {
 using namespace nearshore;
@@ -62,7 +63,7 @@ TEST(WaterRenderer, WavesLandAndSkyAllAppearInTheOverview) {
   const playback::Camera camera = playback::Camera::overlooking(harbour.geometry);
   renderer.render(camera, playback::Lighting{}, 320, 200);
   const Image image = renderer.read_pixels();
-  image.write_png(std::filesystem::path(NEARSHORE_BINARY_DIR) / "playback_overview_test.png");
+  write_png(image, std::filesystem::path(NEARSHORE_BINARY_DIR) / "playback_overview_test.png");
   // The top rows are sky (bright, blue above red); somewhere below there is land (green above blue).
   const auto sky = image.get(160, 2);
   EXPECT_GT(sky[2], sky[0]);

@@ -5,10 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <nlohmann/json.hpp>
 
 #include "nearshore/core/error.hpp"
 #include "nearshore/sequence/checksum.hpp"
+#include "nearshore/sequence/loops_file.hpp"
+#include "nearshore/sequence/sequence_format.hpp"
 #include "test_sequence.hpp"
 
 namespace nearshore::sequence {
@@ -16,40 +17,38 @@ namespace {
 namespace fs = std::filesystem;
 using namespace testing;
 
-nlohmann::json loop(const std::string& kind, int start, int length, double worst_after,
-                    const std::vector<PlannedJump>& jumps) {
-  nlohmann::json seams = nlohmann::json::array();
+LoopsFile::Loop loop(const std::string& kind, int start, int length, double worst_after,
+                     const std::vector<PlannedJump>& jumps) {
+  LoopsFile::Loop planned;
+  planned.kind = kind;
+  planned.start_frame = start;
+  planned.length_frames = length;
+  planned.length_s = 0.5 * length;
+  planned.worst_seam_ratio_after = worst_after;
   for (const PlannedJump& jump : jumps)
-    seams.push_back({{"from", jump.from}, {"to", jump.to}, {"crossfade_frames", jump.crossfade_frames}});
-  return {{"kind", kind},
-          {"start_frame", start},
-          {"length_frames", length},
-          {"length_s", 0.5 * length},
-          {"worst_seam_ratio_after", worst_after},
-          {"seams", seams}};
+    planned.seams.push_back({.from = jump.from, .to = jump.to, .crossfade_frames = jump.crossfade_frames});
+  return planned;
 }
 
-void write_loops(const fs::path& folder, const nlohmann::json& tables) {
-  std::ofstream(folder / "loops.json") << tables.dump();
-}
-
-nlohmann::json tables_for(const fs::path& folder) {
+// A loops table without plans for the sequence in `folder` (its manifest checksum and frame count).
+LoopsFile tables_for(const fs::path& folder) {
   const std::string manifest = read_file_bytes(folder / "manifest.json");
-  return {{"sequence_manifest_checksum",
-           checksum_text(std::as_bytes(std::span(manifest.data(), manifest.size())))},
-          {"period_loop", nullptr},
-          {"requested_loop", nullptr},
-          {"best_loops_by_length", nlohmann::json::array()}};
+  LoopsFile tables;
+  tables.sequence_manifest_checksum =
+      checksum_text(std::as_bytes(std::span(manifest.data(), manifest.size())));
+  tables.report.frame_count = parse_manifest(manifest, "manifest.json").frame_count;
+  tables.report.frame_interval_s = 0.25;
+  return tables;
 }
 
 TEST(LoopPlayback, ThePeriodLoopIsPlayedWhenThereIsOne) {
   const fs::path folder = fresh_folder("loop_schedule_period");
   write_test_sequence(folder, 20);
   EXPECT_FALSE(read_loop_schedule(folder).has_value());  // no loops.json yet
-  nlohmann::json tables = tables_for(folder);
-  tables["best_loops_by_length"].push_back(loop("optimal", 3, 10, 0.5, {{12, 3, 2}}));
-  tables["period_loop"] = loop("period", 5, 13, 0.03, {{17, 5, 4}});
-  write_loops(folder, tables);
+  LoopsFile tables = tables_for(folder);
+  tables.report.best_loops_by_length.push_back(loop("optimal", 3, 10, 0.5, {{12, 3, 2}}));
+  tables.report.period_loop = loop("period", 5, 13, 0.03, {{17, 5, 4}});
+  write_loops_file(folder, tables);
   const auto schedule = read_loop_schedule(folder);
   ASSERT_TRUE(schedule.has_value());
   EXPECT_EQ(schedule->kind, "period");
@@ -65,11 +64,13 @@ TEST(LoopPlayback, ThePeriodLoopIsPlayedWhenThereIsOne) {
 TEST(LoopPlayback, OtherwiseTheLongestLoopWhoseSeamsAreNoWorseThanAStep) {
   const fs::path folder = fresh_folder("loop_schedule_best");
   write_test_sequence(folder, 30);
-  nlohmann::json tables = tables_for(folder);
-  tables["best_loops_by_length"].push_back(loop("optimal", 3, 10, 0.5, {{12, 3, 2}}));
-  tables["best_loops_by_length"].push_back(loop("optimal", 1, 25, 0.9, {{25, 1, 2}}));
-  tables["best_loops_by_length"].push_back(loop("optimal", 0, 28, 1.7, {{27, 0, 2}}));  // seam too visible
-  write_loops(folder, tables);
+  LoopsFile tables = tables_for(folder);
+  tables.report.best_loops_by_length.push_back(loop("optimal", 3, 10, 0.5, {{12, 3, 2}}));
+  // (A crossfade into frame `to` blends at most `to` frames: targets to - c .. to - 1 must exist.)
+  tables.report.best_loops_by_length.push_back(loop("optimal", 1, 25, 0.9, {{25, 1, 1}}));
+  // Longer, but its seam is too visible.
+  tables.report.best_loops_by_length.push_back(loop("optimal", 0, 28, 1.7, {{27, 0, 0}}));
+  write_loops_file(folder, tables);
   const auto schedule = read_loop_schedule(folder);
   ASSERT_TRUE(schedule.has_value());
   EXPECT_EQ(schedule->shown.size(), 25u);
@@ -79,10 +80,10 @@ TEST(LoopPlayback, OtherwiseTheLongestLoopWhoseSeamsAreNoWorseThanAStep) {
 TEST(LoopPlayback, ALoopsTableOfAnotherBakeIsRefused) {
   const fs::path folder = fresh_folder("loop_schedule_stale");
   write_test_sequence(folder, 20);
-  nlohmann::json tables = tables_for(folder);
-  tables["sequence_manifest_checksum"] = "xxh64:0000000000000000";
-  tables["period_loop"] = loop("period", 5, 13, 0.03, {{17, 5, 4}});
-  write_loops(folder, tables);
+  LoopsFile tables = tables_for(folder);
+  tables.sequence_manifest_checksum = "xxh64:0000000000000000";
+  tables.report.period_loop = loop("period", 5, 13, 0.03, {{17, 5, 4}});
+  write_loops_file(folder, tables);
   try {
     read_loop_schedule(folder);
     FAIL() << "a stale loops.json was accepted";
@@ -92,6 +93,23 @@ TEST(LoopPlayback, ALoopsTableOfAnotherBakeIsRefused) {
   }
   std::ofstream(folder / "loops.json") << "{ not json";
   EXPECT_THROW(read_loop_schedule(folder), Error);
+}
+
+// Same manifest but a table that counts more frames than the bake has: its plans could point past
+// the last frame, so it is refused rather than played.
+TEST(LoopPlayback, ALoopsTableCountingOtherFramesIsRefused) {
+  const fs::path folder = fresh_folder("loop_schedule_frames");
+  write_test_sequence(folder, 20);
+  LoopsFile tables = tables_for(folder);
+  tables.report.frame_count = 40;
+  tables.report.period_loop = loop("period", 20, 13, 0.03, {{32, 20, 4}});
+  write_loops_file(folder, tables);
+  try {
+    read_loop_schedule(folder);
+    FAIL() << "a loops.json for 40 frames was played on a 20-frame bake";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("counts 40 frames"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -70,7 +70,17 @@ TEST(Cli, UnfinishedSequenceFolderIsRefusedWithTheFix) {
   const CommandResult loops = run("loops " + folder.string());
   EXPECT_EQ(loops.status, 1) << loops.output;
   EXPECT_NE(loops.output.find("manifest.json"), std::string::npos) << loops.output;
-  EXPECT_NE(loops.output.find("--resume"), std::string::npos) << loops.output;
+  // The library names the bake's parameter; the command line adds the flag that sets it.
+  EXPECT_NE(loops.output.find("BakeOptions::resume (nearshore bake --resume)"), std::string::npos) << loops.output;
+}
+
+TEST(Cli, LibraryErrorsNameTheParameterAndTheCommandsFlag) {
+  const fs::path folder = scratch("zero_spacing");
+  const CommandResult bathy = run("bathy " + (folder / "soundings.xyz").string() + " --spacing 0 -o " +
+                                  (folder / "out").string());
+  EXPECT_EQ(bathy.status, 1) << bathy.output;
+  EXPECT_NE(bathy.output.find("error: BathyRequest::spacing_m (--spacing) = 0"), std::string::npos) << bathy.output;
+  EXPECT_FALSE(fs::exists(folder / "out"));
 }
 
 TEST(Cli, CaseFileSyntaxErrorNamesTheFileAndLine) {

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "nearshore/core/plot.hpp"
+#include "nearshore/plot/plot.hpp"
 
 namespace nearshore::validation {
 

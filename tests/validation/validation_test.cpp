@@ -156,7 +156,7 @@ TEST(VALIDATION_SUITE(Berkhoff1982), AmplitudeRatiosOnTheEightTransects) {
   results["overall_rmse"] = overall;
   std::printf("Berkhoff overall RMSE %.3f over %zu points (FUNWAVE-TVD reference 0.132)\n", overall, points.size());
   write_results("berkhoff", results);
-  tile_plots(plots, 2).write_png(output_folder("berkhoff") / "berkhoff_transects.png");
+  write_png(tile_plots(plots, 2), output_folder("berkhoff") / "berkhoff_transects.png");
   // Issue 4: overall RMSE <= 0.13 over the 208 points (FUNWAVE-TVD scores 0.132). The CI grid has
   // half the resolution, so phase errors over the 20 m flume blur the focus: 0.2.
   EXPECT_LE(overall, kFull ? 0.13 : 0.20);
@@ -205,7 +205,7 @@ TEST(VALIDATION_SUITE(MaseKirby1992), SignificantWaveHeightAndMeanLevelAtTheTwel
   LinePlot level_plot{"mean water level (set-down, set-up)", "x (m)", "mean eta (m)", {}, 800, 450};
   level_plot.series.push_back({"model", x, level_model, kModelColour, false});
   level_plot.series.push_back({"measured", x, level_data, kDataColour, true});
-  tile_plots({hs_plot, level_plot}, 1).write_png(output_folder("mase_kirby") / "mase_kirby_hs_setup.png");
+  write_png(tile_plots({hs_plot, level_plot}, 1), output_folder("mase_kirby") / "mase_kirby_hs_setup.png");
   // Hs: the breaking model must take the energy out where the lab did. An RMSE of 10 % of the
   // offshore Hs is what Boussinesq models with eddy-viscosity breaking reach on this case
   // (FUNWAVE-TVD's benchmark plots show errors of that order at the shallowest gauges).
@@ -246,7 +246,7 @@ RunupResult run_synolakis(double height_ratio, const std::string& run_name, cons
   const int row = grid.geometry.rows / 2;
   RunupResult result;
   result.runup_ratio = -1;
-  const double time_scale_s = std::sqrt(kDepth_m / bake::kGravity_m_s2);
+  const double time_scale_s = std::sqrt(kDepth_m / ocean::kGravity_m_s2);
   for (int index = 0; index < reader.frame_count(); ++index) {
     const sequence::Frame frame = reader.read_frame(index, sequence::ChannelSelection::display());
     for (int column = 0; column < grid.geometry.columns; ++column) {
@@ -303,7 +303,7 @@ void check_synolakis(double height_ratio, const std::string& case_name, const st
     plot.series.push_back({"Synolakis (1987)", snapshot.offshore_distance_ratio, snapshot.elevation_ratio, kDataColour, true});
     plots.push_back(plot);
   }
-  tile_plots(plots, 2).write_png(output_folder(run_name) / (run_name + ".png"));
+  write_png(tile_plots(plots, 2), output_folder(run_name) / (run_name + ".png"));
   EXPECT_LE(std::abs(relative_error), tolerance) << "H/d = " << height_ratio;
 }
 

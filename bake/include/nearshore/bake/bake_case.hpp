@@ -16,8 +16,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "nearshore/bake/boussinesq_solver.hpp"
-#include "nearshore/bake/deep_water.hpp"
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
+#include "nearshore/boussinesq/initial_conditions.hpp"
+#include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/bake/deep_water_coupling.hpp"
 #include "nearshore/core/harbour_grid.hpp"
 
@@ -42,8 +43,10 @@ struct BakeTiming {
 struct BakeCase {
   std::filesystem::path case_file;  ///< where it was read from (named in every message)
   HarbourGrid harbour;              ///< the grid the solver runs on
-  SolverParameters solver;          ///< time_step_s is always resolved (> 0): see resolve_time_step()
-  WaveMaker wave_maker;
+  boussinesq::SolverParameters solver;          ///< time_step_s is always resolved (> 0): see resolve_time_step()
+  boussinesq::WaveMaker wave_maker;
+  /// wave_maker.kind = "solitary": the solver starts from this wave instead of rest (run-up cases).
+  std::optional<boussinesq::SolitaryWave> solitary_wave;
   BakeTiming timing;
   std::vector<GaugeSpec> gauges;
   nlohmann::json wave_conditions;   ///< the wave maker as configured, recorded in the sequence
@@ -53,7 +56,7 @@ struct BakeCase {
   /// irregular wave maker's own spectrum, spreading, loop period and seed, or (wave_maker.kind =
   /// "deep_water") from its own spectrum and seed. The bake writes its coefficients beside the
   /// frames and its description into the manifest's `deep_water`.
-  std::optional<DeepWaterSpecification> deep_water;
+  std::optional<ocean::DeepWaterSpecification> deep_water;
   /// Set when the field gives the wave maker its waves (kind "deep_water", or drive_wave_maker):
   /// which waves, the variance fraction they carry and the blending zone (deep_water_coupling.hpp).
   std::optional<CoupledWaveMaker> deep_water_maker;

@@ -23,7 +23,7 @@ class GaugeRecorder {
  public:
   explicit GaugeRecorder(std::vector<GaugeSpec> gauges);
   /// Appends one row: the solver's surface elevation at every gauge (bilinear) at `time_s`.
-  void record(double time_s, const BoussinesqSolver& solver);
+  void record(double time_s, const boussinesq::BoussinesqSolver& solver);
   const GaugeTable& table() const { return table_; }
   /// Writes gauges.csv atomically. Throws nearshore::Error naming the file on failure.
   void write_csv(const std::filesystem::path& file) const;

@@ -37,9 +37,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "nearshore/bake/boussinesq_solver.hpp"
-#include "nearshore/bake/deep_water.hpp"
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
+#include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/sequence/deep_water_section.hpp"
 
 namespace nearshore::bake {
 
@@ -63,7 +64,7 @@ inline constexpr double kSeamlessRelativeRms = 0.28;
 /// Where the runtime cross-fades from the FFT field (seaward) to the baked field (inland).
 /// Distances are along the wave maker's inward normal, from the source line, metres.
 struct BlendingZone {
-  Side side = Side::kSouth;  ///< the side the waves come from (the wave maker's `facing`)
+  boussinesq::Side side = boussinesq::Side::kSouth;  ///< the side the waves come from (the wave maker's `facing`)
   /// The source line's local position (from the SW corner) along x (west/east) or y (south/north).
   double source_line_m = 0.0;
   /// The inland edge of the source strip (its Gaussian < e^-9 beyond): the cross-fade starts here.
@@ -80,7 +81,8 @@ struct BlendingZone {
   /// The baked field's weight w(s) at distance s inland: 0 for s <= start, sin^2(pi/2 (s - start) / width)
   /// inside, 1 beyond; the field shown is (1 - w) FFT + w baked, for eta, P, Q and slopes alike.
   double baked_weight(double distance_inland_m) const;
-  nlohmann::json to_json() const;
+  /// As recorded in the manifest's deep_water.coupling.blending.
+  sequence::DeepWaterBlendingRecord record() const;
 };
 
 /// What the solver does to the carried waves inland of the source line (the drift model above).
@@ -92,8 +94,8 @@ struct InlandPropagation {
 
 /// The wave maker made of the field's waves.
 struct CoupledWaveMaker {
-  SeaState sea_state;                ///< WaveMaker::sea_state: the solver's frame (see the top of the file)
-  std::vector<LatticeWave> carried;  ///< the field's waves it makes, in the field's frame, same order
+  ocean::SeaState sea_state;                ///< WaveMaker::sea_state: the solver's frame (see the top of the file)
+  std::vector<ocean::LatticeWave> carried;  ///< the field's waves it makes, in the field's frame, same order
   std::vector<double> normal_wavenumber_rad_m;      ///< k_L,n of each carried wave (inward, > 0)
   std::vector<double> tangential_wavenumber_rad_m;  ///< l of each carried wave
   double source_depth_m = 0.0;                      ///< d of the source line (what the solver generates in)
@@ -109,12 +111,12 @@ struct CoupledWaveMaker {
   /// baked waves and the field's carried waves at distance s inland of the source line.
   double relative_rms_drift(double distance_inland_m) const;
   /// components, variance fraction, carried Hs, source depth, band (for the manifest and the summary).
-  nlohmann::json to_json() const;
+  sequence::DeepWaterMakerRecord record() const;
 };
 
 /// The still-water depth the source line generates in: the mean over the wet cells of the grid line
 /// (row or column) holding the source line, as boussinesq_source.cpp computes it.
-double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid);
+double source_line_depth_m(const boussinesq::WaveMaker& maker, const HarbourGrid& grid);
 
 /// The maker for `field` on `grid`: keeps the lattice waves that travel into the domain from
 /// `maker.facing` within the source's 78 degrees, inside `band`, converts them as at the top of the
@@ -122,8 +124,8 @@ double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid);
 /// dispersion_coefficient and resolved time_step_s), and lays out the blending zone. The sea state's
 /// loop period and seed are the field's. Throws nearshore::Error when the field is not at the source
 /// line's depth.
-CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker& maker,
-                                   const HarbourGrid& grid, const SolverParameters& solver,
+CoupledWaveMaker couple_wave_maker(const ocean::DeepWaterField& field, const boussinesq::WaveMaker& maker,
+                                   const HarbourGrid& grid, const boussinesq::SolverParameters& solver,
                                    const WaveMakerBand& band);
 
 }  // namespace nearshore::bake

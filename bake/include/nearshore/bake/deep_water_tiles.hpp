@@ -11,7 +11,7 @@
 // run the FFT from the coefficients instead (DeepWaterField::write_coefficients).
 #include <filesystem>
 
-#include "nearshore/bake/deep_water.hpp"
+#include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/sequence/sequence_format.hpp"
 
 namespace nearshore::bake {
@@ -28,7 +28,7 @@ struct TileSetSummary {
 /// frame_limit > 0 writes only the first frame_limit frames, as a sample (e.g. to measure the
 /// bytes per frame): that sequence is then not a loop (loop_period_s = 0 in its manifest).
 /// Throws nearshore::Error for a field that does not loop or a bad cascade index.
-TileSetSummary write_deep_water_tile_set(DeepWaterField& field, int cascade, int frames_per_loop,
+TileSetSummary write_deep_water_tile_set(ocean::DeepWaterField& field, int cascade, int frames_per_loop,
                                          const std::filesystem::path& folder,
                                          const sequence::FrameEncoding& encoding = {}, int frame_limit = 0);
 

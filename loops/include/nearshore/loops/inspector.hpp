@@ -3,7 +3,8 @@
 // table, plans, and for every planned transition the seam ratio
 //   R = |f(j) - f(i+1)| / median_k |f(k+1) - f(k)|     (|.| the metric of eq. 10)
 // before and after its crossfade, with the water volume and wave energy change across the seam.
-// Writes loops.json (+ loops_gram.bin) into the sequence folder; optional PNG pictures.
+// Writes loops.json (through sequence/loops_file.hpp, the one type of that file) + loops_gram.bin
+// into the sequence folder; optional PNG pictures.
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -13,11 +14,12 @@
 #include "nearshore/loops/distance.hpp"
 #include "nearshore/loops/plans.hpp"
 #include "nearshore/loops/transitions.hpp"
+#include "nearshore/sequence/loops_file.hpp"
 
 namespace nearshore::loops {
 
-inline constexpr const char* kLoopsFile = "loops.json";
-inline constexpr const char* kGramFile = "loops_gram.bin";
+inline constexpr const char* kLoopsFile = sequence::kLoopsFileName;
+inline constexpr const char* kGramFile = sequence::kLoopsGramFileName;
 
 struct LoopsOptions {
   TransitionOptions transitions;
@@ -92,6 +94,7 @@ struct LoopsReport {
 
   /// The largest R after crossfade over all reported plans (the --max-seam gate).
   double worst_seam_ratio_after() const;
+  /// The report as `nearshore loops --json` prints it (sequence::loops_report_to_json).
   nlohmann::json to_json() const;
 };
 

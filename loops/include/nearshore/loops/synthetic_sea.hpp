@@ -6,21 +6,14 @@
 #include <filesystem>
 #include <vector>
 
+#include "nearshore/ocean/wave_component.hpp"
 #include "nearshore/sequence/sequence_writer.hpp"
 
 namespace nearshore::loops {
 
-/// One plane wave: eta = a cos(kx x + ky y - omega t + phase).
-struct WaveComponent {
-  double amplitude_m = 0;
-  double wavenumber_x_rad_m = 0, wavenumber_y_rad_m = 0;
-  double angular_frequency_rad_s = 0;
-  double phase_rad = 0;
-};
-
 struct SyntheticSea {
   double still_water_depth_m = 10;
-  std::vector<WaveComponent> components;
+  std::vector<ocean::LatticeWave> components;  ///< eta = a cos(kx x + ky y - omega t + phase)
 };
 
 /// omega from linear dispersion omega^2 = g k tanh(k d) (Airy).
@@ -31,8 +24,8 @@ double linear_dispersion_omega_rad_s(double wavenumber_rad_m, double depth_m);
 /// Directions and phases from `seed`; wavenumbers from the dispersion relation.
 SyntheticSea periodic_sea(double period_s, int component_count, double significant_height_m, double depth_m,
                           std::uint64_t seed);
-/// An irregular sea: `component_count` components with JONSWAP-like (peak period `peak_period_s`,
-/// gamma 3.3) amplitudes, spread +-40 degrees about `mean_direction_rad`, random phases and
+/// An irregular sea: `component_count` components with JONSWAP (ocean/spectrum.hpp; peak period
+/// `peak_period_s`, gamma 3.3) amplitudes, spread +-40 degrees about `mean_direction_rad`, random phases and
 /// incommensurate frequencies, so it never repeats exactly.
 SyntheticSea irregular_sea(double peak_period_s, int component_count, double significant_height_m, double depth_m,
                            double mean_direction_rad, std::uint64_t seed);

@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "nearshore/core/harbour_grid.hpp"
-#include "nearshore/core/plot.hpp"
+#include "nearshore/core/image.hpp"
 #include "nearshore/playback/lighting.hpp"
 
 namespace nearshore::playback {

@@ -1,7 +1,6 @@
 #pragma once
-// File checksums of the sequence manifest: XXH64 (Collet's xxHash, 64-bit variant), written from
-// its public specification. It is not cryptographic; it detects truncation, flipped bits and
-// swapped files at several GB/s, so verifying a whole bake costs little next to reading it.
+// File checksums of the sequence manifest: XXH64 (core/hash.hpp, libxxhash), and whole-file reads
+// into reusable buffers, so verifying a whole bake costs little next to reading it.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -9,13 +8,12 @@
 #include <span>
 #include <string>
 
+#include "nearshore/core/hash.hpp"
+
 namespace nearshore::sequence {
 
-/// XXH64 of `bytes` with `seed` (the reference algorithm: same value as `xxhsum -H64`).
-std::uint64_t xxh64(std::span<const std::byte> bytes, std::uint64_t seed = 0);
-
-/// The manifest's spelling of a checksum: "xxh64:" followed by 16 lower-case hex digits.
-std::string checksum_text(std::span<const std::byte> bytes);
+using nearshore::checksum_text;  // the manifests' "xxh64:<16 hex digits>" (core/hash.hpp)
+using nearshore::xxh64;
 
 /// Reads a whole file (throws nearshore::Error naming it if it cannot).
 std::string read_file_bytes(const std::filesystem::path& path);

@@ -1,7 +1,8 @@
 #pragma once
 // Playing a planned loop: the contract between `nearshore loops` (which writes loops.json into the
-// sequence folder, docs/formats/sequence.md) and any player (playback/SequencePlayer, or an engine's
-// own). Here because both sides need it and the playback runtime links only this library.
+// sequence folder: loops_file.hpp, docs/formats/sequence.md) and any player (playback/SequencePlayer,
+// or an engine's own). Here because both sides need it and the playback runtime links only this
+// library.
 //
 // Crossfading across a transition i -> j with c blend frames. The last c frames shown before the
 // jump are blends of the source timeline and the target timeline, aligned so that target frame j
@@ -44,7 +45,7 @@ struct PlannedJump {
 /// What a player shows at each step of one cycle of a loop, in order: source_frame alone
 /// (target_weight 0) or the crossfade blend (1 - w) source + w target.
 struct LoopSchedule {
-  std::string kind;  ///< "period", "requested", "optimal" (the loops.json plan it came from)
+  std::string kind;  ///< the kind of the loops.json plan it came from: "period" or "optimal"
   double length_s = 0;
   std::vector<BlendSource> shown;
   /// The source frames alone (the frames of the loop without its blends).
@@ -55,11 +56,12 @@ struct LoopSchedule {
 /// `jumps` in order, for `length_frames` steps.
 LoopSchedule schedule_loop(int start_frame, int length_frames, const std::vector<PlannedJump>& jumps);
 
-/// The loop a player should use from `folder`/loops.json (written by `nearshore loops`): the exact
-/// period of a periodic bake, else the requested loop (--loop-s), else the longest reported loop
-/// whose seams are no larger than an ordinary step after crossfade (R <= 1). nullopt if there is no
-/// loops.json or it offers none. Throws nearshore::Error if loops.json is malformed or was made for
-/// another bake (its manifest checksum differs).
+/// The loop a player should use from `folder`/loops.json (written by `nearshore loops`, read through
+/// read_loops_file): the exact period of a periodic bake, else the requested loop (--loop-s), else
+/// the longest reported loop whose seams are no larger than an ordinary step after crossfade
+/// (R <= 1). nullopt if there is no loops.json or it offers none. Throws nearshore::Error if
+/// loops.json is malformed, of another format version, or was made for another bake (its manifest
+/// checksum differs).
 std::optional<LoopSchedule> read_loop_schedule(const std::filesystem::path& folder);
 
 }  // namespace nearshore::sequence

@@ -10,6 +10,7 @@
 //   loops.json, loops_gram.bin   transition tables written later by `nearshore loops` (loops/).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,6 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "nearshore/core/raster.hpp"
+#include "nearshore/sequence/deep_water_section.hpp"
+#include "nearshore/sequence/file_entry.hpp"
 
 namespace nearshore::sequence {
 
@@ -48,12 +51,6 @@ Compression parse_compression(std::string_view name);           ///< throws Erro
 std::string_view precision_name(Precision precision);           ///< "half" or "float"
 std::string frame_file_name(int index);                          ///< "frame_000123.exr"
 
-struct FileEntry {
-  std::string file;           ///< name inside the sequence folder
-  std::uint64_t bytes = 0;    ///< file size
-  std::string checksum;       ///< "xxh64:<16 hex digits>"
-};
-
 /// manifest.json, parsed and validated.
 struct SequenceManifest {
   int version = kManifestVersion;
@@ -64,7 +61,8 @@ struct SequenceManifest {
   double loop_period_s = 0;  ///< > 0 for a time-periodic bake
   std::uint64_t seed = 0;
   FrameEncoding encoding;
-  nlohmann::json wave_conditions, deep_water, solver;
+  nlohmann::json wave_conditions, solver;
+  std::optional<DeepWaterSection> deep_water;  ///< the FFT sea beyond the harbour, when the bake carries one
   FileEntry harbour_grid;
   std::vector<FileEntry> frames;  ///< frame_count entries, index order
 

@@ -5,6 +5,7 @@
 // face fluxes (staggered grid) to cell centres before calling write_frame.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <memory>
 #include <string>
 
@@ -22,7 +23,7 @@ struct SequenceDescription {
   nlohmann::json wave_conditions; ///< the wave maker as configured (H, T, spectrum, components...)
   std::uint64_t seed = 0;         ///< the phase seed (reproducibility)
   double loop_period_s = 0;       ///< > 0 for a time-periodic bake (exact period), else 0
-  nlohmann::json deep_water;      ///< the deep-water description (issue 5), may be null
+  std::optional<DeepWaterSection> deep_water;  ///< the deep-water field the bake carries (issue 5), if any
   nlohmann::json solver;          ///< solver parameters, for the record
   FrameEncoding encoding;         ///< compression and half/float per channel (default: measured choice)
 };

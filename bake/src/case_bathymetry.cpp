@@ -1,0 +1,79 @@
+// [bathymetry] and [[porous_blocks]] of a case file (docs/commands/bake.md).
+#include "nearshore/bake/bake_bathymetry.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "nearshore/core/error.hpp"
+#include "case_reader.hpp"
+
+namespace nearshore::bake::detail {
+
+using namespace nearshore::ocean;       // spectra, sea states, the deep-water field
+using namespace nearshore::boussinesq;  // the solver and its parameters
+
+HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base) {
+  const std::size_t kind = bathymetry.choice("kind", std::nullopt, {"harbour_grid", "profile", "berkhoff_shoal"});
+  HarbourGrid grid;
+  if (kind == 0) {
+    const fs::path file = bathymetry.path("file", base);
+    grid = bathymetry.reading_file("file", [&] { return read_harbour_grid(file); });
+    if (bathymetry.has("spacing_m"))
+      grid = resample_harbour_grid(grid, bathymetry.positive("spacing_m", std::nullopt, "cell size in metres"));
+  } else {
+    const double length_m = bathymetry.positive("length_m", std::nullopt, "flume length along x in metres");
+    const double width_m = bathymetry.positive("width_m", std::nullopt, "flume width along y in metres");
+    const double spacing_m = bathymetry.positive("spacing_m", std::nullopt, "cell size in metres");
+    if (length_m / spacing_m > 20000 || width_m / spacing_m > 20000)
+      bathymetry.fail(bathymetry.full("spacing_m"), "makes more than 20000 cells along a side",
+                      "use a larger spacing_m (cells of at least 1/20000 of the flume)");
+    if (kind == 1) {
+      grid = flume_from_profile(length_m, width_m, spacing_m,
+                                bathymetry.pairs("profile", "[[x_m, depth_m], ...] with increasing x"),
+                                bathymetry.subject() + ": key `" + bathymetry.full("profile") + "`");
+      return grid;
+    }
+    BerkhoffShoal shoal;
+    const std::vector<double> centre = bathymetry.numbers("centre_m", 2, "[x_m, y_m]");
+    shoal.centre_x_m = centre[0];
+    shoal.centre_y_m = centre[1];
+    shoal.rotation_deg = bathymetry.number("rotation_deg", 20.0, -90.0, 90.0, false, "contour angle in degrees");
+    shoal.deep_depth_m = bathymetry.positive("deep_depth_m", 0.45, "depth before the slope in metres");
+    shoal.slope = bathymetry.non_negative("slope", 0.02, "bed slope (rise over run)");
+    shoal.slope_start_m = bathymetry.number("slope_start_m", 5.84, -1e6, 1e6, false, "distance up-wave of the shoal centre where the slope starts, metres");
+    shoal.minimum_depth_m = bathymetry.positive("minimum_depth_m", 0.07, "depth where the slope is clipped, metres");
+    grid = berkhoff_shoal_grid(length_m, width_m, spacing_m, shoal);
+  }
+  return grid;
+}
+
+// Rectangles of porous structure (rubble mounds) or walls laid over any bathymetry.
+void apply_porous_blocks(std::vector<TableReader> blocks, HarbourGrid& grid) {
+  for (TableReader& block : blocks) {
+    const std::vector<double> x_range = block.numbers("x_range_m", 2, "[x_min_m, x_max_m]");
+    const std::vector<double> y_range = block.numbers("y_range_m", 2, "[y_min_m, y_max_m]");
+    const double porosity = block.number("porosity", std::nullopt, 0.0, 1.0, false, "porosity n (0 wall .. 1 open water)");
+    block.finish();
+    if (!(x_range[1] > x_range[0]) || !(y_range[1] > y_range[0]))
+      block.fail(block.full("x_range_m"), "or y_range_m is empty (max <= min)", "give [min, max] with max > min");
+    int cells = 0;
+    for (int row = 0; row < grid.geometry.rows; ++row)
+      for (int column = 0; column < grid.geometry.columns; ++column) {
+        const double x = grid.geometry.cell_centre_x_m(column) - grid.geometry.origin_x_m;  // local frame
+        const double y = grid.geometry.cell_centre_y_m(row) - grid.geometry.origin_y_m;
+        if (x >= x_range[0] && x <= x_range[1] && y >= y_range[0] && y <= y_range[1]) {
+          grid.porosity(column, row) = static_cast<float>(porosity);
+          ++cells;
+        }
+      }
+    if (cells == 0)
+      block.fail(block.full("x_range_m"), "and y_range_m contain no cell centre of the grid",
+                 "widen the rectangle to at least one cell, inside the grid");
+  }
+}
+
+
+}  // namespace nearshore::bake::detail

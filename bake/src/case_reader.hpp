@@ -1,0 +1,274 @@
+#pragma once
+// The case file's reader, shared by the files that read its sections (case_document.cpp,
+// case_bathymetry.cpp, case_wave_maker.cpp, case_sea_state.cpp, case_solver.cpp; bake_case.cpp
+// assembles them). Private to bake/. Every key is read through a TableReader that remembers what it
+// consumed, so unknown keys (typos) are reported, and every message names the case file, the full
+// key and the fix.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "nearshore/bake/bake_case.hpp"
+#include "nearshore/bake/deep_water_coupling.hpp"
+#include "nearshore/boussinesq/initial_conditions.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/ocean/spectrum_registry.hpp"
+
+namespace nearshore::bake::detail {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+inline constexpr double kDegree = std::numbers::pi / 180.0;
+
+/// TOML or JSON -> one JSON document, integers kept apart from floats (case_document.cpp).
+json parse_case_document(const fs::path& case_file);
+
+// ---- TableReader ---------------------------------------------------------------------------------
+class TableReader {
+ public:
+  TableReader(const json& table, std::string prefix, std::string subject)
+      : table_(table), prefix_(std::move(prefix)), subject_(std::move(subject)) {
+    if (!table_.is_object())
+      throw Error(subject_, (prefix_.empty() ? std::string("the document") : "key `" + trimmed_prefix() + "`") + " is not a table",
+                  "write it as a [table] (TOML) or an object (JSON)");
+  }
+
+  bool has(const std::string& key) const { return table_.contains(key); }
+
+  /// A number; `minimum`/`maximum` are inclusive bounds unless `exclusive_minimum`.
+  double number(const std::string& key, std::optional<double> fallback, double minimum, double maximum,
+                bool exclusive_minimum, const std::string& meaning) {
+    const json* value = find(key);
+    if (!value) {
+      if (fallback) return *fallback;
+      fail(full(key), "is missing", "add " + full(key) + " = <" + meaning + ">");
+    }
+    if (!value->is_number())
+      fail(full(key), fmt::format("is {} but must be a number", value->dump()), "write " + meaning + " as a number");
+    const double x = value->get<double>();
+    const bool below = exclusive_minimum ? !(x > minimum) : !(x >= minimum);
+    if (!std::isfinite(x) || below || x > maximum)
+      fail(full(key), fmt::format("= {} is out of range", x),
+           fmt::format("give {} {} {}{}", meaning, exclusive_minimum ? ">" : ">=", minimum,
+                       std::isfinite(maximum) ? fmt::format(" and <= {}", maximum) : std::string()));
+    return x;
+  }
+  double positive(const std::string& key, std::optional<double> fallback, const std::string& meaning) {
+    return number(key, fallback, 0.0, kInfinity, true, meaning);
+  }
+  double non_negative(const std::string& key, std::optional<double> fallback, const std::string& meaning) {
+    return number(key, fallback, 0.0, kInfinity, false, meaning);
+  }
+  int integer(const std::string& key, std::optional<int> fallback, int minimum, int maximum, const std::string& meaning) {
+    const json* value = find(key);
+    if (!value) {
+      if (fallback) return *fallback;
+      fail(full(key), "is missing", "add " + full(key) + " = <" + meaning + ">");
+    }
+    if (!value->is_number_integer())
+      fail(full(key), fmt::format("is {} but must be a whole number", value->dump()), "write " + meaning + " as an integer");
+    const auto x = value->get<long long>();
+    if (x < minimum || x > maximum)
+      fail(full(key), fmt::format("= {} is out of range", x), fmt::format("give {} from {} to {}", meaning, minimum, maximum));
+    return static_cast<int>(x);
+  }
+  std::uint64_t unsigned_integer(const std::string& key, std::uint64_t fallback, const std::string& meaning) {
+    const json* value = find(key);
+    if (!value) return fallback;
+    if (!value->is_number_integer() || value->get<long long>() < 0)
+      fail(full(key), fmt::format("is {} but must be a whole number >= 0", value->dump()), "write " + meaning + " as an integer");
+    return value->get<std::uint64_t>();
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    const json* value = find(key);
+    if (!value) return fallback;
+    if (!value->is_boolean()) fail(full(key), fmt::format("is {} but must be true or false", value->dump()), "write true or false");
+    return value->get<bool>();
+  }
+  std::string string(const std::string& key, std::optional<std::string> fallback, const std::string& meaning) {
+    const json* value = find(key);
+    if (!value) {
+      if (fallback) return *fallback;
+      fail(full(key), "is missing", "add " + full(key) + " = \"<" + meaning + ">\"");
+    }
+    if (!value->is_string()) fail(full(key), fmt::format("is {} but must be a string", value->dump()), "write it in quotes");
+    return value->get<std::string>();
+  }
+  /// One of `choices`, returned as its index.
+  std::size_t choice(const std::string& key, std::optional<std::string> fallback, const std::vector<std::string>& choices) {
+    const std::string value = string(key, fallback, "one of " + list(choices));
+    const auto found = std::find(choices.begin(), choices.end(), value);
+    if (found == choices.end())
+      fail(full(key), fmt::format("= \"{}\" is not known", value), "use one of " + list(choices));
+    return static_cast<std::size_t>(found - choices.begin());
+  }
+  /// An array of exactly `count` numbers (count 0 = any length >= 1).
+  std::vector<double> numbers(const std::string& key, std::size_t count, const std::string& meaning) {
+    const json* value = find(key);
+    if (!value) fail(full(key), "is missing", "add " + full(key) + " = " + meaning);
+    if (!value->is_array() || (count && value->size() != count) || value->empty())
+      fail(full(key), fmt::format("is {} but must be {}", value->dump().substr(0, 80), meaning), "write it as " + meaning);
+    std::vector<double> out;
+    for (const json& item : *value) {
+      if (!item.is_number() || !std::isfinite(item.get<double>()))
+        fail(full(key), fmt::format("holds {}, not a number", item.dump()), "write it as " + meaning);
+      out.push_back(item.get<double>());
+    }
+    return out;
+  }
+  /// An array of [a, b] pairs (a 1-D table).
+  std::vector<std::pair<double, double>> pairs(const std::string& key, const std::string& meaning) {
+    const json* value = find(key);
+    if (!value) fail(full(key), "is missing", "add " + full(key) + " = " + meaning);
+    std::vector<std::pair<double, double>> out;
+    if (!value->is_array() || value->empty()) fail(full(key), "is not a list of pairs", "write it as " + meaning);
+    for (const json& item : *value) {
+      if (!item.is_array() || item.size() != 2 || !item[0].is_number() || !item[1].is_number())
+        fail(full(key), fmt::format("holds {}, not a pair of numbers", item.dump()), "write it as " + meaning);
+      out.emplace_back(item[0].get<double>(), item[1].get<double>());
+    }
+    return out;
+  }
+  const std::string& subject() const { return subject_; }
+  /// A sub-table; the returned reader checks its own keys.
+  TableReader table(const std::string& key) {
+    const json* value = find(key);
+    static const json kEmpty = json::object();
+    return TableReader(value ? *value : kEmpty, prefix_ + key + ".", subject_);
+  }
+  /// An array of tables ([[key]] in TOML).
+  std::vector<TableReader> tables(const std::string& key) {
+    std::vector<TableReader> out;
+    const json* value = find(key);
+    if (!value) return out;
+    if (!value->is_array())
+      fail(full(key), "is not an array of tables", "write each entry as [[" + full(key) + "]] (TOML) or an array of objects");
+    for (std::size_t i = 0; i < value->size(); ++i)
+      out.emplace_back((*value)[i], fmt::format("{}{}[{}].", prefix_, key, i), subject_);
+    return out;
+  }
+  /// A path, relative to the case file's folder.
+  fs::path path(const std::string& key, const fs::path& base) {
+    const fs::path relative = string(key, std::nullopt, "path");
+    return relative.is_absolute() ? relative : (base / relative).lexically_normal();
+  }
+  /// Runs `read` (which reads the file named by `key`); a nearshore::Error from it is re-thrown
+  /// naming the case file and the key as well.
+  template <class Read>
+  auto reading_file(const std::string& key, Read&& read) -> decltype(read()) {
+    try {
+      return read();
+    } catch (const Error& error) {
+      fail(full(key), "names a file that cannot be used: " + error.problem() + " (" + error.subject() + ")", error.fix());
+    }
+  }
+  /// Throws for any key of this table that was never asked for.
+  void finish() const {
+    for (const auto& [key, value] : table_.items())
+      if (!used_.count(key))
+        fail(full(key), "is not a known key here",
+             "check its spelling against docs/commands/bake.md (known here: " + list(asked_) + ")");
+  }
+  [[noreturn]] void fail(const std::string& what, const std::string& problem, const std::string& fix) const {
+    throw Error(subject_, "key `" + what + "` " + problem, fix);
+  }
+  std::string full(const std::string& key) const { return prefix_ + key; }
+
+ private:
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const json* find(const std::string& key) {
+    asked_.push_back(key);
+    if (!table_.contains(key)) return nullptr;
+    used_.insert(key);
+    return &table_.at(key);
+  }
+  std::string trimmed_prefix() const { return prefix_.empty() ? prefix_ : prefix_.substr(0, prefix_.size() - 1); }
+  static std::string list(const std::vector<std::string>& items) {
+    std::string out;
+    std::set<std::string> seen;
+    for (const auto& item : items)
+      if (seen.insert(item).second) out += (out.empty() ? "" : ", ") + item;
+    return out;
+  }
+
+  const json& table_;
+  std::string prefix_, subject_;
+  std::set<std::string> used_;
+  std::vector<std::string> asked_;
+};
+
+// ---- grid sides ----------------------------------------------------------------------------------
+extern const std::vector<std::string> kSideNames;  ///< "west", "east", "south", "north": Side order
+boussinesq::Side side_from_index(std::size_t index);
+std::string side_name(boussinesq::Side side);
+/// Direction of travel (radians, counter-clockwise from +x) of waves coming from `facing`.
+double direction_away_from(boussinesq::Side facing);
+double deepest_still_water_m(const HarbourGrid& grid);
+
+// ---- sections ------------------------------------------------------------------------------------
+/// [bathymetry] (case_bathymetry.cpp).
+HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base);
+/// [[porous_blocks]]: rectangles of porous structure (rubble mounds) or walls over any bathymetry.
+void apply_porous_blocks(std::vector<TableReader> blocks, HarbourGrid& grid);
+
+/// The spectrum named by `key` (the registry's names; `fallback` when absent, required when
+/// nullopt) built from the table's keys (ocean/spectrum_registry.hpp; case_sea_state.cpp).
+std::shared_ptr<const ocean::FrequencySpectrum> read_frequency_spectrum(TableReader& table, const std::string& key,
+                                                                        std::optional<std::string> fallback);
+std::shared_ptr<const ocean::WavenumberSpectrum> read_wavenumber_spectrum(TableReader& table, const std::string& key,
+                                                                          const ocean::SpectrumDefaults& defaults);
+
+/// The wave-maker kinds of the case file, in the order of kMakerKindNames.
+enum class MakerKind { kNone, kRegular, kComponents, kTimeSeries, kSolitary, kIrregular, kDeepWater };
+inline const std::vector<std::string> kMakerKindNames = {"none",     "regular",   "components", "time_series",
+                                                         "solitary", "irregular", "deep_water"};
+
+// What the [wave_maker] table asks of the sea beyond the single maker: the irregular maker's spectrum
+// and spreading (which [deep_water] shares), or for kind "deep_water" the band of the field it makes.
+struct MakerRequest {
+  bool from_deep_water = false;  // kind = "deep_water": the components come from [deep_water]
+  std::shared_ptr<const ocean::FrequencySpectrum> spectrum;      // irregular
+  std::shared_ptr<const ocean::DirectionalSpreading> spreading;  // irregular
+  bool long_crested = false;                              // irregular with spreading_s = 0
+  WaveMakerBand band;                                     // deep_water
+  std::optional<boussinesq::SolitaryWave> solitary_wave;  // solitary: the initial condition
+};
+
+/// [wave_maker] (case_wave_maker.cpp).
+boussinesq::WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
+                                      MakerRequest& request);
+/// The wave maker as recorded in the sequence's wave_conditions.
+json wave_record(const boussinesq::WaveMaker& maker, const json& as_written);
+/// The highest frequency (rad/s) the grid carries with `cells_per_wavelength` cells per wavelength
+/// and k d <= 3 at the deepest still water, and that rule in words.
+double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength);
+std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength);
+
+// Whether the deep-water field gives the wave maker its components, and in which band.
+struct DeepWaterDrive {
+  bool drives_wave_maker = false;
+  WaveMakerBand band;
+};
+
+/// [deep_water] (case_sea_state.cpp).
+ocean::DeepWaterSpecification read_deep_water(TableReader& deep, const boussinesq::WaveMaker& maker,
+                                              const MakerRequest& request, const HarbourGrid& grid,
+                                              DeepWaterDrive& drive, BakeCase& bake_case);
+
+/// [solver] and its record (case_solver.cpp).
+boussinesq::SolverParameters read_solver(TableReader& solver);
+json solver_record(const boussinesq::SolverParameters& p);
+
+}  // namespace nearshore::bake::detail

@@ -1,0 +1,76 @@
+// [solver] settings of a case file, and the record of them the sequence keeps.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "nearshore/core/error.hpp"
+#include "case_reader.hpp"
+
+namespace nearshore::bake::detail {
+
+using namespace nearshore::ocean;       // spectra, sea states, the deep-water field
+using namespace nearshore::boussinesq;  // the solver and its parameters
+
+SolverParameters read_solver(TableReader& solver) {
+  SolverParameters p;
+  p.dispersion_coefficient = solver.number("dispersion_coefficient", p.dispersion_coefficient, 0.0, 1.0, false, "B (1/15 in Madsen & Sorensen 1992)");
+  p.dispersion_cutoff_depth_m = solver.non_negative("dispersion_cutoff_depth_m", p.dispersion_cutoff_depth_m, "depth in metres below which dispersion is off");
+  p.dispersion_cutoff_kh = solver.non_negative("dispersion_cutoff_kh", p.dispersion_cutoff_kh, "k h below which dispersion is off");
+  p.dry_depth_m = solver.positive("dry_depth_m", p.dry_depth_m, "wet/dry threshold in metres");
+  p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
+  p.nonlinear_iterations = solver.integer("nonlinear_iterations", p.nonlinear_iterations, 1, 20, "iterations per half step");
+  p.adi_passes = solver.integer("adi_passes", p.adi_passes, 1, 4, "x + y sweep pairs per step");
+  p.alternate_sweep_order = solver.boolean("alternate_sweep_order", p.alternate_sweep_order);
+  p.shapiro_filter_order = solver.integer("shapiro_filter_order", p.shapiro_filter_order, 0, 16, "order of the grid-scale flux filter (even, 0 = off)");
+  if (p.shapiro_filter_order % 2 != 0)
+    solver.fail(solver.full("shapiro_filter_order"), "is odd", "give an even order: 8 (the default), or 0 to turn the filter off");
+  p.blowup_elevation_depth_ratio = solver.positive("blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio, "|eta| / depth ratio that stops the run");
+  TableReader breaking = solver.table("breaking");
+  p.breaking.enabled = breaking.boolean("enabled", p.breaking.enabled);
+  p.breaking.onset_celerity_fraction = breaking.positive("onset_celerity_fraction", p.breaking.onset_celerity_fraction, "fraction of sqrt(g h)");
+  p.breaking.stop_celerity_fraction = breaking.positive("stop_celerity_fraction", p.breaking.stop_celerity_fraction, "fraction of sqrt(g h)");
+  p.breaking.transition_time_factor = breaking.positive("transition_time_factor", p.breaking.transition_time_factor, "T* in units of sqrt(h/g)");
+  p.breaking.mixing_length_coefficient = breaking.positive("mixing_length_coefficient", p.breaking.mixing_length_coefficient, "delta");
+  if (p.breaking.stop_celerity_fraction > p.breaking.onset_celerity_fraction)
+    breaking.fail(breaking.full("stop_celerity_fraction"), "is larger than onset_celerity_fraction", "make the stop threshold smaller than the onset threshold");
+  breaking.finish();
+  TableReader porous = solver.table("porous");
+  p.porous.laminar_alpha = porous.non_negative("laminar_alpha", p.porous.laminar_alpha, "alpha (dimensionless)");
+  p.porous.turbulent_beta = porous.non_negative("turbulent_beta", p.porous.turbulent_beta, "beta (dimensionless)");
+  p.porous.stone_diameter_m = porous.positive("stone_diameter_m", p.porous.stone_diameter_m, "stone diameter in metres");
+  porous.finish();
+  return p;
+}
+
+json solver_record(const SolverParameters& p) {
+  json sponges = json::array();
+  for (const SpongeLayer& sponge : p.sponges) sponges.push_back({{"side", side_name(sponge.side)}, {"width_m", sponge.width_m}});
+  return {{"time_step_s", p.time_step_s},
+          {"dispersion_coefficient", p.dispersion_coefficient},
+          {"dispersion_cutoff_depth_m", p.dispersion_cutoff_depth_m},
+          {"dispersion_cutoff_kh", p.dispersion_cutoff_kh},
+          {"dry_depth_m", p.dry_depth_m},
+          {"chezy_coefficient", p.chezy_coefficient},
+          {"nonlinear_iterations", p.nonlinear_iterations},
+          {"adi_passes", p.adi_passes},
+          {"shapiro_filter_order", p.shapiro_filter_order},
+          {"alternate_sweep_order", p.alternate_sweep_order},
+          {"blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio},
+          {"breaking",
+           {{"enabled", p.breaking.enabled},
+            {"onset_celerity_fraction", p.breaking.onset_celerity_fraction},
+            {"stop_celerity_fraction", p.breaking.stop_celerity_fraction},
+            {"transition_time_factor", p.breaking.transition_time_factor},
+            {"mixing_length_coefficient", p.breaking.mixing_length_coefficient}}},
+          {"porous",
+           {{"laminar_alpha", p.porous.laminar_alpha},
+            {"turbulent_beta", p.porous.turbulent_beta},
+            {"stone_diameter_m", p.porous.stone_diameter_m}}},
+          {"sponges", sponges}};
+}
+
+
+}  // namespace nearshore::bake::detail

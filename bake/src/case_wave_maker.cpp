@@ -1,0 +1,222 @@
+// [wave_maker] of a case file (docs/commands/bake.md): the kinds, their keys and the checks that the
+// grid carries the waves asked for.
+#include "nearshore/bake/bake_time_series.hpp"
+#include "nearshore/ocean/sea_state_builder.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "nearshore/core/error.hpp"
+#include "case_reader.hpp"
+
+namespace nearshore::bake::detail {
+
+using namespace nearshore::ocean;       // spectra, sea states, the deep-water field
+using namespace nearshore::boussinesq;  // the solver and its parameters
+
+namespace {
+
+// Waves of the regular and `components` kinds as linear components; checks the loop period.
+void check_loop_period(TableReader& maker, const std::string& key, double loop_period_s, double period_s) {
+  const long cycles = whole_steps(loop_period_s, period_s);
+  if (cycles < 1)
+    maker.fail(maker.full(key), fmt::format("= {} s does not repeat in wave_maker.loop_period_s = {} s ({:.4f} cycles)",
+                                            period_s, loop_period_s, loop_period_s / period_s),
+               fmt::format("make every period divide the loop period, e.g. loop_period_s = {} s",
+                           period_s * std::max(1.0, std::round(loop_period_s / period_s))));
+}
+
+// The grid can carry a component only if it is long enough: at the deepest still water, k d <= 3
+// (the range where the B = 1/15 equations hold linear dispersion within 2 %, Madsen & Sorensen 1992)
+// and at least `cells_per_wavelength` cells per wavelength. Shorter waves are not waves the bake can
+// make: they alias, or blow up at the source line. Returns that highest frequency (rad/s).
+}  // namespace
+
+double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength) {
+  const double deepest_m = deepest_still_water_m(grid);
+  const double k_max = std::min(3.0 / std::max(deepest_m, 1e-3),
+                                2 * std::numbers::pi / (cells_per_wavelength * grid.geometry.spacing_m));
+  return frequency_from_wavenumber(k_max, deepest_m);
+}
+
+std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength) {
+  return fmt::format("k d <= 3 at the deepest {:.2f} m and {} cells of {} m per wavelength",
+                     deepest_still_water_m(grid), cells_per_wavelength, grid.geometry.spacing_m);
+}
+
+namespace {
+
+// An irregular maker whose components the grid cannot carry is refused with the band to give.
+void check_resolvable(TableReader& maker, const SeaState& sea, const HarbourGrid& grid,
+                      int cells_per_wavelength) {
+  const double w_max = highest_carried_frequency_rad_s(grid, cells_per_wavelength);
+  double highest = 0, lowest = std::numeric_limits<double>::infinity();
+  for (const WaveComponent& component : sea.components)
+    highest = std::max(highest, component.angular_frequency_rad_s), lowest = std::min(lowest, component.angular_frequency_rad_s);
+  if (highest > w_max * (1 + 1e-9))
+    maker.fail("wave_maker",
+               fmt::format("(irregular) has components up to {:.3f} Hz, but the grid carries waves only up "
+                           "to {:.3f} Hz ({})",
+                           highest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi),
+                           carried_band_reason(grid, cells_per_wavelength)),
+               fmt::format("give the band explicitly, e.g. min_frequency_hz = {:.3f} and max_frequency_hz = "
+                           "{:.3f}, or use a finer grid",
+                           lowest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi)));
+}
+
+WaveComponent component_from(TableReader& reader, const std::string& amplitude_key, double amplitude_factor,
+                             double default_direction_rad) {
+  WaveComponent component;
+  component.amplitude_m = amplitude_factor * reader.positive(amplitude_key, std::nullopt,
+                                                             amplitude_key == "height_m" ? "wave height in metres" : "amplitude in metres");
+  component.angular_frequency_rad_s = 2.0 * std::numbers::pi / reader.positive("period_s", std::nullopt, "wave period in seconds");
+  component.direction_rad = reader.number("direction_deg", default_direction_rad / kDegree, -360.0, 360.0, false,
+                                          "direction of travel in degrees counter-clockwise from +x (east)") * kDegree;
+  component.phase_rad = reader.number("phase_deg", 0.0, -360.0, 360.0, false, "phase in degrees") * kDegree;
+  return component;
+}
+
+}  // namespace
+
+WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
+                          MakerRequest& request) {
+  WaveMaker wave_maker;
+  const auto kind = static_cast<MakerKind>(maker.choice("kind", std::nullopt, kMakerKindNames));
+  if (kind == MakerKind::kNone) return wave_maker;
+  wave_maker.facing = side_from_index(maker.choice("facing", std::nullopt, kSideNames));
+  const bool along_x = wave_maker.facing == Side::kWest || wave_maker.facing == Side::kEast;
+  const double extent_m = along_x ? grid.geometry.width_m() : grid.geometry.height_m();
+  const double origin_m = along_x ? grid.geometry.origin_x_m : grid.geometry.origin_y_m;
+  const std::string where = kind == MakerKind::kSolitary ? "crest_position_m" : "source_line_m";
+  // Case positions are metres from the grid's south-west corner; the solver's frame includes the origin.
+  const double position_m = origin_m + maker.number(where, std::nullopt, 0.0, extent_m, false,
+                                                    fmt::format("position along {} from the south-west corner, inside the grid, metres",
+                                                                along_x ? "x" : "y"));
+  wave_maker.source_line_m = position_m;
+  wave_maker.ramp_time_s = maker.non_negative("ramp_time_s", 0.0, "smooth start in seconds");
+  const double default_direction_rad = direction_away_from(wave_maker.facing);
+  SeaState& sea = wave_maker.sea_state;
+  if (kind == MakerKind::kRegular) {
+    wave_maker.kind = WaveMaker::Kind::kComponents;
+    const double height_m = maker.positive("height_m", std::nullopt, "wave height (crest to trough) in metres");
+    const double period_s = maker.positive("period_s", std::nullopt, "wave period in seconds");
+    const double direction_rad = kDegree * maker.number("direction_deg", default_direction_rad / kDegree, -360.0, 360.0, false,
+                                                        "direction of travel in degrees counter-clockwise from +x (east)");
+    const double phase_rad = kDegree * maker.number("phase_deg", 0.0, -360.0, 360.0, false, "phase in degrees");
+    sea = regular_wave_sea_state(height_m, period_s, direction_rad, phase_rad);
+    sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    if (sea.loop_period_s > 0) check_loop_period(maker, "period_s", sea.loop_period_s, period_s);
+  } else if (kind == MakerKind::kIrregular) {
+    wave_maker.kind = WaveMaker::Kind::kComponents;
+    DirectionalSeaSpecification specification;
+    specification.spectrum = read_frequency_spectrum(maker, "spectrum", "jonswap");
+    const double mean_direction_rad = kDegree * maker.number("mean_direction_deg", default_direction_rad / kDegree, -360.0, 360.0,
+                                                             false, "mean direction of travel in degrees counter-clockwise from +x");
+    const double spreading_s = maker.non_negative("spreading_s", 0.0, "cos^2s exponent s (0 = long-crested)");
+    specification.spreading = std::make_shared<CosineSquaredSpreading>(mean_direction_rad, std::max(spreading_s, 1.0));
+    specification.frequency_count = maker.integer("frequency_count", 64, 1, 100000, "number of frequency components");
+    specification.direction_count = maker.integer("direction_count", spreading_s > 0 ? 16 : 1, 1, 10000, "number of directions");
+    if (spreading_s == 0 && specification.direction_count != 1)
+      maker.fail(maker.full("direction_count"), "is above 1 for a long-crested sea (spreading_s = 0)", "set spreading_s > 0 or direction_count = 1");
+    specification.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    specification.seed = maker.unsigned_integer("seed", 1, "phase seed");
+    if (maker.has("min_frequency_hz") || maker.has("max_frequency_hz")) {
+      specification.min_frequency_rad_s = 2 * std::numbers::pi * maker.positive("min_frequency_hz", std::nullopt, "lowest frequency in Hz");
+      specification.max_frequency_rad_s = 2 * std::numbers::pi * maker.positive("max_frequency_hz", std::nullopt, "highest frequency in Hz");
+    }
+    request.spectrum = specification.spectrum;
+    request.spreading = specification.spreading;
+    request.long_crested = spreading_s == 0;
+    const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000, "cells per wavelength the grid must give every component");
+    try {
+      sea = build_sea_state(specification);
+    } catch (const Error& error) {
+      maker.fail("wave_maker", "(irregular) cannot be built: " + error.problem(), error.fix());
+    }
+    check_resolvable(maker, sea, grid, cells_per_wavelength);
+  } else if (kind == MakerKind::kDeepWater) {
+    // The components are the [deep_water] field's (read_deep_water, couple_wave_maker): here only
+    // the loop period both share and the band of the field the grid carries.
+    wave_maker.kind = WaveMaker::Kind::kComponents;
+    request.from_deep_water = true;
+    sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000,
+                                                   "cells per wavelength the grid must give every component");
+    const double carried_rad_s = highest_carried_frequency_rad_s(grid, cells_per_wavelength);
+    request.band.min_frequency_rad_s =
+        2 * std::numbers::pi * maker.non_negative("min_frequency_hz", 0.0, "lowest frequency in Hz");
+    request.band.max_frequency_rad_s =
+        2 * std::numbers::pi *
+        maker.positive("max_frequency_hz", carried_rad_s / (2 * std::numbers::pi), "highest frequency in Hz");
+    if (request.band.max_frequency_rad_s > carried_rad_s * (1 + 1e-9))
+      maker.fail(maker.full("max_frequency_hz"),
+                 fmt::format("= {:.4f} Hz is above what the grid carries ({:.4f} Hz: {})",
+                             request.band.max_frequency_rad_s / (2 * std::numbers::pi),
+                             carried_rad_s / (2 * std::numbers::pi),
+                             carried_band_reason(grid, cells_per_wavelength)),
+                 "leave max_frequency_hz out (the grid's limit is the default), or use a finer grid");
+    if (!(request.band.max_frequency_rad_s > request.band.min_frequency_rad_s))
+      maker.fail(maker.full("min_frequency_hz"), "is not below the highest frequency the maker makes",
+                 "lower min_frequency_hz");
+    // A narrower fan than the source line's 78 degrees, e.g. 0 in a flume whose side walls would
+    // reflect oblique waves.
+    const double max_angle_rad =
+        kDegree * maker.number("max_angle_from_normal_deg", 78.0, 0.0, 78.0, false,
+                               "largest angle between a made wave and the source line's normal, degrees");
+    request.band.min_normal_fraction = std::max(request.band.min_normal_fraction, std::cos(max_angle_rad));
+    if (maker.has("seed"))
+      maker.fail(maker.full("seed"), "is the deep-water field's when kind = \"deep_water\"",
+                 "move seed into [deep_water]");
+  } else if (kind == MakerKind::kComponents) {
+    wave_maker.kind = WaveMaker::Kind::kComponents;
+    sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    auto components = maker.tables("components");
+    if (components.empty())
+      maker.fail(maker.full("components"), "is missing or empty", "add [[wave_maker.components]] tables with amplitude_m and period_s");
+    for (TableReader& entry : components) {
+      sea.components.push_back(component_from(entry, "amplitude_m", 1.0, default_direction_rad));
+      if (sea.loop_period_s > 0) check_loop_period(entry, "period_s", sea.loop_period_s, 2 * std::numbers::pi / sea.components.back().angular_frequency_rad_s);
+      entry.finish();
+    }
+  } else if (kind == MakerKind::kTimeSeries) {
+    wave_maker.kind = WaveMaker::Kind::kTimeSeries;
+    TimeSeriesLayout layout;
+    const fs::path file = maker.path("file", base);
+    layout.time_column = maker.integer("time_column", 0, 0, 1000, "1-based time column (0 = none)");
+    layout.elevation_column = maker.integer("elevation_column", layout.time_column > 0 ? 2 : 1, 1, 1000, "1-based elevation column");
+    layout.sample_interval_s = maker.non_negative("sample_interval_s", 0.0, "sample spacing in seconds");
+    layout.elevation_scale_to_m = maker.positive("elevation_scale_to_m", 1.0, "factor to metres (0.01 for cm)");
+    layout.remove_mean = maker.boolean("remove_mean", true);
+    if (layout.time_column == 0 && layout.sample_interval_s <= 0.0)
+      maker.fail(maker.full("sample_interval_s"), "is missing and there is no time_column", "give sample_interval_s > 0 or time_column");
+    TimeSeries series = maker.reading_file("file", [&] { return read_time_series(file, layout); });
+    wave_maker.series_time_s = std::move(series.time_s);
+    wave_maker.series_elevation_m = std::move(series.elevation_m);
+  } else if (kind == MakerKind::kSolitary) {
+    // Not a maker along a line: the solver starts from the wave (boussinesq/initial_conditions.hpp).
+    request.solitary_wave = SolitaryWave{maker.positive("height_m", std::nullopt, "solitary wave height above still water, metres"),
+                                         position_m, wave_maker.facing};
+  }
+  if (kind != MakerKind::kIrregular && kind != MakerKind::kDeepWater)
+    sea.seed = maker.unsigned_integer("seed", 0, "phase seed (recorded; used by irregular seas)");
+  return wave_maker;
+}
+
+json wave_record(const WaveMaker& maker, const json& as_written) {
+  json components = json::array();
+  for (const WaveComponent& c : maker.sea_state.components)
+    components.push_back({{"amplitude_m", c.amplitude_m},
+                          {"angular_frequency_rad_s", c.angular_frequency_rad_s},
+                          {"direction_rad", c.direction_rad},
+                          {"phase_rad", c.phase_rad}});
+  json record = {{"case", as_written}, {"components", components}, {"seed", maker.sea_state.seed},
+                 {"loop_period_s", maker.sea_state.loop_period_s}};
+  if (maker.kind == WaveMaker::Kind::kTimeSeries) record["series_samples"] = maker.series_time_s.size();
+  return record;
+}
+
+
+}  // namespace nearshore::bake::detail

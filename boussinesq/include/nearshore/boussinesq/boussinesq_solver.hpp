@@ -1,0 +1,155 @@
+#pragma once
+// BoussinesqSolver: the enhanced Boussinesq equations of seed 003 (Li, Jin, Ren & Hua 2010) eq. (1)-(7)
+// in flux form, on a rectangular staggered grid (surface elevation eta at cell centres, flux P on the
+// x-faces, flux Q on the y-faces), time-centred implicit finite differences solved by ADI: an x sweep
+// for (eta, P) then a y sweep for (eta, Q), each a set of independent tridiagonal systems (one per row
+// or column) solved by the double sweep (Thomas algorithm), rows in parallel with oneTBB.
+//
+//   mass      n eta_t + P_x + Q_y = 0                                                    seed 003 eq. (1)
+//   x-mom.    P_t + (P^2/h)_x + (PQ/h)_y + g h eta_x + n^2 g P |U| / (C^2 h^2)
+//             + porous resistance (alpha, beta) + Psi_x - F_x = 0                        seed 003 eq. (2)
+//   y-mom.    likewise for Q                                                             seed 003 eq. (3)
+//   Psi_x     Madsen & Sorensen (1992) dispersion with B = 1/15 and the bed-slope terms  seed 003 eq. (4)
+//   F_x, F_y  eddy-viscosity stress from wave breaking (Kennedy et al. 2000)             seed 003 eq. (6)-(7)
+// with total depth h = d + eta. docs/solver.md gives the equations as implemented and every rule
+// (dispersion taper, breaking, wet/dry, sponges, source function) in full.
+//
+// Units: metres, seconds, radians throughout. x = 0 is the west edge of the grid, y = 0 the south
+// edge (GridGeometry origin); x_m, y_m arguments are in the grid's own frame (origin included).
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nearshore/ocean/wave_component.hpp"
+#include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/core/raster.hpp"
+
+namespace nearshore::boussinesq {
+
+/// A side of the rectangular grid. x = 0 is west, y = 0 is south.
+enum class Side { kWest, kEast, kSouth, kNorth };
+
+/// An absorbing layer of `width_m` metres along one side (Larsen & Dancy 1983): eta, P and Q are
+/// relaxed towards rest with a damping that grows smoothly from 0 at the inner edge to its maximum
+/// at the boundary, so waves leave with a few per cent reflection when width >= one wavelength.
+struct SpongeLayer {
+  Side side = Side::kWest;
+  double width_m = 0.0;
+};
+
+/// Kennedy et al. (2000) breaking: a cell starts breaking when d(eta)/dt exceeds
+/// onset_celerity_fraction * sqrt(g h); the threshold relaxes linearly to stop_celerity_fraction *
+/// sqrt(g h) over transition_time_factor * sqrt(h/g) seconds; the eddy viscosity is
+/// nu = delta^2 h * B(eta_t) * eta_t with mixing length delta = mixing_length_coefficient (so
+/// delta^2 = 1.2^2 * ... as in Kennedy's delta = 1.2).
+struct BreakingParameters {
+  bool enabled = true;
+  double onset_celerity_fraction = 0.65;   ///< eta_t^(I) = 0.65 sqrt(g h)
+  double stop_celerity_fraction = 0.15;    ///< eta_t^(F) = 0.15 sqrt(g h)
+  double transition_time_factor = 5.0;     ///< T* = 5 sqrt(h/g)
+  double mixing_length_coefficient = 1.2;  ///< delta
+};
+
+/// Porous resistance of seed 003 eq. (2)-(3) in cells with porosity 0 < n < 1 (rubble mounds),
+/// Van Gent (1995) / Madsen (1974) form:
+///   a_l = laminar_alpha * nu_w (1 - n)^2 / (n^3 D^2),  a_t = turbulent_beta (1 - n) / (n^3 D)
+/// the resistance acceleration being n (a_l u + a_t u |u|) with u the seepage velocity.
+struct PorousResistance {
+  double laminar_alpha = 1000.0;   ///< alpha, dimensionless
+  double turbulent_beta = 1.1;     ///< beta, dimensionless
+  double stone_diameter_m = 1.0;   ///< D, metres
+};
+
+/// Internal wave generation (Wei, Kirby & Sun 1999): a source term in the mass equation along a
+/// line, so waves reflected back to it pass through and leave through a sponge.
+struct WaveMaker {
+  enum class Kind { kNone, kComponents, kTimeSeries } kind = Kind::kNone;
+  ocean::SeaState sea_state;                 ///< kComponents: linear components (wave_component.hpp)
+  double source_line_m = 0.0;         ///< position of the source line along the axis normal to `facing`
+                                      ///< (x for kWest/kEast, y for kSouth/kNorth), metres, grid frame
+  Side facing = Side::kSouth;         ///< waves are generated travelling AWAY from this side
+  double ramp_time_s = 0.0;           ///< smooth (tanh-like) start over this time, seconds
+  std::vector<double> series_time_s, series_elevation_m;  ///< kTimeSeries: eta(t) at the source line
+};
+
+struct SolverParameters {
+  double time_step_s = 0.0;           ///< 0 = from courant_number
+  double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
+  double dispersion_coefficient = 1.0 / 15.0;  ///< B, Madsen & Sorensen (1992)
+  /// Dispersion taper: the dispersive terms are multiplied by a weight that is 1 where the still-water
+  /// depth d >= 2 * dispersion_cutoff_depth_m, 0 where d <= dispersion_cutoff_depth_m and a smooth
+  /// (cubic) ramp between; likewise for the local k h of the peak wave when dispersion_cutoff_kh > 0
+  /// (weight 0 below kh_cut, 1 above 2 kh_cut). 0 disables the respective taper. See docs/solver.md.
+  double dispersion_cutoff_depth_m = 0.0;
+  double dispersion_cutoff_kh = 0.0;
+  double dry_depth_m = 0.01;          ///< wet/dry threshold of the moving shoreline, metres
+  double chezy_coefficient = 60.0;    ///< C, m^0.5/s (0 = no friction)
+  BreakingParameters breaking;
+  PorousResistance porous;
+  std::vector<SpongeLayer> sponges;
+  int nonlinear_iterations = 2;       ///< passes of the time-centred (Crank-Nicolson) iteration per half step
+  int adi_passes = 1;                 ///< x + y sweep pairs per step; 2 re-solves with this step's across terms (fine grids)
+  /// Sweep order x-y on even steps, y-x on odd steps, so the lag of the across terms in the first
+  /// sweep falls on each direction in turn (docs/solver.md, "Sweep order").
+  bool alternate_sweep_order = false;
+  /// Order 2p of the Shapiro (1970) filter applied to P and Q every step (even, 0 = off): it removes
+  /// the grid-scale two-dimensional mode of fine grids and leaves resolved waves alone (response
+  /// 1 - sin^{2p}(k dx/2); docs/solver.md, "Grid-scale filter").
+  int shapiro_filter_order = 8;
+  double blowup_elevation_depth_ratio = 5.0;   ///< |eta| > ratio * max(d, 1 m) => unstable
+};
+
+/// Where and when the solution went wrong (check_stability()).
+struct InstabilityReport {
+  double time_s = 0.0;
+  int column = 0, row = 0;
+  double x_m = 0.0, y_m = 0.0, depth_m = 0.0, value = 0.0;
+  std::string what;  ///< "NaN surface elevation", "surface elevation 12.3 m exceeds 5 x depth", ...
+};
+
+class BoussinesqSolver {
+ public:
+  /// Throws nearshore::Error for inconsistent input (a sponge wider than the grid, a source line
+  /// outside it, a time step above the stability limit, a time series that is not increasing...).
+  BoussinesqSolver(const HarbourGrid& harbour, const SolverParameters& parameters, const WaveMaker& wave_maker);
+  ~BoussinesqSolver();
+  BoussinesqSolver(const BoussinesqSolver&) = delete;
+  BoussinesqSolver& operator=(const BoussinesqSolver&) = delete;
+
+  /// Replaces the surface elevation by eta(x, y) at the cell centres (metres, grid frame) on water
+  /// cells and sets every flux to rest: an initial condition for tests and hot starts (standing
+  /// waves, humps). Land cells keep h = 0. Values are not checked: check_stability() reports NaN.
+  void set_surface_elevation(const std::function<double(double x_m, double y_m)>& surface_elevation_m);
+  /// Replaces eta on every cell with water (still-water depth > 0) and the fluxes on every open wet
+  /// face by the given functions of position (metres, grid frame: cell centres for eta, face centres
+  /// for P and Q), and resets the flux rates: an initial condition with motion, such as a solitary
+  /// wave (initial_conditions.hpp). Call it before the first step.
+  void set_initial_condition(const std::function<double(double x_m, double y_m)>& surface_elevation_m,
+                             const std::function<double(double x_m, double y_m)>& flux_x_m2_s,
+                             const std::function<double(double x_m, double y_m)>& flux_y_m2_s);
+  void step();                               ///< one ADI step of time_step_s()
+  double time_s() const;                     ///< simulated time, seconds
+  double time_step_s() const;                ///< dt, seconds
+  long step_count() const;
+  const GridGeometry& geometry() const;
+  const Raster<float>& surface_elevation_m() const;                 ///< eta at cell centres, metres
+  /// P and Q averaged from the faces to the cell centres, m^2/s (resized as needed).
+  void cell_centred_fluxes(Raster<float>& flux_x_m2_s, Raster<float>& flux_y_m2_s) const;
+  const Raster<float>& breaking_indicator() const;                  ///< 0..1 per cell
+  double surface_elevation_at(double x_m, double y_m) const;        ///< bilinear between cell centres, for gauges
+  std::optional<InstabilityReport> check_stability() const;         ///< NaN or |eta| too large
+  double water_volume_m3() const;            ///< sum of n * h * area over wet cells (for mass tests)
+  /// Binary: everything needed to continue bit-identically (grid size, dt and a parameter hash are
+  /// checked on load).
+  void save_state(std::ostream& out) const;
+  void load_state(std::istream& in);         ///< throws nearshore::Error on a mismatched/corrupt state
+
+ private:
+  struct Implementation;
+  std::unique_ptr<Implementation> implementation_;
+};
+
+}  // namespace nearshore::boussinesq

@@ -1,0 +1,694 @@
+// BoussinesqSolver: the time step (ADI: an x sweep on transposed data and a y sweep, in alternating
+// order if asked), the moving shoreline's positivity repair, the grid-scale flux filter, sponges,
+// Kennedy et al. (2000) breaking. The state I/O is boussinesq_state.cpp, initial conditions
+// initial_conditions.cpp.
+// docs/solver.md describes the scheme; boussinesq_sweep.cpp holds the discretised equations.
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <atomic>
+#include <cstring>
+#include <istream>
+#include <limits>
+#include <numbers>
+#include <ostream>
+#include <sstream>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "solver_implementation.hpp"
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::boussinesq {
+
+using namespace nearshore::ocean;  // wave components, sea states, linear waves
+
+using detail::StaticFrame;
+using detail::SweepScratch;
+
+namespace {
+
+constexpr double kMaxCourantNumber = 2.0;  // beyond it the iterated explicit terms stop converging (docs/solver.md)
+
+std::size_t index(int c, int r, int cols) { return static_cast<std::size_t>(r) * cols + c; }
+
+// body(i) for i in [0, count), in parallel chunks: element-wise work, so the result does not
+// depend on the thread count.
+template <class Body>
+void for_each_index(std::size_t count, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) body(i);
+  });
+}
+
+double smooth_step(double t) {  // cubic 0..1 on t in [0, 1]
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// The dispersion taper of docs/solver.md: 0 at or below the cut-off, 1 from twice the cut-off.
+double dispersion_weight(double depth_m, const SolverParameters& p, double peak_angular_frequency_rad_s) {
+  if (depth_m <= 0.0) return 0.0;
+  double w = 1.0;
+  if (p.dispersion_cutoff_depth_m > 0.0) w *= smooth_step(depth_m / p.dispersion_cutoff_depth_m - 1.0);
+  if (p.dispersion_cutoff_kh > 0.0 && peak_angular_frequency_rad_s > 0.0) {
+    const double kh = wavenumber_from_frequency(peak_angular_frequency_rad_s, depth_m) * depth_m;
+    w *= smooth_step(kh / p.dispersion_cutoff_kh - 1.0);
+  }
+  return w;
+}
+
+// Builds the time-independent coefficients of one orientation from cell depth and porosity given
+// in the frame's layout (cell (c along, l line) at c * rows + l; boussinesq_sweep.hpp).
+StaticFrame build_frame(const std::vector<double>& depth, const std::vector<double>& porosity, int cols, int rows,
+                        double spacing_m, const SolverParameters& p, double peak_w) {
+  StaticFrame frame;
+  frame.cols = cols;
+  frame.rows = rows;
+  frame.spacing_m = spacing_m;
+  frame.depth_m = depth;
+  frame.inverse_porosity.resize(depth.size());
+  for (std::size_t i = 0; i < depth.size(); ++i)
+    frame.inverse_porosity[i] = porosity[i] >= detail::kWallPorosity ? 1.0 / std::min(porosity[i], 1.0) : 0.0;
+  const std::size_t faces = static_cast<std::size_t>(cols + 1) * rows;
+  for (auto* v : {&frame.face_depth_m, &frame.face_dispersion_weight, &frame.face_slope_along, &frame.face_slope_across,
+                  &frame.face_porous_laminar_s, &frame.face_porous_turbulent_m})
+    v->assign(faces, 0.0);
+  frame.face_porosity.assign(faces, 1.0);
+  frame.face_inverse_porosity.assign(faces, 1.0);
+  frame.face_open.assign(faces, 0.0);
+  // Porous resistance coefficients of seed 003 eq. (2) in the Van Gent (1995) form.
+  constexpr double kWaterKinematicViscosity_m2_s = 1.0e-6;
+  const double D = p.porous.stone_diameter_m;
+  auto cell = [rows](int c, int l) { return static_cast<std::size_t>(c) * rows + l; };
+  auto slope_across = [&](int c, int l) {
+    const int ln = std::min(l + 1, rows - 1), ls = std::max(l - 1, 0);
+    return ln == ls ? 0.0 : (depth[cell(c, ln)] - depth[cell(c, ls)]) / ((ln - ls) * spacing_m);
+  };
+  for (int f = 1; f < cols; ++f)
+    for (int l = 0; l < rows; ++l) {
+      const std::size_t face = static_cast<std::size_t>(f) * rows + l;
+      const std::size_t L = cell(f - 1, l), R = cell(f, l);
+      const bool open = frame.inverse_porosity[L] > 0.0 && frame.inverse_porosity[R] > 0.0;
+      frame.face_open[face] = open ? 1.0 : 0.0;
+      const double n = open ? 0.5 * (std::min(porosity[L], 1.0) + std::min(porosity[R], 1.0)) : 1.0;
+      const double d = 0.5 * (depth[L] + depth[R]);
+      frame.face_depth_m[face] = d;
+      frame.face_porosity[face] = n;
+      frame.face_inverse_porosity[face] = 1.0 / n;
+      frame.face_dispersion_weight[face] = dispersion_weight(d, p, peak_w);
+      frame.face_slope_along[face] = std::clamp((depth[R] - depth[L]) / spacing_m, -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
+      frame.face_slope_across[face] = std::clamp(0.5 * (slope_across(f - 1, l) + slope_across(f, l)),
+                                                 -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
+      if (n < 1.0 && D > 0.0) {
+        const double n3 = n * n * n;
+        frame.face_porous_laminar_s[face] = p.porous.laminar_alpha * kWaterKinematicViscosity_m2_s * (1.0 - n) * (1.0 - n) / (n3 * D * D);
+        frame.face_porous_turbulent_m[face] = p.porous.turbulent_beta * (1.0 - n) / (n3 * D);
+      }
+    }
+  // Blocks of lines with a porous face run the sweep with the porous terms (boussinesq_sweep.cpp).
+  frame.block_is_porous.assign(static_cast<std::size_t>((rows + detail::kBlockLines - 1) / detail::kBlockLines), 0);
+  for (int f = 0; f <= cols; ++f)
+    for (int l = 0; l < rows; ++l) {
+      const std::size_t face = static_cast<std::size_t>(f) * rows + l;
+      if (frame.face_porosity[face] != 1.0 || frame.face_porous_laminar_s[face] != 0.0 || frame.face_porous_turbulent_m[face] != 0.0)
+        frame.block_is_porous[static_cast<std::size_t>(l / detail::kBlockLines)] = 1;
+    }
+  return frame;
+}
+
+}  // namespace
+
+BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParameters& parameters,
+                                   const WaveMaker& wave_maker)
+    : implementation_(std::make_unique<Implementation>()) {
+  Implementation& s = *implementation_;
+  const GridGeometry& geometry = harbour.geometry;
+  const std::string subject = "Boussinesq solver";
+  if (geometry.columns < 3 || geometry.rows < 1 || !(geometry.spacing_m > 0.0))
+    throw Error(subject, "the harbour grid is " + std::to_string(geometry.columns) + " x " + std::to_string(geometry.rows) +
+                             " cells of " + std::to_string(geometry.spacing_m) + " m", "give at least 3 x 1 cells and a positive spacing");
+  if (harbour.still_water_depth_m.columns() != geometry.columns || harbour.still_water_depth_m.rows() != geometry.rows ||
+      harbour.porosity.columns() != geometry.columns || harbour.porosity.rows() != geometry.rows)
+    throw Error(subject, "the depth and porosity rasters do not match the grid geometry", "rebuild the harbour grid with nearshore bathy");
+  s.geometry = geometry;
+  s.parameters = parameters;
+  s.nx = geometry.columns;
+  s.ny = geometry.rows;
+  s.dx = geometry.spacing_m;
+  const std::size_t cells = geometry.cell_count();
+
+  std::vector<double> depth(cells), porosity(cells);
+  double max_depth = 0.0;
+  for (std::size_t i = 0; i < cells; ++i) {
+    depth[i] = harbour.still_water_depth_m.values()[i];
+    porosity[i] = std::clamp<double>(harbour.porosity.values()[i], 0.0, 1.0);
+    if (!std::isfinite(depth[i])) {
+      const int c = static_cast<int>(i % s.nx), r = static_cast<int>(i / s.nx);
+      throw Error(subject, "depth is not finite at cell (" + std::to_string(c) + ", " + std::to_string(r) + ")",
+                  "fill the hole in the bathymetry (HarbourRequest::fill_uncovered_from_nearest when gridding it)");
+    }
+    max_depth = std::max(max_depth, depth[i]);
+  }
+  if (max_depth <= 0.0) throw Error(subject, "the grid holds no water (every depth <= 0)", "check the sign of the depths (positive down)");
+  const double celerity = std::sqrt(kGravity_m_s2 * max_depth);
+  s.dt = parameters.time_step_s > 0.0 ? parameters.time_step_s : parameters.courant_number * s.dx / celerity;
+  if (!(s.dt > 0.0)) throw Error(subject, "no time step: time_step_s and courant_number are both 0", "set one of them");
+  const double courant = celerity * s.dt / s.dx;
+  if (courant > kMaxCourantNumber) {
+    std::ostringstream problem;
+    problem << "time step " << s.dt << " s gives a Courant number sqrt(g d_max) dt/dx = " << courant << " (d_max " << max_depth
+            << " m, dx " << s.dx << " m), above the limit " << kMaxCourantNumber;
+    throw Error(subject, problem.str(), "use a time step of at most " + std::to_string(kMaxCourantNumber * s.dx / celerity) + " s");
+  }
+  if (parameters.nonlinear_iterations < 1) throw Error(subject, "nonlinear_iterations must be at least 1", "set it to 2");
+  if (parameters.shapiro_filter_order < 0 || parameters.shapiro_filter_order % 2 != 0 || parameters.shapiro_filter_order > 16)
+    throw Error(subject, "shapiro_filter_order is " + std::to_string(parameters.shapiro_filter_order) + ", not an even order from 0 to 16",
+                "set it to 8 (the default) or 0 to turn the filter off");
+  if (parameters.adi_passes < 1) throw Error(subject, "adi_passes must be at least 1", "set it to 1 (or 2 on fine grids)");
+  for (const SpongeLayer& sponge : parameters.sponges) {
+    const double extent = (sponge.side == Side::kWest || sponge.side == Side::kEast) ? geometry.width_m() : geometry.height_m();
+    if (!(sponge.width_m >= 0.0) || sponge.width_m > 0.5 * extent)
+      throw Error(subject, "a sponge layer is " + std::to_string(sponge.width_m) + " m wide, the grid only " + std::to_string(extent) + " m",
+                  "make each sponge at most half the grid");
+  }
+
+  double peak_w = 0.0, peak_a = 0.0;
+  for (const WaveComponent& c : wave_maker.sea_state.components)
+    if (c.amplitude_m > peak_a) { peak_a = c.amplitude_m; peak_w = c.angular_frequency_rad_s; }
+  std::vector<double> depth_t(cells), porosity_t(cells);
+  detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
+  detail::transpose(porosity.data(), porosity_t.data(), s.nx, s.ny);
+  s.frame_x = build_frame(depth_t, porosity_t, s.nx, s.ny, s.dx, parameters, peak_w);
+  s.frame_y = build_frame(depth, porosity, s.ny, s.nx, s.dx, parameters, peak_w);
+
+  s.constants = {s.dt, parameters.dispersion_coefficient, parameters.dry_depth_m, parameters.chezy_coefficient,
+                 parameters.nonlinear_iterations};
+  s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters.dispersion_coefficient);
+
+  const std::size_t faces_x = static_cast<std::size_t>(s.nx + 1) * s.ny, faces_y = static_cast<std::size_t>(s.nx) * (s.ny + 1);
+  s.eta.assign(cells, 0.0);
+  for (std::size_t i = 0; i < cells; ++i)
+    if (depth[i] < 0.0) s.eta[i] = -depth[i];  // dry land: the surface is the ground (h = 0)
+  s.flux_x.assign(faces_x, 0.0);
+  s.flux_y.assign(faces_y, 0.0);
+
+  s.eta_previous_t.assign(cells, 0.0);
+  detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
+  s.flux_x_increment.assign(faces_x, 0.0);
+  s.flux_y_increment.assign(faces_y, 0.0);
+  s.eddy_viscosity.assign(cells, 0.0);
+  s.breaking_start_s.assign(cells, -1.0);
+  s.breaking_strength.assign(cells, 0.0);
+  for (auto* v : {&s.eta_t, &s.eta_base_t, &s.eta_across_t, &s.eta_star_t, &s.eddy_t, &s.eta_star, &s.eta_across,
+                  &s.eta_next, &s.eta_base})
+    v->assign(cells, 0.0);
+  for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate, &s.flux_x_guess})
+    v->assign(faces_x, 0.0);
+  s.flux_filter = detail::ShapiroFilter(parameters.shapiro_filter_order / 2);
+  s.filterable_x.assign(faces_x, 0.0);
+  s.filterable_y.assign(faces_y, 0.0);
+  for (auto* v : {&s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across, &s.flux_y_new, &s.flux_y_guess})
+    v->assign(faces_y, 0.0);
+  s.dispersive.assign(cells, 0.0);
+  s.dispersive_t.assign(cells, 0.0);
+
+  // Sponges (Larsen & Dancy 1983 in spirit): damping rate sigma = sigma_max r^2, r = 0 at the inner
+  // edge and 1 at the boundary, sigma_max = 8 sqrt(g d) / width so a wave crossing the layer
+  // and back loses e^{-5} of its amplitude; applied as a factor 1 / (1 + sigma dt) per step.
+  if (!parameters.sponges.empty()) {
+    s.sponge_cell.assign(cells, 0.0);
+    for (int r = 0; r < s.ny; ++r)
+      for (int c = 0; c < s.nx; ++c) {
+        double sigma = 0.0;
+        const double d = std::max(depth[index(c, r, s.nx)], parameters.dry_depth_m);
+        for (const SpongeLayer& sponge : parameters.sponges) {
+          if (sponge.width_m <= 0.0) continue;
+          double distance = 0.0;
+          switch (sponge.side) {
+            case Side::kWest: distance = (c + 0.5) * s.dx; break;
+            case Side::kEast: distance = (s.nx - c - 0.5) * s.dx; break;
+            case Side::kSouth: distance = (r + 0.5) * s.dx; break;
+            case Side::kNorth: distance = (s.ny - r - 0.5) * s.dx; break;
+          }
+          if (distance < sponge.width_m) {
+            const double x = 1.0 - distance / sponge.width_m;
+            sigma = std::max(sigma, 8.0 * std::sqrt(kGravity_m_s2 * d) / sponge.width_m * x * x);
+          }
+        }
+        s.sponge_cell[index(c, r, s.nx)] = sigma;
+      }
+    s.sponge_face_x.assign(faces_x, 1.0);
+    s.sponge_face_y.assign(faces_y, 1.0);
+    for (int f = 1; f < s.nx; ++f)
+      for (int r = 0; r < s.ny; ++r)
+        s.sponge_face_x[s.px(f, r)] = 1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(f - 1, r, s.nx)] + s.sponge_cell[index(f, r, s.nx)]));
+    for (int k = 1; k < s.ny; ++k)
+      for (int c = 0; c < s.nx; ++c)
+        s.sponge_face_y[s.qy(c, k)] = 1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(c, k - 1, s.nx)] + s.sponge_cell[index(c, k, s.nx)]));
+    for (double& sigma : s.sponge_cell) sigma = 1.0 / (1.0 + s.dt * sigma);
+  }
+
+  // Fingerprint of everything a saved state must agree with.
+  std::uint64_t h = hash_bytes(&s.nx, sizeof s.nx);
+  h = hash_bytes(&s.ny, sizeof s.ny, h);
+  h = hash_bytes(&s.dx, sizeof s.dx, h);
+  h = hash_bytes(&s.dt, sizeof s.dt, h);
+  h = hash_bytes(depth.data(), depth.size() * sizeof(double), h);
+  s.fingerprint = h;
+
+  s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
+  s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
+  s.publish();
+}
+
+BoussinesqSolver::~BoussinesqSolver() = default;
+
+void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask) {
+  // The dispersive terms apply where the cell and its 4 neighbours are wet (docs/solver.md); beyond
+  // the grid edges the neighbour is the edge cell itself. Two passes (wet cells, then the 5-point
+  // product) so both loops run over contiguous lanes and vectorise.
+  const int cols = frame.cols, rows = frame.rows;
+  const double dry = parameters.dry_depth_m;
+  wet_cells.resize(static_cast<std::size_t>(cols) * rows);
+  double* wet = wet_cells.data();
+  tbb::parallel_for(0, cols, [&](int c) {
+    const std::size_t line = static_cast<std::size_t>(c) * rows;
+    for (int l = 0; l < rows; ++l)
+      wet[line + l] = frame.inverse_porosity[line + l] > 0.0 && frame.depth_m[line + l] + eta_frame[line + l] > dry ? 1.0 : 0.0;
+  });
+  tbb::parallel_for(0, cols, [&](int c) {
+    const double* here = wet + static_cast<std::size_t>(c) * rows;
+    const double* before = wet + static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
+    const double* after = wet + static_cast<std::size_t>(std::min(c + 1, cols - 1)) * rows;
+    double* out = mask + static_cast<std::size_t>(c) * rows;
+    for (int l = 1; l + 1 < rows; ++l) out[l] = here[l] * before[l] * after[l] * here[l - 1] * here[l + 1];
+    out[0] = here[0] * before[0] * after[0] * here[std::min(1, rows - 1)];
+    if (rows > 1) out[rows - 1] = here[rows - 1] * before[rows - 1] * after[rows - 1] * here[rows - 2];
+  });
+}
+
+void BoussinesqSolver::Implementation::step() {
+  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
+  const double ratio = dt / dx;
+
+  // One ADI step is a pair of sweeps, x then y on even steps and y then x on odd steps when
+  // `alternate_sweep_order` is set (docs/solver.md, "Sweep order"). The FIRST sweep of a pair has
+  //   E = eta^n - dt/(n dx) (dP^n + dQ^n) + dt S   (seed 003 eq. 1, the flux across the lines explicit)
+  // and estimates everything ACROSS its lines at t^{n+1/2}: on pass 0 from the last steps (the other
+  // flux at t^n + its last increment / 2, its rate lagged half a step as its last increment / dt,
+  // eta extrapolated from eta^{n-1} and eta^n); on later passes (`adi_passes` > 1) from the previous
+  // pass. The SECOND sweep has E = eta* (the first sweep's result) and the other flux at t^{n+1/2}
+  // and its rate exactly. Layouts: the x sweep works on transposed arrays (suffix _t), the y sweep
+  // on the natural row-major ones (boussinesq_sweep.hpp).
+  const bool x_first = !parameters.alternate_sweep_order || step_count % 2 == 0;
+  detail::transpose(eta.data(), eta_t.data(), nx, ny);
+  if (eddy_viscosity_active) detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
+  mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
+  mark_dispersive(frame_y, eta.data(), dispersive.data());
+
+  // The normal flux's first guess and its t^{n+1/2} estimate: last step's increment on pass 0,
+  // this step's previous pass afterwards.
+  auto prepare_normal = [&](int pass, const std::vector<double>& old_flux, const std::vector<double>& last_increment,
+                            const std::vector<double>& new_flux, std::vector<double>& guess, std::vector<double>& across) {
+    for_each_index(old_flux.size(), [&](std::size_t f) {
+      guess[f] = pass == 0 ? last_increment[f] : new_flux[f] - old_flux[f];
+      across[f] = old_flux[f] + 0.5 * guess[f];
+    });
+  };
+  // E of the first sweep: eta^n minus the divergence of the fluxes at t^n, plus the wave maker.
+  auto explicit_base = [&](const double* eta_layout, double* base, bool x_layout) {
+    tbb::parallel_for(0, ny, [&](int r) {
+      for (int c = 0; c < nx; ++c) {
+        const std::size_t i = x_layout ? px(c, r) : index(c, r, nx);
+        const double divergence = flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y[qy(c, r + 1)] - flux_y[qy(c, r)];
+        base[i] = eta_layout[i] - ratio * frame_y.inverse_porosity[index(c, r, nx)] * divergence;
+      }
+    });
+    if (x_layout)
+      source->add(time_s + 0.5 * dt, dt, base, static_cast<std::size_t>(ny), 1);
+    else
+      source->add(time_s + 0.5 * dt, dt, base, 1, static_cast<std::size_t>(nx));
+  };
+  // The other flux at t^{n+1/2} and its rate, in the sweep's tangential layout (transposed: the
+  // x-face P into the y sweep's layout, the y-face Q into the x sweep's). Exact when the other sweep
+  // has run this pass (from its new flux); otherwise estimated from its change over the last step
+  // (pass 0) or over this step's previous pass.
+  enum class Across { kEstimate, kExact };
+  auto tangential_from = [&](Across kind, int pass, const std::vector<double>& old_flux, const std::vector<double>& new_flux,
+                             const std::vector<double>& last_increment, int cols, int rows, std::vector<double>& half,
+                             std::vector<double>& rate) {
+    if (kind == Across::kExact)
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromNewFlux, old_flux.data(), new_flux.data(), dt, half.data(),
+                                      rate.data(), cols, rows);
+    else if (pass == 0)
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromIncrement, old_flux.data(), last_increment.data(), dt,
+                                      half.data(), rate.data(), cols, rows);
+    else
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromPass, old_flux.data(), new_flux.data(), dt, half.data(),
+                                      rate.data(), cols, rows);
+  };
+
+  auto sweep_x = [&](bool first, int pass) {
+    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_y, flux_y_new, flux_y_increment, nx, ny + 1,
+                    tangential_half_t, tangential_rate_t);
+    if (first) {
+      explicit_base(eta_t.data(), eta_base_t.data(), true);
+      if (pass == 0) {
+        for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]); });
+      } else {
+        for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
+        detail::transpose(eta_across.data(), eta_across_t.data(), nx, ny);
+      }
+    } else {
+      // After the y sweep: E = eta*, Q at t^{n+1/2} and dQ/dt exact.
+      detail::transpose(eta_star.data(), eta_base_t.data(), nx, ny);
+      for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = 0.5 * (eta_t[i] + eta_base_t[i]); });
+    }
+    prepare_normal(pass, flux_x, flux_x_increment, flux_x_new, flux_x_guess, flux_x_across);
+    sweep(frame_x,
+          {eta_t.data(), eta_base_t.data(), eta_across_t.data(), flux_x.data(), flux_x_across.data(), flux_x_guess.data(),
+           tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data(), eddy_viscosity_active},
+          {eta_star_t.data(), flux_x_new.data()});
+    // The x sweep's eta: eta* when it came first, eta^{n+1} when second (both to the natural layout).
+    detail::transpose(eta_star_t.data(), first ? eta_star.data() : eta_next.data(), ny, nx);
+  };
+
+  auto sweep_y = [&](bool first, int pass) {
+    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_x, flux_x_new, flux_x_increment, ny, nx + 1,
+                    flux_x_half, flux_x_rate);
+    const double* base = eta_star.data();
+    if (first) {
+      explicit_base(eta.data(), eta_base.data(), false);
+      base = eta_base.data();
+      if (pass == 0) {
+        for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]); });
+        detail::transpose(eta_across_t.data(), eta_across.data(), ny, nx);
+      } else {
+        for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
+      }
+    } else {
+      for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_star[i]); });
+    }
+    prepare_normal(pass, flux_y, flux_y_increment, flux_y_new, flux_y_guess, flux_y_across);
+    sweep(frame_y,
+          {eta.data(), base, eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_guess.data(),
+           flux_x_half.data(), flux_x_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active},
+          {first ? eta_star.data() : eta_next.data(), flux_y_new.data()});
+  };
+
+  for (int pass = 0; pass < parameters.adi_passes; ++pass) {
+    if (x_first) {
+      sweep_x(true, pass);
+      sweep_y(false, pass);
+    } else {
+      sweep_y(true, pass);
+      sweep_x(false, pass);
+    }
+  }
+
+  // 3. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
+  repair_negative_depths();
+
+  // 4. Shapiro filter of the fluxes against the fine-grid two-dimensional mode (docs/solver.md).
+  filter_grid_scale_fluxes();
+
+  // 5. Advance the state.
+  for_each_index(flux_x.size(), [&](std::size_t f) {
+    flux_x_increment[f] = flux_x_new[f] - flux_x[f];
+    flux_x[f] = flux_x_new[f];
+  });
+  for_each_index(flux_y.size(), [&](std::size_t f) {
+    flux_y_increment[f] = flux_y_new[f] - flux_y[f];
+    flux_y[f] = flux_y_new[f];
+  });
+  eta_previous_t.swap(eta_t);  // eta^n, transposed
+  eta_star.swap(eta);          // eta_star now holds eta^n (natural), for the breaking model
+  eta.swap(eta_next);          // eta = eta^{n+1}
+  apply_sponges();
+  update_breaking(eta_star);
+  time_s += dt;
+  ++step_count;
+  publish();
+}
+
+void BoussinesqSolver::Implementation::repair_negative_depths() {
+  // The step's mass fluxes are F = (P^n + P^{n+1})/2 (and likewise for Q). Where a cell would
+  // end below its bed, its outgoing fluxes are scaled down so it ends exactly dry; the neighbours
+  // that lose that inflow are revisited. Serial over the few shoreline cells, in a fixed order,
+  // so the result does not depend on the thread count. Mass is conserved exactly.
+  const double* depth = frame_y.depth_m.data();
+  std::vector<std::size_t> pending;
+  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
+  for (std::size_t i = 0; i < cells; ++i)
+    if (frame_y.inverse_porosity[i] > 0.0 && depth[i] + eta_next[i] < 0.0) pending.push_back(i);
+  const double ratio = dt / dx;
+  for (int pass = 0; pass < 20 && !pending.empty(); ++pass) {
+    std::vector<std::size_t> next;
+    for (std::size_t i : pending) {
+      const double h = depth[i] + eta_next[i];
+      if (h >= 0.0) continue;
+      const int c = static_cast<int>(i % nx), r = static_cast<int>(i / nx);
+      // Faces: west, east (x), south, north (y); outgoing sign for each.
+      struct FaceRef { double* new_flux; const double* old_flux; double outward; std::ptrdiff_t neighbour; };
+      const std::size_t fw = px(c, r), fe = px(c + 1, r), fs = qy(c, r), fn = qy(c, r + 1);
+      FaceRef faces[4] = {
+          {&flux_x_new[fw], &flux_x[fw], -1.0, c > 0 ? static_cast<std::ptrdiff_t>(i) - 1 : -1},
+          {&flux_x_new[fe], &flux_x[fe], 1.0, c + 1 < nx ? static_cast<std::ptrdiff_t>(i) + 1 : -1},
+          {&flux_y_new[fs], &flux_y[fs], -1.0, r > 0 ? static_cast<std::ptrdiff_t>(i) - nx : -1},
+          {&flux_y_new[fn], &flux_y[fn], 1.0, r + 1 < ny ? static_cast<std::ptrdiff_t>(i) + nx : -1}};
+      double outflow = 0.0;  // metres of water level over the step (times n)
+      for (const FaceRef& face : faces) {
+        const double mass_flux = 0.5 * (*face.new_flux + *face.old_flux) * face.outward;
+        if (mass_flux > 0.0) outflow += mass_flux * ratio;
+      }
+      if (outflow <= 0.0) { eta_next[i] = -depth[i]; continue; }  // round-off only
+      const double n = 1.0 / frame_y.inverse_porosity[i];
+      const double keep = std::clamp(1.0 + n * h / outflow, 0.0, 1.0);  // fraction of the outflow kept
+      for (FaceRef& face : faces) {
+        const double mass_flux = 0.5 * (*face.new_flux + *face.old_flux) * face.outward;
+        if (mass_flux <= 0.0) continue;
+        const double removed = (1.0 - keep) * mass_flux;  // outward mass flux taken away
+        *face.new_flux -= 2.0 * removed * face.outward;
+        if (face.neighbour >= 0) {
+          const std::size_t j = static_cast<std::size_t>(face.neighbour);
+          eta_next[j] -= removed * ratio * frame_y.inverse_porosity[j];
+          if (depth[j] + eta_next[j] < 0.0) next.push_back(j);
+        }
+      }
+      eta_next[i] += (1.0 - keep) * outflow * frame_y.inverse_porosity[i];
+    }
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    pending.swap(next);
+  }
+}
+
+void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
+  if (flux_filter.half_order() <= 0) return;
+  // A face may be filtered where it is open (or a grid-edge wall, which the odd ghosts describe)
+  // and the cells on both sides are wet with every neighbour wet: never across a shoreline or quay.
+  const double* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
+  const double* wet_y = dispersive.data();
+  tbb::parallel_for(0, nx + 1, [&](int f) {
+    double* out = filterable_x.data() + px(f, 0);
+    if (f == 0 || f == nx) {
+      std::fill(out, out + ny, 1.0);
+      return;
+    }
+    const double* open = frame_x.face_open.data() + px(f, 0);
+    const double *west = wet_x + px(f - 1, 0), *east = wet_x + px(f, 0);
+    for (int r = 0; r < ny; ++r) out[r] = open[r] * west[r] * east[r];
+  });
+  tbb::parallel_for(0, ny + 1, [&](int k) {
+    double* out = filterable_y.data() + qy(0, k);
+    if (k == 0 || k == ny) {
+      std::fill(out, out + nx, 1.0);
+      return;
+    }
+    const double* open = frame_y.face_open.data() + qy(0, k);
+    const double *south = wet_y + index(0, k - 1, nx), *north = wet_y + index(0, k, nx);
+    for (int c = 0; c < nx; ++c) out[c] = open[c] * south[c] * north[c];
+  });
+  // P: along x is its slow index (normal to the west and east walls), along y its fast index.
+  flux_filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
+  flux_filter.along_fast(flux_x_new.data(), filterable_x.data(), nx + 1, ny, false);
+  // Q: along y is its slow index (normal to the south and north walls), along x its fast index.
+  flux_filter.along_slow(flux_y_new.data(), filterable_y.data(), ny + 1, nx, true);
+  flux_filter.along_fast(flux_y_new.data(), filterable_y.data(), ny + 1, nx, false);
+}
+
+void BoussinesqSolver::Implementation::apply_sponges() {
+  if (sponge_cell.empty()) return;
+  const double* depth = frame_y.depth_m.data();
+  for_each_index(eta.size(), [&](std::size_t i) {
+    if (depth[i] > 0.0 && depth[i] + eta[i] > parameters.dry_depth_m) eta[i] *= sponge_cell[i];
+  });
+  for_each_index(flux_x.size(), [&](std::size_t f) { flux_x[f] *= sponge_face_x[f]; });
+  for_each_index(flux_y.size(), [&](std::size_t f) { flux_y[f] *= sponge_face_y[f]; });
+}
+
+void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>& eta_old) {
+  const BreakingParameters& b = parameters.breaking;
+  if (!b.enabled) {  // nu never changes: eddy_t, transposed this step, stays right
+    eddy_viscosity_active = false;
+    return;
+  }
+  // Kennedy et al. (2000): a cell breaks while eta_t > eta_t*, the threshold falling linearly from
+  // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
+  // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
+  // (The sweeps cap nu at 0.2 dx^2/dt in the explicit cross terms of eq. (6)-(7) only.)
+  const double* depth = frame_y.depth_m.data();
+  const double g = kGravity_m_s2, delta2 = b.mixing_length_coefficient * b.mixing_length_coefficient;
+  const double now = time_s + dt;
+  std::atomic<bool> any_viscosity{false};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, eta.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    bool block_viscosity = false;
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const double h = depth[i] + eta[i];
+      if (depth[i] <= 0.0 || h <= parameters.dry_depth_m || frame_y.inverse_porosity[i] == 0.0) {
+        eddy_viscosity[i] = 0.0; breaking_strength[i] = 0.0; breaking_start_s[i] = -1.0;
+        continue;
+      }
+      const double eta_t = (eta[i] - eta_old[i]) / dt, celerity = std::sqrt(g * h);
+      if (breaking_start_s[i] < 0.0 && eta_t > b.onset_celerity_fraction * celerity) breaking_start_s[i] = now;
+      double strength = 0.0;
+      if (breaking_start_s[i] >= 0.0) {
+        const double transition = b.transition_time_factor * std::sqrt(h / g);
+        const double age = std::clamp((now - breaking_start_s[i]) / transition, 0.0, 1.0);
+        const double threshold = celerity * (b.onset_celerity_fraction + age * (b.stop_celerity_fraction - b.onset_celerity_fraction));
+        strength = std::clamp(eta_t / threshold - 1.0, 0.0, 1.0);
+        if (eta_t <= threshold) breaking_start_s[i] = -1.0;  // the event is over
+      }
+      breaking_strength[i] = strength;
+      eddy_viscosity[i] = strength * delta2 * h * std::max(eta_t, 0.0);
+      block_viscosity = block_viscosity || eddy_viscosity[i] != 0.0;
+    }
+    if (block_viscosity) any_viscosity.store(true, std::memory_order_relaxed);
+  });
+  // When the last breaking cell stops, eddy_t is cleared once; afterwards the transpose is skipped.
+  if (eddy_viscosity_active && !any_viscosity.load()) std::fill(eddy_t.begin(), eddy_t.end(), 0.0);
+  eddy_viscosity_active = any_viscosity.load();
+}
+
+void BoussinesqSolver::Implementation::publish() {
+  for_each_index(eta.size(), [&](std::size_t i) {
+    eta_output.values()[i] = static_cast<float>(eta[i]);
+    breaking_output.values()[i] = static_cast<float>(breaking_strength[i]);
+  });
+}
+
+void BoussinesqSolver::set_surface_elevation(const std::function<double(double, double)>& surface_elevation_m) {
+  Implementation& s = *implementation_;
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      const std::size_t i = index(c, r, s.nx);
+      if (s.frame_y.depth_m[i] > 0.0 && s.frame_y.inverse_porosity[i] > 0.0)
+        s.eta[i] = surface_elevation_m(s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r));
+    }
+  detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
+  for (auto* v : {&s.flux_x, &s.flux_y, &s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
+  s.publish();
+}
+
+void BoussinesqSolver::set_initial_condition(const std::function<double(double, double)>& surface_elevation_m,
+                                             const std::function<double(double, double)>& flux_x_m2_s,
+                                             const std::function<double(double, double)>& flux_y_m2_s) {
+  Implementation& s = *implementation_;
+  const GridGeometry& g = s.geometry;
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      const std::size_t i = index(c, r, s.nx);
+      if (s.frame_y.depth_m[i] > 0.0) s.eta[i] = surface_elevation_m(g.cell_centre_x_m(c), g.cell_centre_y_m(r));
+    }
+  for (int f = 1; f < s.nx; ++f)
+    for (int r = 0; r < s.ny; ++r)
+      if (s.frame_x.face_open[s.px(f, r)] && s.frame_x.face_depth_m[s.px(f, r)] > 0.0)
+        s.flux_x[s.px(f, r)] = flux_x_m2_s(g.origin_x_m + f * s.dx, g.cell_centre_y_m(r));
+  for (int k = 1; k < s.ny; ++k)
+    for (int c = 0; c < s.nx; ++c)
+      if (s.frame_y.face_open[s.qy(c, k)] && s.frame_y.face_depth_m[s.qy(c, k)] > 0.0)
+        s.flux_y[s.qy(c, k)] = flux_y_m2_s(g.cell_centre_x_m(c), g.origin_y_m + k * s.dx);
+  detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
+  for (auto* v : {&s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
+  s.publish();
+}
+
+void BoussinesqSolver::step() { implementation_->step(); }
+double BoussinesqSolver::time_s() const { return implementation_->time_s; }
+double BoussinesqSolver::time_step_s() const { return implementation_->dt; }
+long BoussinesqSolver::step_count() const { return implementation_->step_count; }
+const GridGeometry& BoussinesqSolver::geometry() const { return implementation_->geometry; }
+const Raster<float>& BoussinesqSolver::surface_elevation_m() const { return implementation_->eta_output; }
+const Raster<float>& BoussinesqSolver::breaking_indicator() const { return implementation_->breaking_output; }
+
+void BoussinesqSolver::cell_centred_fluxes(Raster<float>& flux_x_m2_s, Raster<float>& flux_y_m2_s) const {
+  const Implementation& s = *implementation_;
+  if (flux_x_m2_s.columns() != s.nx || flux_x_m2_s.rows() != s.ny) flux_x_m2_s = Raster<float>(s.nx, s.ny);
+  if (flux_y_m2_s.columns() != s.nx || flux_y_m2_s.rows() != s.ny) flux_y_m2_s = Raster<float>(s.nx, s.ny);
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      flux_x_m2_s(c, r) = static_cast<float>(0.5 * (s.flux_x[s.px(c, r)] + s.flux_x[s.px(c + 1, r)]));
+      flux_y_m2_s(c, r) = static_cast<float>(0.5 * (s.flux_y[index(c, r, s.nx)] + s.flux_y[index(c, r + 1, s.nx)]));
+    }
+}
+
+double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
+  const Implementation& s = *implementation_;
+  const double u = std::clamp((x_m - s.geometry.origin_x_m) / s.dx - 0.5, 0.0, s.nx - 1.0);
+  const double v = std::clamp((y_m - s.geometry.origin_y_m) / s.dx - 0.5, 0.0, s.ny - 1.0);
+  const int c0 = std::min(static_cast<int>(u), s.nx - 1), r0 = std::min(static_cast<int>(v), s.ny - 1);
+  const int c1 = std::min(c0 + 1, s.nx - 1), r1 = std::min(r0 + 1, s.ny - 1);
+  const double a = u - c0, b = v - r0;
+  auto e = [&](int c, int r) { return s.eta[index(c, r, s.nx)]; };
+  return (1 - a) * (1 - b) * e(c0, r0) + a * (1 - b) * e(c1, r0) + (1 - a) * b * e(c0, r1) + a * b * e(c1, r1);
+}
+
+std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {
+  const Implementation& s = *implementation_;
+  const double ratio = s.parameters.blowup_elevation_depth_ratio;
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      const std::size_t i = index(c, r, s.nx);
+      const double d = s.frame_y.depth_m[i], eta = s.eta[i];
+      InstabilityReport report{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r), d, eta, {}};
+      if (!std::isfinite(eta)) {
+        report.what = "surface elevation is not a number";
+        return report;
+      }
+      const double excess = d > 0.0 ? std::abs(eta) : d + eta;  // on land: the water depth
+      if (excess > ratio * std::max(d, 1.0)) {
+        std::ostringstream what;
+        what << "surface elevation " << eta << " m exceeds " << ratio << " x max(depth, 1 m)";
+        report.what = what.str();
+        return report;
+      }
+    }
+  for (std::size_t f = 0; f < s.flux_x.size(); ++f)
+    if (!std::isfinite(s.flux_x[f])) {
+      const int r = static_cast<int>(f % s.ny), c = std::min(static_cast<int>(f / s.ny), s.nx - 1);
+      return InstabilityReport{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r),
+                               s.frame_y.depth_m[index(c, r, s.nx)], s.flux_x[f], "flux P is not a number"};
+    }
+  for (std::size_t f = 0; f < s.flux_y.size(); ++f)
+    if (!std::isfinite(s.flux_y[f])) {
+      const int r = std::min(static_cast<int>(f / s.nx), s.ny - 1), c = static_cast<int>(f % s.nx);
+      return InstabilityReport{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r),
+                               s.frame_y.depth_m[index(c, r, s.nx)], s.flux_y[f], "flux Q is not a number"};
+    }
+  return std::nullopt;
+}
+
+double BoussinesqSolver::water_volume_m3() const {
+  // Sum of n h dx^2 in a fixed order (deterministic).
+  const Implementation& s = *implementation_;
+  double volume = 0.0;
+  for (std::size_t i = 0; i < s.eta.size(); ++i)
+    if (s.frame_y.inverse_porosity[i] > 0.0) volume += (s.frame_y.depth_m[i] + s.eta[i]) / s.frame_y.inverse_porosity[i];
+  return volume * s.dx * s.dx;
+}
+
+}  // namespace nearshore::boussinesq

@@ -1,0 +1,187 @@
+#include "boussinesq_source.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <sstream>
+
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::boussinesq::detail {
+
+using namespace nearshore::ocean;  // wave components, sea states, linear waves
+
+
+namespace {
+
+double ramp(double time_s, double ramp_time_s) {
+  if (ramp_time_s <= 0.0 || time_s >= ramp_time_s) return 1.0;
+  if (time_s <= 0.0) return 0.0;
+  return 0.5 * (1.0 - std::cos(std::numbers::pi * time_s / ramp_time_s));
+}
+
+// A user time series eta(t) as normally incident components: the discrete Fourier transform of
+// the series, resampled linearly to uniform spacing. The series repeats with its length.
+std::vector<WaveComponent> components_from_series(const WaveMaker& maker, double direction_rad) {
+  const auto& t = maker.series_time_s;
+  const auto& e = maker.series_elevation_m;
+  if (t.size() != e.size() || t.size() < 4)
+    throw Error("wave maker time series", "needs at least 4 samples with as many times as elevations (got " +
+                                              std::to_string(t.size()) + " times, " + std::to_string(e.size()) + " elevations)",
+                "give series_time_s and series_elevation_m of equal length");
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (!(t[i] > t[i - 1]))
+      throw Error("wave maker time series", "time does not increase at sample " + std::to_string(i) + " (t=" +
+                                                std::to_string(t[i]) + " s)", "sort the samples by time and remove duplicates");
+  const std::size_t n = t.size();
+  const double span = t.back() - t.front();
+  const double spacing = span / static_cast<double>(n - 1);
+  std::vector<double> uniform(n);
+  for (std::size_t i = 0, j = 0; i < n; ++i) {
+    const double ti = t.front() + spacing * static_cast<double>(i);
+    while (j + 2 < n && t[j + 1] < ti) ++j;
+    const double a = std::clamp((ti - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
+    uniform[i] = e[j] + a * (e[j + 1] - e[j]);
+  }
+  const double period = spacing * static_cast<double>(n);
+  std::vector<WaveComponent> components;
+  for (std::size_t m = 1; m < n / 2; ++m) {
+    std::complex<double> sum = 0.0;
+    const double w = 2.0 * std::numbers::pi * static_cast<double>(m) / period;
+    for (std::size_t i = 0; i < n; ++i) sum += uniform[i] * std::polar(1.0, -w * spacing * static_cast<double>(i));
+    const double amplitude = 2.0 * std::abs(sum) / static_cast<double>(n);
+    // eta(t) = a cos(w (t - t0) + arg X) = a cos(-w t + phi) with phi = w t0 - arg X.
+    components.push_back({amplitude, w, direction_rad, w * t.front() - std::arg(sum)});
+  }
+  return components;
+}
+
+}  // namespace
+
+SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geometry, const std::vector<double>& depth,
+                               double B) {
+  if (maker.kind != WaveMaker::Kind::kComponents && maker.kind != WaveMaker::Kind::kTimeSeries) return;
+  cols_ = geometry.columns;
+  rows_ = geometry.rows;
+  spacing_m_ = geometry.spacing_m;
+  ramp_time_s_ = maker.ramp_time_s;
+  normal_is_x_ = maker.facing == Side::kWest || maker.facing == Side::kEast;
+  const double travel_sign = (maker.facing == Side::kWest || maker.facing == Side::kSouth) ? 1.0 : -1.0;
+  const int normal_count = normal_is_x_ ? cols_ : rows_, tangential_count = normal_is_x_ ? rows_ : cols_;
+  const double normal_origin = normal_is_x_ ? geometry.origin_x_m : geometry.origin_y_m;
+  tangential_origin_m_ = normal_is_x_ ? geometry.origin_y_m : geometry.origin_x_m;
+  const double line_m = maker.source_line_m;
+  const double line_index = (line_m - normal_origin) / spacing_m_ - 0.5;  // fractional cell index
+  if (line_index < 0.0 || line_index > normal_count - 1.0) {
+    std::ostringstream problem;
+    problem << "source_line_m = " << line_m << " m lies outside the grid (" << normal_origin << " .. "
+            << normal_origin + normal_count * spacing_m_ << " m along " << (normal_is_x_ ? "x" : "y") << ")";
+    throw Error("wave maker", problem.str(), "put the source line inside the grid, in front of the sponge");
+  }
+  // Still-water depth at the source line: the mean over the wet cells of the line.
+  double depth_sum = 0.0;
+  int wet = 0;
+  const int line_cell = static_cast<int>(std::lround(line_index));
+  for (int t = 0; t < tangential_count; ++t) {
+    const double d = normal_is_x_ ? depth[static_cast<std::size_t>(t) * cols_ + line_cell]
+                                  : depth[static_cast<std::size_t>(line_cell) * cols_ + t];
+    if (d > 0.0) { depth_sum += d; ++wet; }
+  }
+  if (wet == 0)
+    throw Error("wave maker", "the source line at " + std::to_string(line_m) + " m runs over land only",
+                "move source_line_m into open water");
+  const double d = depth_sum / wet;
+
+  const double mean_direction = normal_is_x_ ? (travel_sign > 0 ? 0.0 : std::numbers::pi)
+                                             : (travel_sign > 0 ? 0.5 * std::numbers::pi : -0.5 * std::numbers::pi);
+  std::vector<WaveComponent> waves = maker.kind == WaveMaker::Kind::kComponents
+                                         ? maker.sea_state.components
+                                         : components_from_series(maker, mean_direction);
+  if (waves.empty()) return;
+  // Gaussian source width from the longest-energy (peak) component: beta = 20 / L^2 (the e-folding
+  // half-width L/4.5 keeps the source compact yet resolved at 20 cells per wavelength).
+  const auto peak = std::max_element(waves.begin(), waves.end(),
+                                     [](const WaveComponent& a, const WaveComponent& b) { return a.amplitude_m < b.amplitude_m; });
+  const double peak_k = boussinesq_wavenumber(peak->angular_frequency_rad_s, d, B);
+  const double peak_length = 2.0 * std::numbers::pi / peak_k;
+  const double beta = 20.0 / (peak_length * peak_length);
+  const double half_width = 3.0 / std::sqrt(beta);
+  strip_begin_ = std::max(0, static_cast<int>(std::floor(line_index - half_width / spacing_m_)));
+  strip_end_ = std::min(normal_count, static_cast<int>(std::ceil(line_index + half_width / spacing_m_)) + 1);
+  profile_.resize(static_cast<std::size_t>(strip_end_ - strip_begin_));
+  for (int i = strip_begin_; i < strip_end_; ++i) {
+    const double s = (i - line_index) * spacing_m_;
+    profile_[static_cast<std::size_t>(i - strip_begin_)] = std::exp(-beta * s * s);
+  }
+
+  const double g = kGravity_m_s2, B3 = B + 1.0 / 3.0;
+  const double largest = peak->amplitude_m;
+  for (const WaveComponent& wave : waves) {
+    if (wave.amplitude_m <= 1e-6 * largest || wave.angular_frequency_rad_s <= 0.0) continue;
+    const double w = wave.angular_frequency_rad_s;
+    const double k = boussinesq_wavenumber(w, d, B);
+    if (maker.kind == WaveMaker::Kind::kTimeSeries && k * d > 3.0) continue;  // beyond the equations' range
+    const double kx = k * std::cos(wave.direction_rad), ky = k * std::sin(wave.direction_rad);
+    const double k_normal = normal_is_x_ ? kx : ky, k_tangential = normal_is_x_ ? ky : kx;
+    if (k_normal * travel_sign < 0.2 * k) {
+      std::ostringstream problem;
+      problem << "a component (w=" << w << " rad/s, direction " << wave.direction_rad * 180.0 / std::numbers::pi
+              << " deg) does not travel away from the " << (normal_is_x_ ? (travel_sign > 0 ? "west" : "east") : (travel_sign > 0 ? "south" : "north"))
+              << " side within 78 deg of its normal";
+      throw Error("wave maker", problem.str(), "turn the source line (facing) or limit the directional spread");
+    }
+    // Source amplitude (docs/solver.md): for S = D g(s) cos(l t - w t + psi) the model radiates
+    //   A = D I w M(k^2) / (2 |k_n| F'(k^2)),  M(s) = 1 + (B+1/3) d^2 s,  G(s) = g d (1 + B d^2 s),
+    //   F(s) = s G(s) - w^2 M(s), F'(s) = G(s) + s g d B d^2 - w^2 (B+1/3) d^2,
+    // with I the transform of the Gaussian at k_n, here summed over the grid cells it is sampled on.
+    const double s2 = k * k, d2 = d * d;
+    const double M = 1.0 + B3 * d2 * s2;
+    const double F_prime = g * d * (1.0 + B * d2 * s2) + s2 * g * d * B * d2 - w * w * B3 * d2;
+    double I = 0.0;
+    for (int i = strip_begin_; i < strip_end_; ++i)
+      I += profile_[static_cast<std::size_t>(i - strip_begin_)] * std::cos(k_normal * (i - line_index) * spacing_m_) * spacing_m_;
+    const double strength = wave.amplitude_m * 2.0 * std::abs(k_normal) * F_prime / (w * M * I);
+    // eta = a cos(kx x + ky y - w t + phi) at the line s = line_m: the source phase at tangential 0.
+    const double phase = wave.phase_rad + k_normal * line_m;
+    components_.push_back({strength, w, k_tangential, phase});
+  }
+  line_.assign(static_cast<std::size_t>(tangential_count), 0.0);
+  // The source acts on water only: cells of the strip on land get none (no water made on land).
+  water_.assign(profile_.size() * static_cast<std::size_t>(tangential_count), 0);
+  for (int i = strip_begin_; i < strip_end_; ++i)
+    for (int j = 0; j < tangential_count; ++j) {
+      const std::size_t cell = normal_is_x_ ? static_cast<std::size_t>(j) * cols_ + i : static_cast<std::size_t>(i) * cols_ + j;
+      water_[static_cast<std::size_t>(i - strip_begin_) * tangential_count + j] = depth[cell] > 0.0;
+    }
+}
+
+void SourceFunction::add(double time_s, double dt, double* eta_base, std::size_t x_stride, std::size_t y_stride) {
+  if (components_.empty()) return;
+  const double r = ramp(time_s, ramp_time_s_);
+  if (r == 0.0) return;
+  std::fill(line_.begin(), line_.end(), 0.0);
+  const int tangential_count = static_cast<int>(line_.size());
+  // Sum along the line by complex rotation: exp(i (l t_j - w t + psi)) advanced cell by cell.
+  for (const Component& c : components_) {
+    const double t0 = tangential_origin_m_ + 0.5 * spacing_m_;
+    std::complex<double> z = std::polar(c.strength_m_s, c.tangential_wavenumber_rad_m * t0 - c.angular_frequency_rad_s * time_s + c.phase_rad);
+    const std::complex<double> rotation = std::polar(1.0, c.tangential_wavenumber_rad_m * spacing_m_);
+    for (int j = 0; j < tangential_count; ++j) {
+      line_[static_cast<std::size_t>(j)] += z.real();
+      z *= rotation;
+    }
+  }
+  const double scale = r * dt;
+  for (int i = strip_begin_; i < strip_end_; ++i) {
+    const double p = scale * profile_[static_cast<std::size_t>(i - strip_begin_)];
+    for (int j = 0; j < tangential_count; ++j) {
+      const std::size_t cell = normal_is_x_ ? static_cast<std::size_t>(j) * y_stride + static_cast<std::size_t>(i) * x_stride
+                                            : static_cast<std::size_t>(i) * y_stride + static_cast<std::size_t>(j) * x_stride;
+      if (water_[static_cast<std::size_t>(i - strip_begin_) * tangential_count + j])
+        eta_base[cell] += p * line_[static_cast<std::size_t>(j)];
+    }
+  }
+}
+
+}  // namespace nearshore::boussinesq::detail

@@ -1,0 +1,43 @@
+#pragma once
+// Internal wave generation by a source function in the mass equation (Wei, Kirby & Sun 1999),
+// with the source amplitude derived for the Madsen & Sorensen (1992) equations the solver uses
+// (docs/solver.md, "Wave maker"). Waves leave the source line on both sides; the ones heading
+// for the `facing` side are absorbed by the sponge behind the line, and reflected waves coming
+// back cross the line unhindered.
+#include <vector>
+
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
+#include "nearshore/boussinesq/model_dispersion.hpp"
+
+namespace nearshore::boussinesq::detail {
+
+class SourceFunction {
+ public:
+  /// depth_m: cell depths (cols x rows, row-major), the master orientation of the solver.
+  SourceFunction(const WaveMaker& wave_maker, const GridGeometry& geometry, const std::vector<double>& depth_m,
+                 double dispersion_coefficient);
+  bool empty() const { return components_.empty(); }
+  /// eta_base[cell] += dt * S(x, y, time_s) for every cell of the source strip; cell (column c,
+  /// row r) is eta_base[c * x_stride + r * y_stride].
+  void add(double time_s, double dt, double* eta_base, std::size_t x_stride, std::size_t y_stride);
+  /// The components actually generated (after decomposition of a time series), for the record.
+  std::size_t component_count() const { return components_.size(); }
+
+ private:
+  struct Component {
+    double strength_m_s;   // D of Wei et al. (1999), metres per second
+    double angular_frequency_rad_s;
+    double tangential_wavenumber_rad_m;  // l: wavenumber along the source line
+    double phase_rad;      // psi: phase of the source at tangential coordinate 0
+  };
+  std::vector<Component> components_;
+  bool normal_is_x_ = true;
+  int strip_begin_ = 0, strip_end_ = 0;  // cell indices along the normal axis, [begin, end)
+  std::vector<double> profile_;          // Gaussian g(s - s_line) per strip index
+  int cols_ = 0, rows_ = 0;
+  double tangential_origin_m_ = 0.0, spacing_m_ = 1.0, ramp_time_s_ = 0.0;
+  std::vector<unsigned char> water_;     // 1 where the strip cell is water, strip x tangential
+  std::vector<double> line_;             // sum over components along the line (scratch)
+};
+
+}  // namespace nearshore::boussinesq::detail

@@ -1,0 +1,489 @@
+// The line sweep of the ADI scheme: seed 003 eq. (1)-(7) on one line of the staggered grid,
+// time-centred (Crank-Nicolson) and solved by the double sweep (Thomas algorithm).
+// docs/solver.md derives every coefficient below; the comments name the term of the paper.
+#include "boussinesq_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <tbb/parallel_for.h>
+
+#include "nearshore/ocean/wave_component.hpp"
+
+namespace nearshore::boussinesq::detail {
+
+using namespace nearshore::ocean;  // wave components, sea states, linear waves
+
+void SweepScratch::resize(int cols) {
+  const std::size_t size = static_cast<std::size_t>(cols + 5) * kBlockLines;
+  for (auto* v : {&upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
+                  &tangential_squared, &active, &face_velocity, &h_pair_north, &h_pair_south, &cell_eta_yy,
+                  &cell_eta_y, &cell_flux_yt, &nu_pair_north, &nu_pair_south})
+    v->assign(size, 0.0);
+}
+
+namespace {
+
+// The body of sweep_lines. kFullBlock: the block holds exactly kBlockLines lines, so every
+// lock-step loop over the lines has a trip count the compiler knows (whole vectors, no remainder).
+// kOpenWater: no face of the block is porous and no cell breaks (n = 1, alpha = beta = nu = 0), so
+// those arrays are not read; the arithmetic left is the same, so the results are the same bits.
+// Always inlined into sweep_lines, so each of its instruction-set clones gets its own copy.
+template <bool kFullBlock, bool kOpenWater>
+__attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame, const SweepConstants& k,
+                                                       const SweepInput& in, const SweepOutput& out, const int lb,
+                                                       const int le, SweepScratch& s) {
+  constexpr int W = kBlockLines;
+  const int cols = frame.cols, rows = frame.rows, faces = cols + 1, n = kFullBlock ? W : le - lb;
+  const std::size_t stride = static_cast<std::size_t>(rows), tstride = static_cast<std::size_t>(rows) + 1;
+  const double dx = frame.spacing_m, inv_dx = 1.0 / dx, inv_dx2 = inv_dx * inv_dx, inv_dx3 = inv_dx2 * inv_dx;
+  const double dt = k.time_step_s, g = kGravity_m_s2;
+  const double B = k.dispersion_coefficient, B3 = B + 1.0 / 3.0;
+  const double dry = k.dry_depth_m;
+  const double nu_explicit_max = 0.2 * dx * dx / dt;
+  const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
+
+  const double* __restrict depth = frame.depth_m.data();
+  const double* __restrict inv_n = frame.inverse_porosity.data();
+  const double* __restrict eta_old = in.eta_old;
+  const double* __restrict eta_base = in.eta_base;
+  const double* __restrict eta_across = in.eta_across;
+  const double* __restrict normal_old = in.normal_old;
+  const double* __restrict normal_across = in.normal_across;
+  const double* __restrict tangential = in.tangential_half;
+  const double* __restrict tangential_rate = in.tangential_rate;
+  const double* __restrict nu = in.eddy_viscosity;
+  const double* __restrict dispersive = in.dispersive;
+  const double* __restrict face_open = frame.face_open.data();
+  const double* __restrict face_porosity = frame.face_porosity.data();
+  const double* __restrict face_inverse_porosity = frame.face_inverse_porosity.data();
+  const double* __restrict face_depth = frame.face_depth_m.data();
+  const double* __restrict face_weight = frame.face_dispersion_weight.data();
+  const double* __restrict face_slope_along = frame.face_slope_along.data();
+  const double* __restrict face_slope_across = frame.face_slope_across.data();
+  const double* __restrict face_laminar = frame.face_porous_laminar_s.data();
+  const double* __restrict face_turbulent = frame.face_porous_turbulent_m.data();
+  const double* __restrict normal_guess = in.normal_guess;
+  double* __restrict eta_new = out.eta_new;
+  double* __restrict normal_new = out.normal_new;
+  double* __restrict increment = s.increment.data();
+  double* __restrict active = s.active.data();
+  double* __restrict fixed_term = s.fixed_term.data();
+  double* __restrict tangential_squared = s.tangential_squared.data();
+  double* __restrict face_velocity = s.face_velocity.data();
+  double* __restrict eta_half = s.eta_half.data() + 2 * W;  // two ghost cells before and after the line
+  double* __restrict flux_half = s.flux_half.data();
+  double* __restrict cell_term = s.cell_term.data();
+  double* __restrict upper = s.upper.data();
+  double* __restrict right = s.right.data();
+
+  // 1. Which faces carry flux this step (moving shoreline, docs/solver.md "Wet and dry"): a face
+  // is active when it is open and the water above the higher of its two beds is deeper than
+  // dry_depth_m (so water can run up onto a dry cell, and a lake at rest stays at rest).
+  #pragma GCC ivdep
+  for (int j = 0; j < n; ++j)
+    for (int f : {0, cols}) {  // grid edges: walls
+      active[f * W + j] = 0.0;
+      increment[f * W + j] = -normal_old[f * stride + lb + j];
+    }
+  for (int f = 1; f < cols; ++f)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      const std::size_t face = f * stride + lb + j, L = face - stride, R = face;
+      const double wet = std::max(eta_old[L], eta_old[R]) + std::min(depth[L], depth[R]) > dry ? 1.0 : 0.0;
+      const double on = face_open[face] * wet;
+      active[f * W + j] = on;
+      const double guess = normal_guess[face], closed = -normal_old[face];
+      increment[f * W + j] = on != 0.0 ? guess : closed;
+    }
+
+  // 2. The explicit terms built only from values ACROSS the lines (they do not change during the
+  // iteration): cross convection (PQ/h)_y, the cross-derivative dispersive terms of Psi (eq. 4),
+  // and the cross part of the eddy-viscosity stress (eq. 6). Edges of the grid are walls: the
+  // tangential flux there is 0 and eta is mirrored (clamped neighbour index).
+  // The same face term serves the interior lines (neighbours l-1, l+1: contiguous, vectorised)
+  // and the two edge lines of the grid (clamped neighbours, scalar).
+  // Per-cell pieces of the cross terms, computed once per cell (each serves the faces on both
+  // sides): corner depth sums, eta_yy, eta_y, Q_yt and eddy-viscosity sums.
+  double* __restrict h_pair_north = s.h_pair_north.data();
+  double* __restrict h_pair_south = s.h_pair_south.data();
+  double* __restrict cell_eta_yy = s.cell_eta_yy.data();
+  double* __restrict cell_eta_y = s.cell_eta_y.data();
+  double* __restrict cell_flux_yt = s.cell_flux_yt.data();
+  double* __restrict nu_pair_north = s.nu_pair_north.data();
+  double* __restrict nu_pair_south = s.nu_pair_south.data();
+  auto cell_terms = [&](int c, int j, int l, int ln, int ls) __attribute__((always_inline)) {
+    const std::size_t i = c * stride + l, in_ = c * stride + ln, is = c * stride + ls;
+    const double h_here = std::max(depth[i] + eta_across[i], dry);
+    h_pair_north[c * W + j] = h_here + std::max(depth[in_] + eta_across[in_], dry);
+    h_pair_south[c * W + j] = h_here + std::max(depth[is] + eta_across[is], dry);
+    cell_eta_yy[c * W + j] = (eta_across[in_] - 2.0 * eta_across[i] + eta_across[is]) * inv_dx2;
+    cell_eta_y[c * W + j] = (eta_across[in_] - eta_across[is]) * 0.5 * inv_dx;
+    cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dx;
+    // The cross stress is explicit: its viscosity is capped for stability (nu dt/dx^2 <= 0.2);
+    // the along-line stress is implicit and uses nu in full.
+    if (kOpenWater) return;
+    const double nu_i = std::min(nu[i], nu_explicit_max);
+    nu_pair_north[c * W + j] = nu_i + std::min(nu[in_], nu_explicit_max);
+    nu_pair_south[c * W + j] = nu_i + std::min(nu[is], nu_explicit_max);
+  };
+  const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
+  for (int c = 0; c < cols; ++c) {
+    #pragma GCC ivdep
+    for (int j = j_first; j < j_last; ++j) cell_terms(c, j, lb + j, lb + j + 1, lb + j - 1);
+    if (j_first == 1) cell_terms(c, 0, 0, std::min(1, rows - 1), 0);
+    if (j_last == n - 1 && !(j_first == 1 && n == 1)) cell_terms(c, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0));
+  }
+
+  auto fixed_face = [&](int f, int j, int l, int ln, int ls, double north, double south) __attribute__((always_inline)) {
+    const int L = f - 1, R = f;
+    const std::size_t face = f * stride + l;
+    auto c_at = [stride](int c, int line) { return c * stride + line; };
+    auto t_at = [tstride](int c, int k2) { return c * tstride + k2; };
+    const double n_f = kOpenWater ? 1.0 : face_porosity[face], inv_n_f = kOpenWater ? 1.0 : face_inverse_porosity[face];
+    const double d = face_depth[face];
+    // (PQ/h)_y at the face from the two corners north and south of it.
+    const double h_north = 0.25 * (h_pair_north[L * W + j] + h_pair_north[R * W + j]);
+    const double h_south = 0.25 * (h_pair_south[L * W + j] + h_pair_south[R * W + j]);
+    const double corner_north = north * 0.25 * (tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]) *
+                                (normal_across[face] + normal_across[f * stride + ln]) / h_north;
+    const double corner_south = south * 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)]) *
+                                (normal_across[face] + normal_across[f * stride + ls]) / h_south;
+    double term = -inv_n_f * (corner_north - corner_south) * inv_dx;
+
+    // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
+    //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
+    const double w = face_weight[face] * (dispersive[c_at(L, l)] * dispersive[c_at(R, l)]);
+    const double eta_yy_L = cell_eta_yy[L * W + j], eta_yy_R = cell_eta_yy[R * W + j];
+    const double eta_y_L = cell_eta_y[L * W + j], eta_y_R = cell_eta_y[R * W + j];
+    const double flux_yt_L = cell_flux_yt[L * W + j], flux_yt_R = cell_flux_yt[R * W + j];
+    const double eta_xyy = (eta_yy_R - eta_yy_L) * inv_dx;
+    const double eta_yy_face = 0.5 * (eta_yy_L + eta_yy_R);
+    const double eta_xy = (eta_y_R - eta_y_L) * inv_dx;
+    const double flux_xyt = (flux_yt_R - flux_yt_L) * inv_dx;
+    const double flux_yt_face = 0.5 * (flux_yt_L + flux_yt_R);
+    const double flux_xt = 0.5 * ((tangential_rate[t_at(R, l)] - tangential_rate[t_at(L, l)]) +
+                                  (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(L, l + 1)])) * inv_dx;
+    const double slope_along = face_slope_along[face], slope_across = face_slope_across[face];
+    const double nBgd = n_f * B * g * d;
+    const double psi = -B3 * d * d * flux_xyt - nBgd * d * d * eta_xyy -
+                       d * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
+                       d * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
+    term -= w * psi;
+
+    // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
+    if (!kOpenWater) {
+    const double nu_north = north * 0.25 * (nu_pair_north[L * W + j] + nu_pair_north[R * W + j]);
+    const double nu_south = south * 0.25 * (nu_pair_south[L * W + j] + nu_pair_south[R * W + j]);
+    const double stress_north = nu_north * ((normal_across[f * stride + ln] - normal_across[face]) +
+                                            (tangential[t_at(R, l + 1)] - tangential[t_at(L, l + 1)])) * inv_dx;
+    const double stress_south = nu_south * ((normal_across[face] - normal_across[f * stride + ls]) +
+                                            (tangential[t_at(R, l)] - tangential[t_at(L, l)])) * inv_dx;
+    term += inv_n_f * (stress_north - stress_south) * inv_dx;
+    }
+    fixed_term[f * W + j] = term;
+    const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);
+    tangential_squared[f * W + j] = flux_t * flux_t;
+  };
+  for (int f = 1; f < cols; ++f) {
+    #pragma GCC ivdep
+    for (int j = j_first; j < j_last; ++j) fixed_face(f, j, lb + j, lb + j + 1, lb + j - 1, 1.0, 1.0);
+    if (j_first == 1) fixed_face(f, 0, 0, std::min(1, rows - 1), 0, rows > 1 ? 1.0 : 0.0, 0.0);
+    if (j_last == n - 1 && !(j_first == 1 && n == 1))
+      fixed_face(f, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0), 0.0, rows > 1 ? 1.0 : 0.0);
+  }
+
+  // 3. Iterate the time-centred terms that depend on the lines' own unknowns.
+  // seed 003 eq. (1): n (eta - E)/dt = -(1/2) d(increment)/dx  (the Crank-Nicolson half of the new flux)
+  auto eta_from_increment = [&](int c, int j) __attribute__((always_inline)) {
+    const std::size_t i = c * stride + lb + j;
+    return eta_base[i] - 0.5 * dt * inv_dx * inv_n[i] * (increment[(c + 1) * W + j] - increment[c * W + j]);
+  };
+  const int iterations = std::max(1, k.iterations);
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    // eta at t^{n+1/2} from this iterate (eq. 1 and the time average in one pass).
+    for (int c = 0; c < cols; ++c)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        eta_half[c * W + j] = 0.5 * (eta_old[c * stride + lb + j] + eta_from_increment(c, j));
+      }
+    // Beyond the ends of the line the grid edge is a wall: mirror ghost cells (-1 -> 0, -2 -> 1).
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      eta_half[-1 * W + j] = eta_half[0 * W + j];
+      eta_half[-2 * W + j] = eta_half[std::min(1, cols - 1) * W + j];
+      eta_half[cols * W + j] = eta_half[(cols - 1) * W + j];
+      eta_half[(cols + 1) * W + j] = eta_half[std::max(cols - 2, 0) * W + j];
+    }
+    // Momentum flux P^2/h through the cell centre, momentum-conservative first-order upwind
+    // (Stelling & Duinmeijer 2003): the mean mass flux q of the cell times the velocity P/h of
+    // the upwind face. Central differences here let bores in the surf zone and run-up blow up.
+    for (int f = 0; f < faces; ++f)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const double h_face = std::max(face_depth[f * stride + lb + j] + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
+        const double flux_f = normal_old[f * stride + lb + j] + 0.5 * increment[f * W + j];
+        flux_half[f * W + j] = flux_f;
+        face_velocity[f * W + j] = flux_f / h_face;
+      }
+    // Upwinding is first order: applied everywhere it damps non-breaking waves ~20 % over the
+    // Berkhoff shoal. So it is blended in by the local Froude number Fr = |u| / sqrt(g h): central
+    // (second order, no numerical dissipation) below Fr = 0.2, where non-breaking waves live (linear
+    // waves have Fr = a/h, < 0.15 on the Berkhoff shoal), fully upwind above Fr = 0.4 (bores,
+    // run-up tongues), linear in between so the switch itself makes no noise.
+    for (int c = 0; c < cols; ++c)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const double flux_c = 0.5 * (flux_half[c * W + j] + flux_half[(c + 1) * W + j]);
+        const double u_west = face_velocity[c * W + j], u_east = face_velocity[(c + 1) * W + j];
+        const double u_upwind = flux_c > 0.0 ? u_west : u_east, u_central = 0.5 * (u_west + u_east);
+        const double h_cell = std::max(depth[c * stride + lb + j] + eta_half[c * W + j], dry);
+        const double froude2 = std::max(u_west * u_west, u_east * u_east) / (g * h_cell);
+        const double upwind_weight = std::clamp((froude2 - 0.04) / (0.16 - 0.04), 0.0, 1.0);
+        cell_term[c * W + j] = flux_c * (u_central + upwind_weight * (u_upwind - u_central));
+      }
+
+    // The tridiagonal rows are assembled and eliminated in one pass (the forward half of the
+    // double sweep below): each row is used the moment it is built. Row 0 (the west grid edge) is
+    // the identity with right side -P_old (a wall: flux 0), already in eliminated form.
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      upper[j] = 0.0;
+      right[j] = -normal_old[lb + j];
+    }
+    for (int f = 1; f < cols; ++f) {
+      const int L = f - 1, R = f;
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) {
+        const std::size_t face = f * stride + lb + j, cL = L * stride + lb + j, cR = R * stride + lb + j;
+        const double n_f = kOpenWater ? 1.0 : face_porosity[face], inv_n_f = kOpenWater ? 1.0 : face_inverse_porosity[face];
+        const double d = face_depth[face];
+        const double e_L = eta_half[L * W + j], e_R = eta_half[R * W + j];
+        // Total depth at the face: the larger of the mean depth and the water above the higher bed
+        // (the latter governs a face next to a dry cell: flooding), never below dry_depth_m.
+        const double h_mean = d + 0.5 * (e_L + e_R), h_above_bed = std::max(e_L, e_R) + std::min(depth[cL], depth[cR]);
+        const double h_f = std::max(std::max(h_mean, h_above_bed), dry);
+        const double inv_h_f = 1.0 / h_f;
+
+        // Along-line explicit terms: convection (P^2/h)_x / n and the along parts of Psi_x:
+        //   -n B g d^3 eta_xxx - d d_x n B g d 2 eta_xx   (time-centred, iterated)
+        const double w = face_weight[face] * (dispersive[cL] * dispersive[cR]);
+        const double e_m2 = eta_half[(f - 2) * W + j], e_p1 = eta_half[(f + 1) * W + j];
+        const double eta_xxx = (e_p1 - 3.0 * e_R + 3.0 * e_L - e_m2) * inv_dx3;
+        const double eta_xx = 0.5 * (e_p1 - e_R - e_L + e_m2) * inv_dx2;
+        const double slope_along = face_slope_along[face];
+        const double along = -inv_n_f * (cell_term[R * W + j] - cell_term[L * W + j]) * inv_dx +
+                             w * n_f * B * g * d * d * (d * eta_xxx + 2.0 * slope_along * eta_xx);
+        // Implicit parts of Psi_x: -(B+1/3) d^2 P_xxt - (1/3) d d_x P_xt
+        const double D2 = w * B3 * d * d * inv_dx2;
+        const double S1 = w * d * slope_along * inv_dx / 6.0;
+
+        // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
+        // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
+        const double flux_f = flux_half[f * W + j];  // |(P, Q)|; sqrt vectorises (-fno-math-errno)
+        const double flux_magnitude = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
+        const double friction = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f;
+        const double resistance =
+            kOpenWater ? friction : friction + n_f * (face_laminar[face] + face_turbulent[face] * flux_magnitude * inv_h_f);
+
+        // Gravity n g h eta_x at t^{n+1/2} with eta* = E - dt/(2 n dx) d(increment): couples three faces.
+        const double G = n_f * g * h_f * dt * dt * inv_dx2 * 0.25;
+        // Eddy viscosity along the line, (1/n) d/dx (nu dP/dx), Crank-Nicolson.
+        const double V_L = kOpenWater ? 0.0 : 0.5 * dt * nu[cL] * inv_n_f * inv_dx2;
+        const double V_R = kOpenWater ? 0.0 : 0.5 * dt * nu[cR] * inv_n_f * inv_dx2;
+
+        const double gravity = -dt * n_f * g * h_f * 0.5 * inv_dx * (eta_base[cR] - eta_base[cL] + eta_old[cR] - eta_old[cL]);
+        const double old_f = normal_old[face];
+        const double eddy_old =
+            kOpenWater ? 0.0 : 2.0 * (V_R * (normal_old[face + stride] - old_f) - V_L * (old_f - normal_old[face - stride]));
+        // Inactive faces get the identity row (flux to 0), selected arithmetically so the loop
+        // has no branch and vectorises.
+        const double on = active[f * W + j];  // 1 or 0: blended arithmetically, no branch
+        const double lower_f = -D2 + S1 - G * inv_n[cL] - V_L, upper_f = -D2 - S1 - G * inv_n[cR] - V_R;
+        const double diagonal_f = 1.0 + 2.0 * D2 + G * (inv_n[cL] + inv_n[cR]) + V_L + V_R + resistance * dt;
+        const double right_f = gravity + dt * (fixed_term[f * W + j] + along) - resistance * dt * old_f + eddy_old;
+        const double row_lower = on * lower_f, row_upper = on * upper_f;
+        const double row_diagonal = on * diagonal_f + (1.0 - on), row_right = on * right_f - (1.0 - on) * old_f;
+        // Double sweep (Thomas algorithm), forward elimination, all lines of the block in lock-step.
+        // The systems are diagonally dominant (docs/solver.md), so no pivoting is needed.
+        const double inverse_pivot = 1.0 / (row_diagonal - row_lower * upper[(f - 1) * W + j]);
+        upper[f * W + j] = row_upper * inverse_pivot;
+        right[f * W + j] = (row_right - row_lower * right[(f - 1) * W + j]) * inverse_pivot;
+      }
+    }
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {  // row `cols`, the east grid edge: identity, flux 0
+      upper[cols * W + j] = 0.0;
+      right[cols * W + j] = -normal_old[cols * stride + lb + j];
+    }
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) increment[(faces - 1) * W + j] = right[(faces - 1) * W + j];
+    for (int f = faces - 2; f >= 0; --f)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) increment[f * W + j] = right[f * W + j] - upper[f * W + j] * increment[(f + 1) * W + j];
+  }
+  // Thin-film guard of the moving shoreline: the flux of a face may not exceed a Froude number of
+  // kMaxFroude (|P| <= Fr h sqrt(g h)). Only thin swash and backwash layers ever reach it; without
+  // it their velocities P/h grow without bound as h -> dry_depth_m. Applied to the increment before
+  // eta is computed from it, so mass stays conserved.
+  for (int f = 1; f < cols; ++f)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      const double h_face = std::max(face_depth[f * stride + lb + j] + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
+      const double limit = kMaxFroude * h_face * std::sqrt(g * h_face);
+      const double old_f = normal_old[f * stride + lb + j];
+      const double flux_new = std::clamp(old_f + increment[f * W + j], -limit, limit);
+      increment[f * W + j] = flux_new - old_f;
+    }
+  for (int c = 0; c < cols; ++c)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) eta_new[c * stride + lb + j] = eta_from_increment(c, j);
+  for (int f = 0; f < faces; ++f)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) normal_new[f * stride + lb + j] = normal_old[f * stride + lb + j] + increment[f * W + j];
+}
+
+}  // namespace
+
+// Compiled for three instruction sets and chosen once at load time by the CPU (GCC function
+// multi-versioning): generic x86-64 (SSE2, 2 doubles per vector), x86-64-v3 (AVX2, 4) and
+// x86-64-v4 (AVX-512, 8). The sweep is ~80 % of a step and vectorises over the block's lines.
+// boussinesq_sweep.cpp is built with -ffp-contract=off (bake/CMakeLists.txt): no clone fuses a
+// multiply and an add, so every clone rounds exactly as the generic code and a bake gives the
+// same bits on any x86-64 CPU.
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void sweep_lines(const StaticFrame& frame, const SweepConstants& constants, const SweepInput& input,
+                 const SweepOutput& output, const int line_begin, const int line_end, SweepScratch& scratch) {
+  const bool open_water = !input.viscous && !frame.block_is_porous[static_cast<std::size_t>(line_begin / kBlockLines)];
+  if (line_end - line_begin == kBlockLines) {
+    if (open_water)
+      sweep_block<true, true>(frame, constants, input, output, line_begin, line_end, scratch);
+    else
+      sweep_block<true, false>(frame, constants, input, output, line_begin, line_end, scratch);
+  } else {
+    if (open_water)
+      sweep_block<false, true>(frame, constants, input, output, line_begin, line_end, scratch);
+    else
+      sweep_block<false, false>(frame, constants, input, output, line_begin, line_end, scratch);
+  }
+}
+
+namespace {
+
+constexpr int kTransposeTile = 32;
+
+// 4 x 4 blocks of doubles are transposed in registers (GCC vector extensions: two shuffle stages),
+// so both the loads (a row's 4 values) and the stores (a column's 4 values) are whole vectors.
+using Quad = double __attribute__((vector_size(32)));
+using QuadMask = long long __attribute__((vector_size(32)));
+
+// By reference, not by value: a 32-byte vector passed by value changes the ABI between clones.
+__attribute__((always_inline)) inline void load_quad(Quad& v, const double* p) { std::memcpy(&v, p, sizeof v); }
+__attribute__((always_inline)) inline void store_quad(double* p, const Quad& v) { std::memcpy(p, &v, sizeof v); }
+
+// rows[i] = row i of a 4 x 4 block; afterwards rows[j] holds column j.
+__attribute__((always_inline)) inline void transpose_quads(Quad rows[4]) {
+  const Quad t0 = __builtin_shuffle(rows[0], rows[1], QuadMask{0, 4, 2, 6});
+  const Quad t1 = __builtin_shuffle(rows[0], rows[1], QuadMask{1, 5, 3, 7});
+  const Quad t2 = __builtin_shuffle(rows[2], rows[3], QuadMask{0, 4, 2, 6});
+  const Quad t3 = __builtin_shuffle(rows[2], rows[3], QuadMask{1, 5, 3, 7});
+  rows[0] = __builtin_shuffle(t0, t2, QuadMask{0, 1, 4, 5});
+  rows[1] = __builtin_shuffle(t1, t3, QuadMask{0, 1, 4, 5});
+  rows[2] = __builtin_shuffle(t0, t2, QuadMask{2, 3, 6, 7});
+  rows[3] = __builtin_shuffle(t1, t3, QuadMask{2, 3, 6, 7});
+}
+
+// Walks rows [r0, r1) of a cols x rows -> rows x cols transpose tile by tile (kTransposeTile squared
+// stays in the L1 cache), 4 x 4 blocks in registers, the ragged edges element by element.
+// `element(i, o)` moves input element i to output position o; `block(in_offsets, out_offsets)` does
+// the same for a 4 x 4 block (row r of the block starts at in_offsets[r], column c at out_offsets[c]).
+template <class Element, class Block>
+__attribute__((always_inline)) inline void walk_transpose(int cols, int rows, int r0, int r1, const Element& element,
+                                                          const Block& block) {
+  for (int c0 = 0; c0 < cols; c0 += kTransposeTile) {
+    const int c1 = std::min(cols, c0 + kTransposeTile);
+    int r = r0;
+    for (; r + 4 <= r1; r += 4) {
+      int c = c0;
+      for (; c + 4 <= c1; c += 4) {
+        std::size_t in_offsets[4], out_offsets[4];
+        for (int k = 0; k < 4; ++k) {
+          in_offsets[k] = static_cast<std::size_t>(r + k) * cols + c;
+          out_offsets[k] = static_cast<std::size_t>(c + k) * rows + r;
+        }
+        block(in_offsets, out_offsets);
+      }
+      for (; c < c1; ++c)
+        for (int k = 0; k < 4; ++k)
+          element(static_cast<std::size_t>(r + k) * cols + c, static_cast<std::size_t>(c) * rows + r + k);
+    }
+    for (; r < r1; ++r)
+      for (int c = c0; c < c1; ++c) element(static_cast<std::size_t>(r) * cols + c, static_cast<std::size_t>(c) * rows + r);
+  }
+}
+
+// Cloned per instruction set like the sweep (AVX2 and AVX-512 do a Quad in one register).
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void transpose_rows(const double* __restrict in, double* __restrict out, int cols, int rows, int r0, int r1) {
+  walk_transpose(
+      cols, rows, r0, r1, [&](std::size_t i, std::size_t o) { out[o] = in[i]; },
+      [&](const std::size_t* in_offsets, const std::size_t* out_offsets) {
+        Quad block[4];
+        for (int k = 0; k < 4; ++k) load_quad(block[k], in + in_offsets[k]);
+        transpose_quads(block);
+        for (int k = 0; k < 4; ++k) store_quad(out + out_offsets[k], block[k]);
+      });
+}
+
+// The same walk for the across flux at t^{n+1/2} and its rate (HalfAndRate in boussinesq_sweep.hpp);
+// the arithmetic is element-wise, so the blocks give the same bits as the single elements.
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void half_and_rate_rows(HalfAndRate kind, const double* __restrict old_flux, const double* __restrict other, double dt,
+                        double* __restrict half, double* __restrict rate, int cols, int rows, int r0, int r1) {
+  auto transform = [&](auto old_value, auto other_value, auto& half_value, auto& rate_value) {
+    if (kind == HalfAndRate::kFromNewFlux) {
+      half_value = 0.5 * (old_value + other_value);
+      rate_value = (other_value - old_value) / dt;
+    } else {
+      const auto increment = kind == HalfAndRate::kFromIncrement ? other_value : other_value - old_value;
+      half_value = old_value + 0.5 * increment;
+      rate_value = increment / dt;
+    }
+  };
+  walk_transpose(
+      cols, rows, r0, r1, [&](std::size_t i, std::size_t o) { transform(old_flux[i], other[i], half[o], rate[o]); },
+      [&](const std::size_t* in_offsets, const std::size_t* out_offsets) {
+        Quad half_block[4], rate_block[4];
+        for (int k = 0; k < 4; ++k) {
+          Quad old_values, other_values;
+          load_quad(old_values, old_flux + in_offsets[k]);
+          load_quad(other_values, other + in_offsets[k]);
+          transform(old_values, other_values, half_block[k], rate_block[k]);
+        }
+        transpose_quads(half_block);
+        transpose_quads(rate_block);
+        for (int k = 0; k < 4; ++k) {
+          store_quad(half + out_offsets[k], half_block[k]);
+          store_quad(rate + out_offsets[k], rate_block[k]);
+        }
+      });
+}
+
+}  // namespace
+
+void transpose(const double* in, double* out, int cols, int rows) {
+  tbb::parallel_for(0, (rows + kTransposeTile - 1) / kTransposeTile, [&](int block) {
+    transpose_rows(in, out, cols, rows, block * kTransposeTile, std::min(rows, (block + 1) * kTransposeTile));
+  });
+}
+
+void transpose_half_and_rate(HalfAndRate kind, const double* old_flux, const double* other, double time_step_s,
+                             double* half, double* rate, int cols, int rows) {
+  tbb::parallel_for(0, (rows + kTransposeTile - 1) / kTransposeTile, [&](int block) {
+    half_and_rate_rows(kind, old_flux, other, time_step_s, half, rate, cols, rows, block * kTransposeTile,
+                       std::min(rows, (block + 1) * kTransposeTile));
+  });
+}
+
+}  // namespace nearshore::boussinesq::detail

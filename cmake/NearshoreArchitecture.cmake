@@ -1,0 +1,45 @@
+# The rooms and their allowed arrows (docs/architecture.md): every library may link only the
+# libraries listed for it, all of them further down the data flow. Checked at configure time from
+# the targets' own link lists, so a new arrow fails the build before anyone compiles it.
+#   ocean, sequence, plot -> core; boussinesq -> ocean; bathymetry -> core, plot;
+#   bake -> boussinesq, ocean, sequence; loops -> sequence, ocean, plot; playback -> sequence, ocean;
+#   tools -> all. Never: playback to bathymetry, bake, boussinesq, loops or plot; no library to tools.
+set(NEARSHORE_ALLOWED_ARROWS
+  "nearshore_core:"
+  "nearshore_plot:nearshore_core"
+  "nearshore_ocean:nearshore_core"
+  "nearshore_sequence:nearshore_core"
+  "nearshore_boussinesq:nearshore_ocean,nearshore_core"
+  "nearshore_bathymetry:nearshore_plot,nearshore_core"
+  "nearshore_bake:nearshore_boussinesq,nearshore_ocean,nearshore_sequence,nearshore_core"
+  "nearshore_loops:nearshore_sequence,nearshore_ocean,nearshore_plot,nearshore_core"
+  "nearshore_sequence_vdb:nearshore_sequence,nearshore_core"
+  "nearshore_playback:nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
+
+function(nearshore_check_architecture)
+  foreach(rule IN LISTS NEARSHORE_ALLOWED_ARROWS)
+    string(REPLACE ":" ";" parts "${rule}")
+    list(GET parts 0 library)
+    list(LENGTH parts part_count)
+    set(allowed "")
+    if(part_count GREATER 1)
+      list(GET parts 1 allowed_text)
+      string(REPLACE "," ";" allowed "${allowed_text}")
+    endif()
+    if(NOT TARGET ${library})
+      message(FATAL_ERROR "architecture: ${library} is in NEARSHORE_ALLOWED_ARROWS but no such library exists")
+    endif()
+    get_target_property(links ${library} LINK_LIBRARIES)
+    if(NOT links)
+      set(links "")
+    endif()
+    foreach(link IN LISTS links)
+      string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" link "${link}")
+      if(link MATCHES "^nearshore" AND NOT link IN_LIST allowed)
+        message(FATAL_ERROR "architecture: ${library} links ${link}, which docs/architecture.md does not allow "
+                            "(allowed: ${allowed}). Move the code to the room that owns it, or change the "
+                            "architecture on purpose (docs/architecture.md and cmake/NearshoreArchitecture.cmake).")
+      endif()
+    endforeach()
+  endforeach()
+endfunction()

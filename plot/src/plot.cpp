@@ -1,0 +1,267 @@
+#include "nearshore/plot/plot.hpp"
+
+#include <ft2build.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include FT_FREETYPE_H
+#include <fmt/core.h>
+#include <png.h>
+
+#include <cstdio>
+#include <mutex>
+
+#include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/error.hpp"
+
+namespace nearshore {
+namespace {
+
+Rgb lerp(const Rgb& a, const Rgb& b, double t) {
+  return {static_cast<float>(a[0] + (b[0] - a[0]) * t), static_cast<float>(a[1] + (b[1] - a[1]) * t),
+          static_cast<float>(a[2] + (b[2] - a[2]) * t)};
+}
+
+Rgb from_stops(const std::vector<Rgb>& stops, double t) {
+  t = std::clamp(t, 0.0, 1.0) * (stops.size() - 1);
+  const auto index = std::min<std::size_t>(static_cast<std::size_t>(t), stops.size() - 2);
+  return lerp(stops[index], stops[index + 1], t - index);
+}
+
+// The DejaVu font from fonts-dejavu-core (scripts/install-deps.sh). Text is skipped (the picture
+// is still written) if the font cannot be loaded. PNG and text go through libpng and FreeType
+// directly, not a bigger image library: they are this small library's only dependencies.
+constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// One FreeType face for the process, loaded on first use; FreeType faces are not thread-safe, so
+// drawing text takes the lock.
+struct Font {
+  FT_Library library = nullptr;
+  FT_Face face = nullptr;
+  std::mutex mutex;
+  Font() {
+    if (FT_Init_FreeType(&library) != 0) return;
+    if (FT_New_Face(library, kFontPath, 0, &face) != 0) face = nullptr;
+  }
+};
+Font& font() {
+  static Font instance;
+  return instance;
+}
+
+// "Nice" tick spacing (1, 2, 5 x 10^k) for an axis spanning `range` with about `count` ticks.
+double tick_step(double range, int count) {
+  const double raw = range / std::max(count, 1);
+  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double nice : {1.0, 2.0, 5.0, 10.0})
+    if (raw <= nice * magnitude) return nice * magnitude;
+  return 10.0 * magnitude;
+}
+
+std::string tick_label(double value, double step) {
+  const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step))));
+  return fmt::format("{:.{}f}", std::abs(value) < 1e-12 * step ? 0.0 : value, decimals);
+}
+
+}  // namespace
+
+Rgb colour_at(ColourMap map, double t) {
+  switch (map) {
+    case ColourMap::kViridis:  // sampled from matplotlib's viridis at 0, 0.25, 0.5, 0.75, 1
+      return from_stops({{0.267f, 0.005f, 0.329f},
+                         {0.229f, 0.322f, 0.546f},
+                         {0.128f, 0.567f, 0.551f},
+                         {0.369f, 0.789f, 0.383f},
+                         {0.993f, 0.906f, 0.144f}},
+                        t);
+    case ColourMap::kBathymetry:
+      return from_stops({{0.80f, 0.95f, 0.97f},
+                         {0.45f, 0.78f, 0.90f},
+                         {0.16f, 0.50f, 0.78f},
+                         {0.05f, 0.25f, 0.55f},
+                         {0.02f, 0.08f, 0.28f}},
+                        t);
+    case ColourMap::kDiverging:
+      return from_stops({{0.02f, 0.19f, 0.58f},
+                         {0.57f, 0.77f, 0.87f},
+                         {0.97f, 0.97f, 0.97f},
+                         {0.96f, 0.65f, 0.51f},
+                         {0.65f, 0.0f, 0.15f}},
+                        t);
+  }
+  return {0, 0, 0};
+}
+
+void draw_line(Image& image, double x0, double y0, double x1, double y1, Rgb colour, int thickness) {
+  const double length = std::hypot(x1 - x0, y1 - y0);
+  const int steps = std::max(1, static_cast<int>(std::ceil(length * 2)));
+  const int half = thickness / 2;
+  for (int s = 0; s <= steps; ++s) {
+    const double t = static_cast<double>(s) / steps;
+    const int x = static_cast<int>(std::lround(x0 + (x1 - x0) * t));
+    const int y = static_cast<int>(std::lround(y0 + (y1 - y0) * t));
+    image.fill_rectangle(x - half, y - half, x - half + thickness - 1, y - half + thickness - 1, colour);
+  }
+}
+
+void draw_text(Image& image, int x, int y, const std::string& text, Rgb colour, int size_px) {
+  Font& f = font();
+  if (!f.face || text.empty()) return;
+  std::lock_guard lock(f.mutex);
+  FT_Set_Pixel_Sizes(f.face, 0, static_cast<FT_UInt>(size_px));
+  int pen_x = x;
+  for (unsigned char character : text) {  // ASCII labels; other bytes render as FreeType finds them
+    if (FT_Load_Char(f.face, character, FT_LOAD_RENDER) != 0) continue;
+    const FT_GlyphSlot glyph = f.face->glyph;
+    const FT_Bitmap& bitmap = glyph->bitmap;
+    for (unsigned row = 0; row < bitmap.rows; ++row)
+      for (unsigned column = 0; column < bitmap.width; ++column) {
+        const float coverage = bitmap.buffer[row * bitmap.pitch + column] / 255.f;
+        const int px = pen_x + glyph->bitmap_left + static_cast<int>(column);
+        const int py = y - glyph->bitmap_top + static_cast<int>(row);
+        if (coverage <= 0.f || px < 0 || py < 0 || px >= image.width() || py >= image.height()) continue;
+        const Rgb under = image.get(px, py);
+        image.set(px, py,
+            {under[0] + (colour[0] - under[0]) * coverage, under[1] + (colour[1] - under[1]) * coverage,
+             under[2] + (colour[2] - under[2]) * coverage});
+      }
+    pen_x += static_cast<int>(glyph->advance.x >> 6);
+  }
+}
+
+void write_png(const Image& picture, const std::filesystem::path& path) {
+  const std::vector<float>& pixels = picture.pixels();
+  std::vector<unsigned char> bytes(pixels.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    bytes[i] = static_cast<unsigned char>(std::lround(std::clamp(pixels[i], 0.f, 1.f) * 255.f));
+  write_file_atomically(path, [&](const std::filesystem::path& temporary) {
+    // libpng's simplified API: one call writes the whole 8-bit RGB image.
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    image.width = static_cast<png_uint_32>(picture.width());
+    image.height = static_cast<png_uint_32>(picture.height());
+    image.format = PNG_FORMAT_RGB;
+    if (!png_image_write_to_file(&image, temporary.c_str(), 0, bytes.data(), 0, nullptr))
+      throw Error(path.string(), std::string("writing PNG failed: ") + image.message,
+                  "check the folder exists and is writable, and that the disk has space");
+  });
+}
+
+namespace {
+constexpr int kHeatMapMargin = 50, kHeatMapBarWidth = 24, kHeatMapRight = 110;
+}  // namespace
+
+HeatMapPlacement heat_map_placement(int columns, int rows, const HeatMapStyle& style) {
+  HeatMapPlacement placement;
+  placement.pixels_per_cell = std::min(1.0 * style.max_image_size_px / std::max({columns, rows, 1}), 8.0);
+  placement.left_px = kHeatMapMargin / 2;
+  placement.top_px = kHeatMapMargin;
+  placement.width_px = std::max(1, static_cast<int>(columns * placement.pixels_per_cell));
+  placement.height_px = std::max(1, static_cast<int>(rows * placement.pixels_per_cell));
+  return placement;
+}
+
+Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
+                      const Raster<std::uint8_t>* mask) {
+  if (field.empty()) throw Error("heat map '" + style.title + "'", "the field is empty");
+  const HeatMapPlacement placement = heat_map_placement(field.columns(), field.rows(), style);
+  const double scale = placement.pixels_per_cell;
+  const int field_w = placement.width_px, field_h = placement.height_px;
+  const int margin = kHeatMapMargin, bar_w = kHeatMapBarWidth, right = kHeatMapRight;
+  Image image(field_w + margin + bar_w + right, field_h + 2 * margin);
+  const double span = style.high - style.low == 0 ? 1.0 : style.high - style.low;
+  for (int py = 0; py < field_h; ++py) {
+    int row = std::min(field.rows() - 1, static_cast<int>(py / scale));
+    if (!style.first_row_at_top) row = field.rows() - 1 - row;
+    for (int px = 0; px < field_w; ++px) {
+      const int column = std::min(field.columns() - 1, static_cast<int>(px / scale));
+      Rgb colour;
+      if (mask && (*mask)(column, row))
+        colour = style.mask_colour;
+      else if (!std::isfinite(field(column, row)))
+        colour = {1.f, 0.f, 1.f};  // NaN shows magenta, so it cannot hide
+      else
+        colour = colour_at(style.map, (field(column, row) - style.low) / span);
+      image.set(margin / 2 + px, margin + py, colour);
+    }
+  }
+  const int bar_x = margin / 2 + field_w + 20;
+  for (int py = 0; py < field_h; ++py)
+    image.fill_rectangle(bar_x, margin + py, bar_x + bar_w, margin + py,
+                         colour_at(style.map, 1.0 - static_cast<double>(py) / std::max(1, field_h - 1)));
+  const Rgb ink = {0.1f, 0.1f, 0.1f};
+  draw_text(image, margin / 2, margin - 18, style.title, ink, 18);
+  draw_text(image, bar_x + bar_w + 6, margin + 12, fmt::format("{:.4g}", style.high), ink);
+  draw_text(image, bar_x + bar_w + 6, margin + field_h, fmt::format("{:.4g}", style.low), ink);
+  draw_text(image, bar_x, margin + field_h + 30, style.value_label, ink);
+  return image;
+}
+
+Image render_line_plot(const LinePlot& plot) {
+  double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min, y_min = x_min, y_max = -x_min;
+  for (const auto& s : plot.series)
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      x_min = std::min(x_min, s.x[i]);
+      x_max = std::max(x_max, s.x[i]);
+      y_min = std::min(y_min, s.y[i]);
+      y_max = std::max(y_max, s.y[i]);
+    }
+  if (!std::isfinite(x_min)) throw Error("plot '" + plot.title + "'", "has no finite data points");
+  if (x_max == x_min) x_max = x_min + 1;
+  if (y_max == y_min) {
+    y_max += 0.5;
+    y_min -= 0.5;
+  }
+  const double y_pad = 0.05 * (y_max - y_min);
+  y_min -= y_pad;
+  y_max += y_pad;
+  Image image(plot.width_px, plot.height_px);
+  const int left = 80, right = 30, top = 50, bottom = 60;
+  const int w = plot.width_px - left - right, h = plot.height_px - top - bottom;
+  auto to_px = [&](double x, double y) {
+    return std::pair<double, double>{left + (x - x_min) / (x_max - x_min) * w,
+                                     top + h - (y - y_min) / (y_max - y_min) * h};
+  };
+  const Rgb ink = {0.1f, 0.1f, 0.1f}, grid = {0.88f, 0.88f, 0.88f};
+  const double x_step = tick_step(x_max - x_min, 8), y_step = tick_step(y_max - y_min, 6);
+  for (double x = std::ceil(x_min / x_step) * x_step; x <= x_max + 1e-9 * x_step; x += x_step) {
+    auto [px, py] = to_px(x, y_min);
+    draw_line(image, px, top, px, top + h, grid);
+    draw_text(image, static_cast<int>(px) - 12, top + h + 20, tick_label(x, x_step), ink, 13);
+  }
+  for (double y = std::ceil(y_min / y_step) * y_step; y <= y_max + 1e-9 * y_step; y += y_step) {
+    auto [px, py] = to_px(x_min, y);
+    draw_line(image, left, py, left + w, py, grid);
+    draw_text(image, 8, static_cast<int>(py) + 5, tick_label(y, y_step), ink, 13);
+  }
+  draw_line(image, left, top, left, top + h, ink);
+  draw_line(image, left, top + h, left + w, top + h, ink);
+  for (const auto& s : plot.series) {
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      auto [px, py] = to_px(s.x[i], s.y[i]);
+      if (s.markers_only) {
+        image.fill_rectangle(static_cast<int>(px) - 2, static_cast<int>(py) - 2, static_cast<int>(px) + 2,
+                             static_cast<int>(py) + 2, s.colour);
+      } else if (i > 0 && std::isfinite(s.x[i - 1]) && std::isfinite(s.y[i - 1])) {
+        auto [qx, qy] = to_px(s.x[i - 1], s.y[i - 1]);
+        draw_line(image, qx, qy, px, py, s.colour, 2);
+      }
+    }
+  }
+  draw_text(image, left, top - 20, plot.title, ink, 18);
+  draw_text(image, left + w / 2 - 40, plot.height_px - 15, plot.x_label, ink, 14);
+  draw_text(image, 8, top - 20 + 0, "", ink);
+  draw_text(image, left + 8, top + 16, plot.y_label, ink, 14);
+  int legend_y = top + 16;
+  for (const auto& s : plot.series) {
+    image.fill_rectangle(left + w - 190, legend_y - 8, left + w - 176, legend_y - 2, s.colour);
+    draw_text(image, left + w - 170, legend_y, s.label, ink, 13);
+    legend_y += 18;
+  }
+  return image;
+}
+
+}  // namespace nearshore
