@@ -28,7 +28,9 @@ void add_bake_command(CLI::App& app) {
   command->add_flag("--resume", options->resume, "Continue a killed bake from DIR/checkpoint.bin (same result as uninterrupted)");
   command->add_flag("--json", options->json, "Print a JSON summary on stdout (no progress bar)");
   set_example(*command, "nearshore bake data/cases/synolakis.toml -o out/synolakis");
-  command->callback([options]() {
+  // The bake library names BakeOptions fields in its messages (a checkpoint to resume, the folder).
+  const FlagTable flags = {{"BakeOptions::resume", "--resume"}, {"BakeOptions::output_folder", "-o"}};
+  command->callback(naming_flags_in_errors(flags, [options]() {
     if (options->json) ProgressBar::set_quiet(true);
     const bake::BakeCase bake_case = bake::read_bake_case(options->case_file);
     bake::BakeOptions bake_options;
@@ -70,7 +72,7 @@ void add_bake_command(CLI::App& app) {
       }
       std::printf("%s\n", line.c_str());
     }
-  });
+  }));
 }
 
 }  // namespace nearshore::tools

@@ -101,7 +101,9 @@ void add_play_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seconds", o->seconds, "Close the window after this many seconds (0: when closed)");
   set_example(*cmd, "xvfb-run -a nearshore play demo-out/bake --screenshot shot.png");
-  cmd->callback([o] { play(*o); });
+  // The sequence reader names the bake's options when a sequence is unfinished.
+  cmd->callback(naming_flags_in_errors({{"BakeOptions::resume", "nearshore bake --resume"}, {"BakeOptions::output_folder", "nearshore bake -o"}},
+                                       [o] { play(*o); }));
 }
 
 }  // namespace nearshore::tools

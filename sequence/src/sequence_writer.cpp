@@ -11,6 +11,7 @@
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/sequence/checksum.hpp"
+#include "nearshore/sequence/loops_file.hpp"
 
 namespace nearshore::sequence {
 namespace fs = std::filesystem;
@@ -70,7 +71,8 @@ SequenceWriter::SequenceWriter(const fs::path& folder, const HarbourGrid& harbou
   // The sequence is being (re)written: it must not look complete, and old loop tables no longer
   // describe its frames. Without resume, frames of an earlier bake go too.
   std::error_code ignored;
-  for (const char* stale : {"manifest.json", "loops.json", "loops_gram.bin"}) fs::remove(folder / stale, ignored);
+  for (const std::string_view stale : {kManifestFile, std::string_view(kLoopsFileName), std::string_view(kLoopsGramFileName)})
+    fs::remove(folder / stale, ignored);
   if (!resume)
     for (const auto& item : fs::directory_iterator(folder, ignored))
       if (frame_index_of(item.path().filename().string()) >= 0) fs::remove(item.path(), ignored);
