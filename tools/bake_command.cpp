@@ -8,6 +8,7 @@
 
 #include "command_support.hpp"
 #include "nearshore/bake/bake_case.hpp"
+#include "nearshore/bake/bake_estimate.hpp"
 #include "nearshore/bake/bake_run.hpp"
 #include "nearshore/core/progress.hpp"
 
@@ -16,26 +17,39 @@ namespace nearshore::tools {
 void add_bake_command(CLI::App& app) {
   struct Options {
     std::string case_file, output_folder;
-    bool resume = false, json = false;
+    bool resume = false, overwrite = false, allow_over_budget = false, json = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("bake", "Run the Boussinesq solver over a harbour and bake the wave sequence");
+  // A missing case file is read_bake_case's to name (exit 1, as the docs promise), not CLI11's (105).
   command->add_option("case", options->case_file, "Case file (.toml or .json; schema in docs/commands/bake.md)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   command->add_option("-o,--output", options->output_folder, "Output folder: frames, manifest, gauges.csv, checkpoint")
       ->required();
   command->add_flag("--resume", options->resume, "Continue a killed bake from DIR/checkpoint.bin (same result as uninterrupted)");
+  command->add_flag("--overwrite", options->overwrite,
+                    "Replace the complete sequence or the unfinished bake's checkpoint that DIR holds (refused without)");
+  command->add_flag("--allow-over-budget", options->allow_over_budget,
+                    "Bake even when the memory or disk estimate exceeds what this machine has (refused without)");
   command->add_flag("--json", options->json, "Print a JSON summary on stdout (no progress bar)");
   set_example(*command, "nearshore bake data/cases/synolakis.toml -o out/synolakis");
   // The bake library names BakeOptions fields in its messages (a checkpoint to resume, the folder).
-  const FlagTable flags = {{"BakeOptions::resume", "--resume"}, {"BakeOptions::output_folder", "-o"}};
+  const FlagTable flags = {{"BakeOptions::resume", "--resume"},
+                           {"BakeOptions::output_folder", "-o"},
+                           {"BakeOptions::overwrite", "--overwrite"},
+                           {"BakeOptions::allow_over_budget", "--allow-over-budget"}};
   command->callback(naming_flags_in_errors(flags, [options]() {
     if (options->json) ProgressBar::set_quiet(true);
     const bake::BakeCase bake_case = bake::read_bake_case(options->case_file);
     bake::BakeOptions bake_options;
     bake_options.output_folder = options->output_folder;
     bake_options.resume = options->resume;
+    bake_options.overwrite = options->overwrite;
+    bake_options.allow_over_budget = options->allow_over_budget;
+    // What the bake will need, before it starts (run_bake refuses it when the machine has less).
+    if (!options->json)
+      std::fprintf(stderr, "%s\n",
+                   fmt::format("estimate: {}", bake::estimate_bake_resources(bake_case, options->resume).describe()).c_str());
     const bake::BakeSummary summary = bake::run_bake(bake_case, bake_options);
     if (options->json) {
       std::printf("%s\n", summary.to_json().dump(2).c_str());

@@ -1,7 +1,10 @@
 // nearshore bathy: chart data in, solver-ready harbour grid out (docs/commands/bathy.md).
 // Thin: parse options, call nearshore::bathymetry::build_harbour_grid, write, print.
+#include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/core.h>
@@ -14,28 +17,69 @@
 namespace nearshore::tools {
 namespace {
 
-std::array<double, 4> parse_box(const std::string& text, const std::string& option) {
+std::array<double, 4> parse_box(const std::string& text) {
   std::array<double, 4> box{};
   char extra = 0;
   if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &box[0], &box[1], &box[2], &box[3], &extra) != 4)
-    throw Error(option + " " + text, "is not four numbers separated by commas", "write e.g. " + option + " -122.46,47.25,-122.40,47.29");
+    throw std::invalid_argument(text);
   return box;
 }
 
+// --bbox LON0,LAT0,LON1,LAT1 (degrees) and --bbox-m X0,Y0,X1,Y1 (metres): four finite numbers, the
+// first corner south-west of the second, degrees within the globe. Checked while parsing, like
+// every number on the command line (number_in).
+CLI::Validator box_check(bool degrees) {
+  const std::string example = degrees ? "-122.46,47.25,-122.40,47.29" : "540000,5232000,545000,5236000";
+  return CLI::Validator(
+      [degrees, example](std::string& text) -> std::string {
+        std::array<double, 4> b{};
+        try {
+          b = parse_box(text);
+        } catch (const std::invalid_argument&) {
+          return "'" + text + "' is not four numbers separated by commas, e.g. " + example;
+        }
+        for (double v : b)
+          if (!std::isfinite(v)) return text + " holds a number that is not finite";
+        if (!(b[0] < b[2] && b[1] < b[3]))
+          return text + " is empty or reversed: the first corner must be south-west of the second (x0 < x1, y0 < y1)";
+        if (degrees && (b[0] < -180 || b[2] > 180 || b[1] < -90 || b[3] > 90))
+          return text + " is outside the globe: longitudes in [-180, 180], latitudes in [-90, 90]";
+        return {};
+      },
+      degrees ? "LON0,LAT0,LON1,LAT1" : "X0,Y0,X1,Y1");
+}
+
 // --structure NAME=WIDTH:POROSITY, e.g. breakwater=25:0.4
-void parse_structure(const std::string& text, std::map<std::string, bathymetry::StructureStyle>& styles) {
+std::pair<std::string, bathymetry::StructureStyle> parse_structure(const std::string& text) {
   const auto equals = text.find('='), colon = text.find(':');
+  if (equals == std::string::npos || equals == 0 || colon == std::string::npos || colon < equals)
+    throw std::invalid_argument(text);
   bathymetry::StructureStyle style;
-  try {
-    if (equals == std::string::npos || colon == std::string::npos || colon < equals) throw std::invalid_argument(text);
-    style.crest_width_m = std::stod(text.substr(equals + 1, colon - equals - 1));
-    style.porosity = std::stod(text.substr(colon + 1));
-  } catch (const std::logic_error&) {
-    throw Error("--structure " + text, "is not NAME=WIDTH_M:POROSITY", "write e.g. --structure breakwater=25:0.4");
-  }
-  if (!(style.crest_width_m > 0) || style.porosity < 0 || style.porosity > 1)
-    throw Error("--structure " + text, "needs a positive width and a porosity in [0, 1]", "write e.g. --structure quay=10:0");
-  styles[text.substr(0, equals)] = style;
+  std::size_t used = 0;
+  const std::string width = text.substr(equals + 1, colon - equals - 1), porosity = text.substr(colon + 1);
+  style.crest_width_m = std::stod(width, &used);
+  if (used != width.size()) throw std::invalid_argument(text);
+  style.porosity = std::stod(porosity, &used);
+  if (used != porosity.size()) throw std::invalid_argument(text);
+  return {text.substr(0, equals), style};
+}
+
+CLI::Validator structure_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        bathymetry::StructureStyle style;
+        try {
+          style = parse_structure(text).second;
+        } catch (const std::logic_error&) {
+          return "'" + text + "' is not NAME=WIDTH_M:POROSITY, e.g. breakwater=25:0.4";
+        }
+        if (!(std::isfinite(style.crest_width_m) && style.crest_width_m > 0))
+          return text + ": the crest width must be a finite number of metres > 0";
+        if (!(style.porosity >= 0 && style.porosity <= 1))
+          return text + ": the porosity must be in [0, 1] (0 a vertical wall, 0.3-0.5 rubble mound, 1 transparent)";
+        return {};
+      },
+      "NAME=WIDTH_M:POROSITY");
 }
 
 // The flag of each parameter that library errors may name (command_support.hpp), as the options
@@ -76,9 +120,13 @@ void add_bathy_command(CLI::App& app) {
                       "Charts (S-57 .000, updates applied), depth rasters (GeoTIFF, NetCDF, ESRI ASCII), vector files "
                       "(GeoJSON coastline/land/breakwaters) and soundings (.xyz/.csv: x y depth); highest priority first")
       ->required();
-  command->add_option("--spacing", options->spacing_m, "Cell size in metres")->required();
-  command->add_option("--bbox", options->bbox, "Area as LON0,LAT0,LON1,LAT1 (WGS 84 degrees); default: all the data");
-  command->add_option("--bbox-m", options->bbox_m, "Area as X0,Y0,X1,Y1 in metres of the chosen projection");
+  command->add_option("--spacing", options->spacing_m, "Cell size in metres")
+      ->required()
+      ->check(number_in(above(0), at_most(100000)));
+  command->add_option("--bbox", options->bbox, "Area as LON0,LAT0,LON1,LAT1 (WGS 84 degrees); default: all the data")
+      ->check(box_check(true));
+  command->add_option("--bbox-m", options->bbox_m, "Area as X0,Y0,X1,Y1 in metres of the chosen projection")
+      ->check(box_check(false));
   command->add_option("-o,--output", options->output, "Output folder (depth.tif, depth.exr, coastline.vdb, preview.png, summary.json)")
       ->required();
   command->add_option("--sign", options->sign, "Sign of raster and text values: auto (from metadata), depth (positive down), elevation (positive up)")
@@ -87,13 +135,19 @@ void add_bathy_command(CLI::App& app) {
   command->add_option("--xyz-crs", options->xyz_crs, "CRS of projected x y in text soundings, e.g. EPSG:32610 (default lon lat)");
   command->add_option("--structure", options->structures,
                       "Porosity band of a structure category, NAME=WIDTH_M:POROSITY (breakwater, groyne, mole, pier, quay, "
-                      "sea_wall, riprap, revetment, training_wall, or a GeoJSON category); repeatable");
+                      "sea_wall, riprap, revetment, training_wall, or a GeoJSON category); repeatable")
+      ->check(structure_check());
   command->add_option("--water-level", options->water_level_m,
-                      "Still water in metres above the sounding datum (e.g. mean sea level over MLLW); default 0");
-  command->add_option("--min-depth", options->minimum_depth_m, "Water shallower than this (m) is deepened to it");
-  command->add_option("--max-slope", options->maximum_slope, "Smooth the sea bed where |grad d| exceeds this (0 = off)");
-  command->add_option("--land-elevation", options->land_elevation_m, "Elevation (m) of land cells where no input gives one");
-  command->add_option("--coastline-band", options->band_m, "Half-width (m) of the narrow band stored in coastline.vdb");
+                      "Still water in metres above the sounding datum (e.g. mean sea level over MLLW); default 0")
+      ->check(number_in(at_least(-100), at_most(100)));
+  command->add_option("--min-depth", options->minimum_depth_m, "Water shallower than this (m) is deepened to it")
+      ->check(number_in(at_least(0), at_most(1000)));
+  command->add_option("--max-slope", options->maximum_slope, "Smooth the sea bed where |grad d| exceeds this (0 = off)")
+      ->check(number_in(at_least(0), at_most(100)));
+  command->add_option("--land-elevation", options->land_elevation_m, "Elevation (m) of land cells where no input gives one")
+      ->check(number_in(above(0), at_most(10000)));
+  command->add_option("--coastline-band", options->band_m, "Half-width (m) of the narrow band stored in coastline.vdb")
+      ->check(number_in(above(0), at_most(100000)));
   command->add_flag("--fill-uncovered", options->fill_uncovered,
                     "Cells no input covers take the nearest covered depth (default: they become land)");
   command->add_flag("--leave-one-out", options->leave_one_out, "Cross-validate: re-grid each chart sounding from the others");
@@ -103,14 +157,17 @@ void add_bathy_command(CLI::App& app) {
     bathymetry::BathyRequest request;
     for (const auto& input : options->inputs) request.inputs.emplace_back(input);
     request.spacing_m = options->spacing_m;
-    if (!options->bbox.empty()) request.bbox_lon_lat = parse_box(options->bbox, "--bbox");
-    if (!options->bbox_m.empty()) request.bbox_projected_m = parse_box(options->bbox_m, "--bbox-m");
+    if (!options->bbox.empty()) request.bbox_lon_lat = parse_box(options->bbox);  // checked: box_check
+    if (!options->bbox_m.empty()) request.bbox_projected_m = parse_box(options->bbox_m);
     request.sign = options->sign == "depth"       ? bathymetry::DepthSign::kPositiveDown
                    : options->sign == "elevation" ? bathymetry::DepthSign::kPositiveUp
                                                   : bathymetry::DepthSign::kAuto;
     request.projection = options->projection;
     request.text_crs = options->xyz_crs;
-    for (const auto& s : options->structures) parse_structure(s, request.structure_styles);
+    for (const auto& text : options->structures) {
+      const auto [name, style] = parse_structure(text);  // checked while parsing: structure_check
+      request.structure_styles[name] = style;
+    }
     request.water_level_m = options->water_level_m;
     request.minimum_depth_m = options->minimum_depth_m;
     request.maximum_slope = options->maximum_slope;

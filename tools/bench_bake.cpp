@@ -148,14 +148,18 @@ void add_bench_bake(CLI::App& bench) {
     bool json = false, skip_harbour = false;
   };
   auto options = std::make_shared<Options>();
-  command->add_option("--berkhoff-steps", options->berkhoff_steps, "time steps timed on the Berkhoff grid")->check(CLI::PositiveNumber);
-  command->add_option("--harbour-steps", options->harbour_steps, "time steps timed on the 2000 x 2000 grid")->check(CLI::PositiveNumber);
-  command->add_option("--adi-passes", options->adi_passes, "x + y sweep pairs per step (solver.adi_passes)")->capture_default_str()->check(CLI::PositiveNumber);
+  command->add_option("--berkhoff-steps", options->berkhoff_steps, "time steps timed on the Berkhoff grid")
+      ->check(number_in(at_least(1), at_most(1000000)));
+  command->add_option("--harbour-steps", options->harbour_steps, "time steps timed on the 2000 x 2000 grid")
+      ->check(number_in(at_least(1), at_most(1000000)));
+  command->add_option("--adi-passes", options->adi_passes, "x + y sweep pairs per step (solver.adi_passes)")
+      ->capture_default_str()
+      ->check(number_in(at_least(1), at_most(100)));
   command->add_option("--iterations", options->nonlinear_iterations, "non-linear iterations per sweep (solver.nonlinear_iterations)")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(number_in(at_least(1), at_most(100)));
   command->add_option("--repeats", options->repeats, "timed runs per grid and thread count; the fastest is reported")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(number_in(at_least(1), at_most(1000)));
   command->add_option("--alternate-sweep-order", options->alternate_sweep_order, "x-y and y-x sweeps on alternate steps (true/false)")
       ->capture_default_str();
   command->add_flag("--skip-harbour", options->skip_harbour, "only the Berkhoff grid");

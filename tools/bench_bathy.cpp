@@ -51,9 +51,12 @@ void add_bench_bathy(CLI::App& bench) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = bench.add_subcommand("bathy", "Soundings/s triangulated and cells/s interpolated (Sibson) on a square grid");
-  command->add_option("--grid", options->grid_cells, "Cells per side of the square grid");
-  command->add_option("--soundings", options->soundings, "Scattered soundings to triangulate");
-  command->add_option("--spacing", options->spacing_m, "Cell size in metres");
+  command->add_option("--grid", options->grid_cells, "Cells per side of the square grid")
+      ->check(number_in(at_least(2), at_most(100000)));
+  command->add_option("--soundings", options->soundings, "Scattered soundings to triangulate")
+      ->check(number_in(at_least(3), at_most(1e9)));
+  command->add_option("--spacing", options->spacing_m, "Cell size in metres")
+      ->check(number_in(above(0), at_most(100000)));
   command->add_flag("--json", options->json, "Print the results as JSON");
   set_example(*command, "nearshore bench bathy --grid 2000 --soundings 200000");
   command->callback([options]() {

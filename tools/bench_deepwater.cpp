@@ -47,15 +47,25 @@ void add_bench_deepwater(CLI::App& bench) {
   auto options = std::make_shared<Options>();
   CLI::App* command = bench.add_subcommand(
       "deepwater", "Synthesis time per frame of the FFT deep-water cascades and bytes per minute of a baked tile set");
-  command->add_option("--grid", options->grid_sizes, "Grid sizes N (N x N per cascade) to measure")->delimiter(',');
-  command->add_option("--cascades", options->cascades, "Number of cascades");
-  command->add_option("--frames", options->frames, "Frames timed per grid size (the median is reported)");
-  command->add_option("--beaufort", options->beaufort, "Beaufort force of the preset sea (0-12)");
-  command->add_option("--shortest", options->shortest_wavelength_m, "Shortest wavelength resolved by the last cascade (m)");
-  command->add_option("--loop", options->loop_period_s, "Loop period T_loop (s)");
-  command->add_option("--fps", options->frame_rate_hz, "Frame rate of the baked tile set (frames per second of loop)");
-  command->add_option("--sample-frames", options->sample_frames, "Tile-set frames written per cascade to measure bytes/frame");
-  command->add_option("--compression", options->compression, "Tile-set EXR compression (none, zip, piz, b44, dwaa)");
+  command->add_option("--grid", options->grid_sizes, "Grid sizes N (N x N per cascade) to measure")
+      ->delimiter(',')
+      ->check(number_in(at_least(8), at_most(4096)));
+  command->add_option("--cascades", options->cascades, "Number of cascades")
+      ->check(number_in(at_least(1), at_most(16)));
+  command->add_option("--frames", options->frames, "Frames timed per grid size (the median is reported)")
+      ->check(number_in(at_least(1), at_most(100000)));
+  command->add_option("--beaufort", options->beaufort, "Beaufort force of the preset sea (1-12)")
+      ->check(number_in(at_least(1), at_most(12)));
+  command->add_option("--shortest", options->shortest_wavelength_m, "Shortest wavelength resolved by the last cascade (m)")
+      ->check(number_in(above(0), unbounded()));
+  command->add_option("--loop", options->loop_period_s, "Loop period T_loop (s)")
+      ->check(number_in(above(0), at_most(86400)));
+  command->add_option("--fps", options->frame_rate_hz, "Frame rate of the baked tile set (frames per second of loop)")
+      ->check(number_in(above(0), at_most(1000)));
+  command->add_option("--sample-frames", options->sample_frames, "Tile-set frames written per cascade to measure bytes/frame")
+      ->check(number_in(at_least(1), at_most(100000)));
+  command->add_option("--compression", options->compression, "Tile-set EXR compression (none, zip, piz, b44, dwaa)")
+      ->check(CLI::IsMember({"none", "zip", "piz", "b44", "dwaa"}));
   command->add_option("--scratch", options->scratch, "Folder for the sample tile sets (removed afterwards)");
   command->add_flag("--json", options->json, "Print the results as JSON");
   set_example(*command, "nearshore bench deepwater --grid 256,512 --cascades 4");

@@ -21,10 +21,14 @@ void add_bench_loops(CLI::App& bench) {
   CLI::App* command = bench.add_subcommand("loops", "Distance-matrix throughput and frame decode speed");
   command->add_flag("--compression", options->compression,
                     "Measure size, error and decode speed of none/zip/piz/b44/dwaa frames instead");
-  command->add_option("--size", options->size, "Grid side for the compression table (cells)");
-  command->add_option("--frames", options->frames, "Frames for the compression table");
-  command->add_option("--distance-size", options->distance_size, "Grid side for the distance benchmark (cells)");
-  command->add_option("--distance-frames", options->distance_frames, "Frames for the distance benchmark");
+  command->add_option("--size", options->size, "Grid side for the compression table (cells)")
+      ->check(number_in(at_least(8), at_most(16384)));
+  command->add_option("--frames", options->frames, "Frames for the compression table")
+      ->check(number_in(at_least(1), at_most(100000)));
+  command->add_option("--distance-size", options->distance_size, "Grid side for the distance benchmark (cells)")
+      ->check(number_in(at_least(8), at_most(16384)));
+  command->add_option("--distance-frames", options->distance_frames, "Frames for the distance benchmark")
+      ->check(number_in(at_least(2), at_most(100000)));
   command->add_option("--work", options->work, "Scratch folder (removed afterwards)");
   set_example(*command, "nearshore bench loops --compression --size 1024 --frames 16");
   command->callback([options]() {

@@ -1,7 +1,12 @@
 #include "command_support.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
 
@@ -10,7 +15,40 @@ namespace {
 
 bool is_identifier_character(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
+// "[0, 1)", "> 0", ">= 16", "any finite number".
+std::string describe_range(Bound low, Bound high) {
+  const bool has_low = std::isfinite(low.value), has_high = std::isfinite(high.value);
+  if (has_low && has_high)
+    return fmt::format("{}{:g}, {:g}{}", low.inclusive ? "[" : "(", low.value, high.value, high.inclusive ? "]" : ")");
+  if (has_low) return fmt::format("{} {:g}", low.inclusive ? ">=" : ">", low.value);
+  if (has_high) return fmt::format("{} {:g}", high.inclusive ? "<=" : "<", high.value);
+  return "any finite number";
+}
+
 }  // namespace
+
+Bound unbounded() { return {std::numeric_limits<double>::infinity(), false}; }
+
+CLI::Validator number_in(Bound low, Bound high) {
+  if (std::isinf(low.value)) low.value = -std::numeric_limits<double>::infinity();
+  const std::string range = describe_range(low, high);
+  return CLI::Validator(
+      [low, high, range](std::string& text) -> std::string {
+        // The whole text must be one number (strtod also reads "nan", "inf" and "1e3").
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size())
+          return fmt::format("'{}' is not a number; allowed: {}", text, range);
+        if (!std::isfinite(value)) return fmt::format("{} is not a finite number; allowed: {}", text, range);
+        const bool above_low = low.inclusive ? value >= low.value : value > low.value;
+        const bool below_high = high.inclusive ? value <= high.value : value < high.value;
+        if (!above_low || !below_high) return fmt::format("{} is out of range: allowed {}", text, range);
+        return {};
+      },
+      range == "any finite number" ? "finite" : range.front() == '[' || range.front() == '(' ? "in " + range : range);
+}
+
+CLI::Validator finite_number() { return number_in(unbounded(), unbounded()); }
 
 void set_example(CLI::App& command, const std::string& example) {
   command.footer("\nExample:\n  " + example + "\n\nMore: docs/commands/" + command.get_name() + ".md");

@@ -1,7 +1,7 @@
 #pragma once
 // What every subcommand of `nearshore` shares: its registration function, the plain "not built
-// yet" answer for a subcommand whose issue is still open, and the translation of library errors
-// into the command's own flags.
+// yet" answer for a subcommand whose issue is still open, the range every number on the command
+// line is checked against, and the translation of library errors into the command's own flags.
 #include <functional>
 #include <string>
 #include <utility>
@@ -36,6 +36,28 @@ CLI::App* add_unbuilt_command(CLI::App& app, const std::string& name, const std:
 
 /// The example line shown at the end of a subcommand's --help.
 void set_example(CLI::App& command, const std::string& example);
+
+/// One end of the range an option's numbers must lie in (number_in).
+struct Bound {
+  double value;
+  bool inclusive;
+};
+inline Bound at_least(double value) { return {value, true}; }
+inline Bound above(double value) { return {value, false}; }
+inline Bound at_most(double value) { return {value, true}; }
+inline Bound below(double value) { return {value, false}; }
+/// No limit on this side (the number must still be finite).
+Bound unbounded();
+
+/// Every number an option takes, checked while the command line is parsed: a finite number (NaN and
+/// infinities are refused) between `low` and `high`. A value outside ends the program before any
+/// work with CLI11's message and its exit status for a value that fails a check (105, documented in
+/// docs/commands/*.md), e.g. `nearshore loops SEQ --alpha 2`:
+///   --alpha: 2 is out of range: allowed [0, 1)
+/// For a list option (--lengths-s 10,20) every element is checked. --help shows the range.
+CLI::Validator number_in(Bound low, Bound high);
+/// Any finite number.
+CLI::Validator finite_number();
 
 /// Library errors name the C++ parameter at fault ("BathyRequest::spacing_m = 0: ..."), never a
 /// command-line flag, so that a host engine behind the API can act on them. A command that sets

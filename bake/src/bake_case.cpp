@@ -35,13 +35,65 @@ TimeRequest read_timing(TableReader& time, BakeTiming& timing) {
   if (time.has("time_step_s") && time.has("courant_number"))
     time.fail(time.full("time_step_s"), "and time.courant_number are both given", "give one of them");
   request.time_step_s = time.non_negative("time_step_s", 0.0, "time step in seconds");
-  request.courant_number = time.number("courant_number", 0.5, 0.0, 10.0, true, "Courant number sqrt(g d_max) dt / dx");
+  request.courant_number = time.positive("courant_number", 0.5, "Courant number sqrt(g d_max) dt / dx");
+  if (request.courant_number > kMaxCourantNumber)
+    time.fail(time.full("courant_number"),
+              fmt::format("= {} is above {}, the solver's stability limit of sqrt(g d_max) dt / dx (docs/solver.md)",
+                          request.courant_number, kMaxCourantNumber),
+              fmt::format("give time.courant_number <= {} (0.5, the default, is safe)", kMaxCourantNumber));
   if (timing.spin_up_s >= timing.duration_s)
     time.fail(time.full("spin_up_s"), fmt::format("= {} s is not shorter than time.duration_s = {} s", timing.spin_up_s, timing.duration_s),
               "make the duration longer than the spin-up, or shorten the spin-up");
   if (timing.output_interval_s > timing.duration_s - timing.spin_up_s)
     time.fail(time.full("output_interval_s"), "is longer than the time after spin-up", "give a shorter output interval or a longer duration");
+  // One file per frame: bounded before anything is computed (kMaxFrames, case_reader.hpp).
+  const double frames = std::floor((timing.duration_s - timing.spin_up_s) / timing.output_interval_s * (1 + 1e-12)) + 1;
+  if (frames > kMaxFrames)
+    time.fail(time.full("duration_s"),
+              fmt::format("= {} s with time.spin_up_s = {} s and time.output_interval_s = {} s makes {:.3g} frames, "
+                          "more than the limit of {:.0f} (one file each; a million 1-second frames are 11.6 days of sea)",
+                          timing.duration_s, timing.spin_up_s, timing.output_interval_s, frames, kMaxFrames),
+              "shorten time.duration_s (a looping sea needs one loop period of frames after the spin-up) or "
+              "lengthen time.output_interval_s");
   return request;
+}
+
+// The resolved time step against the solver's stability limit and the step budget, before the
+// solver sees it (the solver refuses the same Courant number, but names SolverParameters, not the
+// case file's key). `d_max` as the solver takes it: the deepest cell of the grid.
+void check_time_step(TableReader& time, const TimeRequest& request, const BakeCase& bake_case) {
+  const double step_s = bake_case.solver.time_step_s;
+  const double spacing_m = bake_case.harbour.geometry.spacing_m;
+  const double deepest_m = deepest_still_water_m(bake_case.harbour);
+  const bool step_given = request.time_step_s > 0.0;
+  const std::string step_text = step_given && step_s != request.time_step_s
+                                    ? fmt::format("{} s (reduced to {:.6g} s to divide the output interval)", request.time_step_s, step_s)
+                                    : fmt::format("{:.6g} s", step_s);
+  if (deepest_m > 0.0) {
+    const double courant = std::sqrt(kGravity_m_s2 * deepest_m) * step_s / spacing_m;
+    const double largest_step_s = kMaxCourantNumber * spacing_m / std::sqrt(kGravity_m_s2 * deepest_m);
+    if (courant > kMaxCourantNumber)  // only a given time step gets here: courant_number is bounded above
+      time.fail(time.full("time_step_s"),
+                fmt::format("= {} gives a Courant number sqrt(g d_max) dt / dx = {:.3g} (d_max {} m, the deepest cell; "
+                            "dx {} m), above {}, the solver's stability limit (docs/solver.md)",
+                            step_text, courant, deepest_m, spacing_m, kMaxCourantNumber),
+                fmt::format("give time.time_step_s <= {:.4g} s, or leave it out and give time.courant_number "
+                            "(0.5 by default)", largest_step_s));
+  }
+  const double steps = std::ceil(bake_case.timing.duration_s / step_s * (1 - 1e-12));
+  if (steps <= kMaxSolverSteps) return;
+  const std::string limit = fmt::format("more than the limit of {:.0f} (about a day on one core for a 300 x 300 grid)", kMaxSolverSteps);
+  if (step_given)
+    time.fail(time.full("time_step_s"),
+              fmt::format("= {} makes {:.3g} solver steps over time.duration_s = {} s, {}", step_text, steps,
+                          bake_case.timing.duration_s, limit),
+              "give a longer time.time_step_s, or leave it out and give time.courant_number (0.5 by default), or "
+              "shorten time.duration_s");
+  time.fail(time.full("duration_s"),
+            fmt::format("= {} s makes {:.3g} solver steps of {:.6g} s (time.courant_number = {} with dx {} m and the deepest "
+                        "water {} m), {}",
+                        bake_case.timing.duration_s, steps, step_s, request.courant_number, spacing_m, deepest_m, limit),
+            "shorten time.duration_s, or give the bathymetry a coarser spacing_m");
 }
 
 }  // namespace
@@ -113,6 +165,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
   }
   bake_case.solver.time_step_s =
       resolve_time_step(request.time_step_s, request.courant_number, bake_case.harbour, divided_interval_s);
+  check_time_step(time, request, bake_case);
 
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");
   TableReader maker = root.table("wave_maker");

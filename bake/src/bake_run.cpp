@@ -1,12 +1,20 @@
 #include "nearshore/bake/bake_run.hpp"
 
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
+#include <streambuf>
 
 #include <fmt/core.h>
 
+#include "nearshore/bake/bake_estimate.hpp"
 #include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/bake/deep_water_record.hpp"
@@ -14,6 +22,7 @@
 #include "nearshore/bake/deep_water_tiles.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/folder_lock.hpp"
 #include "nearshore/core/hash.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/sequence/sequence_writer.hpp"
@@ -40,19 +49,149 @@ std::uint64_t case_fingerprint(const BakeCase& bake_case) {
 
 struct StepPlan {
   long total = 0, first_frame = 0, per_frame = 1, per_gauge = 1, per_checkpoint = 0;
+  long frames = 0;  ///< frames of the whole bake
 };
+
+// Counts beyond these are no bake but a mistyped duration or step (duration_s = 1e20 once
+// overflowed std::lround into a negative step count, emptied the folder and failed at finish()):
+// steps must stay exact in a double, and frame names hold 8 digits (sequence_format.hpp).
+constexpr double kMostSteps = 1e15;
+constexpr long kMostFrames = 99'999'999;
 
 StepPlan plan_steps(const BakeCase& bake_case) {
   const double dt = bake_case.solver.time_step_s;
   const BakeTiming& timing = bake_case.timing;
+  const std::string subject = bake_case.case_file.string();
+  const auto steps_in = [&](double interval_s, const char* key) {
+    const double steps = interval_s / dt;
+    if (!std::isfinite(steps) || steps > kMostSteps)
+      throw Error(subject, fmt::format("key `time.{}` = {:g} s is {:.3g} time steps of {:.5g} s, more than a bake can count ({:g})",
+                                       key, interval_s, steps, dt, kMostSteps),
+                  fmt::format("give time.{} in seconds of simulated time (a bake lasts minutes to hours)", key));
+    return std::lround(steps);
+  };
   StepPlan plan;
-  plan.total = std::lround(timing.duration_s / dt);
-  plan.first_frame = std::lround(timing.spin_up_s / dt);
-  plan.per_frame = std::max(1L, std::lround(timing.output_interval_s / dt));  // exact: resolve_time_step
-  plan.per_gauge = timing.gauge_interval_s > 0 ? std::max(1L, std::lround(timing.gauge_interval_s / dt)) : 1;
-  plan.per_checkpoint = timing.checkpoint_interval_s > 0 ? std::max(1L, std::lround(timing.checkpoint_interval_s / dt)) : 0;
+  plan.total = steps_in(timing.duration_s, "duration_s");
+  plan.first_frame = steps_in(timing.spin_up_s, "spin_up_s");
+  plan.per_frame = std::max(1L, steps_in(timing.output_interval_s, "output_interval_s"));  // exact: resolve_time_step
+  plan.per_gauge = timing.gauge_interval_s > 0 ? std::max(1L, steps_in(timing.gauge_interval_s, "gauge_interval_s")) : 1;
+  plan.per_checkpoint =
+      timing.checkpoint_interval_s > 0 ? std::max(1L, steps_in(timing.checkpoint_interval_s, "checkpoint_interval_s")) : 0;
+  plan.frames = plan.total >= plan.first_frame ? (plan.total - plan.first_frame) / plan.per_frame + 1 : 0;
+  if (plan.frames < 1)
+    throw Error(subject, fmt::format("the bake would write no frame: frames start at time.spin_up_s = {:g} s, after "
+                                     "time.duration_s = {:g} s",
+                                     timing.spin_up_s, timing.duration_s),
+                "make time.duration_s longer than time.spin_up_s by at least time.output_interval_s");
+  if (plan.frames > kMostFrames)
+    throw Error(subject, fmt::format("the bake would write {} frames (time.duration_s = {:g} s, time.output_interval_s = {:g} s), "
+                                     "more than a sequence can number ({})",
+                                     plan.frames, timing.duration_s, timing.output_interval_s, kMostFrames),
+                "shorten time.duration_s or lengthen time.output_interval_s");
   return plan;
 }
+
+// What the output folder holds that a bake must not destroy unasked (issue 13: forgetting resume
+// silently deleted a checkpoint and its frames; a failing bake emptied a good sequence first).
+void refuse_to_destroy(const fs::path& folder, const BakeOptions& options) {
+  if (options.overwrite) return;
+  std::error_code ec;
+  if (!options.resume && fs::exists(checkpoint_path(folder), ec))
+    throw Error(folder.string(),
+                fmt::format("holds {}, the checkpoint of an unfinished bake, which a new bake would delete together with "
+                            "its frames",
+                            checkpoint_path(folder).filename().string()),
+                "set BakeOptions::resume to continue that bake, or BakeOptions::overwrite to start again, or write "
+                "into another folder");
+  const fs::path manifest = folder / std::string(sequence::kManifestFile);
+  if (!options.resume && fs::exists(manifest, ec))
+    throw Error(folder.string(),
+                fmt::format("holds a complete sequence ({}), which this bake would replace", manifest.filename().string()),
+                "write into another folder, or set BakeOptions::overwrite to replace it");
+}
+
+// Bytes of the files in `folder` that a bake rewrites: their space comes back as it goes.
+double replaced_bytes(const fs::path& folder) {
+  double bytes = 0;
+  std::error_code ec;
+  for (const auto& item : fs::directory_iterator(folder, ec)) {
+    const std::string name = item.path().filename().string();
+    const bool replaced = (name.starts_with("frame_") && name.ends_with(".exr")) ||
+                          item.path() == checkpoint_path(folder) || name == "gauges.csv" ||
+                          name == std::string(sequence::kHarbourGridFile);
+    std::error_code size_error;
+    if (replaced && item.is_regular_file(size_error)) bytes += static_cast<double>(item.file_size(size_error));
+  }
+  return bytes;
+}
+
+// A stream buffer over a POSIX file that keeps the errno of a failed write, so a checkpoint that
+// meets a full disk says so (std::ofstream only sets badbit, and the state writer that sees it
+// knows no file).
+class CheckpointFileBuffer : public std::streambuf {
+ public:
+  explicit CheckpointFileBuffer(const fs::path& file)
+      : descriptor_(::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)) {
+    if (descriptor_ < 0) error_ = errno;
+    setp(buffer_, buffer_ + sizeof buffer_);
+  }
+  ~CheckpointFileBuffer() override {
+    if (descriptor_ >= 0) ::close(descriptor_);
+  }
+  CheckpointFileBuffer(const CheckpointFileBuffer&) = delete;
+  CheckpointFileBuffer& operator=(const CheckpointFileBuffer&) = delete;
+
+  /// Writes what is buffered and closes the file; false (see error()) when anything failed.
+  bool close() {
+    sync();
+    if (descriptor_ >= 0 && ::close(descriptor_) != 0 && error_ == 0) error_ = errno;
+    descriptor_ = -1;
+    return error_ == 0;
+  }
+  int error() const { return error_; }  ///< errno of the first failure, 0 if none
+  std::uintmax_t bytes_written() const { return written_; }
+
+ protected:
+  int_type overflow(int_type character) override {
+    if (!flush_buffer()) return traits_type::eof();
+    if (!traits_type::eq_int_type(character, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(character);
+      pbump(1);
+    }
+    return traits_type::not_eof(character);
+  }
+  std::streamsize xsputn(const char* data, std::streamsize size) override {
+    // The state's arrays are megabytes: past the buffer, straight to the file.
+    if (size < static_cast<std::streamsize>(sizeof buffer_)) return std::streambuf::xsputn(data, size);
+    if (!flush_buffer() || !write_all(data, static_cast<std::size_t>(size))) return 0;
+    return size;
+  }
+  int sync() override { return flush_buffer() ? 0 : -1; }
+
+ private:
+  bool flush_buffer() {
+    const std::size_t size = static_cast<std::size_t>(pptr() - pbase());
+    setp(buffer_, buffer_ + sizeof buffer_);
+    return write_all(buffer_, size);
+  }
+  bool write_all(const char* data, std::size_t size) {
+    if (error_ != 0) return false;
+    while (size > 0) {
+      const ssize_t n = ::write(descriptor_, data, size);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        error_ = n == 0 ? ENOSPC : errno;  // a write that makes no progress: the device is full
+        return false;
+      }
+      data += n, size -= static_cast<std::size_t>(n), written_ += static_cast<std::uintmax_t>(n);
+    }
+    return true;
+  }
+  int descriptor_ = -1;
+  int error_ = 0;
+  std::uintmax_t written_ = 0;
+  char buffer_[1 << 16];
+};
 
 [[noreturn]] void report_instability(const BakeCase& bake_case, const InstabilityReport& report, const fs::path& checkpoint,
                                      double checkpoint_time_s) {
@@ -72,21 +211,38 @@ StepPlan plan_steps(const BakeCase& bake_case) {
 void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const BoussinesqSolver& solver,
                       const GaugeRecorder& gauges) {
   write_file_atomically(file, [&](const fs::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(kCheckpointMagic, sizeof kCheckpointMagic);
-    out.write(reinterpret_cast<const char*>(&fingerprint), sizeof fingerprint);
-    gauges.save(out);
-    solver.save_state(out);
-    out.flush();
-    if (!out) throw Error(temporary.string(), "could not be written completely", "check free disk space");
+    CheckpointFileBuffer buffer(temporary);
+    if (buffer.error() != 0)
+      throw Error(file.string(), fmt::format("cannot be created ({}): {}", temporary.filename().string(), std::strerror(buffer.error())),
+                  "make BakeOptions::output_folder writable, or write into another folder");
+    std::ostream out(&buffer);
+    try {
+      out.write(kCheckpointMagic, sizeof kCheckpointMagic);
+      out.write(reinterpret_cast<const char*>(&fingerprint), sizeof fingerprint);
+      gauges.save(out);
+      solver.save_state(out);  // throws when the stream failed: the buffer knows why
+    } catch (const Error&) {
+      if (buffer.error() == 0) throw;
+    }
+    if (!buffer.close() || !out)
+      throw Error(file.string(),
+                  fmt::format("writing the checkpoint failed after {} bytes: {} (errno {})", buffer.bytes_written(),
+                              write_failure_reason(buffer.error()), buffer.error()),
+                  "free disk space, or write into another folder; the checkpoint written before this one, if any, is kept");
   });
 }
 
-void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, BoussinesqSolver& solver, GaugeRecorder& gauges) {
+// The checkpoint opened and its header checked (magic, case fingerprint): positioned at the gauges.
+std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
   const std::string subject = file.string();
   if (!fs::exists(file))
     throw Error(subject, "does not exist, so there is nothing to resume", "bake again from the start (BakeOptions::resume = false)");
   std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    const int error = errno;
+    throw Error(subject, fmt::format("cannot be opened: {} (errno {})", std::strerror(error), error),
+                "make the checkpoint readable, or bake again from the start (BakeOptions::resume = false)");
+  }
   char magic[sizeof kCheckpointMagic] = {};
   std::uint64_t stored = 0;
   const bool magic_read = static_cast<bool>(in.read(magic, sizeof magic));
@@ -98,8 +254,18 @@ void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, Boussinesq
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != fingerprint)
     throw Error(subject, "was written for a different case file or time step",
                 "bake again from the start, BakeOptions::resume = false (a checkpoint only continues the exact case that wrote it)");
+  return in;
+}
+
+void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, BoussinesqSolver& solver, GaugeRecorder& gauges) {
+  const std::string subject = file.string();
+  std::ifstream in = open_checkpoint(file, fingerprint);
   gauges.load(in, subject);
-  solver.load_state(in);
+  try {
+    solver.load_state(in);
+  } catch (const Error& error) {  // the solver reads a stream and knows no file: name it here
+    throw Error(subject, error.subject() + " " + error.problem(), error.fix());
+  }
 }
 
 // How the deep-water field sits on the harbour grid and meets the bake (docs/deep-water.md,
@@ -153,6 +319,10 @@ nlohmann::json BakeSummary::to_json() const {
           {"resumed_from_s", resumed_from_s},
           {"seed", seed},
           {"loop_period_s", loop_period_s},
+          {"resources",
+           {{"estimated_memory_bytes", estimated_memory_bytes},
+            {"estimated_disk_bytes", estimated_disk_bytes},
+            {"peak_resident_bytes", peak_resident_bytes}}},
           {"outputs",
            {{"folder", output_folder.string()},
             {"frames", frames},
@@ -165,10 +335,26 @@ nlohmann::json BakeSummary::to_json() const {
 BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   const fs::path& folder = options.output_folder;
-  create_output_folder(folder);
   const fs::path checkpoint = checkpoint_path(folder);
+  // 1. The whole plan is checked before anything is allocated or the folder touched: a bake that
+  //    cannot finish must not first destroy what the folder holds.
   const StepPlan plan = plan_steps(bake_case);
+  const BakeResourceEstimate estimate = estimate_bake_resources(bake_case, options.resume);
+  if (!options.allow_over_budget) check_bake_resources(bake_case, estimate, folder, replaced_bytes(folder));
   const std::uint64_t fingerprint = case_fingerprint(bake_case);
+  // 2. One writer per folder, for the whole run (released when run_bake returns or throws, and by
+  //    the kernel when the process is killed).
+  create_output_folder(folder);
+  const FolderLock lock(folder, "baking " + bake_case.case_file.string());
+  refuse_to_destroy(folder, options);
+  if (options.resume) open_checkpoint(checkpoint, fingerprint);  // one that cannot resume stops here, nothing removed
+  // 3. Writers killed in this folder left their temporary files; nobody else writes here now.
+  remove_stale_temporary_files(folder);
+  remove_stale_temporary_files(folder / "deep_water_tiles");
+  std::error_code ignored;
+  // The folder is being rewritten: it must not look complete while it is (SequenceWriter also
+  // removes the manifest, but the deep-water files below are written before it opens).
+  fs::remove(folder / std::string(sequence::kManifestFile), ignored);
 
   BoussinesqSolver solver(bake_case.harbour, bake_case.solver, bake_case.wave_maker);
   GaugeRecorder gauges(bake_case.gauges);
@@ -178,7 +364,6 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     read_checkpoint(checkpoint, fingerprint, solver, gauges);
     summary.resumed_from_s = solver.time_s();
   } else {
-    std::error_code ignored;
     fs::remove(checkpoint, ignored);  // a stale checkpoint of an earlier run must never be resumed
     if (bake_case.solitary_wave) start_solitary_wave(solver, bake_case.harbour, *bake_case.solitary_wave);
   }
@@ -262,12 +447,10 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     progress.update(solver.time_s(), fmt::format("t = {:.2f} s", solver.time_s()));
   }
   const double stepping_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - stepping_start).count();
-  const long last_frame = frame_index_at(plan.total - (plan.total - plan.first_frame) % plan.per_frame);
-  summary.frames = static_cast<int>(last_frame + 1);
+  summary.frames = static_cast<int>(plan.frames);
   gauges.write_csv(folder / "gauges.csv");
   writer.finish(summary.frames);
   progress.finish(fmt::format("{} frames", summary.frames));
-  std::error_code ignored;
   fs::remove(checkpoint, ignored);  // the bake is complete; the manifest marks it so
 
   summary.cells = static_cast<long long>(bake_case.harbour.geometry.cell_count());
@@ -283,6 +466,10 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   summary.output_folder = folder;
   summary.gauges_csv = folder / "gauges.csv";
   summary.deep_water = std::move(deep_water_summary_json);
+  summary.estimated_memory_bytes = estimate.memory_bytes;
+  summary.estimated_disk_bytes = estimate.disk_bytes;
+  struct rusage usage {};
+  if (::getrusage(RUSAGE_SELF, &usage) == 0) summary.peak_resident_bytes = static_cast<double>(usage.ru_maxrss) * 1024;
   return summary;
 }
 

@@ -15,12 +15,40 @@ namespace nearshore::bake::detail {
 using namespace nearshore::ocean;       // spectra, sea states, the deep-water field
 using namespace nearshore::boussinesq;  // the solver and its parameters
 
+namespace {
+
+// The first cell whose still-water depth is not finite or deeper than kDeepestPlausibleDepth_m
+// fails `key`: the solver would take such a grid's time step from that depth (a 6e28 m deep cell
+// gave a 1e-14 s step and a bake that never ends).
+void check_plausible_depths(TableReader& bathymetry, const std::string& key, const HarbourGrid& grid) {
+  const GridGeometry& g = grid.geometry;
+  for (int row = 0; row < g.rows; ++row)
+    for (int column = 0; column < g.columns; ++column) {
+      const float depth_m = grid.still_water_depth_m(column, row);
+      if (depth_m <= kDeepestPlausibleDepth_m) continue;  // NaN fails too
+      const std::string where = fmt::format("cell (column {}, row {}; {:.2f} m, {:.2f} m from the south-west corner)",
+                                            column, row, (column + 0.5) * g.spacing_m, (row + 0.5) * g.spacing_m);
+      if (!std::isfinite(depth_m))
+        bathymetry.fail(bathymetry.full(key), fmt::format("gives a depth of {} at {}", depth_m, where),
+                        "fill the hole in the bathymetry (regrid the chart data with its holes filled or masked as land)");
+      bathymetry.fail(bathymetry.full(key),
+                      fmt::format("gives a depth of {} m at {}, deeper than {:.0f} m, the deepest water on Earth "
+                                  "(the Challenger Deep, 10 935 m)",
+                                  depth_m, where, kDeepestPlausibleDepth_m),
+                      "such a depth is a fill value taken for a depth, a unit other than metres or a wrong sign: "
+                      "correct the bathymetry (depths in metres, positive down)");
+    }
+}
+
+}  // namespace
+
 HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base) {
   const std::size_t kind = bathymetry.choice("kind", std::nullopt, {"harbour_grid", "profile", "berkhoff_shoal"});
   HarbourGrid grid;
   if (kind == 0) {
     const fs::path file = bathymetry.path("file", base);
     grid = bathymetry.reading_file("file", [&] { return read_harbour_grid(file); });
+    check_plausible_depths(bathymetry, "file", grid);
     if (bathymetry.has("spacing_m"))
       grid = resample_harbour_grid(grid, bathymetry.positive("spacing_m", std::nullopt, "cell size in metres"));
   } else {
@@ -34,6 +62,7 @@ HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base) {
       grid = flume_from_profile(length_m, width_m, spacing_m,
                                 bathymetry.pairs("profile", "[[x_m, depth_m], ...] with increasing x"),
                                 bathymetry.subject() + ": key `" + bathymetry.full("profile") + "`");
+      check_plausible_depths(bathymetry, "profile", grid);
       return grid;
     }
     BerkhoffShoal shoal;
@@ -46,6 +75,7 @@ HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base) {
     shoal.slope_start_m = bathymetry.number("slope_start_m", 5.84, -1e6, 1e6, false, "distance up-wave of the shoal centre where the slope starts, metres");
     shoal.minimum_depth_m = bathymetry.positive("minimum_depth_m", 0.07, "depth where the slope is clipped, metres");
     grid = berkhoff_shoal_grid(length_m, width_m, spacing_m, shoal);
+    check_plausible_depths(bathymetry, "deep_depth_m", grid);
   }
   return grid;
 }

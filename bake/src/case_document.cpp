@@ -33,30 +33,33 @@ json to_json_value(const toml::node& node) {
   return json();  // dates and times: no key takes one, so the key reader will reject the type
 }
 
-json parse_case_document(const fs::path& case_file) {
-  require_readable_file(case_file, "a bake case file (.toml or .json, docs/commands/bake.md)");
-  const std::string extension = case_file.extension().string();
-  std::ifstream in(case_file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (extension == ".json") {
+json parse_case_text(const std::string& text, CaseSyntax syntax, const std::string& source) {
+  if (syntax == CaseSyntax::kJson) {
     try {
-      return json::parse(text.str());
-    } catch (const json::parse_error& error) {
-      throw Error(case_file.string(), fmt::format("is not valid JSON ({})", error.what()),
-                  "fix the syntax at the byte offset given");
+      return json::parse(text);
+    } catch (const json::exception& error) {  // parse_error, and out_of_range for a number such as 1e400
+      throw Error(source, fmt::format("is not valid JSON ({})", error.what()), "fix the syntax at the byte offset given");
     }
   }
-  if (extension != ".toml")
-    throw Error(case_file.string(), "has neither a .toml nor a .json extension", "rename it to CASE.toml or CASE.json");
   try {
-    return to_json_value(toml::parse(text.str(), case_file.string()));
+    return to_json_value(toml::parse(text, source));
   } catch (const toml::parse_error& error) {
-    throw Error(case_file.string(),
+    throw Error(source,
                 fmt::format("is not valid TOML at line {}, column {}: {}", error.source().begin.line,
                             error.source().begin.column, error.description()),
                 "fix the syntax there");
   }
+}
+
+json parse_case_document(const fs::path& case_file) {
+  require_readable_file(case_file, "a bake case file (.toml or .json, docs/commands/bake.md)");
+  const std::string extension = case_file.extension().string();
+  if (extension != ".json" && extension != ".toml")
+    throw Error(case_file.string(), "has neither a .toml nor a .json extension", "rename it to CASE.toml or CASE.json");
+  std::ifstream in(case_file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_case_text(text.str(), extension == ".json" ? CaseSyntax::kJson : CaseSyntax::kToml, case_file.string());
 }
 
 const std::vector<std::string> kSideNames = {"west", "east", "south", "north"};

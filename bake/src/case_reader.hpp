@@ -32,8 +32,26 @@ using nlohmann::json;
 
 inline constexpr double kDegree = std::numbers::pi / 180.0;
 
+// ---- physical plausibility bounds of a case (docs/commands/bake.md, "Bounds") ---------------------
+/// No water on Earth is deeper than the Challenger Deep (10 935 m): a deeper cell is a fill value,
+/// a wrong unit or a wrong sign (bathymetry/ refuses such inputs with the same bound).
+inline constexpr double kDeepestPlausibleDepth_m = 11000.0;
+/// The solver's stability limit of the Courant number sqrt(g d_max) dt / dx: beyond it the iterated
+/// explicit terms stop converging (boussinesq_solver.cpp, docs/solver.md). Checked here so that the
+/// message names the case file's key.
+inline constexpr double kMaxCourantNumber = 2.0;
+/// At most this many solver steps: 1e7 steps of a 300 x 300 grid are about a day on one core at
+/// the solver's ~1e7 cell updates per second (docs/solver.md); more is a mistyped time or grid.
+inline constexpr double kMaxSolverSteps = 1e7;
+/// At most this many frames, one file each: a million frames of 1 s are 11.6 days of simulated sea,
+/// where a looping sea needs one loop period (minutes).
+inline constexpr double kMaxFrames = 1e6;
+
 /// TOML or JSON -> one JSON document, integers kept apart from floats (case_document.cpp).
 json parse_case_document(const fs::path& case_file);
+/// The same from the case file's text; `source` names it in messages (the case-file fuzzer's entry).
+enum class CaseSyntax { kToml, kJson };
+json parse_case_text(const std::string& text, CaseSyntax syntax, const std::string& source);
 
 // ---- TableReader ---------------------------------------------------------------------------------
 class TableReader {
@@ -218,7 +236,8 @@ double direction_away_from(boussinesq::Side facing);
 double deepest_still_water_m(const HarbourGrid& grid);
 
 // ---- sections ------------------------------------------------------------------------------------
-/// [bathymetry] (case_bathymetry.cpp).
+/// [bathymetry] (case_bathymetry.cpp). Refuses a grid with a non-finite depth or one deeper than
+/// kDeepestPlausibleDepth_m, naming the key the grid came from.
 HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base);
 /// [[porous_blocks]]: rectangles of porous structure (rubble mounds) or walls over any bathymetry.
 void apply_porous_blocks(std::vector<TableReader> blocks, HarbourGrid& grid);

@@ -17,6 +17,23 @@ using namespace nearshore::boussinesq;  // the solver and its parameters
 
 namespace {
 
+// Physical bounds of the spectra's parameters, beyond the registry's own ranges (which leave most
+// of them open above): what the Earth's seas and winds have. 1e308 s as a peak period overflowed
+// the sea-state builder (found by the case-file fuzzer).
+struct PlausibleRange {
+  const char* key;
+  double lowest, highest;
+  const char* why;
+};
+constexpr PlausibleRange kPlausibleSpectrumParameters[] = {
+    {"significant_height_m", 0.0, 30.0, "the highest significant wave height measured is 19 m (North Atlantic, 2013)"},
+    {"peak_period_s", 0.1, 86400.0, "below 0.1 s surface tension governs the waves; above a day it is no wave a harbour bake makes"},
+    {"tma_depth_m", 0.0, 11000.0, "no water is deeper than the Challenger Deep, 10 935 m"},
+    {"wind_speed_m_s", 0.0, 120.0, "the strongest gust measured is 113 m/s (Barrow Island, 1996)"},
+    {"wind_speed_10_m_s", 0.0, 120.0, "the strongest gust measured is 113 m/s (Barrow Island, 1996)"},
+    {"fetch_m", 0.0, 2.0e7, "no fetch is longer than half the Earth's circumference"},
+};
+
 // The case file's table as the registry's parameter reader: its checks, messages and key tracking.
 class TableSpectrumParameters final : public SpectrumParameters {
  public:
@@ -24,7 +41,12 @@ class TableSpectrumParameters final : public SpectrumParameters {
   bool has(const std::string& key) const override { return table_.has(key); }
   double number(const std::string& key, std::optional<double> fallback, double minimum, double maximum,
                 bool exclusive_minimum, const std::string& meaning) override {
-    return table_.number(key, fallback, minimum, maximum, exclusive_minimum, meaning);
+    const double value = table_.number(key, fallback, minimum, maximum, exclusive_minimum, meaning);
+    for (const PlausibleRange& range : kPlausibleSpectrumParameters)
+      if (key == range.key && (value < range.lowest || value > range.highest))
+        table_.fail(table_.full(key), fmt::format("= {} is outside {} .. {} ({})", value, range.lowest, range.highest, range.why),
+                    "give " + meaning);
+    return value;
   }
   int integer(const std::string& key, std::optional<int> fallback, int minimum, int maximum,
               const std::string& meaning) override {

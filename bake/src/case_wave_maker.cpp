@@ -19,6 +19,45 @@ using namespace nearshore::boussinesq;  // the solver and its parameters
 
 namespace {
 
+// ---- plausibility bounds of the waves a maker makes (docs/commands/bake.md, "Bounds") ------------
+// Above 10 Hz (1.6 cm long in deep water) surface tension, which the equations leave out, governs
+// the waves: capillary ripples, no wave a harbour bake makes. A period or loop longer than a day is
+// a tide or a typing error, and 1e308 Hz or s overflowed the sea-state builder (found by the
+// case-file fuzzer).
+constexpr double kHighestWaveFrequency_hz = 10.0;
+constexpr double kLongestPeriod_s = 86400.0;
+constexpr const char* kFrequencyBoundReason = "above 10 Hz (1.6 cm waves) surface tension, which the solver leaves out, governs";
+constexpr const char* kPeriodBoundReason = "a day; a longer period or loop is no wave a harbour bake makes";
+
+double read_wave_period_s(TableReader& reader, const std::string& key, std::optional<double> fallback) {
+  const double period_s = reader.positive(key, fallback, "wave period in seconds");
+  if (period_s < 1.0 / kHighestWaveFrequency_hz || period_s > kLongestPeriod_s)
+    reader.fail(reader.full(key), fmt::format("= {} s is outside {} .. {:.0f} s ({}; at most {})", period_s,
+                                              1.0 / kHighestWaveFrequency_hz, kLongestPeriod_s, kFrequencyBoundReason,
+                                              kPeriodBoundReason),
+                "give the wave period in seconds");
+  return period_s;
+}
+
+double read_loop_period_s(TableReader& reader) {
+  const double loop_s = reader.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+  if (loop_s > kLongestPeriod_s)
+    reader.fail(reader.full("loop_period_s"), fmt::format("= {} s is above {:.0f} s ({})", loop_s, kLongestPeriod_s, kPeriodBoundReason),
+                "give the loop period in seconds (minutes are typical: 600 s in the demo harbour)");
+  return loop_s;
+}
+
+double read_wave_frequency_hz(TableReader& reader, const std::string& key, std::optional<double> fallback, bool zero_allowed) {
+  const double frequency_hz = zero_allowed ? reader.non_negative(key, fallback, "frequency in Hz")
+                                           : reader.positive(key, fallback, "frequency in Hz");
+  if (frequency_hz > kHighestWaveFrequency_hz || (frequency_hz > 0 && frequency_hz < 1.0 / kLongestPeriod_s))
+    reader.fail(reader.full(key), fmt::format("= {} Hz is outside {:.3g} .. {} Hz ({}; periods at most {})", frequency_hz,
+                                              1.0 / kLongestPeriod_s, kHighestWaveFrequency_hz, kFrequencyBoundReason,
+                                              kPeriodBoundReason),
+                "give the frequency in Hz");
+  return frequency_hz;
+}
+
 // Waves of the regular and `components` kinds as linear components; checks the loop period.
 void check_loop_period(TableReader& maker, const std::string& key, double loop_period_s, double period_s) {
   const long cycles = whole_steps(loop_period_s, period_s);
@@ -72,7 +111,7 @@ WaveComponent component_from(TableReader& reader, const std::string& amplitude_k
   WaveComponent component;
   component.amplitude_m = amplitude_factor * reader.positive(amplitude_key, std::nullopt,
                                                              amplitude_key == "height_m" ? "wave height in metres" : "amplitude in metres");
-  component.angular_frequency_rad_s = 2.0 * std::numbers::pi / reader.positive("period_s", std::nullopt, "wave period in seconds");
+  component.angular_frequency_rad_s = 2.0 * std::numbers::pi / read_wave_period_s(reader, "period_s", std::nullopt);
   component.direction_rad = reader.number("direction_deg", default_direction_rad / kDegree, -360.0, 360.0, false,
                                           "direction of travel in degrees counter-clockwise from +x (east)") * kDegree;
   component.phase_rad = reader.number("phase_deg", 0.0, -360.0, 360.0, false, "phase in degrees") * kDegree;
@@ -102,12 +141,12 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   if (kind == MakerKind::kRegular) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
     const double height_m = maker.positive("height_m", std::nullopt, "wave height (crest to trough) in metres");
-    const double period_s = maker.positive("period_s", std::nullopt, "wave period in seconds");
+    const double period_s = read_wave_period_s(maker, "period_s", std::nullopt);
     const double direction_rad = kDegree * maker.number("direction_deg", default_direction_rad / kDegree, -360.0, 360.0, false,
                                                         "direction of travel in degrees counter-clockwise from +x (east)");
     const double phase_rad = kDegree * maker.number("phase_deg", 0.0, -360.0, 360.0, false, "phase in degrees");
     sea = regular_wave_sea_state(height_m, period_s, direction_rad, phase_rad);
-    sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    sea.loop_period_s = read_loop_period_s(maker);
     if (sea.loop_period_s > 0) check_loop_period(maker, "period_s", sea.loop_period_s, period_s);
   } else if (kind == MakerKind::kIrregular) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
@@ -119,13 +158,23 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     specification.spreading = std::make_shared<CosineSquaredSpreading>(mean_direction_rad, std::max(spreading_s, 1.0));
     specification.frequency_count = maker.integer("frequency_count", 64, 1, 100000, "number of frequency components");
     specification.direction_count = maker.integer("direction_count", spreading_s > 0 ? 16 : 1, 1, 10000, "number of directions");
+    // The source function sums every component at every source cell every step: 1e5 components
+    // on a 1000-cell source line are 1e8 evaluations a step, far beyond what a bake can afford.
+    constexpr long kMostComponents = 100000;
+    if (static_cast<long>(specification.frequency_count) * specification.direction_count > kMostComponents)
+      maker.fail(maker.full("frequency_count"),
+                 fmt::format("x wave_maker.direction_count = {} x {} = {} components, more than {} (the source function "
+                             "sums every one at every source cell every step)",
+                             specification.frequency_count, specification.direction_count,
+                             static_cast<long>(specification.frequency_count) * specification.direction_count, kMostComponents),
+                 "use fewer frequencies or directions (64 x 16 is plenty for a short-crested sea)");
     if (spreading_s == 0 && specification.direction_count != 1)
       maker.fail(maker.full("direction_count"), "is above 1 for a long-crested sea (spreading_s = 0)", "set spreading_s > 0 or direction_count = 1");
-    specification.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    specification.loop_period_s = read_loop_period_s(maker);
     specification.seed = maker.unsigned_integer("seed", 1, "phase seed");
     if (maker.has("min_frequency_hz") || maker.has("max_frequency_hz")) {
-      specification.min_frequency_rad_s = 2 * std::numbers::pi * maker.positive("min_frequency_hz", std::nullopt, "lowest frequency in Hz");
-      specification.max_frequency_rad_s = 2 * std::numbers::pi * maker.positive("max_frequency_hz", std::nullopt, "highest frequency in Hz");
+      specification.min_frequency_rad_s = 2 * std::numbers::pi * read_wave_frequency_hz(maker, "min_frequency_hz", std::nullopt, false);
+      specification.max_frequency_rad_s = 2 * std::numbers::pi * read_wave_frequency_hz(maker, "max_frequency_hz", std::nullopt, false);
     }
     request.spectrum = specification.spectrum;
     request.spreading = specification.spreading;
@@ -142,15 +191,18 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     // the loop period both share and the band of the field the grid carries.
     wave_maker.kind = WaveMaker::Kind::kComponents;
     request.from_deep_water = true;
-    sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    sea.loop_period_s = read_loop_period_s(maker);
     const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000,
                                                    "cells per wavelength the grid must give every component");
     const double carried_rad_s = highest_carried_frequency_rad_s(grid, cells_per_wavelength);
-    request.band.min_frequency_rad_s =
-        2 * std::numbers::pi * maker.non_negative("min_frequency_hz", 0.0, "lowest frequency in Hz");
+    request.band.min_frequency_rad_s = 2 * std::numbers::pi * read_wave_frequency_hz(maker, "min_frequency_hz", 0.0, true);
+    // A periodic field puts every wave on a harmonic of 2 pi / T; those below half the fundamental
+    // land on frequency 0, a frozen surface with an infinite wavelength that no maker can make (it
+    // hung the coupling's blending-zone search: found by the case-file fuzzer with loop_period_s = 3).
+    if (sea.loop_period_s > 0)
+      request.band.min_frequency_rad_s = std::max(request.band.min_frequency_rad_s, std::numbers::pi / sea.loop_period_s);
     request.band.max_frequency_rad_s =
-        2 * std::numbers::pi *
-        maker.positive("max_frequency_hz", carried_rad_s / (2 * std::numbers::pi), "highest frequency in Hz");
+        2 * std::numbers::pi * read_wave_frequency_hz(maker, "max_frequency_hz", std::min(carried_rad_s / (2 * std::numbers::pi), kHighestWaveFrequency_hz), false);
     if (request.band.max_frequency_rad_s > carried_rad_s * (1 + 1e-9))
       maker.fail(maker.full("max_frequency_hz"),
                  fmt::format("= {:.4f} Hz is above what the grid carries ({:.4f} Hz: {})",
@@ -172,7 +224,7 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
                  "move seed into [deep_water]");
   } else if (kind == MakerKind::kComponents) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
-    sea.loop_period_s = maker.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
+    sea.loop_period_s = read_loop_period_s(maker);
     auto components = maker.tables("components");
     if (components.empty())
       maker.fail(maker.full("components"), "is missing or empty", "add [[wave_maker.components]] tables with amplitude_m and period_s");

@@ -337,6 +337,20 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   if (!(request.spacing_m > 0))
     throw Error(fmt::format("BathyRequest::spacing_m = {}", request.spacing_m), "is not a positive cell size",
                 "give the cell size in metres, e.g. 10");
+  // Levels given in metres: bounded by what the Earth has (sources.hpp) and, for the still-water
+  // level above the sounding datum, by the largest tides and surges (Bay of Fundy: 16 m range).
+  const auto check_level = [](const char* field, double value_m, double lowest_m, double highest_m, const char* why) {
+    if (!(value_m >= lowest_m && value_m <= highest_m))
+      throw Error(fmt::format("BathyRequest::{} = {} m", field, value_m),
+                  fmt::format("is outside {:.0f} .. {:.0f} m ({})", lowest_m, highest_m, why),
+                  fmt::format("give BathyRequest::{} in metres, inside those bounds", field));
+  };
+  check_level("water_level_m", request.water_level_m, -kMaxWaterLevel_m, kMaxWaterLevel_m,
+              "still water above the sounding datum; the largest tidal range on Earth, the Bay of Fundy's, is 16 m");
+  check_level("minimum_depth_m", request.minimum_depth_m, 0.0, kDeepestPlausibleDepth_m,
+              "no water is deeper than the Challenger Deep, 10 935 m");
+  check_level("land_elevation_m", request.land_elevation_m, 0.0, kHighestPlausibleElevation_m,
+              "no land is higher than Everest, 8 849 m");
   // 1. Read.
   std::vector<SourceData> sources;
   const ReadOptions read_options{request.sign, request.text_crs};

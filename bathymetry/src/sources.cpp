@@ -39,6 +39,44 @@ void grow_extent(std::array<double, 4>& extent, LonLat p) {
   extent[3] = std::max(extent[3], p.latitude_deg);
 }
 
+// --- plausibility bounds (sources.hpp) --------------------------------------------------------------
+bool plausible_depth(double depth_m) {
+  return depth_m <= kDeepestPlausibleDepth_m && depth_m >= -kHighestPlausibleElevation_m;
+}
+
+// "beyond 11000 m, the deepest water on Earth (...)" or the same for heights, for a depth outside the bounds.
+std::string plausibility_bound(double depth_m) {
+  return depth_m > 0 ? fmt::format("deeper than {:.0f} m, the deepest water on Earth (the Challenger Deep, 10 935 m)",
+                                   kDeepestPlausibleDepth_m)
+                     : fmt::format("higher than {:.0f} m above the datum, the highest land on Earth (Everest, 8 849 m)",
+                                   kHighestPlausibleElevation_m);
+}
+
+constexpr const char* kImplausibleDepthFix =
+    "such a value is a fill value not declared as nodata, a unit other than metres or a wrong sign: declare "
+    "it nodata, convert the file to metres, or check ReadOptions::sign";
+
+// Soundings, contours and depth areas of a vector or S-57 input: the first value outside the bounds.
+void check_plausible_vector_depths(const SourceData& data) {
+  const auto refuse = [&](const std::string& what, double depth_m, LonLat place) {
+    throw Error(data.path.string(),
+                fmt::format("{} at lon {:.6f}, lat {:.6f} is {} m (positive down), {}", what, place.longitude_deg,
+                            place.latitude_deg, depth_m, plausibility_bound(depth_m)),
+                kImplausibleDepthFix);
+  };
+  for (const Sounding& s : data.soundings)
+    if (!plausible_depth(s.depth_m)) refuse("a sounding", s.depth_m, s.place);
+  for (const DepthContour& c : data.contours)
+    if (!plausible_depth(c.depth_m)) refuse("a depth contour", c.depth_m, c.line.empty() ? LonLat{} : c.line.front());
+  for (const auto* areas : {&data.depth_areas, &data.dredged_areas})
+    for (const DepthArea& a : *areas) {
+      const LonLat corner = a.polygon.rings.empty() || a.polygon.rings.front().empty() ? LonLat{} : a.polygon.rings.front().front();
+      if (!plausible_depth(a.shallowest_m)) refuse("a depth area's shallowest depth (DRVAL1)", a.shallowest_m, corner);
+      if (std::isfinite(a.deepest_m) && !plausible_depth(a.deepest_m))
+        refuse("a depth area's deepest depth (DRVAL2)", a.deepest_m, corner);
+    }
+}
+
 // --- OGR geometry -> our lon/lat lines, polygons and points --------------------------------------
 struct Pieces {
   std::vector<GeoLine> lines;
@@ -301,29 +339,48 @@ void read_raster(GDALDataset& dataset, const ReadOptions& options, SourceData& o
   int has_nodata = 0;
   const double nodata = band->GetNoDataValue(&has_nodata);
   const bool nan_is_nodata = has_nodata && std::isnan(nodata);
-  std::size_t nan_cells = 0, first_nan = 0;
+  std::size_t nan_cells = 0, first_nan = 0, implausible_cells = 0, first_implausible = 0;
+  float most_implausible = 0.0f;
   for (std::size_t i = 0; i < raster.depth_m.size(); ++i) {
     float& v = raster.depth_m[i];
     if (std::isnan(v)) {
       if (!nan_is_nodata && nan_cells++ == 0) first_nan = i;
       continue;
     }
-    if (has_nodata && v == static_cast<float>(nodata)) v = std::numeric_limits<float>::quiet_NaN();
-    else if (!is_depth) v = -v;
+    if (has_nodata && v == static_cast<float>(nodata)) {
+      v = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    if (!is_depth) v = -v;
+    if (!plausible_depth(v)) {
+      if (implausible_cells++ == 0) first_implausible = i;
+      if (std::abs(v) > std::abs(most_implausible)) most_implausible = v;
+    }
   }
-  if (nan_cells > 0) {
-    const auto& gt = raster.geotransform;
-    const double column = first_nan % raster.columns + 0.5, row = first_nan / raster.columns + 0.5;
+  const auto& gt = raster.geotransform;
+  // "pixel (c, r), x=... y=... in its CRS" of the cell at row-major index i (row 0 north).
+  const auto where = [&](std::size_t i) {
+    const double column = i % raster.columns + 0.5, row = i / raster.columns + 0.5;
+    return fmt::format("pixel ({}, {}), x={:.1f} y={:.1f} in its CRS", static_cast<int>(column), static_cast<int>(row),
+                       gt[0] + column * gt[1], gt[3] + row * gt[5]);
+  };
+  if (nan_cells > 0)
     throw Error(out.path.string(),
-                fmt::format("{} cells are NaN but the band declares no NaN nodata, the first at pixel ({}, {}), "
-                            "x={:.1f} y={:.1f} in its CRS",
-                            nan_cells, static_cast<int>(column), static_cast<int>(row), gt[0] + column * gt[1],
-                            gt[3] + row * gt[5]),
+                fmt::format("{} cells are NaN but the band declares no NaN nodata, the first at {}", nan_cells,
+                            where(first_nan)),
                 "declare them nodata (gdal_edit.py -a_nodata nan) or fill them (gdal_fillnodata.py)");
-  }
+  if (implausible_cells > 0)
+    throw Error(out.path.string(),
+                fmt::format("{} cells hold depths (positive down, {}) outside {:.0f} .. {:.0f} m, up to {} m: {}; "
+                            "the first is {} m at {}",
+                            implausible_cells, is_depth ? "as stored" : "the stored elevations negated",
+                            -kHighestPlausibleElevation_m, kDeepestPlausibleDepth_m, most_implausible,
+                            plausibility_bound(most_implausible), raster.depth_m[first_implausible],
+                            where(first_implausible)),
+                "such values are a fill value not declared as nodata (gdal_edit.py -a_nodata VALUE), a unit "
+                "other than metres, or a wrong sign (ReadOptions::sign)");
   // Extent in lon/lat from the corners and edge midpoints.
   auto to_wgs84 = transformation_to_wgs84(crs);
-  const auto& gt = raster.geotransform;
   for (double u : {0.0, 0.5, 1.0})
     for (double v : {0.0, 0.5, 1.0}) {
       double x = gt[0] + u * raster.columns * gt[1], y = gt[3] + v * raster.rows * gt[5];
@@ -362,6 +419,11 @@ void read_text_soundings(const ReadOptions& options, SourceData& out) {
     }
     if (!std::isfinite(value))
       throw Error(out.path.string(), fmt::format("line {} has a NaN depth", line_number), "remove the line");
+    if (const double depth_m = elevation ? -value : value; !plausible_depth(depth_m))
+      throw Error(out.path.string(),
+                  fmt::format("line {} gives a depth of {} m (positive down), {}", line_number, depth_m,
+                              plausibility_bound(depth_m)),
+                  kImplausibleDepthFix);
     if (to_wgs84) {
       if (!to_wgs84->Transform(1, &x, &y))
         throw Error(out.path.string(), fmt::format("line {}: cannot transform ({}, {})", line_number, x, y),
@@ -408,6 +470,7 @@ SourceData read_source(const fs::path& path, const ReadOptions& options) {
     if (driver == "S57") read_s57(*dataset, out);
     else if (dataset->GetRasterCount() > 0) read_raster(*dataset, options, out);
     else read_vector(*dataset, options, out);
+    check_plausible_vector_depths(out);
   }
   auto grow_lines = [&](const std::vector<GeoLine>& lines) {
     for (const auto& line : lines)

@@ -159,10 +159,19 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   if (!(s.dt > 0.0)) throw Error(subject, "no time step: time_step_s and courant_number are both 0", "set one of them");
   const double courant = celerity * s.dt / s.dx;
   if (courant > kMaxCourantNumber) {
+    // The library-level guard: a bake case is checked against the same limit first, naming its key.
+    const bool step_given = parameters.time_step_s > 0.0;
     std::ostringstream problem;
-    problem << "time step " << s.dt << " s gives a Courant number sqrt(g d_max) dt/dx = " << courant << " (d_max " << max_depth
-            << " m, dx " << s.dx << " m), above the limit " << kMaxCourantNumber;
-    throw Error(subject, problem.str(), "use a time step of at most " + std::to_string(kMaxCourantNumber * s.dx / celerity) + " s");
+    if (step_given)
+      problem << "SolverParameters::time_step_s = " << s.dt << " s gives";
+    else
+      problem << "SolverParameters::courant_number = " << parameters.courant_number << " (a time step of " << s.dt << " s) gives";
+    problem << " a Courant number sqrt(g d_max) dt/dx = " << courant << " (d_max " << max_depth << " m, the deepest cell; dx "
+            << s.dx << " m), above the stability limit " << kMaxCourantNumber;
+    throw Error(subject, problem.str(),
+                step_given ? "set SolverParameters::time_step_s to at most " + std::to_string(kMaxCourantNumber * s.dx / celerity) +
+                                 " s, or to 0 with SolverParameters::courant_number at most " + std::to_string(kMaxCourantNumber)
+                           : "set SolverParameters::courant_number to at most " + std::to_string(kMaxCourantNumber));
   }
   if (parameters.nonlinear_iterations < 1) throw Error(subject, "nonlinear_iterations must be at least 1", "set it to 2");
   if (parameters.shapiro_filter_order < 0 || parameters.shapiro_filter_order % 2 != 0 || parameters.shapiro_filter_order > 16)

@@ -39,14 +39,25 @@ void BoussinesqSolver::save_state(std::ostream& out) const {
   write_pod(out, s.step_count);
   std::uint64_t checksum = hash_bytes(&s.time_s, sizeof s.time_s);
   checksum = hash_bytes(&s.step_count, sizeof s.step_count, checksum);
-  for (const auto* a : arrays) {
-    const std::uint64_t size = a->size();
+  // The solver writes a stream and knows no file: the caller that opened it names the file and the
+  // reason (bake_run.cpp's checkpoint does); this says how far the state got.
+  const auto stop_if_failed = [&](std::size_t arrays_written) {
+    if (!out)
+      throw Error("solver state",
+                  "writing the state failed after " + std::to_string(arrays_written) + " of " + std::to_string(arrays.size()) +
+                      " arrays: the output stream reported an error (a full disk, a closed or read-only file)",
+                  "free disk space and check the file the stream writes to");
+  };
+  stop_if_failed(0);
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    const std::uint64_t size = arrays[a]->size();
     write_pod(out, size);
-    out.write(reinterpret_cast<const char*>(a->data()), static_cast<std::streamsize>(size * sizeof(double)));
-    checksum = hash_bytes(a->data(), size * sizeof(double), checksum);
+    out.write(reinterpret_cast<const char*>(arrays[a]->data()), static_cast<std::streamsize>(size * sizeof(double)));
+    checksum = hash_bytes(arrays[a]->data(), size * sizeof(double), checksum);
+    stop_if_failed(a);
   }
   write_pod(out, checksum);
-  if (!out) throw Error("solver state", "writing the state failed (stream error)", "check free disk space and permissions");
+  stop_if_failed(arrays.size());
 }
 
 void BoussinesqSolver::load_state(std::istream& in) {

@@ -43,6 +43,12 @@ void accumulate_gram(const Eigen::MatrixXd& stripe, Eigen::MatrixXd& gram) {
 }  // namespace
 
 GramMatrices compute_gram_matrices(const sequence::SequenceReader& reader, const GramOptions& options) {
+  if (options.threads < 1)
+    throw Error(fmt::format("GramOptions::threads = {}", options.threads), "is not a thread count",
+                "give GramOptions::threads 1 or more");
+  if (options.memory_budget_bytes == 0)
+    throw Error("GramOptions::memory_budget_bytes = 0", "leaves no memory for a stripe of rows",
+                "give GramOptions::memory_budget_bytes a budget in bytes, e.g. 1 GiB");
   const GridGeometry& geometry = reader.geometry();
   const int frames = reader.frame_count(), columns = geometry.columns, rows = geometry.rows;
   const std::size_t bytes_per_row = static_cast<std::size_t>(columns) * frames * 3 * sizeof(double);
@@ -102,6 +108,9 @@ Eigen::MatrixXd pairwise_norms(const Eigen::MatrixXd& gram) {
 }  // namespace
 
 DistanceMatrices distances_from_gram(const GramMatrices& gram, double motion_weight) {
+  if (!(motion_weight >= 0 && std::isfinite(motion_weight)))
+    throw Error(fmt::format("motion weight delta of eq. 10 (TransitionOptions::motion_weight) = {}", motion_weight),
+                "is not a finite number >= 0", "give TransitionOptions::motion_weight a value in [0, inf), e.g. 1");
   DistanceMatrices d;
   d.motion_weight = motion_weight;
   d.height = pairwise_norms(gram.elevation);

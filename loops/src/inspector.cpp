@@ -1,5 +1,7 @@
 #include "nearshore/loops/inspector.hpp"
 
+#include <unistd.h>
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <limits>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/folder_lock.hpp"
 #include "nearshore/core/statistics.hpp"
 #include "nearshore/sequence/checksum.hpp"
 #include "nearshore/sequence/loops_file.hpp"
@@ -158,6 +161,32 @@ sequence::LoopsFile::Report stored_report(const LoopsReport& report) {
   return stored;
 }
 
+// Every LoopsOptions field in the range where it means something (NaN fails each test): a loop is
+// at least one frame long. A length that rounds to no frame, or to minus one, would index the
+// plans by length outside their vector (the crash of `--lengths-s -1`, issue 13). The transition
+// and Gram options are checked where they are used (build_transition_table, compute_gram_matrices).
+void check_options(const LoopsOptions& options, double frame_interval_s) {
+  const std::string one_frame = fmt::format("one frame ({} s in this sequence)", frame_interval_s);
+  for (double length_s : options.report_lengths_s)
+    if (!(std::isfinite(length_s) && length_s >= frame_interval_s))
+      throw Error(fmt::format("LoopsOptions::report_lengths_s holds {} s", length_s),
+                  "but a loop length must be at least " + one_frame,
+                  "give LoopsOptions::report_lengths_s loop lengths in seconds of at least " + one_frame);
+  if (!(std::isfinite(options.requested_loop_s) &&
+        (options.requested_loop_s == 0 || options.requested_loop_s >= frame_interval_s)))
+    throw Error(fmt::format("LoopsOptions::requested_loop_s = {} s", options.requested_loop_s),
+                "is neither 0 (no requested loop) nor a loop length of at least " + one_frame,
+                "give LoopsOptions::requested_loop_s 0 or a length in seconds of at least " + one_frame);
+  if (!(std::isfinite(options.max_crossfade_s) && options.max_crossfade_s >= 0))
+    throw Error(fmt::format("LoopsOptions::max_crossfade_s = {} s", options.max_crossfade_s),
+                "is not a duration (a finite number of seconds >= 0)",
+                "give LoopsOptions::max_crossfade_s a value in [0, inf), e.g. 2");
+  if (!(std::isfinite(options.period_crossfade_s) && options.period_crossfade_s >= 0))
+    throw Error(fmt::format("LoopsOptions::period_crossfade_s = {} s", options.period_crossfade_s),
+                "is not a duration (a finite number of seconds >= 0)",
+                "give LoopsOptions::period_crossfade_s a value in [0, inf), e.g. 10");
+}
+
 }  // namespace
 
 DetectedPeriod detect_period(const Eigen::MatrixXd& distances, double median_step, double frame_interval_s,
@@ -197,12 +226,22 @@ nlohmann::json LoopsReport::to_json() const {
 }
 
 LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& options) {
+  // One writer per folder (folder_lock.hpp), for the whole run: a bake rewriting the frames
+  // meanwhile would leave loop tables that vouch for frames they were not computed from. A run
+  // that writes nothing may read a folder it cannot write (a sequence on read-only media); a folder
+  // that is not there is the reader's to report.
+  std::optional<FolderLock> lock;
+  std::error_code not_a_folder;
+  if (fs::is_directory(sequence_folder, not_a_folder) &&
+      (options.write_tables || ::access(sequence_folder.c_str(), W_OK) == 0))
+    lock.emplace(sequence_folder, "analysing its loops");
   const sequence::SequenceReader reader(sequence_folder);
   if (options.verify) reader.verify_checksums();
   LoopsReport report;
   report.folder = sequence_folder;
   report.frame_count = reader.frame_count();
   report.frame_interval_s = reader.frame_interval_s();
+  check_options(options, report.frame_interval_s);
   report.loop_period_s = reader.manifest().loop_period_s;
   const fs::path manifest_path = sequence_folder / std::string(sequence::kManifestFile);
   const fs::path loops_path = sequence_folder / kLoopsFile, gram_path = sequence_folder / kGramFile;

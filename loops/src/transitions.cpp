@@ -15,6 +15,32 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// Every TransitionOptions field in the range where the table means something; NaN fails each test.
+void check_options(const TransitionOptions& o) {
+  auto refuse = [](const char* field, double value, const char* range, const char* why) {
+    throw Error(fmt::format("TransitionOptions::{} = {}", field, value), fmt::format("is outside {}: {}", range, why),
+                fmt::format("give TransitionOptions::{} a value in {}", field, range));
+  };
+  if (!(o.motion_weight >= 0 && std::isfinite(o.motion_weight)))
+    refuse("motion_weight", o.motion_weight, "[0, inf)", "delta of eq. 10 weighs a distance");
+  if (o.filter_half_width < 0) refuse("filter_half_width", o.filter_half_width, "[0, inf)", "it counts frames");
+  if (!(o.sigma >= 0 && std::isfinite(o.sigma)))
+    refuse("sigma", o.sigma, "[0, inf)", "sigma of eq. 11 scales costs (0: from sigma_factor)");
+  if (!(o.sigma_factor > 0 && std::isfinite(o.sigma_factor)))
+    refuse("sigma_factor", o.sigma_factor, "(0, inf)", "it scales the mean jump cost into sigma");
+  if (!(o.future_discount >= 0 && o.future_discount < 1))
+    refuse("future_discount", o.future_discount, "[0, 1)",
+           "alpha of the future cost; at 1 or more the future cost of a loop grows without bound");
+  if (!(o.cost_exponent > 0 && std::isfinite(o.cost_exponent)))
+    refuse("cost_exponent", o.cost_exponent, "(0, inf)", "p of the future cost");
+  if (o.candidates_per_frame < 1)
+    refuse("candidates_per_frame", o.candidates_per_frame, "[1, inf)", "with none kept there are no jumps");
+  if (o.min_jump_frames < 1) refuse("min_jump_frames", o.min_jump_frames, "[1, inf)", "it counts frames");
+  if (!(o.min_probability >= 0 && o.min_probability < 1))
+    refuse("min_probability", o.min_probability, "[0, 1)", "at 1 every transition but a certain one is pruned");
+  if (o.max_crossfade_frames < 0) refuse("max_crossfade_frames", o.max_crossfade_frames, "[0, inf)", "it counts frames");
+}
+
 }  // namespace
 
 Eigen::MatrixXd filter_distances(const Eigen::MatrixXd& distances, int half_width) {
@@ -109,6 +135,7 @@ int TransitionTable::first_playable_frame() const {
 }
 
 TransitionTable build_transition_table(const DistanceMatrices& distances, const TransitionOptions& options) {
+  check_options(options);
   const Eigen::MatrixXd& d = distances.combined;
   const int n = static_cast<int>(d.rows());
   const int m = options.filter_half_width;

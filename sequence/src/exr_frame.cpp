@@ -15,6 +15,9 @@
 #include <Imath/half.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
 #include <fstream>
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -136,6 +139,40 @@ void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::
   }
 }
 
+// ---- finite samples -------------------------------------------------------------------------------
+// A frame holds the state of a bake that ran to the end, so every sample is finite: the writer
+// refuses NaN and infinity, and a NaN or an infinity on disk is a damaged or altered file (or a
+// value beyond half's 65504 rounded to infinity). Downstream nothing would notice: the loop
+// builder takes NaN for a distance (a seam of R = 0), the player draws a wall. So each decoder
+// counts non-finite samples in the same pass that converts them (an exponent field of all ones:
+// 0x7c00 in a half, 0x7f800000 in a float), and only when the count is not zero looks for the cell.
+constexpr std::uint16_t kHalfExponent = 0x7c00;
+constexpr std::uint32_t kFloatExponent = 0x7f800000u;
+
+// Throws naming the frame file, the channel and the first non-finite cell of raster row `row`.
+// `values` is that row as decoded (`columns` samples), `geometry` the frame's grid.
+[[noreturn]] void throw_non_finite(const std::string& source, const GridGeometry& geometry, int channel,
+                                   const float* values, int row) {
+  int column = 0;
+  while (column + 1 < geometry.columns && std::isfinite(values[column])) ++column;
+  throw Error(source,
+              fmt::format("channel '{}' holds {} at cell (column {}, row {}; x {:.1f} m, y {:.1f} m): a frame "
+                          "holds only finite values",
+                          kChannelNames[channel], values[column], column, row, geometry.cell_centre_x_m(column),
+                          geometry.cell_centre_y_m(row)),
+              "the file was damaged or altered after the bake, or a value overflowed its half-float channel; "
+              "check the sequence with SequenceReader::verify_checksums and re-bake it (storing the channel as "
+              "float if its values exceed 65504)");
+}
+
+// Copies `count` little-endian floats into `target`; returns how many are NaN or infinite.
+int copy_floats_counting_non_finite(const unsigned char* source, float* target, int count) {
+  std::memcpy(target, source, static_cast<std::size_t>(count) * 4);
+  int non_finite = 0;
+  for (int k = 0; k < count; ++k) non_finite += (std::bit_cast<std::uint32_t>(target[k]) & kFloatExponent) == kFloatExponent;
+  return non_finite;
+}
+
 Raster<float>* selected_raster(Frame& frame, ChannelSelection selection, int channel) {
   switch (channel) {
     case 0: return selection.surface_elevation ? &frame.surface_elevation_m : nullptr;
@@ -222,26 +259,36 @@ void decode(Imf::InputFile& file, const std::string& source, const SequenceManif
     for (int line = 0; line < row_count; ++line) {
       float* target = &(*raster)(0, row_count - 1 - line);
       const std::size_t offset = static_cast<std::size_t>(line) * static_cast<std::size_t>(columns);
+      int non_finite = 0;
       if (stored_half[c]) {
-        const half* source = half_scratch[c].data() + offset;
-        for (int column = 0; column < columns; ++column) target[column] = source[column];
+        const half* samples = half_scratch[c].data() + offset;
+        for (int column = 0; column < columns; ++column) {
+          target[column] = samples[column];
+          non_finite += (samples[column].bits() & kHalfExponent) == kHalfExponent;
+        }
       } else {
-        std::copy_n(float_scratch[c].data() + offset, columns, target);
+        non_finite = copy_floats_counting_non_finite(
+            reinterpret_cast<const unsigned char*>(float_scratch[c].data() + offset), target, columns);
       }
+      if (non_finite) throw_non_finite(source, manifest.geometry, c, target, first_row + row_count - 1 - line);
     }
   }
 }
 
 
 
-// half -> float for a run of little-endian samples. x86-64 machines with F16C convert 8 at a time
-// (chosen at run time, so the build needs no -march flag); elsewhere Imath's table.
-void halves_to_floats_portable(const unsigned char* source, float* target, int count) {
+// half -> float for a run of little-endian samples, counting the NaN and infinite ones in the same
+// pass. x86-64 machines with F16C convert 8 at a time (chosen at run time, so the build needs no
+// -march flag); elsewhere Imath's table.
+int halves_to_floats_portable(const unsigned char* source, float* target, int count) {
+  int non_finite = 0;
   for (int k = 0; k < count; ++k) {
     std::uint16_t bits;
     std::memcpy(&bits, source + 2 * k, 2);
     target[k] = imath_half_to_float(bits);
+    non_finite += (bits & kHalfExponent) == kHalfExponent;
   }
+  return non_finite;
 }
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 // CPUID leaf 1, ECX bit 28 (AVX) and bit 29 (F16C). Asked directly: clang 14 (the libFuzzer build)
@@ -251,22 +298,24 @@ bool cpu_has_avx_and_f16c() {
   if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
   return (ecx & (1u << 28)) && (ecx & (1u << 29));
 }
-__attribute__((target("avx,f16c"))) void halves_to_floats_f16c(const unsigned char* source, float* target, int count) {
+__attribute__((target("avx,f16c"))) int halves_to_floats_f16c(const unsigned char* source, float* target, int count) {
+  const __m128i exponent = _mm_set1_epi16(static_cast<short>(kHalfExponent));
+  __m128i any_non_finite = _mm_setzero_si128();
   int k = 0;
-  for (; k + 8 <= count; k += 8)
-    _mm256_storeu_ps(target + k, _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(source + 2 * k))));
-  halves_to_floats_portable(source + 2 * k, target + k, count - k);
+  for (; k + 8 <= count; k += 8) {
+    const __m128i halves = _mm_loadu_si128(reinterpret_cast<const __m128i*>(source + 2 * k));
+    _mm256_storeu_ps(target + k, _mm256_cvtph_ps(halves));
+    any_non_finite = _mm_or_si128(any_non_finite, _mm_cmpeq_epi16(_mm_and_si128(halves, exponent), exponent));
+  }
+  return (_mm_movemask_epi8(any_non_finite) != 0) + halves_to_floats_portable(source + 2 * k, target + k, count - k);
 }
-void halves_to_floats(const unsigned char* source, float* target, int count) {
+int halves_to_floats(const unsigned char* source, float* target, int count) {
   static const bool has_f16c = cpu_has_avx_and_f16c();
-  if (has_f16c)
-    halves_to_floats_f16c(source, target, count);
-  else
-    halves_to_floats_portable(source, target, count);
+  return has_f16c ? halves_to_floats_f16c(source, target, count) : halves_to_floats_portable(source, target, count);
 }
 #else
-void halves_to_floats(const unsigned char* source, float* target, int count) {
-  halves_to_floats_portable(source, target, count);
+int halves_to_floats(const unsigned char* source, float* target, int count) {
+  return halves_to_floats_portable(source, target, count);
 }
 #endif
 
@@ -317,6 +366,7 @@ void decode_uncompressed(std::span<const std::byte> bytes, const Imf::Header& he
     Raster<float>* raster;
     bool is_half;
     std::size_t offset;
+    int channel;  // index into kChannelNames (-1: not one of them, skipped)
   };
   std::vector<Part> parts;
   std::size_t line_bytes = 0;
@@ -324,9 +374,13 @@ void decode_uncompressed(std::span<const std::byte> bytes, const Imf::Header& he
     const bool is_half = channel.channel().type == Imf::HALF;
     if (!is_half && channel.channel().type != Imf::FLOAT) throw corrupt("unexpected channel type");
     Raster<float>* raster = nullptr;
+    int index = -1;
     for (int c = 0; c < 4; ++c)
-      if (std::strcmp(channel.name(), kChannelNames[c]) == 0) raster = selected_raster(frame, selection, c);
-    parts.push_back({raster, is_half, line_bytes});
+      if (std::strcmp(channel.name(), kChannelNames[c]) == 0) {
+        raster = selected_raster(frame, selection, c);
+        index = c;
+      }
+    parts.push_back({raster, is_half, line_bytes, index});
     line_bytes += static_cast<std::size_t>(columns) * (is_half ? 2 : 4);
   }
   for (int c = 0; c < 4; ++c) {
@@ -348,11 +402,9 @@ void decode_uncompressed(std::span<const std::byte> bytes, const Imf::Header& he
       if (!part.raster) continue;
       float* target = &(*part.raster)(0, rows - 1 - line);
       const unsigned char* source_bytes = samples + part.offset;
-      if (part.is_half) {
-        halves_to_floats(source_bytes, target, columns);
-      } else {
-        std::memcpy(target, source_bytes, static_cast<std::size_t>(columns) * 4);
-      }
+      const int non_finite = part.is_half ? halves_to_floats(source_bytes, target, columns)
+                                          : copy_floats_counting_non_finite(source_bytes, target, columns);
+      if (non_finite) throw_non_finite(source, manifest.geometry, part.channel, target, rows - 1 - line);
     }
   }
   const auto* time = header.findTypedAttribute<Imf::DoubleAttribute>(kTimeAttribute);

@@ -59,8 +59,19 @@ std::vector<int> LoopSchedule::frames() const {
 }
 
 LoopSchedule schedule_loop(int start_frame, int length_frames, const std::vector<PlannedJump>& jumps) {
+  // A loop is at least one frame long and made of frames that exist; anything else is a plan that
+  // was never made (e.g. of a length that rounds to no frame) and would index outside the bake.
+  const std::string subject = fmt::format("loop of {} frames from frame {}", length_frames, start_frame);
+  const std::string fix = "plan loops of at least one frame (nearshore::loops::optimal_loop, period_loop)";
+  if (length_frames < 1) throw Error(subject, "is shorter than one frame", fix);
+  if (start_frame < 0) throw Error(subject, "starts before frame 0", fix);
+  for (const PlannedJump& jump : jumps)
+    if (jump.from < 0 || jump.to < 0 || jump.crossfade_frames < 0)
+      throw Error(subject, fmt::format("has a jump {} -> {} with a crossfade of {} frames", jump.from, jump.to,
+                                       jump.crossfade_frames),
+                  fix);
   LoopSchedule schedule;
-  schedule.shown.reserve(static_cast<std::size_t>(std::max(length_frames, 0)));
+  schedule.shown.reserve(static_cast<std::size_t>(length_frames));
   std::size_t next_jump = 0;
   int frame = start_frame;
   for (int step = 0; step < length_frames; ++step) {

@@ -12,12 +12,16 @@ namespace fs = std::filesystem;
 
 SequenceReader::SequenceReader(const fs::path& folder) : folder_(folder) {
   std::error_code ec;
-  if (!fs::is_directory(folder, ec))
-    throw Error(folder.string(), "is not a folder", "give the folder a bake wrote, its BakeOptions::output_folder");
+  const std::string fix = "give the folder a bake wrote, its BakeOptions::output_folder";
+  if (!fs::exists(folder, ec)) throw Error(folder.string(), "does not exist", fix);
+  if (!fs::is_directory(folder, ec)) throw Error(folder.string(), "is a file, not a sequence folder", fix);
   const fs::path manifest_path = folder / std::string(kManifestFile);
   if (!fs::exists(manifest_path, ec))
     throw Error(manifest_path.string(), "does not exist, so the bake never finished (the manifest is written last)",
                 "finish the bake, or continue it with BakeOptions::resume");
+  if (fs::is_directory(manifest_path, ec))
+    throw Error(manifest_path.string(), "is a folder, not the manifest file a bake writes",
+                "remove that folder, then bake the sequence again (or continue it with BakeOptions::resume)");
   const std::string text = read_file_bytes(manifest_path);
   manifest_ = parse_manifest(text, manifest_path.string());
 }

@@ -8,6 +8,8 @@
 #include "nearshore/bake/bake_bathymetry.hpp"
 #include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/bake/bake_time_series.hpp"
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
+#include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
@@ -147,6 +149,76 @@ TEST(Gauges, DamagedCsvIsNamed) {
   EXPECT_THROW(read_gauges_csv(write_text(folder / "a.csv", "time,g\n0,1\n")), Error);
   EXPECT_THROW(read_gauges_csv(write_text(folder / "b.csv", "t,g\n0,1,2\n")), Error);
   EXPECT_THROW(read_gauges_csv(write_text(folder / "c.csv", "t,g\n0,x\n")), Error);
+}
+
+// ---- Issue 13 item 6 and 9: absurd values in a case are refused with the value, the bound and why,
+// naming the case file's key, before the solver (or the bake) starts. ---------------------------------
+
+// The small flume case with its first `from` replaced by `to`.
+std::string flume_with(const std::string& from, const std::string& to) {
+  std::string text = testing::small_flume_case();
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(CaseBounds, ATinyTimeStepIsRefusedForItsStepCount) {
+  testing::expect_case_error(flume_with("courant_number = 0.5", "time_step_s = 1e-9"),
+                             {"key `time.time_step_s` = 1e-09 s", "makes 8e+09 solver steps over time.duration_s = 8 s",
+                              "more than the limit of 10000000", "give a longer time.time_step_s"});
+}
+
+TEST(CaseBounds, AHugeDurationIsRefusedForItsFrameCount) {
+  // As in the issue: duration_s = 1e9 s at 2 frames a second would be 5e8 frame files.
+  testing::expect_case_error(flume_with("duration_s = 8.000000", "duration_s = 1e9"),
+                             {"key `time.duration_s` = 1000000000 s", "time.output_interval_s = 0.5 s makes 2e+09 frames",
+                              "more than the limit of 1000000", "shorten time.duration_s"});
+  // Below the frame limit (8e5 frames) but 1.8e7 steps of the Courant-derived 0.0217 s step.
+  testing::expect_case_error(flume_with("duration_s = 8.000000", "duration_s = 4e5"),
+                             {"key `time.duration_s` = 400000 s makes 1.84e+07 solver steps", "time.courant_number = 0.5",
+                              "more than the limit of 10000000"});
+}
+
+TEST(CaseBounds, ATimeStepAboveTheStabilityLimitNamesTheKey) {
+  // sqrt(g 0.5 m) 0.2 s / 0.1 m = 4.4; the step is first reduced to 0.5 s / 3 to divide the frames.
+  testing::expect_case_error(flume_with("courant_number = 0.5", "time_step_s = 0.2"),
+                             {"key `time.time_step_s` = 0.2 s (reduced to 0.166667 s", "Courant number",
+                              "= 3.69", "above 2, the solver's stability limit", "give time.time_step_s <= 0.0903 s"});
+  testing::expect_case_error(flume_with("courant_number = 0.5", "courant_number = 3"),
+                             {"key `time.courant_number` = 3 is above 2, the solver's stability limit",
+                              "give time.courant_number <= 2"});
+}
+
+TEST(CaseBounds, TheSolverStillRefusesAnUnstableStepNamingItsField) {
+  // The library-level guard behind the case reader, for callers that build SolverParameters themselves.
+  const HarbourGrid harbour = flume_from_profile(12.0, 0.6, 0.1, {{0.0, 0.5}, {12.0, 0.5}}, "test");
+  SolverParameters parameters;
+  parameters.time_step_s = 0.2;
+  try {
+    BoussinesqSolver solver(harbour, parameters, WaveMaker{});
+    ADD_FAILURE() << "an unstable time step was accepted";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("SolverParameters::time_step_s = 0.2 s gives a Courant number"), std::string::npos) << message;
+    EXPECT_NE(message.find("above the stability limit 2"), std::string::npos) << message;
+  }
+}
+
+TEST(CaseBounds, DepthsBeyondTheDeepestOceanAreRefused) {
+  // A flume profile 20 km deep.
+  testing::expect_case_error(flume_with("profile = [[0.0, 0.5], [12.0, 0.5]]", "profile = [[0.0, 20000.0], [12.0, 0.5]]"),
+                             {"key `bathymetry.profile` gives a depth of", "deeper than 11000 m, the deepest water on Earth"});
+  // A harbour grid (depth.exr) with a 6e28 m deep cell, as a GeoTIFF with an undeclared fill value
+  // gave before `bathy` refused it: the bake ran with a 1e-14 s step and never finished.
+  const auto folder = testing::scratch_folder();
+  HarbourGrid grid = flume_from_profile(12.0, 0.6, 0.1, {{0.0, 0.5}, {12.0, 0.5}}, "test");
+  grid.still_water_depth_m(40, 2) = 6.0e28f;
+  write_harbour_grid(folder / "depth.exr", grid);
+  testing::expect_case_error(flume_with("kind = \"profile\"\nlength_m = 12.0\nwidth_m = 0.6\nspacing_m = 0.1\n"
+                                        "profile = [[0.0, 0.5], [12.0, 0.5]]",
+                                        "kind = \"harbour_grid\"\nfile = \"depth.exr\""),
+                             {"key `bathymetry.file` gives a depth of 6e+28 m at cell (column 40, row 2; 4.05 m, 0.25 m "
+                              "from the south-west corner), deeper than 11000 m"});
 }
 
 }  // namespace

@@ -120,3 +120,56 @@ TEST(BathyBadInput, GridLargerThanTheMachinesMemory) {
   EXPECT_NE(message.find("memory"), std::string::npos) << message;
   EXPECT_NE(message.find("BathyRequest::spacing_m"), std::string::npos) << message;
 }
+
+// Issue 13 item 6: a GeoTIFF holding depths up to 6e28 m (an undeclared fill value) passed, and the
+// bake then ran with a 1e-14 s time step. Depths are bounded by the Challenger Deep (sources.hpp).
+TEST(BathyBadInput, AbsurdDepthsInARaster) {
+  const auto folder = fresh_test_folder("");
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  GDALAllRegister();
+  const fs::path absurd = folder / "absurd.tif";
+  {
+    GDALDataset* source = GDALDataset::Open(files.depth_geotiff.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+    ASSERT_NE(source, nullptr);
+    GDALDataset* copy = GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(absurd.c_str(), source, FALSE, nullptr, nullptr, nullptr);
+    GDALClose(source);
+    ASSERT_NE(copy, nullptr);
+    std::vector<float> block(5 * 2, 6.0e28f);  // the demo survey is positive down: depths of 6e28 m
+    block[7] = 2.0e4f;                         // and one of 20 km
+    ASSERT_EQ(copy->GetRasterBand(1)->RasterIO(GF_Write, 30, 10, 5, 2, block.data(), 5, 2, GDT_Float32, 0, 0), CE_None);
+    GDALClose(copy);
+  }
+  const std::string message = bathy_error(request_for({absurd}), folder / "out");
+  EXPECT_NE(message.find("absurd.tif"), std::string::npos) << message;
+  EXPECT_NE(message.find("10 cells hold depths"), std::string::npos) << message;
+  EXPECT_NE(message.find("up to 6e+28 m"), std::string::npos) << message;
+  EXPECT_NE(message.find("deeper than 11000 m, the deepest water on Earth"), std::string::npos) << message;
+  EXPECT_NE(message.find("pixel (30, 10)"), std::string::npos) << message;
+}
+
+TEST(BathyBadInput, AbsurdSoundingInATextFile) {
+  const auto folder = fresh_test_folder("");
+  std::ofstream(folder / "soundings.xyz") << "lon lat depth\n-122.42 47.27 12.5\n-122.41 47.28 -95000\n";
+  const std::string message = bathy_error(request_for({folder / "soundings.xyz"}), folder / "out");
+  EXPECT_NE(message.find("soundings.xyz"), std::string::npos) << message;
+  EXPECT_NE(message.find("line 3 gives a depth of -95000 m"), std::string::npos) << message;
+  EXPECT_NE(message.find("higher than 9000 m above the datum"), std::string::npos) << message;
+}
+
+TEST(BathyBadInput, ImplausibleLevelsNameTheField) {
+  const auto folder = fresh_test_folder("");
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  auto request = request_for({files.depth_geotiff});
+  request.water_level_m = 150.0;
+  std::string message = bathy_error(request, folder / "out");
+  EXPECT_NE(message.find("BathyRequest::water_level_m = 150 m"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside -30 .. 30 m"), std::string::npos) << message;
+  request = request_for({files.depth_geotiff});
+  request.minimum_depth_m = 2e4;
+  message = bathy_error(request, folder / "out");
+  EXPECT_NE(message.find("BathyRequest::minimum_depth_m = 20000 m"), std::string::npos) << message;
+  request = request_for({files.depth_geotiff});
+  request.land_elevation_m = std::numeric_limits<double>::quiet_NaN();
+  message = bathy_error(request, folder / "out");
+  EXPECT_NE(message.find("BathyRequest::land_elevation_m = nan m"), std::string::npos) << message;
+}

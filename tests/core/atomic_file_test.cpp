@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "nearshore/core/error.hpp"
 
@@ -82,4 +86,25 @@ TEST(RequireReadableFile, MissingFileMessageNamesFileAndFix) {
   } catch (const nearshore::Error& e) {
     EXPECT_EQ(std::string(e.what()), "/no/such/chart.000: does not exist; give the path of an S-57 chart");
   }
+}
+
+// A writer killed between its temporary file and the rename leaves NAME.tmp-PID; the next writer
+// of the folder removes exactly those (issue 13), nothing that merely looks similar.
+TEST(AtomicFile, RemovesOnlyStaleTemporaryFiles) {
+  const fs::path folder = fresh_folder("stale");
+  for (const char* name : {"frame_000003.exr.tmp-4711", "checkpoint.bin.tmp-12", "notes.tmp-draft", ".tmp-5", "frame.exr",
+                           "a.tmp-", "b.tmp-12345678901"})
+    std::ofstream(folder / name) << "x";
+  fs::create_directories(folder / "sub.tmp-7");  // a folder is no temporary file
+  EXPECT_EQ(nearshore::remove_stale_temporary_files(folder), 2);
+  std::vector<std::string> left;
+  for (const auto& item : fs::directory_iterator(folder)) left.push_back(item.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{".tmp-5", "a.tmp-", "b.tmp-12345678901", "frame.exr", "notes.tmp-draft", "sub.tmp-7"}));
+  EXPECT_EQ(nearshore::remove_stale_temporary_files(folder / "missing"), 0);
+}
+
+TEST(AtomicFile, AFullDiskIsSaidInWords) {
+  EXPECT_NE(nearshore::write_failure_reason(ENOSPC).find("(the disk is full)"), std::string::npos);
+  EXPECT_EQ(nearshore::write_failure_reason(EACCES).find("full"), std::string::npos);
 }

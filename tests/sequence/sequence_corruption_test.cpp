@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include "nearshore/core/error.hpp"
@@ -120,6 +121,66 @@ TEST(SequenceCorruption, HeaderAttributeClaimingMoreThanTheFileIsRejectedBeforeA
   const std::string rows_message = error_of([&] { reader.read_frame_rows(0, 0, 3, frame, ChannelSelection::all()); });
   EXPECT_NE(rows_message.find("claims"), std::string::npos) << rows_message;
 }
+
+// Issue 13 item 4: a NaN or an infinity in a frame must stop the reader even without checksum
+// verification (the loop inspector took a NaN distance for a perfect seam, the player drew a wall).
+// Both decoders (NONE: nearshore's own; ZIP: OpenEXR's) and the row-stripe reader are checked, on
+// frames the sequence writer wrote: an elevation of 1e6 m is a finite float, which the half channel
+// stores as +infinity; and a NaN written over one float flux sample of an uncompressed frame.
+class NonFiniteFrame : public ::testing::TestWithParam<Compression> {};
+
+TEST_P(NonFiniteFrame, IsRejectedNamingTheFrameChannelAndCell) {
+  const auto folder = fresh_folder(std::string("non_finite_") + std::string(compression_name(GetParam())));
+  const GridGeometry geometry = test_geometry(19, 11);
+  {
+    SequenceWriter writer(folder, test_harbour(geometry),
+                          test_description(FrameEncoding{GetParam(), Precision::kHalf, Precision::kFloat, Precision::kHalf}));
+    for (int index = 0; index < 3; ++index) {
+      TestFields fields(geometry, index);
+      if (index == 1) fields.eta(5, 3) = 1.0e6f;  // beyond half's largest value 65504: stored as inf
+      writer.write_frame(index, fields.fields());
+    }
+    writer.finish(3);
+  }
+  const SequenceReader reader(folder);
+  const std::string message = error_of([&] { reader.read_frame(1); });
+  EXPECT_NE(message.find("frame_000001.exr"), std::string::npos) << message;
+  EXPECT_NE(message.find("channel 'surface_elevation' holds inf at cell (column 5, row 3; x 500022.0 m, y 4300014.0 m)"),
+            std::string::npos)
+      << message;
+  // Only the channels asked for are decoded, and only those are checked.
+  EXPECT_NO_THROW(reader.read_frame(1, ChannelSelection{false, true, true, true}));
+  EXPECT_NO_THROW(reader.read_frame(0));
+  EXPECT_NO_THROW(reader.read_frame(2));
+  // The row-stripe reader (OpenEXR's decoder whatever the compression) names the cell in grid rows.
+  Frame stripe;
+  const std::string rows_message = error_of([&] { reader.read_frame_rows(1, 2, 4, stripe, ChannelSelection::all()); });
+  EXPECT_NE(rows_message.find("frame_000001.exr"), std::string::npos) << rows_message;
+  EXPECT_NE(rows_message.find("(column 5, row 3;"), std::string::npos) << rows_message;
+  EXPECT_NO_THROW(reader.read_frame_rows(1, 4, 7, stripe, ChannelSelection::all()));
+
+  if (GetParam() != Compression::kNone) return;
+  // An uncompressed frame altered on disk: frame 2's flux_x sample at cell (11, 7) becomes a NaN.
+  // The flux is stored as float, so the sample's four bytes appear as they are in the raster.
+  const fs::path path = folder / "frame_000002.exr";
+  std::string bytes = read_file_bytes(path);
+  const float sample = TestFields(geometry, 2).p(11, 7);
+  const std::string pattern(reinterpret_cast<const char*>(&sample), sizeof sample);
+  const std::size_t at = bytes.find(pattern);
+  ASSERT_NE(at, std::string::npos);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(bytes.data() + at, &nan, sizeof nan);
+  overwrite(path, bytes);
+  const std::string nan_message = error_of([&] { reader.read_frame(2); });
+  EXPECT_NE(nan_message.find("frame_000002.exr: channel 'flux_x' holds nan at cell (column 11, row 7;"), std::string::npos)
+      << nan_message;
+  const std::string nan_rows_message = error_of([&] { reader.read_frame_rows(2, 0, 11, stripe, ChannelSelection::all()); });
+  EXPECT_NE(nan_rows_message.find("channel 'flux_x' holds nan at cell (column 11, row 7;"), std::string::npos)
+      << nan_rows_message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Codecs, NonFiniteFrame, ::testing::Values(Compression::kNone, Compression::kZip),
+                         [](const auto& info) { return std::string(compression_name(info.param)); });
 
 // A deterministic mutation fuzz of both readers (the libFuzzer targets in tests/sequence/fuzz run
 // the same entry points for longer): random byte flips, insertions, deletions and truncations of a

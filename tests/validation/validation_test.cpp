@@ -48,6 +48,7 @@ bake::BakeSummary bake_case(const std::string& name, const std::string& run_name
   const bake::BakeCase c = bake::parse_bake_case(document, case_file(name));
   bake::BakeOptions options;
   options.output_folder = output_folder(run_name);
+  options.overwrite = true;  // the test owns its folder: a second ctest run bakes it again
   const bake::BakeSummary summary = bake::run_bake(c, options);
   std::printf("%s: %lld cells, %ld steps of %.5f s, %.1f s wall, %.3g cell-updates/s\n", run_name.c_str(), summary.cells,
               summary.total_steps, summary.time_step_s, summary.wall_time_s, summary.cell_updates_per_s);

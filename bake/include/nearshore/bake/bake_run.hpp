@@ -18,6 +18,12 @@ namespace nearshore::bake {
 struct BakeOptions {
   std::filesystem::path output_folder;
   bool resume = false;  ///< continue from output_folder/checkpoint.bin (which must exist and match the case)
+  /// Replace what output_folder holds: a complete sequence (manifest.json) or the checkpoint of an
+  /// unfinished bake. Without it (and without resume) run_bake refuses such a folder untouched.
+  bool overwrite = false;
+  /// Bake even when the estimate (bake_estimate.hpp) exceeds the memory this machine has available
+  /// or the free disk of output_folder.
+  bool allow_over_budget = false;
 };
 
 struct BakeSummary {
@@ -35,6 +41,9 @@ struct BakeSummary {
   std::uint64_t seed = 0;
   double loop_period_s = 0.0;
   std::filesystem::path output_folder, gauges_csv;
+  double estimated_memory_bytes = 0.0;  ///< what the bake expected to need (bake_estimate.hpp)
+  double estimated_disk_bytes = 0.0;
+  double peak_resident_bytes = 0.0;     ///< the whole process's peak resident set (getrusage), its code and libraries included
   /// null unless the case has [deep_water]: cascades, grid size, Hs, coefficient bytes, and when the
   /// field drives the wave maker its component count, the variance fraction it carries, the carried
   /// Hs and the blending zone (deep_water_coupling.hpp); the tile set when baked.
@@ -43,9 +52,17 @@ struct BakeSummary {
 };
 
 /// Runs the bake. Shows a ProgressBar (simulated time, wall time, ETA) on stderr.
-/// Throws nearshore::Error for bad output folders, a checkpoint that does not match the case, and
-/// when the solver becomes unstable (naming time, cell, depth and what to change; the last good
-/// checkpoint is kept).
+/// Before it allocates the solver or touches the folder it checks the whole plan and refuses (a
+/// nearshore::Error naming the case file or the folder, the numbers and the fix):
+///   - a step or frame count no bake can hold (a mistyped duration), or a plan with no frame;
+///   - more memory or disk than the machine has (estimate_bake_resources), unless allow_over_budget;
+///   - a folder another process writes into (it holds the folder's lock, folder_lock.hpp: named by
+///     PID and command), held by run_bake until it returns;
+///   - a folder holding a complete sequence or a checkpoint, unless overwrite (or resume).
+/// It then removes the temporary files that killed writers left in the folder.
+/// Throws nearshore::Error for bad output folders, a checkpoint that does not match the case, a
+/// write that fails (naming the file and the reason, e.g. a full disk), and when the solver
+/// becomes unstable (naming time, cell, depth and what to change; the last good checkpoint is kept).
 BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options);
 
 /// Path of the checkpoint in an output folder.

@@ -41,6 +41,13 @@ struct StructureStyle {
 /// The defaults per category (S-57 SLCONS CATSLC mapped to names in sources.cpp; GeoJSON `category`).
 std::map<std::string, StructureStyle> default_structure_styles();
 
+/// Bound of |BathyRequest::water_level_m|: still water more than 30 m above or below the sounding
+/// datum is no tide or surge on Earth (the largest tidal range, the Bay of Fundy's, is 16 m).
+inline constexpr double kMaxWaterLevel_m = 30.0;
+
+/// What build_harbour_grid grids. Levels in metres are bounded by what the Earth has: water_level_m
+/// within +-kMaxWaterLevel_m, minimum_depth_m in 0 .. kDeepestPlausibleDepth_m, land_elevation_m in
+/// 0 .. kHighestPlausibleElevation_m (sources.hpp), and so is every depth the inputs give.
 struct BathyRequest {
   std::vector<std::filesystem::path> inputs;  ///< highest priority first
   double spacing_m = 10.0;

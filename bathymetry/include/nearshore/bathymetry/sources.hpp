@@ -17,6 +17,14 @@
 
 namespace nearshore::bathymetry {
 
+/// Plausibility bounds of every depth an input gives (metres, positive down, after its sign is
+/// applied): no water on Earth is deeper than the Challenger Deep (10 935 m) and no land higher than
+/// Everest (8 849 m). A value beyond them is a nodata value that is not declared as such, a wrong
+/// unit or a wrong sign; gridded as a depth it would make the bake's time step vanish (a 6e28 m
+/// deep cell gave a 1e-14 s step).
+inline constexpr double kDeepestPlausibleDepth_m = 11000.0;
+inline constexpr double kHighestPlausibleElevation_m = 9000.0;
+
 /// How the values of a raster or text sounding file are signed.
 enum class DepthSign {
   kAuto,          ///< from metadata (NEARSHORE_DEPTH_SIGN, NetCDF `positive`, band name); else see read_source
@@ -87,7 +95,9 @@ struct ReadOptions {
 
 /// Reads one input. Throws nearshore::Error naming the file, the problem and the fix: missing
 /// file, nothing GDAL can read, a .000 that is not an S-57 chart, an S-57 cell with no soundings,
-/// raster cells that are NaN without being declared nodata, an empty file.
+/// raster cells that are NaN without being declared nodata, an empty file, and any depth, sounding,
+/// contour or depth-area value deeper than kDeepestPlausibleDepth_m or higher than
+/// kHighestPlausibleElevation_m (the message gives the value, where it is, and the bound).
 /// Sign default when nothing says: rasters are elevations (GEBCO's convention), text soundings depths.
 SourceData read_source(const std::filesystem::path& path, const ReadOptions& options);
 

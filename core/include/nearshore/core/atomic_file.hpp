@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace nearshore {
@@ -21,5 +22,18 @@ void write_text_atomically(const std::filesystem::path& final_path, std::string_
 
 /// Creates `folder` (and parents) or throws Error naming it and the reason.
 void create_output_folder(const std::filesystem::path& folder);
+
+/// Whether `name` is a temporary name of write_file_atomically ("frame_000012.exr.tmp-4711").
+bool is_temporary_file_name(std::string_view name);
+
+/// Removes the temporary files (see is_temporary_file_name) that writers killed in `folder` left
+/// behind (a kill -9 or power loss skips the cleanup above); not in sub-folders. Call it only while
+/// holding the folder's lock (folder_lock.hpp), when no other writer can be using them. Returns how
+/// many were removed; a missing folder holds none.
+int remove_stale_temporary_files(const std::filesystem::path& folder);
+
+/// strerror(error_number), and for ENOSPC / EDQUOT that the disk (or the quota) is full, in words:
+/// what a write failure message says after the file's name.
+std::string write_failure_reason(int error_number);
 
 }  // namespace nearshore

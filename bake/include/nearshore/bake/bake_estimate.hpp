@@ -1,0 +1,61 @@
+#pragma once
+// What a bake will need before it allocates or writes anything: peak resident memory and disk,
+// from the case alone, and the comparison with what the machine has (issue 13: a 20000 x 20000
+// grid used to climb past 8 GB before anyone said anything, a larger one ended in std::bad_alloc).
+// run_bake() refuses a case whose estimate exceeds the machine unless BakeOptions::allow_over_budget.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "nearshore/bake/bake_case.hpp"
+
+namespace nearshore::bake {
+
+/// Peak resident memory of a bake per grid cell, bytes, measured (bake_estimate.cpp says how):
+/// the solver's state, work and static arrays, the frame being encoded, the harbour grid (530 to
+/// 574 B measured, rounded up).
+inline constexpr double kBakeBytesPerCell = 640.0;
+/// What a bake allocates whatever its grid: worker threads and their stacks, the case, buffers,
+/// bytes (the whole bake_runner process peaked at 9 MiB on a tiny grid on 2 cores; more cores,
+/// more stacks). The code and libraries of the process are not counted: they are resident before
+/// the bake starts (the `nearshore` executable alone holds about 65 MiB).
+inline constexpr double kBakeFixedBytes = 16.0 * 1024 * 1024;
+
+struct BakeResourceEstimate {
+  long long cells = 0;
+  /// Counts in double: a mistyped duration may exceed every integer type.
+  double steps = 0;             ///< time steps of the whole bake
+  double frames = 0;            ///< frames it writes
+  double gauge_samples = 0;     ///< rows of gauges.csv (each also held in memory and in each checkpoint)
+  double frame_bytes = 0;       ///< one frame file (as uncompressed: an upper bound for the compressed encodings)
+  double checkpoint_bytes = 0;  ///< one checkpoint.bin (0 without checkpoints)
+  double memory_bytes = 0;      ///< memory the bake allocates at its peak (compared with MemAvailable)
+  /// The finished folder (frames, harbour grid, gauges.csv) plus, while it runs, the checkpoint and
+  /// the temporary copy written beside it. Not counted: the deep-water coefficient files and tile
+  /// set of a case with [deep_water] (small next to the frames at bake resolutions).
+  double disk_bytes = 0;
+
+  /// One line for people: "2.4 GiB of memory (4000000 cells x 640 B + 16.0 MiB), 36.5 GiB of disk (1201 frames of 30.5 MiB, ...)".
+  std::string describe() const;
+};
+
+/// The estimate for `bake_case`; `resume` adds what reading a checkpoint holds for a moment.
+BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool resume = false);
+
+/// MemAvailable of /proc/meminfo, bytes; nullopt where the system does not say.
+std::optional<double> available_memory_bytes();
+/// Space an unprivileged writer may use on the file system that holds `folder` (statvfs f_bavail),
+/// bytes; a folder that does not exist yet is asked about through its nearest existing parent.
+std::optional<double> free_disk_bytes(const std::filesystem::path& folder);
+
+/// Throws nearshore::Error (the case file, both numbers, the fix) when the estimate's memory exceeds
+/// available_memory_bytes() or its disk exceeds free_disk_bytes(output_folder) plus
+/// `replaced_bytes` (files in the folder the bake replaces, whose space it gets back).
+void check_bake_resources(const BakeCase& bake_case, const BakeResourceEstimate& estimate,
+                          const std::filesystem::path& output_folder, double replaced_bytes = 0);
+
+/// "512 B", "3.4 MiB", "1.2 GiB", "2.0e+03 TiB": a size as people read it.
+std::string format_bytes(double bytes);
+
+}  // namespace nearshore::bake

@@ -1,0 +1,152 @@
+// Resource estimate of a bake (bake_estimate.hpp).
+//
+// kBakeBytesPerCell, how it was measured (2026-11-24, Release build, this 2-core machine): the peak
+// resident set (getrusage ru_maxrss) of bake_runner processes baking one flume case (0.1 m cells,
+// frames, checkpoints and gauges written) at several sizes, less that of a tiny one, per added
+// cell: 552 B at 1000 x 200 and 530 B at 1500 x 300 cells (3 s bakes), 572-574 B at 1000 x 100
+// (the test below, 0.5 s). Counting the arrays gives the same picture: the solver holds 36 double
+// arrays of one value per cell or face (9 of state, 27 of work: solver_implementation.hpp; 288 B),
+// two StaticFrame layouts of 11 double arrays each (boussinesq_sweep.hpp; 176 B) and its two float
+// output rasters (8 B); while it is built it also holds 4 double copies of depth and porosity
+// (32 B); the bake adds the two cell-centred flux rasters (8 B), the frame being encoded (4
+// half-float channel copies and the file in memory, 16 B) and the harbour grid (13 B): 541 B. The
+// constant rounds the largest measurement up by about 10 %; the test
+// BakeEstimate.CoversTheMeasuredPeakOfARealBake fails when a new array outgrows it.
+#include "nearshore/bake/bake_estimate.hpp"
+
+#include <sys/statvfs.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/sequence/sequence_format.hpp"
+
+namespace nearshore::bake {
+namespace fs = std::filesystem;
+namespace {
+
+// The solver arrays a checkpoint holds (boussinesq_state.cpp), and that resuming reads into
+// temporary arrays before it swaps them in.
+constexpr double kStateArrays = 9;
+// Bytes of one gauge value while gauges.csv is written: the double, its vector's growth slack
+// and its text ("{:.9g}," up to 16 characters).
+constexpr double kGaugeValueMemoryBytes = 8 + 8 + 16;
+constexpr double kGaugeValueTextBytes = 16;
+// OpenEXR's header (attributes, channel list) of a frame, generously.
+constexpr double kFrameHeaderBytes = 1024;
+
+double channel_bytes(sequence::Precision precision) { return precision == sequence::Precision::kHalf ? 2.0 : 4.0; }
+
+}  // namespace
+
+std::string format_bytes(double bytes) {
+  if (!std::isfinite(bytes)) return fmt::format("{} B", bytes);
+  constexpr const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB"};
+  int unit = 0;
+  while (bytes >= 1024 && unit < 4) bytes /= 1024, ++unit;
+  if (unit == 0) return fmt::format("{:.0f} B", bytes);
+  if (bytes >= 1e4) return fmt::format("{:.3g} {}", bytes, units[unit]);
+  return fmt::format("{:.1f} {}", bytes, units[unit]);
+}
+
+std::string BakeResourceEstimate::describe() const {
+  std::string text = fmt::format("{} of memory ({} cells x {:.0f} B + {}), {} of disk ({:.0f} frames of {}",
+                                 format_bytes(memory_bytes), cells, kBakeBytesPerCell, format_bytes(kBakeFixedBytes),
+                                 format_bytes(disk_bytes), frames, format_bytes(frame_bytes));
+  if (checkpoint_bytes > 0) text += fmt::format(", checkpoints of {}", format_bytes(checkpoint_bytes));
+  return text + ")";
+}
+
+BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool resume) {
+  BakeResourceEstimate estimate;
+  const GridGeometry& geometry = bake_case.harbour.geometry;
+  const double cells = static_cast<double>(geometry.columns) * static_cast<double>(geometry.rows);
+  estimate.cells = static_cast<long long>(cells);
+  const double dt = bake_case.solver.time_step_s;
+  const BakeTiming& timing = bake_case.timing;
+  // The step plan of run_bake, in double (no rounding to whole steps: an estimate).
+  estimate.steps = std::round(timing.duration_s / dt);
+  const double first_frame = std::round(timing.spin_up_s / dt);
+  const double per_frame = std::max(1.0, std::round(timing.output_interval_s / dt));
+  const double per_gauge = timing.gauge_interval_s > 0 ? std::max(1.0, std::round(timing.gauge_interval_s / dt)) : 1.0;
+  estimate.frames = estimate.steps >= first_frame ? std::floor((estimate.steps - first_frame) / per_frame) + 1 : 0;
+  estimate.gauge_samples = std::floor(estimate.steps / per_gauge) + 1;
+  const double gauge_values = estimate.gauge_samples * (1.0 + static_cast<double>(bake_case.gauges.size()));
+
+  const sequence::FrameEncoding encoding;  // run_bake writes the default encoding
+  const double frame_bytes_per_cell = channel_bytes(encoding.surface_elevation) + 2 * channel_bytes(encoding.flux) +
+                                      channel_bytes(encoding.breaking);
+  // Scan-line files: each line has an offset-table entry and a line header (y, size), 8 bytes each.
+  estimate.frame_bytes = cells * frame_bytes_per_cell + 16.0 * geometry.rows + kFrameHeaderBytes;
+  if (timing.checkpoint_interval_s > 0) {
+    double names = 8;
+    for (const GaugeSpec& gauge : bake_case.gauges) names += 8 + static_cast<double>(gauge.name.size());
+    // bake_run.cpp (magic, fingerprint, gauges), boussinesq_state.cpp (header, 9 sized arrays, checksum).
+    estimate.checkpoint_bytes = 16 + 8 + names + 8 + gauge_values * 8 + 36 + kStateArrays * (8 + cells * 8) + 8;
+  }
+
+  estimate.memory_bytes = kBakeFixedBytes + cells * kBakeBytesPerCell + gauge_values * kGaugeValueMemoryBytes +
+                          (resume ? kStateArrays * cells * 8 : 0.0);
+  const double harbour_grid_bytes = cells * 16 + kFrameHeaderBytes;  // depth.exr: 4 float channels, ZIP at most that
+  const double gauges_csv_bytes = gauge_values * kGaugeValueTextBytes;
+  // While under way, the checkpoint and gauges.csv are rewritten beside their last copies.
+  estimate.disk_bytes = estimate.frames * estimate.frame_bytes + harbour_grid_bytes + 2 * gauges_csv_bytes +
+                        2 * estimate.checkpoint_bytes;
+  return estimate;
+}
+
+std::optional<double> available_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, unit;
+  double value = 0;
+  while (meminfo >> key >> value) {
+    std::getline(meminfo, unit);
+    if (key == "MemAvailable:") return value * 1024;  // the kernel reports kB (KiB)
+  }
+  return std::nullopt;
+}
+
+std::optional<double> free_disk_bytes(const fs::path& folder) {
+  std::error_code ec;
+  fs::path existing = fs::absolute(folder, ec);
+  if (ec) return std::nullopt;
+  while (!fs::exists(existing, ec)) {
+    if (!existing.has_relative_path()) return std::nullopt;
+    existing = existing.parent_path();
+  }
+  struct statvfs status {};
+  if (::statvfs(existing.c_str(), &status) != 0) return std::nullopt;
+  return static_cast<double>(status.f_bavail) * static_cast<double>(status.f_frsize);
+}
+
+void check_bake_resources(const BakeCase& bake_case, const BakeResourceEstimate& estimate, const fs::path& output_folder,
+                          double replaced_bytes) {
+  std::vector<std::string> problems;
+  if (const auto memory = available_memory_bytes(); memory && estimate.memory_bytes > *memory)
+    problems.push_back(fmt::format("needs about {} of memory ({} cells x {:.0f} B per cell + {}) but this machine has {} "
+                                   "available (MemAvailable, /proc/meminfo)",
+                                   format_bytes(estimate.memory_bytes), estimate.cells, kBakeBytesPerCell,
+                                   format_bytes(kBakeFixedBytes), format_bytes(*memory)));
+  if (const auto disk = free_disk_bytes(output_folder); disk && estimate.disk_bytes > *disk + replaced_bytes) {
+    std::string parts = fmt::format("{:.4g} frames of {}", estimate.frames, format_bytes(estimate.frame_bytes));
+    if (estimate.checkpoint_bytes > 0) parts += fmt::format(", checkpoints of {}", format_bytes(estimate.checkpoint_bytes));
+    problems.push_back(fmt::format("needs about {} of disk ({}) but {} is free in {}{}", format_bytes(estimate.disk_bytes),
+                                   parts, format_bytes(*disk), output_folder.string(),
+                                   replaced_bytes > 0 ? fmt::format(" (plus {} of files the bake replaces)", format_bytes(replaced_bytes))
+                                                      : std::string()));
+  }
+  if (problems.empty()) return;
+  std::string problem = "the bake " + problems.front();
+  for (std::size_t i = 1; i < problems.size(); ++i) problem += ", and " + problems[i];
+  throw Error(bake_case.case_file.string(), problem + "; nothing was written and the solver was not allocated",
+              "use a coarser grid or a smaller domain, a shorter time.duration_s or a longer time.output_interval_s, "
+              "free memory or disk space or write into another folder; or set BakeOptions::allow_over_budget to bake "
+              "anyway (the estimate is an upper bound)");
+}
+
+}  // namespace nearshore::bake

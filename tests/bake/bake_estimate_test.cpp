@@ -1,0 +1,125 @@
+// The resource estimate of a bake (bake_estimate.hpp): a grid that cannot fit is refused before
+// anything is allocated, with the numbers; the bytes per cell still cover a real bake's peak.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "bake_test_support.hpp"
+#include "nearshore/bake/bake_estimate.hpp"
+#include "nearshore/bake/bake_run.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/core/progress.hpp"
+
+namespace nearshore::bake {
+namespace {
+namespace fs = std::filesystem;
+using testing::scratch_folder;
+using testing::small_flume_case;
+using testing::write_text;
+
+double resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  double pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * static_cast<double>(::sysconf(_SC_PAGESIZE));
+}
+
+TEST(BakeEstimate, CountsFramesCheckpointsAndCells) {
+  const auto folder = scratch_folder();
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", small_flume_case(8.0, 2.0)));
+  const BakeResourceEstimate estimate = estimate_bake_resources(c);
+  EXPECT_EQ(estimate.cells, 720);
+  EXPECT_EQ(estimate.frames, 13);
+  EXPECT_NEAR(estimate.steps * c.solver.time_step_s, 8.0, 1e-6);
+  // Half-float channels: 8 bytes per cell and a header.
+  EXPECT_GT(estimate.frame_bytes, 720 * 8);
+  EXPECT_LT(estimate.frame_bytes, 720 * 8 + 2048);
+  EXPECT_GT(estimate.checkpoint_bytes, 9 * 720 * 8);
+  EXPECT_GT(estimate.disk_bytes, 13 * estimate.frame_bytes + 2 * estimate.checkpoint_bytes);
+  EXPECT_NEAR(estimate.memory_bytes, kBakeFixedBytes + 720 * kBakeBytesPerCell, 1e6);
+  EXPECT_GT(estimate_bake_resources(c, true).memory_bytes, estimate.memory_bytes);  // reading a checkpoint
+  EXPECT_NE(estimate.describe().find("13 frames of"), std::string::npos) << estimate.describe();
+  EXPECT_EQ(format_bytes(512), "512 B");
+  EXPECT_EQ(format_bytes(3.5 * 1024 * 1024), "3.5 MiB");
+}
+
+// A 20000 x 20000 grid (4e8 cells: about 240 GiB) is refused at once, before the solver or the
+// folder exist. The case's harbour grid is a small flume whose geometry says 20000 x 20000: the
+// check reads only the geometry, and the test stays cheap (the case readers build the full grid).
+TEST(BakeEstimate, AHugeGridIsRefusedFastWithTheNumbers) {
+  ProgressBar::set_quiet(true);
+  const auto folder = scratch_folder();
+  BakeCase c = read_bake_case(write_text(folder / "case.toml", small_flume_case(8.0, 2.0)));
+  c.harbour.geometry.columns = 20000;
+  c.harbour.geometry.rows = 20000;
+  const BakeResourceEstimate estimate = estimate_bake_resources(c);
+  const auto available = available_memory_bytes();
+  ASSERT_TRUE(available.has_value()) << "/proc/meminfo has no MemAvailable";
+  if (estimate.memory_bytes <= *available) GTEST_SKIP() << "this machine has " << format_bytes(*available) << " available";
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  const double resident_before = resident_bytes();
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    run_bake(c, options);
+    FAIL() << "a bake of 4e8 cells was not refused";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    for (const std::string fragment : {"case.toml: the bake needs about ", "GiB of memory (400000000 cells x 640 B per cell",
+                                       "available (MemAvailable, /proc/meminfo)", "BakeOptions::allow_over_budget"})
+      EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " missing in: " << message;
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_LT(resident_bytes() - resident_before, 64e6);
+  EXPECT_FALSE(fs::exists(options.output_folder));
+}
+
+// The peak resident set of real bakes (child processes, getrusage) at two grid sizes: the memory
+// each added cell costs must stay within kBakeBytesPerCell (measured 530-574 B), and not fall far
+// below it either (then the constant would refuse bakes that fit).
+TEST(BakeEstimate, CoversTheMeasuredPeakOfARealBake) {
+  const auto folder = scratch_folder();
+  const auto flume = [&](const std::string& name, double length_m, double width_m) {
+    const std::string l = std::to_string(length_m), w = std::to_string(width_m);
+    return write_text(folder / name,
+                      "[bathymetry]\nkind = \"profile\"\nlength_m = " + l + "\nwidth_m = " + w +
+                          "\nspacing_m = 0.1\nprofile = [[0.0, 0.5], [" + l + ", 0.5]]\n"
+                          "[time]\nduration_s = 0.5\nspin_up_s = 0.0\noutput_interval_s = 0.5\ncourant_number = 0.5\n"
+                          "checkpoint_interval_s = 0.25\n"
+                          "[wave_maker]\nkind = \"regular\"\nfacing = \"west\"\nsource_line_m = 3.0\nheight_m = 0.02\n"
+                          "period_s = 2.0\nramp_time_s = 2.0\n"
+                          "[[sponges]]\nside = \"west\"\nwidth_m = 2.0\n[[sponges]]\nside = \"east\"\nwidth_m = 2.0\n"
+                          "[[gauges]]\nname = \"g1\"\nx_m = 5.0\ny_m = 0.3\n");
+  };
+  const auto peak_bytes = [&](const fs::path& case_file, const fs::path& output) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl(BAKE_RUNNER_PATH, BAKE_RUNNER_PATH, case_file.c_str(), output.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    int status = 0;
+    struct rusage usage {};
+    wait4(pid, &status, 0, &usage);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << case_file;
+    return static_cast<double>(usage.ru_maxrss) * 1024;
+  };
+  const fs::path small = flume("small.toml", 12.0, 1.0), large = flume("large.toml", 100.0, 10.0);
+  const double small_peak = peak_bytes(small, folder / "small"), large_peak = peak_bytes(large, folder / "large");
+  const BakeCase large_case = read_bake_case(large);
+  const double added_cells = static_cast<double>(large_case.harbour.geometry.cell_count()) -
+                             static_cast<double>(read_bake_case(small).harbour.geometry.cell_count());
+  const double bytes_per_cell = (large_peak - small_peak) / added_cells;
+  RecordProperty("measured_bytes_per_cell", std::to_string(bytes_per_cell));
+  EXPECT_LE(bytes_per_cell, kBakeBytesPerCell) << "a bake now needs more memory per cell: measure it again (bake_estimate.cpp)";
+  EXPECT_GE(bytes_per_cell, 0.6 * kBakeBytesPerCell) << "a bake now needs less memory per cell: measure it again";
+  EXPECT_GE(estimate_bake_resources(large_case).memory_bytes, large_peak);
+}
+
+}  // namespace
+}  // namespace nearshore::bake
