@@ -37,10 +37,11 @@ void add_bake_command(CLI::App& app) {
   const FlagTable flags = {{"BakeOptions::resume", "--resume"},
                            {"BakeOptions::output_folder", "-o"},
                            {"BakeOptions::overwrite", "--overwrite"},
-                           {"BakeOptions::allow_over_budget", "--allow-over-budget"}};
+                           {"BakeOptions::allow_over_budget", "--allow-over-budget"},
+                           {"CaseReadOptions::allow_over_budget", "--allow-over-budget"}};
   command->callback(naming_flags_in_errors(flags, [options]() {
     if (options->json) ProgressBar::set_quiet(true);
-    const bake::BakeCase bake_case = bake::read_bake_case(options->case_file);
+    const bake::BakeCase bake_case = bake::read_bake_case(options->case_file, {options->allow_over_budget});
     bake::BakeOptions bake_options;
     bake_options.output_folder = options->output_folder;
     bake_options.resume = options->resume;

@@ -118,7 +118,7 @@ double resolve_time_step(double requested_time_step_s, double courant_number, co
   return output_interval_s / std::max(1.0, steps_per_output);
 }
 
-BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
+BakeCase parse_bake_case(const json& document, const fs::path& case_file, const CaseReadOptions& options) {
   const std::string subject = case_file.string();
   const fs::path base = case_file.parent_path();
   TableReader root(document, "", subject);
@@ -129,7 +129,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
 
   TableReader bathymetry = root.table("bathymetry");
   if (!root.has("bathymetry")) root.fail("bathymetry", "is missing", "add a [bathymetry] table (docs/commands/bake.md)");
-  bake_case.harbour = read_bathymetry(bathymetry, base);
+  bake_case.harbour = read_bathymetry(bathymetry, base, options);
   bathymetry.finish();
   apply_porous_blocks(root.tables("porous_blocks"), bake_case.harbour);
   const GridGeometry& geometry = bake_case.harbour.geometry;
@@ -237,6 +237,8 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file) {
 
 json read_case_document(const fs::path& case_file) { return parse_case_document(case_file); }
 
-BakeCase read_bake_case(const fs::path& case_file) { return parse_bake_case(parse_case_document(case_file), case_file); }
+BakeCase read_bake_case(const fs::path& case_file, const CaseReadOptions& options) {
+  return parse_bake_case(parse_case_document(case_file), case_file, options);
+}
 
 }  // namespace nearshore::bake

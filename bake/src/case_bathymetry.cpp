@@ -1,5 +1,6 @@
 // [bathymetry] and [[porous_blocks]] of a case file (docs/commands/bake.md).
 #include "nearshore/bake/bake_bathymetry.hpp"
+#include "nearshore/bake/bake_estimate.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -42,7 +43,7 @@ void check_plausible_depths(TableReader& bathymetry, const std::string& key, con
 
 }  // namespace
 
-HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base) {
+HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const CaseReadOptions& options) {
   const std::size_t kind = bathymetry.choice("kind", std::nullopt, {"harbour_grid", "profile", "berkhoff_shoal"});
   HarbourGrid grid;
   if (kind == 0) {
@@ -58,6 +59,18 @@ HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base) {
     if (length_m / spacing_m > 20000 || width_m / spacing_m > 20000)
       bathymetry.fail(bathymetry.full("spacing_m"), "makes more than 20000 cells along a side",
                       "use a larger spacing_m (cells of at least 1/20000 of the flume)");
+    // The bake's memory estimate (bake_estimate.hpp) before the grid is allocated: a grid the
+    // machine cannot bake is refused in a moment, not after the case reader has built it.
+    const double cells = std::ceil(length_m / spacing_m) * std::ceil(width_m / spacing_m);
+    const double needed_bytes = cells * kBakeBytesPerCell + kBakeFixedBytes;
+    const std::optional<double> available_bytes = available_memory_bytes();
+    if (!options.allow_over_budget && available_bytes && needed_bytes > *available_bytes)
+      bathymetry.fail(bathymetry.full("spacing_m"),
+                      fmt::format("makes {:.0f} cells, whose bake needs about {} of memory ({:.0f} B per cell), "
+                                  "but the machine has {} available",
+                                  cells, format_bytes(needed_bytes), kBakeBytesPerCell, format_bytes(*available_bytes)),
+                      "use a larger spacing_m or a smaller flume; or, if the estimate is too pessimistic, set "
+                      "CaseReadOptions::allow_over_budget and BakeOptions::allow_over_budget");
     if (kind == 1) {
       grid = flume_from_profile(length_m, width_m, spacing_m,
                                 bathymetry.pairs("profile", "[[x_m, depth_m], ...] with increasing x"),

@@ -238,7 +238,7 @@ double deepest_still_water_m(const HarbourGrid& grid);
 // ---- sections ------------------------------------------------------------------------------------
 /// [bathymetry] (case_bathymetry.cpp). Refuses a grid with a non-finite depth or one deeper than
 /// kDeepestPlausibleDepth_m, naming the key the grid came from.
-HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base);
+HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const CaseReadOptions& options);
 /// [[porous_blocks]]: rectangles of porous structure (rubble mounds) or walls over any bathymetry.
 void apply_porous_blocks(std::vector<TableReader> blocks, HarbourGrid& grid);
 

@@ -80,6 +80,31 @@ TEST(BakeEstimate, AHugeGridIsRefusedFastWithTheNumbers) {
   EXPECT_FALSE(fs::exists(options.output_folder));
 }
 
+// The same refusal reached through the case file: a 20000 x 20000 generated flume is refused by the
+// case reader before it builds the grid (it used to build 5 GB of harbour grid first), in a moment.
+TEST(BakeEstimate, AHugeGeneratedGridIsRefusedByTheCaseReaderBeforeItIsBuilt) {
+  const auto folder = scratch_folder();
+  std::string text = small_flume_case(8.0, 2.0);
+  const std::string grid = "length_m = 12.0\nwidth_m = 0.6\nspacing_m = 0.1\n";
+  text.replace(text.find(grid), grid.size(), "length_m = 20000.0\nwidth_m = 20000.0\nspacing_m = 1.0\n");
+  const auto available = available_memory_bytes();
+  ASSERT_TRUE(available.has_value());
+  if (4e8 * kBakeBytesPerCell <= *available) GTEST_SKIP() << "this machine has " << format_bytes(*available) << " available";
+  const double resident_before = resident_bytes();
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    (void)read_bake_case(write_text(folder / "huge.toml", text));
+    FAIL() << "a case of 4e8 cells was read";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    for (const std::string fragment : {"huge.toml", "bathymetry.spacing_m", "400000000 cells", "available",
+                                       "CaseReadOptions::allow_over_budget"})
+      EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " missing in: " << message;
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_LT(resident_bytes() - resident_before, 64e6);
+}
+
 // The peak resident set of real bakes (child processes, getrusage) at two grid sizes: the memory
 // each added cell costs must stay within kBakeBytesPerCell (measured 530-574 B), and not fall far
 // below it either (then the constant would refuse bakes that fit).

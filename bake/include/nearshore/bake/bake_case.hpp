@@ -66,9 +66,17 @@ struct BakeCase {
   int deep_water_tile_set_cascade = 0;
 };
 
+/// What reading a case may be told by its caller.
+struct CaseReadOptions {
+  /// A generated grid (kind "profile" or "berkhoff_shoal") whose bake would need more memory than
+  /// the machine has (bake_estimate.hpp) is refused before the grid is allocated, unless this is set
+  /// (as BakeOptions::allow_over_budget is for the run).
+  bool allow_over_budget = false;
+};
+
 /// Reads and checks a case file (.toml or .json). Relative paths inside it are relative to the
 /// case file's folder. Throws nearshore::Error(case file, "key `a.b` ...", fix) on any problem.
-BakeCase read_bake_case(const std::filesystem::path& case_file);
+BakeCase read_bake_case(const std::filesystem::path& case_file, const CaseReadOptions& options = {});
 
 /// The case file as a JSON document (TOML converted, integers kept apart from floats), unchecked:
 /// for tools and tests that adjust a case (e.g. a coarser grid) before parse_bake_case().
@@ -76,7 +84,8 @@ nlohmann::json read_case_document(const std::filesystem::path& case_file);
 
 /// The same from an already parsed document (tests, and JSON given in memory). `case_file` is used
 /// for messages and to resolve relative paths.
-BakeCase parse_bake_case(const nlohmann::json& document, const std::filesystem::path& case_file);
+BakeCase parse_bake_case(const nlohmann::json& document, const std::filesystem::path& case_file,
+                         const CaseReadOptions& options = {});
 
 /// The time step used: the requested one (time_step_s, or courant_number * dx / sqrt(g d_max) with
 /// d_max the deepest wet cell), reduced to the largest value that divides `output_interval_s` into
