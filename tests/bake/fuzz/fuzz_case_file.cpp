@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+
+#include "../../support/fuzz_edits.hpp"
 #include <vector>
 
 #include "../../../bake/src/case_reader.hpp"
@@ -77,27 +79,6 @@ void check_seeds_parse() {
 // The numbers an edit may put in place of one in the text.
 const char* const kExtremes[] = {"0", "-1", "1e308", "1e-300", "inf", "nan", "2147483648", "-0.0", "1e9", "3"};
 
-std::string edited(std::string text, const std::uint8_t* data, std::size_t size) {
-  for (std::size_t k = 0; k + 3 <= size; k += 3) {
-    const std::size_t at = (static_cast<std::size_t>(data[k]) << 8 | data[k + 1]) % (text.size() + 1);
-    const std::uint8_t op = data[k + 2];
-    if (op == 0) {
-      text.resize(at);  // a cut
-    } else if (op < 16) {
-      // The number at or after `at` becomes an extreme one.
-      std::size_t start = at;
-      while (start < text.size() && !std::isdigit(static_cast<unsigned char>(text[start]))) ++start;
-      std::size_t end = start;
-      while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '.' ||
-                                   text[end] == '-' || text[end] == '+'))
-        ++end;
-      if (start < text.size()) text.replace(start, end - start, kExtremes[op % std::size(kExtremes)]);
-    } else if (at < text.size()) {
-      text[at] = static_cast<char>(text[at] ^ op);
-    }
-  }
-  return text;
-}
 
 }  // namespace
 
@@ -115,9 +96,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (mode < 2)
     text.assign(reinterpret_cast<const char*>(data), size);
   else if (mode == 2)
-    text = edited(seed, data, size);
+    text = nearshore::fuzzing::edited(seed, data, size, kExtremes);
   else  // the same seed as JSON, edited as JSON text
-    text = edited(detail::parse_case_text(seed, detail::CaseSyntax::kToml, "seed").dump(), data, size);
+    text = nearshore::fuzzing::edited(detail::parse_case_text(seed, detail::CaseSyntax::kToml, "seed").dump(), data, size, kExtremes);
   if (std::getenv("FUZZ_CASE_PRINT")) std::fprintf(stderr, "---- case text ----\n%s\n----\n", text.c_str());
   try {
     parse_bake_case(detail::parse_case_text(text, syntax, case_file.string()), case_file);

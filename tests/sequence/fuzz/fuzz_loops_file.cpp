@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "../../support/fuzz_edits.hpp"
+
 #include "nearshore/core/error.hpp"
 #include "nearshore/sequence/loops_file.hpp"
 
@@ -72,26 +74,6 @@ std::string make_seed() {
 
 const char* const kExtremes[] = {"0", "-1", "1e308", "1e400", "2147483648", "-2147483649", "0.5", "nan", "40", "39"};
 
-std::string edited(std::string text, const std::uint8_t* data, std::size_t size) {
-  for (std::size_t k = 0; k + 3 <= size; k += 3) {
-    const std::size_t at = (static_cast<std::size_t>(data[k]) << 8 | data[k + 1]) % (text.size() + 1);
-    const std::uint8_t op = data[k + 2];
-    if (op == 0) {
-      text.resize(at);  // a cut
-    } else if (op < 16) {  // the number at or after `at` becomes an extreme one
-      std::size_t start = at;
-      while (start < text.size() && !std::isdigit(static_cast<unsigned char>(text[start]))) ++start;
-      std::size_t end = start;
-      while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '.' ||
-                                   text[end] == '-' || text[end] == '+'))
-        ++end;
-      if (start < text.size()) text.replace(start, end - start, kExtremes[op % std::size(kExtremes)]);
-    } else if (at < text.size()) {
-      text[at] = static_cast<char>(text[at] ^ op);
-    }
-  }
-  return text;
-}
 
 }  // namespace
 
@@ -99,7 +81,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 1) return 0;
   static const std::string seed = make_seed();
   const bool raw = data[0] % 2 == 0;
-  const std::string text = raw ? std::string(reinterpret_cast<const char*>(data + 1), size - 1) : edited(seed, data + 1, size - 1);
+  const std::string text = raw ? std::string(reinterpret_cast<const char*>(data + 1), size - 1) : nearshore::fuzzing::edited(seed, data + 1, size - 1, kExtremes);
   try {
     parse_loops_file(text, "loops.json");
   } catch (const Error&) {
