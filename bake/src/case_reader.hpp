@@ -36,10 +36,8 @@ inline constexpr double kDegree = std::numbers::pi / 180.0;
 /// No water on Earth is deeper than the Challenger Deep (10 935 m): a deeper cell is a fill value,
 /// a wrong unit or a wrong sign (bathymetry/ refuses such inputs with the same bound).
 inline constexpr double kDeepestPlausibleDepth_m = 11000.0;
-/// The solver's stability limit of the Courant number sqrt(g d_max) dt / dx: beyond it the iterated
-/// explicit terms stop converging (boussinesq_solver.cpp, docs/solver.md). Checked here so that the
-/// message names the case file's key.
-inline constexpr double kMaxCourantNumber = 2.0;
+/// The solver's stability limit, checked here first so that the message names the case file's key.
+using boussinesq::kMaxCourantNumber;
 /// At most this many solver steps: 1e7 steps of a 300 x 300 grid are about a day on one core at
 /// the solver's ~1e7 cell updates per second (docs/solver.md); more is a mistyped time or grid.
 inline constexpr double kMaxSolverSteps = 1e7;

@@ -26,12 +26,8 @@ namespace nearshore::boussinesq {
 
 using namespace nearshore::ocean;  // wave components, sea states, linear waves
 
-using detail::StaticFrame;
-using detail::SweepScratch;
-
 namespace {
 
-constexpr double kMaxCourantNumber = 2.0;  // beyond it the iterated explicit terms stop converging (docs/solver.md)
 
 std::size_t index(int c, int r, int cols) { return static_cast<std::size_t>(r) * cols + c; }
 

@@ -75,6 +75,11 @@ struct WaveMaker {
   std::vector<double> series_time_s, series_elevation_m;  ///< kTimeSeries: eta(t) at the source line
 };
 
+/// The stability limit of the Courant number sqrt(g d_max) dt / dx: beyond it the iterated explicit
+/// terms stop converging (docs/solver.md). The solver refuses a larger step; the bake's case reader
+/// checks the same limit first, so that its message names the case file's key.
+inline constexpr double kMaxCourantNumber = 2.0;
+
 struct SolverParameters {
   double time_step_s = 0.0;           ///< 0 = from courant_number
   double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
