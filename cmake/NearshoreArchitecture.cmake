@@ -4,6 +4,7 @@
 #   ocean, sequence, plot -> core; boussinesq -> ocean; bathymetry -> core, plot;
 #   bake -> boussinesq, ocean, sequence; loops -> sequence, ocean, plot; playback -> sequence, ocean;
 #   tools -> all. Never: playback to bathymetry, bake, boussinesq, loops or plot; no library to tools.
+#   runtime -> sequence, ocean (GL-free: streaming, deep water, CPU queries); playback -> runtime.
 set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core:"
   "nearshore_plot:nearshore_core"
@@ -14,7 +15,8 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_bake:nearshore_boussinesq,nearshore_ocean,nearshore_sequence,nearshore_core"
   "nearshore_loops:nearshore_sequence,nearshore_ocean,nearshore_plot,nearshore_core"
   "nearshore_sequence_vdb:nearshore_sequence,nearshore_core"
-  "nearshore_playback:nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
+  "nearshore_runtime:nearshore_sequence,nearshore_ocean,nearshore_core"
+  "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
 
 function(nearshore_check_architecture)
   foreach(rule IN LISTS NEARSHORE_ALLOWED_ARROWS)

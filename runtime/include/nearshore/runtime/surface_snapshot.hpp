@@ -1,0 +1,77 @@
+#pragma once
+// What the sea looks like at one displayed instant: the contract between the streaming engine
+// (streaming_engine.hpp, which fills it), the GPU renderer (playback/, which uploads and draws it)
+// and the CPU surface queries (surface_sampler.hpp, which evaluate it). All three read the SAME
+// snapshot with the SAME formulas (the GLSL in shaders/ is the twin of surface_sampler.cpp), so a
+// ship's buoyancy computed on the CPU sees the water the viewer draws, without a GPU read-back.
+//
+// Frame: the SITE frame, metres east (x) and north (y) of the harbour grid's south-west corner
+// (GridGeometry origin_x_m, origin_y_m), z up from the still-water level. Projected coordinates
+// (UTM, ~4e6 m) lose half a metre in a float; the site frame keeps millimetres over 100 km. The
+// deep-water field's x = 0, y = 0 is the same corner (sequence/deep_water_section.hpp coupling).
+//
+// The surface shown at a site point p and display time t:
+//   harbour(p)  = (1 - f_h) H_from(p) + f_h H_to(p)                 bilinear in the cell-centred rasters
+//   deep(p)     = (1 - f_d) sum_c D_from,c(p) + f_d sum_c D_to,c(p) bilinear in each periodic cascade tile
+//   shown(p)    = w(p) harbour(p) + (1 - w(p)) deep(p)               w = harbour_weight(site, p)
+// Keyframes are immutable once published and shared (std::shared_ptr<const ...>), so a snapshot
+// stays valid on any thread for as long as it is held, whatever the engine does next.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/core/raster.hpp"
+#include "nearshore/ocean/deep_water.hpp"
+#include "nearshore/sequence/loop_playback.hpp"
+
+namespace nearshore::runtime {
+
+/// One step of the playback plan, decoded (and crossfade-blended as planned): cell-centred
+/// rasters of the harbour grid's size, row 0 south.
+struct HarbourKeyframe {
+  std::uint64_t serial = 0;      ///< unique for the engine's life: a renderer uploads each serial once
+  long long plan_step = 0;       ///< index of the step in the endless plan
+  sequence::BlendSource shown;   ///< the frame(s) and crossfade weight this step shows
+  bool held = false;             ///< a bad frame was replaced by the previous good keyframe
+  Raster<float> surface_elevation_m, flux_x_m2_s, flux_y_m2_s, breaking;
+};
+
+/// The deep-water field at one keyframe time: every cascade's tile (ocean::DeepWaterFrame:
+/// eta, choppy displacement, slopes and displacement derivatives).
+struct DeepWaterKeyframe {
+  std::uint64_t serial = 0;
+  double display_time_s = 0.0;   ///< the display time it was synthesised for
+  std::vector<ocean::DeepWaterFrame> cascades;
+};
+
+/// Where the harbour is shown and how it fades into the deep water. Static for a sequence.
+struct HarbourSite {
+  HarbourGrid harbour;           ///< depth, land, porosity (geometry: spacing, size; origin = site (0, 0))
+  double width_m = 0.0, height_m = 0.0;  ///< columns * spacing, rows * spacing
+  /// The bake's blending record (sequence DeepWaterBlendingRecord): on the wave maker's side the
+  /// baked weight rises as sin^2 from start_m to start_m + width_m inland of the source line.
+  /// axis 0 = x, 1 = y; inward_sign +1 when waves come from the west/south (s grows with x or y).
+  int source_axis = 1;
+  double inward_sign = 1.0;
+  double source_line_m = 0.0, blend_start_m = 0.0, blend_width_m = 0.0;
+  /// The other open edges of the rectangle fade to the deep water over this width (sin^2), so the
+  /// rectangle has no visible edge where the bake's absorbing layers damp its waves.
+  double edge_fade_m = 0.0;
+  double choppiness = 1.0;       ///< lambda of the deep water's horizontal displacement
+};
+
+/// w(p) in [0, 1]: the harbour's weight at site point (x, y) (0 outside the rectangle).
+double harbour_weight(const HarbourSite& site, double x_m, double y_m);
+
+/// Everything drawn at one displayed instant.
+struct SurfaceSnapshot {
+  double display_time_s = 0.0;
+  std::shared_ptr<const HarbourSite> site;                 ///< null: no harbour (open sea only)
+  std::shared_ptr<const HarbourKeyframe> harbour_from, harbour_to;
+  double harbour_fraction = 0.0;                           ///< f_h
+  std::shared_ptr<const DeepWaterKeyframe> deep_from, deep_to;  ///< null: flat sea beyond the harbour
+  double deep_fraction = 0.0;                              ///< f_d
+};
+
+}  // namespace nearshore::runtime
