@@ -76,7 +76,7 @@ void write_survey_geotiff(const fs::path& path, const DemoHarbourOptions& o, con
   geometry.origin_x_m = frame.origin_easting_m;
   geometry.origin_y_m = frame.origin_northing_m;
   const MapProjection projection = MapProjection::utm(frame.zone, frame.northp);
-  geometry.crs_wkt = projection.crs_wkt();
+  geometry.crs_wkt = crs_wkt(projection);
   geometry.projection = projection.to_json();
   Raster<float> depth(geometry.columns, geometry.rows);
   for (int row = 0; row < geometry.rows; ++row)

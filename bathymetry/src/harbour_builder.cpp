@@ -79,7 +79,7 @@ GridGeometry lay_grid(const std::array<double, 4>& box_m, double spacing_m, cons
                 "use a finer BathyRequest::spacing_m or a larger BathyRequest::bbox_lon_lat");
   g.columns = static_cast<int>(columns);
   g.rows = static_cast<int>(rows);
-  g.crs_wkt = projection.crs_wkt();
+  g.crs_wkt = crs_wkt(projection);
   g.projection = projection.to_json();
   return g;
 }
@@ -113,7 +113,7 @@ std::array<double, 4> projected_extent(const SourceData& source, const MapProjec
   wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   std::unique_ptr<OGRCoordinateTransformation> to_wgs84(OGRCreateCoordinateTransformation(&raster_crs, &wgs84));
   OGRSpatialReference grid_crs;
-  grid_crs.importFromWkt(projection.crs_wkt().c_str());
+  grid_crs.importFromWkt(crs_wkt(projection).c_str());
   const bool same_crs = grid_crs.IsSame(&raster_crs);
   const auto& gt = raster.geotransform;
   std::array<double, 4> box{INFINITY, INFINITY, -INFINITY, -INFINITY};

@@ -69,8 +69,8 @@ TEST(BathyFormats, TextSoundingsListedFirstWinOverTheRaster) {
   request.spacing_m = 20.0;
   const auto result = nb::build_harbour_grid(request);
   const auto& g = result.grid.geometry;
-  const auto inside = nb::grid_position_of(g, {lon0 + 0.002, lat0 + 0.001});
-  const auto outside = nb::grid_position_of(g, {lon0 - 0.002, lat0 + 0.001});
+  const auto inside = nearshore::grid_position_of(g, {lon0 + 0.002, lat0 + 0.001});
+  const auto outside = nearshore::grid_position_of(g, {lon0 - 0.002, lat0 + 0.001});
   // Natural-neighbour interpolation of equal soundings is exactly that value inside their hull.
   EXPECT_FLOAT_EQ(result.grid.still_water_depth_m(std::lround(inside.column), std::lround(inside.row)), 42.0f);
   EXPECT_LT(result.grid.still_water_depth_m(std::lround(outside.column), std::lround(outside.row)), 20.0f);

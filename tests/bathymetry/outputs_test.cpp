@@ -47,7 +47,7 @@ DemoRun run_demo(const std::filesystem::path& folder) {
 // Local site coordinates (metres from the demo's south-west corner) of a grid cell centre.
 std::pair<double, double> site_xy(const DemoRun& run, int column, int row) {
   const auto& g = run.result.grid.geometry;
-  const auto centre = nb::MapProjection::utm(51, true).forward({run.site.centre_longitude_deg, run.site.centre_latitude_deg});
+  const auto centre = nearshore::MapProjection::utm(51, true).forward({run.site.centre_longitude_deg, run.site.centre_latitude_deg});
   return {g.cell_centre_x_m(column) - (centre.x_m - 0.5 * run.site.width_m),
           g.cell_centre_y_m(row) - (centre.y_m - 0.5 * run.site.height_m)};
 }
@@ -86,7 +86,7 @@ TEST(BathyOutputs, DemoGridMatchesTheSiteAndReadsBackEverywhere) {
   EXPECT_GT(water_cells, 2000);
 
   // Breakwater (rubble mound, n = 0.45) on the west arm at x = 420 m, y = 700 m.
-  const auto centre = nb::MapProjection::utm(51, true).forward({run.site.centre_longitude_deg, run.site.centre_latitude_deg});
+  const auto centre = nearshore::MapProjection::utm(51, true).forward({run.site.centre_longitude_deg, run.site.centre_latitude_deg});
   const int arm_column = static_cast<int>((centre.x_m - 800.0 + 420.0 - g.origin_x_m) / g.spacing_m);
   const int arm_row = static_cast<int>((centre.y_m - 600.0 + 700.0 - g.origin_y_m) / g.spacing_m);
   // The arm lies on the boundary between columns arm_column - 1 and arm_column, and its 20 m crest

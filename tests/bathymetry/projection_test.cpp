@@ -17,34 +17,34 @@ namespace nb = nearshore::bathymetry;
 
 namespace {
 
-nearshore::GridGeometry grid_over(const nb::MapProjection& projection, nb::LonLat centre) {
+nearshore::GridGeometry grid_over(const nearshore::MapProjection& projection, nearshore::LonLat centre) {
   nearshore::GridGeometry g;
-  const nb::ProjectedPoint c = projection.forward(centre);
+  const nearshore::ProjectedPoint c = projection.forward(centre);
   g.columns = 1500;
   g.rows = 1000;
   g.spacing_m = 10.0;
   g.origin_x_m = std::floor((c.x_m - 7500.0) / 10.0) * 10.0;
   g.origin_y_m = std::floor((c.y_m - 5000.0) / 10.0) * 10.0;
   g.projection = projection.to_json();
-  g.crs_wkt = projection.crs_wkt();
+  g.crs_wkt = nb::crs_wkt(projection);
   return g;
 }
 
 // Geodesic distance in metres between two places (Karney 2013).
-double metres_between(nb::LonLat a, nb::LonLat b) {
+double metres_between(nearshore::LonLat a, nearshore::LonLat b) {
   double s12 = 0;
   GeographicLib::Geodesic::WGS84().Inverse(a.latitude_deg, a.longitude_deg, b.latitude_deg, b.longitude_deg, s12);
   return s12;
 }
 
-void expect_round_trip_below_1mm(const nb::MapProjection& projection, nb::LonLat centre) {
+void expect_round_trip_below_1mm(const nearshore::MapProjection& projection, nearshore::LonLat centre) {
   const nearshore::GridGeometry g = grid_over(projection, centre);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> offset(-0.07, 0.07);
   double worst_m = 0;
   for (int k = 0; k < 2000; ++k) {
-    const nb::LonLat place{centre.longitude_deg + offset(random), centre.latitude_deg + 0.7 * offset(random)};
-    const nb::LonLat back = nb::lon_lat_of(g, nb::grid_position_of(g, place));
+    const nearshore::LonLat place{centre.longitude_deg + offset(random), centre.latitude_deg + 0.7 * offset(random)};
+    const nearshore::LonLat back = nearshore::lon_lat_of(g, nearshore::grid_position_of(g, place));
     worst_m = std::max(worst_m, metres_between(place, back));
   }
   // The bound is 1 mm; GeographicLib's series are exact to ~5 nm, so a failure here means
@@ -56,49 +56,49 @@ void expect_round_trip_below_1mm(const nb::MapProjection& projection, nb::LonLat
 }  // namespace
 
 TEST(Projection, UtmRoundTripThroughGridBelowOneMillimetre) {
-  const nb::LonLat tacoma{-122.45, 47.28};
-  const nb::MapProjection utm = nb::MapProjection::utm_for(tacoma);
+  const nearshore::LonLat tacoma{-122.45, 47.28};
+  const nearshore::MapProjection utm = nearshore::MapProjection::utm_for(tacoma);
   EXPECT_EQ(utm.to_json()["zone"], 10);
   EXPECT_EQ(utm.to_json()["north"], true);
   expect_round_trip_below_1mm(utm, tacoma);
-  expect_round_trip_below_1mm(nb::MapProjection::utm_for({151.2, -33.85}), {151.2, -33.85});  // southern hemisphere
+  expect_round_trip_below_1mm(nearshore::MapProjection::utm_for({151.2, -33.85}), {151.2, -33.85});  // southern hemisphere
 }
 
 TEST(Projection, LocalTransverseMercatorRoundTripBelowOneMillimetre) {
-  const nb::LonLat centre{121.695, 38.905};
-  const nb::MapProjection tm = nb::MapProjection::local_transverse_mercator(centre);
-  const nb::ProjectedPoint origin = tm.forward(centre);
+  const nearshore::LonLat centre{121.695, 38.905};
+  const nearshore::MapProjection tm = nearshore::MapProjection::local_transverse_mercator(centre);
+  const nearshore::ProjectedPoint origin = tm.forward(centre);
   EXPECT_NEAR(origin.x_m, 0.0, 1e-9);
   EXPECT_NEAR(origin.y_m, 0.0, 1e-9);
   expect_round_trip_below_1mm(tm, centre);
 }
 
 TEST(Projection, JsonRoundTripKeepsTheProjection) {
-  for (const auto& projection : {nb::MapProjection::utm(33, false), nb::MapProjection::local_transverse_mercator({10.7, 59.9})}) {
-    const auto again = nb::MapProjection::from_json(projection.to_json(), "test");
+  for (const auto& projection : {nearshore::MapProjection::utm(33, false), nearshore::MapProjection::local_transverse_mercator({10.7, 59.9})}) {
+    const auto again = nearshore::MapProjection::from_json(projection.to_json(), "test");
     const auto a = projection.forward({10.75, 59.95}), b = again.forward({10.75, 59.95});
     EXPECT_EQ(a.x_m, b.x_m);
     EXPECT_EQ(a.y_m, b.y_m);
   }
-  EXPECT_THROW(nb::MapProjection::from_json({{"kind", "mercator"}}, "test"), std::runtime_error);
+  EXPECT_THROW(nearshore::MapProjection::from_json({{"kind", "mercator"}}, "test"), std::runtime_error);
 }
 
 TEST(Projection, CrsWktAgreesWithGdalWithinOneMillimetre) {
   // PROJ evaluates the same WKT independently (its own Poder/Engsager TM); within the harbour
   // the two agree to micrometres, so 1 mm flags a wrong datum, zone or origin in our WKT.
-  for (const auto& projection : {nb::MapProjection::utm_for({-122.45, 47.28}),
-                                 nb::MapProjection::local_transverse_mercator({-122.45, 47.28})}) {
+  for (const auto& projection : {nearshore::MapProjection::utm_for({-122.45, 47.28}),
+                                 nearshore::MapProjection::local_transverse_mercator({-122.45, 47.28})}) {
     OGRSpatialReference wgs84, ours;
     wgs84.SetWellKnownGeogCS("WGS84");
     wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    ASSERT_EQ(ours.importFromWkt(projection.crs_wkt().c_str()), OGRERR_NONE);
+    ASSERT_EQ(ours.importFromWkt(nb::crs_wkt(projection).c_str()), OGRERR_NONE);
     ours.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     std::unique_ptr<OGRCoordinateTransformation> transform(OGRCreateCoordinateTransformation(&wgs84, &ours));
     ASSERT_TRUE(transform);
-    for (const nb::LonLat p : {nb::LonLat{-122.50, 47.24}, nb::LonLat{-122.40, 47.31}, nb::LonLat{-122.45, 47.28}}) {
+    for (const nearshore::LonLat p : {nearshore::LonLat{-122.50, 47.24}, nearshore::LonLat{-122.40, 47.31}, nearshore::LonLat{-122.45, 47.28}}) {
       double x = p.longitude_deg, y = p.latitude_deg;
       ASSERT_TRUE(transform->Transform(1, &x, &y));
-      const nb::ProjectedPoint q = projection.forward(p);
+      const nearshore::ProjectedPoint q = projection.forward(p);
       EXPECT_NEAR(x, q.x_m, 1e-3) << projection.describe();
       EXPECT_NEAR(y, q.y_m, 1e-3) << projection.describe();
     }

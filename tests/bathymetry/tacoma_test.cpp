@@ -58,7 +58,7 @@ TEST(Tacoma, TenMetreGridAgreesWithTheChartsSoundingsAndAreas) {
   // 2. Land/water against the chart's own areas: LNDARE cells must be land, cells of depth areas
   //    that never dry (DRVAL1 >= 0) water. Drying areas (DRVAL1 < 0) are land or water with the
   //    tide and are not counted, nor are cells in no area (outside the chart's coverage).
-  const nb::MapProjection projection = nb::MapProjection::from_json(g.projection, "test");
+  const nearshore::MapProjection projection = nearshore::MapProjection::from_json(g.projection, "test");
   nearshore::Raster<std::uint8_t> expected(g.columns, g.rows, 0);  // 1 land, 2 water
   auto burn = [&](const nb::GeoPolygon& polygon, std::uint8_t value) {
     std::vector<nb::PlaneLine> rings;
