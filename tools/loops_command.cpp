@@ -85,7 +85,8 @@ void print_report(const loops::LoopsReport& report) {
     std::printf("requested loop:\n");
     print_loop(*report.requested);
   } else if (report.requested_loop_s > 0) {
-    std::printf("requested loop: none of exactly %.1f s can be made from the table's jumps\n",
+    std::printf("requested loop: none of about %.1f s (-20 %% .. +25 %%) that shows every frame once can be made "
+                "from the table's jumps\n",
                 report.requested_loop_s);
   }
   std::printf("best loops by length:\n");

@@ -335,8 +335,38 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   report.requested_loop_s = options.requested_loop_s;
   if (options.requested_loop_s > 0) {
     const int length = static_cast<int>(std::lround(options.requested_loop_s / report.frame_interval_s));
-    if (auto plan = optimal_loop(report.table, length))
-      report.requested = analyse_plan(report, *plan, jump_crossfade_frames);
+    std::optional<LoopPlan> plan = optimal_loop(report.table, length);
+    // The cheapest closed walk of exactly that length may replay a shorter loop (a 12 s loop played
+    // five times for a 60 s request): the viewer would see a 12 s repeat. Such a plan is not the
+    // requested loop. Instead, among the plans within the reporting buckets' tolerance (-20 % ..
+    // +25 %) that show every frame once (the best plan per length, and every single-jump loop,
+    // which is a plain forward run and so never repeats), take the nearest length, then the cheapest.
+    if (plan && !plan->shows_each_frame_once()) {
+      const int low = std::max(1, static_cast<int>(std::lround(0.8 * length)));
+      const int high = std::min(report.frame_count, static_cast<int>(std::lround(1.25 * length)));
+      std::vector<LoopPlan> candidates;
+      std::vector<char> wanted(static_cast<std::size_t>(std::max(high, 0)) + 1, 0);
+      for (int candidate = low; candidate <= high; ++candidate) wanted[static_cast<std::size_t>(candidate)] = 1;
+      for (std::optional<LoopPlan>& best : best_loops_for_lengths(report.table, wanted))
+        if (best && best->shows_each_frame_once()) candidates.push_back(std::move(*best));
+      for (const Transition& jump : report.table.transitions) {
+        const int run = jump.from - jump.to + 1;
+        if (jump.natural() || !std::isfinite(jump.cost) || run < low || run > high) continue;
+        LoopPlan single;
+        single.kind = "optimal";
+        single.start_frame = jump.to;
+        single.length_frames = run;
+        single.cost = std::pow(jump.cost, report.table.options.cost_exponent);
+        single.jumps = {jump};
+        candidates.push_back(std::move(single));
+      }
+      const auto nearer = [length](const LoopPlan& a, const LoopPlan& b) {
+        return std::pair(std::abs(a.length_frames - length), a.cost) < std::pair(std::abs(b.length_frames - length), b.cost);
+      };
+      const auto chosen = std::min_element(candidates.begin(), candidates.end(), nearer);
+      plan = chosen == candidates.end() ? std::nullopt : std::optional<LoopPlan>(*chosen);
+    }
+    if (plan) report.requested = analyse_plan(report, *plan, jump_crossfade_frames);
   }
   report.table_seconds = seconds_since(start);
 

@@ -16,6 +16,33 @@ using namespace testing;
 // End to end on a periodic sequence stored as half (the default encoding): the inspector finds
 // the period with R <= 0.1 (the issue's bar; half rounding alone gives ~1e-3), writes the tables,
 // and a second run reuses the stored Gram matrices with identical results.
+// Issue 14 item 4: `--loop-s 60` once returned a 12 s loop played five times. On a periodic sea
+// every whole-period jump is free, so the cheapest closed walk of four periods may be the one-period
+// loop four times over; the requested loop must instead show every frame once (the viewer would
+// otherwise see the short repeat), at the requested length or the nearest one that does.
+TEST(Inspector, RequestedLoopNeverReplaysAShorterLoop) {
+  const auto folder = fresh_folder("requested");
+  // A periodic sea plus a slow swell of 200 s period that does not repeat within the bake (the slow
+  // part of a real harbour's flow): a jump back by d frames then costs about d^2, so four one-period
+  // jumps (4 x 32^2) beat one four-period jump (128^2) and the cheapest walk is the short loop x 4.
+  SyntheticSea sea = periodic_sea(8.0, 3, 1.5, 8.0, 5);
+  ocean::LatticeWave slow;
+  slow.wave.amplitude_m = 0.5;
+  slow.wave.angular_frequency_rad_s = 2.0 * 3.141592653589793 / 200.0;
+  slow.wavenumber_x_rad_m = 2.0 * 3.141592653589793 / 5000.0;
+  sea.components.push_back(slow);
+  write_sea_sequence(folder, sea, small_geometry(), 140, 0.25, 0.0);
+  LoopsOptions options;
+  options.report_lengths_s = {8};
+  options.requested_loop_s = 32.0;  // 128 frames: four periods
+  const LoopsReport report = analyse_loops(folder, options);
+  ASSERT_TRUE(report.requested);
+  EXPECT_TRUE(report.requested->plan.shows_each_frame_once());
+  EXPECT_EQ(report.requested->plan.repetitions(), 1);
+  EXPECT_GE(report.requested->plan.length_frames, 0.8 * 128);
+  EXPECT_LE(report.requested->plan.length_frames, 1.25 * 128);
+}
+
 TEST(Inspector, PeriodicSequenceLoopsAtItsPeriodAndTablesAreReused) {
   const auto folder = fresh_folder("inspector");
   write_sea_sequence(folder, periodic_sea(8.0, 3, 1.5, 8.0, 5), small_geometry(), 90, 0.25, 8.0);
