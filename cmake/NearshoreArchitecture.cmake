@@ -5,6 +5,8 @@
 #   bake -> boussinesq, ocean, sequence; loops -> sequence, ocean, plot; playback -> sequence, ocean;
 #   tools -> all. Never: playback to bathymetry, bake, boussinesq, loops or plot; no library to tools.
 #   runtime -> sequence, ocean (GL-free: streaming, deep water, CPU queries); playback -> runtime.
+#   library (the sea-state library) -> bake, loops, sequence; library_mpi -> library (built only
+#   where MPI is found: a rule whose library name ends in "?" applies when that target exists).
 set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core:"
   "nearshore_plot:nearshore_core"
@@ -16,12 +18,20 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_loops:nearshore_sequence,nearshore_ocean,nearshore_plot,nearshore_core"
   "nearshore_sequence_vdb:nearshore_sequence,nearshore_core"
   "nearshore_runtime:nearshore_sequence,nearshore_ocean,nearshore_core"
-  "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
+  "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
+  "nearshore_library:nearshore_bake,nearshore_loops,nearshore_sequence,nearshore_core"
+  "nearshore_library_mpi?:nearshore_library,nearshore_core")
 
 function(nearshore_check_architecture)
   foreach(rule IN LISTS NEARSHORE_ALLOWED_ARROWS)
     string(REPLACE ":" ";" parts "${rule}")
     list(GET parts 0 library)
+    if(library MATCHES "\\?$")
+      string(REGEX REPLACE "\\?$" "" library "${library}")
+      if(NOT TARGET ${library})
+        continue()
+      endif()
+    endif()
     list(LENGTH parts part_count)
     set(allowed "")
     if(part_count GREATER 1)

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   nearshore::tools::add_loops_command(app);
   nearshore::tools::add_play_command(app);
   nearshore::tools::add_demo_command(app);
+  nearshore::tools::add_library_command(app);
   nearshore::tools::add_bench_command(app);
   try {
     app.parse(argc, argv);

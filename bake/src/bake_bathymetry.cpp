@@ -29,6 +29,12 @@ void mark_land_from_depth(HarbourGrid& grid) {
 
 }  // namespace
 
+void raise_still_water_level(HarbourGrid& grid, double level_m) {
+  if (level_m == 0.0) return;
+  for (float& depth_m : grid.still_water_depth_m.values()) depth_m += static_cast<float>(level_m);
+  mark_land_from_depth(grid);
+}
+
 double profile_depth_m(const std::vector<std::pair<double, double>>& profile, double x_m) {
   if (x_m <= profile.front().first) return profile.front().second;
   if (x_m >= profile.back().first) return profile.back().second;

@@ -43,8 +43,23 @@ void check_plausible_depths(TableReader& bathymetry, const std::string& key, con
 
 }  // namespace
 
+// The grid the case names, with depths as its source gives them (below the datum).
+static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind, const fs::path& base,
+                                      const CaseReadOptions& options);
+
 HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const CaseReadOptions& options) {
   const std::size_t kind = bathymetry.choice("kind", std::nullopt, {"harbour_grid", "profile", "berkhoff_shoal"});
+  // A tide (or surge) above the datum of the depths: bathymetry/ refuses water levels beyond the
+  // same +-30 m (the largest tidal range on Earth, the Bay of Fundy, is 16 m).
+  const double still_water_level_m =
+      bathymetry.number("still_water_level_m", 0.0, -30.0, 30.0, false, "the still-water level above the depths' datum in metres");
+  HarbourGrid grid = read_grid_at_datum(bathymetry, kind, base, options);
+  raise_still_water_level(grid, still_water_level_m);
+  return grid;
+}
+
+static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind, const fs::path& base,
+                                      const CaseReadOptions& options) {
   HarbourGrid grid;
   if (kind == 0) {
     const fs::path file = bathymetry.path("file", base);

@@ -10,6 +10,7 @@
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/sequence/checksum.hpp"
+#include "field_reader.hpp"
 
 namespace nearshore::sequence {
 namespace {
@@ -17,7 +18,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr long long kLargestInt = std::numeric_limits<int>::max();
 constexpr long long kLeastInt = std::numeric_limits<int>::min();
 // The manifest's own bound on frame_count (sequence_format.cpp).
 constexpr long long kMostFrames = 10'000'000;
@@ -57,116 +57,6 @@ json optional_loop_to_json(const std::optional<LoopsFile::Loop>& loop) {
 }
 
 // ---- reading ------------------------------------------------------------------------------------
-
-// A JSON value in a message: numbers as written, strings quoted and cut short, else the type.
-std::string describe(const json& value) {
-  if (value.is_number() || value.is_boolean() || value.is_null()) return value.dump();
-  if (value.is_string()) {
-    std::string text = value.get_ref<const std::string&>();
-    if (text.size() > 40) text = text.substr(0, 40) + "...";
-    return json(text).dump(-1, ' ', false, json::error_handler_t::replace);
-  }
-  return std::string(value.is_object() ? "an object" : "an array");
-}
-
-// Typed reads of one loops.json's fields. `path` is where the enclosing object sits
-// ("period_loop.seams[2]"; empty at the top), so every message names the full key.
-class FieldReader {
- public:
-  FieldReader(std::string source, std::string fix) : source_(std::move(source)), fix_(std::move(fix)) {}
-
-  [[noreturn]] void fail(const std::string& problem) const { throw Error(source_, problem, fix_); }
-  const std::string& fix() const { return fix_; }
-
-  static std::string name(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
-  }
-
-  [[noreturn]] void wrong_type(const json& value, const std::string& path, std::string_view key,
-                               const char* wanted) const {
-    fail(fmt::format("\"{}\" is {}, not {}", name(path, key), describe(value), wanted));
-  }
-
-  const json& member(const json& object, const std::string& path, const char* key) const {
-    const auto it = object.find(key);
-    if (it == object.end()) fail(fmt::format("has no \"{}\"", name(path, key)));
-    return *it;
-  }
-
-  const json& object(const json& parent, const std::string& path, const char* key) const {
-    const json& value = member(parent, path, key);
-    if (!value.is_object()) wrong_type(value, path, key, "an object");
-    return value;
-  }
-
-  const json& array(const json& parent, const std::string& path, const char* key) const {
-    const json& value = member(parent, path, key);
-    if (!value.is_array()) wrong_type(value, path, key, "an array");
-    return value;
-  }
-
-  std::string text(const json& parent, const std::string& path, const char* key) const {
-    const json& value = member(parent, path, key);
-    if (!value.is_string()) wrong_type(value, path, key, "a string");
-    return value.get<std::string>();
-  }
-
-  bool boolean(const json& parent, const std::string& path, const char* key) const {
-    const json& value = member(parent, path, key);
-    if (!value.is_boolean()) wrong_type(value, path, key, "true or false");
-    return value.get<bool>();
-  }
-
-  // A number; null is +infinity (JSON has none; see the header).
-  double number_value(const json& value, const std::string& path, std::string_view key) const {
-    if (value.is_null()) return kInfinity;
-    if (!value.is_number()) wrong_type(value, path, key, "a number");
-    return value.get<double>();
-  }
-  double number(const json& parent, const std::string& path, const char* key) const {
-    return number_value(member(parent, path, key), path, key);
-  }
-
-  // An integer in [low, high]; `meaning` says what the range is, for the message.
-  int integer_value(const json& value, const std::string& path, std::string_view key, long long low,
-                    long long high, std::string_view meaning = {}) const {
-    if (!value.is_number_integer()) wrong_type(value, path, key, "an integer");
-    const bool inside = value.is_number_unsigned()
-                            ? high >= 0 && value.get<std::uint64_t>() <= static_cast<std::uint64_t>(high) &&
-                                  static_cast<long long>(value.get<std::uint64_t>()) >= low
-                            : value.get<std::int64_t>() >= low && value.get<std::int64_t>() <= high;
-    if (!inside)
-      fail(fmt::format("\"{}\" is {}, outside {}..{}{}{}", name(path, key), value.dump(), low, high,
-                       meaning.empty() ? "" : " ", meaning));
-    return static_cast<int>(value.get<std::int64_t>());
-  }
-  int integer(const json& parent, const std::string& path, const char* key, long long low = 0,
-              long long high = kLargestInt, std::string_view meaning = {}) const {
-    return integer_value(member(parent, path, key), path, key, low, high, meaning);
-  }
-
-  // A frame index of the bake (0 .. frame_count - 1; -1 too where "none" is allowed).
-  int frame_value(const json& value, const std::string& path, std::string_view key, int frame_count,
-                  bool none_allowed = false) const {
-    return integer_value(value, path, key, none_allowed ? -1 : 0, frame_count - 1,
-                         none_allowed ? "(a frame of the bake, or -1 for none)" : "(the frames of the bake)");
-  }
-  int frame(const json& parent, const std::string& path, const char* key, int frame_count,
-            bool none_allowed = false) const {
-    return frame_value(member(parent, path, key), path, key, frame_count, none_allowed);
-  }
-
-  // The crossfade of a jump from -> to blends frames from - c + 1 .. from with to - c .. to - 1
-  // (loop_playback.hpp), which must all exist: 0 <= c <= min(to, from + 1).
-  int crossfade_value(const json& value, const std::string& path, std::string_view key, int from,
-                      int to) const {
-    return integer_value(value, path, key, 0, std::min(to, from + 1),
-                         "(the blends of a crossfade must be frames of the bake)");
-  }
-
- private:
-  std::string source_, fix_;
-};
 
 LoopsFile::Loop parse_loop(const FieldReader& r, const json& value, const std::string& path,
                            int frame_count) {

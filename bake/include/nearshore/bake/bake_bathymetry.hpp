@@ -43,4 +43,11 @@ HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, double spacing_
 /// spacing already matches to 1e-9 relative.
 HarbourGrid resample_harbour_grid(const HarbourGrid& grid, double spacing_m);
 
+/// The grid under still water `level_m` above the datum its depths refer to (a tide, or a surge):
+/// every still-water depth d becomes d + level_m, so land lower than the level floods, higher
+/// water reaches further up the beaches, and the wet/dry line moves; the land mask follows the new
+/// depths. Porosity and coast distance are kept (the coastline of the chart, not of the tide).
+/// Case key `bathymetry.still_water_level_m`; the sea-state library sweeps it (library/).
+void raise_still_water_level(HarbourGrid& grid, double level_m);
+
 }  // namespace nearshore::bake
