@@ -29,6 +29,9 @@ pkg_check_modules(TOMLPLUSPLUS REQUIRED IMPORTED_TARGET tomlplusplus)
 pkg_check_modules(LIBPNG REQUIRED IMPORTED_TARGET libpng)
 pkg_check_modules(FREETYPE REQUIRED IMPORTED_TARGET freetype2)
 pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)
+# Dear ImGui (libimgui-dev: a static library with the GLFW and OpenGL 3 backends compiled in) for the
+# viewer's on-screen panel; only tools/ links it, never the runtime a host embeds.
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 if(NEARSHORE_BUILD_TESTS)
   find_package(GTest REQUIRED CONFIG)
   include(GoogleTest)

@@ -13,12 +13,13 @@ packages=(
   libopenvdb-dev libblosc-dev libboost-iostreams-dev libboost-dev
   libcgal-dev libgmp-dev libmpfr-dev
   libopenimageio-dev openimageio-tools libpng-dev libfreetype-dev
-  libglfw3-dev
+  libglfw3-dev libimgui-dev
   libgdal-dev gdal-bin
   libfftw3-dev
   libeigen3-dev
   libtbb-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
+  libopenmpi-dev openmpi-bin
   libspdlog-dev libfmt-dev libxxhash-dev
   libgtest-dev libbenchmark-dev
   xvfb xauth mesa-utils libgl1-mesa-dri libegl1-mesa-dev libegl-dev libgl-dev libgles-dev

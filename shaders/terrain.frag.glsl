@@ -1,4 +1,3 @@
-uniform sampler2D u_still_water_depth;
 in vec2 v_grid_uv;
 in vec3 v_position_m;
 in float v_structure;

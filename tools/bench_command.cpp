@@ -11,6 +11,8 @@ void add_bench_command(CLI::App& app) {
   add_bench_bake(*bench);
   add_bench_deepwater(*bench);
   add_bench_loops(*bench);
+  add_bench_play(*bench);
+  add_bench_library(*bench);
 }
 
 }  // namespace nearshore::tools

@@ -18,11 +18,14 @@ void add_loops_command(CLI::App& app);
 void add_play_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_library_command(CLI::App& app);
 /// `nearshore bench <stage>` subcommands, one file each (bench_<stage>.cpp).
 void add_bench_bathy(CLI::App& bench);
 void add_bench_bake(CLI::App& bench);
 void add_bench_deepwater(CLI::App& bench);
 void add_bench_loops(CLI::App& bench);
+void add_bench_play(CLI::App& bench);
+void add_bench_library(CLI::App& bench);
 
 /// Thrown by a subcommand callback to end the program with this exit status (after printing).
 struct ExitStatus {

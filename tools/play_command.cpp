@@ -1,20 +1,32 @@
-// `nearshore play SEQ`: the OpenGL runtime on a baked sequence, in a window or as a screenshot.
+// `nearshore play SEQ`: the runtime a simulator embeds, as a viewer. The streaming engine
+// (runtime/) plays the bake by its plan inside the endless deep water; the renderer (playback/)
+// draws it on the chosen grid; Dear ImGui shows the streaming state (tools/viewer_panel.hpp).
+// Headless (--frames N --screenshot out.png) it draws N frames on a fixed 30 fps clock, waiting
+// for each frame's keyframes so identical inputs give identical pictures.
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
-#include <optional>
 #include <filesystem>
 #include <memory>
+#include <numbers>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "command_support.hpp"
 #include "nearshore/core/error.hpp"
-#include "nearshore/playback/sequence_player.hpp"
+#include "nearshore/core/map_projection.hpp"
 #include "nearshore/playback/water_renderer.hpp"
-#include "nearshore/plot/plot.hpp"
 #include "nearshore/playback/window.hpp"
-#include "nearshore/sequence/loop_playback.hpp"
+#include "nearshore/plot/plot.hpp"
+#include "nearshore/runtime/streaming_engine.hpp"
+#include "viewer_panel.hpp"
 
 namespace nearshore::tools {
 namespace fs = std::filesystem;
@@ -23,96 +35,323 @@ namespace {
 struct PlayOptions {
   fs::path sequence_folder;
   fs::path screenshot;
-  double time_s = 0;
-  int width_px = 1280, height_px = 720;
-  std::vector<double> eye_m, target_m;
+  std::string grid = "quadtree", plan = "auto", deep_water = "auto";
+  std::optional<std::uint64_t> seed;
+  double time_s = 0, time_scale = 1.0, seconds = 0;
+  int frames = 0;
+  std::vector<int> size_px = {1280, 720};
+  std::vector<double> eye_m, target_m, eye_lat_lon, target_lat_lon;
+  int beaufort_force = 3;
+  double wind_from_deg = 225;
   double sun_azimuth_deg = 200, sun_elevation_deg = 35;
-  double seconds = 0;
+  bool panel = false, json = false;
 };
 
-playback::Camera camera_from(const PlayOptions& o, const GridGeometry& geometry) {
-  playback::Camera camera = playback::Camera::overlooking(geometry);
-  // Given from the grid's south-west corner, like every position in a case file.
-  const double x0 = geometry.origin_x_m, y0 = geometry.origin_y_m;
-  if (!o.eye_m.empty()) camera.eye_m = {x0 + o.eye_m[0], y0 + o.eye_m[1], o.eye_m[2]};
-  if (!o.target_m.empty()) camera.target_m = {x0 + o.target_m[0], y0 + o.target_m[1], o.target_m[2]};
+const char* const kPlanNames[] = {"auto", "period", "loop", "random", "order"};
+
+runtime::PlanKind plan_kind_of(const std::string& name) {
+  if (name == "auto") return runtime::PlanKind::kOptimalLoop;  // the period of a periodic bake, else the planned loop
+  if (const auto kind = runtime::parse_plan_kind(name)) return *kind;
+  throw Error("--plan " + name, "is not a plan", "use auto, period, loop, random or order");
+}
+
+// Compass bearing the wind blows FROM (deg) -> the direction the waves travel, anticlockwise from east.
+double travel_direction_rad(double wind_from_deg) { return (90.0 - (wind_from_deg + 180.0)) * std::numbers::pi / 180.0; }
+
+runtime::StreamingOptions streaming_options(const PlayOptions& o, const std::string& plan) {
+  runtime::StreamingOptions options;
+  options.plan = plan_kind_of(plan);
+  options.seed = o.seed;
+  options.beaufort.force = o.beaufort_force;
+  options.beaufort.wind_direction_rad = travel_direction_rad(o.wind_from_deg);
+  options.deep_water = o.deep_water == "beaufort" ? runtime::DeepWaterChoice::kBeaufort
+                       : o.deep_water == "none"   ? runtime::DeepWaterChoice::kNone
+                                                  : runtime::DeepWaterChoice::kBakeElseBeaufort;
+  return options;
+}
+
+// Positions: site metres (from the grid's south-west corner), or latitude/longitude through the
+// grid's own projection.
+struct SiteFrame {
+  GridGeometry geometry;
+  std::optional<MapProjection> projection;
+
+  std::array<double, 2> from_lat_lon(double latitude_deg, double longitude_deg, const std::string& flag) const {
+    if (!projection)
+      throw Error(flag, "gives a latitude/longitude but this bake's grid has no map projection (local metres)",
+                  "give the position in metres from the grid's south-west corner instead");
+    if (!(std::abs(latitude_deg) <= 90) || !(std::abs(longitude_deg) <= 360))
+      throw Error(flag, fmt::format("{}, {} is not a latitude, longitude in degrees", latitude_deg, longitude_deg),
+                  "give LAT,LON (WGS 84 degrees), e.g. 38.865,121.708");
+    const ProjectedPoint p = projection->forward({longitude_deg, latitude_deg});
+    return {p.x_m - geometry.origin_x_m, p.y_m - geometry.origin_y_m};
+  }
+  LonLat lat_lon_of(double x_m, double y_m) const {
+    return projection ? projection->reverse({geometry.origin_x_m + x_m, geometry.origin_y_m + y_m}) : LonLat{};
+  }
+};
+
+playback::Camera initial_camera(const PlayOptions& o, const runtime::HarbourSite& site, const SiteFrame& frame) {
+  playback::Camera camera = playback::Camera::overlooking_site(site.width_m, site.height_m);
+  if (!o.eye_m.empty()) camera.eye_m = {o.eye_m[0], o.eye_m[1], o.eye_m[2]};
+  if (!o.target_m.empty()) camera.target_m = {o.target_m[0], o.target_m[1], o.target_m[2]};
+  if (!o.eye_lat_lon.empty()) {
+    const auto xy = frame.from_lat_lon(o.eye_lat_lon[0], o.eye_lat_lon[1], "--eye-lat-lon");
+    camera.eye_m = {xy[0], xy[1], o.eye_lat_lon[2]};
+  }
+  if (!o.target_lat_lon.empty()) {
+    const auto xy = frame.from_lat_lon(o.target_lat_lon[0], o.target_lat_lon[1], "--target-lat-lon");
+    camera.target_m = {xy[0], xy[1], 0.0};
+  }
   if (camera.eye_m == camera.target_m)
-    throw Error(fmt::format("--eye {},{},{}", camera.eye_m[0] - x0, camera.eye_m[1] - y0, camera.eye_m[2]),
-                "is the point the camera looks at, so it looks in no direction",
-                "give --target a point away from the eye");
+    throw Error(fmt::format("--eye {},{},{}", camera.eye_m[0], camera.eye_m[1], camera.eye_m[2]),
+                "is the point the camera looks at, so it looks in no direction", "give --target a point away from the eye");
   return camera;
 }
 
+// Mouse and keyboard camera: drag to orbit the target, scroll to move in and out, W/A/S/D to move
+// over the sea, Q/E down and up, 1/2/3 for the grids, space to pause.
+struct CameraControl {
+  playback::Camera camera;
+  double last_x = 0, last_y = 0, scroll = 0;
+  bool dragging = false;
+
+  void update(GLFWwindow* window, double dt_s, bool panel_has_input) {
+    double x = 0, y = 0;
+    glfwGetCursorPos(window, &x, &y);
+    const bool pressed = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && !panel_has_input;
+    std::array<double, 3> offset = {camera.eye_m[0] - camera.target_m[0], camera.eye_m[1] - camera.target_m[1],
+                                    camera.eye_m[2] - camera.target_m[2]};
+    double distance = std::max(std::hypot(offset[0], offset[1], offset[2]), 1.0);
+    double azimuth = std::atan2(offset[1], offset[0]);
+    double elevation = std::asin(std::clamp(offset[2] / distance, -1.0, 1.0));
+    if (pressed && dragging) {
+      azimuth -= 0.005 * (x - last_x);
+      elevation = std::clamp(elevation + 0.005 * (y - last_y), 0.02, 1.5);
+    }
+    dragging = pressed;
+    last_x = x, last_y = y;
+    distance = std::clamp(distance * std::pow(0.9, scroll), 5.0, 2.0e6);
+    scroll = 0;
+    const double speed = 0.5 * distance * dt_s;  // half the viewing distance per second
+    const double forward_x = -std::cos(azimuth), forward_y = -std::sin(azimuth);
+    auto key = [&](int k) { return !panel_has_input && glfwGetKey(window, k) == GLFW_PRESS ? 1.0 : 0.0; };
+    const double ahead = key(GLFW_KEY_W) - key(GLFW_KEY_S), aside = key(GLFW_KEY_D) - key(GLFW_KEY_A);
+    camera.target_m[0] += speed * (ahead * forward_x + aside * forward_y);
+    camera.target_m[1] += speed * (ahead * forward_y - aside * forward_x);
+    camera.target_m[2] += speed * (key(GLFW_KEY_E) - key(GLFW_KEY_Q));
+    camera.eye_m = {camera.target_m[0] + distance * std::cos(elevation) * std::cos(azimuth),
+                    camera.target_m[1] + distance * std::cos(elevation) * std::sin(azimuth),
+                    camera.target_m[2] + distance * std::sin(elevation)};
+  }
+};
+
+CameraControl* g_camera_control = nullptr;  // GLFW's scroll callback has no user pointer of ours
+void on_scroll(GLFWwindow*, double, double y_offset) {
+  if (g_camera_control) g_camera_control->scroll += y_offset;
+}
+
+nlohmann::json stats_json(const runtime::StreamingStats& s, const playback::FrameStatistics& frame, int frames_drawn,
+                          double wall_s) {
+  return {{"frames_drawn", frames_drawn},
+          {"wall_s", wall_s},
+          {"plan", s.plan},
+          {"plan_step", s.plan_step},
+          {"transitions_taken", s.transitions_taken},
+          {"underruns", s.underruns},
+          {"bad_frames_held", s.bad_frames_held},
+          {"ring_fill", s.ring_fill},
+          {"ring_capacity", s.ring_capacity},
+          {"decode_frames_per_s", s.decode_frames_per_s()},
+          {"decode_real_time_multiple", s.decode_real_time_multiple()},
+          {"last_message", s.last_message},
+          {"vertices_drawn", frame.vertices_drawn},
+          {"upload_bytes_last_frame", frame.upload_bytes}};
+}
+
 void play(const PlayOptions& o) {
-  const sequence::SequenceReader reader(o.sequence_folder);
-  const HarbourGrid harbour = reader.read_harbour_grid();
-  const playback::Camera camera = camera_from(o, harbour.geometry);  // before a window opens: it may refuse --eye
-  const bool screenshot = !o.screenshot.empty();
-  playback::GlWindow window(o.width_px, o.height_px, "nearshore play " + o.sequence_folder.string(), !screenshot);
-  playback::WaterRenderer renderer(harbour);
-  // The loop `nearshore loops` planned (with its crossfades), else the frames in order.
-  const std::optional<sequence::LoopSchedule> loop = sequence::read_loop_schedule(o.sequence_folder);
-  playback::SequencePlayer player = loop ? playback::SequencePlayer(reader, *loop) : playback::SequencePlayer(reader);
-  if (loop)
-    std::fprintf(stderr, "playing the %s loop of loops.json: %.1f s, %zu steps\n", loop->kind.c_str(), loop->length_s,
-                 loop->shown.size());
-  else
-    std::fprintf(stderr, "no loops.json: playing frames 0..%d in order (run `nearshore loops` for a seamless loop)\n",
-                 reader.frame_count() - 1);
+  const bool headless = !o.screenshot.empty() || o.frames > 0;
+  std::string plan = o.plan;
+  auto engine = std::make_unique<runtime::StreamingEngine>(o.sequence_folder, streaming_options(o, plan));
+  const std::shared_ptr<const runtime::HarbourSite> site = engine->site();
+  SiteFrame frame{engine->manifest().geometry, std::nullopt};
+  if (frame.geometry.projection.is_object() && !frame.geometry.projection.empty())
+    frame.projection = MapProjection::from_json(frame.geometry.projection, (o.sequence_folder / "manifest.json").string());
+  CameraControl control{initial_camera(o, *site, frame)};  // before a window opens: it may refuse a position
+  const int width = o.size_px[0], height = o.size_px[1];
+  playback::GlWindow window(width, height, "nearshore play " + o.sequence_folder.string(), !headless);
+  playback::RendererSettings settings;
+  settings.grid = playback::grid_kind_from_name(o.grid);
+  playback::WaterRenderer renderer(settings);
+  std::unique_ptr<ViewerPanel> panel;
+  if (!headless || o.panel) panel = std::make_unique<ViewerPanel>(window.glfw_window());
+  g_camera_control = &control;
+  if (!headless) glfwSetScrollCallback(window.glfw_window(), on_scroll);  // before ImGui, which chains it
+
   playback::Lighting lighting;
   lighting.sun_azimuth_deg = o.sun_azimuth_deg;
   lighting.sun_elevation_deg = o.sun_elevation_deg;
-  std::fprintf(stderr, "OpenGL %s; %d frames of %d x %d cells at %.3g s\n", window.gl_description().c_str(),
-               reader.frame_count(), harbour.geometry.columns, harbour.geometry.rows, reader.frame_interval_s());
-  if (screenshot) {
-    player.advance_to(o.time_s);
-    renderer.set_frame(player.surface_elevation_m(), &player.breaking());
-    renderer.render(camera, lighting, o.width_px, o.height_px);
-    write_png(renderer.read_pixels(), o.screenshot);
-    std::printf("screenshot: %s (%d x %d, t = %.2f s)\n", o.screenshot.c_str(), o.width_px, o.height_px, o.time_s);
-    return;
-  }
+  ViewerPanelModel model;
+  model.grid = static_cast<int>(settings.grid);
+  model.plan = static_cast<int>(std::find(std::begin(kPlanNames), std::end(kPlanNames), plan) - std::begin(kPlanNames));
+  model.time_scale = o.time_scale;
+  model.beaufort_force = o.beaufort_force;
+  model.wind_from_deg = o.wind_from_deg;
+  model.deep_water_from_bake = engine->deep_water_is_bakes();
+  model.gl_description = window.gl_description();
+  const LonLat looked_at = frame.lat_lon_of(control.camera.target_m[0], control.camera.target_m[1]);
+  model.jump_lat_lon_deg = {looked_at.latitude_deg, looked_at.longitude_deg};
+  std::fprintf(stderr, "OpenGL %s\nplaying %s; %s\n", window.gl_description().c_str(), engine->stats().plan.c_str(),
+               engine->memory_summary().c_str());
+  if (!engine->stats().last_message.empty()) std::fprintf(stderr, "note: %s\n", engine->stats().last_message.c_str());
+
   const auto start = std::chrono::steady_clock::now();
-  int frames = 0;
-  double elapsed = 0;
-  while (!window.should_close() && (o.seconds <= 0 || elapsed < o.seconds)) {
-    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    player.advance_to(o.time_s + elapsed);
-    renderer.set_frame(player.surface_elevation_m(), &player.breaking());
-    renderer.render(camera, lighting, window.framebuffer_width_px(), window.framebuffer_height_px());
+  auto previous = start;
+  double display_time_s = o.time_s;
+  int frames_drawn = 0;
+  double wall_s = 0;
+  for (;;) {
+    const auto now = std::chrono::steady_clock::now();
+    const double dt_s = std::chrono::duration<double>(now - previous).count();
+    previous = now;
+    wall_s = std::chrono::duration<double>(now - start).count();
+    if (headless ? frames_drawn >= std::max(o.frames, 1) : (window.should_close() || (o.seconds > 0 && wall_s >= o.seconds)))
+      break;
+    if (headless) {
+      display_time_s = o.time_s + frames_drawn / 30.0;
+      engine->wait_until_ready(display_time_s, std::chrono::seconds(30));  // exact pictures, not real time
+    } else if (!model.paused) {
+      display_time_s += dt_s * model.time_scale;
+    }
+    const auto main_start = std::chrono::steady_clock::now();
+    engine->advance_to(display_time_s);
+    if (!headless) control.update(window.glfw_window(), dt_s, panel && panel->wants_input());
+    renderer.render(engine->snapshot(), control.camera, lighting, window.framebuffer_width_px(),
+                    window.framebuffer_height_px());
     renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
+    const double main_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - main_start).count();
+    if (panel) {
+      const runtime::StreamingStats s = engine->stats();
+      model.frames_per_s = dt_s > 0 ? 1.0 / dt_s : 0.0;
+      model.frame_time_ms = 1e3 * dt_s;
+      model.main_thread_ms = main_ms;
+      model.display_time_s = display_time_s;
+      model.ring_filled = s.ring_fill, model.ring_capacity = s.ring_capacity;
+      model.underruns = static_cast<unsigned long long>(s.underruns);
+      model.bad_frames_held = static_cast<unsigned long long>(s.bad_frames_held);
+      model.transitions_taken = static_cast<unsigned long long>(s.transitions_taken);
+      model.decode_real_time_multiple = s.decode_real_time_multiple();
+      model.plan_step = s.plan_step;
+      model.crossfading = s.in_crossfade;
+      model.plan_name = s.plan;
+      model.message = s.last_message;
+      const LonLat place = frame.lat_lon_of(control.camera.eye_m[0], control.camera.eye_m[1]);
+      model.camera_latitude_deg = place.latitude_deg, model.camera_longitude_deg = place.longitude_deg;
+      model.camera_height_m = control.camera.eye_m[2];
+      const ViewerPanelModel before = model;
+      if (panel->draw(model)) {
+        if (model.grid != before.grid) renderer.settings().grid = static_cast<playback::GridKind>(model.grid);
+        if (model.plan != before.plan) {  // a new plan restarts the stream on it, at the same time
+          plan = kPlanNames[model.plan];
+          engine = std::make_unique<runtime::StreamingEngine>(o.sequence_folder, streaming_options(o, plan));
+        }
+        if (!model.deep_water_from_bake &&
+            (model.beaufort_force != before.beaufort_force || model.wind_from_deg != before.wind_from_deg)) {
+          runtime::BeaufortSea sea;
+          sea.force = model.beaufort_force;
+          sea.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
+          engine->set_beaufort(sea);
+        }
+        if (model.jump_requested) {
+          model.jump_requested = false;
+          const auto xy = frame.from_lat_lon(model.jump_lat_lon_deg[0], model.jump_lat_lon_deg[1], "the panel's position");
+          control.camera.eye_m = {xy[0] - 0.5 * control.camera.eye_m[2], xy[1] - 0.5 * control.camera.eye_m[2],
+                                  control.camera.eye_m[2]};
+          control.camera.target_m = {xy[0], xy[1], 0.0};
+        }
+      }
+    }
+    ++frames_drawn;
+    if (headless && frames_drawn >= std::max(o.frames, 1)) break;  // keep the last picture in the back buffer
     window.present();
-    ++frames;
   }
-  std::printf("played %.1f s, %d frames drawn (%.1f fps)\n", elapsed, frames, frames / std::max(elapsed, 1e-9));
+  if (!o.screenshot.empty()) {
+    write_png(panel ? window.read_back_buffer() : renderer.read_pixels(), o.screenshot);
+    std::printf("screenshot: %s (%d x %d, t = %.2f s, %s grid)\n", o.screenshot.c_str(), width, height, display_time_s,
+                o.grid.c_str());
+  }
+  const runtime::StreamingStats s = engine->stats();
+  if (o.json) {
+    std::printf("%s\n", stats_json(s, renderer.last_frame(), frames_drawn, wall_s).dump(1).c_str());
+  } else {
+    std::printf("played %.1f s of display time in %.1f s, %d frames drawn (%.1f fps); %lld underruns, %lld frames held, "
+                "%lld transitions\n",
+                display_time_s - o.time_s, wall_s, frames_drawn, frames_drawn / std::max(wall_s, 1e-9), s.underruns,
+                s.bad_frames_held, s.transitions_taken);
+    if (!s.last_message.empty()) std::printf("note: %s\n", s.last_message.c_str());
+  }
+  g_camera_control = nullptr;
 }
 
 }  // namespace
 
 void add_play_command(CLI::App& app) {
   auto o = std::make_shared<PlayOptions>();
-  CLI::App* cmd = app.add_subcommand("play", "Play a baked sequence with the OpenGL runtime (window or screenshot)");
+  CLI::App* cmd = app.add_subcommand("play", "Play a baked sequence inside the endless sea (window, or headless screenshot)");
   cmd->add_option("sequence", o->sequence_folder, "Baked sequence folder (from `nearshore bake`)")->required();
-  cmd->add_option("--screenshot", o->screenshot, "Render one picture to this PNG and exit (hidden window)");
-  cmd->add_option("--time", o->time_s, "Playback time of the first picture, seconds")
+  cmd->add_option("--grid", o->grid, "Surface grid: radial, quadtree or projected (Earth curvature, for high views)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"radial", "quadtree", "projected"}));
+  cmd->add_option("--plan", o->plan, "Playback plan: auto (the period, else the planned loop), period, loop, random, order")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "period", "loop", "random", "order"}));
+  cmd->add_option("--seed", o->seed, "Random-walk seed (default: the one loops.json records)");
+  cmd->add_option("--deep-water", o->deep_water, "Sea beyond the harbour: auto (the bake's own, else Beaufort), beaufort, none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "beaufort", "none"}));
+  cmd->add_option("--beaufort", o->beaufort_force, "Beaufort force of the deep water when it is not the bake's own")
+      ->capture_default_str()
+      ->check(number_in(at_least(0), at_most(12)));
+  cmd->add_option("--wind-from", o->wind_from_deg, "Compass bearing the wind blows from, degrees")
+      ->capture_default_str()
+      ->check(number_in(at_least(-360), at_most(360)));
+  cmd->add_option("--time", o->time_s, "Display time of the first frame, seconds")
       ->capture_default_str()
       ->check(number_in(at_least(0), at_most(1e9)));
-  cmd->add_option("--width", o->width_px, "Picture width, pixels")->capture_default_str()->check(number_in(at_least(16), at_most(8192)));
-  cmd->add_option("--height", o->height_px, "Picture height, pixels")->capture_default_str()->check(number_in(at_least(16), at_most(8192)));
+  cmd->add_option("--time-scale", o->time_scale, "Playback speed (1 = real time)")
+      ->capture_default_str()
+      ->check(number_in(at_least(0), at_most(16)));
   cmd->add_option("--eye", o->eye_m, "Camera position x,y,z in metres from the grid's south-west corner, z up (default: overview)")
       ->delimiter(',')->expected(3)->check(finite_number());
-  cmd->add_option("--target", o->target_m, "Point looked at x,y,z in metres")->delimiter(',')->expected(3)->check(finite_number());
+  cmd->add_option("--target", o->target_m, "Point looked at x,y,z in metres from the grid's south-west corner")
+      ->delimiter(',')->expected(3)->check(finite_number());
+  cmd->add_option("--eye-lat-lon", o->eye_lat_lon, "Camera at LAT,LON,HEIGHT (WGS 84 degrees, metres above the sea)")
+      ->delimiter(',')->expected(3)->check(finite_number());
+  cmd->add_option("--target-lat-lon", o->target_lat_lon, "Look at LAT,LON (WGS 84 degrees) on the sea")
+      ->delimiter(',')->expected(2)->check(finite_number());
   cmd->add_option("--sun-azimuth", o->sun_azimuth_deg, "Sun bearing, degrees from north")
       ->capture_default_str()
       ->check(number_in(at_least(-360), at_most(360)));
   cmd->add_option("--sun-elevation", o->sun_elevation_deg, "Sun height above the horizon, degrees")
       ->capture_default_str()
       ->check(number_in(at_least(-90), at_most(90)));
-  cmd->add_option("--seconds", o->seconds, "Close the window after this many seconds (0: when closed)")
+  cmd->add_option("--frames", o->frames, "Headless: draw this many frames at 30 fps display time, then exit")
+      ->check(number_in(at_least(1), at_most(1e6)));
+  cmd->add_option("--screenshot", o->screenshot, "Headless: write the last frame to this PNG (hidden window)");
+  cmd->add_option("--size", o->size_px, "Window or picture size WIDTH,HEIGHT in pixels")
+      ->delimiter(',')->expected(2)->capture_default_str()
+      ->check(number_in(at_least(16), at_most(8192)));
+  cmd->add_flag("--panel", o->panel, "Headless: draw the on-screen panel into the screenshot too");
+  cmd->add_option("--seconds", o->seconds, "Window: close after this many seconds (0: when closed)")
       ->check(number_in(at_least(0), at_most(1e9)));
-  set_example(*cmd, "xvfb-run -a nearshore play demo-out/bake --screenshot shot.png");
-  // The sequence reader names the bake's options when a sequence is unfinished.
-  cmd->callback(naming_flags_in_errors({{"BakeOptions::resume", "nearshore bake --resume"}, {"BakeOptions::output_folder", "nearshore bake -o"}},
+  cmd->add_flag("--json", o->json, "Print the streaming statistics as JSON when done");
+  set_example(*cmd, "xvfb-run -a nearshore play demo-out/bake --frames 30 --screenshot shot.png --grid radial");
+  // The sequence reader names the bake's options when a sequence is unfinished; the engine names
+  // its own parameters.
+  cmd->callback(naming_flags_in_errors({{"BakeOptions::resume", "nearshore bake --resume"},
+                                        {"BakeOptions::output_folder", "nearshore bake -o"},
+                                        {"StreamingOptions::seed", "--seed"},
+                                        {"BeaufortSea::force", "--beaufort"}},
                                        [o] { play(*o); }));
 }
 

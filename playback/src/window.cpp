@@ -6,8 +6,10 @@
 
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/playback/gl_loader.hpp"
 
 namespace nearshore::playback {
 namespace {
@@ -41,10 +43,12 @@ GlWindow::GlWindow(int width_px, int height_px, const std::string& title, bool v
   }
   glfwMakeContextCurrent(impl_->window);
   glfwSwapInterval(visible ? 1 : 0);
-  if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(glfwGetProcAddress))) {
+  try {
+    load_opengl(reinterpret_cast<GlProcAddressFunction>(glfwGetProcAddress));
+  } catch (...) {
     glfwDestroyWindow(impl_->window);
     glfwTerminate();
-    throw Error("OpenGL window", "the OpenGL entry points could not be loaded", "update the GPU driver");
+    throw;
   }
 }
 
@@ -71,6 +75,24 @@ int GlWindow::framebuffer_height_px() const {
   int width = 0, height = 0;
   glfwGetFramebufferSize(impl_->window, &width, &height);
   return height;
+}
+
+GLFWwindow* GlWindow::glfw_window() const { return impl_->window; }
+
+Image GlWindow::read_back_buffer() const {
+  const int width = framebuffer_width_px(), height = framebuffer_height_px();
+  std::vector<unsigned char> rgb(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  Image image(width, height);
+  for (int y = 0; y < height; ++y)  // GL row 0 is the bottom; Image row 0 the top
+    for (int x = 0; x < width; ++x) {
+      const unsigned char* pixel = &rgb[(static_cast<std::size_t>(height - 1 - y) * width + x) * 3];
+      image.set(x, y, {pixel[0] / 255.f, pixel[1] / 255.f, pixel[2] / 255.f});
+    }
+  return image;
 }
 
 std::string GlWindow::gl_description() const {

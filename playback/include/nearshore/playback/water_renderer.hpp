@@ -1,44 +1,135 @@
 #pragma once
-// WaterRenderer: draws one baked frame of a harbour: sky, seabed and land, breakwaters and quays,
-// and the sea surface on a radial grid around the viewer displaced by the baked surface elevation
-// (vertex texture), lit by seed 003 eq. (12)-(16) (shaders/common.glsl). Needs a current OpenGL
-// 3.3+ context (GlWindow). Renders into its own framebuffer object, so screenshots are exact even
-// from a hidden window; present() copies it to the window.
-#include <array>
+// WaterRenderer: draws a runtime::SurfaceSnapshot (runtime/surface_snapshot.hpp): sky, seabed and
+// land, breakwaters and quays, and the sea surface on one of three grids (surface_grids.hpp),
+// displaced in the vertex shader by exactly the snapshot's formula (shaders/surface.glsl: the
+// harbour keyframe pair blended by its fraction, the deep-water cascades summed and blended, the
+// harbour weight w(p), the deep water's choppy shift) and lit by seed 003 eq. (12)-(16)
+// (shaders/common.glsl). Everything is in the site frame. docs/rendering.md shows how to use it.
+//
+// Keyframes go to the GPU once each, by serial, as R32F textures (float32: the same numbers the
+// CPU sampler reads, so the height pass agrees with it to a fraction of a millimetre). A keyframe
+// the engine announces with stage() is uploaded in row chunks within
+// RendererSettings::upload_budget_bytes_per_frame; one a snapshot needs before it is complete is
+// finished at once, and last_frame() says how many bytes each frame sent, and how many were forced.
+//
+// Needs a current OpenGL 3.3+ context (GlWindow) on the calling thread; not thread-safe. Renders
+// into its own framebuffer object, so screenshots are exact even from a hidden window.
+#include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/image.hpp"
+#include "nearshore/playback/camera.hpp"
 #include "nearshore/playback/lighting.hpp"
+#include "nearshore/playback/surface_grids.hpp"
+#include "nearshore/runtime/surface_snapshot.hpp"
 
 namespace nearshore::playback {
 
-struct Camera {
-  Vector3 eye_m = {0, 0, 100};    ///< viewer position, harbour frame (x east, y north, z up), metres
-  Vector3 target_m = {0, 100, 0}; ///< the point looked at
-  double vertical_field_of_view_deg = 45.0;
-  double near_m = 1.0, far_m = 30000.0;
+struct RendererSettings {
+  GridKind grid = GridKind::quadtree;
+  RadialGridSettings radial;
+  QuadtreeSettings quadtree;
+  ProjectedGridSettings projected;
+  /// Texture bytes a frame may spend on staged keyframes (at least one row is always sent).
+  /// 2 MiB: a 1024 x 1024 harbour keyframe (8 MiB) in 4 frames.
+  std::size_t upload_budget_bytes_per_frame = std::size_t(2) << 20;
+  int harbour_texture_slots = 6;  ///< keyframes kept on the GPU: the pair on screen + staged ones
+  int deep_texture_slots = 6;
+  float structure_crest_m = 2.5f;  ///< breakwaters and quays stand at least this high (drawing only)
+};
 
-  /// A viewpoint offshore to the south-south-west, looking into the harbour from a height of about
-  /// a quarter of its extent: the view a pilot boarding from seaward would have.
-  static Camera overlooking(const GridGeometry& geometry);
+/// How the sea is coloured: lit (the frame loop), or flat and by level of detail for tests and
+/// pictures of the grids.
+enum class SurfaceColouring { lit, flat, level_of_detail };
+
+struct DrawOptions {
+  SurfaceColouring colouring = SurfaceColouring::lit;
+  Rgb flat_colour = {1.f, 0.f, 1.f};  ///< for SurfaceColouring::flat
+  bool wireframe = false;             ///< the grid's edges drawn over the sea
+  bool sky = true;                    ///< false: a plain background instead of the sky
+  Rgb background = {0.f, 0.f, 0.f};
+};
+
+/// What the last render() did.
+struct FrameStatistics {
+  std::size_t upload_bytes = 0;           ///< texture bytes sent (keyframes and, once, the site)
+  std::size_t forced_upload_bytes = 0;    ///< of which for keyframes needed before their upload was done
+  std::size_t geometry_upload_bytes = 0;  ///< per-frame vertex data (the quadtree's patch list)
+  long long vertices_drawn = 0;           ///< water grid vertices submitted
+  long long triangles_drawn = 0;
+  int quadtree_patches = 0, quadtree_levels = 0;
+  double near_m = 0, far_m = 0;           ///< the clip distances used
+};
+
+/// A rectangle of the site frame, metres.
+struct SiteRectangle {
+  double x0_m = 0, y0_m = 0, x1_m = 0, y1_m = 0;
+};
+
+/// The GL textures of the keyframe pair a draw binds, for a host that draws the sea itself
+/// (docs/c-api.md). Harbour: one R32F GL_TEXTURE_2D per keyframe and field, columns x rows texels,
+/// texel (i, j) at the centre of cell (i, j), row 0 south (bilinear by hand: surface_sampler.hpp
+/// formula 1). Deep water: per field one R32F GL_TEXTURE_2D_ARRAY per keyframe, N x N texels and
+/// one layer per cascade, texel (i, j) of layer c at (i L_c / N, j L_c / N), repeating (formula 2).
+/// Valid until the next render() or upload(); the renderer owns them.
+struct GpuTextures {
+  unsigned harbour_elevation[2] = {0, 0}, harbour_breaking[2] = {0, 0};  ///< [0] from, [1] to
+  unsigned deep_elevation[2] = {0, 0}, deep_displacement_x[2] = {0, 0}, deep_displacement_y[2] = {0, 0};
+  unsigned deep_slope_x[2] = {0, 0}, deep_slope_y[2] = {0, 0};
+  int cascade_count = 0, deep_grid_size = 0;
+  std::vector<float> tile_lengths_m;
+  double harbour_fraction = 0.0, deep_fraction = 0.0;  ///< shown = (1 - f) from + f to
 };
 
 class WaterRenderer {
  public:
-  explicit WaterRenderer(const HarbourGrid& harbour);
+  explicit WaterRenderer(RendererSettings settings = {});
   ~WaterRenderer();
   WaterRenderer(const WaterRenderer&) = delete;
   WaterRenderer& operator=(const WaterRenderer&) = delete;
 
-  /// Uploads one frame (cell-centred, the harbour grid's size). `breaking` may be null.
-  void set_frame(const Raster<float>& surface_elevation_m, const Raster<float>* breaking);
-  /// Draws into the renderer's framebuffer of the given size.
-  void render(const Camera& camera, const Lighting& lighting, int width_px, int height_px);
+  /// The settings; change them between frames (the grid kind, its parameters, the budget).
+  RendererSettings& settings();
+
+  /// Announces a keyframe a coming snapshot will show, for the budgeted upload. Returns false
+  /// when it is already on the GPU or queued, or the queue is full (slots - 2 keyframes).
+  bool stage(std::shared_ptr<const runtime::HarbourKeyframe> keyframe);
+  bool stage(std::shared_ptr<const runtime::DeepWaterKeyframe> keyframe);
+
+  /// Draws `snapshot` seen by `camera` (site frame) into the renderer's framebuffer. Throws
+  /// nearshore::Error for a snapshot it cannot draw (keyframes of another size than the site's
+  /// grid, deep-water cascades of different sizes) and for a camera that looks nowhere.
+  void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width_px,
+              int height_px, const DrawOptions& options = {});
+  const FrameStatistics& last_frame() const;
+  /// Makes the snapshot's keyframes resident without drawing (and spends the upload budget on
+  /// staged ones), for a host that draws them itself; returns what textures() returns after.
+  const GpuTextures& upload(const runtime::SurfaceSnapshot& snapshot);
+  /// The textures bound by the last render() or upload().
+  const GpuTextures& textures() const;
+
+  /// The shown surface elevation (m) over `rectangle`, seen straight down through the water's own
+  /// vertex path, one value per cell of a columns x rows raster (cell (i, j) centred at x0 + (i +
+  /// 0.5) (x1 - x0) / columns, row 0 south); NaN where no water is drawn (land, structures, dry).
+  /// For tests and documentation (it reads the GPU back): never in the frame loop.
+  Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& rectangle, int columns,
+                                  int rows);
+
   /// Copies the last render to the window's back buffer (call GlWindow::present after).
   void blit_to_window(int window_width_px, int window_height_px) const;
   /// The last render as an image (row 0 at the top).
   Image read_pixels() const;
+
+  // ---- Transitional: tools/ before it plays through the streaming engine. Removed with ----
+  // ---- SequencePlayer; new code draws snapshots.                                       ----
+  /// A renderer for one harbour grid shown alone (no deep water), on the radial grid.
+  explicit WaterRenderer(const HarbourGrid& harbour);
+  /// Shows one frame (cell-centred, the harbour grid's size). `breaking` may be null.
+  void set_frame(const Raster<float>& surface_elevation_m, const Raster<float>* breaking);
+  /// Draws the last set_frame; `camera` in the harbour grid's PROJECTED coordinates.
+  void render(const Camera& projected_camera, const Lighting& lighting, int width_px, int height_px);
 
  private:
   struct Impl;

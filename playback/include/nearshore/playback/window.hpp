@@ -5,6 +5,10 @@
 #include <memory>
 #include <string>
 
+#include "nearshore/core/image.hpp"
+
+struct GLFWwindow;
+
 namespace nearshore::playback {
 
 class GlWindow {
@@ -22,6 +26,11 @@ class GlWindow {
   int framebuffer_height_px() const;
   /// "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)"
   std::string gl_description() const;
+  /// The GLFW window, for a host's own input handling and on-screen panels (Dear ImGui).
+  GLFWwindow* glfw_window() const;
+  /// The window's back buffer as drawn so far (before present()), row 0 at the top: the rendered
+  /// sea with anything drawn over it (the viewer's panel), for screenshots.
+  Image read_back_buffer() const;
 
  private:
   struct Impl;

@@ -1,0 +1,219 @@
+/* nearshore.h: the plain C API of the nearshore runtime (libnearshore.so).
+ *
+ * A host engine (a ship-handling simulator, a game) opens a baked harbour sequence, advances it
+ * once per displayed frame, asks the CPU for the water surface under its ships, and either lets
+ * nearshore draw into the host's OpenGL context or takes the current textures and draws them
+ * itself. docs/runtime.md and docs/c-api.md explain the model; samples/ has one program per use.
+ *
+ * Conventions
+ *  - Handles are opaque. Every call returns a nearshore_status; NEARSHORE_OK is 0. On failure the
+ *    message (which file, which value, and the fix) is kept per thread: nearshore_last_error().
+ *    No C++ exception ever crosses this API.
+ *  - Positions are in the SITE frame: metres east (x) and north (y) of the harbour grid's south-west
+ *    corner, z up from the still-water level. nearshore_site_info() gives the corner's projected
+ *    coordinates and latitude/longitude; nearshore_site_from_lat_lon() converts.
+ *  - Times are display seconds since the sea was opened (any non-decreasing clock the host uses).
+ *  - Thread safety is stated per call: "render thread" calls must come from one thread at a time
+ *    (the one that advances and draws); "any thread" calls may run concurrently with everything,
+ *    including nearshore_sea_advance, because queries read an immutable snapshot.
+ *  - Structs with a `struct_size` first member are versioned: set it to sizeof(the struct) (the
+ *    *_init functions do), so a newer library can read an older host's struct.
+ */
+#ifndef NEARSHORE_H
+#define NEARSHORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__GNUC__)
+#define NEARSHORE_API __attribute__((visibility("default")))
+#else
+#define NEARSHORE_API
+#endif
+
+#define NEARSHORE_API_VERSION 1
+
+typedef enum nearshore_status {
+  NEARSHORE_OK = 0,
+  NEARSHORE_INVALID_ARGUMENT = 1, /* a null handle or pointer, a value out of range */
+  NEARSHORE_IO_ERROR = 2,         /* a file is missing, unreadable, truncated or corrupt */
+  NEARSHORE_FORMAT_ERROR = 3,     /* a manifest or loops.json of another version or another bake */
+  NEARSHORE_GL_ERROR = 4,         /* no current OpenGL 3.3 core context, a shader that fails */
+  NEARSHORE_INTERNAL_ERROR = 5    /* a bug: the message says where; please report it */
+} nearshore_status;
+
+/* The message of the last failed call on this thread ("" if none). Valid until the next failing
+ * call on this thread. Any thread. */
+NEARSHORE_API const char* nearshore_last_error(void);
+/* "NEARSHORE_OK", ... Any thread. */
+NEARSHORE_API const char* nearshore_status_name(nearshore_status status);
+/* NEARSHORE_API_VERSION of the library actually loaded. Any thread. */
+NEARSHORE_API int nearshore_api_version(void);
+
+/* ---- a sea: one baked harbour sequence, streamed, inside an endless deep-water field ---------- */
+typedef struct nearshore_sea nearshore_sea;
+
+typedef enum nearshore_plan {
+  NEARSHORE_PLAN_AUTO = 0,         /* the exact period of a periodic bake, else the planned loop,
+                                      else a random walk, else frame order */
+  NEARSHORE_PLAN_EXACT_PERIOD = 1,
+  NEARSHORE_PLAN_OPTIMAL_LOOP = 2,
+  NEARSHORE_PLAN_RANDOM_WALK = 3,
+  NEARSHORE_PLAN_FRAME_ORDER = 4
+} nearshore_plan;
+
+typedef struct nearshore_sea_options {
+  uint32_t struct_size;
+  nearshore_plan plan;
+  uint64_t seed;                      /* random walk seed; 0: the one loops.json records */
+  int ring_keyframes;                 /* harbour keyframes decoded ahead; 0: the default */
+  double deep_water_interval_s;       /* deep-water keyframe spacing; 0: the default (1/30 s) */
+  int beaufort_force;                 /* deep water when the bake has none: 0-12; -1: the default */
+  double wind_direction_deg;          /* compass direction the wind blows FROM, degrees */
+  int verify_checksums;               /* 1: check each frame's XXH64 before use */
+} nearshore_sea_options;
+
+/* Fills the defaults. Any thread. */
+NEARSHORE_API void nearshore_sea_options_init(nearshore_sea_options* options);
+
+/* Opens `sequence_folder` (a `nearshore bake` output) and starts its background decoder.
+ * options may be NULL (defaults). Any thread; the sea is then used as stated per call. */
+NEARSHORE_API nearshore_status nearshore_sea_open(const char* sequence_folder, const nearshore_sea_options* options,
+                                                  nearshore_sea** sea);
+/* Stops the decoder and frees everything. NULL is allowed. Render thread, after the last call on
+ * any thread has returned. */
+NEARSHORE_API void nearshore_sea_close(nearshore_sea* sea);
+
+/* Moves the sea to display time `time_s` (>= the last one). Never waits on disk: if the decoder
+ * is behind, the last frames are held and an underrun is counted. Render thread. */
+NEARSHORE_API nearshore_status nearshore_sea_advance(nearshore_sea* sea, double time_s);
+
+/* Changes the deep water's wind when the bake has no deep-water section (the field is rebuilt in
+ * the background and swapped in). Render thread. */
+NEARSHORE_API nearshore_status nearshore_sea_set_wind(nearshore_sea* sea, int beaufort_force, double wind_direction_deg);
+
+typedef struct nearshore_site_info {
+  uint32_t struct_size;
+  int columns, rows;               /* harbour grid cells */
+  double cell_size_m;
+  double width_m, height_m;        /* the harbour rectangle in the site frame: [0, width] x [0, height] */
+  double origin_x_m, origin_y_m;   /* the site origin in the grid's projected CRS */
+  double origin_latitude_deg, origin_longitude_deg; /* the site origin (NaN if the grid has no CRS) */
+  double frame_interval_s;         /* of the baked frames */
+  int frame_count;
+} nearshore_site_info;
+/* Any thread. */
+NEARSHORE_API nearshore_status nearshore_site_info_get(const nearshore_sea* sea, nearshore_site_info* info);
+/* Latitude/longitude (WGS 84, degrees) to the site frame. Any thread. */
+NEARSHORE_API nearshore_status nearshore_site_from_lat_lon(const nearshore_sea* sea, double latitude_deg,
+                                                           double longitude_deg, double* x_m, double* y_m);
+
+typedef struct nearshore_stats {
+  uint32_t struct_size;
+  double display_time_s;
+  int ring_filled, ring_capacity;     /* harbour keyframes decoded ahead / room for */
+  uint64_t underruns;                 /* display frames that found their keyframe not ready */
+  uint64_t keyframes_decoded;
+  double decode_frames_per_s;         /* background decode throughput */
+  double decode_real_time_multiple;   /* throughput x frame interval: > 1 keeps up */
+  uint64_t bad_frames_held;           /* missing/corrupt frames replaced by the previous one */
+  uint64_t transitions_taken;         /* jumps of the plan played so far */
+  long long plan_step;                /* the step on display */
+  int crossfading;                    /* 1 while a planned crossfade is on display */
+  char plan_name[32];                 /* "exact period", "optimal loop", "random walk", "frame order" */
+  char message[512];                  /* the last warning (a held frame, no loops.json...), or "" */
+} nearshore_stats;
+/* Any thread (a consistent copy). */
+NEARSHORE_API nearshore_status nearshore_sea_stats(const nearshore_sea* sea, nearshore_stats* stats);
+
+/* ---- CPU surface queries: the water the GPU draws, without a read-back ------------------------ */
+typedef struct nearshore_surface_sample {
+  float elevation_m;                  /* of the surface above still water */
+  float velocity_x_m_s, velocity_y_m_s; /* depth-averaged current (flux / total depth); 0 where dry */
+  float normal[3];                    /* unit, z up */
+  int dry;                            /* 1 on land or where the water has run off */
+} nearshore_surface_sample;
+
+/* Samples the surface at `count` site points (xy_m: x0, y0, x1, y1, ...) as displayed after the
+ * last nearshore_sea_advance. Any thread. */
+NEARSHORE_API nearshore_status nearshore_sea_query(const nearshore_sea* sea, const double* xy_m, size_t count,
+                                                   nearshore_surface_sample* samples);
+/* The same at display time `time_s` (not necessarily the displayed one): from the frames already
+ * decoded when the time is within the ring, else decoded on the calling thread (slow). Any thread. */
+NEARSHORE_API nearshore_status nearshore_sea_query_at(const nearshore_sea* sea, double time_s, const double* xy_m,
+                                                      size_t count, nearshore_surface_sample* samples);
+
+/* ---- drawing in the host's OpenGL context -------------------------------------------------- */
+typedef struct nearshore_renderer nearshore_renderer;
+
+typedef enum nearshore_grid {
+  NEARSHORE_GRID_RADIAL = 0,     /* rings around the camera (seed 003) */
+  NEARSHORE_GRID_QUADTREE = 1,   /* CDLOD quadtree, crack-free */
+  NEARSHORE_GRID_PROJECTED = 2   /* screen-space grid on the Earth's sphere, for high views */
+} nearshore_grid;
+
+typedef struct nearshore_camera {
+  uint32_t struct_size;
+  double eye_m[3];                 /* site frame */
+  double target_m[3];
+  double vertical_fov_deg;
+  double near_m, far_m;
+  double sun_azimuth_deg, sun_elevation_deg;
+} nearshore_camera;
+NEARSHORE_API void nearshore_camera_init(nearshore_camera* camera);
+
+/* Returns the address of an OpenGL function by name (glfwGetProcAddress, SDL_GL_GetProcAddress,
+ * eglGetProcAddress, ...). */
+typedef void* (*nearshore_gl_proc_address)(const char* name);
+
+/* Loads OpenGL through `get_proc_address` and creates the GL objects in the host's CURRENT OpenGL
+ * 3.3+ core context (the host made it current on this thread). Render thread, with that context
+ * current. */
+NEARSHORE_API nearshore_status nearshore_renderer_create(nearshore_sea* sea, nearshore_grid grid,
+                                                         nearshore_gl_proc_address get_proc_address,
+                                                         nearshore_renderer** renderer);
+/* Frees the GL objects; the same context must be current. NULL is allowed. */
+NEARSHORE_API void nearshore_renderer_destroy(nearshore_renderer* renderer);
+/* Draws the sea as of the last advance into the framebuffer bound by the host, viewport
+ * width x height pixels. Render thread, context current. */
+NEARSHORE_API nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nearshore_camera* camera,
+                                                       int width_px, int height_px);
+/* Reads back the last nearshore_renderer_draw as RGBA8, row 0 at the top (screenshots). */
+NEARSHORE_API nearshore_status nearshore_renderer_read_pixels(nearshore_renderer* renderer, int width_px,
+                                                              int height_px, uint8_t* rgba);
+
+/* ---- the host draws itself: the current fields as GL textures or CPU arrays -------------------- */
+typedef struct nearshore_gl_textures {
+  uint32_t struct_size;
+  /* Harbour: R32F GL_TEXTURE_2D, columns x rows texels, texel (i, j) at the centre of cell (i, j)
+   * ((i + 0.5) cell_size_m, (j + 0.5) cell_size_m), row 0 south. [0] from, [1] to. */
+  unsigned int harbour_elevation[2], harbour_breaking[2];
+  float harbour_fraction;               /* shown = (1 - f) from + f to */
+  /* Deep water: R32F GL_TEXTURE_2D_ARRAY, N x N texels, one layer per cascade; texel (i, j) of
+   * layer c at (i L_c / N, j L_c / N) of the site frame, repeating with period L_c. */
+  unsigned int deep_elevation[2], deep_displacement_x[2], deep_displacement_y[2];
+  unsigned int deep_slope_x[2], deep_slope_y[2];
+  int cascade_count;                    /* 0: no deep water */
+  int deep_grid_size;                   /* N */
+  float cascade_tile_m[8];              /* L_c */
+  float deep_water_fraction;
+} nearshore_gl_textures;
+/* Makes the fields of the last nearshore_sea_advance resident on the GPU without drawing (for a
+ * host that draws them itself) and returns their texture names (owned by nearshore, valid until
+ * the next upload or draw). Render thread, context current. */
+NEARSHORE_API nearshore_status nearshore_renderer_upload(nearshore_renderer* renderer, nearshore_gl_textures* textures);
+
+/* Copies the displayed harbour surface elevation (m), blended as drawn, into `elevation_m`
+ * (columns x rows floats, row 0 south; `capacity` floats available). Any thread. */
+NEARSHORE_API nearshore_status nearshore_sea_copy_harbour_elevation(const nearshore_sea* sea, float* elevation_m,
+                                                                    size_t capacity);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* NEARSHORE_H */

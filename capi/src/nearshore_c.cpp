@@ -1,0 +1,451 @@
+// The C API (include/nearshore.h) over the C++ runtime: runtime::StreamingEngine (streaming, deep
+// water), runtime::SurfaceSampler (CPU queries) and playback::WaterRenderer (drawing in the host's
+// context). Every entry point catches everything: no exception crosses the C boundary; the message
+// goes to a per-thread last-error string and the call returns a status.
+#include "nearshore.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <new>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/core/map_projection.hpp"
+#include "nearshore/playback/gl_loader.hpp"
+#include "nearshore/playback/water_renderer.hpp"
+#include "nearshore/runtime/streaming_engine.hpp"
+#include "nearshore/runtime/surface_sampler.hpp"
+
+struct nearshore_sea {
+  std::unique_ptr<nearshore::runtime::StreamingEngine> engine;
+  std::optional<nearshore::MapProjection> projection;  // none for a laboratory grid
+};
+
+struct nearshore_renderer {
+  nearshore_sea* sea = nullptr;
+  std::unique_ptr<nearshore::playback::WaterRenderer> renderer;
+  int last_width_px = 0, last_height_px = 0;
+};
+
+namespace {
+namespace fs = std::filesystem;
+using nearshore::Error;
+
+thread_local std::string last_error;
+
+// A failure with its status: thrown inside an entry point, caught at its boundary.
+struct Failure {
+  nearshore_status status;
+  std::string message;
+};
+
+[[noreturn]] void fail(nearshore_status status, std::string message) { throw Failure{status, std::move(message)}; }
+
+template <class T>
+T* require(T* pointer, const char* name) {
+  if (!pointer) fail(NEARSHORE_INVALID_ARGUMENT, std::string(name) + " is NULL; pass a valid pointer");
+  return pointer;
+}
+
+// Runs `body`, turning every exception into a status and the thread's last error. nearshore::Error
+// is the library's "bad input" (a file or a value): `error_status` says which kind it is here.
+template <class Body>
+nearshore_status guarded(nearshore_status error_status, Body&& body) noexcept {
+  try {
+    body();
+    return NEARSHORE_OK;
+  } catch (const Failure& failure) {
+    last_error = failure.message;
+    return failure.status;
+  } catch (const Error& error) {
+    last_error = error.what();
+    return error_status;
+  } catch (const std::bad_alloc&) {
+    last_error = "out of memory; reduce nearshore_sea_options.ring_keyframes or close other seas";
+    return NEARSHORE_INTERNAL_ERROR;
+  } catch (const std::exception& error) {
+    last_error = std::string("internal error: ") + error.what();
+    return NEARSHORE_INTERNAL_ERROR;
+  } catch (...) {
+    last_error = "internal error: an unknown exception";
+    return NEARSHORE_INTERNAL_ERROR;
+  }
+}
+
+nearshore::runtime::PlanKind plan_kind(nearshore_plan plan) {
+  switch (plan) {
+    case NEARSHORE_PLAN_AUTO:
+    case NEARSHORE_PLAN_OPTIMAL_LOOP: return nearshore::runtime::PlanKind::kOptimalLoop;
+    case NEARSHORE_PLAN_EXACT_PERIOD: return nearshore::runtime::PlanKind::kExactPeriod;
+    case NEARSHORE_PLAN_RANDOM_WALK: return nearshore::runtime::PlanKind::kRandomWalk;
+    case NEARSHORE_PLAN_FRAME_ORDER: return nearshore::runtime::PlanKind::kFrameOrder;
+  }
+  fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.plan = " + std::to_string(int(plan)) +
+                                       " is not a nearshore_plan; use NEARSHORE_PLAN_AUTO .. NEARSHORE_PLAN_FRAME_ORDER");
+}
+
+// Compass direction the wind blows FROM (deg, clockwise from north) -> the direction the waves
+// travel, counter-clockwise from east (rad), as ocean/ and the runtime take it.
+double travel_direction_rad(double wind_from_deg) {
+  const double towards_compass_deg = wind_from_deg + 180.0;
+  return (90.0 - towards_compass_deg) * std::acos(-1.0) / 180.0;
+}
+
+nearshore::runtime::BeaufortSea beaufort_sea(int force, double wind_from_deg) {
+  if (force < 0 || force > 12)
+    fail(NEARSHORE_INVALID_ARGUMENT, "beaufort_force = " + std::to_string(force) + " is outside 0-12; give a force of the Beaufort scale");
+  if (!std::isfinite(wind_from_deg))
+    fail(NEARSHORE_INVALID_ARGUMENT, "wind_direction_deg is not a finite number; give a compass direction in degrees");
+  nearshore::runtime::BeaufortSea sea;
+  sea.force = force;
+  sea.wind_direction_rad = travel_direction_rad(wind_from_deg);
+  return sea;
+}
+
+void fill_sample(const nearshore::runtime::SurfaceState& state, nearshore_surface_sample& sample) {
+  sample.elevation_m = static_cast<float>(state.surface_elevation_m);
+  sample.velocity_x_m_s = static_cast<float>(state.velocity_x_m_s);
+  sample.velocity_y_m_s = static_cast<float>(state.velocity_y_m_s);
+  sample.normal[0] = static_cast<float>(state.normal_x);
+  sample.normal[1] = static_cast<float>(state.normal_y);
+  sample.normal[2] = static_cast<float>(state.normal_z);
+  sample.dry = state.dry ? 1 : 0;
+}
+
+void query(const nearshore::runtime::SurfaceSnapshot& snapshot, const double* xy_m, std::size_t count,
+           nearshore_surface_sample* samples) {
+  const nearshore::runtime::SurfaceSampler sampler(snapshot);
+  std::vector<nearshore::runtime::SitePoint> points(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!std::isfinite(xy_m[2 * i]) || !std::isfinite(xy_m[2 * i + 1]))
+      fail(NEARSHORE_INVALID_ARGUMENT, "point " + std::to_string(i) + " of xy_m is not finite; give site metres");
+    points[i] = {xy_m[2 * i], xy_m[2 * i + 1]};
+  }
+  std::vector<nearshore::runtime::SurfaceState> states(count);
+  sampler.states(points, states);
+  for (std::size_t i = 0; i < count; ++i) fill_sample(states[i], samples[i]);
+}
+
+template <std::size_t N>
+void copy_text(char (&out)[N], const std::string& text) {
+  const std::size_t length = std::min(text.size(), N - 1);
+  std::memcpy(out, text.data(), length);
+  out[length] = '\0';
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* nearshore_last_error(void) { return last_error.c_str(); }
+
+const char* nearshore_status_name(nearshore_status status) {
+  switch (status) {
+    case NEARSHORE_OK: return "NEARSHORE_OK";
+    case NEARSHORE_INVALID_ARGUMENT: return "NEARSHORE_INVALID_ARGUMENT";
+    case NEARSHORE_IO_ERROR: return "NEARSHORE_IO_ERROR";
+    case NEARSHORE_FORMAT_ERROR: return "NEARSHORE_FORMAT_ERROR";
+    case NEARSHORE_GL_ERROR: return "NEARSHORE_GL_ERROR";
+    case NEARSHORE_INTERNAL_ERROR: return "NEARSHORE_INTERNAL_ERROR";
+  }
+  return "NEARSHORE_UNKNOWN_STATUS";
+}
+
+int nearshore_api_version(void) { return NEARSHORE_API_VERSION; }
+
+void nearshore_sea_options_init(nearshore_sea_options* options) {
+  if (!options) return;
+  *options = {};
+  options->struct_size = sizeof(nearshore_sea_options);
+  options->plan = NEARSHORE_PLAN_AUTO;
+  options->beaufort_force = -1;
+  options->wind_direction_deg = 225.0;  // a south-westerly, the prevailing wind of the mid-latitudes
+}
+
+nearshore_status nearshore_sea_open(const char* sequence_folder, const nearshore_sea_options* options,
+                                    nearshore_sea** sea) {
+  return guarded(NEARSHORE_FORMAT_ERROR, [&] {
+    require(sea, "sea");
+    *sea = nullptr;
+    const fs::path folder = require(sequence_folder, "sequence_folder");
+    if (!fs::is_directory(folder))
+      fail(NEARSHORE_IO_ERROR, folder.string() + ": no such folder; give the output folder of `nearshore bake`");
+    if (!fs::is_regular_file(folder / "manifest.json"))
+      fail(NEARSHORE_IO_ERROR, (folder / "manifest.json").string() +
+                                   ": missing (an unfinished bake?); finish or resume the bake first");
+    nearshore_sea_options chosen;
+    nearshore_sea_options_init(&chosen);
+    if (options) {
+      if (options->struct_size < sizeof(uint32_t) || options->struct_size > sizeof(nearshore_sea_options))
+        fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.struct_size = " + std::to_string(options->struct_size) +
+                                             "; call nearshore_sea_options_init first");
+      std::memcpy(&chosen, options, options->struct_size);
+    }
+    nearshore::runtime::StreamingOptions streaming;
+    streaming.plan = plan_kind(chosen.plan);
+    if (chosen.seed != 0) streaming.seed = chosen.seed;
+    if (chosen.ring_keyframes < 0 || chosen.ring_keyframes > 1024)
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.ring_keyframes = " + std::to_string(chosen.ring_keyframes) +
+                                           " is outside 0-1024; 0 chooses it");
+    streaming.ring_capacity = chosen.ring_keyframes;
+    if (chosen.deep_water_interval_s != 0.0) {
+      if (!(chosen.deep_water_interval_s > 0.0 && chosen.deep_water_interval_s <= 1.0))
+        fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.deep_water_interval_s must be in (0, 1] s (0: 1/30 s)");
+      streaming.deep_water_interval_s = chosen.deep_water_interval_s;
+    }
+    if (chosen.beaufort_force >= 0) streaming.beaufort = beaufort_sea(chosen.beaufort_force, chosen.wind_direction_deg);
+    streaming.verify = chosen.verify_checksums ? nearshore::sequence::Verify::kYes : nearshore::sequence::Verify::kNo;
+    auto opened = std::make_unique<nearshore_sea>();
+    opened->engine = std::make_unique<nearshore::runtime::StreamingEngine>(folder, std::move(streaming));
+    const nlohmann::json& projection = opened->engine->manifest().geometry.projection;
+    if (projection.is_object() && !projection.empty())
+      opened->projection = nearshore::MapProjection::from_json(projection, (folder / "manifest.json").string());
+    *sea = opened.release();
+  });
+}
+
+void nearshore_sea_close(nearshore_sea* sea) { delete sea; }
+
+nearshore_status nearshore_sea_advance(nearshore_sea* sea, double time_s) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(sea, "sea");
+    if (!std::isfinite(time_s) || time_s < 0)
+      fail(NEARSHORE_INVALID_ARGUMENT, "time_s = " + std::to_string(time_s) + " is not a display time >= 0 s");
+    sea->engine->advance_to(time_s);
+  });
+}
+
+nearshore_status nearshore_sea_set_wind(nearshore_sea* sea, int beaufort_force, double wind_direction_deg) {
+  return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
+    require(sea, "sea");
+    sea->engine->set_beaufort(beaufort_sea(beaufort_force, wind_direction_deg));
+  });
+}
+
+nearshore_status nearshore_site_info_get(const nearshore_sea* sea, nearshore_site_info* info) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(sea, "sea");
+    require(info, "info");
+    if (info->struct_size != sizeof(nearshore_site_info))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_site_info.struct_size must be sizeof(nearshore_site_info)");
+    const nearshore::GridGeometry& geometry = sea->engine->manifest().geometry;
+    info->columns = geometry.columns;
+    info->rows = geometry.rows;
+    info->cell_size_m = geometry.spacing_m;
+    info->width_m = geometry.width_m();
+    info->height_m = geometry.height_m();
+    info->origin_x_m = geometry.origin_x_m;
+    info->origin_y_m = geometry.origin_y_m;
+    info->origin_latitude_deg = info->origin_longitude_deg = std::numeric_limits<double>::quiet_NaN();
+    if (sea->projection) {
+      const nearshore::LonLat corner = sea->projection->reverse({geometry.origin_x_m, geometry.origin_y_m});
+      info->origin_latitude_deg = corner.latitude_deg;
+      info->origin_longitude_deg = corner.longitude_deg;
+    }
+    info->frame_interval_s = sea->engine->frame_interval_s();
+    info->frame_count = sea->engine->manifest().frame_count;
+  });
+}
+
+nearshore_status nearshore_site_from_lat_lon(const nearshore_sea* sea, double latitude_deg, double longitude_deg,
+                                             double* x_m, double* y_m) {
+  return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
+    require(sea, "sea");
+    require(x_m, "x_m");
+    require(y_m, "y_m");
+    if (!sea->projection)
+      fail(NEARSHORE_INVALID_ARGUMENT, "this sequence's grid has no map projection (a laboratory grid in local "
+                                       "metres); give positions in site metres");
+    if (!(std::abs(latitude_deg) <= 90.0) || !(std::abs(longitude_deg) <= 360.0))
+      fail(NEARSHORE_INVALID_ARGUMENT, "latitude " + std::to_string(latitude_deg) + ", longitude " +
+                                           std::to_string(longitude_deg) + " is not a place; give degrees (WGS 84)");
+    const nearshore::ProjectedPoint point = sea->projection->forward({longitude_deg, latitude_deg});
+    const nearshore::GridGeometry& geometry = sea->engine->manifest().geometry;
+    *x_m = point.x_m - geometry.origin_x_m;
+    *y_m = point.y_m - geometry.origin_y_m;
+  });
+}
+
+nearshore_status nearshore_sea_stats(const nearshore_sea* sea, nearshore_stats* stats) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(sea, "sea");
+    require(stats, "stats");
+    if (stats->struct_size != sizeof(nearshore_stats))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_stats.struct_size must be sizeof(nearshore_stats)");
+    const nearshore::runtime::StreamingStats s = sea->engine->stats();
+    stats->display_time_s = sea->engine->snapshot().display_time_s;
+    stats->ring_filled = s.ring_fill;
+    stats->ring_capacity = s.ring_capacity;
+    stats->underruns = static_cast<uint64_t>(s.underruns);
+    stats->keyframes_decoded = static_cast<uint64_t>(s.keyframes_decoded);
+    stats->decode_frames_per_s = s.decode_frames_per_s();
+    stats->decode_real_time_multiple = s.decode_real_time_multiple();
+    stats->bad_frames_held = static_cast<uint64_t>(s.bad_frames_held);
+    stats->transitions_taken = static_cast<uint64_t>(s.transitions_taken);
+    stats->plan_step = s.plan_step;
+    stats->crossfading = s.in_crossfade ? 1 : 0;
+    copy_text(stats->plan_name, s.plan);
+    copy_text(stats->message, s.last_message);
+  });
+}
+
+nearshore_status nearshore_sea_query(const nearshore_sea* sea, const double* xy_m, size_t count,
+                                     nearshore_surface_sample* samples) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(sea, "sea");
+    if (count == 0) return;
+    query(sea->engine->snapshot(), require(xy_m, "xy_m"), count, require(samples, "samples"));
+  });
+}
+
+nearshore_status nearshore_sea_query_at(const nearshore_sea* sea, double time_s, const double* xy_m, size_t count,
+                                        nearshore_surface_sample* samples) {
+  return guarded(NEARSHORE_IO_ERROR, [&] {
+    require(sea, "sea");
+    if (!std::isfinite(time_s) || time_s < 0)
+      fail(NEARSHORE_INVALID_ARGUMENT, "time_s = " + std::to_string(time_s) + " is not a display time >= 0 s");
+    if (count == 0) return;
+    query(sea->engine->snapshot_at(time_s), require(xy_m, "xy_m"), count, require(samples, "samples"));
+  });
+}
+
+nearshore_status nearshore_sea_copy_harbour_elevation(const nearshore_sea* sea, float* elevation_m, size_t capacity) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(sea, "sea");
+    require(elevation_m, "elevation_m");
+    const nearshore::runtime::SurfaceSnapshot snapshot = sea->engine->snapshot();
+    const nearshore::GridGeometry& geometry = sea->engine->manifest().geometry;
+    if (capacity < geometry.cell_count())
+      fail(NEARSHORE_INVALID_ARGUMENT, "capacity = " + std::to_string(capacity) + " floats; the harbour has " +
+                                           std::to_string(geometry.cell_count()) + " cells (columns x rows)");
+    if (!snapshot.harbour_from) {
+      std::fill(elevation_m, elevation_m + geometry.cell_count(), 0.f);
+      return;
+    }
+    const auto& from = snapshot.harbour_from->surface_elevation_m.values();
+    const auto& to = (snapshot.harbour_to ? snapshot.harbour_to : snapshot.harbour_from)->surface_elevation_m.values();
+    const float f = static_cast<float>(snapshot.harbour_fraction);
+    for (std::size_t i = 0; i < geometry.cell_count(); ++i) elevation_m[i] = (1.f - f) * from[i] + f * to[i];
+  });
+}
+
+void nearshore_camera_init(nearshore_camera* camera) {
+  if (!camera) return;
+  *camera = {};
+  camera->struct_size = sizeof(nearshore_camera);
+  camera->eye_m[2] = 100.0;
+  camera->target_m[1] = 100.0;
+  camera->vertical_fov_deg = 45.0;
+  camera->sun_azimuth_deg = 200.0;
+  camera->sun_elevation_deg = 35.0;
+}
+
+nearshore_status nearshore_renderer_create(nearshore_sea* sea, nearshore_grid grid,
+                                           nearshore_gl_proc_address get_proc_address, nearshore_renderer** renderer) {
+  return guarded(NEARSHORE_GL_ERROR, [&] {
+    require(sea, "sea");
+    require(renderer, "renderer");
+    *renderer = nullptr;
+    nearshore::playback::load_opengl(require(get_proc_address, "get_proc_address"));
+    nearshore::playback::RendererSettings settings;
+    switch (grid) {
+      case NEARSHORE_GRID_RADIAL: settings.grid = nearshore::playback::GridKind::radial; break;
+      case NEARSHORE_GRID_QUADTREE: settings.grid = nearshore::playback::GridKind::quadtree; break;
+      case NEARSHORE_GRID_PROJECTED: settings.grid = nearshore::playback::GridKind::projected; break;
+      default:
+        fail(NEARSHORE_INVALID_ARGUMENT, "grid = " + std::to_string(int(grid)) + " is not a nearshore_grid");
+    }
+    auto created = std::make_unique<nearshore_renderer>();
+    created->sea = sea;
+    created->renderer = std::make_unique<nearshore::playback::WaterRenderer>(settings);
+    *renderer = created.release();
+  });
+}
+
+void nearshore_renderer_destroy(nearshore_renderer* renderer) {
+  try {
+    delete renderer;
+  } catch (...) {
+    last_error = "nearshore_renderer_destroy: the GL objects could not be freed (was the context current?)";
+  }
+}
+
+nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nearshore_camera* camera, int width_px,
+                                         int height_px) {
+  return guarded(NEARSHORE_GL_ERROR, [&] {
+    require(renderer, "renderer");
+    require(camera, "camera");
+    if (camera->struct_size != sizeof(nearshore_camera))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_camera.struct_size must be sizeof(nearshore_camera); call nearshore_camera_init");
+    if (width_px < 1 || height_px < 1 || width_px > 16384 || height_px > 16384)
+      fail(NEARSHORE_INVALID_ARGUMENT, "the viewport " + std::to_string(width_px) + " x " + std::to_string(height_px) +
+                                           " px is outside 1-16384 px");
+    nearshore::playback::Camera view;
+    for (int k = 0; k < 3; ++k) view.eye_m[k] = camera->eye_m[k], view.target_m[k] = camera->target_m[k];
+    view.vertical_field_of_view_deg = camera->vertical_fov_deg;
+    view.near_m = camera->near_m;
+    view.far_m = camera->far_m;
+    nearshore::playback::Lighting lighting;
+    lighting.sun_azimuth_deg = camera->sun_azimuth_deg;
+    lighting.sun_elevation_deg = camera->sun_elevation_deg;
+    renderer->renderer->render(renderer->sea->engine->snapshot(), view, lighting, width_px, height_px);
+    renderer->renderer->blit_to_window(width_px, height_px);
+    renderer->last_width_px = width_px;
+    renderer->last_height_px = height_px;
+  });
+}
+
+nearshore_status nearshore_renderer_read_pixels(nearshore_renderer* renderer, int width_px, int height_px,
+                                                uint8_t* rgba) {
+  return guarded(NEARSHORE_GL_ERROR, [&] {
+    require(renderer, "renderer");
+    require(rgba, "rgba");
+    if (width_px != renderer->last_width_px || height_px != renderer->last_height_px)
+      fail(NEARSHORE_INVALID_ARGUMENT, "read " + std::to_string(width_px) + " x " + std::to_string(height_px) +
+                                           " px, but the last draw was " + std::to_string(renderer->last_width_px) +
+                                           " x " + std::to_string(renderer->last_height_px) + " px");
+    const nearshore::Image image = renderer->renderer->read_pixels();
+    const std::vector<float>& rgb = image.pixels();  // linear 0..1 display values, 3 per pixel, row 0 at the top
+    const std::size_t count = static_cast<std::size_t>(width_px) * static_cast<std::size_t>(height_px);
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int c = 0; c < 3; ++c)
+        rgba[4 * i + c] = static_cast<uint8_t>(std::lround(255.f * std::clamp(rgb[3 * i + c], 0.f, 1.f)));
+      rgba[4 * i + 3] = 255;
+    }
+  });
+}
+
+nearshore_status nearshore_renderer_upload(nearshore_renderer* renderer, nearshore_gl_textures* textures) {
+  return guarded(NEARSHORE_GL_ERROR, [&] {
+    require(renderer, "renderer");
+    require(textures, "textures");
+    if (textures->struct_size != sizeof(nearshore_gl_textures))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_gl_textures.struct_size must be sizeof(nearshore_gl_textures)");
+    const nearshore::playback::GpuTextures& gpu = renderer->renderer->upload(renderer->sea->engine->snapshot());
+    if (gpu.cascade_count > 8)
+      fail(NEARSHORE_INTERNAL_ERROR, "the deep water has " + std::to_string(gpu.cascade_count) + " cascades; the C API carries 8");
+    for (int k = 0; k < 2; ++k) {
+      textures->harbour_elevation[k] = gpu.harbour_elevation[k];
+      textures->harbour_breaking[k] = gpu.harbour_breaking[k];
+      textures->deep_elevation[k] = gpu.deep_elevation[k];
+      textures->deep_displacement_x[k] = gpu.deep_displacement_x[k];
+      textures->deep_displacement_y[k] = gpu.deep_displacement_y[k];
+      textures->deep_slope_x[k] = gpu.deep_slope_x[k];
+      textures->deep_slope_y[k] = gpu.deep_slope_y[k];
+    }
+    textures->harbour_fraction = static_cast<float>(gpu.harbour_fraction);
+    textures->cascade_count = gpu.cascade_count;
+    textures->deep_grid_size = gpu.deep_grid_size;
+    for (int c = 0; c < 8; ++c) textures->cascade_tile_m[c] = c < gpu.cascade_count ? gpu.tile_lengths_m[static_cast<std::size_t>(c)] : 0.f;
+    textures->deep_water_fraction = static_cast<float>(gpu.deep_fraction);
+  });
+}
+
+}  // extern "C"

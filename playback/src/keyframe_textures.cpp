@@ -1,0 +1,284 @@
+#include "keyframe_textures.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::playback {
+
+namespace {
+constexpr std::size_t kUnlimited = std::numeric_limits<std::size_t>::max();
+
+GLuint new_texture(GLenum target) {
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(target, texture);
+  // Linear for the fragment shader's slopes and foam; the vertex path fetches texels itself.
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  const GLint wrap = target == GL_TEXTURE_2D_ARRAY ? GL_REPEAT : GL_CLAMP_TO_EDGE;  // deep tiles are periodic
+  glTexParameteri(target, GL_TEXTURE_WRAP_S, wrap);
+  glTexParameteri(target, GL_TEXTURE_WRAP_T, wrap);
+  return texture;
+}
+
+const std::vector<float>& deep_field(const ocean::DeepWaterFrame& frame, int field) {
+  switch (field) {
+    case kDeepEta: return frame.surface_elevation_m;
+    case kDeepDx: return frame.displacement_x_m;
+    case kDeepDy: return frame.displacement_y_m;
+    case kDeepSlopeX: return frame.slope_x;
+    default: return frame.slope_y;
+  }
+}
+}  // namespace
+
+KeyframeTextures::KeyframeTextures(int harbour_slot_count, int deep_slot_count)
+    : harbour_slots_(std::size_t(std::max(harbour_slot_count, 2))), deep_slots_(std::size_t(std::max(deep_slot_count, 2))) {}
+
+KeyframeTextures::~KeyframeTextures() {
+  for (auto* slots : {&harbour_slots_, &deep_slots_})
+    for (Slot& slot : *slots)
+      for (GLuint& texture : slot.textures)
+        if (texture) glDeleteTextures(1, &texture);
+}
+
+bool KeyframeTextures::stage(std::shared_ptr<const runtime::HarbourKeyframe> keyframe) {
+  if (!keyframe || harbour_queue_.size() + 2 >= harbour_slots_.size()) return false;
+  if (Slot* slot = find(harbour_slots_, keyframe->serial); slot && slot->complete) return false;
+  for (const auto& queued : harbour_queue_)
+    if (queued->serial == keyframe->serial) return false;
+  harbour_queue_.push_back(std::move(keyframe));
+  return true;
+}
+
+bool KeyframeTextures::stage(std::shared_ptr<const runtime::DeepWaterKeyframe> keyframe) {
+  if (!keyframe || deep_queue_.size() + 2 >= deep_slots_.size()) return false;
+  if (Slot* slot = find(deep_slots_, keyframe->serial); slot && slot->complete) return false;
+  for (const auto& queued : deep_queue_)
+    if (queued->serial == keyframe->serial) return false;
+  deep_queue_.push_back(std::move(keyframe));
+  return true;
+}
+
+KeyframeTextures::Slot* KeyframeTextures::find(std::vector<Slot>& slots, std::uint64_t serial) {
+  for (Slot& slot : slots)
+    if (slot.serial == serial && slot.rows_total > 0) return &slot;
+  return nullptr;
+}
+
+KeyframeTextures::Slot& KeyframeTextures::claim(std::vector<Slot>& slots, std::uint64_t serial, std::uint64_t pinned_a,
+                                                std::uint64_t pinned_b) {
+  // A free slot, else the least recently used one that the pair on screen does not hold.
+  Slot* best = nullptr;
+  for (Slot& slot : slots) {
+    if (slot.rows_total == 0) {
+      best = &slot;
+      break;
+    }
+    if (slot.serial == pinned_a || slot.serial == pinned_b) continue;
+    if (!best || slot.last_used < best->last_used) best = &slot;
+  }
+  if (!best) throw Error("keyframe textures", "every texture slot holds a keyframe on screen", "report this bug");
+  best->serial = serial;
+  best->complete = false;
+  best->rows_done = 0;
+  best->harbour.reset();
+  best->deep.reset();
+  return *best;
+}
+
+void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::HarbourKeyframe> keyframe) {
+  const int width = keyframe->surface_elevation_m.columns(), height = keyframe->surface_elevation_m.rows();
+  if (!keyframe->breaking.empty() &&
+      (keyframe->breaking.columns() != width || keyframe->breaking.rows() != height))
+    throw Error("harbour keyframe " + std::to_string(keyframe->serial),
+                "has a breaking raster of another size than its surface elevation",
+                "give both rasters the harbour grid's size");
+  if (slot.width != width || slot.height != height || slot.layers != 0 || !slot.textures[0]) {
+    for (int field = 0; field < 2; ++field) {
+      if (!slot.textures[field]) slot.textures[field] = new_texture(GL_TEXTURE_2D);
+      glBindTexture(GL_TEXTURE_2D, slot.textures[field]);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, nullptr);
+    }
+    slot.width = width;
+    slot.height = height;
+    slot.layers = 0;
+  }
+  slot.rows_total = 2LL * height;  // eta rows, then breaking rows
+  slot.harbour = std::move(keyframe);
+}
+
+void KeyframeTextures::start_deep(Slot& slot, std::shared_ptr<const runtime::DeepWaterKeyframe> keyframe) {
+  const int cascades = static_cast<int>(keyframe->cascades.size());
+  const int n = cascades ? keyframe->cascades.front().grid_size : 0;
+  for (const ocean::DeepWaterFrame& frame : keyframe->cascades) {
+    const std::size_t expected = std::size_t(n) * n;
+    if (frame.grid_size != n || frame.surface_elevation_m.size() != expected || frame.displacement_x_m.size() != expected ||
+        frame.displacement_y_m.size() != expected || frame.slope_x.size() != expected || frame.slope_y.size() != expected)
+      throw Error("deep-water keyframe " + std::to_string(keyframe->serial),
+                  "has cascades of different sizes or missing fields (eta, displacement, slopes)",
+                  "synthesise every cascade with one grid size (DeepWaterSpecification::grid_size)");
+  }
+  if (cascades > 8)
+    throw Error("deep-water keyframe " + std::to_string(keyframe->serial),
+                "has " + std::to_string(cascades) + " cascades; the renderer draws at most 8", "use at most 8 cascades");
+  if (slot.width != n || slot.height != n || slot.layers != cascades || !slot.textures[0]) {
+    for (int field = 0; field < kDeepFieldCount; ++field) {
+      if (!slot.textures[field]) slot.textures[field] = new_texture(GL_TEXTURE_2D_ARRAY);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, slot.textures[field]);
+      glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32F, n, n, cascades, 0, GL_RED, GL_FLOAT, nullptr);
+    }
+    slot.width = n;
+    slot.height = n;
+    slot.layers = cascades;
+  }
+  slot.rows_total = static_cast<long long>(kDeepFieldCount) * cascades * n;
+  slot.deep = std::move(keyframe);
+}
+
+std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) {
+  const std::size_t row_bytes = std::size_t(slot.width) * sizeof(float);
+  long long rows = std::max<long long>(1, static_cast<long long>(std::min<std::size_t>(budget_bytes / row_bytes, 1u << 30)));
+  rows = std::min(rows, slot.rows_total - slot.rows_done);
+  std::size_t sent = 0;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  while (rows > 0) {
+    if (slot.harbour) {
+      const int field = static_cast<int>(slot.rows_done / slot.height), row = static_cast<int>(slot.rows_done % slot.height);
+      const int count = static_cast<int>(std::min<long long>(rows, slot.height - row));
+      glBindTexture(GL_TEXTURE_2D, slot.textures[field]);
+      const Raster<float>& raster = field == 0 ? slot.harbour->surface_elevation_m : slot.harbour->breaking;
+      if (raster.empty()) {  // no breaking raster: nothing breaks
+        zero_row_.assign(std::size_t(slot.width), 0.f);
+        for (int r = 0; r < count; ++r)
+          glTexSubImage2D(GL_TEXTURE_2D, 0, 0, row + r, slot.width, 1, GL_RED, GL_FLOAT, zero_row_.data());
+      } else {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, row, slot.width, count, GL_RED, GL_FLOAT,
+                        raster.data() + std::size_t(row) * slot.width);
+      }
+      slot.rows_done += count;
+      rows -= count;
+      sent += std::size_t(count) * row_bytes;
+    } else {
+      const long long per_field = static_cast<long long>(slot.layers) * slot.height;
+      const int field = static_cast<int>(slot.rows_done / per_field);
+      const int layer = static_cast<int>((slot.rows_done / slot.height) % slot.layers);
+      const int row = static_cast<int>(slot.rows_done % slot.height);
+      const int count = static_cast<int>(std::min<long long>(rows, slot.height - row));
+      glBindTexture(GL_TEXTURE_2D_ARRAY, slot.textures[field]);
+      const std::vector<float>& values = deep_field(slot.deep->cascades[std::size_t(layer)], field);
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, row, layer, slot.width, count, 1, GL_RED, GL_FLOAT,
+                      values.data() + std::size_t(row) * slot.width);
+      slot.rows_done += count;
+      rows -= count;
+      sent += std::size_t(count) * row_bytes;
+    }
+  }
+  if (slot.rows_done >= slot.rows_total) {
+    slot.complete = true;
+    slot.harbour.reset();  // the GPU holds it now; the engine may let it go
+    slot.deep.reset();
+  }
+  slot.last_used = frame_;
+  return sent;
+}
+
+KeyframeTextures::Slot& KeyframeTextures::resident_harbour(const std::shared_ptr<const runtime::HarbourKeyframe>& keyframe,
+                                                           std::uint64_t other, UploadCounters& counters) {
+  Slot* slot = find(harbour_slots_, keyframe->serial);
+  if (!slot) {
+    slot = &claim(harbour_slots_, keyframe->serial, keyframe->serial, other);
+    start_harbour(*slot, keyframe);
+  }
+  if (!slot->complete) {
+    if (!slot->harbour) slot->harbour = keyframe;
+    const std::size_t sent = upload_rows(*slot, kUnlimited);
+    counters.bytes += sent;
+    counters.forced_bytes += sent;
+  }
+  slot->last_used = frame_;
+  std::erase_if(harbour_queue_, [&](const auto& queued) { return queued->serial == keyframe->serial; });
+  return *slot;
+}
+
+KeyframeTextures::Slot& KeyframeTextures::resident_deep(const std::shared_ptr<const runtime::DeepWaterKeyframe>& keyframe,
+                                                        std::uint64_t other, UploadCounters& counters) {
+  Slot* slot = find(deep_slots_, keyframe->serial);
+  if (!slot) {
+    slot = &claim(deep_slots_, keyframe->serial, keyframe->serial, other);
+    start_deep(*slot, keyframe);
+  }
+  if (!slot->complete) {
+    if (!slot->deep) slot->deep = keyframe;
+    const std::size_t sent = upload_rows(*slot, kUnlimited);
+    counters.bytes += sent;
+    counters.forced_bytes += sent;
+  }
+  slot->last_used = frame_;
+  std::erase_if(deep_queue_, [&](const auto& queued) { return queued->serial == keyframe->serial; });
+  return *slot;
+}
+
+KeyframeTextures::Bound KeyframeTextures::prepare(const runtime::SurfaceSnapshot& snapshot, std::size_t budget,
+                                                  UploadCounters& counters) {
+  ++frame_;
+  Bound bound;
+  // 1. The pair on screen, whole (a missing 'to' shows 'from' alone).
+  const auto& harbour_from = snapshot.harbour_from ? snapshot.harbour_from : snapshot.harbour_to;
+  const auto& harbour_to = snapshot.harbour_to ? snapshot.harbour_to : snapshot.harbour_from;
+  pinned_harbour_[0] = harbour_from ? harbour_from->serial : 0;
+  pinned_harbour_[1] = harbour_to ? harbour_to->serial : 0;
+  if (harbour_from) {
+    const Slot& from = resident_harbour(harbour_from, pinned_harbour_[1], counters);
+    const Slot& to = resident_harbour(harbour_to, pinned_harbour_[0], counters);
+    bound.harbour_eta[0] = from.textures[0];
+    bound.harbour_breaking[0] = from.textures[1];
+    bound.harbour_eta[1] = to.textures[0];
+    bound.harbour_breaking[1] = to.textures[1];
+  }
+  const auto& deep_from = snapshot.deep_from ? snapshot.deep_from : snapshot.deep_to;
+  const auto& deep_to = snapshot.deep_to ? snapshot.deep_to : snapshot.deep_from;
+  pinned_deep_[0] = deep_from ? deep_from->serial : 0;
+  pinned_deep_[1] = deep_to ? deep_to->serial : 0;
+  if (deep_from && !deep_from->cascades.empty()) {
+    if (deep_to->cascades.size() != deep_from->cascades.size() ||
+        deep_to->cascades.front().grid_size != deep_from->cascades.front().grid_size)
+      throw Error("deep-water keyframes " + std::to_string(deep_from->serial) + " and " + std::to_string(deep_to->serial),
+                  "have different cascades", "blend keyframes of one deep-water field");
+    const Slot& from = resident_deep(deep_from, pinned_deep_[1], counters);
+    const Slot& to = resident_deep(deep_to, pinned_deep_[0], counters);
+    for (int field = 0; field < kDeepFieldCount; ++field) {
+      bound.deep[field][0] = from.textures[field];
+      bound.deep[field][1] = to.textures[field];
+    }
+    bound.deep_size = from.width;
+    bound.cascade_count = from.layers;
+    for (const ocean::DeepWaterFrame& frame : deep_from->cascades) bound.tile_lengths_m.push_back(float(frame.tile_length_m));
+  }
+  // 2. The staged keyframes, within the budget, oldest first.
+  auto advance = [&](auto& queue, std::vector<Slot>& slots, const std::uint64_t* pinned, auto start) {
+    while (budget > 0 && !queue.empty()) {
+      const auto keyframe = queue.front();
+      Slot* slot = find(slots, keyframe->serial);
+      if (!slot) {
+        slot = &claim(slots, keyframe->serial, pinned[0], pinned[1]);
+        (this->*start)(*slot, keyframe);
+      }
+      if (!slot->complete) {
+        const std::size_t sent = upload_rows(*slot, budget);
+        counters.bytes += sent;
+        budget -= std::min(sent, budget);
+      }
+      if (slot->complete) queue.pop_front();
+    }
+  };
+  advance(harbour_queue_, harbour_slots_, pinned_harbour_, &KeyframeTextures::start_harbour);
+  advance(deep_queue_, deep_slots_, pinned_deep_, &KeyframeTextures::start_deep);
+  return bound;
+}
+
+}  // namespace nearshore::playback

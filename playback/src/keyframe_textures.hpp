@@ -1,0 +1,80 @@
+#pragma once
+// The GPU copies of a snapshot's keyframes (private to the renderer). Each harbour and deep-water
+// keyframe is uploaded once, by serial, into a small pool of texture slots. A keyframe the engine
+// says is coming (stage) is uploaded in row chunks within a byte budget per drawn frame, so a
+// 1024 x 1024 keyframe (8 MB: eta and breaking as R32F) spreads over several frames instead of
+// stalling one; a keyframe a snapshot needs before it is complete is finished at once (counted
+// as forced). Needs a current OpenGL context.
+#include <glad/gl.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "nearshore/runtime/surface_snapshot.hpp"
+
+namespace nearshore::playback {
+
+struct UploadCounters {
+  std::size_t bytes = 0;         ///< texture bytes sent
+  std::size_t forced_bytes = 0;  ///< of which for keyframes a snapshot needed unfinished
+};
+
+/// The deep-water fields a vertex or fragment shader reads, one R32F array per field.
+enum DeepField { kDeepEta, kDeepDx, kDeepDy, kDeepSlopeX, kDeepSlopeY, kDeepFieldCount };
+
+class KeyframeTextures {
+ public:
+  KeyframeTextures(int harbour_slot_count, int deep_slot_count);
+  ~KeyframeTextures();
+  KeyframeTextures(const KeyframeTextures&) = delete;
+  KeyframeTextures& operator=(const KeyframeTextures&) = delete;
+
+  /// Queues a keyframe for a budgeted upload. false when the queue is full (slots - 2 entries:
+  /// two slots stay for the pair on screen) or the keyframe is already resident or queued.
+  bool stage(std::shared_ptr<const runtime::HarbourKeyframe> keyframe);
+  bool stage(std::shared_ptr<const runtime::DeepWaterKeyframe> keyframe);
+
+  /// What a draw binds: the textures of the snapshot's pair (from, to), resident after prepare().
+  struct Bound {
+    GLuint harbour_eta[2] = {0, 0}, harbour_breaking[2] = {0, 0};
+    GLuint deep[kDeepFieldCount][2] = {};
+    int deep_size = 0, cascade_count = 0;
+    std::vector<float> tile_lengths_m;
+  };
+  /// Makes the snapshot's keyframes resident (finishing any that are not: forced), then spends
+  /// `budget_bytes` on the staged queue (at least one row, so a queue always advances).
+  Bound prepare(const runtime::SurfaceSnapshot& snapshot, std::size_t budget_bytes, UploadCounters& counters);
+
+ private:
+  struct Slot {
+    std::uint64_t serial = 0;  // 0: free
+    bool complete = false;
+    long long last_used = -1;
+    long long rows_done = 0, rows_total = 0;  // progress in rows of one field (of one layer)
+    GLuint textures[kDeepFieldCount] = {};
+    int width = 0, height = 0, layers = 0;
+    std::shared_ptr<const runtime::HarbourKeyframe> harbour;  // held until complete
+    std::shared_ptr<const runtime::DeepWaterKeyframe> deep;
+  };
+  Slot* find(std::vector<Slot>& slots, std::uint64_t serial);
+  Slot& claim(std::vector<Slot>& slots, std::uint64_t serial, std::uint64_t pinned_a, std::uint64_t pinned_b);
+  void start_harbour(Slot& slot, std::shared_ptr<const runtime::HarbourKeyframe> keyframe);
+  void start_deep(Slot& slot, std::shared_ptr<const runtime::DeepWaterKeyframe> keyframe);
+  std::size_t upload_rows(Slot& slot, std::size_t budget_bytes);  // returns the bytes sent
+  Slot& resident_harbour(const std::shared_ptr<const runtime::HarbourKeyframe>& keyframe, std::uint64_t other,
+                         UploadCounters& counters);
+  Slot& resident_deep(const std::shared_ptr<const runtime::DeepWaterKeyframe>& keyframe, std::uint64_t other,
+                      UploadCounters& counters);
+
+  std::vector<Slot> harbour_slots_, deep_slots_;
+  std::deque<std::shared_ptr<const runtime::HarbourKeyframe>> harbour_queue_;
+  std::deque<std::shared_ptr<const runtime::DeepWaterKeyframe>> deep_queue_;
+  std::vector<float> zero_row_;
+  long long frame_ = 0;
+  std::uint64_t pinned_harbour_[2] = {0, 0}, pinned_deep_[2] = {0, 0};
+};
+
+}  // namespace nearshore::playback

@@ -1,0 +1,90 @@
+// samples/embed_window.cpp: a host with its own GLFW window, in which nearshore draws the sea
+// (C++ API). The host owns the window, the context and the clock; nearshore streams the baked
+// harbour, synthesises the deep water around it and draws both.
+//
+//   embed_window SEQUENCE_FOLDER [FRAMES [OUT.ppm]]
+//
+// With FRAMES it draws that many frames at a fixed 30 fps clock and exits (CI runs it under
+// xvfb-run), writing the last one to OUT.ppm if given; without, it runs until the window closes.
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/playback/gl_loader.hpp"
+#include "nearshore/playback/water_renderer.hpp"
+#include "nearshore/runtime/streaming_engine.hpp"
+
+namespace {
+
+void write_ppm(const nearshore::Image& image, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  out << "P6\n" << image.width() << " " << image.height() << "\n255\n";
+  for (float value : image.pixels()) {
+    const float clamped = value < 0.f ? 0.f : (value > 1.f ? 1.f : value);
+    out.put(static_cast<char>(static_cast<unsigned char>(clamped * 255.f + 0.5f)));
+  }
+}
+
+int run(int argc, char** argv) {
+  const int frame_limit = argc > 2 ? std::atoi(argv[2]) : 0;  // 0: until the window closes
+  const int width = 960, height = 540;
+  if (!glfwInit()) throw nearshore::Error("GLFW", "cannot start (no display?)", "run under xvfb-run -a");
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_VISIBLE, frame_limit > 0 ? GLFW_FALSE : GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(width, height, "host window: nearshore draws", nullptr, nullptr);
+  if (!window) throw nearshore::Error("GLFW", "no OpenGL 3.3 core window", "run under xvfb-run -a");
+  glfwMakeContextCurrent(window);
+
+  {  // nearshore's GL objects live inside this scope, while the context is alive
+    // 1. nearshore loads OpenGL from the host's context, then opens the sea.
+    nearshore::playback::load_opengl(reinterpret_cast<nearshore::playback::GlProcAddressFunction>(glfwGetProcAddress));
+    nearshore::runtime::StreamingEngine sea(argv[1]);
+    nearshore::playback::WaterRenderer renderer;  // quadtree grid, default settings
+    const auto site = sea.site();
+    const nearshore::playback::Camera camera = nearshore::playback::Camera::overlooking_site(site->width_m, site->height_m);
+    const nearshore::playback::Lighting lighting;
+    sea.wait_until_ready(0.0, std::chrono::seconds(10));  // start-up only; the loop never waits
+
+    // 2. Per frame: advance the sea on the host's clock, draw, present.
+    for (int frame = 0; !glfwWindowShouldClose(window) && (frame_limit == 0 || frame < frame_limit); ++frame) {
+      const double time_s = frame_limit > 0 ? frame / 30.0 : glfwGetTime();
+      sea.advance_to(time_s);
+      int fb_width = 0, fb_height = 0;
+      glfwGetFramebufferSize(window, &fb_width, &fb_height);
+      renderer.render(sea.snapshot(), camera, lighting, fb_width, fb_height);
+      renderer.blit_to_window(fb_width, fb_height);
+      glfwSwapBuffers(window);
+      glfwPollEvents();
+    }
+    const nearshore::runtime::StreamingStats stats = sea.stats();
+    std::printf("embed_window: %s, step %lld, %lld underruns, %.0f bytes uploaded in the last frame\n",
+                stats.plan.c_str(), stats.plan_step, stats.underruns, double(renderer.last_frame().upload_bytes));
+    if (argc > 3) write_ppm(renderer.read_pixels(), argv[3]);
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: embed_window SEQUENCE_FOLDER [FRAMES [OUT.ppm]]\n");
+    return 2;
+  }
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {  // nearshore::Error names the file and the fix
+    std::fprintf(stderr, "embed_window: %s\n", error.what());
+    return 1;
+  }
+}

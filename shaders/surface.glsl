@@ -1,0 +1,148 @@
+// The sea surface of a runtime::SurfaceSnapshot at a site point (runtime/surface_snapshot.hpp):
+//   harbour(p) = (1 - f_h) H_from(p) + f_h H_to(p)                 bilinear, cell-centred rasters
+//   deep(p)    = (1 - f_d) sum_c D_from,c(p) + f_d sum_c D_to,c(p) bilinear, periodic tiles
+//   shown(p)   = w(p) harbour(p) + (1 - w(p)) deep(p)               w = harbour_weight(site, p)
+// and the deep water's choppy shift (1 - w) lambda D(p) (ocean/deep_water.hpp: x -> x + lambda D).
+// The CPU evaluates the same formulas (runtime's surface sampler); the height pass compares them.
+// Prepended (after common.glsl) to the water and height-pass shaders. Site frame, metres.
+
+const float kPi = 3.14159265358979;
+
+uniform vec3 u_eye_m;              // the viewer (site frame)
+uniform float u_earth_radius_m;    // > 0: the surface lies on a sphere touching still water under the eye
+
+// Harbour (texture units 0-6): keyframes as R32F, cell (i, j) at texel (i, j), row 0 south.
+uniform bool u_has_site;           // a harbour is shown (else: deep water only)
+uniform bool u_has_keyframes;      // the snapshot holds harbour keyframes (else the harbour is still)
+uniform sampler2D u_harbour_eta_from, u_harbour_eta_to;
+uniform sampler2D u_harbour_breaking_from, u_harbour_breaking_to;
+uniform sampler2D u_still_water_depth;  // d, positive down, land negative
+uniform sampler2D u_porosity;
+uniform sampler2D u_land;          // R8: 1 land
+uniform float u_harbour_fraction;  // f_h
+uniform ivec2 u_cells;             // columns, rows
+uniform float u_spacing_m;         // cell size
+uniform vec2 u_site_size_m;        // width, height
+uniform int u_source_axis;         // HarbourSite: the bake's blending record
+uniform float u_inward_sign, u_source_line_m, u_blend_start_m, u_blend_width_m, u_edge_fade_m;
+uniform float u_open_sea_depth_m;  // depth assumed beyond the harbour (lighting only)
+uniform float u_dry_depth_m;       // HarbourSite::dry_depth_m: total depth at or below which a point is dry
+
+// Deep water (units 7-16): one layer per cascade, N x N, sample (i, j) at x = i L / N, periodic.
+uniform int u_cascade_count;       // 0: a flat sea beyond the harbour
+uniform int u_deep_size;           // N
+uniform float u_tile_length_m[8];  // L per cascade
+uniform float u_deep_fraction;     // f_d
+uniform float u_choppiness;        // lambda
+uniform sampler2DArray u_deep_eta_from, u_deep_eta_to;
+uniform sampler2DArray u_deep_dx_from, u_deep_dx_to, u_deep_dy_from, u_deep_dy_to;
+uniform sampler2DArray u_deep_slope_x_from, u_deep_slope_x_to, u_deep_slope_y_from, u_deep_slope_y_to;
+
+// Bilinear interpolation written out with texelFetch and float weights: the texture units'
+// own filtering keeps only 8 bits of the weights on most GPUs (a millimetre of error on a
+// 5 m grid with a 10 % slope), and the height pass must agree with the CPU to well under that.
+float harbour_bilinear(sampler2D field, vec2 p) {
+  vec2 u = p / u_spacing_m - 0.5;  // cell centres at (i + 0.5) spacing
+  vec2 base = floor(u);
+  vec2 w = u - base;
+  ivec2 i0 = clamp(ivec2(base), ivec2(0), u_cells - 1);
+  ivec2 i1 = clamp(ivec2(base) + 1, ivec2(0), u_cells - 1);
+  float south = mix(texelFetch(field, ivec2(i0.x, i0.y), 0).r, texelFetch(field, ivec2(i1.x, i0.y), 0).r, w.x);
+  float north = mix(texelFetch(field, ivec2(i0.x, i1.y), 0).r, texelFetch(field, ivec2(i1.x, i1.y), 0).r, w.x);
+  return mix(south, north, w.y);
+}
+
+struct DeepTaps {
+  ivec2 i0, i1;
+  vec2 w;
+};
+DeepTaps deep_taps(vec2 p, int cascade) {
+  vec2 u = p * (float(u_deep_size) / u_tile_length_m[cascade]);  // samples at i L / N
+  vec2 base = floor(u);
+  DeepTaps t;
+  t.w = u - base;
+  t.i0 = ivec2(mod(base, float(u_deep_size)));
+  t.i1 = (t.i0 + 1) % u_deep_size;
+  return t;
+}
+float deep_bilinear(sampler2DArray field, DeepTaps t, int layer) {
+  float south = mix(texelFetch(field, ivec3(t.i0.x, t.i0.y, layer), 0).r, texelFetch(field, ivec3(t.i1.x, t.i0.y, layer), 0).r, t.w.x);
+  float north = mix(texelFetch(field, ivec3(t.i0.x, t.i1.y, layer), 0).r, texelFetch(field, ivec3(t.i1.x, t.i1.y, layer), 0).r, t.w.x);
+  return mix(south, north, t.w.y);
+}
+
+// sin^2 ramp from 0 at s = 0 to 1 at s = width (runtime/src/surface_snapshot.cpp sin2_ramp).
+float sin2_ramp(float s, float width) {
+  if (width <= 0.0) return s > 0.0 ? 1.0 : 0.0;
+  float r = sin(0.5 * kPi * clamp(s / width, 0.0, 1.0));
+  return r * r;
+}
+
+// w(p): twin of runtime::harbour_weight (runtime/src/surface_snapshot.cpp).
+float harbour_weight(vec2 p) {
+  // No harbour keyframes: the deep water everywhere (runtime::SurfaceSampler does the same).
+  if (!u_has_site || !u_has_keyframes || p.x < 0.0 || p.y < 0.0 || p.x > u_site_size_m.x || p.y > u_site_size_m.y)
+    return 0.0;
+  float along = u_source_axis == 0 ? p.x : p.y;
+  float inland = u_inward_sign * (along - u_source_line_m);  // inland of the source line
+  float weight = sin2_ramp(inland - u_blend_start_m, u_blend_width_m);
+  float distances[4] = float[4](p.x, u_site_size_m.x - p.x, p.y, u_site_size_m.y - p.y);  // W, E, S, N
+  int source_edge = u_source_axis == 0 ? (u_inward_sign > 0.0 ? 0 : 1) : (u_inward_sign > 0.0 ? 2 : 3);
+  for (int edge = 0; edge < 4; ++edge)
+    if (edge != source_edge) weight *= sin2_ramp(distances[edge], u_edge_fade_m);
+  return weight;
+}
+
+struct Surface {
+  float eta;     // shown surface elevation (m)
+  vec2 shift;    // horizontal displacement of the point (m)
+  float weight;  // w(p)
+};
+
+Surface surface_at(vec2 p) {
+  Surface s;
+  s.weight = harbour_weight(p);
+  float harbour = 0.0;
+  if (s.weight > 0.0 && u_has_keyframes)
+    harbour = mix(harbour_bilinear(u_harbour_eta_from, p), harbour_bilinear(u_harbour_eta_to, p), u_harbour_fraction);
+  float deep_from = 0.0, deep_to = 0.0;
+  vec2 shift_from = vec2(0.0), shift_to = vec2(0.0);
+  if (s.weight < 1.0) {
+    for (int c = 0; c < u_cascade_count; ++c) {
+      DeepTaps t = deep_taps(p, c);
+      deep_from += deep_bilinear(u_deep_eta_from, t, c);
+      deep_to += deep_bilinear(u_deep_eta_to, t, c);
+      shift_from += vec2(deep_bilinear(u_deep_dx_from, t, c), deep_bilinear(u_deep_dy_from, t, c));
+      shift_to += vec2(deep_bilinear(u_deep_dx_to, t, c), deep_bilinear(u_deep_dy_to, t, c));
+    }
+  }
+  float deep = mix(deep_from, deep_to, u_deep_fraction);
+  s.eta = s.weight * harbour + (1.0 - s.weight) * deep;
+  s.shift = (1.0 - s.weight) * u_choppiness * mix(shift_from, shift_to, u_deep_fraction);
+  return s;
+}
+
+// Twin of playback::curvature_drop_m: the sphere's drop below the tangent plane under the eye.
+float curvature_drop_m(vec2 p) {
+  if (u_earth_radius_m <= 0.0) return 0.0;
+  vec2 d = p - u_eye_m.xy;
+  float rho2 = dot(d, d);
+  return rho2 / (u_earth_radius_m + sqrt(max(u_earth_radius_m * u_earth_radius_m - rho2, 0.0)));
+}
+
+// Still-water depth d at p (m): bilinear inside the harbour, the open sea's beyond.
+float still_water_depth_at(vec2 p) {
+  if (!u_has_site || any(lessThan(p, vec2(0.0))) || any(greaterThan(p, u_site_size_m))) return u_open_sea_depth_m;
+  return texture(u_still_water_depth, p / u_site_size_m).r;
+}
+
+// Dry: no water is drawn over a land cell, a breakwater or quay cell (porosity < 1), or where
+// the wave leaves no water (d + eta <= the site's dry depth). Land and structures are judged per
+// cell (the cell the point lies in), as the solver masked them.
+bool is_dry(vec2 p, float eta) {
+  if (!u_has_site || any(lessThan(p, vec2(0.0))) || any(greaterThanEqual(p, u_site_size_m))) return false;
+  ivec2 cell = clamp(ivec2(floor(p / u_spacing_m)), ivec2(0), u_cells - 1);
+  if (texelFetch(u_land, cell, 0).r > 0.0 ||  // R8 holds the mask's 1 as 1/255
+      texelFetch(u_porosity, cell, 0).r < 0.99) return true;
+  return still_water_depth_at(p) + eta <= u_dry_depth_m;
+}

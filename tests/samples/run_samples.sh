@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The three samples/ hosts, built the way a host builds them: `cmake --install` of this build into
+# a prefix, then samples/ as a separate CMake project against the installed package
+# (find_package(nearshore)), the C sample also compiled alone as C11 by the C compiler; then each
+# is run headless on a small real bake. Usage: run_samples.sh BUILD_DIR SOURCE_DIR SEQUENCE WORK
+set -euo pipefail
+build_dir=$1 source_dir=$2 sequence=$3 work=$4
+rm -rf "$work"
+mkdir -p "$work"
+cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
+test -f "$work/prefix/include/nearshore.h"
+test -f "$work/prefix/lib/cmake/nearshore/nearshoreConfig.cmake"
+test -f "$work/prefix/lib/pkgconfig/nearshore.pc"
+# C11 with a C compiler, nothing but the installed header and pkg-config.
+PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" cc -std=c11 -pedantic -Wall -Wextra -Werror \
+  $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags nearshore) \
+  -c "$source_dir/samples/query_track.c" -o "$work/query_track_c11.o"
+cmake -S "$source_dir/samples" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"
+cmake --build "$work/build" > "$work/build.log"
+export LD_LIBRARY_PATH="$work/prefix/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+
+# 1. C, queries only: 21 rows of the water under the ship, never dry on this track.
+"$work/build/query_track" "$sequence" 20 > "$work/track.csv"
+test "$(wc -l < "$work/track.csv")" -eq 22
+awk -F, 'NR > 1 && ($4 + 0 > 3 || $4 + 0 < -3 || $7 != 0) { print "implausible row: " $0; bad = 1 } END { exit bad }' "$work/track.csv"
+# Bad input: a clear message and a non-zero status, no crash.
+if "$work/build/query_track" /nonexistent/bake 2> "$work/missing.err"; then exit 1; fi
+grep -q "/nonexistent/bake" "$work/missing.err"
+
+# 2. and 3. GL hosts under Xvfb (a display number from the pid, as the GL tests do).
+xvfb() { xvfb-run -a -n $((100 + $$ % 800)) -s '-screen 0 1024x768x24 -noreset' "$@"; }
+xvfb "$work/build/embed_window" "$sequence" 20 "$work/embed.ppm" | tee "$work/embed.log"
+test -s "$work/embed.ppm"
+xvfb "$work/build/own_renderer" "$sequence" 20 | tee "$work/own.log"
+echo "samples: built against the installed package and ran"
