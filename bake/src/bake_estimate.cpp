@@ -1,17 +1,18 @@
 // Resource estimate of a bake (bake_estimate.hpp).
 //
-// kBakeBytesPerCell, how it was measured (2026-11-24, Release build, this 2-core machine): the peak
-// resident set (getrusage ru_maxrss) of bake_runner processes baking one flume case (0.1 m cells,
-// frames, checkpoints and gauges written) at several sizes, less that of a tiny one, per added
-// cell: 552 B at 1000 x 200 and 530 B at 1500 x 300 cells (3 s bakes), 572-574 B at 1000 x 100
-// (the test below, 0.5 s). Counting the arrays gives the same picture: the solver holds 36 double
-// arrays of one value per cell or face (9 of state, 27 of work: solver_implementation.hpp; 288 B),
-// two StaticFrame layouts of 11 double arrays each (boussinesq_sweep.hpp; 176 B) and its two float
-// output rasters (8 B); while it is built it also holds 4 double copies of depth and porosity
-// (32 B); the bake adds the two cell-centred flux rasters (8 B), the frame being encoded (4
-// half-float channel copies and the file in memory, 16 B) and the harbour grid (13 B): 541 B. The
-// constant rounds the largest measurement up by about 10 %; the test
-// BakeEstimate.CoversTheMeasuredPeakOfARealBake fails when a new array outgrows it.
+// kBakeBytesPerCell, how it was measured (2026-11-24, Release build, this 2-core machine, after
+// issue 15 cut the solver's arrays): the peak resident set (getrusage ru_maxrss, /usr/bin/time -f
+// %M) of bake_runner processes baking one flume case (0.1 m cells, 0.5 m deep, frames, a
+// checkpoint and a gauge written, sponges at both ends), less that of a tiny one (12 x 1 m), per
+// added cell: 228 B at 1000 x 1000 cells and 278 B at 1000 x 100 (the test below). The difference
+// is the sweep's per-thread scratch, which grows with the longest grid side rather than with the
+// cells (2.3 kB per column per thread: 41 B per cell of the narrow flume on two threads, 5 B on the
+// square grid). Counting the arrays gives the same picture: the solver holds 173 B per cell plus
+// its sponge lists (docs/solver.md "Memory", BoussinesqSolver::memory_bytes()); the bake adds the
+// two cell-centred flux rasters (8 B), the frame being encoded (half-float channel copies and the
+// file in memory, ~26 B) and the harbour grid (13 B): 220 B. The constant rounds the larger
+// measurement up by about 8 %; the test BakeEstimate.CoversTheMeasuredPeakOfARealBake fails when
+// a new array outgrows it. Before issue 15 the figure was 640 B (530-574 B measured).
 #include "nearshore/bake/bake_estimate.hpp"
 
 #include <sys/statvfs.h>
@@ -86,7 +87,8 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
   if (timing.checkpoint_interval_s > 0) {
     double names = 8;
     for (const GaugeSpec& gauge : bake_case.gauges) names += 8 + static_cast<double>(gauge.name.size());
-    // bake_run.cpp (magic, fingerprint, gauges), boussinesq_state.cpp (header, 9 sized arrays, checksum).
+    // bake_run.cpp (magic, fingerprint, gauges), boussinesq_state.cpp (header, 9 sized arrays, checksum;
+    // counted as doubles, an upper bound: state version 3 stores two of them as float).
     estimate.checkpoint_bytes = 16 + 8 + names + 8 + gauge_values * 8 + 36 + kStateArrays * (8 + cells * 8) + 8;
   }
 

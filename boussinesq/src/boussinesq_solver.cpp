@@ -58,59 +58,41 @@ double dispersion_weight(double depth_m, const SolverParameters& p, double peak_
 }
 
 // Builds the time-independent coefficients of one orientation from cell depth and porosity given
-// in the frame's layout (cell (c along, l line) at c * rows + l; boussinesq_sweep.hpp).
-StaticFrame build_frame(const std::vector<double>& depth, const std::vector<double>& porosity, int cols, int rows,
-                        double spacing_m, const SolverParameters& p, double peak_w) {
+// in the frame's layout (cell (c along, l line) at c * rows + l; boussinesq_sweep.hpp). The face
+// values the sweep derives from the cells (boussinesq_sweep.hpp) are used here for the taper and
+// the porous blocks, so both agree by construction.
+StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, int cols, int rows, double spacing_m,
+                        const SolverParameters& p, double peak_w) {
   StaticFrame frame;
   frame.cols = cols;
   frame.rows = rows;
   frame.spacing_m = spacing_m;
-  frame.depth_m = depth;
-  frame.inverse_porosity.resize(depth.size());
-  for (std::size_t i = 0; i < depth.size(); ++i)
-    frame.inverse_porosity[i] = porosity[i] >= detail::kWallPorosity ? 1.0 / std::min(porosity[i], 1.0) : 0.0;
-  const std::size_t faces = static_cast<std::size_t>(cols + 1) * rows;
-  for (auto* v : {&frame.face_depth_m, &frame.face_dispersion_weight, &frame.face_slope_along, &frame.face_slope_across,
-                  &frame.face_porous_laminar_s, &frame.face_porous_turbulent_m})
-    v->assign(faces, 0.0);
-  frame.face_porosity.assign(faces, 1.0);
-  frame.face_inverse_porosity.assign(faces, 1.0);
-  frame.face_open.assign(faces, 0.0);
-  // Porous resistance coefficients of seed 003 eq. (2) in the Van Gent (1995) form.
+  frame.depth_m = std::move(depth);
+  frame.porosity = std::move(porosity);
+  frame.inverse_porosity.resize(frame.depth_m.size());
+  for (std::size_t i = 0; i < frame.porosity.size(); ++i)
+    frame.inverse_porosity[i] =
+        frame.porosity[i] >= detail::kWallPorosity ? static_cast<float>(1.0 / std::min(static_cast<double>(frame.porosity[i]), 1.0)) : 0.0f;
+  // Porous resistance coefficients of seed 003 eq. (2) in the Van Gent (1995) form; the sweep
+  // evaluates them from each face's porosity (a stone diameter of 0 means no porous resistance).
   constexpr double kWaterKinematicViscosity_m2_s = 1.0e-6;
-  const double D = p.porous.stone_diameter_m;
-  auto cell = [rows](int c, int l) { return static_cast<std::size_t>(c) * rows + l; };
-  auto slope_across = [&](int c, int l) {
-    const int ln = std::min(l + 1, rows - 1), ls = std::max(l - 1, 0);
-    return ln == ls ? 0.0 : (depth[cell(c, ln)] - depth[cell(c, ls)]) / ((ln - ls) * spacing_m);
-  };
+  if (p.porous.stone_diameter_m > 0.0) {
+    frame.porous_laminar_factor = p.porous.laminar_alpha * kWaterKinematicViscosity_m2_s;
+    frame.porous_turbulent_factor = p.porous.turbulent_beta;
+    frame.porous_stone_diameter_m = p.porous.stone_diameter_m;
+  } else {
+    frame.porous_stone_diameter_m = 1.0;  // factors 0: alpha = beta = 0 (and no division by 0)
+  }
+  const std::size_t faces = static_cast<std::size_t>(cols + 1) * rows;
+  frame.face_dispersion_weight.assign(faces, 0.0f);
+  frame.block_is_porous.assign(static_cast<std::size_t>((rows + detail::kBlockLines - 1) / detail::kBlockLines), 0);
   for (int f = 1; f < cols; ++f)
     for (int l = 0; l < rows; ++l) {
-      const std::size_t face = static_cast<std::size_t>(f) * rows + l;
-      const std::size_t L = cell(f - 1, l), R = cell(f, l);
-      const bool open = frame.inverse_porosity[L] > 0.0 && frame.inverse_porosity[R] > 0.0;
-      frame.face_open[face] = open ? 1.0 : 0.0;
-      const double n = open ? 0.5 * (std::min(porosity[L], 1.0) + std::min(porosity[R], 1.0)) : 1.0;
-      const double d = 0.5 * (depth[L] + depth[R]);
-      frame.face_depth_m[face] = d;
-      frame.face_porosity[face] = n;
-      frame.face_inverse_porosity[face] = 1.0 / n;
-      frame.face_dispersion_weight[face] = dispersion_weight(d, p, peak_w);
-      frame.face_slope_along[face] = std::clamp((depth[R] - depth[L]) / spacing_m, -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
-      frame.face_slope_across[face] = std::clamp(0.5 * (slope_across(f - 1, l) + slope_across(f, l)),
-                                                 -detail::kMaxDispersiveSlope, detail::kMaxDispersiveSlope);
-      if (n < 1.0 && D > 0.0) {
-        const double n3 = n * n * n;
-        frame.face_porous_laminar_s[face] = p.porous.laminar_alpha * kWaterKinematicViscosity_m2_s * (1.0 - n) * (1.0 - n) / (n3 * D * D);
-        frame.face_porous_turbulent_m[face] = p.porous.turbulent_beta * (1.0 - n) / (n3 * D);
-      }
-    }
-  // Blocks of lines with a porous face run the sweep with the porous terms (boussinesq_sweep.cpp).
-  frame.block_is_porous.assign(static_cast<std::size_t>((rows + detail::kBlockLines - 1) / detail::kBlockLines), 0);
-  for (int f = 0; f <= cols; ++f)
-    for (int l = 0; l < rows; ++l) {
-      const std::size_t face = static_cast<std::size_t>(f) * rows + l;
-      if (frame.face_porosity[face] != 1.0 || frame.face_porous_laminar_s[face] != 0.0 || frame.face_porous_turbulent_m[face] != 0.0)
+      const std::size_t R = static_cast<std::size_t>(f) * rows + l, L = R - rows;
+      frame.face_dispersion_weight[R] =
+          static_cast<float>(dispersion_weight(detail::face_depth(frame.depth_m.data(), L, R), p, peak_w));
+      // Blocks of lines with a porous face run the sweep with the porous terms (boussinesq_sweep.cpp).
+      if (detail::face_porosity(frame.porosity.data(), frame.inverse_porosity.data(), L, R) != 1.0)
         frame.block_is_porous[static_cast<std::size_t>(l / detail::kBlockLines)] = 1;
     }
   return frame;
@@ -137,17 +119,18 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.dx = geometry.spacing_m;
   const std::size_t cells = geometry.cell_count();
 
-  std::vector<double> depth(cells), porosity(cells);
+  // Depth and porosity stay in the harbour grid's float (exact); the solver computes in double.
+  std::vector<float> depth(cells), porosity(cells);
   double max_depth = 0.0;
   for (std::size_t i = 0; i < cells; ++i) {
     depth[i] = harbour.still_water_depth_m.values()[i];
-    porosity[i] = std::clamp<double>(harbour.porosity.values()[i], 0.0, 1.0);
+    porosity[i] = std::clamp(harbour.porosity.values()[i], 0.0f, 1.0f);
     if (!std::isfinite(depth[i])) {
       const int c = static_cast<int>(i % s.nx), r = static_cast<int>(i / s.nx);
       throw Error(subject, "depth is not finite at cell (" + std::to_string(c) + ", " + std::to_string(r) + ")",
                   "fill the hole in the bathymetry (HarbourRequest::fill_uncovered_from_nearest when gridding it)");
     }
-    max_depth = std::max(max_depth, depth[i]);
+    max_depth = std::max(max_depth, static_cast<double>(depth[i]));
   }
   if (max_depth <= 0.0) throw Error(subject, "the grid holds no water (every depth <= 0)", "check the sign of the depths (positive down)");
   const double celerity = std::sqrt(kGravity_m_s2 * max_depth);
@@ -184,52 +167,43 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   double peak_w = 0.0, peak_a = 0.0;
   for (const WaveComponent& c : wave_maker.sea_state.components)
     if (c.amplitude_m > peak_a) { peak_a = c.amplitude_m; peak_w = c.angular_frequency_rad_s; }
-  std::vector<double> depth_t(cells), porosity_t(cells);
-  detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
-  detail::transpose(porosity.data(), porosity_t.data(), s.nx, s.ny);
-  s.frame_x = build_frame(depth_t, porosity_t, s.nx, s.ny, s.dx, parameters, peak_w);
-  s.frame_y = build_frame(depth, porosity, s.ny, s.nx, s.dx, parameters, peak_w);
-
+  // The order below keeps the peak memory at the steady state's: what is only needed while the
+  // solver is built (transposed copies, the double depths of the fingerprint, sponge rates) is
+  // released before the state and work arrays are allocated.
+  // Fingerprint of everything a saved state must agree with (depth hashed as double, as written
+  // since state version 1).
+  {
+    const std::vector<double> depth_double(depth.begin(), depth.end());
+    std::uint64_t h = hash_bytes(&s.nx, sizeof s.nx);
+    h = hash_bytes(&s.ny, sizeof s.ny, h);
+    h = hash_bytes(&s.dx, sizeof s.dx, h);
+    h = hash_bytes(&s.dt, sizeof s.dt, h);
+    h = hash_bytes(depth_double.data(), depth_double.size() * sizeof(double), h);
+    s.fingerprint = h;
+  }
   s.constants = {s.dt, parameters.dispersion_coefficient, parameters.dry_depth_m, parameters.chezy_coefficient,
                  parameters.nonlinear_iterations};
   s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters.dispersion_coefficient);
-
+  {
+    std::vector<float> depth_t(cells), porosity_t(cells);
+    detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
+    detail::transpose(porosity.data(), porosity_t.data(), s.nx, s.ny);
+    s.frame_x = build_frame(std::move(depth_t), std::move(porosity_t), s.nx, s.ny, s.dx, parameters, peak_w);
+  }
+  s.frame_y = build_frame(std::move(depth), std::move(porosity), s.ny, s.nx, s.dx, parameters, peak_w);
+  const float* const cell_depth = s.frame_y.depth_m.data();
   const std::size_t faces_x = static_cast<std::size_t>(s.nx + 1) * s.ny, faces_y = static_cast<std::size_t>(s.nx) * (s.ny + 1);
-  s.eta.assign(cells, 0.0);
-  for (std::size_t i = 0; i < cells; ++i)
-    if (depth[i] < 0.0) s.eta[i] = -depth[i];  // dry land: the surface is the ground (h = 0)
-  s.flux_x.assign(faces_x, 0.0);
-  s.flux_y.assign(faces_y, 0.0);
-
-  s.eta_previous_t.assign(cells, 0.0);
-  detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
-  s.flux_x_increment.assign(faces_x, 0.0);
-  s.flux_y_increment.assign(faces_y, 0.0);
-  s.eddy_viscosity.assign(cells, 0.0);
-  s.breaking_start_s.assign(cells, -1.0);
-  s.breaking_strength.assign(cells, 0.0);
-  for (auto* v : {&s.eta_t, &s.eta_base_t, &s.eta_across_t, &s.eta_star_t, &s.eddy_t, &s.eta_star, &s.eta_across,
-                  &s.eta_next, &s.eta_base})
-    v->assign(cells, 0.0);
-  for (auto* v : {&s.flux_x_across, &s.flux_x_new, &s.flux_x_half, &s.flux_x_rate, &s.flux_x_guess})
-    v->assign(faces_x, 0.0);
-  s.flux_filter = detail::ShapiroFilter(parameters.shapiro_filter_order / 2);
-  s.filterable_x.assign(faces_x, 0.0);
-  s.filterable_y.assign(faces_y, 0.0);
-  for (auto* v : {&s.tangential_half_t, &s.tangential_rate_t, &s.flux_y_across, &s.flux_y_new, &s.flux_y_guess})
-    v->assign(faces_y, 0.0);
-  s.dispersive.assign(cells, 0.0);
-  s.dispersive_t.assign(cells, 0.0);
 
   // Sponges (Larsen & Dancy 1983 in spirit): damping rate sigma = sigma_max r^2, r = 0 at the inner
   // edge and 1 at the boundary, sigma_max = 8 sqrt(g d) / width so a wave crossing the layer
-  // and back loses e^{-5} of its amplitude; applied as a factor 1 / (1 + sigma dt) per step.
+  // and back loses e^{-5} of its amplitude; applied as a factor 1 / (1 + sigma dt) per step, kept
+  // only where it is not 1 (the factor 1 leaves a value as it is).
   if (!parameters.sponges.empty()) {
-    s.sponge_cell.assign(cells, 0.0);
+    std::vector<double> sigma(cells, 0.0);
     for (int r = 0; r < s.ny; ++r)
       for (int c = 0; c < s.nx; ++c) {
-        double sigma = 0.0;
-        const double d = std::max(depth[index(c, r, s.nx)], parameters.dry_depth_m);
+        double rate = 0.0;
+        const double d = std::max(static_cast<double>(cell_depth[index(c, r, s.nx)]), parameters.dry_depth_m);
         for (const SpongeLayer& sponge : parameters.sponges) {
           if (sponge.width_m <= 0.0) continue;
           double distance = 0.0;
@@ -241,29 +215,54 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
           }
           if (distance < sponge.width_m) {
             const double x = 1.0 - distance / sponge.width_m;
-            sigma = std::max(sigma, 8.0 * std::sqrt(kGravity_m_s2 * d) / sponge.width_m * x * x);
+            rate = std::max(rate, 8.0 * std::sqrt(kGravity_m_s2 * d) / sponge.width_m * x * x);
           }
         }
-        s.sponge_cell[index(c, r, s.nx)] = sigma;
+        sigma[index(c, r, s.nx)] = rate;
       }
-    s.sponge_face_x.assign(faces_x, 1.0);
-    s.sponge_face_y.assign(faces_y, 1.0);
     for (int f = 1; f < s.nx; ++f)
-      for (int r = 0; r < s.ny; ++r)
-        s.sponge_face_x[s.px(f, r)] = 1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(f - 1, r, s.nx)] + s.sponge_cell[index(f, r, s.nx)]));
+      for (int r = 0; r < s.ny; ++r) {
+        const double sum = sigma[index(f - 1, r, s.nx)] + sigma[index(f, r, s.nx)];
+        if (sum != 0.0) s.sponge_faces_x.push_back({s.px(f, r), 1.0 / (1.0 + s.dt * 0.5 * sum)});
+      }
+    std::sort(s.sponge_faces_x.begin(), s.sponge_faces_x.end(),
+              [](const auto& a, const auto& b) { return a.index < b.index; });
     for (int k = 1; k < s.ny; ++k)
-      for (int c = 0; c < s.nx; ++c)
-        s.sponge_face_y[s.qy(c, k)] = 1.0 / (1.0 + s.dt * 0.5 * (s.sponge_cell[index(c, k - 1, s.nx)] + s.sponge_cell[index(c, k, s.nx)]));
-    for (double& sigma : s.sponge_cell) sigma = 1.0 / (1.0 + s.dt * sigma);
+      for (int c = 0; c < s.nx; ++c) {
+        const double sum = sigma[index(c, k - 1, s.nx)] + sigma[index(c, k, s.nx)];
+        if (sum != 0.0) s.sponge_faces_y.push_back({s.qy(c, k), 1.0 / (1.0 + s.dt * 0.5 * sum)});
+      }
+    for (std::size_t i = 0; i < cells; ++i)
+      if (sigma[i] != 0.0) s.sponge_cells.push_back({i, 1.0 / (1.0 + s.dt * sigma[i])});
+    for (auto* points : {&s.sponge_cells, &s.sponge_faces_x, &s.sponge_faces_y}) points->shrink_to_fit();
   }
 
-  // Fingerprint of everything a saved state must agree with.
-  std::uint64_t h = hash_bytes(&s.nx, sizeof s.nx);
-  h = hash_bytes(&s.ny, sizeof s.ny, h);
-  h = hash_bytes(&s.dx, sizeof s.dx, h);
-  h = hash_bytes(&s.dt, sizeof s.dt, h);
-  h = hash_bytes(depth.data(), depth.size() * sizeof(double), h);
-  s.fingerprint = h;
+  s.eta.assign(cells, 0.0);
+  for (std::size_t i = 0; i < cells; ++i)
+    if (cell_depth[i] < 0.0f) s.eta[i] = -static_cast<double>(cell_depth[i]);  // dry land: the surface is the ground (h = 0)
+  s.flux_x.assign(faces_x, 0.0);
+  s.flux_y.assign(faces_y, 0.0);
+  s.eta_previous_t.assign(cells, 0.0);
+  detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
+  s.flux_x_increment.assign(faces_x, 0.0);
+  s.flux_y_increment.assign(faces_y, 0.0);
+  s.eddy_viscosity.assign(cells, 0.0f);
+  s.eddy_t.assign(cells, 0.0f);
+  s.breaking_start_s.assign(cells, -1.0);
+  for (auto* v : {&s.eta_t, &s.eta_star, &s.eta_next, &s.eta_base}) v->assign(cells, 0.0);
+  s.flux_x_new.assign(faces_x, 0.0);
+  s.flux_y_new.assign(faces_y, 0.0);
+  for (auto* v : {&s.tangential_half, &s.tangential_rate}) v->assign(std::max(faces_x, faces_y), 0.0);
+  if (parameters.adi_passes > 1) {
+    s.flux_guess.assign(std::max(faces_x, faces_y), 0.0);
+    s.eta_pass_t.assign(cells, 0.0);
+  }
+  s.flux_filter = detail::ShapiroFilter(parameters.shapiro_filter_order / 2);
+  s.filterable_x.assign(faces_x, 0);
+  s.filterable_y.assign(faces_y, 0);
+  s.dispersive.assign(cells, 0);
+  s.dispersive_t.assign(cells, 0);
+  s.wet_cells.assign(cells, 0);
 
   s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
   s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
@@ -272,32 +271,30 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
 
 BoussinesqSolver::~BoussinesqSolver() = default;
 
-void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask) {
+void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame, const double* eta_frame, unsigned char* mask) {
   // The dispersive terms apply where the cell and its 4 neighbours are wet (docs/solver.md); beyond
   // the grid edges the neighbour is the edge cell itself. Two passes (wet cells, then the 5-point
   // product) so both loops run over contiguous lanes and vectorise.
   const int cols = frame.cols, rows = frame.rows;
   const double dry = parameters.dry_depth_m;
-  wet_cells.resize(static_cast<std::size_t>(cols) * rows);
-  double* wet = wet_cells.data();
+  unsigned char* wet = wet_cells.data();
   tbb::parallel_for(0, cols, [&](int c) {
     const std::size_t line = static_cast<std::size_t>(c) * rows;
     for (int l = 0; l < rows; ++l)
-      wet[line + l] = frame.inverse_porosity[line + l] > 0.0 && frame.depth_m[line + l] + eta_frame[line + l] > dry ? 1.0 : 0.0;
+      wet[line + l] = frame.inverse_porosity[line + l] > 0.0 && frame.depth_m[line + l] + eta_frame[line + l] > dry ? 1 : 0;
   });
   tbb::parallel_for(0, cols, [&](int c) {
-    const double* here = wet + static_cast<std::size_t>(c) * rows;
-    const double* before = wet + static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
-    const double* after = wet + static_cast<std::size_t>(std::min(c + 1, cols - 1)) * rows;
-    double* out = mask + static_cast<std::size_t>(c) * rows;
-    for (int l = 1; l + 1 < rows; ++l) out[l] = here[l] * before[l] * after[l] * here[l - 1] * here[l + 1];
-    out[0] = here[0] * before[0] * after[0] * here[std::min(1, rows - 1)];
-    if (rows > 1) out[rows - 1] = here[rows - 1] * before[rows - 1] * after[rows - 1] * here[rows - 2];
+    const unsigned char* here = wet + static_cast<std::size_t>(c) * rows;
+    const unsigned char* before = wet + static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
+    const unsigned char* after = wet + static_cast<std::size_t>(std::min(c + 1, cols - 1)) * rows;
+    unsigned char* out = mask + static_cast<std::size_t>(c) * rows;
+    for (int l = 1; l + 1 < rows; ++l) out[l] = here[l] & before[l] & after[l] & here[l - 1] & here[l + 1];
+    out[0] = here[0] & before[0] & after[0] & here[std::min(1, rows - 1)];
+    if (rows > 1) out[rows - 1] = here[rows - 1] & before[rows - 1] & after[rows - 1] & here[rows - 2];
   });
 }
 
 void BoussinesqSolver::Implementation::step() {
-  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
   const double ratio = dt / dx;
 
   // One ADI step is a pair of sweeps, x then y on even steps and y then x on odd steps when
@@ -315,14 +312,13 @@ void BoussinesqSolver::Implementation::step() {
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
   mark_dispersive(frame_y, eta.data(), dispersive.data());
 
-  // The normal flux's first guess and its t^{n+1/2} estimate: last step's increment on pass 0,
-  // this step's previous pass afterwards.
-  auto prepare_normal = [&](int pass, const std::vector<double>& old_flux, const std::vector<double>& last_increment,
-                            const std::vector<double>& new_flux, std::vector<double>& guess, std::vector<double>& across) {
-    for_each_index(old_flux.size(), [&](std::size_t f) {
-      guess[f] = pass == 0 ? last_increment[f] : new_flux[f] - old_flux[f];
-      across[f] = old_flux[f] + 0.5 * guess[f];
-    });
+  // The normal flux's first guess: last step's increment on pass 0 (the state array itself), this
+  // step's previous pass afterwards. The sweep takes the flux at t^{n+1/2} as old + guess / 2.
+  auto normal_guess = [&](int pass, const std::vector<double>& old_flux, const std::vector<double>& last_increment,
+                          const std::vector<double>& new_flux) -> const double* {
+    if (pass == 0) return last_increment.data();
+    for_each_index(old_flux.size(), [&](std::size_t f) { flux_guess[f] = new_flux[f] - old_flux[f]; });
+    return flux_guess.data();
   };
   // E of the first sweep: eta^n minus the divergence of the fluxes at t^n, plus the wave maker.
   auto explicit_base = [&](const double* eta_layout, double* base, bool x_layout) {
@@ -344,65 +340,65 @@ void BoussinesqSolver::Implementation::step() {
   // (pass 0) or over this step's previous pass.
   enum class Across { kEstimate, kExact };
   auto tangential_from = [&](Across kind, int pass, const std::vector<double>& old_flux, const std::vector<double>& new_flux,
-                             const std::vector<double>& last_increment, int cols, int rows, std::vector<double>& half,
-                             std::vector<double>& rate) {
+                             const std::vector<double>& last_increment, int cols, int rows) {
+    double *half = tangential_half.data(), *rate = tangential_rate.data();
     if (kind == Across::kExact)
-      detail::transpose_half_and_rate(detail::HalfAndRate::kFromNewFlux, old_flux.data(), new_flux.data(), dt, half.data(),
-                                      rate.data(), cols, rows);
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromNewFlux, old_flux.data(), new_flux.data(), dt, half, rate,
+                                      cols, rows);
     else if (pass == 0)
-      detail::transpose_half_and_rate(detail::HalfAndRate::kFromIncrement, old_flux.data(), last_increment.data(), dt,
-                                      half.data(), rate.data(), cols, rows);
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromIncrement, old_flux.data(), last_increment.data(), dt, half,
+                                      rate, cols, rows);
     else
-      detail::transpose_half_and_rate(detail::HalfAndRate::kFromPass, old_flux.data(), new_flux.data(), dt, half.data(),
-                                      rate.data(), cols, rows);
+      detail::transpose_half_and_rate(detail::HalfAndRate::kFromPass, old_flux.data(), new_flux.data(), dt, half, rate, cols,
+                                      rows);
   };
+  // eta at t^{n+1/2} for the derivatives across a sweep's lines is computed in the sweep from eta^n
+  // and a partner (SweepInput): eta^{n-1} (extrapolated, first sweep of pass 0), the previous pass's
+  // eta^{n+1} (first sweep of later passes) or this pass's eta* (second sweep: the mean).
 
   auto sweep_x = [&](bool first, int pass) {
-    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_y, flux_y_new, flux_y_increment, nx, ny + 1,
-                    tangential_half_t, tangential_rate_t);
+    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_y, flux_y_new, flux_y_increment, nx, ny + 1);
+    const double* partner = eta_base.data();
+    bool extrapolates = false;
     if (first) {
-      explicit_base(eta_t.data(), eta_base_t.data(), true);
+      explicit_base(eta_t.data(), eta_base.data(), true);
       if (pass == 0) {
-        for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]); });
-      } else {
-        for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
-        detail::transpose(eta_across.data(), eta_across_t.data(), nx, ny);
+        partner = eta_previous_t.data();
+        extrapolates = true;
+      } else {  // the previous pass's eta^{n+1}, transposed
+        detail::transpose(eta_next.data(), eta_pass_t.data(), nx, ny);
+        partner = eta_pass_t.data();
       }
     } else {
       // After the y sweep: E = eta*, Q at t^{n+1/2} and dQ/dt exact.
-      detail::transpose(eta_star.data(), eta_base_t.data(), nx, ny);
-      for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = 0.5 * (eta_t[i] + eta_base_t[i]); });
+      detail::transpose(eta_star.data(), eta_base.data(), nx, ny);
     }
-    prepare_normal(pass, flux_x, flux_x_increment, flux_x_new, flux_x_guess, flux_x_across);
     sweep(frame_x,
-          {eta_t.data(), eta_base_t.data(), eta_across_t.data(), flux_x.data(), flux_x_across.data(), flux_x_guess.data(),
-           tangential_half_t.data(), tangential_rate_t.data(), eddy_t.data(), dispersive_t.data(), eddy_viscosity_active},
-          {eta_star_t.data(), flux_x_new.data()});
-    // The x sweep's eta: eta* when it came first, eta^{n+1} when second (both to the natural layout).
-    detail::transpose(eta_star_t.data(), first ? eta_star.data() : eta_next.data(), ny, nx);
+          {eta_t.data(), eta_base.data(), partner, extrapolates, flux_x.data(),
+           normal_guess(pass, flux_x, flux_x_increment, flux_x_new), tangential_half.data(), tangential_rate.data(),
+           eddy_t.data(), dispersive_t.data(), eddy_viscosity_active},
+          // Its eta (eta* when it comes first, eta^{n+1} when second) straight into the natural layout.
+          {first ? eta_star.data() : eta_next.data(), flux_x_new.data(), 1, static_cast<std::size_t>(nx)});
   };
 
   auto sweep_y = [&](bool first, int pass) {
-    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_x, flux_x_new, flux_x_increment, ny, nx + 1,
-                    flux_x_half, flux_x_rate);
+    tangential_from(first ? Across::kEstimate : Across::kExact, pass, flux_x, flux_x_new, flux_x_increment, ny, nx + 1);
     const double* base = eta_star.data();
+    const double* partner = eta_star.data();
+    bool extrapolates = false;
     if (first) {
       explicit_base(eta.data(), eta_base.data(), false);
       base = eta_base.data();
-      if (pass == 0) {
-        for_each_index(cells, [&](std::size_t i) { eta_across_t[i] = eta_t[i] + 0.5 * (eta_t[i] - eta_previous_t[i]); });
-        detail::transpose(eta_across_t.data(), eta_across.data(), ny, nx);
-      } else {
-        for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_next[i]); });
+      partner = eta_next.data();  // pass > 0: the previous pass's eta^{n+1}
+      if (pass == 0) {  // eta^{n-1} in the natural layout, in eta_next (free until the x sweep writes it)
+        detail::transpose(eta_previous_t.data(), eta_next.data(), ny, nx);
+        extrapolates = true;
       }
-    } else {
-      for_each_index(cells, [&](std::size_t i) { eta_across[i] = 0.5 * (eta[i] + eta_star[i]); });
     }
-    prepare_normal(pass, flux_y, flux_y_increment, flux_y_new, flux_y_guess, flux_y_across);
     sweep(frame_y,
-          {eta.data(), base, eta_across.data(), flux_y.data(), flux_y_across.data(), flux_y_guess.data(),
-           flux_x_half.data(), flux_x_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active},
-          {first ? eta_star.data() : eta_next.data(), flux_y_new.data()});
+          {eta.data(), base, partner, extrapolates, flux_y.data(), normal_guess(pass, flux_y, flux_y_increment, flux_y_new),
+           tangential_half.data(), tangential_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active},
+          {first ? eta_star.data() : eta_next.data(), flux_y_new.data(), static_cast<std::size_t>(nx), 1});
   };
 
   for (int pass = 0; pass < parameters.adi_passes; ++pass) {
@@ -445,7 +441,7 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
   // end below its bed, its outgoing fluxes are scaled down so it ends exactly dry; the neighbours
   // that lose that inflow are revisited. Serial over the few shoreline cells, in a fixed order,
   // so the result does not depend on the thread count. Mass is conserved exactly.
-  const double* depth = frame_y.depth_m.data();
+  const float* depth = frame_y.depth_m.data();
   std::vector<std::size_t> pending;
   const std::size_t cells = static_cast<std::size_t>(nx) * ny;
   for (std::size_t i = 0; i < cells; ++i)
@@ -496,27 +492,29 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
   if (flux_filter.half_order() <= 0) return;
   // A face may be filtered where it is open (or a grid-edge wall, which the odd ghosts describe)
   // and the cells on both sides are wet with every neighbour wet: never across a shoreline or quay.
-  const double* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
-  const double* wet_y = dispersive.data();
+  const unsigned char* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
+  const unsigned char* wet_y = dispersive.data();
   tbb::parallel_for(0, nx + 1, [&](int f) {
-    double* out = filterable_x.data() + px(f, 0);
+    unsigned char* out = filterable_x.data() + px(f, 0);
     if (f == 0 || f == nx) {
-      std::fill(out, out + ny, 1.0);
+      std::fill(out, out + ny, 1);
       return;
     }
-    const double* open = frame_x.face_open.data() + px(f, 0);
-    const double *west = wet_x + px(f - 1, 0), *east = wet_x + px(f, 0);
-    for (int r = 0; r < ny; ++r) out[r] = open[r] * west[r] * east[r];
+    const float* inverse_porosity = frame_x.inverse_porosity.data();
+    const unsigned char *west = wet_x + px(f - 1, 0), *east = wet_x + px(f, 0);
+    for (int r = 0; r < ny; ++r)
+      out[r] = detail::face_open(inverse_porosity, px(f - 1, r), px(f, r)) != 0.0 && west[r] && east[r] ? 1 : 0;
   });
   tbb::parallel_for(0, ny + 1, [&](int k) {
-    double* out = filterable_y.data() + qy(0, k);
+    unsigned char* out = filterable_y.data() + qy(0, k);
     if (k == 0 || k == ny) {
-      std::fill(out, out + nx, 1.0);
+      std::fill(out, out + nx, 1);
       return;
     }
-    const double* open = frame_y.face_open.data() + qy(0, k);
-    const double *south = wet_y + index(0, k - 1, nx), *north = wet_y + index(0, k, nx);
-    for (int c = 0; c < nx; ++c) out[c] = open[c] * south[c] * north[c];
+    const float* inverse_porosity = frame_y.inverse_porosity.data();
+    const unsigned char *south = wet_y + index(0, k - 1, nx), *north = wet_y + index(0, k, nx);
+    for (int c = 0; c < nx; ++c)
+      out[c] = detail::face_open(inverse_porosity, index(c, k - 1, nx), index(c, k, nx)) != 0.0 && south[c] && north[c] ? 1 : 0;
   });
   // P: along x is its slow index (normal to the west and east walls), along y its fast index.
   flux_filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
@@ -527,13 +525,19 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
 }
 
 void BoussinesqSolver::Implementation::apply_sponges() {
-  if (sponge_cell.empty()) return;
-  const double* depth = frame_y.depth_m.data();
-  for_each_index(eta.size(), [&](std::size_t i) {
-    if (depth[i] > 0.0 && depth[i] + eta[i] > parameters.dry_depth_m) eta[i] *= sponge_cell[i];
+  const float* depth = frame_y.depth_m.data();
+  const double dry = parameters.dry_depth_m;
+  auto damp = [](const std::vector<SpongePoint>& points, const auto& body) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t k = range.begin(); k < range.end(); ++k) body(points[k]);
+    });
+  };
+  damp(sponge_cells, [&](const SpongePoint& point) {
+    const std::size_t i = point.index;
+    if (depth[i] > 0.0f && depth[i] + eta[i] > dry) eta[i] *= point.factor;
   });
-  for_each_index(flux_x.size(), [&](std::size_t f) { flux_x[f] *= sponge_face_x[f]; });
-  for_each_index(flux_y.size(), [&](std::size_t f) { flux_y[f] *= sponge_face_y[f]; });
+  damp(sponge_faces_x, [&](const SpongePoint& point) { flux_x[point.index] *= point.factor; });
+  damp(sponge_faces_y, [&](const SpongePoint& point) { flux_y[point.index] *= point.factor; });
 }
 
 void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>& eta_old) {
@@ -546,7 +550,8 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
   // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
   // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
   // (The sweeps cap nu at 0.2 dx^2/dt in the explicit cross terms of eq. (6)-(7) only.)
-  const double* depth = frame_y.depth_m.data();
+  const float* depth = frame_y.depth_m.data();
+  float* breaking_strength = breaking_output.values().data();
   const double g = kGravity_m_s2, delta2 = b.mixing_length_coefficient * b.mixing_length_coefficient;
   const double now = time_s + dt;
   std::atomic<bool> any_viscosity{false};
@@ -554,8 +559,8 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
     bool block_viscosity = false;
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const double h = depth[i] + eta[i];
-      if (depth[i] <= 0.0 || h <= parameters.dry_depth_m || frame_y.inverse_porosity[i] == 0.0) {
-        eddy_viscosity[i] = 0.0; breaking_strength[i] = 0.0; breaking_start_s[i] = -1.0;
+      if (depth[i] <= 0.0f || h <= parameters.dry_depth_m || frame_y.inverse_porosity[i] == 0.0) {
+        eddy_viscosity[i] = 0.0f; breaking_strength[i] = 0.0f; breaking_start_s[i] = -1.0;
         continue;
       }
       const double eta_t = (eta[i] - eta_old[i]) / dt, celerity = std::sqrt(g * h);
@@ -568,21 +573,20 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
         strength = std::clamp(eta_t / threshold - 1.0, 0.0, 1.0);
         if (eta_t <= threshold) breaking_start_s[i] = -1.0;  // the event is over
       }
-      breaking_strength[i] = strength;
-      eddy_viscosity[i] = strength * delta2 * h * std::max(eta_t, 0.0);
+      breaking_strength[i] = static_cast<float>(strength);  // an output, 0..1: nothing reads it back
+      eddy_viscosity[i] = static_cast<detail::EddyViscosity>(strength * delta2 * h * std::max(eta_t, 0.0));
       block_viscosity = block_viscosity || eddy_viscosity[i] != 0.0;
     }
     if (block_viscosity) any_viscosity.store(true, std::memory_order_relaxed);
   });
   // When the last breaking cell stops, eddy_t is cleared once; afterwards the transpose is skipped.
-  if (eddy_viscosity_active && !any_viscosity.load()) std::fill(eddy_t.begin(), eddy_t.end(), 0.0);
+  if (eddy_viscosity_active && !any_viscosity.load()) std::fill(eddy_t.begin(), eddy_t.end(), detail::EddyViscosity{0});
   eddy_viscosity_active = any_viscosity.load();
 }
 
 void BoussinesqSolver::Implementation::publish() {
   for_each_index(eta.size(), [&](std::size_t i) {
     eta_output.values()[i] = static_cast<float>(eta[i]);
-    breaking_output.values()[i] = static_cast<float>(breaking_strength[i]);
   });
 }
 
@@ -611,11 +615,13 @@ void BoussinesqSolver::set_initial_condition(const std::function<double(double, 
     }
   for (int f = 1; f < s.nx; ++f)
     for (int r = 0; r < s.ny; ++r)
-      if (s.frame_x.face_open[s.px(f, r)] && s.frame_x.face_depth_m[s.px(f, r)] > 0.0)
+      if (detail::face_open(s.frame_x.inverse_porosity.data(), s.px(f - 1, r), s.px(f, r)) != 0.0 &&
+          detail::face_depth(s.frame_x.depth_m.data(), s.px(f - 1, r), s.px(f, r)) > 0.0)
         s.flux_x[s.px(f, r)] = flux_x_m2_s(g.origin_x_m + f * s.dx, g.cell_centre_y_m(r));
   for (int k = 1; k < s.ny; ++k)
     for (int c = 0; c < s.nx; ++c)
-      if (s.frame_y.face_open[s.qy(c, k)] && s.frame_y.face_depth_m[s.qy(c, k)] > 0.0)
+      if (detail::face_open(s.frame_y.inverse_porosity.data(), index(c, k - 1, s.nx), index(c, k, s.nx)) != 0.0 &&
+          detail::face_depth(s.frame_y.depth_m.data(), index(c, k - 1, s.nx), index(c, k, s.nx)) > 0.0)
         s.flux_y[s.qy(c, k)] = flux_y_m2_s(g.cell_centre_x_m(c), g.origin_y_m + k * s.dx);
   detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
   for (auto* v : {&s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
@@ -685,6 +691,61 @@ std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {
                                s.frame_y.depth_m[index(c, r, s.nx)], s.flux_y[f], "flux Q is not a number"};
     }
   return std::nullopt;
+}
+
+double streamed_bytes_per_cell_step(const SolverParameters& parameters, bool breaking) {
+  // Bytes per cell of each pass of step(), reads + 2 x writes (docs/solver.md "Memory traffic").
+  constexpr double kDouble = 8, kFloat = 4, kMask = 1, kWrite = 2;
+  // A sweep: eta^n, E, the eta partner, the normal flux and its guess, the tangential flux at
+  // t^{n+1/2} and its rate (doubles); depth, porosity, 1/n, the taper (floats); the mask; writes eta and the flux.
+  const double sweep = 7 * kDouble + 4 * kFloat + kMask + (breaking ? kFloat : 0.0) + kWrite * 2 * kDouble;
+  const double transpose = kDouble + kWrite * kDouble;
+  const double masks = 2 * (kDouble + 2 * kFloat + kWrite * kMask + 3 * kMask + kWrite * kMask);  // mark_dispersive, 2 layouts
+  const double explicit_base = 3 * kDouble + kFloat + kWrite * kDouble;
+  const double tangential = 2 * kDouble + kWrite * 2 * kDouble;  // transpose_half_and_rate
+  const double extra_transposes = parameters.alternate_sweep_order ? 1.5 : 1.0;  // E of the second x sweep; eta^{n-1} when y is first
+  const double pair = 2 * sweep + explicit_base + 2 * tangential + extra_transposes * transpose;
+  const double repair_scan = kDouble + 2 * kFloat;
+  const double filter = parameters.shapiro_filter_order > 0
+                            ? 2 * (kFloat + 2 * kMask + kWrite * kMask) + 2 * 2 * (kDouble + kMask + kWrite * kDouble)
+                            : 0.0;
+  const double advance = 2 * (2 * kDouble + kWrite * 2 * kDouble);  // increments and fluxes
+  const double breaking_pass = parameters.breaking.enabled ? 2 * kDouble + 3 * kFloat + kDouble + kWrite * (2 * kFloat + kDouble) : 0.0;
+  const double publish = kDouble + kWrite * kFloat;
+  const double eddy_transpose = breaking ? kFloat + kWrite * kFloat : 0.0;
+  return transpose + masks + parameters.adi_passes * pair + repair_scan + filter + advance + breaking_pass + publish +
+         eddy_transpose;
+}
+
+std::size_t BoussinesqSolver::memory_bytes() const {
+  const Implementation& s = *implementation_;
+  std::size_t bytes = 0;
+  auto add = [&bytes](const auto& values) { bytes += values.capacity() * sizeof(values[0]); };
+  for (const auto* v : {&s.eta, &s.eta_previous_t, &s.flux_x, &s.flux_y, &s.flux_x_increment, &s.flux_y_increment,
+                        &s.breaking_start_s, &s.eta_t, &s.eta_star, &s.eta_next, &s.eta_base, &s.flux_x_new,
+                        &s.flux_y_new, &s.tangential_half, &s.tangential_rate, &s.flux_guess, &s.eta_pass_t})
+    add(*v);
+  add(s.eddy_viscosity);
+  add(s.eddy_t);
+  for (const auto* v : {&s.dispersive, &s.dispersive_t, &s.wet_cells, &s.filterable_x, &s.filterable_y}) add(*v);
+  for (const auto* v : {&s.sponge_cells, &s.sponge_faces_x, &s.sponge_faces_y}) add(*v);
+  for (const StaticFrame* frame : {&s.frame_x, &s.frame_y}) {
+    add(frame->depth_m);
+    add(frame->porosity);
+    add(frame->inverse_porosity);
+    add(frame->face_dispersion_weight);
+    add(frame->block_is_porous);
+  }
+  add(s.eta_output.values());
+  add(s.breaking_output.values());
+  for (const SweepScratch& scratch : s.scratch)
+    for (const auto* v : {&scratch.upper, &scratch.right, &scratch.increment, &scratch.eta_half, &scratch.flux_half,
+                          &scratch.cell_term, &scratch.fixed_term, &scratch.tangential_squared, &scratch.active,
+                          &scratch.face_velocity, &scratch.h_pair_north, &scratch.h_pair_south, &scratch.cell_eta_yy,
+                          &scratch.cell_eta_y, &scratch.cell_flux_yt, &scratch.cell_slope_across, &scratch.nu_pair_north,
+                          &scratch.nu_pair_south})
+      add(*v);
+  return bytes;
 }
 
 double BoussinesqSolver::water_volume_m3() const {

@@ -59,7 +59,7 @@ std::vector<WaveComponent> components_from_series(const WaveMaker& maker, double
 
 }  // namespace
 
-SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geometry, const std::vector<double>& depth,
+SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geometry, const std::vector<float>& depth,
                                double B) {
   if (maker.kind != WaveMaker::Kind::kComponents && maker.kind != WaveMaker::Kind::kTimeSeries) return;
   cols_ = geometry.columns;

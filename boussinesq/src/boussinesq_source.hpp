@@ -14,7 +14,7 @@ namespace nearshore::boussinesq::detail {
 class SourceFunction {
  public:
   /// depth_m: cell depths (cols x rows, row-major), the master orientation of the solver.
-  SourceFunction(const WaveMaker& wave_maker, const GridGeometry& geometry, const std::vector<double>& depth_m,
+  SourceFunction(const WaveMaker& wave_maker, const GridGeometry& geometry, const std::vector<float>& depth_m,
                  double dispersion_coefficient);
   bool empty() const { return components_.empty(); }
   /// eta_base[cell] += dt * S(x, y, time_s) for every cell of the source strip; cell (column c,

@@ -1,6 +1,7 @@
 // BoussinesqSolver::save_state / load_state: everything needed to continue bit-identically, with
 // the grid, dt and bathymetry fingerprint and an XXH64 checksum of the state checked on load.
 #include <cstdint>
+#include <cstring>
 #include <istream>
 #include <ostream>
 #include <string>
@@ -13,8 +14,11 @@ namespace nearshore::boussinesq {
 namespace {
 
 constexpr std::uint64_t kStateMagic = 0x31535342454E534EULL;  // "NSNEBSS1"
+// Version 3: the eddy viscosity and the breaking strength are stored as float (the solver holds
+// them in float, docs/solver.md "Memory"). Version 2 (all arrays double) is still read.
 // Version 2: the checksum and the fingerprint are XXH64 (version 1 used FNV-1a).
-constexpr std::uint32_t kStateVersion = 2;
+constexpr std::uint32_t kStateVersion = 3;
+constexpr std::uint32_t kOldestReadableVersion = 2;
 
 template <class T>
 void write_pod(std::ostream& out, const T& value) {
@@ -25,13 +29,34 @@ void read_pod(std::istream& in, T& value) {
   in.read(reinterpret_cast<char*>(&value), sizeof(T));
 }
 
+// One array of the state as it is stored: its bytes and the size of one value.
+struct StoredArray {
+  std::byte* data;
+  std::size_t count;
+  std::size_t value_bytes;  // 8 (double) or 4 (float)
+};
+
+template <class T>
+StoredArray stored(std::vector<T>& values) {
+  return {reinterpret_cast<std::byte*>(values.data()), values.size(), sizeof(T)};
+}
+StoredArray stored(Raster<float>& raster) {
+  return {reinterpret_cast<std::byte*>(raster.values().data()), raster.values().size(), sizeof(float)};
+}
+
+// The nine arrays of the state, in file order (a template: the solver's Implementation is private).
+template <class Implementation>
+std::vector<StoredArray> state_arrays(Implementation& s) {
+  return {stored(s.eta), stored(s.eta_previous_t), stored(s.flux_x), stored(s.flux_y), stored(s.flux_x_increment),
+          stored(s.flux_y_increment), stored(s.eddy_viscosity), stored(s.breaking_start_s), stored(s.breaking_output)};
+}
+
 }  // namespace
 
 void BoussinesqSolver::save_state(std::ostream& out) const {
+  // The arrays are only read; state_arrays takes them through the one list of the file order.
+  const std::vector<StoredArray> arrays = state_arrays(const_cast<Implementation&>(*implementation_));
   const Implementation& s = *implementation_;
-  const std::vector<const std::vector<double>*> arrays = {&s.eta, &s.eta_previous_t, &s.flux_x, &s.flux_y, &s.flux_x_increment,
-                                                          &s.flux_y_increment, &s.eddy_viscosity, &s.breaking_start_s,
-                                                          &s.breaking_strength};
   write_pod(out, kStateMagic);
   write_pod(out, kStateVersion);
   write_pod(out, s.fingerprint);
@@ -50,10 +75,11 @@ void BoussinesqSolver::save_state(std::ostream& out) const {
   };
   stop_if_failed(0);
   for (std::size_t a = 0; a < arrays.size(); ++a) {
-    const std::uint64_t size = arrays[a]->size();
+    const std::uint64_t size = arrays[a].count;
+    const std::size_t bytes = arrays[a].count * arrays[a].value_bytes;
     write_pod(out, size);
-    out.write(reinterpret_cast<const char*>(arrays[a]->data()), static_cast<std::streamsize>(size * sizeof(double)));
-    checksum = hash_bytes(arrays[a]->data(), size * sizeof(double), checksum);
+    out.write(reinterpret_cast<const char*>(arrays[a].data), static_cast<std::streamsize>(bytes));
+    checksum = hash_bytes(arrays[a].data, bytes, checksum);
     stop_if_failed(a);
   }
   write_pod(out, checksum);
@@ -69,8 +95,9 @@ void BoussinesqSolver::load_state(std::istream& in) {
   read_pod(in, version);
   if (!in || magic != kStateMagic)
     throw Error(subject, "is not a Boussinesq solver state (wrong magic number)", "give the checkpoint the bake wrote");
-  if (version != kStateVersion)
-    throw Error(subject, "has version " + std::to_string(version) + ", this solver reads version " + std::to_string(kStateVersion),
+  if (version < kOldestReadableVersion || version > kStateVersion)
+    throw Error(subject, "has version " + std::to_string(version) + ", this solver reads versions " +
+                             std::to_string(kOldestReadableVersion) + " to " + std::to_string(kStateVersion),
                 "resume with the nearshore build that wrote it, or start the bake again");
   read_pod(in, fingerprint);
   if (fingerprint != s.fingerprint)
@@ -82,24 +109,36 @@ void BoussinesqSolver::load_state(std::istream& in) {
   read_pod(in, steps);
   std::uint64_t checksum = hash_bytes(&time, sizeof time);
   checksum = hash_bytes(&steps, sizeof steps, checksum);
-  const std::vector<std::vector<double>*> arrays = {&s.eta, &s.eta_previous_t, &s.flux_x, &s.flux_y, &s.flux_x_increment,
-                                                    &s.flux_y_increment, &s.eddy_viscosity, &s.breaking_start_s,
-                                                    &s.breaking_strength};
-  std::vector<std::vector<double>> loaded(arrays.size());
+  const std::vector<StoredArray> arrays = state_arrays(s);
+  // Everything is read and checked before anything is replaced: a damaged file leaves the solver as it was.
+  std::vector<std::vector<std::byte>> loaded(arrays.size());
   for (std::size_t a = 0; a < arrays.size(); ++a) {
     std::uint64_t size = 0;
     read_pod(in, size);
-    if (!in || size != arrays[a]->size())
+    if (!in || size != arrays[a].count)
       throw Error(subject, "is truncated or corrupt (array " + std::to_string(a) + " has the wrong size)", "start the bake again from the last good checkpoint");
-    loaded[a].resize(size);
-    in.read(reinterpret_cast<char*>(loaded[a].data()), static_cast<std::streamsize>(size * sizeof(double)));
-    checksum = hash_bytes(loaded[a].data(), size * sizeof(double), checksum);
+    const std::size_t value_bytes = version == 2 ? sizeof(double) : arrays[a].value_bytes;
+    loaded[a].resize(size * value_bytes);
+    in.read(reinterpret_cast<char*>(loaded[a].data()), static_cast<std::streamsize>(loaded[a].size()));
+    checksum = hash_bytes(loaded[a].data(), loaded[a].size(), checksum);
   }
-  std::uint64_t stored = 0;
-  read_pod(in, stored);
-  if (!in || stored != checksum)
+  std::uint64_t stored_checksum = 0;
+  read_pod(in, stored_checksum);
+  if (!in || stored_checksum != checksum)
     throw Error(subject, "is truncated or corrupt (checksum mismatch)", "start the bake again from the last good checkpoint");
-  for (std::size_t a = 0; a < arrays.size(); ++a) arrays[a]->swap(loaded[a]);
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    if (loaded[a].size() == arrays[a].count * arrays[a].value_bytes) {
+      std::memcpy(arrays[a].data, loaded[a].data(), loaded[a].size());
+    } else {  // a version 2 double array into a float one
+      for (std::size_t i = 0; i < arrays[a].count; ++i) {
+        double value = 0.0;
+        std::memcpy(&value, loaded[a].data() + i * sizeof(double), sizeof value);
+        const float narrowed = static_cast<float>(value);
+        std::memcpy(arrays[a].data + i * sizeof(float), &narrowed, sizeof narrowed);
+      }
+    }
+    std::vector<std::byte>().swap(loaded[a]);
+  }
   s.time_s = time;
   s.step_count = steps;
   s.eddy_viscosity_active = true;  // the loaded nu is transposed on the next step

@@ -19,7 +19,7 @@ void SweepScratch::resize(int cols) {
   const std::size_t size = static_cast<std::size_t>(cols + 5) * kBlockLines;
   for (auto* v : {&upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
                   &tangential_squared, &active, &face_velocity, &h_pair_north, &h_pair_south, &cell_eta_yy,
-                  &cell_eta_y, &cell_flux_yt, &nu_pair_north, &nu_pair_south})
+                  &cell_eta_y, &cell_flux_yt, &cell_slope_across, &nu_pair_north, &nu_pair_south})
     v->assign(size, 0.0);
 }
 
@@ -44,27 +44,35 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   const double nu_explicit_max = 0.2 * dx * dx / dt;
   const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
 
-  const double* __restrict depth = frame.depth_m.data();
-  const double* __restrict inv_n = frame.inverse_porosity.data();
+  const float* __restrict depth = frame.depth_m.data();
+  const float* __restrict porosity = frame.porosity.data();
+  const float* __restrict inv_n = frame.inverse_porosity.data();
   const double* __restrict eta_old = in.eta_old;
   const double* __restrict eta_base = in.eta_base;
-  const double* __restrict eta_across = in.eta_across;
+  const double* __restrict eta_partner = in.eta_across_partner;
+  const bool eta_extrapolates = in.eta_across_extrapolates;
   const double* __restrict normal_old = in.normal_old;
-  const double* __restrict normal_across = in.normal_across;
   const double* __restrict tangential = in.tangential_half;
   const double* __restrict tangential_rate = in.tangential_rate;
-  const double* __restrict nu = in.eddy_viscosity;
-  const double* __restrict dispersive = in.dispersive;
-  const double* __restrict face_open = frame.face_open.data();
-  const double* __restrict face_porosity = frame.face_porosity.data();
-  const double* __restrict face_inverse_porosity = frame.face_inverse_porosity.data();
-  const double* __restrict face_depth = frame.face_depth_m.data();
-  const double* __restrict face_weight = frame.face_dispersion_weight.data();
-  const double* __restrict face_slope_along = frame.face_slope_along.data();
-  const double* __restrict face_slope_across = frame.face_slope_across.data();
-  const double* __restrict face_laminar = frame.face_porous_laminar_s.data();
-  const double* __restrict face_turbulent = frame.face_porous_turbulent_m.data();
+  const EddyViscosity* __restrict nu = in.eddy_viscosity;
+  const unsigned char* __restrict dispersive = in.dispersive;
+  const float* __restrict face_weight = frame.face_dispersion_weight.data();
   const double* __restrict normal_guess = in.normal_guess;
+  // Porous resistance (Van Gent 1995) of a face from its porosity, as build_frame describes it.
+  const double laminar_factor = frame.porous_laminar_factor, turbulent_factor = frame.porous_turbulent_factor;
+  const double stone_diameter = frame.porous_stone_diameter_m;
+  // The face values the frame does not store (boussinesq_sweep.hpp); faces 0 and cols are walls of depth 0.
+  auto depth_at_face = [&](int f, std::size_t face) __attribute__((always_inline)) {
+    return f == 0 || f == cols ? 0.0 : face_depth(depth, face - stride, face);
+  };
+  // eta at t^{n+1/2} for the derivatives across the lines, and the normal flux likewise (SweepInput).
+  auto eta_across = [&](std::size_t i) __attribute__((always_inline)) {
+    const double here = eta_old[i], partner = eta_partner[i];
+    return eta_extrapolates ? here + 0.5 * (here - partner) : 0.5 * (here + partner);
+  };
+  auto normal_across = [&](std::size_t face) __attribute__((always_inline)) {
+    return normal_old[face] + 0.5 * normal_guess[face];
+  };
   double* __restrict eta_new = out.eta_new;
   double* __restrict normal_new = out.normal_new;
   double* __restrict increment = s.increment.data();
@@ -92,7 +100,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     for (int j = 0; j < n; ++j) {
       const std::size_t face = f * stride + lb + j, L = face - stride, R = face;
       const double wet = std::max(eta_old[L], eta_old[R]) + std::min(depth[L], depth[R]) > dry ? 1.0 : 0.0;
-      const double on = face_open[face] * wet;
+      const double on = face_open(inv_n, L, R) * wet;
       active[f * W + j] = on;
       const double guess = normal_guess[face], closed = -normal_old[face];
       increment[f * W + j] = on != 0.0 ? guess : closed;
@@ -111,22 +119,28 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   double* __restrict cell_eta_yy = s.cell_eta_yy.data();
   double* __restrict cell_eta_y = s.cell_eta_y.data();
   double* __restrict cell_flux_yt = s.cell_flux_yt.data();
+  double* __restrict cell_slope_across = s.cell_slope_across.data();
   double* __restrict nu_pair_north = s.nu_pair_north.data();
   double* __restrict nu_pair_south = s.nu_pair_south.data();
   auto cell_terms = [&](int c, int j, int l, int ln, int ls) __attribute__((always_inline)) {
     const std::size_t i = c * stride + l, in_ = c * stride + ln, is = c * stride + ls;
-    const double h_here = std::max(depth[i] + eta_across[i], dry);
-    h_pair_north[c * W + j] = h_here + std::max(depth[in_] + eta_across[in_], dry);
-    h_pair_south[c * W + j] = h_here + std::max(depth[is] + eta_across[is], dry);
-    cell_eta_yy[c * W + j] = (eta_across[in_] - 2.0 * eta_across[i] + eta_across[is]) * inv_dx2;
-    cell_eta_y[c * W + j] = (eta_across[in_] - eta_across[is]) * 0.5 * inv_dx;
+    const double e_here = eta_across(i), e_north = eta_across(in_), e_south = eta_across(is);
+    const double h_here = std::max(depth[i] + e_here, dry);
+    h_pair_north[c * W + j] = h_here + std::max(depth[in_] + e_north, dry);
+    h_pair_south[c * W + j] = h_here + std::max(depth[is] + e_south, dry);
+    cell_eta_yy[c * W + j] = (e_north - 2.0 * e_here + e_south) * inv_dx2;
+    cell_eta_y[c * W + j] = (e_north - e_south) * 0.5 * inv_dx;
+    // Bed slope across the lines (one-sided at the grid edges, 0 on a single line); the face takes
+    // the mean of its two cells.
+    cell_slope_across[c * W + j] =
+        ln == ls ? 0.0 : (static_cast<double>(depth[in_]) - static_cast<double>(depth[is])) / ((ln - ls) * dx);
     cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dx;
     // The cross stress is explicit: its viscosity is capped for stability (nu dt/dx^2 <= 0.2);
     // the along-line stress is implicit and uses nu in full.
     if (kOpenWater) return;
-    const double nu_i = std::min(nu[i], nu_explicit_max);
-    nu_pair_north[c * W + j] = nu_i + std::min(nu[in_], nu_explicit_max);
-    nu_pair_south[c * W + j] = nu_i + std::min(nu[is], nu_explicit_max);
+    const double nu_i = std::min(static_cast<double>(nu[i]), nu_explicit_max);
+    nu_pair_north[c * W + j] = nu_i + std::min(static_cast<double>(nu[in_]), nu_explicit_max);
+    nu_pair_south[c * W + j] = nu_i + std::min(static_cast<double>(nu[is]), nu_explicit_max);
   };
   const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
   for (int c = 0; c < cols; ++c) {
@@ -141,20 +155,21 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const std::size_t face = f * stride + l;
     auto c_at = [stride](int c, int line) { return c * stride + line; };
     auto t_at = [tstride](int c, int k2) { return c * tstride + k2; };
-    const double n_f = kOpenWater ? 1.0 : face_porosity[face], inv_n_f = kOpenWater ? 1.0 : face_inverse_porosity[face];
-    const double d = face_depth[face];
+    const std::size_t cL = c_at(L, l), cR = c_at(R, l);
+    const double n_f = kOpenWater ? 1.0 : face_porosity(porosity, inv_n, cL, cR), inv_n_f = kOpenWater ? 1.0 : 1.0 / n_f;
+    const double d = face_depth(depth, cL, cR);
     // (PQ/h)_y at the face from the two corners north and south of it.
     const double h_north = 0.25 * (h_pair_north[L * W + j] + h_pair_north[R * W + j]);
     const double h_south = 0.25 * (h_pair_south[L * W + j] + h_pair_south[R * W + j]);
     const double corner_north = north * 0.25 * (tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]) *
-                                (normal_across[face] + normal_across[f * stride + ln]) / h_north;
+                                (normal_across(face) + normal_across(f * stride + ln)) / h_north;
     const double corner_south = south * 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)]) *
-                                (normal_across[face] + normal_across[f * stride + ls]) / h_south;
+                                (normal_across(face) + normal_across(f * stride + ls)) / h_south;
     double term = -inv_n_f * (corner_north - corner_south) * inv_dx;
 
     // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
     //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
-    const double w = face_weight[face] * (dispersive[c_at(L, l)] * dispersive[c_at(R, l)]);
+    const double w = face_weight[face] * (static_cast<double>(dispersive[cL]) * static_cast<double>(dispersive[cR]));
     const double eta_yy_L = cell_eta_yy[L * W + j], eta_yy_R = cell_eta_yy[R * W + j];
     const double eta_y_L = cell_eta_y[L * W + j], eta_y_R = cell_eta_y[R * W + j];
     const double flux_yt_L = cell_flux_yt[L * W + j], flux_yt_R = cell_flux_yt[R * W + j];
@@ -165,7 +180,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const double flux_yt_face = 0.5 * (flux_yt_L + flux_yt_R);
     const double flux_xt = 0.5 * ((tangential_rate[t_at(R, l)] - tangential_rate[t_at(L, l)]) +
                                   (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(L, l + 1)])) * inv_dx;
-    const double slope_along = face_slope_along[face], slope_across = face_slope_across[face];
+    const double slope_along = face_slope_along(depth, cL, cR, dx);
+    const double slope_across = std::clamp(0.5 * (cell_slope_across[L * W + j] + cell_slope_across[R * W + j]),
+                                           -kMaxDispersiveSlope, kMaxDispersiveSlope);
     const double nBgd = n_f * B * g * d;
     const double psi = -B3 * d * d * flux_xyt - nBgd * d * d * eta_xyy -
                        d * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
@@ -176,9 +193,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     if (!kOpenWater) {
     const double nu_north = north * 0.25 * (nu_pair_north[L * W + j] + nu_pair_north[R * W + j]);
     const double nu_south = south * 0.25 * (nu_pair_south[L * W + j] + nu_pair_south[R * W + j]);
-    const double stress_north = nu_north * ((normal_across[f * stride + ln] - normal_across[face]) +
+    const double stress_north = nu_north * ((normal_across(f * stride + ln) - normal_across(face)) +
                                             (tangential[t_at(R, l + 1)] - tangential[t_at(L, l + 1)])) * inv_dx;
-    const double stress_south = nu_south * ((normal_across[face] - normal_across[f * stride + ls]) +
+    const double stress_south = nu_south * ((normal_across(face) - normal_across(f * stride + ls)) +
                                             (tangential[t_at(R, l)] - tangential[t_at(L, l)])) * inv_dx;
     term += inv_n_f * (stress_north - stress_south) * inv_dx;
     }
@@ -222,7 +239,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     for (int f = 0; f < faces; ++f)
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
-        const double h_face = std::max(face_depth[f * stride + lb + j] + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
+        const double h_face = std::max(depth_at_face(f, f * stride + lb + j) + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
         const double flux_f = normal_old[f * stride + lb + j] + 0.5 * increment[f * W + j];
         flux_half[f * W + j] = flux_f;
         face_velocity[f * W + j] = flux_f / h_face;
@@ -257,8 +274,8 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       #pragma GCC ivdep
       for (int j = 0; j < n; ++j) {
         const std::size_t face = f * stride + lb + j, cL = L * stride + lb + j, cR = R * stride + lb + j;
-        const double n_f = kOpenWater ? 1.0 : face_porosity[face], inv_n_f = kOpenWater ? 1.0 : face_inverse_porosity[face];
-        const double d = face_depth[face];
+        const double n_f = kOpenWater ? 1.0 : face_porosity(porosity, inv_n, cL, cR), inv_n_f = kOpenWater ? 1.0 : 1.0 / n_f;
+        const double d = face_depth(depth, cL, cR);
         const double e_L = eta_half[L * W + j], e_R = eta_half[R * W + j];
         // Total depth at the face: the larger of the mean depth and the water above the higher bed
         // (the latter governs a face next to a dry cell: flooding), never below dry_depth_m.
@@ -268,11 +285,11 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
 
         // Along-line explicit terms: convection (P^2/h)_x / n and the along parts of Psi_x:
         //   -n B g d^3 eta_xxx - d d_x n B g d 2 eta_xx   (time-centred, iterated)
-        const double w = face_weight[face] * (dispersive[cL] * dispersive[cR]);
+        const double w = face_weight[face] * (static_cast<double>(dispersive[cL]) * static_cast<double>(dispersive[cR]));
         const double e_m2 = eta_half[(f - 2) * W + j], e_p1 = eta_half[(f + 1) * W + j];
         const double eta_xxx = (e_p1 - 3.0 * e_R + 3.0 * e_L - e_m2) * inv_dx3;
         const double eta_xx = 0.5 * (e_p1 - e_R - e_L + e_m2) * inv_dx2;
-        const double slope_along = face_slope_along[face];
+        const double slope_along = face_slope_along(depth, cL, cR, dx);
         const double along = -inv_n_f * (cell_term[R * W + j] - cell_term[L * W + j]) * inv_dx +
                              w * n_f * B * g * d * d * (d * eta_xxx + 2.0 * slope_along * eta_xx);
         // Implicit parts of Psi_x: -(B+1/3) d^2 P_xxt - (1/3) d d_x P_xt
@@ -284,8 +301,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
         const double flux_f = flux_half[f * W + j];  // |(P, Q)|; sqrt vectorises (-fno-math-errno)
         const double flux_magnitude = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
         const double friction = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f;
-        const double resistance =
-            kOpenWater ? friction : friction + n_f * (face_laminar[face] + face_turbulent[face] * flux_magnitude * inv_h_f);
+        double resistance = friction;
+        if (!kOpenWater) {
+          const double n3 = n_f * n_f * n_f;  // laminar alpha (1/s) and turbulent beta (1/m) of eq. (2)
+          const double alpha = laminar_factor * (1.0 - n_f) * (1.0 - n_f) / (n3 * stone_diameter * stone_diameter);
+          const double beta = turbulent_factor * (1.0 - n_f) / (n3 * stone_diameter);
+          resistance = friction + n_f * (alpha + beta * flux_magnitude * inv_h_f);
+        }
 
         // Gravity n g h eta_x at t^{n+1/2} with eta* = E - dt/(2 n dx) d(increment): couples three faces.
         const double G = n_f * g * h_f * dt * dt * inv_dx2 * 0.25;
@@ -330,15 +352,17 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   for (int f = 1; f < cols; ++f)
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) {
-      const double h_face = std::max(face_depth[f * stride + lb + j] + 0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
+      const double h_face = std::max(face_depth(depth, (f - 1) * stride + lb + j, f * stride + lb + j) +
+                                         0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
       const double limit = kMaxFroude * h_face * std::sqrt(g * h_face);
       const double old_f = normal_old[f * stride + lb + j];
       const double flux_new = std::clamp(old_f + increment[f * W + j], -limit, limit);
       increment[f * W + j] = flux_new - old_f;
     }
+  const std::size_t eta_cell_stride = out.eta_cell_stride, eta_line_stride = out.eta_line_stride;
   for (int c = 0; c < cols; ++c)
     #pragma GCC ivdep
-    for (int j = 0; j < n; ++j) eta_new[c * stride + lb + j] = eta_from_increment(c, j);
+    for (int j = 0; j < n; ++j) eta_new[c * eta_cell_stride + (lb + j) * eta_line_stride] = eta_from_increment(c, j);
   for (int f = 0; f < faces; ++f)
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) normal_new[f * stride + lb + j] = normal_old[f * stride + lb + j] + increment[f * W + j];
@@ -436,6 +460,16 @@ void transpose_rows(const double* __restrict in, double* __restrict out, int col
       });
 }
 
+// Float arrays (the eddy viscosity while cells break, the static depths once): element by element
+// within the cache-sized tiles; not cloned, it is a small part of a step.
+void transpose_float_rows(const float* __restrict in, float* __restrict out, int cols, int rows, int r0, int r1) {
+  auto element = [&](std::size_t i, std::size_t o) { out[o] = in[i]; };
+  walk_transpose(cols, rows, r0, r1, element, [&](const std::size_t* in_offsets, const std::size_t* out_offsets) {
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) out[out_offsets[c] + r] = in[in_offsets[r] + c];
+  });
+}
+
 // The same walk for the across flux at t^{n+1/2} and its rate (HalfAndRate in boussinesq_sweep.hpp);
 // the arithmetic is element-wise, so the blocks give the same bits as the single elements.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
@@ -475,6 +509,12 @@ void half_and_rate_rows(HalfAndRate kind, const double* __restrict old_flux, con
 void transpose(const double* in, double* out, int cols, int rows) {
   tbb::parallel_for(0, (rows + kTransposeTile - 1) / kTransposeTile, [&](int block) {
     transpose_rows(in, out, cols, rows, block * kTransposeTile, std::min(rows, (block + 1) * kTransposeTile));
+  });
+}
+
+void transpose(const float* in, float* out, int cols, int rows) {
+  tbb::parallel_for(0, (rows + kTransposeTile - 1) / kTransposeTile, [&](int block) {
+    transpose_float_rows(in, out, cols, rows, block * kTransposeTile, std::min(rows, (block + 1) * kTransposeTile));
   });
 }
 

@@ -9,30 +9,43 @@
 //   cells         index c * rows + l
 //   normal faces  index f * rows + l, f = 0..cols; face f lies between cells f-1 and f
 //   tangential    index c * (rows + 1) + k, k = 0..rows; face k lies between lines k-1 and k
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace nearshore::boussinesq::detail {
 
-/// Everything about one orientation that does not change during a run.
+/// Everything about one orientation that does not change during a run. Only what cannot be
+/// recomputed cheaply is stored (docs/solver.md, "Memory"): the face values of seed 003 eq. (2)-(5)
+/// (depth, porosity, openness, bed slopes, porous resistance) follow from the two cells of the face
+/// inside the sweep, where the cell values are read anyway; see the face_* functions below.
 struct StaticFrame {
   int cols = 0, rows = 0;
   double spacing_m = 1.0;
-  std::vector<double> depth_m;             ///< d per cell (land negative)
-  std::vector<double> inverse_porosity;    ///< 1/n per cell, 0 for solid walls (n below kWallPorosity)
-  std::vector<double> face_depth_m;        ///< d at normal faces (mean of the two cells)
-  std::vector<double> face_porosity;       ///< n at normal faces (mean of the two cells)
-  std::vector<double> face_inverse_porosity;
-  std::vector<double> face_open;           ///< 0: grid edge or next to a wall, flux is always 0; else 1
-  std::vector<double> face_dispersion_weight;  ///< taper of docs/solver.md, 0..1
-  std::vector<double> face_slope_along;    ///< d_x at the face (clamped, see kMaxDispersiveSlope)
-  std::vector<double> face_slope_across;   ///< d_y at the face (clamped)
-  std::vector<double> face_porous_laminar_s;   ///< alpha (1/s) of seed 003 eq. (2), 0 in open water
-  std::vector<double> face_porous_turbulent_m; ///< beta (1/m), 0 in open water
+  /// Van Gent (1995) porous resistance of the faces (build_frame): alpha = laminar_factor (1-n)^2 /
+  /// (n^3 D^2), beta = turbulent_factor (1-n) / (n^3 D); porous_stone_diameter_m = D (0: none).
+  double porous_laminar_factor = 0.0, porous_turbulent_factor = 0.0, porous_stone_diameter_m = 0.0;
+  /// d per cell (land negative), float: the harbour grid's own precision, so the values are exact.
+  std::vector<float> depth_m;
+  /// n per cell clamped to [0, 1], float: the harbour grid's precision (exact).
+  std::vector<float> porosity;
+  /// 1/n per cell, 0 for solid walls (n below kWallPorosity). Float: 1 exactly in open water; in
+  /// porous cells its rounding (6e-8 relative) is far below the uncertainty of n itself, and the
+  /// mass equation and water_volume_m3 use the same value, so mass stays conserved to round-off.
+  std::vector<float> inverse_porosity;
+  /// The dispersion taper of docs/solver.md at the normal faces, 0..1 (float: a smooth weight,
+  /// exact where it is 0 or 1, i.e. everywhere when no cut-off is set).
+  std::vector<float> face_dispersion_weight;
   /// Per block of kBlockLines lines: 1 when a face of the block is porous (0 < n < 1), else 0.
   /// Blocks of open water run a sweep without the porous terms (fewer arrays streamed).
   std::vector<unsigned char> block_is_porous;
 };
+
+/// The storage type of the eddy viscosity nu (m^2/s) of eq. (6)-(7): float, because nu is a
+/// turbulence-closure estimate (Kennedy et al. 2000) good to tens of per cent, not a state variable
+/// (docs/solver.md, "Memory").
+using EddyViscosity = float;
 
 /// Porosity below which a cell is a solid wall (no flux through its faces).
 inline constexpr double kWallPorosity = 0.05;
@@ -44,24 +57,54 @@ inline constexpr double kMaxFroude = 3.0;
 /// Lines solved together in one block.
 inline constexpr int kBlockLines = 16;
 
+// The face values, from the two cells of normal face `face` (cells L = face - rows, R = face) of a
+// frame; faces 0 and cols (the grid edges) are walls and are never asked.
+/// 1 when the face can carry flux (neither cell is a solid wall), else 0.
+inline double face_open(const float* inverse_porosity, std::size_t L, std::size_t R) {
+  return inverse_porosity[L] > 0.0f && inverse_porosity[R] > 0.0f ? 1.0 : 0.0;
+}
+/// Still-water depth d at the face: the mean of the two cells.
+inline double face_depth(const float* depth, std::size_t L, std::size_t R) {
+  return 0.5 * (static_cast<double>(depth[L]) + static_cast<double>(depth[R]));
+}
+/// Porosity n at an open face: the mean of the two cells; 1 at a closed face (no flux: no resistance).
+inline double face_porosity(const float* porosity, const float* inverse_porosity, std::size_t L, std::size_t R) {
+  return face_open(inverse_porosity, L, R) != 0.0
+             ? 0.5 * (static_cast<double>(porosity[L]) + static_cast<double>(porosity[R]))
+             : 1.0;
+}
+/// Bed slope along the sweep at the face, clamped to kMaxDispersiveSlope (the dispersive terms only).
+inline double face_slope_along(const float* depth, std::size_t L, std::size_t R, double spacing_m) {
+  return std::clamp((static_cast<double>(depth[R]) - static_cast<double>(depth[L])) / spacing_m, -kMaxDispersiveSlope,
+                    kMaxDispersiveSlope);
+}
+
 /// The time-dependent input of one sweep, all in the frame's layout.
 struct SweepInput {
   const double* eta_old;          ///< eta^n, cells
   const double* eta_base;         ///< E: eta after every explicit flux of this sweep, cells
-  const double* eta_across;       ///< eta at t^{n+1/2} estimated for derivatives ACROSS the lines
+  /// eta at t^{n+1/2} for the derivatives ACROSS the lines is computed from eta_old and this partner:
+  /// (eta_old + partner) / 2, or eta_old + (eta_old - partner) / 2 when `eta_across_extrapolates`
+  /// (partner = eta^{n-1}); not stored (docs/solver.md, "Memory").
+  const double* eta_across_partner;
+  bool eta_across_extrapolates;
   const double* normal_old;       ///< normal flux at t^n, normal faces
-  const double* normal_across;    ///< normal flux at t^{n+1/2} estimated for across derivatives
-  const double* normal_guess;     ///< first guess of the normal flux increment over the step
+  /// First guess of the normal flux increment over the step; the normal flux at t^{n+1/2} for the
+  /// across derivatives is normal_old + normal_guess / 2 (computed, not stored).
+  const double* normal_guess;
   const double* tangential_half;  ///< tangential flux at t^{n+1/2}, tangential faces
   const double* tangential_rate;  ///< its time derivative at t^{n+1/2}, (m^2/s)/s
-  const double* eddy_viscosity;   ///< nu of eq. (6)-(7), m^2/s, cells
-  const double* dispersive;       ///< 1 where the cell and its 4 neighbours are wet, else 0
+  const EddyViscosity* eddy_viscosity;  ///< nu of eq. (6)-(7), m^2/s, cells
+  const unsigned char* dispersive;  ///< 1 where the cell and its 4 neighbours are wet, else 0
   bool viscous = true;            ///< false: eddy_viscosity is 0 everywhere (no cell breaks)
 };
 
 struct SweepOutput {
-  double* eta_new;     ///< cells
-  double* normal_new;  ///< normal faces
+  /// cells: eta of cell (c along, l line) goes to eta_new[c * eta_cell_stride + l * eta_line_stride],
+  /// so the x sweep writes the natural layout directly (no transposed copy, no transpose pass).
+  double* eta_new;
+  double* normal_new;  ///< normal faces, the frame's layout
+  std::size_t eta_cell_stride = 0, eta_line_stride = 1;
 };
 
 struct SweepConstants {
@@ -76,7 +119,7 @@ struct SweepConstants {
 struct SweepScratch {
   std::vector<double> upper, right, increment, eta_half, flux_half, cell_term, fixed_term,
       tangential_squared, active, face_velocity, h_pair_north, h_pair_south, cell_eta_yy, cell_eta_y, cell_flux_yt,
-      nu_pair_north, nu_pair_south;
+      cell_slope_across, nu_pair_north, nu_pair_south;
   void resize(int cols);
 };
 
@@ -90,6 +133,8 @@ void sweep_lines(const StaticFrame& frame, const SweepConstants& constants, cons
 /// out[c * rows + r] = in[r * cols + c]: in is cols x rows (row-major), out is rows x cols.
 /// Parallel over blocks; the result does not depend on the thread count.
 void transpose(const double* in, double* out, int cols, int rows);
+/// The same for float arrays (the eddy viscosity, the static depths), same layout.
+void transpose(const float* in, float* out, int cols, int rows);
 
 /// How transpose_half_and_rate gets the flux's change over the step from `other`.
 enum class HalfAndRate {

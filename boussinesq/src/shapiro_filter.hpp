@@ -20,10 +20,10 @@ class ShapiroFilter {
   explicit ShapiroFilter(int half_order = 4);
   int half_order() const { return half_order_; }
   /// Along the slow index: all fast lanes in lock-step (contiguous, vectorised).
-  void along_slow(double* values, const double* filterable, int slow_count, int fast_count,
+  void along_slow(double* values, const unsigned char* filterable, int slow_count, int fast_count,
                   bool wall_normal) const;
   /// Along the fast index, each slow line on its own.
-  void along_fast(double* values, const double* filterable, int slow_count, int fast_count,
+  void along_fast(double* values, const unsigned char* filterable, int slow_count, int fast_count,
                   bool wall_normal) const;
   /// The stencil (-delta^2)^p / 4^p with the filter's sign: u_new = u - sum_k weight_k u_{i+k}.
   const std::vector<double>& weights() const { return weights_; }

@@ -38,24 +38,38 @@ struct BoussinesqSolver::Implementation {
   detail::SweepConstants constants;
   std::unique_ptr<detail::SourceFunction> source;
 
+  // Every array below costs bytes per cell; docs/solver.md ("Memory") lists them with their use
+  // and precision, and BoussinesqSolver::resident_bytes_per_cell() counts them.
   // State. eta, Q and the cell fields in the natural layout (row-major, index r * nx + c);
   // P in the x sweep's layout (index f * ny + r); eta^{n-1} transposed (only the x sweep uses it).
   std::vector<double> eta, eta_previous_t, flux_x, flux_y, flux_x_increment, flux_y_increment;
-  std::vector<double> eddy_viscosity, breaking_start_s, breaking_strength;
+  std::vector<detail::EddyViscosity> eddy_viscosity;
+  std::vector<double> breaking_start_s;  // time, s: double, a bake runs for days of model time
   // Whether eddy_viscosity may hold a non-zero value; when not, eddy_t is all zeros and the
   // transpose is skipped (most of a bake's steps break nowhere, laboratory flumes never).
   bool eddy_viscosity_active = true;
-  // Work arrays (suffix _t: x sweep layout).
-  std::vector<double> eta_t, eta_base_t, eta_across_t, eta_star_t, flux_x_across, flux_x_new,
-      tangential_half_t, tangential_rate_t, eddy_t;
-  std::vector<double> eta_star, eta_across, flux_y_across, flux_x_half, flux_x_rate, eta_next, flux_y_new;
-  std::vector<double> flux_x_guess, flux_y_guess, eta_base;
-  std::vector<double> dispersive, dispersive_t, wet_cells;
-  std::vector<double> filterable_x, filterable_y;  // grid-scale filter masks (P and Q faces), 0 or 1
+  // Work arrays (suffix _t: x sweep layout). Shared between the sweeps where their lives do not
+  // overlap: eta_base is E of whichever sweep runs (in its layout), tangential_half/_rate the other
+  // flux at t^{n+1/2} in the running sweep's layout; eta_next doubles as scratch for eta^{n-1}
+  // before the x sweep writes it (step()). Both sweeps write eta in the natural layout.
+  std::vector<double> eta_t, eta_star, eta_next, eta_base;
+  std::vector<double> flux_x_new, flux_y_new, tangential_half, tangential_rate;
+  // Only when adi_passes > 1: the previous pass's flux increment and its eta^{n+1} transposed.
+  std::vector<double> flux_guess, eta_pass_t;
+  std::vector<detail::EddyViscosity> eddy_t;
+  // Masks, 0 or 1: the dispersion mask of eta^n per layout (mark_dispersive), its wet-cell
+  // scratch, and the grid-scale filter's masks of the P and Q faces.
+  std::vector<unsigned char> dispersive, dispersive_t, wet_cells, filterable_x, filterable_y;
   detail::ShapiroFilter flux_filter;  // order solver.shapiro_filter_order, its stencil built once
-  std::vector<double> sponge_cell, sponge_face_x, sponge_face_y;  // damping factor per step (1 = none)
+  // Sponge damping factors per step (docs/solver.md "Sponge layers"), only where they are not 1:
+  // memory in proportion to the layers, not to the grid.
+  struct SpongePoint {
+    std::size_t index;  // cell (natural layout), P face (px) or Q face (qy)
+    double factor;      // 1 / (1 + sigma dt)
+  };
+  std::vector<SpongePoint> sponge_cells, sponge_faces_x, sponge_faces_y;
   tbb::enumerable_thread_specific<SweepScratch> scratch;
-  // Output rasters.
+  // Output rasters. breaking_output is also the state's breaking strength B (0..1, float).
   Raster<float> eta_output, breaking_output;
 
   std::size_t px(int f, int r) const { return static_cast<std::size_t>(f) * ny + r; }  // P face west of cell (f, r)
@@ -79,7 +93,7 @@ struct BoussinesqSolver::Implementation {
         tbb::simple_partitioner());
   }
 
-  void mark_dispersive(const StaticFrame& frame, const double* eta_frame, double* mask);
+  void mark_dispersive(const StaticFrame& frame, const double* eta_frame, unsigned char* mask);
   void step();
   void repair_negative_depths();
   void filter_grid_scale_fluxes();

@@ -71,8 +71,9 @@ TEST(BakeEstimate, AHugeGridIsRefusedFastWithTheNumbers) {
     FAIL() << "a bake of 4e8 cells was not refused";
   } catch (const Error& error) {
     const std::string message = error.what();
-    for (const std::string fragment : {"case.toml: the bake needs about ", "GiB of memory (400000000 cells x 640 B per cell",
-                                       "available (MemAvailable, /proc/meminfo)", "BakeOptions::allow_over_budget"})
+    const std::string per_cell = "GiB of memory (400000000 cells x " + std::to_string(static_cast<int>(kBakeBytesPerCell)) + " B per cell";
+    for (const std::string& fragment : {std::string("case.toml: the bake needs about "), per_cell,
+                                        std::string("available (MemAvailable, /proc/meminfo)"), std::string("BakeOptions::allow_over_budget")})
       EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " missing in: " << message;
   }
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);

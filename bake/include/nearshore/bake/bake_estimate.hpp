@@ -13,9 +13,11 @@
 namespace nearshore::bake {
 
 /// Peak resident memory of a bake per grid cell, bytes, measured (bake_estimate.cpp says how):
-/// the solver's state, work and static arrays, the frame being encoded, the harbour grid (530 to
-/// 574 B measured, rounded up).
-inline constexpr double kBakeBytesPerCell = 640.0;
+/// the solver's state, work and static arrays (docs/solver.md "Memory"), the frame being encoded,
+/// the harbour grid. 228 B measured on a 1000 x 1000 grid, 278 B on the 1000 x 100 flume of
+/// BakeEstimate.CoversTheMeasuredPeakOfARealBake (per-line scratch weighs more on a narrow grid),
+/// rounded up. The one figure every memory estimate of a bake uses.
+inline constexpr double kBakeBytesPerCell = 300.0;
 /// What a bake allocates whatever its grid: worker threads and their stacks, the case, buffers,
 /// bytes (the whole bake_runner process peaked at 9 MiB on a tiny grid on 2 cores; more cores,
 /// more stacks). The code and libraries of the process are not counted: they are resident before
@@ -36,7 +38,7 @@ struct BakeResourceEstimate {
   /// set of a case with [deep_water] (small next to the frames at bake resolutions).
   double disk_bytes = 0;
 
-  /// One line for people: "2.4 GiB of memory (4000000 cells x 640 B + 16.0 MiB), 36.5 GiB of disk (1201 frames of 30.5 MiB, ...)".
+  /// One line for people: "1.1 GiB of memory (4000000 cells x 300 B + 16.0 MiB), 36.5 GiB of disk (1201 frames of 30.5 MiB, ...)".
   std::string describe() const;
 };
 

@@ -115,6 +115,13 @@ struct InstabilityReport {
   std::string what;  ///< "NaN surface elevation", "surface elevation 12.3 m exceeds 5 x depth", ...
 };
 
+/// Bytes one time step moves through main memory per grid cell, by the count of docs/solver.md
+/// ("Memory traffic"): every array a pass of step() reads or writes, once per pass (the re-reads
+/// inside a block of lines stay in the cache), writes counted twice (the line is read before it is
+/// written). A model for the roofline line of `nearshore bench bake`, not a measurement; faces are
+/// counted as cells. `breaking`: cells break this step (the sweeps then read the eddy viscosity).
+double streamed_bytes_per_cell_step(const SolverParameters& parameters, bool breaking);
+
 class BoussinesqSolver {
  public:
   /// Throws nearshore::Error for inconsistent input (a sponge wider than the grid, a source line
@@ -147,6 +154,10 @@ class BoussinesqSolver {
   double surface_elevation_at(double x_m, double y_m) const;        ///< bilinear between cell centres, for gauges
   std::optional<InstabilityReport> check_stability() const;         ///< NaN or |eta| too large
   double water_volume_m3() const;            ///< sum of n * h * area over wet cells (for mass tests)
+  /// Bytes of every grid-sized array the solver holds (state, work, static coefficients, sponge
+  /// lists, output rasters, per-thread sweep scratch): what a bake's memory estimate is built from.
+  /// docs/solver.md ("Memory") lists the arrays, their precision and why each is needed.
+  std::size_t memory_bytes() const;
   /// Binary: everything needed to continue bit-identically (grid size, dt and a parameter hash are
   /// checked on load).
   void save_state(std::ostream& out) const;
