@@ -1,0 +1,203 @@
+// The C API (capi/include/nearshore.h) through the shared library a host links: status codes and
+// messages for bad input, queries that return the baked field, a bad frame that is held while
+// the sea plays on, latitude/longitude through the grid's projection, and queries from other
+// threads while the render thread advances. The sequences are written here with the C++ API that
+// libnearshore.so exports too (sequence::SequenceWriter).
+#include "nearshore.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/sequence/sequence_writer.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+
+constexpr double kAmplitudeM = 0.5, kWavelengthM = 40.0, kPeriodS = 6.0, kSpacingM = 4.0;
+constexpr int kColumns = 40, kRows = 30, kFrames = 12;
+constexpr double kFrameIntervalS = 0.5;
+
+double analytic_eta(double x_m, double t_s) {
+  return kAmplitudeM * std::cos(2 * std::numbers::pi * (x_m / kWavelengthM - t_s / kPeriodS));
+}
+
+// A 160 m x 120 m basin of 10 m water in UTM zone 51N, a plane wave travelling east, float frames.
+fs::path write_sequence(const std::string& name) {
+  const fs::path folder = fs::current_path() / ("capi_" + name);
+  fs::remove_all(folder);
+  nearshore::GridGeometry geometry;
+  geometry.columns = kColumns;
+  geometry.rows = kRows;
+  geometry.spacing_m = kSpacingM;
+  geometry.origin_x_m = 386000.0;
+  geometry.origin_y_m = 4306400.0;
+  geometry.projection = {{"kind", "utm"}, {"zone", 51}, {"north", true}, {"datum", "WGS84"}};
+  nearshore::sequence::SequenceDescription description;
+  description.frame_interval_s = kFrameIntervalS;
+  description.encoding.surface_elevation = nearshore::sequence::Precision::kFloat;
+  description.encoding.flux = nearshore::sequence::Precision::kFloat;
+  nearshore::sequence::SequenceWriter writer(folder, nearshore::HarbourGrid::open_water(geometry, 10.f), description);
+  nearshore::Raster<float> eta(kColumns, kRows), flux(kColumns, kRows), zero(kColumns, kRows);
+  for (int frame = 0; frame < kFrames; ++frame) {
+    for (int row = 0; row < kRows; ++row)
+      for (int column = 0; column < kColumns; ++column) {
+        eta(column, row) = static_cast<float>(analytic_eta((column + 0.5) * kSpacingM, frame * kFrameIntervalS));
+        flux(column, row) = static_cast<float>(kWavelengthM / kPeriodS * eta(column, row));  // c eta
+      }
+    writer.write_frame(frame, {&eta, &flux, &zero, &zero});
+  }
+  writer.finish(kFrames);
+  return folder;
+}
+
+nearshore_sea* open_calm(const fs::path& folder) {
+  nearshore_sea_options options;
+  nearshore_sea_options_init(&options);
+  options.plan = NEARSHORE_PLAN_FRAME_ORDER;
+  options.beaufort_force = 0;  // a calm sea beyond the harbour: the queries see the frames alone
+  nearshore_sea* sea = nullptr;
+  EXPECT_EQ(nearshore_sea_open(folder.c_str(), &options, &sea), NEARSHORE_OK) << nearshore_last_error();
+  return sea;
+}
+
+TEST(CApi, BadInputReturnsAStatusAndAMessageNamingTheFix) {
+  EXPECT_EQ(nearshore_api_version(), NEARSHORE_API_VERSION);
+  EXPECT_STREQ(nearshore_status_name(NEARSHORE_IO_ERROR), "NEARSHORE_IO_ERROR");
+  nearshore_sea* sea = reinterpret_cast<nearshore_sea*>(0x1);
+  EXPECT_EQ(nearshore_sea_open("/nonexistent/bake", nullptr, &sea), NEARSHORE_IO_ERROR);
+  EXPECT_EQ(sea, nullptr);
+  EXPECT_NE(std::string(nearshore_last_error()).find("/nonexistent/bake"), std::string::npos) << nearshore_last_error();
+  EXPECT_EQ(nearshore_sea_open(nullptr, nullptr, &sea), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("sequence_folder"), std::string::npos);
+  EXPECT_EQ(nearshore_sea_advance(nullptr, 0.0), NEARSHORE_INVALID_ARGUMENT);
+
+  // A manifest of a newer version is refused by name, not misread.
+  const fs::path newer = write_sequence("newer");
+  std::ifstream in(newer / "manifest.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const std::size_t at = text.find("\"version\": 1");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 12, "\"version\": 99");
+  std::ofstream(newer / "manifest.json") << text;
+  EXPECT_EQ(nearshore_sea_open(newer.c_str(), nullptr, &sea), NEARSHORE_FORMAT_ERROR);
+  EXPECT_NE(std::string(nearshore_last_error()).find("version"), std::string::npos) << nearshore_last_error();
+
+  // Out-of-range options are named.
+  nearshore_sea_options options;
+  nearshore_sea_options_init(&options);
+  options.beaufort_force = 13;
+  EXPECT_EQ(nearshore_sea_open(write_sequence("options").c_str(), &options, &sea), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("beaufort_force"), std::string::npos) << nearshore_last_error();
+}
+
+TEST(CApi, QueriesGiveTheBakedSurfaceAndItsCurrent) {
+  nearshore_sea* sea = open_calm(write_sequence("query"));
+  ASSERT_NE(sea, nullptr);
+  nearshore_site_info site;
+  site.struct_size = sizeof site;
+  ASSERT_EQ(nearshore_site_info_get(sea, &site), NEARSHORE_OK);
+  EXPECT_EQ(site.columns, kColumns);
+  EXPECT_DOUBLE_EQ(site.width_m, kColumns * kSpacingM);
+  // At cell centres well inside the rectangle, at a frame's own time, the shown surface is that
+  // frame's value (float storage: 1e-6 m) and the current is P / (d + eta).
+  const double time_s = 3 * kFrameIntervalS;
+  std::vector<double> xy;
+  for (int column = 12; column < 28; column += 3) xy.insert(xy.end(), {(column + 0.5) * kSpacingM, 60.0 + 2.0});
+  std::vector<nearshore_surface_sample> samples(xy.size() / 2);
+  ASSERT_EQ(nearshore_sea_query_at(sea, time_s, xy.data(), samples.size(), samples.data()), NEARSHORE_OK)
+      << nearshore_last_error();
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const double eta = analytic_eta(xy[2 * i], time_s);
+    EXPECT_NEAR(samples[i].elevation_m, eta, 1e-5) << "x = " << xy[2 * i];
+    EXPECT_NEAR(samples[i].velocity_x_m_s, kWavelengthM / kPeriodS * eta / (10.0 + eta), 1e-4);
+    EXPECT_EQ(samples[i].dry, 0);
+    EXPECT_NEAR(std::hypot(samples[i].normal[0], samples[i].normal[1], samples[i].normal[2]), 1.0, 1e-5);
+  }
+  // The displayed snapshot after an advance gives the same numbers.
+  ASSERT_EQ(nearshore_sea_advance(sea, time_s), NEARSHORE_OK);
+  std::vector<nearshore_surface_sample> shown(samples.size());
+  ASSERT_EQ(nearshore_sea_query(sea, xy.data(), shown.size(), shown.data()), NEARSHORE_OK);
+  nearshore_stats stats;
+  stats.struct_size = sizeof stats;
+  ASSERT_EQ(nearshore_sea_stats(sea, &stats), NEARSHORE_OK);
+  if (stats.underruns == 0) {
+    for (std::size_t i = 0; i < shown.size(); ++i) EXPECT_NEAR(shown[i].elevation_m, samples[i].elevation_m, 1e-6);
+  }
+  EXPECT_EQ(nearshore_sea_query(sea, nullptr, 1, shown.data()), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("xy_m"), std::string::npos);
+  nearshore_sea_close(sea);
+}
+
+TEST(CApi, LatitudeLongitudeGoThroughTheGridsProjection) {
+  nearshore_sea* sea = open_calm(write_sequence("latlon"));
+  ASSERT_NE(sea, nullptr);
+  nearshore_site_info site;
+  site.struct_size = sizeof site;
+  ASSERT_EQ(nearshore_site_info_get(sea, &site), NEARSHORE_OK);
+  ASSERT_TRUE(std::isfinite(site.origin_latitude_deg));
+  double x = 1, y = 1;
+  ASSERT_EQ(nearshore_site_from_lat_lon(sea, site.origin_latitude_deg, site.origin_longitude_deg, &x, &y), NEARSHORE_OK);
+  EXPECT_NEAR(x, 0.0, 1e-3);  // GeographicLib round trip: nanometres; the corner is the site origin
+  EXPECT_NEAR(y, 0.0, 1e-3);
+  EXPECT_EQ(nearshore_site_from_lat_lon(sea, 91.0, 0.0, &x, &y), NEARSHORE_INVALID_ARGUMENT);
+  nearshore_sea_close(sea);
+}
+
+TEST(CApi, ABadFrameIsHeldAndSaidWhileTheSeaPlaysOn) {
+  const fs::path folder = write_sequence("bad_frame");
+  fs::resize_file(folder / "frame_000004.exr", 100);  // truncated
+  nearshore_sea* sea = open_calm(folder);
+  ASSERT_NE(sea, nullptr);
+  nearshore_stats stats;
+  stats.struct_size = sizeof stats;
+  nearshore_surface_sample sample;
+  const double point[2] = {80.0, 60.0};
+  for (int frame = 0; frame < 180; ++frame) {  // 6 s of display at 30 fps: past frame 4, twice round
+    ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK) << nearshore_last_error();
+    ASSERT_EQ(nearshore_sea_query(sea, point, 1, &sample), NEARSHORE_OK);
+    ASSERT_TRUE(std::isfinite(sample.elevation_m));
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_EQ(nearshore_sea_stats(sea, &stats), NEARSHORE_OK);
+  EXPECT_GE(stats.bad_frames_held, 1u);
+  EXPECT_NE(std::string(stats.message).find("frame_000004.exr"), std::string::npos) << stats.message;
+  nearshore_sea_close(sea);
+}
+
+TEST(CApi, QueriesFromOtherThreadsWhileTheRenderThreadAdvances) {
+  nearshore_sea* sea = open_calm(write_sequence("threads"));
+  ASSERT_NE(sea, nullptr);
+  std::atomic<bool> stop{false};
+  std::atomic<long> answered{0}, failed{0};
+  std::vector<std::thread> ships;
+  for (int ship = 0; ship < 2; ++ship)
+    ships.emplace_back([&, ship] {
+      const double point[2] = {40.0 + 30.0 * ship, 50.0};
+      nearshore_surface_sample sample;
+      while (!stop) {
+        if (nearshore_sea_query(sea, point, 1, &sample) != NEARSHORE_OK || !std::isfinite(sample.elevation_m)) ++failed;
+        ++answered;
+      }
+    });
+  for (int frame = 0; frame < 120; ++frame) {
+    EXPECT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  stop = true;
+  for (std::thread& ship : ships) ship.join();
+  EXPECT_GT(answered.load(), 0);
+  EXPECT_EQ(failed.load(), 0);
+  nearshore_sea_close(sea);
+}
+
+}  // namespace
