@@ -2,6 +2,7 @@
 // What every subcommand of `nearshore` shares: its registration function, the plain "not built
 // yet" answer for a subcommand whose issue is still open, the range every number on the command
 // line is checked against, and the translation of library errors into the command's own flags.
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <utility>
@@ -26,6 +27,11 @@ void add_bench_deepwater(CLI::App& bench);
 void add_bench_loops(CLI::App& bench);
 void add_bench_play(CLI::App& bench);
 void add_bench_library(CLI::App& bench);
+
+/// What `nearshore play SEQ --frames 15 --screenshot PNG --size W,H` does, for the demo: a headless
+/// picture of the sequence through the runtime. Returns a one-line description.
+std::string write_playback_screenshot(const std::filesystem::path& sequence_folder, const std::filesystem::path& png,
+                                      int width_px, int height_px);
 
 /// Thrown by a subcommand callback to end the program with this exit status (after printing).
 struct ExitStatus {

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -27,11 +28,7 @@
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/inspector.hpp"
-#include "nearshore/playback/sequence_player.hpp"
-#include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/plot/plot.hpp"
-#include "nearshore/playback/window.hpp"
-#include "nearshore/sequence/loop_playback.hpp"
 
 namespace nearshore::tools {
 
@@ -85,6 +82,10 @@ bake::BakeSummary bake_demo_case(const fs::path& case_file, const fs::path& bake
 }
 
 void run_demo(const DemoOptions& options) {
+  // The last stage draws a screenshot through OpenGL: say so now, not after minutes of baking.
+  if (!std::getenv("DISPLAY"))
+    throw Error("nearshore demo", "needs an X display for its last stage (the playback screenshot) and none is set",
+                "run it under Xvfb: xvfb-run -a nearshore demo -o demo-out");
   const fs::path out = options.output_folder;
   const fs::path chart_folder = out / "chart", harbour_folder = out / "harbour", bake_folder = out / "bake",
                  loops_folder = out / "loops", screenshot = out / "screenshot.png",
@@ -155,18 +156,9 @@ void run_demo(const DemoOptions& options) {
   });
 
   run_stage("play", [&] {
-    const sequence::SequenceReader reader(bake_folder);
-    const HarbourGrid harbour = reader.read_harbour_grid();
-    playback::GlWindow window(1280, 720, "nearshore demo", false);
-    playback::WaterRenderer renderer(harbour);
-    // The loop the inspector wrote into loops.json, crossfade included, as `nearshore play` does.
-    const std::optional<sequence::LoopSchedule> loop = sequence::read_loop_schedule(bake_folder);
-    playback::SequencePlayer player = loop ? playback::SequencePlayer(reader, *loop) : playback::SequencePlayer(reader);
-    player.advance_to(0.0);
-    renderer.set_frame(player.surface_elevation_m(), &player.breaking());
-    renderer.render(playback::Camera::overlooking(harbour.geometry), playback::Lighting{}, 1280, 720);
-    write_png(renderer.read_pixels(), screenshot);
-    return fmt::format("{} (1280 x 720, {})", screenshot.string(), window.gl_description());
+    // As `nearshore play demo-out/bake --frames 15 --screenshot ...` does: the streaming engine plays
+    // the loop the inspector wrote into loops.json inside the bake's own deep water.
+    return write_playback_screenshot(bake_folder, screenshot, 1280, 720);
   });
 }
 

@@ -44,7 +44,7 @@ struct PlayOptions {
   int beaufort_force = 3;
   double wind_from_deg = 225;
   double sun_azimuth_deg = 200, sun_elevation_deg = 35;
-  bool panel = false, json = false;
+  bool panel = false, json = false, quiet = false;
 };
 
 const char* const kPlanNames[] = {"auto", "period", "loop", "random", "order"};
@@ -169,7 +169,7 @@ nlohmann::json stats_json(const runtime::StreamingStats& s, const playback::Fram
           {"upload_bytes_last_frame", frame.upload_bytes}};
 }
 
-void play(const PlayOptions& o) {
+std::string play(const PlayOptions& o) {
   const bool headless = !o.screenshot.empty() || o.frames > 0;
   std::string plan = o.plan;
   auto engine = std::make_unique<runtime::StreamingEngine>(o.sequence_folder, streaming_options(o, plan));
@@ -201,9 +201,11 @@ void play(const PlayOptions& o) {
   model.gl_description = window.gl_description();
   const LonLat looked_at = frame.lat_lon_of(control.camera.target_m[0], control.camera.target_m[1]);
   model.jump_lat_lon_deg = {looked_at.latitude_deg, looked_at.longitude_deg};
-  std::fprintf(stderr, "OpenGL %s\nplaying %s; %s\n", window.gl_description().c_str(), engine->stats().plan.c_str(),
-               engine->memory_summary().c_str());
-  if (!engine->stats().last_message.empty()) std::fprintf(stderr, "note: %s\n", engine->stats().last_message.c_str());
+  if (!o.quiet) {
+    std::fprintf(stderr, "OpenGL %s\nplaying %s; %s\n", window.gl_description().c_str(), engine->stats().plan.c_str(),
+                 engine->memory_summary().c_str());
+    if (!engine->stats().last_message.empty()) std::fprintf(stderr, "note: %s\n", engine->stats().last_message.c_str());
+  }
 
   const auto start = std::chrono::steady_clock::now();
   auto previous = start;
@@ -275,13 +277,17 @@ void play(const PlayOptions& o) {
     if (headless && frames_drawn >= std::max(o.frames, 1)) break;  // keep the last picture in the back buffer
     window.present();
   }
+  const runtime::StreamingStats s = engine->stats();
+  const std::string summary = fmt::format("{} ({} x {}, t = {:.2f} s, {} grid, {}; {})", o.screenshot.string(), width,
+                                          height, display_time_s, o.grid, s.plan, window.gl_description());
   if (!o.screenshot.empty()) {
     write_png(panel ? window.read_back_buffer() : renderer.read_pixels(), o.screenshot);
-    std::printf("screenshot: %s (%d x %d, t = %.2f s, %s grid)\n", o.screenshot.c_str(), width, height, display_time_s,
-                o.grid.c_str());
+    if (!o.quiet)
+      std::printf("screenshot: %s (%d x %d, t = %.2f s, %s grid)\n", o.screenshot.c_str(), width, height,
+                  display_time_s, o.grid.c_str());
   }
-  const runtime::StreamingStats s = engine->stats();
-  if (o.json) {
+  if (o.quiet) {
+  } else if (o.json) {
     std::printf("%s\n", stats_json(s, renderer.last_frame(), frames_drawn, wall_s).dump(1).c_str());
   } else {
     std::printf("played %.1f s of display time in %.1f s, %d frames drawn (%.1f fps); %lld underruns, %lld frames held, "
@@ -291,9 +297,20 @@ void play(const PlayOptions& o) {
     if (!s.last_message.empty()) std::printf("note: %s\n", s.last_message.c_str());
   }
   g_camera_control = nullptr;
+  return summary;
 }
 
 }  // namespace
+
+std::string write_playback_screenshot(const fs::path& sequence_folder, const fs::path& png, int width_px, int height_px) {
+  PlayOptions o;
+  o.sequence_folder = sequence_folder;
+  o.screenshot = png;
+  o.size_px = {width_px, height_px};
+  o.frames = 15;  // half a second of display: the streaming engine and the renderer's first uploads settle
+  o.quiet = true;
+  return play(o);
+}
 
 void add_play_command(CLI::App& app) {
   auto o = std::make_shared<PlayOptions>();

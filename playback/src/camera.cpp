@@ -27,17 +27,6 @@ Camera Camera::overlooking_site(double width_m, double height_m) {
   return camera;
 }
 
-Camera Camera::overlooking(const GridGeometry& g) {
-  Camera camera = overlooking_site(g.width_m(), g.height_m());
-  for (Vector3* point : {&camera.eye_m, &camera.target_m}) {
-    (*point)[0] += g.origin_x_m;
-    (*point)[1] += g.origin_y_m;
-  }
-  camera.far_m = 40.0 * std::max(g.width_m(), g.height_m());
-  camera.near_m = 1.0;
-  return camera;
-}
-
 Matrix4 multiply(const Matrix4& a, const Matrix4& b) { return from_eigen(to_eigen(a) * to_eigen(b)); }
 Matrix4 inverse(const Matrix4& m) { return from_eigen(to_eigen(m).inverse()); }
 std::array<double, 4> transform(const Matrix4& m, const std::array<double, 4>& p) {

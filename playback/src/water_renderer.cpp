@@ -219,10 +219,6 @@ struct WaterRenderer::Impl {
   RadialGridSettings radial_built;
   int projected_columns = 0, projected_rows = 0, height_columns = 0, height_rows = 0;
 
-  // Transitional (set_frame): the harbour shown alone.
-  runtime::SurfaceSnapshot legacy_snapshot;
-  GridGeometry legacy_geometry;
-  std::uint64_t legacy_serial = 0;
 
   explicit Impl(const RendererSettings& s) : settings(s), keyframes(s.harbour_texture_slots, s.deep_texture_slots) {
     const std::initializer_list<const char*> water_vertex = {"common.glsl", "surface.glsl", "water_vertex.glsl"};
@@ -640,48 +636,6 @@ Image WaterRenderer::read_pixels() const {
       image.set(x, y, {p[0] / 255.f, p[1] / 255.f, p[2] / 255.f});
     }
   return image;
-}
-
-// ---- transitional ------------------------------------------------------------------------
-WaterRenderer::WaterRenderer(const HarbourGrid& harbour) : WaterRenderer(RendererSettings{}) {
-  Impl& s = *impl_;
-  auto site = std::make_shared<runtime::HarbourSite>();
-  site->harbour = harbour;
-  site->width_m = harbour.geometry.width_m();
-  site->height_m = harbour.geometry.height_m();
-  // No blend zone and no edge fade: w = 1 over the whole rectangle, a still sea beyond it.
-  site->blend_width_m = 0.0;
-  site->edge_fade_m = 0.0;
-  site->source_line_m = -1.0;
-  s.legacy_snapshot.site = site;
-  s.legacy_geometry = harbour.geometry;
-  const double extent = std::max(site->width_m, site->height_m);
-  s.settings.grid = GridKind::radial;
-  s.settings.radial.segment_count = 512;
-  s.settings.radial.inner_spacing_m = std::max(0.25, 0.1 * harbour.geometry.spacing_m);
-  s.settings.radial.outer_radius_m = 30.0 * extent;
-}
-
-void WaterRenderer::set_frame(const Raster<float>& surface_elevation_m, const Raster<float>* breaking) {
-  Impl& s = *impl_;
-  if (!s.legacy_snapshot.site)
-    throw Error("water renderer", "set_frame needs the renderer made for one harbour grid", "draw snapshots with render()");
-  auto keyframe = std::make_shared<runtime::HarbourKeyframe>();
-  keyframe->serial = ++s.legacy_serial;
-  keyframe->surface_elevation_m = surface_elevation_m;
-  if (breaking) keyframe->breaking = *breaking;
-  s.legacy_snapshot.harbour_from = keyframe;
-  s.legacy_snapshot.harbour_to = keyframe;
-}
-
-void WaterRenderer::render(const Camera& projected_camera, const Lighting& lighting, int width_px, int height_px) {
-  Impl& s = *impl_;
-  Camera site_camera = projected_camera;
-  for (Vector3* point : {&site_camera.eye_m, &site_camera.target_m}) {
-    (*point)[0] -= s.legacy_geometry.origin_x_m;
-    (*point)[1] -= s.legacy_geometry.origin_y_m;
-  }
-  s.render(s.legacy_snapshot, site_camera, lighting, width_px, height_px, DrawOptions{});
 }
 
 }  // namespace nearshore::playback

@@ -2,17 +2,18 @@
 // prove the runtime brings none of the bake side's (GDAL, OpenVDB, CGAL, libpng, FreeType).
 #include <cstdio>
 
-#include "nearshore/playback/sequence_player.hpp"
 #include "nearshore/playback/water_renderer.hpp"
-#include "nearshore/sequence/sequence_reader.hpp"
+#include "nearshore/runtime/streaming_engine.hpp"
+#include "nearshore/runtime/surface_sampler.hpp"
 
 int main(int argc, char** argv) {
   if (argc > 1) {
     // Reached only when asked, so the linker keeps the runtime's code in the probe.
-    const nearshore::sequence::SequenceReader reader(argv[1]);
-    nearshore::playback::SequencePlayer player(reader);
-    player.advance_to(0.0);
-    std::printf("%zu frames in the order\n", player.frame_order().size());
+    nearshore::runtime::StreamingEngine engine(argv[1]);
+    engine.advance_to(0.0);
+    const nearshore::runtime::SurfaceSampler sampler(engine.snapshot());
+    std::printf("%.3f m at the origin\n", sampler.elevation_m(0.0, 0.0));
+    nearshore::playback::WaterRenderer renderer;
   }
   return 0;
 }

@@ -29,9 +29,6 @@ struct Camera {
   /// frame), looking into it from a height of about a quarter of its extent: the view a pilot
   /// boarding from seaward would have.
   static Camera overlooking_site(double width_m, double height_m);
-  /// Transitional (tools/ before it plays through the streaming engine): the same view in the
-  /// projected coordinates of `geometry` (its origin added).
-  static Camera overlooking(const GridGeometry& geometry);
 };
 
 /// A camera on a viewport: everything the grids and the shaders need of it.

@@ -122,14 +122,6 @@ class WaterRenderer {
   /// The last render as an image (row 0 at the top).
   Image read_pixels() const;
 
-  // ---- Transitional: tools/ before it plays through the streaming engine. Removed with ----
-  // ---- SequencePlayer; new code draws snapshots.                                       ----
-  /// A renderer for one harbour grid shown alone (no deep water), on the radial grid.
-  explicit WaterRenderer(const HarbourGrid& harbour);
-  /// Shows one frame (cell-centred, the harbour grid's size). `breaking` may be null.
-  void set_frame(const Raster<float>& surface_elevation_m, const Raster<float>* breaking);
-  /// Draws the last set_frame; `camera` in the harbour grid's PROJECTED coordinates.
-  void render(const Camera& projected_camera, const Lighting& lighting, int width_px, int height_px);
 
  private:
   struct Impl;
