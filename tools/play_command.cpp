@@ -282,9 +282,9 @@ std::string play(const PlayOptions& o) {
                                           height, display_time_s, o.grid, s.plan, window.gl_description());
   if (!o.screenshot.empty()) {
     write_png(panel ? window.read_back_buffer() : renderer.read_pixels(), o.screenshot);
-    if (!o.quiet)
-      std::printf("screenshot: %s (%d x %d, t = %.2f s, %s grid)\n", o.screenshot.c_str(), width, height,
-                  display_time_s, o.grid.c_str());
+    if (!o.quiet)  // stderr under --json: stdout is the JSON alone
+      std::fprintf(o.json ? stderr : stdout, "screenshot: %s (%d x %d, t = %.2f s, %s grid)\n", o.screenshot.c_str(),
+                   width, height, display_time_s, o.grid.c_str());
   }
   if (o.quiet) {
   } else if (o.json) {
