@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <random>
 
 #include "nearshore/core/error.hpp"
 
@@ -240,27 +239,11 @@ LoopPlan period_loop(const TransitionTable& table, const Eigen::MatrixXd& distan
 }
 
 std::vector<int> random_walk(const TransitionTable& table, int start, int steps, std::uint64_t seed) {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::vector<int> frames{start};
-  int frame = start;
-  for (int step = 1; step < steps; ++step) {
-    const auto row = table.from(frame);
-    double u = uniform(random), total = 0;
-    int next = -1;
-    for (const Transition& t : row) {
-      if (t.probability <= 0) continue;
-      total += t.probability;
-      next = t.to;
-      if (u < total) break;
-    }
-    if (next < 0)
-      throw Error(fmt::format("random walk at frame {}", frame), "reached a dead end",
-                  "the transition table is inconsistent; rebuild it with `nearshore loops`");
-    frame = next;
-    frames.push_back(frame);
-  }
-  return frames;
+  // The one random walk of the project (sequence/loop_playback.hpp), on this table's rows.
+  std::vector<sequence::WalkTransition> rows;
+  rows.reserve(table.transitions.size());
+  for (const Transition& t : table.transitions) rows.push_back({t.from, t.to, t.probability, t.crossfade_frames});
+  return sequence::random_walk(sequence::TransitionWalk(table.frame_count, std::move(rows)), start, steps, seed);
 }
 
 }  // namespace nearshore::loops

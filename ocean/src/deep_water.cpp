@@ -8,7 +8,9 @@
 #include <fstream>
 #include <iterator>
 #include <numbers>
+#include <mutex>
 #include <random>
+#include <span>
 
 #include <fftw3.h>
 #include <fmt/format.h>
@@ -22,6 +24,13 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 const char* const kSubject = "deep-water specification";
+
+// FFTW's planner and plan destruction are not thread-safe (only fftwf_execute* is, FFTW manual
+// section 5.4); a runtime builds a new field on one thread while another synthesises from its own.
+std::mutex& fftw_planner_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
 
 
 /// The channels one synthesis fills, each the real field Re sum_k m(k) c_k e^{ik.x} of one
@@ -150,7 +159,58 @@ struct DeepWaterField::Impl {
   DeepWaterSpecification spec;
   std::vector<Cascade> cascades;
   fftwf_plan plan = nullptr;  // one N x N c2r plan, executed on every channel's arrays
+  double recorded_unresolved_slope_variance = 0.0;  // a field rebuilt from a record has no spectrum
+
+  // What both constructors share once every cascade's lattice (n, spacing, amplitudes, phases,
+  // frequencies, harmonics) is set: the variances, the FFTW buffers, the channels' multipliers,
+  // the frames' sizes and the one plan.
+  void prepare_synthesis();
+  // c_k = sum_i weight_i a_k e^{i(phi_k - w_k t_i)} of one cascade, then its even and odd parts.
+  void mix_coefficients(Cascade& cascade, std::span<const TimedWeight> times) const;
 };
+
+void DeepWaterField::Impl::prepare_synthesis() {
+  for (Cascade& cascade : cascades) {
+    const int n = cascade.n;
+    const double dk = cascade.spacing_rad_m;
+    const std::size_t cells = static_cast<std::size_t>(n) * n;
+    cascade.variance_m2 = cascade.slope_variance = 0.0;
+    for (int row = 0; row < n; ++row)
+      for (int column = 0; column < n; ++column) {
+        const double a = cascade.amplitude_m[static_cast<std::size_t>(row) * n + column];
+        const double k2 = (std::pow(signed_index(row, n), 2) + std::pow(signed_index(column, n), 2)) * dk * dk;
+        cascade.variance_m2 += 0.5 * a * a;
+        cascade.slope_variance += 0.5 * a * a * k2;
+      }
+    for (int channel = 0; channel < kChannelCount; ++channel) {
+      cascade.input[channel] = fftwf_alloc_complex(static_cast<std::size_t>(n) * (n / 2 + 1));
+      cascade.output[channel] = fftwf_alloc_real(cells);
+    }
+    cascade.coefficient.resize(cells);
+    const std::size_t half_cells = static_cast<std::size_t>(n) * (n / 2 + 1);
+    cascade.even_part.resize(half_cells);
+    cascade.odd_part.resize(half_cells);
+    for (int channel = 0; channel < kChannelCount; ++channel) {
+      std::vector<float>& multiplier = cascade.multiplier[channel];
+      multiplier.resize(half_cells);
+      for (int row = 0; row < n; ++row)
+        for (int column = 0; column <= n / 2; ++column)
+          multiplier[static_cast<std::size_t>(row) * (n / 2 + 1) + column] = static_cast<float>(real_multiplier(
+              channel, signed_index(column, n) * dk, signed_index(row, n) * dk,
+              cascade.frequency_rad_s[static_cast<std::size_t>(row) * n + column]));
+    }
+    cascade.frame.grid_size = n;
+    cascade.frame.tile_length_m = cascade.band.tile_length_m;
+  }
+  // One plan for all: same size, and fftwf_alloc_* gives every array the same alignment.
+  const Cascade& first = cascades.front();
+  const int n = first.n;
+  {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    plan = fftwf_plan_dft_c2r_2d(n, n, first.input[0], first.output[0], FFTW_ESTIMATE);
+  }
+  if (!plan) throw Error(kSubject, fmt::format("FFTW could not plan a {0} x {0} transform", n), "use a smaller grid size");
+}
 
 std::vector<double> cascade_tile_lengths_m(double largest_tile_m, int count, double ratio) {
   if (!(largest_tile_m > 0.0) || count < 1 || !(ratio > 1.0))
@@ -265,39 +325,67 @@ DeepWaterField::DeepWaterField(const DeepWaterSpecification& spec) : impl_(std::
       }
     for (std::size_t index = 0; index < cells; ++index)
       cascade.amplitude_m[index] = static_cast<float>(std::sqrt(2.0 * std::max(variance[index], 0.0)));
-    for (int row = 0; row < n; ++row)
-      for (int column = 0; column < n; ++column) {
-        const double a = cascade.amplitude_m[static_cast<std::size_t>(row) * n + column];
-        const double k2 = (std::pow(signed_index(row, n), 2) + std::pow(signed_index(column, n), 2)) * dk * dk;
-        cascade.variance_m2 += 0.5 * a * a;
-        cascade.slope_variance += 0.5 * a * a * k2;
-      }
-
-    // 4. FFTW buffers; the frame's vectors.
-    for (int channel = 0; channel < kChannelCount; ++channel) {
-      cascade.input[channel] = fftwf_alloc_complex(static_cast<std::size_t>(n) * (n / 2 + 1));
-      cascade.output[channel] = fftwf_alloc_real(cells);
-    }
-    cascade.coefficient.resize(cells);
-    const std::size_t half_cells = static_cast<std::size_t>(n) * (n / 2 + 1);
-    cascade.even_part.resize(half_cells);
-    cascade.odd_part.resize(half_cells);
-    for (int channel = 0; channel < kChannelCount; ++channel) {
-      std::vector<float>& multiplier = cascade.multiplier[channel];
-      multiplier.resize(half_cells);
-      for (int row = 0; row < n; ++row)
-        for (int column = 0; column <= n / 2; ++column)
-          multiplier[static_cast<std::size_t>(row) * (n / 2 + 1) + column] = static_cast<float>(real_multiplier(
-              channel, signed_index(column, n) * dk, signed_index(row, n) * dk,
-              cascade.frequency_rad_s[static_cast<std::size_t>(row) * n + column]));
-    }
-    cascade.frame.grid_size = n;
-    cascade.frame.tile_length_m = length;
   }
-  // One plan for all: same size, and fftwf_alloc_* gives every array the same alignment.
-  const Cascade& first = impl_->cascades.front();
-  impl_->plan = fftwf_plan_dft_c2r_2d(n, n, first.input[0], first.output[0], FFTW_ESTIMATE);
-  if (!impl_->plan) throw Error(kSubject, fmt::format("FFTW could not plan a {0} x {0} transform", n), "use a smaller grid size");
+  // 4. Variances, FFTW buffers, multipliers and the plan (shared with a field rebuilt from a record).
+  impl_->prepare_synthesis();
+}
+
+DeepWaterField::DeepWaterField(const RecordedDeepWater& recorded) : impl_(std::make_unique<Impl>()) {
+  const char* const subject = "recorded deep-water field";
+  const std::string fix = "rebuild it from the coefficient files of one bake (sequence/deep_water_section.hpp)";
+  if (recorded.cascades.empty()) throw Error(subject, "has no cascades", fix);
+  const int n = recorded.cascades.front().grid_size;
+  if (n < 8 || n > 4096 || (n & (n - 1)) != 0)
+    throw Error(subject, fmt::format("cascade 0 has a grid size {} that is not a power of two in [8, 4096]", n), fix);
+  if (!(recorded.loop_period_s >= 0.0) || !std::isfinite(recorded.loop_period_s) || !(recorded.choppiness >= 0.0))
+    throw Error(subject, fmt::format("loop period {} s or choppiness {} is negative or not finite",
+                                     recorded.loop_period_s, recorded.choppiness), fix);
+  DeepWaterSpecification& spec = impl_->spec;
+  spec.grid_size = n;
+  spec.still_water_depth_m = recorded.still_water_depth_m;
+  spec.loop_period_s = recorded.loop_period_s;
+  spec.choppiness = recorded.choppiness;
+  spec.seed = recorded.seed;
+  impl_->recorded_unresolved_slope_variance = recorded.unresolved_slope_variance;
+  const std::size_t cells = static_cast<std::size_t>(n) * n;
+  impl_->cascades.resize(recorded.cascades.size());
+  for (std::size_t i = 0; i < recorded.cascades.size(); ++i) {
+    const RecordedCascade& in = recorded.cascades[i];
+    if (in.grid_size != n)
+      throw Error(subject, fmt::format("cascade {} has N = {} but cascade 0 has N = {}", i, in.grid_size, n),
+                  "give every cascade the same grid size (one FFT plan serves them all)");
+    if (!(in.tile_length_m > 0.0) || !std::isfinite(in.tile_length_m) || in.amplitude_m.size() != cells ||
+        in.phase_rad.size() != cells || in.angular_frequency_rad_s.size() != cells || in.harmonic.size() != cells)
+      throw Error(subject, fmt::format("cascade {} has tile length {} m or arrays that are not {} x {}", i,
+                                       in.tile_length_m, n, n), fix);
+    Cascade& cascade = impl_->cascades[i];
+    cascade.n = n;
+    cascade.spacing_rad_m = 2.0 * kPi / in.tile_length_m;
+    const double nyquist = (n / 2 - 1) * cascade.spacing_rad_m;
+    const bool band_known = in.max_wavenumber_rad_m > in.min_wavenumber_rad_m;
+    cascade.band = {in.tile_length_m, band_known ? in.min_wavenumber_rad_m : 0.0,
+                    band_known ? in.max_wavenumber_rad_m : nyquist};
+    cascade.amplitude_m = in.amplitude_m;
+    cascade.phase_rad = in.phase_rad;
+    cascade.frequency_rad_s = in.angular_frequency_rad_s;
+    cascade.harmonic = in.harmonic;
+    spec.tile_lengths_m.push_back(in.tile_length_m);
+  }
+  impl_->prepare_synthesis();
+}
+
+RecordedDeepWater DeepWaterField::record() const {
+  RecordedDeepWater recorded;
+  recorded.still_water_depth_m = impl_->spec.still_water_depth_m;
+  recorded.loop_period_s = impl_->spec.loop_period_s;
+  recorded.choppiness = impl_->spec.choppiness;
+  recorded.seed = impl_->spec.seed;
+  recorded.unresolved_slope_variance = unresolved_slope_variance();
+  for (const Cascade& cascade : impl_->cascades)
+    recorded.cascades.push_back({cascade.n, cascade.band.tile_length_m, cascade.band.min_wavenumber_rad_m,
+                                 cascade.band.max_wavenumber_rad_m, cascade.amplitude_m, cascade.phase_rad,
+                                 cascade.frequency_rad_s, cascade.harmonic});
+  return recorded;
 }
 
 DeepWaterField::~DeepWaterField() {
@@ -306,7 +394,10 @@ DeepWaterField::~DeepWaterField() {
       fftwf_free(cascade.input[channel]);
       fftwf_free(cascade.output[channel]);
     }
-  if (impl_->plan) fftwf_destroy_plan(impl_->plan);
+  if (impl_->plan) {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    fftwf_destroy_plan(impl_->plan);
+  }
 }
 
 const DeepWaterSpecification& DeepWaterField::specification() const { return impl_->spec; }
@@ -323,47 +414,75 @@ double DeepWaterField::significant_wave_height_m() const {
 }
 
 double DeepWaterField::unresolved_slope_variance() const {
+  if (!impl_->spec.spectrum) return impl_->recorded_unresolved_slope_variance;
   const CascadeBand last = impl_->cascades.back().band;
   return impl_->spec.spectrum->moment_between(last.max_wavenumber_rad_m, impl_->spec.spectrum->highest_wavenumber_rad_m(), 2);
 }
 
+void DeepWaterField::Impl::mix_coefficients(Cascade& cascade, std::span<const TimedWeight> times) const {
+  const int n = cascade.n;
+  const int half = n / 2 + 1;
+  const double loop_period_s = spec.loop_period_s;
+  // 1. c_k = sum_i weight_i a e^{i(phi - w t_i)}. With a loop, w t = 2 pi frac(h t / T) exactly
+  //    periodic in T (reduced in double before the float exponential).
+  tbb::parallel_for(0, n, [&](int row) {
+    for (int column = 0; column < n; ++column) {
+      const std::size_t index = static_cast<std::size_t>(row) * n + column;
+      const float a = cascade.amplitude_m[index];
+      std::complex<float> sum = 0.0f;
+      if (a != 0.0f)
+        for (const TimedWeight& timed : times) {
+          double advance_rad;
+          if (loop_period_s > 0.0) {
+            const double cycles = static_cast<double>(cascade.harmonic[index]) * timed.time_s / loop_period_s;
+            advance_rad = 2.0 * kPi * (cycles - std::floor(cycles));
+          } else {
+            advance_rad = std::fmod(cascade.frequency_rad_s[index] * timed.time_s, 2.0 * kPi);
+          }
+          sum += static_cast<float>(timed.weight) *
+                 std::polar(a, static_cast<float>(cascade.phase_rad[index] - advance_rad));
+        }
+      cascade.coefficient[index] = sum;
+    }
+  });
+  // 2. The even and odd parts (c_k +- conj(c_-k)) / 2 on the half spectrum.
+  tbb::parallel_for(0, n, [&](int row) {
+    const int mirror_row = (n - row) % n;
+    for (int column = 0; column < half; ++column) {
+      const std::complex<float> own = cascade.coefficient[static_cast<std::size_t>(row) * n + column];
+      const std::complex<float> opposite =
+          std::conj(cascade.coefficient[static_cast<std::size_t>(mirror_row) * n + (n - column) % n]);
+      const std::size_t j = static_cast<std::size_t>(row) * half + column;
+      cascade.even_part[j] = 0.5f * (own + opposite);
+      cascade.odd_part[j] = 0.5f * (own - opposite);
+    }
+  });
+}
+
 void DeepWaterField::synthesise(double time_s, bool with_flux) {
-  const double loop_period_s = impl_->spec.loop_period_s;
+  const TimedWeight one{time_s, 1.0};
+  synthesise(std::span<const TimedWeight>(&one, 1), with_flux);
+}
+
+void DeepWaterField::synthesise(std::span<const TimedWeight> times, bool with_flux) {
+  std::vector<DeepWaterFrame> frames;
+  frames.reserve(impl_->cascades.size());
+  for (Cascade& cascade : impl_->cascades) frames.push_back(std::move(cascade.frame));
+  synthesise_into(times, frames, with_flux);
+  for (std::size_t i = 0; i < frames.size(); ++i) impl_->cascades[i].frame = std::move(frames[i]);
+}
+
+void DeepWaterField::synthesise_into(std::span<const TimedWeight> times, std::vector<DeepWaterFrame>& frames,
+                                     bool with_flux) {
   const int channels = with_flux ? kChannelCount : kFluxX;
-  for (Cascade& cascade : impl_->cascades) {
+  frames.resize(impl_->cascades.size());
+  for (std::size_t c = 0; c < impl_->cascades.size(); ++c) {
+    Cascade& cascade = impl_->cascades[c];
+    DeepWaterFrame& frame = frames[c];
     const int n = cascade.n;
-    const int half = n / 2 + 1;
-    // 1. c_k(t) = a e^{i(phi - w t)}. With a loop, w t = 2 pi frac(h t / T) exactly periodic in T.
-    tbb::parallel_for(0, n, [&](int row) {
-      for (int column = 0; column < n; ++column) {
-        const std::size_t index = static_cast<std::size_t>(row) * n + column;
-        const float a = cascade.amplitude_m[index];
-        if (a == 0.0f) {
-          cascade.coefficient[index] = 0.0f;
-          continue;
-        }
-        double advance_rad;
-        if (loop_period_s > 0.0) {
-          const double cycles = static_cast<double>(cascade.harmonic[index]) * time_s / loop_period_s;
-          advance_rad = 2.0 * kPi * (cycles - std::floor(cycles));
-        } else {
-          advance_rad = std::fmod(cascade.frequency_rad_s[index] * time_s, 2.0 * kPi);
-        }
-        cascade.coefficient[index] = std::polar(a, static_cast<float>(cascade.phase_rad[index] - advance_rad));
-      }
-    });
-    // 2. The even and odd parts (c_k +- conj(c_-k)) / 2 on the half spectrum.
-    tbb::parallel_for(0, n, [&](int row) {
-      const int mirror_row = (n - row) % n;
-      for (int column = 0; column < half; ++column) {
-        const std::complex<float> own = cascade.coefficient[static_cast<std::size_t>(row) * n + column];
-        const std::complex<float> opposite =
-            std::conj(cascade.coefficient[static_cast<std::size_t>(mirror_row) * n + (n - column) % n]);
-        const std::size_t j = static_cast<std::size_t>(row) * half + column;
-        cascade.even_part[j] = 0.5f * (own + opposite);
-        cascade.odd_part[j] = 0.5f * (own - opposite);
-      }
-    });
+    frame.grid_size = n;
+    frame.tile_length_m = cascade.band.tile_length_m;
+    impl_->mix_coefficients(cascade, times);
     // 3. Per channel: H_m = m(k) times the even (or, for the fluxes, odd) part, then c2r.
     tbb::parallel_for(0, channels, [&](int channel) {
       fftwf_complex* input = cascade.input[channel];
@@ -382,12 +501,12 @@ void DeepWaterField::synthesise(double time_s, bool with_flux) {
         }
       }
       fftwf_execute_dft_c2r(impl_->plan, input, cascade.output[channel]);
-      std::vector<float>& storage = channel_storage(cascade.frame, channel);
+      std::vector<float>& storage = channel_storage(frame, channel);
       storage.assign(cascade.output[channel], cascade.output[channel] + static_cast<std::size_t>(n) * n);
     });
     if (!with_flux) {
-      cascade.frame.flux_x_m2_s.clear();
-      cascade.frame.flux_y_m2_s.clear();
+      frame.flux_x_m2_s.clear();
+      frame.flux_y_m2_s.clear();
     }
   }
 }

@@ -7,27 +7,74 @@
 namespace nearshore::runtime {
 
 namespace {
-// sin^2 ramp from 0 at s = 0 to 1 at s = width (the bake's blending record's rule).
-double sin2_ramp(double s, double width) {
-  if (width <= 0.0) return s > 0.0 ? 1.0 : 0.0;
-  const double u = std::clamp(s / width, 0.0, 1.0);
+// sin^2 ramp from 0 at s = 0 to 1 at s = width (the bake's blending record's rule), and its
+// derivative d/ds. Flat parts return without a sine: most query points lie there.
+struct Ramp {
+  double value = 0.0, slope = 0.0;
+};
+Ramp sin2_ramp(double s, double width, bool with_slope) {
+  if (width <= 0.0) return {s > 0.0 ? 1.0 : 0.0, 0.0};
+  if (s <= 0.0) return {0.0, 0.0};
+  if (s >= width) return {1.0, 0.0};
+  const double u = s / width;
   const double r = std::sin(0.5 * std::numbers::pi * u);
-  return r * r;
+  return {r * r, with_slope ? 0.5 * std::numbers::pi / width * std::sin(std::numbers::pi * u) : 0.0};
+}
+
+// The ramps of a site point: the maker's (along the source axis) and the three other edges'.
+// d_dx[i], d_dy[i]: how ramp i's argument changes with x and y.
+struct Ramps {
+  Ramp ramp[4];
+  double d_dx[4] = {0, 0, 0, 0}, d_dy[4] = {0, 0, 0, 0};
+  int count = 0;
+};
+bool site_ramps(const HarbourSite& site, double x_m, double y_m, bool with_slope, Ramps& ramps) {
+  if (x_m < 0.0 || y_m < 0.0 || x_m > site.width_m || y_m > site.height_m) return false;
+  const double along = site.source_axis == 0 ? x_m : y_m;
+  // Distance inland of the source line along the maker's inward normal.
+  const double inland = site.inward_sign * (along - site.source_line_m);
+  ramps.ramp[0] = sin2_ramp(inland - site.blend_start_m, site.blend_width_m, with_slope);
+  (site.source_axis == 0 ? ramps.d_dx[0] : ramps.d_dy[0]) = site.inward_sign;
+  ramps.count = 1;
+  // The three other edges fade over edge_fade_m (the source side fades by the record above).
+  const double distances[4] = {x_m, site.width_m - x_m, y_m, site.height_m - y_m};  // west, east, south, north
+  const double along_x[4] = {1.0, -1.0, 0.0, 0.0}, along_y[4] = {0.0, 0.0, 1.0, -1.0};
+  const int source_edge = site.source_axis == 0 ? (site.inward_sign > 0 ? 0 : 1) : (site.inward_sign > 0 ? 2 : 3);
+  for (int edge = 0; edge < 4; ++edge) {
+    if (edge == source_edge) continue;
+    ramps.ramp[ramps.count] = sin2_ramp(distances[edge], site.edge_fade_m, with_slope);
+    ramps.d_dx[ramps.count] = along_x[edge];
+    ramps.d_dy[ramps.count] = along_y[edge];
+    ++ramps.count;
+  }
+  return true;
 }
 }  // namespace
 
 double harbour_weight(const HarbourSite& site, double x_m, double y_m) {
-  if (x_m < 0.0 || y_m < 0.0 || x_m > site.width_m || y_m > site.height_m) return 0.0;
-  const double along = site.source_axis == 0 ? x_m : y_m;
-  // Distance inland of the source line along the maker's inward normal.
-  const double inland = site.inward_sign * (along - site.source_line_m);
-  double weight = sin2_ramp(inland - site.blend_start_m, site.blend_width_m);
-  // The three other edges fade over edge_fade_m (the source side fades by the record above).
-  const double distances[4] = {x_m, site.width_m - x_m, y_m, site.height_m - y_m};  // west, east, south, north
-  const int source_edge = site.source_axis == 0 ? (site.inward_sign > 0 ? 0 : 1) : (site.inward_sign > 0 ? 2 : 3);
-  for (int edge = 0; edge < 4; ++edge)
-    if (edge != source_edge) weight *= sin2_ramp(distances[edge], site.edge_fade_m);
+  Ramps ramps;
+  if (!site_ramps(site, x_m, y_m, false, ramps)) return 0.0;
+  double weight = 1.0;
+  for (int i = 0; i < ramps.count; ++i) weight *= ramps.ramp[i].value;
   return weight;
+}
+
+HarbourWeight harbour_weight_and_gradient(const HarbourSite& site, double x_m, double y_m) {
+  Ramps ramps;
+  HarbourWeight result;
+  if (!site_ramps(site, x_m, y_m, true, ramps)) return result;
+  result.weight = 1.0;
+  for (int i = 0; i < ramps.count; ++i) result.weight *= ramps.ramp[i].value;
+  // Product rule: d(prod r_i) = sum_i (prod_{j != i} r_j) dr_i.
+  for (int i = 0; i < ramps.count; ++i) {
+    if (ramps.ramp[i].slope == 0.0) continue;
+    double others = 1.0;
+    for (int j = 0; j < ramps.count; ++j)
+      if (j != i) others *= ramps.ramp[j].value;
+    result.d_dx_per_m += others * ramps.ramp[i].slope * ramps.d_dx[i];
+    result.d_dy_per_m += others * ramps.ramp[i].slope * ramps.d_dy[i];
+  }
+  return result;
 }
 
 }  // namespace nearshore::runtime

@@ -93,8 +93,6 @@ LoopSchedule schedule_loop(int start_frame, int length_frames, const std::vector
   return schedule;
 }
 
-namespace {
-
 LoopSchedule schedule_of(const LoopsFile::Loop& loop) {
   std::vector<PlannedJump> jumps;
   jumps.reserve(loop.seams.size());
@@ -117,13 +115,9 @@ const LoopsFile::Loop* loop_to_play(const LoopsFile& tables) {
   return longest;
 }
 
-}  // namespace
-
-std::optional<LoopSchedule> read_loop_schedule(const std::filesystem::path& folder) {
+LoopsFile read_loops_for_playback(const std::filesystem::path& folder) {
   const std::filesystem::path path = folder / kLoopsFileName;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return std::nullopt;
-  const LoopsFile tables = read_loops_file(folder);
+  LoopsFile tables = read_loops_file(folder);
   const std::filesystem::path manifest_path = folder / kManifestFile;
   const std::string manifest = read_file_bytes(manifest_path);
   const std::string rerun = fmt::format("run `nearshore loops {}` again", folder.string());
@@ -139,9 +133,89 @@ std::optional<LoopSchedule> read_loop_schedule(const std::filesystem::path& fold
                 fmt::format("counts {} frames but {} lists {}", tables.report.frame_count,
                             manifest_path.string(), frame_count),
                 rerun);
+  return tables;
+}
+
+std::optional<LoopSchedule> read_loop_schedule(const std::filesystem::path& folder) {
+  std::error_code ec;
+  if (!std::filesystem::exists(folder / kLoopsFileName, ec)) return std::nullopt;
+  const LoopsFile tables = read_loops_for_playback(folder);
   const LoopsFile::Loop* loop = loop_to_play(tables);
   if (!loop) return std::nullopt;
   return schedule_of(*loop);
+}
+
+TransitionWalk::TransitionWalk(int frame_count, std::vector<WalkTransition> transitions)
+    : frame_count_(frame_count) {
+  for (const WalkTransition& t : transitions)
+    if (t.from < 0 || t.from >= frame_count || t.to < 0 || t.to >= frame_count || !(t.probability >= 0.0) ||
+        t.crossfade_frames < 0)
+      throw Error("transition table", fmt::format("has a transition {} -> {} (probability {}, {} crossfade frames) outside "
+                                                  "frames 0..{} or with a negative value",
+                                                  t.from, t.to, t.probability, t.crossfade_frames, frame_count - 1),
+                  "rebuild the transition table with `nearshore loops`");
+  // Group by `from`, keeping each row's order (stable): which entry a draw picks depends on it.
+  std::stable_sort(transitions.begin(), transitions.end(),
+                   [](const WalkTransition& a, const WalkTransition& b) { return a.from < b.from; });
+  transitions_ = std::move(transitions);
+  row_start_.assign(static_cast<std::size_t>(std::max(frame_count, 0)) + 1, 0);
+  std::size_t next = 0;
+  for (int frame = 0; frame < frame_count; ++frame) {
+    row_start_[static_cast<std::size_t>(frame)] = next;
+    while (next < transitions_.size() && transitions_[next].from == frame) ++next;
+  }
+  row_start_[static_cast<std::size_t>(std::max(frame_count, 0))] = next;
+}
+
+TransitionWalk TransitionWalk::from_loops_file(const LoopsFile& tables) {
+  std::vector<WalkTransition> rows;
+  rows.reserve(tables.transitions.size());
+  for (const LoopsFile::Transition& t : tables.transitions)
+    rows.push_back({t.from, t.to, t.probability, t.crossfade_frames});
+  return TransitionWalk(tables.report.frame_count, std::move(rows));
+}
+
+std::span<const WalkTransition> TransitionWalk::row(int frame) const {
+  if (frame < 0 || frame >= frame_count_) return {};
+  const std::size_t begin = row_start_[static_cast<std::size_t>(frame)];
+  const std::size_t end = row_start_[static_cast<std::size_t>(frame) + 1];
+  return std::span(transitions_).subspan(begin, end - begin);
+}
+
+const WalkTransition* TransitionWalk::choose(int frame, double u) const {
+  const WalkTransition* chosen = nullptr;
+  double total = 0.0;
+  for (const WalkTransition& t : row(frame)) {
+    if (t.probability <= 0.0) continue;
+    total += t.probability;
+    chosen = &t;
+    if (u < total) break;
+  }
+  return chosen;
+}
+
+double uniform_from_draw(std::uint64_t draw) { return static_cast<double>(draw >> 11) * 0x1.0p-53; }
+
+RandomWalker::RandomWalker(const TransitionWalk& walk, int start_frame, std::uint64_t seed)
+    : walk_(&walk), frame_(start_frame), random_(seed) {}
+
+const WalkTransition* RandomWalker::step() {
+  const WalkTransition* taken = walk_->choose(frame_, uniform_from_draw(random_()));
+  if (taken) frame_ = taken->to;
+  return taken;
+}
+
+std::vector<int> random_walk(const TransitionWalk& walk, int start, int steps, std::uint64_t seed) {
+  RandomWalker walker(walk, start, seed);
+  std::vector<int> frames{start};
+  frames.reserve(static_cast<std::size_t>(std::max(steps, 1)));
+  for (int step = 1; step < steps; ++step) {
+    if (!walker.step())
+      throw Error(fmt::format("random walk at frame {}", walker.frame()), "reached a dead end",
+                  "the transition table is inconsistent; rebuild it with `nearshore loops`");
+    frames.push_back(walker.frame());
+  }
+  return frames;
 }
 
 }  // namespace nearshore::sequence

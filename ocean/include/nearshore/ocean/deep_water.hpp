@@ -133,11 +133,51 @@ struct CascadeLattice {
   std::span<const long long> harmonic;             ///< w_k = harmonic 2 pi / T_loop when looping, else -1
 };
 
+/// One time of a weighted synthesis: DeepWaterField::synthesise(times) makes sum_i weight_i
+/// field(time_i). The synthesis is linear in the coefficients c_k(t), so the sum is formed in the
+/// spectral domain (sum_i weight_i c_k(t_i)) and costs ONE inverse FFT per channel, whatever the
+/// number of times: how the runtime crossfades the deep water across a loop's jump exactly as the
+/// harbour frames are crossfaded (runtime/deep_water_source.hpp, docs/runtime.md).
+struct TimedWeight {
+  double time_s = 0.0;  ///< the field's time (s)
+  double weight = 1.0;  ///< dimensionless
+};
+
+/// One cascade's lattice as recorded (the bake's deep_water_cascade_<i>.bin, read through
+/// sequence/deep_water_section.hpp, or DeepWaterField::record()): N x N coefficients in FFT order
+/// (row = ky index, column = kx index, indices above N/2 negative).
+struct RecordedCascade {
+  int grid_size = 0;                  ///< N
+  double tile_length_m = 0.0;         ///< L
+  double min_wavenumber_rad_m = 0.0;  ///< the band (inclusive), for band(); 0 and 0: unknown
+  double max_wavenumber_rad_m = 0.0;  ///< (exclusive)
+  std::vector<float> amplitude_m;     ///< a_k (m)
+  std::vector<double> phase_rad;      ///< phi_k
+  std::vector<double> angular_frequency_rad_s;  ///< w_k (rad/s)
+  std::vector<long long> harmonic;    ///< w_k = harmonic 2 pi / T_loop when looping, else -1
+};
+
+/// A whole field as recorded: with it DeepWaterField rebuilds the same lattice waves (same
+/// amplitudes, phases and frequencies, hence the same surface) without the spectrum, in
+/// milliseconds instead of the seconds the spectrum's cell integrals take.
+struct RecordedDeepWater {
+  std::vector<RecordedCascade> cascades;  ///< largest tile first, every one of the same N
+  double still_water_depth_m = 0.0;       ///< <= 0: deep (recorded for the fluxes' depth)
+  double loop_period_s = 0.0;             ///< T_loop (s), 0 = none: the harmonics are used when > 0
+  double choppiness = 1.0;                ///< lambda
+  std::uint64_t seed = 0;                 ///< the phases' seed, for the record
+  double unresolved_slope_variance = 0.0; ///< what unresolved_slope_variance() returns
+};
+
 class DeepWaterField {
  public:
   /// Integrates the spectrum over every lattice cell (the long part: N^2 cells per cascade) and
   /// plans the FFTs. Throws nearshore::Error naming the field at fault.
   explicit DeepWaterField(const DeepWaterSpecification& specification);
+  /// Rebuilds a field from its recorded lattices (no spectrum: specification().spectrum is null).
+  /// Throws nearshore::Error naming the cascade for an empty record, a grid size that is not a
+  /// power of two in [8, 4096] or differs between cascades, or arrays that are not N x N.
+  explicit DeepWaterField(const RecordedDeepWater& recorded);
   ~DeepWaterField();
   DeepWaterField(const DeepWaterField&) = delete;
   DeepWaterField& operator=(const DeepWaterField&) = delete;
@@ -157,6 +197,13 @@ class DeepWaterField {
 
   /// Fills frame(i) of every cascade at time t (s). with_flux adds the fluxes (2 more FFTs).
   void synthesise(double time_s, bool with_flux = false);
+  /// Fills frame(i) of every cascade with sum_i weight_i field(time_i) (see TimedWeight): one
+  /// inverse FFT per channel and cascade however many times are mixed. An empty span gives zeros.
+  void synthesise(std::span<const TimedWeight> times, bool with_flux = false);
+  /// The same into `frames` (resized to cascade_count(); their vectors' memory is reused), leaving
+  /// frame(i) untouched: what a runtime keeping its own ring of frames calls.
+  void synthesise_into(std::span<const TimedWeight> times, std::vector<DeepWaterFrame>& frames,
+                       bool with_flux = false);
   const DeepWaterFrame& frame(int cascade) const;
   /// The sum of all cascades at (x, y) (m) from the last synthesise().
   SurfaceSample sample(double x_m, double y_m) const;
@@ -172,6 +219,9 @@ class DeepWaterField {
   /// index, indices above N/2 negative): what the bake writes beside the frames for the runtime
   /// (sequence/deep_water_section.hpp) and what a runtime field is rebuilt from.
   CascadeLattice lattice(int cascade) const;
+  /// Every cascade's lattice and the field's constants, copied: DeepWaterField(record()) is the
+  /// same field (a second instance for another thread, or one to keep without the spectrum).
+  RecordedDeepWater record() const;
 
  private:
   struct Impl;

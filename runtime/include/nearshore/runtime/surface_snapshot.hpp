@@ -43,6 +43,10 @@ struct DeepWaterKeyframe {
   std::uint64_t serial = 0;
   double display_time_s = 0.0;   ///< the display time it was synthesised for
   std::vector<ocean::DeepWaterFrame> cascades;
+  /// The field's still-water depth (m; <= 0: deep). With a finite depth the cascades carry the
+  /// fluxes (flux_x_m2_s, flux_y_m2_s) and the deep water's velocity is flux / (depth + eta); in
+  /// deep water the depth-averaged current of linear waves is zero (surface_sampler.hpp).
+  double still_water_depth_m = 0.0;
 };
 
 /// Where the harbour is shown and how it fades into the deep water. Static for a sequence.
@@ -59,10 +63,22 @@ struct HarbourSite {
   /// rectangle has no visible edge where the bake's absorbing layers damp its waves.
   double edge_fade_m = 0.0;
   double choppiness = 1.0;       ///< lambda of the deep water's horizontal displacement
+  /// Total depth d + eta (m) at or below which a harbour point is dry (the bake's solver
+  /// dry_depth_m, 0.01 m by default): the CPU queries give zero velocity and dry = true there.
+  double dry_depth_m = 0.01;
 };
 
 /// w(p) in [0, 1]: the harbour's weight at site point (x, y) (0 outside the rectangle).
 double harbour_weight(const HarbourSite& site, double x_m, double y_m);
+
+/// w and its gradient (1/m) at (x, y) in one pass: the analytic derivative of the product of the
+/// sin^2 ramps (d/ds sin^2(pi/2 s/W) = pi/(2W) sin(pi s/W) inside a ramp, 0 outside), 0 outside
+/// the rectangle. The slope of what is shown is w grad(harbour) + (1 - w) grad(deep) +
+/// (harbour - deep) grad(w) (surface_sampler.hpp).
+struct HarbourWeight {
+  double weight = 0.0, d_dx_per_m = 0.0, d_dy_per_m = 0.0;
+};
+HarbourWeight harbour_weight_and_gradient(const HarbourSite& site, double x_m, double y_m);
 
 /// Everything drawn at one displayed instant.
 struct SurfaceSnapshot {

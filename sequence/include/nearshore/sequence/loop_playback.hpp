@@ -1,6 +1,6 @@
 #pragma once
 // Playing a planned loop: the contract between `nearshore loops` (which writes loops.json into the
-// sequence folder: loops_file.hpp, docs/formats/sequence.md) and any player (playback/SequencePlayer,
+// sequence folder: loops_file.hpp, docs/formats/sequence.md) and any player (runtime/StreamingEngine,
 // or an engine's own). Here because both sides need it and the playback runtime links only this
 // library.
 //
@@ -13,11 +13,15 @@
 // volume sum(eta) dA is exactly (1 - alpha) V_source + alpha V_target (no mass is made or lost by
 // the blend itself) and the blended fluxes stay the fluxes that carry that volume. The price is an
 // energy dip where the two fields are uncorrelated (reported per seam by the inspector).
+#include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <random>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "nearshore/sequence/loops_file.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::sequence {
@@ -63,5 +67,75 @@ LoopSchedule schedule_loop(int start_frame, int length_frames, const std::vector
 /// loops.json is malformed, of another format version, or was made for another bake (its manifest
 /// checksum differs).
 std::optional<LoopSchedule> read_loop_schedule(const std::filesystem::path& folder);
+
+/// `folder`/loops.json, read and checked against the folder's manifest.json as every player must:
+/// its sequence_manifest_checksum must be the manifest's (else it was made for another bake) and
+/// its frame count the manifest's. Throws nearshore::Error naming loops.json and the fix (run
+/// `nearshore loops` again) for those, a missing file, and everything read_loops_file refuses.
+LoopsFile read_loops_for_playback(const std::filesystem::path& folder);
+/// The loop read_loop_schedule plays from those tables (period, else requested, else the longest
+/// with R <= 1); nullptr if they offer none.
+const LoopsFile::Loop* loop_to_play(const LoopsFile& tables);
+/// A loops.json plan expanded into its steps (schedule_loop of its start, length and seams).
+LoopSchedule schedule_of(const LoopsFile::Loop& loop);
+
+// Random playback (seed 003 section 2: "random playback decides the next height field by the
+// probability matrix T"; Schodl et al. 2000): after frame `from`, a player picks one of the
+// transitions of probability > 0 by its probability. One implementation, used by the runtime's
+// endless plans and by loops/ (nearshore::loops::random_walk).
+
+/// One transition as a walk sees it: after `from` the player shows `to`; the last
+/// `crossfade_frames` frames before a jump (to != from + 1) are blends (crossfade_blend).
+struct WalkTransition {
+  int from = 0, to = 0;
+  double probability = 0;  ///< T_ij; 0: never taken at random
+  int crossfade_frames = 0;
+};
+
+/// A transition table indexed by frame. Rows keep the order given (loops.json: natural successor
+/// first), which fixes which transition a draw picks.
+class TransitionWalk {
+ public:
+  /// `transitions` in any order of `from` (each row keeps the given order). Throws
+  /// nearshore::Error if a frame index lies outside [0, frame_count) or a probability is negative.
+  TransitionWalk(int frame_count, std::vector<WalkTransition> transitions);
+  /// The table of loops.json.
+  static TransitionWalk from_loops_file(const LoopsFile& tables);
+  int frame_count() const { return frame_count_; }
+  /// The transitions after `frame` (empty outside the table).
+  std::span<const WalkTransition> row(int frame) const;
+  /// The transition taken after `frame` for a uniform draw u in [0, 1): the first row entry of
+  /// probability > 0 whose running sum of probabilities exceeds u (the last such entry when
+  /// rounding leaves the sum at or below u). nullptr at a dead end (no entry of probability > 0).
+  const WalkTransition* choose(int frame, double u) const;
+
+ private:
+  int frame_count_ = 0;
+  std::vector<WalkTransition> transitions_;
+  std::vector<std::size_t> row_start_;
+};
+
+/// u in [0, 1) from one raw std::mt19937_64 draw: its 53 high bits times 2^-53, the same on every
+/// standard library (std::uniform_real_distribution is not specified bit for bit).
+double uniform_from_draw(std::uint64_t draw);
+
+/// A walk one frame at a time: one std::mt19937_64(seed) draw per step (uniform_from_draw).
+class RandomWalker {
+ public:
+  RandomWalker(const TransitionWalk& walk, int start_frame, std::uint64_t seed);
+  int frame() const { return frame_; }
+  /// Moves to the next frame and returns the transition taken; nullptr at a dead end (the frame
+  /// does not change; a player decides what to do, e.g. restart).
+  const WalkTransition* step();
+
+ private:
+  const TransitionWalk* walk_;
+  int frame_;
+  std::mt19937_64 random_;
+};
+
+/// `steps` frames of a random walk from `start` (the first is `start`), reproducible from `seed`.
+/// Throws nearshore::Error at a dead end (the table is inconsistent).
+std::vector<int> random_walk(const TransitionWalk& walk, int start, int steps, std::uint64_t seed);
 
 }  // namespace nearshore::sequence

@@ -1,0 +1,143 @@
+#pragma once
+// CPU surface queries: the water a SurfaceSnapshot shows, at site points, for a ship's physics and
+// a host's buoyancy code, without a GPU read-back. The formulas below are THE definition of the
+// shown surface; the GLSL in shaders/ implements the same ones (a test renders a top-down height
+// pass on Mesa and compares it with this sampler in millimetres).
+//
+// Frame: site metres (surface_snapshot.hpp): x east, y north of the harbour grid's south-west
+// corner; z up from still water. Arithmetic: double on the CPU, texel values are float.
+//
+// 1. Harbour raster F (columns C, rows R, spacing s; texel (i, j) is the cell centre
+//    ((i + 0.5) s, (j + 0.5) s), row 0 south), bilinear with clamping at the rectangle's edge:
+//      u = clamp(x / s - 0.5, 0, C - 1),  v = clamp(y / s - 0.5, 0, R - 1)
+//      i0 = min(floor(u), C - 2), i1 = i0 + 1, a = u - i0   (C = 1: i0 = i1 = 0, a = 0; rows alike)
+//      F(x, y) = (1 - b) ((1 - a) F[i0, j0] + a F[i1, j0]) + b ((1 - a) F[i0, j1] + a F[i1, j1])
+//    i.e. GL_CLAMP_TO_EDGE with texture coordinates (x / width, y / height). Within half a cell of
+//    the edge the value is the edge texel's (flat), which only matters where w > 0 there, i.e.
+//    with edge_fade_m < s / 2. GLSL: do this by hand with texelFetch (hardware bilinear filtering
+//    quantises a to 8 bits on many GPUs: up to 2 mm on a 1 m wave).
+//    Time: H(p) = (1 - f_h) F_from(p) + f_h F_to(p) for eta, P, Q and breaking.
+// 2. Deep-water cascade c (tile L_c, N nodes; node (i, j) at (i L/N, j L/N), periodic):
+//      u = frac(x / L) N, v = frac(y / L) N  (frac in double: x may be 100 km, L 10 m)
+//      i0 = floor(u), i1 = (i0 + 1) mod N, a = u - i0; rows alike; bilinear as above
+//    (ocean::DeepWaterField::sample). GLSL: fract(x / L) loses millimetres at large x in float;
+//    subtract a multiple of L on the CPU (a per-cascade uniform) before the shader sees x.
+//    D(p) = (1 - f_d) sum_c D_from,c(p) + f_d sum_c D_to,c(p) for every channel.
+// 3. Shown at a LATTICE point p (what a vertex shader computes at its grid vertex):
+//      w = harbour_weight(site, p),  eta(p) = w H_eta(p) + (1 - w) D_eta(p)
+//    and the vertex moves horizontally to p + (1 - w(p)) lambda D_disp(p) (the choppy
+//    displacement of the deep water; the baked frames have none, so it fades with 1 - w).
+// 4. Shown at a DISPLACED point q (the default: what lies over q on screen and under a hull):
+//    the lattice point p with F(p) = p + (1 - w(p)) lambda D_disp(p) - q = 0, by Newton's method
+//    from p_0 = q with the exact Jacobian of the sampled field, J = I + lambda ((1 - w) grad D -
+//    D grad w^T) (grad D of the bilinear interpolant, from the same four nodes), falling back to
+//    the fixed-point step p - F(p) where det J < 0.2 (near a folding crest); at most
+//    kDisplacementIterations steps, stopping when a step is below kDisplacementTolerance_m; then
+//    eta(q) := eta(p). Solvable while the Jacobian of the displacement stays positive (no folded
+//    crests; ocean/deep_water.hpp). Inside the full-weight box (w = 1) p = q at once.
+// 5. Velocity (m/s): harbour u_h = (P, Q) / h with h = d + eta_H (d bilinear still-water depth of
+//    depth.exr); zero, and the point DRY, where the cell holding p (floor(x/s), floor(y/s),
+//    clamped) is land or h <= site.dry_depth_m. Deep water u_d = (P_d, Q_d) / (d_deep + D_eta)
+//    when the field has a finite depth (DeepWaterKeyframe::still_water_depth_m > 0; the bake's
+//    field, at the source line's depth), else 0 (the depth-averaged current of linear waves in
+//    deep water). Shown u = w u_h + (1 - w) u_d. Dry only where w > 0.
+// 6. Normal: slope = w grad H + (1 - w) grad D + (H_eta - D_eta) grad w, normal = normalize(
+//    -slope_x, -slope_y, 1). grad H is the bilinear interpolation (weights of 1.) of per-texel
+//    central differences (F[i+1, j] - F[i-1, j]) / ((i+1 - (i-1)) s) with i-1, i+1 clamped to
+//    [0, C-1] (one-sided at the edge); grad D from the cascades' slope channels; grad w analytic
+//    (harbour_weight_and_gradient). At a displaced point all of them are taken at its lattice p.
+//
+// Thread-safety: a sampler only reads its snapshot's immutable keyframes; every method is const
+// and may run on any number of threads at once.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "nearshore/runtime/surface_snapshot.hpp"
+
+namespace nearshore::runtime {
+
+/// A site point (m east, m north of the harbour grid's south-west corner).
+struct SitePoint {
+  double x_m = 0.0, y_m = 0.0;
+};
+
+/// Where a query evaluates the choppy deep water (see 3. and 4. above).
+enum class ChoppyPoint {
+  kDisplaced,  ///< the surface over the point (default; for ship physics)
+  kLattice,    ///< the undisplaced lattice point (what a vertex shader displaces)
+};
+
+inline constexpr int kDisplacementIterations = 8;
+inline constexpr double kDisplacementTolerance_m = 1e-4;
+
+/// Everything a query gives at one point.
+struct SurfaceState {
+  double surface_elevation_m = 0.0;
+  double velocity_x_m_s = 0.0, velocity_y_m_s = 0.0;
+  double slope_x = 0.0, slope_y = 0.0;        ///< d eta / dx, d eta / dy
+  double normal_x = 0.0, normal_y = 0.0, normal_z = 1.0;  ///< unit, z up
+  double harbour_weight = 0.0;                ///< w at the lattice point used
+  bool dry = false;
+};
+
+class SurfaceSampler {
+ public:
+  /// Holds the snapshot (shared keyframes: cheap) and caches raw pointers to its rasters.
+  explicit SurfaceSampler(SurfaceSnapshot snapshot);
+
+  /// Elevation (m) at (x, y).
+  double elevation_m(double x_m, double y_m, ChoppyPoint point = ChoppyPoint::kDisplaced) const;
+  /// Batched: out[i] = elevation_m(points[i]) to the displacement tolerance (a displaced query
+  /// starts its solve from the previous point's solution when that point lies within 20 m, so
+  /// the batch of a hull's points is cheaper than the single calls); out.size() >= points.size().
+  void elevations_m(std::span<const SitePoint> points, std::span<double> out,
+                    ChoppyPoint point = ChoppyPoint::kDisplaced) const;
+  /// Elevation, velocity, slopes, normal and the dry flag at (x, y).
+  SurfaceState state(double x_m, double y_m, ChoppyPoint point = ChoppyPoint::kDisplaced) const;
+  void states(std::span<const SitePoint> points, std::span<SurfaceState> out,
+              ChoppyPoint point = ChoppyPoint::kDisplaced) const;
+
+  /// The parts of formula 3 at a lattice point, for tests and the GLSL twin: H_eta (0 without a
+  /// harbour), D_eta (0 without deep water) and the lattice point of a displaced query.
+  double harbour_elevation_m(double x_m, double y_m) const;
+  double deep_elevation_m(double x_m, double y_m) const;
+  SitePoint lattice_point(double x_m, double y_m) const;
+
+  const SurfaceSnapshot& snapshot() const { return snapshot_; }
+
+ private:
+  struct Raster2 {  // one harbour channel at both keyframes
+    const float* from = nullptr;
+    const float* to = nullptr;
+  };
+  struct Cascade {
+    int n = 0;
+    double tile_length_m = 0.0, inverse_tile_length = 0.0;
+    const ocean::DeepWaterFrame* from = nullptr;
+    const ocean::DeepWaterFrame* to = nullptr;
+  };
+  double weight(double x_m, double y_m) const;
+  double harbour_eta(double x_m, double y_m) const;
+  void deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const;
+  double deep_eta(double x_m, double y_m) const;
+  // The lattice point of a displaced query, Newton started from q + offset.
+  SitePoint solve_lattice_point(double x_m, double y_m, SitePoint offset) const;
+  double elevation_at_lattice(SitePoint p) const;
+  static constexpr double kWarmStartDistance_m = 20.0;
+
+  SurfaceSnapshot snapshot_;
+  bool has_harbour_ = false, has_deep_ = false, has_deep_flux_ = false;
+  int columns_ = 0, rows_ = 0;
+  double spacing_m_ = 1.0, inverse_spacing_ = 1.0;
+  double harbour_fraction_ = 0.0, deep_fraction_ = 0.0, choppiness_ = 0.0;
+  // Where w = 1 exactly (beyond the maker's zone and every edge fade): no ramp to evaluate.
+  double full_x0_ = 0.0, full_x1_ = -1.0, full_y0_ = 0.0, full_y1_ = -1.0;
+  Raster2 eta_, flux_x_, flux_y_;
+  const float* depth_ = nullptr;
+  const std::uint8_t* land_ = nullptr;
+  std::vector<Cascade> cascades_;
+};
+
+}  // namespace nearshore::runtime

@@ -1,0 +1,655 @@
+#include "nearshore/runtime/streaming_engine.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "keyframe_pool.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/runtime/harbour_site.hpp"
+
+namespace nearshore::runtime {
+
+namespace {
+
+double thread_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double mebibytes(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
+
+struct HarbourEntry {
+  long long index = 0;  // plan step
+  PlanStep step;
+  std::shared_ptr<const HarbourKeyframe> keyframe;
+};
+
+struct DeepEntry {
+  long long index = 0;  // display time = index * interval
+  std::shared_ptr<const DeepWaterKeyframe> keyframe;
+};
+
+// The entry of `index` in a ring of consecutive indices, or nullptr.
+template <class Entry>
+const Entry* find(const std::deque<Entry>& ring, long long index) {
+  if (ring.empty() || index < ring.front().index) return nullptr;
+  const long long offset = index - ring.front().index;
+  if (offset >= static_cast<long long>(ring.size())) return nullptr;
+  return &ring[static_cast<std::size_t>(offset)];
+}
+
+void swap_fields(HarbourKeyframe& keyframe, sequence::Frame& frame) {
+  std::swap(keyframe.surface_elevation_m, frame.surface_elevation_m);
+  std::swap(keyframe.flux_x_m2_s, frame.flux_x_m2_s);
+  std::swap(keyframe.flux_y_m2_s, frame.flux_y_m2_s);
+  std::swap(keyframe.breaking, frame.breaking);
+}
+
+}  // namespace
+
+struct StreamingEngine::Impl {
+  enum class DeepKind { kNone, kBake, kBeaufort };
+
+  Impl(const std::filesystem::path& folder_in, StreamingOptions options_in)
+      : folder(folder_in), options(std::move(options_in)), reader(folder) {}
+
+  std::filesystem::path folder;
+  StreamingOptions options;
+  sequence::SequenceReader reader;  // const methods only: safe from every thread
+  std::shared_ptr<const HarbourSite> site;
+  double frame_interval_s = 0.0, deep_interval_s = 0.0;
+  PlaybackPlan plan_template = PlaybackPlan::frame_order(1);
+  std::string plan_message;
+
+  DeepKind deep_kind = DeepKind::kNone;
+  bool deep_with_flux = false;
+  double deep_depth_m = 0.0;
+  int capacity_harbour = 0, capacity_deep = 0;
+  std::size_t bytes_harbour = 0, bytes_deep = 0;
+  KeyframePool<HarbourKeyframe> harbour_pool;
+  KeyframePool<DeepWaterKeyframe> deep_pool;
+  std::atomic<std::uint64_t> serial{0};
+
+  // Shared between the render thread, the worker and the builder: guarded by `mutex`, which is
+  // never held across decoding, synthesis or I/O.
+  mutable std::mutex mutex;
+  std::condition_variable work_cv, ready_cv;
+  std::deque<HarbourEntry> harbour_ring;
+  std::deque<DeepEntry> deep_ring;
+  long long next_harbour = 0, next_deep = 0;          // what the worker makes next
+  long long harbour_generation = 0, deep_generation = 0;  // bumped by a seek: in-flight work is dropped
+  bool stop = false;
+  StreamingStats counters;
+  std::shared_ptr<const ocean::RecordedDeepWater> record;  // the current field's lattices (slow path)
+  std::unique_ptr<ocean::DeepWaterField> pending_field;    // from the builder, swapped in by the worker
+  bool has_pending_field = false;
+  std::shared_ptr<const ocean::RecordedDeepWater> pending_record;
+
+  // The render thread's snapshot (written by advance_to, read by snapshot() on any thread).
+  mutable std::mutex snapshot_mutex;
+  SurfaceSnapshot current;
+
+  // Worker-only state.
+  PlaybackPlan harbour_plan = PlaybackPlan::frame_order(1), deep_plan = PlaybackPlan::frame_order(1);
+  std::unique_ptr<ocean::DeepWaterField> field;
+  sequence::Frame source_frame, target_frame, blended_frame;
+  std::shared_ptr<const HarbourKeyframe> last_good;
+  std::thread harbour_worker, deep_worker;
+
+  // The Beaufort builder thread.
+  std::thread builder;
+  std::mutex builder_mutex;
+  std::condition_variable builder_cv;
+  std::optional<BeaufortSea> builder_request;
+  bool builder_stop = false;
+
+  // The slow path of snapshot_at (serialised).
+  std::mutex slow_mutex;
+  PlaybackPlan slow_plan = PlaybackPlan::frame_order(1);
+  std::unique_ptr<ocean::DeepWaterField> slow_field;
+  std::shared_ptr<const ocean::RecordedDeepWater> slow_field_record;
+
+  // One worker per ring: harbour decoding (I/O and EXR) and deep-water synthesis (FFT) run on two
+  // cores at once; each sleeps while its ring is full.
+  void run_worker(bool harbour);
+  void run_builder();
+  // Harbour keyframe of a plan step: the frame, or the planned crossfade blend; a frame that
+  // cannot be read is replaced by the last good keyframe (held). `message` gets the problem.
+  void decode_harbour(const PlanStep& step, HarbourKeyframe& keyframe, std::string& message);
+  // Deep keyframe `index` (display time index * interval) from `deep_field` (null: flat).
+  void synthesise_deep(long long index, PlaybackPlan& plan, ocean::DeepWaterField* deep_field,
+                       DeepWaterKeyframe& keyframe);
+  // Drops keyframes before (k, j) when `consume`, and restarts the worker at k (j) when the rings
+  // cannot reach it: a time behind them, or far ahead of the worker. Caller holds `mutex`.
+  void schedule_locked(long long k, long long j, bool consume);
+  bool ready_locked(long long k, long long j) const;
+  void set_message_locked(std::string message) { counters.last_message = std::move(message); }
+};
+
+void StreamingEngine::Impl::decode_harbour(const PlanStep& step, HarbourKeyframe& keyframe, std::string& message) {
+  keyframe.serial = ++serial;
+  keyframe.plan_step = step.step;
+  keyframe.shown = step.shown;
+  keyframe.held = false;
+  if (options.before_decode) options.before_decode(step.step);
+  const sequence::ChannelSelection all = sequence::ChannelSelection::all();
+  int reading = step.shown.source_frame;
+  try {
+    reader.read_frame_into(reading, source_frame, all, options.verify);
+    if (step.in_crossfade) {
+      // The planned crossfade: the same weight for every channel (loop_playback.hpp).
+      reading = step.shown.target_frame;
+      reader.read_frame_into(reading, target_frame, all, options.verify);
+      sequence::blend_frames(source_frame, target_frame, step.shown.target_weight, blended_frame);
+      swap_fields(keyframe, blended_frame);
+    } else {
+      swap_fields(keyframe, source_frame);
+    }
+  } catch (const std::exception& error) {
+    // Hold the previous good keyframe in its place (its memory is reused: the same sizes).
+    keyframe.held = true;
+    const GridGeometry& g = reader.geometry();
+    if (last_good) {
+      keyframe.surface_elevation_m = last_good->surface_elevation_m;
+      keyframe.flux_x_m2_s = last_good->flux_x_m2_s;
+      keyframe.flux_y_m2_s = last_good->flux_y_m2_s;
+      keyframe.breaking = last_good->breaking;
+    } else {
+      for (Raster<float>* raster : {&keyframe.surface_elevation_m, &keyframe.flux_x_m2_s, &keyframe.flux_y_m2_s,
+                                    &keyframe.breaking})
+        *raster = Raster<float>(g.columns, g.rows, 0.0f);
+    }
+    message = fmt::format("{}; plan step {} holds {} in its place", error.what(), step.step,
+                          last_good ? fmt::format("the keyframe of step {}", last_good->plan_step)
+                                    : std::string("a flat sea"));
+  }
+}
+
+void StreamingEngine::Impl::synthesise_deep(long long index, PlaybackPlan& plan, ocean::DeepWaterField* deep_field,
+                                            DeepWaterKeyframe& keyframe) {
+  keyframe.serial = ++serial;
+  keyframe.display_time_s = static_cast<double>(index) * deep_interval_s;
+  keyframe.still_water_depth_m = deep_depth_m;
+  if (!deep_field) {
+    keyframe.cascades.clear();  // a calm sea
+    return;
+  }
+  if (deep_kind == DeepKind::kBake) {
+    // The bake's own field at the bake times the harbour frames show (deep_water_source.hpp).
+    const double steps = keyframe.display_time_s / frame_interval_s;
+    const long long k = static_cast<long long>(std::floor(steps));
+    const PlanStep now = plan.step(k);
+    const PlanStep next = plan.step(k + 1);
+    const BakeTimes times =
+        bake_times(now, next, steps - static_cast<double>(k), frame_interval_s, reader.manifest().first_frame_time_s);
+    deep_field->synthesise_into(times.span(), keyframe.cascades, deep_with_flux);
+  } else {
+    // A Beaufort sea of its own: its time is the display time.
+    const ocean::TimedWeight at{keyframe.display_time_s, 1.0};
+    deep_field->synthesise_into(std::span<const ocean::TimedWeight>(&at, 1), keyframe.cascades, deep_with_flux);
+  }
+}
+
+bool StreamingEngine::Impl::ready_locked(long long k, long long j) const {
+  const bool harbour = find(harbour_ring, k) && find(harbour_ring, k + 1);
+  const bool deep = deep_kind == DeepKind::kNone || (find(deep_ring, j) && find(deep_ring, j + 1));
+  return harbour && deep;
+}
+
+void StreamingEngine::Impl::schedule_locked(long long k, long long j, bool consume) {
+  bool wake = false;
+  if (consume) {
+    while (!harbour_ring.empty() && harbour_ring.front().index < k) {
+      harbour_ring.pop_front();
+      wake = true;
+    }
+    while (!deep_ring.empty() && deep_ring.front().index < j) {
+      deep_ring.pop_front();
+      wake = true;
+    }
+  }
+  // Restart when the rings cannot reach k: a time behind them (a seek back), or a worker further
+  // behind than a ring's length (it would decode steps no one will show).
+  const auto unreachable = [](long long needed, long long front, bool empty, long long next, int capacity) {
+    if (!empty) return front > needed;
+    return next > needed || next < needed - capacity;
+  };
+  if (unreachable(k, harbour_ring.empty() ? 0 : harbour_ring.front().index, harbour_ring.empty(), next_harbour,
+                  capacity_harbour)) {
+    harbour_ring.clear();
+    next_harbour = k;
+    ++harbour_generation;
+    wake = true;
+  }
+  if (deep_kind != DeepKind::kNone &&
+      unreachable(j, deep_ring.empty() ? 0 : deep_ring.front().index, deep_ring.empty(), next_deep, capacity_deep)) {
+    deep_ring.clear();
+    next_deep = j;
+    ++deep_generation;
+    wake = true;
+  }
+  if (wake) work_cv.notify_all();
+}
+
+void StreamingEngine::Impl::run_worker(bool harbour) {
+  std::unique_lock<std::mutex> lock(mutex);
+  while (!stop) {
+    if (!harbour && has_pending_field) {
+      field = std::move(pending_field);
+      record = pending_record;
+      has_pending_field = false;
+    }
+    const bool room = harbour ? static_cast<int>(harbour_ring.size()) < capacity_harbour
+                              : static_cast<int>(deep_ring.size()) < capacity_deep;
+    if (!room) {
+      work_cv.wait(lock);
+      continue;
+    }
+    if (harbour) {
+      const long long index = next_harbour, generation = harbour_generation;
+      lock.unlock();
+      const double wall0 = wall_seconds(), cpu0 = thread_cpu_seconds();
+      const PlanStep step = harbour_plan.step(index);
+      std::unique_ptr<HarbourKeyframe> keyframe = harbour_pool.acquire();
+      std::string message;
+      decode_harbour(step, *keyframe, message);
+      const bool held = keyframe->held;
+      std::shared_ptr<const HarbourKeyframe> published = harbour_pool.publish(std::move(keyframe));
+      if (!held) last_good = published;
+      const double wall1 = wall_seconds(), cpu1 = thread_cpu_seconds();
+      lock.lock();
+      counters.decode_seconds += wall1 - wall0;
+      counters.decode_cpu_seconds += cpu1 - cpu0;
+      ++counters.keyframes_decoded;
+      if (held) {
+        ++counters.bad_frames_held;
+        set_message_locked(std::move(message));
+      }
+      if (generation == harbour_generation) {
+        harbour_ring.push_back({index, step, std::move(published)});
+        ++next_harbour;
+      }
+    } else {
+      const long long index = next_deep, generation = deep_generation;
+      ocean::DeepWaterField* deep_field = field.get();
+      lock.unlock();
+      const double wall0 = wall_seconds(), cpu0 = thread_cpu_seconds();
+      std::unique_ptr<DeepWaterKeyframe> keyframe = deep_pool.acquire();
+      std::string message;
+      try {
+        synthesise_deep(index, deep_plan, deep_field, *keyframe);
+      } catch (const std::exception& error) {
+        keyframe->cascades.clear();
+        message = fmt::format("deep water at {} s: {}; a calm sea is shown", keyframe->display_time_s, error.what());
+      }
+      std::shared_ptr<const DeepWaterKeyframe> published = deep_pool.publish(std::move(keyframe));
+      const double wall1 = wall_seconds(), cpu1 = thread_cpu_seconds();
+      lock.lock();
+      counters.deep_seconds += wall1 - wall0;
+      counters.deep_cpu_seconds += cpu1 - cpu0;
+      ++counters.deep_keyframes_synthesised;
+      if (!message.empty()) set_message_locked(std::move(message));
+      if (generation == deep_generation) {
+        deep_ring.push_back({index, std::move(published)});
+        ++next_deep;
+      }
+    }
+    // Let go of keyframes outside the lock: the last one returns to its pool.
+    lock.unlock();
+    ready_cv.notify_all();
+    lock.lock();
+  }
+}
+
+void StreamingEngine::Impl::run_builder() {
+  std::unique_lock<std::mutex> lock(builder_mutex);
+  while (true) {
+    builder_cv.wait(lock, [&] { return builder_stop || builder_request.has_value(); });
+    if (builder_stop) return;
+    const BeaufortSea sea = *builder_request;
+    builder_request.reset();
+    lock.unlock();
+    std::unique_ptr<ocean::DeepWaterField> built;
+    std::string message;
+    try {
+      built = build_beaufort_field(sea);
+    } catch (const std::exception& error) {
+      message = fmt::format("{}; the previous sea stays", error.what());
+    }
+    {
+      const std::lock_guard<std::mutex> guard(mutex);
+      if (message.empty()) {
+        pending_record = built ? std::make_shared<const ocean::RecordedDeepWater>(built->record()) : nullptr;
+        pending_field = std::move(built);
+        has_pending_field = true;
+      } else {
+        set_message_locked(std::move(message));
+      }
+    }
+    work_cv.notify_all();
+    lock.lock();
+  }
+}
+
+StreamingEngine::StreamingEngine(const std::filesystem::path& folder, StreamingOptions options)
+    : impl_(std::make_unique<Impl>(folder, std::move(options))) {
+  Impl& m = *impl_;
+  const StreamingOptions& o = m.options;
+  const std::string subject = fmt::format("streaming engine for {}", folder.string());
+  if (!(o.deep_water_interval_s > 0.0) || !std::isfinite(o.deep_water_interval_s))
+    throw Error(subject, fmt::format("StreamingOptions::deep_water_interval_s = {} s", o.deep_water_interval_s),
+                "give a positive interval, e.g. 1/30 s");
+  if (o.ring_capacity != 0 && o.ring_capacity < 2)
+    throw Error(subject, fmt::format("StreamingOptions::ring_capacity = {}", o.ring_capacity),
+                "hold at least 2 keyframes (the one shown and the next), or 0 for automatic");
+  if (o.deep_water_ring_capacity != 0 && o.deep_water_ring_capacity < 2)
+    throw Error(subject, fmt::format("StreamingOptions::deep_water_ring_capacity = {}", o.deep_water_ring_capacity),
+                "hold at least 2 keyframes, or 0 for automatic");
+  m.frame_interval_s = m.reader.frame_interval_s();
+  m.deep_interval_s = o.deep_water_interval_s;
+  if (m.reader.frame_count() < 1) throw Error(folder.string(), "has no frames", "bake it again with a longer duration");
+
+  // 1. The site and the plan (a plan that cannot be made falls back to frame order, said).
+  auto site = std::make_shared<HarbourSite>(read_harbour_site(m.reader, o.edge_fade_m, o.verify));
+  try {
+    m.plan_template = PlaybackPlan(folder, o.plan, o.seed);
+  } catch (const Error& error) {
+    m.plan_template = PlaybackPlan::frame_order(m.reader.frame_count());
+    m.plan_message = fmt::format("{}; playing the frames in order instead", error.what());
+  }
+  m.harbour_plan = m.deep_plan = m.slow_plan = m.plan_template;
+  m.counters.plan = m.plan_template.description();
+  m.counters.last_message = m.plan_message;
+
+  // 2. The deep water: the bake's own field, else (or on request) the Beaufort sea.
+  std::optional<ocean::RecordedDeepWater> recorded;
+  if (o.deep_water == DeepWaterChoice::kBakeElseBeaufort) recorded = read_recorded_deep_water(m.reader, o.verify);
+  if (recorded) {
+    m.deep_kind = Impl::DeepKind::kBake;
+    m.field = std::make_unique<ocean::DeepWaterField>(*recorded);
+    m.record = std::make_shared<const ocean::RecordedDeepWater>(std::move(*recorded));
+    m.deep_depth_m = m.record->still_water_depth_m;
+  } else if (o.deep_water != DeepWaterChoice::kNone) {
+    m.deep_kind = Impl::DeepKind::kBeaufort;
+    m.field = build_beaufort_field(o.beaufort);
+    if (m.field) m.record = std::make_shared<const ocean::RecordedDeepWater>(m.field->record());
+    site->choppiness = o.beaufort.choppiness;
+    m.deep_depth_m = 0.0;
+  }
+  // Fluxes (two more FFTs) only where they give a velocity: a field of finite depth.
+  m.deep_with_flux = m.deep_depth_m > 0.0;
+  m.site = site;
+  site_ = site;
+
+  // 3. The rings, sized by time and bounded in bytes.
+  const GridGeometry& g = m.reader.geometry();
+  m.bytes_harbour = std::size_t{4} * sizeof(float) * static_cast<std::size_t>(g.columns) * static_cast<std::size_t>(g.rows);
+  if (m.record)
+    for (const ocean::RecordedCascade& cascade : m.record->cascades)
+      m.bytes_deep += (m.deep_with_flux ? 10u : 8u) * sizeof(float) * static_cast<std::size_t>(cascade.grid_size) *
+                      static_cast<std::size_t>(cascade.grid_size);
+  if (o.ring_capacity > 0) {
+    m.capacity_harbour = o.ring_capacity;
+  } else {
+    m.capacity_harbour = std::clamp(static_cast<int>(std::ceil(o.ring_lookahead_s / m.frame_interval_s)) + 2, 4, 64);
+    while (m.capacity_harbour > 3 && static_cast<std::size_t>(m.capacity_harbour) * m.bytes_harbour > o.max_ring_bytes)
+      --m.capacity_harbour;
+  }
+  if (o.deep_water_ring_capacity > 0) {
+    m.capacity_deep = o.deep_water_ring_capacity;
+  } else {
+    const double span_s = m.capacity_harbour * m.frame_interval_s;
+    m.capacity_deep = std::clamp(static_cast<int>(std::ceil(span_s / m.deep_interval_s)) + 2, 4, 256);
+    while (m.capacity_deep > 3 && static_cast<std::size_t>(m.capacity_deep) * m.bytes_deep > o.max_ring_bytes)
+      --m.capacity_deep;
+  }
+  m.counters.ring_capacity = m.capacity_harbour;
+  m.counters.deep_ring_capacity = m.deep_kind == Impl::DeepKind::kNone ? 0 : m.capacity_deep;
+  m.counters.harbour_keyframe_bytes = m.bytes_harbour;
+  m.counters.deep_keyframe_bytes = m.bytes_deep;
+  m.counters.frame_interval_s = m.frame_interval_s;
+  m.current.site = site;
+
+  // 4. The threads: the worker decodes OpenEXR on its own thread only (no OpenEXR pool).
+  sequence::set_exr_worker_threads(0);
+  m.harbour_worker = std::thread([&m] { m.run_worker(true); });
+  if (m.deep_kind != Impl::DeepKind::kNone) m.deep_worker = std::thread([&m] { m.run_worker(false); });
+  if (m.deep_kind == Impl::DeepKind::kBeaufort) m.builder = std::thread([&m] { m.run_builder(); });
+}
+
+StreamingEngine::~StreamingEngine() {
+  Impl& m = *impl_;
+  {
+    const std::lock_guard<std::mutex> lock(m.builder_mutex);
+    m.builder_stop = true;
+  }
+  m.builder_cv.notify_all();
+  if (m.builder.joinable()) m.builder.join();
+  {
+    const std::lock_guard<std::mutex> lock(m.mutex);
+    m.stop = true;
+  }
+  m.work_cv.notify_all();
+  if (m.harbour_worker.joinable()) m.harbour_worker.join();
+  if (m.deep_worker.joinable()) m.deep_worker.join();
+}
+
+void StreamingEngine::advance_to(double display_time_s) {
+  Impl& m = *impl_;
+  const double t = std::max(display_time_s, 0.0);
+  const double steps = t / m.frame_interval_s;
+  const long long k = static_cast<long long>(std::floor(steps));
+  const double deep_steps = t / m.deep_interval_s;
+  const long long j = static_cast<long long>(std::floor(deep_steps));
+  // The previous snapshot: only this thread writes it, so it is read here without the lock.
+  SurfaceSnapshot next = m.current;
+  next.display_time_s = t;
+  next.site = m.site;
+  {
+    const std::lock_guard<std::mutex> lock(m.mutex);
+    m.schedule_locked(k, j, true);
+    bool missing = false;
+    const HarbourEntry* from = find(m.harbour_ring, k);
+    const HarbourEntry* to = find(m.harbour_ring, k + 1);
+    if (from && to) {
+      next.harbour_from = from->keyframe;
+      next.harbour_to = to->keyframe;
+      next.harbour_fraction = steps - static_cast<double>(k);
+    } else {
+      missing = true;
+      ++m.counters.harbour_underruns;
+      if (from) {  // show step k alone until k + 1 arrives
+        next.harbour_from = next.harbour_to = from->keyframe;
+        next.harbour_fraction = 0.0;
+      }  // else: hold the last pair shown
+    }
+    if (from) {
+      m.counters.plan_step = from->step.step;
+      m.counters.transitions_taken = from->step.transitions_taken;
+      m.counters.in_crossfade = from->step.in_crossfade;
+    }
+    if (m.deep_kind == Impl::DeepKind::kNone) {
+      next.deep_from = next.deep_to = nullptr;
+      next.deep_fraction = 0.0;
+    } else {
+      const DeepEntry* deep_from = find(m.deep_ring, j);
+      const DeepEntry* deep_to = find(m.deep_ring, j + 1);
+      if (deep_from && deep_to) {
+        next.deep_from = deep_from->keyframe;
+        next.deep_to = deep_to->keyframe;
+        next.deep_fraction = deep_steps - static_cast<double>(j);
+      } else {
+        missing = true;
+        ++m.counters.deep_underruns;
+        if (deep_from) {
+          next.deep_from = next.deep_to = deep_from->keyframe;
+          next.deep_fraction = 0.0;
+        }
+      }
+    }
+    if (missing) ++m.counters.underruns;
+  }
+  // Swap under the snapshot lock; the old snapshot's keyframes are let go after it (outside).
+  {
+    const std::lock_guard<std::mutex> lock(m.snapshot_mutex);
+    std::swap(m.current, next);
+  }
+}
+
+SurfaceSnapshot StreamingEngine::snapshot() const {
+  const std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);
+  return impl_->current;
+}
+
+bool StreamingEngine::wait_until_ready(double display_time_s, std::chrono::milliseconds timeout) {
+  Impl& m = *impl_;
+  const double t = std::max(display_time_s, 0.0);
+  const long long k = static_cast<long long>(std::floor(t / m.frame_interval_s));
+  const long long j = static_cast<long long>(std::floor(t / m.deep_interval_s));
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::unique_lock<std::mutex> lock(m.mutex);
+  while (true) {
+    // Let go of what lies before t each time (the worker may have filled the ring with it), so the
+    // worker has room for the keyframes t needs.
+    m.schedule_locked(k, j, true);
+    if (m.ready_locked(k, j)) return true;
+    if (m.ready_cv.wait_until(lock, deadline) == std::cv_status::timeout) return m.ready_locked(k, j);
+  }
+}
+
+bool StreamingEngine::wait_until_filled(std::chrono::milliseconds timeout) {
+  Impl& m = *impl_;
+  std::unique_lock<std::mutex> lock(m.mutex);
+  return m.ready_cv.wait_for(lock, timeout, [&] {
+    return static_cast<int>(m.harbour_ring.size()) >= m.capacity_harbour &&
+           (m.deep_kind == Impl::DeepKind::kNone || static_cast<int>(m.deep_ring.size()) >= m.capacity_deep);
+  });
+}
+
+SurfaceSnapshot StreamingEngine::snapshot_at(double display_time_s) {
+  Impl& m = *impl_;
+  const double t = std::max(display_time_s, 0.0);
+  const double steps = t / m.frame_interval_s;
+  const long long k = static_cast<long long>(std::floor(steps));
+  const double deep_steps = t / m.deep_interval_s;
+  const long long j = static_cast<long long>(std::floor(deep_steps));
+  SurfaceSnapshot result;
+  result.display_time_s = t;
+  result.site = m.site;
+  result.harbour_fraction = steps - static_cast<double>(k);
+  result.deep_fraction = m.deep_kind == Impl::DeepKind::kNone ? 0.0 : deep_steps - static_cast<double>(j);
+  std::shared_ptr<const ocean::RecordedDeepWater> record;
+  {
+    const std::lock_guard<std::mutex> lock(m.mutex);
+    if (const HarbourEntry* from = find(m.harbour_ring, k))
+      if (const HarbourEntry* to = find(m.harbour_ring, k + 1)) {
+        result.harbour_from = from->keyframe;
+        result.harbour_to = to->keyframe;
+      }
+    if (m.deep_kind != Impl::DeepKind::kNone)
+      if (const DeepEntry* from = find(m.deep_ring, j))
+        if (const DeepEntry* to = find(m.deep_ring, j + 1)) {
+          result.deep_from = from->keyframe;
+          result.deep_to = to->keyframe;
+        }
+    record = m.record;
+  }
+  const bool need_harbour = !result.harbour_from;
+  const bool need_deep = m.deep_kind != Impl::DeepKind::kNone && !result.deep_from;
+  if (!need_harbour && !need_deep) return result;
+
+  // The slow path, on the caller's thread: its own plan, frames and field (the worker's are its own).
+  const std::lock_guard<std::mutex> slow(m.slow_mutex);
+  if (need_harbour) {
+    for (long long s : {k, k + 1}) {
+      const PlanStep step = m.slow_plan.step(s);
+      auto keyframe = std::make_shared<HarbourKeyframe>();
+      keyframe->serial = ++m.serial;
+      keyframe->plan_step = s;
+      keyframe->shown = step.shown;
+      sequence::Frame source = m.reader.read_frame(step.shown.source_frame, sequence::ChannelSelection::all(), m.options.verify);
+      sequence::Frame shown;
+      if (step.in_crossfade) {
+        const sequence::Frame target =
+            m.reader.read_frame(step.shown.target_frame, sequence::ChannelSelection::all(), m.options.verify);
+        sequence::blend_frames(source, target, step.shown.target_weight, shown);
+      } else {
+        shown = std::move(source);
+      }
+      swap_fields(*keyframe, shown);
+      (s == k ? result.harbour_from : result.harbour_to) = std::move(keyframe);
+    }
+  }
+  if (need_deep) {
+    if (record != m.slow_field_record) {
+      m.slow_field = record ? std::make_unique<ocean::DeepWaterField>(*record) : nullptr;
+      m.slow_field_record = record;
+    }
+    for (long long index : {j, j + 1}) {
+      auto keyframe = std::make_shared<DeepWaterKeyframe>();
+      m.synthesise_deep(index, m.slow_plan, m.slow_field.get(), *keyframe);
+      (index == j ? result.deep_from : result.deep_to) = std::move(keyframe);
+    }
+  }
+  return result;
+}
+
+StreamingStats StreamingEngine::stats() const {
+  const Impl& m = *impl_;
+  StreamingStats result;
+  {
+    const std::lock_guard<std::mutex> lock(m.mutex);
+    result = m.counters;
+    result.ring_fill = static_cast<int>(m.harbour_ring.size());
+    result.deep_ring_fill = static_cast<int>(m.deep_ring.size());
+  }
+  result.harbour_keyframes_allocated = m.harbour_pool.allocated();
+  result.deep_keyframes_allocated = m.deep_pool.allocated();
+  return result;
+}
+
+std::string StreamingEngine::memory_summary() const {
+  const Impl& m = *impl_;
+  std::string text = fmt::format("harbour ring {} x {:.1f} MiB = {:.1f} MiB", m.capacity_harbour,
+                                 mebibytes(m.bytes_harbour), mebibytes(m.capacity_harbour * m.bytes_harbour));
+  if (m.deep_kind != Impl::DeepKind::kNone)
+    text += fmt::format("; deep-water ring {} x {:.2f} MiB = {:.1f} MiB", m.capacity_deep, mebibytes(m.bytes_deep),
+                        mebibytes(m.capacity_deep * m.bytes_deep));
+  return text;
+}
+
+void StreamingEngine::set_beaufort(const BeaufortSea& sea) {
+  Impl& m = *impl_;
+  if (m.deep_kind != Impl::DeepKind::kBeaufort)
+    throw Error(fmt::format("streaming engine for {}", m.folder.string()),
+                m.deep_kind == Impl::DeepKind::kBake ? "shows the bake's own deep-water field, which the wind cannot change"
+                                                     : "shows no deep water",
+                "open the sequence with StreamingOptions::deep_water = DeepWaterChoice::kBeaufort");
+  {
+    const std::lock_guard<std::mutex> lock(m.builder_mutex);
+    m.builder_request = sea;  // only the latest request matters
+  }
+  m.builder_cv.notify_one();
+}
+
+const sequence::SequenceManifest& StreamingEngine::manifest() const { return impl_->reader.manifest(); }
+double StreamingEngine::frame_interval_s() const { return impl_->frame_interval_s; }
+PlaybackPlan StreamingEngine::plan() const { return impl_->plan_template; }
+bool StreamingEngine::deep_water_is_bakes() const { return impl_->deep_kind == Impl::DeepKind::kBake; }
+
+}  // namespace nearshore::runtime

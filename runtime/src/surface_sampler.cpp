@@ -1,0 +1,369 @@
+#include "nearshore/runtime/surface_sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::runtime {
+
+namespace {
+
+// Formula 1 of surface_sampler.hpp: the four texels and weights of a cell-centred raster.
+struct Tap {
+  std::size_t i00 = 0, i10 = 0, i01 = 0, i11 = 0;
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  double a = 0.0, b = 0.0;
+};
+
+inline void axis_tap(double texel, int count, int& lo, int& hi, double& fraction) {
+  if (count < 2) {
+    lo = hi = 0;
+    fraction = 0.0;
+    return;
+  }
+  texel = std::clamp(texel, 0.0, static_cast<double>(count - 1));
+  lo = std::min(static_cast<int>(texel), count - 2);  // texel >= 0: the cast is floor
+  hi = lo + 1;
+  fraction = texel - lo;
+}
+
+inline Tap harbour_tap(double x_m, double y_m, double inverse_spacing, int columns, int rows) {
+  Tap t;
+  axis_tap(x_m * inverse_spacing - 0.5, columns, t.i0, t.i1, t.a);
+  axis_tap(y_m * inverse_spacing - 0.5, rows, t.j0, t.j1, t.b);
+  const std::size_t c = static_cast<std::size_t>(columns);
+  t.i00 = static_cast<std::size_t>(t.j0) * c + static_cast<std::size_t>(t.i0);
+  t.i10 = static_cast<std::size_t>(t.j0) * c + static_cast<std::size_t>(t.i1);
+  t.i01 = static_cast<std::size_t>(t.j1) * c + static_cast<std::size_t>(t.i0);
+  t.i11 = static_cast<std::size_t>(t.j1) * c + static_cast<std::size_t>(t.i1);
+  return t;
+}
+
+inline double bilinear(const float* f, const Tap& t) {
+  return (1.0 - t.b) * ((1.0 - t.a) * f[t.i00] + t.a * f[t.i10]) + t.b * ((1.0 - t.a) * f[t.i01] + t.a * f[t.i11]);
+}
+
+// Formula 2: the periodic tap of a cascade tile (nodes at i L / N).
+inline Tap cascade_tap(double x_m, double y_m, double inverse_tile_length, int n) {
+  Tap t;
+  const auto axis = [n, inverse_tile_length](double p, int& lo, int& hi, double& fraction) {
+    double cycles = p * inverse_tile_length;
+    cycles -= std::floor(cycles);
+    const double u = cycles * n;
+    lo = std::min(static_cast<int>(u), n - 1);
+    fraction = u - lo;
+    hi = (lo + 1) & (n - 1);  // n is a power of two
+  };
+  axis(x_m, t.i0, t.i1, t.a);
+  axis(y_m, t.j0, t.j1, t.b);
+  const std::size_t c = static_cast<std::size_t>(n);
+  t.i00 = static_cast<std::size_t>(t.j0) * c + static_cast<std::size_t>(t.i0);
+  t.i10 = static_cast<std::size_t>(t.j0) * c + static_cast<std::size_t>(t.i1);
+  t.i01 = static_cast<std::size_t>(t.j1) * c + static_cast<std::size_t>(t.i0);
+  t.i11 = static_cast<std::size_t>(t.j1) * c + static_cast<std::size_t>(t.i1);
+  return t;
+}
+
+// Formula 6: per-texel central differences (clamped, one-sided at the edge), bilinear.
+struct Gradient {
+  double x = 0.0, y = 0.0;
+};
+inline Gradient texel_gradient(const float* f, int i, int j, int columns, int rows, double spacing_m) {
+  Gradient g;
+  const int west = std::max(i - 1, 0), east = std::min(i + 1, columns - 1);
+  const int south = std::max(j - 1, 0), north = std::min(j + 1, rows - 1);
+  const std::size_t c = static_cast<std::size_t>(columns);
+  if (east > west)
+    g.x = (f[static_cast<std::size_t>(j) * c + east] - f[static_cast<std::size_t>(j) * c + west]) / ((east - west) * spacing_m);
+  if (north > south)
+    g.y = (f[static_cast<std::size_t>(north) * c + i] - f[static_cast<std::size_t>(south) * c + i]) /
+          ((north - south) * spacing_m);
+  return g;
+}
+inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int rows, double spacing_m) {
+  const Gradient g00 = texel_gradient(f, t.i0, t.j0, columns, rows, spacing_m);
+  const Gradient g10 = texel_gradient(f, t.i1, t.j0, columns, rows, spacing_m);
+  const Gradient g01 = texel_gradient(f, t.i0, t.j1, columns, rows, spacing_m);
+  const Gradient g11 = texel_gradient(f, t.i1, t.j1, columns, rows, spacing_m);
+  const double w00 = (1 - t.a) * (1 - t.b), w10 = t.a * (1 - t.b), w01 = (1 - t.a) * t.b, w11 = t.a * t.b;
+  return {w00 * g00.x + w10 * g10.x + w01 * g01.x + w11 * g11.x, w00 * g00.y + w10 * g10.y + w01 * g01.y + w11 * g11.y};
+}
+
+const float* data_or_null(const Raster<float>& raster, int columns, int rows) {
+  if (raster.empty()) return nullptr;
+  if (raster.columns() != columns || raster.rows() != rows)
+    throw Error("surface snapshot", fmt::format("a keyframe raster is {} x {} but the site's grid is {} x {}",
+                                                raster.columns(), raster.rows(), columns, rows),
+                "give the sampler keyframes of the snapshot's own sequence");
+  return raster.data();
+}
+
+}  // namespace
+
+SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(snapshot)) {
+  const SurfaceSnapshot& s = snapshot_;
+  if (s.site && s.harbour_from) {
+    const HarbourSite& site = *s.site;
+    columns_ = site.harbour.geometry.columns;
+    rows_ = site.harbour.geometry.rows;
+    spacing_m_ = site.harbour.geometry.spacing_m;
+    inverse_spacing_ = 1.0 / spacing_m_;
+    const HarbourKeyframe& from = *s.harbour_from;
+    const HarbourKeyframe& to = s.harbour_to ? *s.harbour_to : from;
+    eta_ = {data_or_null(from.surface_elevation_m, columns_, rows_), data_or_null(to.surface_elevation_m, columns_, rows_)};
+    flux_x_ = {data_or_null(from.flux_x_m2_s, columns_, rows_), data_or_null(to.flux_x_m2_s, columns_, rows_)};
+    flux_y_ = {data_or_null(from.flux_y_m2_s, columns_, rows_), data_or_null(to.flux_y_m2_s, columns_, rows_)};
+    has_harbour_ = eta_.from && eta_.to;
+    if (!site.harbour.still_water_depth_m.empty()) depth_ = data_or_null(site.harbour.still_water_depth_m, columns_, rows_);
+    if (!site.harbour.land.empty() && site.harbour.land.columns() == columns_ && site.harbour.land.rows() == rows_)
+      land_ = site.harbour.land.data();
+    harbour_fraction_ = std::clamp(s.harbour_fraction, 0.0, 1.0);
+  }
+  if (s.deep_from) {
+    const DeepWaterKeyframe& from = *s.deep_from;
+    const DeepWaterKeyframe& to = s.deep_to ? *s.deep_to : from;
+    if (from.cascades.size() != to.cascades.size())
+      throw Error("surface snapshot", "its two deep-water keyframes have different cascade counts",
+                  "give the sampler keyframes of one field");
+    has_deep_flux_ = from.still_water_depth_m > 0.0;
+    for (std::size_t c = 0; c < from.cascades.size(); ++c) {
+      const ocean::DeepWaterFrame& a = from.cascades[c];
+      const ocean::DeepWaterFrame& b = to.cascades[c];
+      if (a.surface_elevation_m.empty()) continue;
+      cascades_.push_back({a.grid_size, a.tile_length_m, 1.0 / a.tile_length_m, &a, &b});
+      has_deep_flux_ = has_deep_flux_ && !a.flux_x_m2_s.empty() && !b.flux_x_m2_s.empty();
+    }
+    has_deep_ = !cascades_.empty();
+    deep_fraction_ = std::clamp(s.deep_fraction, 0.0, 1.0);
+  }
+  choppiness_ = s.site ? s.site->choppiness : 1.0;
+  if (has_harbour_) {
+    // The box where every ramp is 1 (surface_snapshot.cpp): fade from each edge, and on the
+    // maker's side the zone's end too.
+    const HarbourSite& site = *s.site;
+    const double fade = std::max(site.edge_fade_m, 0.0);
+    full_x0_ = fade;
+    full_x1_ = site.width_m - fade;
+    full_y0_ = fade;
+    full_y1_ = site.height_m - fade;
+    const double zone_end = site.source_line_m + site.inward_sign * (site.blend_start_m + std::max(site.blend_width_m, 0.0));
+    double& near = site.source_axis == 0 ? (site.inward_sign > 0 ? full_x0_ : full_x1_) : (site.inward_sign > 0 ? full_y0_ : full_y1_);
+    near = site.source_axis == 0 ? (site.inward_sign > 0 ? std::max(zone_end, 0.0) : std::min(zone_end, site.width_m))
+                                 : (site.inward_sign > 0 ? std::max(zone_end, 0.0) : std::min(zone_end, site.height_m));
+    // A zero-width ramp is a step at its start: keep such points on the slow path.
+    if (!(site.blend_width_m > 0.0) || !(site.edge_fade_m > 0.0)) full_x1_ = -1.0;
+  }
+}
+
+double SurfaceSampler::weight(double x_m, double y_m) const {
+  if (!has_harbour_) return 0.0;
+  if (x_m > full_x0_ && x_m < full_x1_ && y_m > full_y0_ && y_m < full_y1_) return 1.0;
+  return harbour_weight(*snapshot_.site, x_m, y_m);
+}
+
+double SurfaceSampler::harbour_eta(double x_m, double y_m) const {
+  const Tap t = harbour_tap(x_m, y_m, inverse_spacing_, columns_, rows_);
+  return (1.0 - harbour_fraction_) * bilinear(eta_.from, t) + harbour_fraction_ * bilinear(eta_.to, t);
+}
+
+double SurfaceSampler::deep_eta(double x_m, double y_m) const {
+  double from = 0.0, to = 0.0;
+  for (const Cascade& c : cascades_) {
+    const Tap t = cascade_tap(x_m, y_m, c.inverse_tile_length, c.n);
+    from += bilinear(c.from->surface_elevation_m.data(), t);
+    to += bilinear(c.to->surface_elevation_m.data(), t);
+  }
+  return (1.0 - deep_fraction_) * from + deep_fraction_ * to;
+}
+
+void SurfaceSampler::deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const {
+  double fx = 0.0, fy = 0.0, tx = 0.0, ty = 0.0;
+  for (const Cascade& c : cascades_) {
+    const Tap t = cascade_tap(x_m, y_m, c.inverse_tile_length, c.n);
+    fx += bilinear(c.from->displacement_x_m.data(), t);
+    fy += bilinear(c.from->displacement_y_m.data(), t);
+    tx += bilinear(c.to->displacement_x_m.data(), t);
+    ty += bilinear(c.to->displacement_y_m.data(), t);
+  }
+  dx_m = (1.0 - deep_fraction_) * fx + deep_fraction_ * tx;
+  dy_m = (1.0 - deep_fraction_) * fy + deep_fraction_ * ty;
+}
+
+SitePoint SurfaceSampler::solve_lattice_point(double x_m, double y_m, SitePoint offset) const {
+  // Formula 4: solve F(p) = p + (1 - w(p)) lambda D(p) - q = 0 from p = q. Newton's method with
+  // the exact Jacobian of what is sampled (D bilinear in each cascade tile: its derivative comes
+  // from the same four nodes, so a step costs what a fixed-point step costs):
+  //   J = I + lambda ((1 - w) grad D - D grad w^T)
+  // It converges in 2-3 steps where the fixed point p = q - (1 - w) lambda D(p) needs up to 8
+  // (contraction lambda |grad D|); where J is near singular (a folding crest, det J < 0.2) the
+  // step falls back to the fixed point. Stops when a step moves less than the tolerance.
+  if (!has_deep_ || choppiness_ == 0.0) return {x_m, y_m};
+  SitePoint p{x_m + offset.x_m, y_m + offset.y_m};
+  for (int iteration = 0; iteration < kDisplacementIterations; ++iteration) {
+    HarbourWeight w;
+    if (has_harbour_) {
+      if (p.x_m > full_x0_ && p.x_m < full_x1_ && p.y_m > full_y0_ && p.y_m < full_y1_) return {x_m, y_m};
+      w = harbour_weight_and_gradient(*snapshot_.site, p.x_m, p.y_m);
+    }
+    const double fade = 1.0 - w.weight;
+    if (fade <= 0.0) return {x_m, y_m};
+    // D and its gradient, both keyframes blended in time.
+    double dx = 0.0, dy = 0.0, dxx = 0.0, dxy = 0.0, dyx = 0.0, dyy = 0.0;
+    for (const Cascade& c : cascades_) {
+      const Tap t = cascade_tap(p.x_m, p.y_m, c.inverse_tile_length, c.n);
+      const double scale = c.n * c.inverse_tile_length;  // d(texel) / dx
+      for (int which = 0; which < 2; ++which) {
+        const ocean::DeepWaterFrame& frame = which == 0 ? *c.from : *c.to;
+        const double weight = which == 0 ? 1.0 - deep_fraction_ : deep_fraction_;
+        for (int axis = 0; axis < 2; ++axis) {
+          const float* f = axis == 0 ? frame.displacement_x_m.data() : frame.displacement_y_m.data();
+          const double value = bilinear(f, t);
+          const double d_dx = ((1.0 - t.b) * (f[t.i10] - f[t.i00]) + t.b * (f[t.i11] - f[t.i01])) * scale;
+          const double d_dy = ((1.0 - t.a) * (f[t.i01] - f[t.i00]) + t.a * (f[t.i11] - f[t.i10])) * scale;
+          (axis == 0 ? dx : dy) += weight * value;
+          (axis == 0 ? dxx : dyx) += weight * d_dx;
+          (axis == 0 ? dxy : dyy) += weight * d_dy;
+        }
+      }
+    }
+    const double lambda = choppiness_;
+    const double fx = p.x_m + fade * lambda * dx - x_m, fy = p.y_m + fade * lambda * dy - y_m;
+    const double jxx = 1.0 + lambda * (fade * dxx - dx * w.d_dx_per_m), jxy = lambda * (fade * dxy - dx * w.d_dy_per_m);
+    const double jyx = lambda * (fade * dyx - dy * w.d_dx_per_m), jyy = 1.0 + lambda * (fade * dyy - dy * w.d_dy_per_m);
+    const double det = jxx * jyy - jxy * jyx;
+    double step_x = -fx, step_y = -fy;  // the fixed-point step
+    if (det > 0.2) {
+      step_x = -(jyy * fx - jxy * fy) / det;
+      step_y = -(-jyx * fx + jxx * fy) / det;
+    }
+    p.x_m += step_x;
+    p.y_m += step_y;
+    if (std::hypot(step_x, step_y) < kDisplacementTolerance_m) break;
+  }
+  return p;
+}
+
+SitePoint SurfaceSampler::lattice_point(double x_m, double y_m) const { return solve_lattice_point(x_m, y_m, {}); }
+
+double SurfaceSampler::harbour_elevation_m(double x_m, double y_m) const {
+  return has_harbour_ ? harbour_eta(x_m, y_m) : 0.0;
+}
+
+double SurfaceSampler::deep_elevation_m(double x_m, double y_m) const { return has_deep_ ? deep_eta(x_m, y_m) : 0.0; }
+
+double SurfaceSampler::elevation_m(double x_m, double y_m, ChoppyPoint point) const {
+  const SitePoint p = point == ChoppyPoint::kDisplaced ? solve_lattice_point(x_m, y_m, {}) : SitePoint{x_m, y_m};
+  return elevation_at_lattice(p);
+}
+
+double SurfaceSampler::elevation_at_lattice(SitePoint p) const {
+  const double w = weight(p.x_m, p.y_m);
+  double eta = 0.0;
+  if (w > 0.0) eta += w * harbour_eta(p.x_m, p.y_m);
+  if (w < 1.0 && has_deep_) eta += (1.0 - w) * deep_eta(p.x_m, p.y_m);
+  return eta;
+}
+
+void SurfaceSampler::elevations_m(std::span<const SitePoint> points, std::span<double> out, ChoppyPoint point) const {
+  if (out.size() < points.size())
+    throw Error("SurfaceSampler::elevations_m", fmt::format("{} points but room for {} results", points.size(), out.size()),
+                "give an output span at least as long as the points");
+  if (point == ChoppyPoint::kLattice) {
+    for (std::size_t i = 0; i < points.size(); ++i) out[i] = elevation_at_lattice(points[i]);
+    return;
+  }
+  // Neighbouring points of a batch (a hull's) have nearly the same displacement: start each
+  // Newton solve from the previous point's offset when it is within kWarmStartDistance_m.
+  SitePoint offset{}, previous{};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const SitePoint q = points[i];
+    const bool near = i > 0 && std::abs(q.x_m - previous.x_m) + std::abs(q.y_m - previous.y_m) < kWarmStartDistance_m;
+    const SitePoint p = solve_lattice_point(q.x_m, q.y_m, near ? offset : SitePoint{});
+    out[i] = elevation_at_lattice(p);
+    offset = {p.x_m - q.x_m, p.y_m - q.y_m};
+    previous = q;
+  }
+}
+
+SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) const {
+  const SitePoint p = point == ChoppyPoint::kDisplaced ? solve_lattice_point(x_m, y_m, {}) : SitePoint{x_m, y_m};
+  SurfaceState s;
+  HarbourWeight w;
+  if (has_harbour_) w = harbour_weight_and_gradient(*snapshot_.site, p.x_m, p.y_m);
+  s.harbour_weight = w.weight;
+  double harbour_eta_m = 0.0, deep_eta_m = 0.0;
+  double harbour_u = 0.0, harbour_v = 0.0, deep_u = 0.0, deep_v = 0.0;
+  Gradient harbour_slope, deep_slope;
+  if (w.weight > 0.0) {
+    const Tap t = harbour_tap(p.x_m, p.y_m, inverse_spacing_, columns_, rows_);
+    const double f = harbour_fraction_;
+    harbour_eta_m = (1.0 - f) * bilinear(eta_.from, t) + f * bilinear(eta_.to, t);
+    const Gradient a = bilinear_gradient(eta_.from, t, columns_, rows_, spacing_m_);
+    const Gradient b = bilinear_gradient(eta_.to, t, columns_, rows_, spacing_m_);
+    harbour_slope = {(1.0 - f) * a.x + f * b.x, (1.0 - f) * a.y + f * b.y};
+    // Formula 5: dry where the cell is land or the total depth is at most the dry depth.
+    const int column = std::clamp(static_cast<int>(std::floor(p.x_m * inverse_spacing_)), 0, columns_ - 1);
+    const int row = std::clamp(static_cast<int>(std::floor(p.y_m * inverse_spacing_)), 0, rows_ - 1);
+    const bool land = land_ && land_[static_cast<std::size_t>(row) * static_cast<std::size_t>(columns_) + column] != 0;
+    const double depth_m = depth_ ? bilinear(depth_, t) : 0.0;
+    const double total_depth_m = depth_m + harbour_eta_m;
+    s.dry = land || total_depth_m <= snapshot_.site->dry_depth_m;
+    if (!s.dry && flux_x_.from && flux_x_.to && flux_y_.from && flux_y_.to) {
+      harbour_u = ((1.0 - f) * bilinear(flux_x_.from, t) + f * bilinear(flux_x_.to, t)) / total_depth_m;
+      harbour_v = ((1.0 - f) * bilinear(flux_y_.from, t) + f * bilinear(flux_y_.to, t)) / total_depth_m;
+    }
+  }
+  if (w.weight < 1.0 && has_deep_) {
+    const double f = deep_fraction_;
+    double eta_a = 0.0, eta_b = 0.0, sx_a = 0.0, sx_b = 0.0, sy_a = 0.0, sy_b = 0.0;
+    double px_a = 0.0, px_b = 0.0, py_a = 0.0, py_b = 0.0;
+    for (const Cascade& c : cascades_) {
+      const Tap t = cascade_tap(p.x_m, p.y_m, c.inverse_tile_length, c.n);
+      eta_a += bilinear(c.from->surface_elevation_m.data(), t);
+      eta_b += bilinear(c.to->surface_elevation_m.data(), t);
+      sx_a += bilinear(c.from->slope_x.data(), t);
+      sx_b += bilinear(c.to->slope_x.data(), t);
+      sy_a += bilinear(c.from->slope_y.data(), t);
+      sy_b += bilinear(c.to->slope_y.data(), t);
+      if (has_deep_flux_) {
+        px_a += bilinear(c.from->flux_x_m2_s.data(), t);
+        px_b += bilinear(c.to->flux_x_m2_s.data(), t);
+        py_a += bilinear(c.from->flux_y_m2_s.data(), t);
+        py_b += bilinear(c.to->flux_y_m2_s.data(), t);
+      }
+    }
+    deep_eta_m = (1.0 - f) * eta_a + f * eta_b;
+    deep_slope = {(1.0 - f) * sx_a + f * sx_b, (1.0 - f) * sy_a + f * sy_b};
+    if (has_deep_flux_) {
+      const double total_depth_m = snapshot_.deep_from->still_water_depth_m + deep_eta_m;
+      if (total_depth_m > 0.0) {
+        deep_u = ((1.0 - f) * px_a + f * px_b) / total_depth_m;
+        deep_v = ((1.0 - f) * py_a + f * py_b) / total_depth_m;
+      }
+    }
+  }
+  const double ww = w.weight;
+  s.surface_elevation_m = ww * harbour_eta_m + (1.0 - ww) * deep_eta_m;
+  s.velocity_x_m_s = ww * harbour_u + (1.0 - ww) * deep_u;
+  s.velocity_y_m_s = ww * harbour_v + (1.0 - ww) * deep_v;
+  s.slope_x = ww * harbour_slope.x + (1.0 - ww) * deep_slope.x + (harbour_eta_m - deep_eta_m) * w.d_dx_per_m;
+  s.slope_y = ww * harbour_slope.y + (1.0 - ww) * deep_slope.y + (harbour_eta_m - deep_eta_m) * w.d_dy_per_m;
+  const double norm = std::sqrt(1.0 + s.slope_x * s.slope_x + s.slope_y * s.slope_y);
+  s.normal_x = -s.slope_x / norm;
+  s.normal_y = -s.slope_y / norm;
+  s.normal_z = 1.0 / norm;
+  if (ww <= 0.0) s.dry = false;
+  return s;
+}
+
+void SurfaceSampler::states(std::span<const SitePoint> points, std::span<SurfaceState> out, ChoppyPoint point) const {
+  if (out.size() < points.size())
+    throw Error("SurfaceSampler::states", fmt::format("{} points but room for {} results", points.size(), out.size()),
+                "give an output span at least as long as the points");
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = state(points[i].x_m, points[i].y_m, point);
+}
+
+}  // namespace nearshore::runtime
