@@ -57,6 +57,7 @@ int run(int argc, char** argv) {
     for (int frame = 0; !glfwWindowShouldClose(window) && (frame_limit == 0 || frame < frame_limit); ++frame) {
       const double time_s = frame_limit > 0 ? frame / 30.0 : glfwGetTime();
       sea.advance_to(time_s);
+      renderer.stage_upcoming(sea);  // the next keyframes go up within the upload budget
       int fb_width = 0, fb_height = 0;
       glfwGetFramebufferSize(window, &fb_width, &fb_height);
       renderer.render(sea.snapshot(), camera, lighting, fb_width, fb_height);

@@ -91,6 +91,7 @@ void bench_play(const Options& o) {
       std::this_thread::sleep_until(start + std::chrono::duration<double>(k * frame_s));
       const double cpu0 = thread_cpu_s();
       engine.advance_to(k * frame_s);
+      renderer.stage_upcoming(engine);
       const playback::GpuTextures& uploaded = renderer.upload(engine.snapshot());
       (void)uploaded;
       main_ms.push_back(1e3 * (thread_cpu_s() - cpu0));

@@ -227,6 +227,7 @@ std::string play(const PlayOptions& o) {
     }
     const auto main_start = std::chrono::steady_clock::now();
     engine->advance_to(display_time_s);
+    renderer.stage_upcoming(*engine);
     if (!headless) control.update(window.glfw_window(), dt_s, panel && panel->wants_input());
     renderer.render(engine->snapshot(), control.camera, lighting, window.framebuffer_width_px(),
                     window.framebuffer_height_px());

@@ -395,6 +395,7 @@ nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nea
     nearshore::playback::Lighting lighting;
     lighting.sun_azimuth_deg = camera->sun_azimuth_deg;
     lighting.sun_elevation_deg = camera->sun_elevation_deg;
+    renderer->renderer->stage_upcoming(*renderer->sea->engine);
     renderer->renderer->render(renderer->sea->engine->snapshot(), view, lighting, width_px, height_px);
     renderer->renderer->blit_to_window(width_px, height_px);
     renderer->last_width_px = width_px;

@@ -601,6 +601,11 @@ void WaterRenderer::render(const runtime::SurfaceSnapshot& snapshot, const Camer
   impl_->render(snapshot, camera, lighting, width_px, height_px, options);
 }
 
+void WaterRenderer::stage_upcoming(const runtime::StreamingEngine& engine) {
+  for (auto& keyframe : engine.upcoming_harbour_keyframes(2)) stage(std::move(keyframe));
+  for (auto& keyframe : engine.upcoming_deep_keyframes(1)) stage(std::move(keyframe));
+}
+
 const GpuTextures& WaterRenderer::upload(const runtime::SurfaceSnapshot& snapshot) {
   impl_->upload(snapshot);
   return impl_->textures;

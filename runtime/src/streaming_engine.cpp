@@ -415,7 +415,8 @@ StreamingEngine::StreamingEngine(const std::filesystem::path& folder, StreamingO
   } else {
     const double span_s = m.capacity_harbour * m.frame_interval_s;
     m.capacity_deep = std::clamp(static_cast<int>(std::ceil(span_s / m.deep_interval_s)) + 2, 4, 256);
-    while (m.capacity_deep > 3 && static_cast<std::size_t>(m.capacity_deep) * m.bytes_deep > o.max_ring_bytes)
+    while (m.capacity_deep > 3 &&
+           static_cast<std::size_t>(m.capacity_deep) * m.bytes_deep > std::min(o.max_ring_bytes, o.max_deep_ring_bytes))
       --m.capacity_deep;
   }
   m.counters.ring_capacity = m.capacity_harbour;
@@ -509,6 +510,34 @@ void StreamingEngine::advance_to(double display_time_s) {
     const std::lock_guard<std::mutex> lock(m.snapshot_mutex);
     std::swap(m.current, next);
   }
+}
+
+std::vector<std::shared_ptr<const HarbourKeyframe>> StreamingEngine::upcoming_harbour_keyframes(int count) const {
+  const Impl& m = *impl_;
+  std::vector<std::shared_ptr<const HarbourKeyframe>> upcoming;
+  const std::uint64_t shown_to = m.current.harbour_to ? m.current.harbour_to->serial : 0;  // this thread writes current
+  const std::lock_guard<std::mutex> lock(m.mutex);
+  bool past_shown = shown_to == 0;
+  for (const auto& entry : m.harbour_ring) {
+    if (static_cast<int>(upcoming.size()) >= count) break;
+    if (past_shown) upcoming.push_back(entry.keyframe);
+    if (entry.keyframe->serial == shown_to) past_shown = true;
+  }
+  return upcoming;
+}
+
+std::vector<std::shared_ptr<const DeepWaterKeyframe>> StreamingEngine::upcoming_deep_keyframes(int count) const {
+  const Impl& m = *impl_;
+  std::vector<std::shared_ptr<const DeepWaterKeyframe>> upcoming;
+  const std::uint64_t shown_to = m.current.deep_to ? m.current.deep_to->serial : 0;
+  const std::lock_guard<std::mutex> lock(m.mutex);
+  bool past_shown = shown_to == 0;
+  for (const auto& entry : m.deep_ring) {
+    if (static_cast<int>(upcoming.size()) >= count) break;
+    if (past_shown) upcoming.push_back(entry.keyframe);
+    if (entry.keyframe->serial == shown_to) past_shown = true;
+  }
+  return upcoming;
 }
 
 SurfaceSnapshot StreamingEngine::snapshot() const {

@@ -23,6 +23,7 @@
 #include "nearshore/playback/camera.hpp"
 #include "nearshore/playback/lighting.hpp"
 #include "nearshore/playback/surface_grids.hpp"
+#include "nearshore/runtime/streaming_engine.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
 
 namespace nearshore::playback {
@@ -97,6 +98,9 @@ class WaterRenderer {
   /// when it is already on the GPU or queued, or the queue is full (slots - 2 keyframes).
   bool stage(std::shared_ptr<const runtime::HarbourKeyframe> keyframe);
   bool stage(std::shared_ptr<const runtime::DeepWaterKeyframe> keyframe);
+  /// Stages what `engine` has decoded beyond the pair on screen (two harbour keyframes, one deep
+  /// one): call once per frame after its advance_to, on the render thread.
+  void stage_upcoming(const runtime::StreamingEngine& engine);
 
   /// Draws `snapshot` seen by `camera` (site frame) into the renderer's framebuffer. Throws
   /// nearshore::Error for a snapshot it cannot draw (keyframes of another size than the site's

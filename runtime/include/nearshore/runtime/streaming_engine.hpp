@@ -30,6 +30,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "nearshore/runtime/deep_water_source.hpp"
 #include "nearshore/runtime/playback_plan.hpp"
@@ -56,6 +57,9 @@ struct StreamingOptions {
   int deep_water_ring_capacity = 0;
   double ring_lookahead_s = 1.0;
   std::size_t max_ring_bytes = std::size_t{512} << 20;
+  /// The deep-water ring's own bound. Its keyframes come every 1/30 s: at 3 x 256^2 cascades
+  /// (7.5 MiB each) the harbour ring's span would hold 60 of them; 128 MiB keeps half a second.
+  std::size_t max_deep_ring_bytes = std::size_t{128} << 20;
   double deep_water_interval_s = 1.0 / 30.0;  ///< deep keyframes at display times j * interval
   sequence::Verify verify = sequence::Verify::kNo;  ///< check each frame's XXH64 as it is read
   DeepWaterChoice deep_water = DeepWaterChoice::kBakeElseBeaufort;
@@ -125,6 +129,11 @@ class StreamingEngine {
   bool wait_until_filled(std::chrono::milliseconds timeout);
 
   StreamingStats stats() const;
+  /// Up to `count` keyframes already decoded beyond the pair of the last advance_to, soonest
+  /// first: a renderer stages them for a budgeted upload before they are needed
+  /// (playback::WaterRenderer::stage). Never waits; the render thread.
+  std::vector<std::shared_ptr<const HarbourKeyframe>> upcoming_harbour_keyframes(int count) const;
+  std::vector<std::shared_ptr<const DeepWaterKeyframe>> upcoming_deep_keyframes(int count) const;
   /// "harbour ring 12 x 16.0 MiB = 192.0 MiB; deep-water ring 38 x 1.9 MiB = 72.0 MiB".
   std::string memory_summary() const;
 
