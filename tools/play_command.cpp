@@ -25,6 +25,7 @@
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/plot/plot.hpp"
+#include "nearshore/runtime/library_player.hpp"
 #include "nearshore/runtime/streaming_engine.hpp"
 #include "viewer_panel.hpp"
 
@@ -45,6 +46,11 @@ struct PlayOptions {
   double wind_from_deg = 225;
   double sun_azimuth_deg = 200, sun_elevation_deg = 35;
   bool panel = false, json = false, quiet = false;
+  // A sea-state library (a folder with library.json): the state to start with, and scripted
+  // switches "TIME:KEY=VALUE,..." crossfaded over crossfade_s.
+  std::string state;
+  std::vector<std::string> switches;
+  double crossfade_s = 5.0;
 };
 
 const char* const kPlanNames[] = {"auto", "period", "loop", "random", "order"};
@@ -169,12 +175,51 @@ nlohmann::json stats_json(const runtime::StreamingStats& s, const playback::Fram
           {"upload_bytes_last_frame", frame.upload_bytes}};
 }
 
+// What the viewer plays: one baked sequence, or a sea-state library with crossfades.
+struct PlayedSea {
+  std::unique_ptr<runtime::StreamingEngine> single;
+  std::unique_ptr<runtime::LibraryPlayer> library;
+
+  runtime::StreamingEngine& engine() { return library ? library->engine() : *single; }
+  void advance_to(double t) { library ? library->advance_to(t) : single->advance_to(t); }
+  runtime::SurfaceSnapshot snapshot() const { return library ? library->snapshot() : single->snapshot(); }
+};
+
+PlayedSea open_sea(const PlayOptions& o, const std::string& plan) {
+  PlayedSea sea;
+  if (fs::is_regular_file(o.sequence_folder / "library.json"))
+    sea.library = std::make_unique<runtime::LibraryPlayer>(o.sequence_folder, sequence::parse_sea_conditions(o.state, "--state " + o.state),
+                                                           streaming_options(o, plan));
+  else
+    sea.single = std::make_unique<runtime::StreamingEngine>(o.sequence_folder, streaming_options(o, plan));
+  return sea;
+}
+
+// "2.5:wind_direction_deg=30" -> (2.5 s, the conditions).
+std::pair<double, sequence::SeaConditions> parse_switch(const std::string& text) {
+  const auto colon = text.find(':');
+  double at_s = -1;
+  try {
+    at_s = colon == std::string::npos ? -1 : std::stod(text.substr(0, colon));
+  } catch (const std::exception&) {
+  }
+  if (!(at_s >= 0))
+    throw Error("--switch " + text, "is not TIME:KEY=VALUE,...", "give e.g. --switch 2:wind_direction_deg=30");
+  return {at_s, sequence::parse_sea_conditions(text.substr(colon + 1), "--switch " + text)};
+}
+
 std::string play(const PlayOptions& o) {
   const bool headless = !o.screenshot.empty() || o.frames > 0;
   std::string plan = o.plan;
-  auto engine = std::make_unique<runtime::StreamingEngine>(o.sequence_folder, streaming_options(o, plan));
-  const std::shared_ptr<const runtime::HarbourSite> site = engine->site();
-  SiteFrame frame{engine->manifest().geometry, std::nullopt};
+  PlayedSea sea = open_sea(o, plan);
+  std::vector<std::pair<double, sequence::SeaConditions>> switches;
+  for (const std::string& text : o.switches) switches.push_back(parse_switch(text));
+  if (!switches.empty() && !sea.library)
+    throw Error("--switch", "switches between the states of a sea-state library, and " + o.sequence_folder.string() +
+                                " is one sequence (no library.json)", "give the output folder of `nearshore library`");
+  std::size_t next_switch = 0;
+  const std::shared_ptr<const runtime::HarbourSite> site = sea.engine().site();
+  SiteFrame frame{sea.engine().manifest().geometry, std::nullopt};
   if (frame.geometry.projection.is_object() && !frame.geometry.projection.empty())
     frame.projection = MapProjection::from_json(frame.geometry.projection, (o.sequence_folder / "manifest.json").string());
   CameraControl control{initial_camera(o, *site, frame)};  // before a window opens: it may refuse a position
@@ -197,14 +242,16 @@ std::string play(const PlayOptions& o) {
   model.time_scale = o.time_scale;
   model.beaufort_force = o.beaufort_force;
   model.wind_from_deg = o.wind_from_deg;
-  model.deep_water_from_bake = engine->deep_water_is_bakes();
+  model.deep_water_from_bake = sea.engine().deep_water_is_bakes();
   model.gl_description = window.gl_description();
   const LonLat looked_at = frame.lat_lon_of(control.camera.target_m[0], control.camera.target_m[1]);
   model.jump_lat_lon_deg = {looked_at.latitude_deg, looked_at.longitude_deg};
   if (!o.quiet) {
-    std::fprintf(stderr, "OpenGL %s\nplaying %s; %s\n", window.gl_description().c_str(), engine->stats().plan.c_str(),
-                 engine->memory_summary().c_str());
-    if (!engine->stats().last_message.empty()) std::fprintf(stderr, "note: %s\n", engine->stats().last_message.c_str());
+    std::fprintf(stderr, "OpenGL %s\nplaying %s%s; %s\n", window.gl_description().c_str(),
+                 sea.library ? ("sea state " + sea.library->state_id() + ": ").c_str() : "",
+                 sea.engine().stats().plan.c_str(), sea.engine().memory_summary().c_str());
+    if (!sea.engine().stats().last_message.empty())
+      std::fprintf(stderr, "note: %s\n", sea.engine().stats().last_message.c_str());
   }
 
   const auto start = std::chrono::steady_clock::now();
@@ -221,20 +268,25 @@ std::string play(const PlayOptions& o) {
       break;
     if (headless) {
       display_time_s = o.time_s + frames_drawn / 30.0;
-      engine->wait_until_ready(display_time_s, std::chrono::seconds(30));  // exact pictures, not real time
+      sea.engine().wait_until_ready(display_time_s, std::chrono::seconds(30));  // exact pictures, not real time
     } else if (!model.paused) {
       display_time_s += dt_s * model.time_scale;
     }
     const auto main_start = std::chrono::steady_clock::now();
-    engine->advance_to(display_time_s);
-    renderer.stage_upcoming(*engine);
+    while (next_switch < switches.size() && display_time_s >= switches[next_switch].first) {
+      const std::string& id = sea.library->request(switches[next_switch++].second, o.crossfade_s);
+      if (!o.quiet) std::fprintf(stderr, "t = %.2f s: crossfading to sea state %s over %.1f s\n", display_time_s, id.c_str(), o.crossfade_s);
+      if (headless) sea.engine().wait_until_ready(display_time_s, std::chrono::seconds(30));
+    }
+    sea.advance_to(display_time_s);
+    renderer.stage_upcoming(sea.engine());
     if (!headless) control.update(window.glfw_window(), dt_s, panel && panel->wants_input());
-    renderer.render(engine->snapshot(), control.camera, lighting, window.framebuffer_width_px(),
+    renderer.render(sea.snapshot(), control.camera, lighting, window.framebuffer_width_px(),
                     window.framebuffer_height_px());
     renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
     const double main_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - main_start).count();
     if (panel) {
-      const runtime::StreamingStats s = engine->stats();
+      const runtime::StreamingStats s = sea.engine().stats();
       model.frames_per_s = dt_s > 0 ? 1.0 / dt_s : 0.0;
       model.frame_time_ms = 1e3 * dt_s;
       model.main_thread_ms = main_ms;
@@ -246,7 +298,9 @@ std::string play(const PlayOptions& o) {
       model.decode_real_time_multiple = s.decode_real_time_multiple();
       model.plan_step = s.plan_step;
       model.crossfading = s.in_crossfade;
-      model.plan_name = s.plan;
+      model.plan_name = sea.library ? fmt::format("sea state {} (crossfade {:.0f} %): {}", sea.library->state_id(),
+                                                  100.0 * sea.library->crossfade_weight(), s.plan)
+                                    : s.plan;
       model.message = s.last_message;
       const LonLat place = frame.lat_lon_of(control.camera.eye_m[0], control.camera.eye_m[1]);
       model.camera_latitude_deg = place.latitude_deg, model.camera_longitude_deg = place.longitude_deg;
@@ -256,14 +310,14 @@ std::string play(const PlayOptions& o) {
         if (model.grid != before.grid) renderer.settings().grid = static_cast<playback::GridKind>(model.grid);
         if (model.plan != before.plan) {  // a new plan restarts the stream on it, at the same time
           plan = kPlanNames[model.plan];
-          engine = std::make_unique<runtime::StreamingEngine>(o.sequence_folder, streaming_options(o, plan));
+          sea = open_sea(o, plan);
         }
         if (!model.deep_water_from_bake &&
             (model.beaufort_force != before.beaufort_force || model.wind_from_deg != before.wind_from_deg)) {
-          runtime::BeaufortSea sea;
-          sea.force = model.beaufort_force;
-          sea.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
-          engine->set_beaufort(sea);
+          runtime::BeaufortSea beaufort;
+          beaufort.force = model.beaufort_force;
+          beaufort.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
+          sea.engine().set_beaufort(beaufort);
         }
         if (model.jump_requested) {
           model.jump_requested = false;
@@ -278,7 +332,7 @@ std::string play(const PlayOptions& o) {
     if (headless && frames_drawn >= std::max(o.frames, 1)) break;  // keep the last picture in the back buffer
     window.present();
   }
-  const runtime::StreamingStats s = engine->stats();
+  const runtime::StreamingStats s = sea.engine().stats();
   const std::string summary = fmt::format("{} ({} x {}, t = {:.2f} s, {} grid, {}; {})", o.screenshot.string(), width,
                                           height, display_time_s, o.grid, s.plan, window.gl_description());
   if (!o.screenshot.empty()) {
@@ -316,7 +370,8 @@ std::string write_playback_screenshot(const fs::path& sequence_folder, const fs:
 void add_play_command(CLI::App& app) {
   auto o = std::make_shared<PlayOptions>();
   CLI::App* cmd = app.add_subcommand("play", "Play a baked sequence inside the endless sea (window, or headless screenshot)");
-  cmd->add_option("sequence", o->sequence_folder, "Baked sequence folder (from `nearshore bake`)")->required();
+  cmd->add_option("sequence", o->sequence_folder, "Baked sequence folder (`nearshore bake`), or a sea-state library (`nearshore library`)")
+      ->required();
   cmd->add_option("--grid", o->grid, "Surface grid: radial, quadtree or projected (Earth curvature, for high views)")
       ->capture_default_str()
       ->check(CLI::IsMember({"radial", "quadtree", "projected"}));
@@ -363,6 +418,13 @@ void add_play_command(CLI::App& app) {
   cmd->add_option("--seconds", o->seconds, "Window: close after this many seconds (0: when closed)")
       ->check(number_in(at_least(0), at_most(1e9)));
   cmd->add_flag("--json", o->json, "Print the streaming statistics as JSON when done");
+  cmd->add_option("--state", o->state, "Sea-state library (a folder with library.json): the conditions to start with, "
+                                       "KEY=VALUE,... (e.g. wind_direction_deg=0,tide_m=0.5); default: the first state");
+  cmd->add_option("--switch", o->switches, "Sea-state library: at display time T, crossfade to the state nearest the "
+                                           "conditions, T:KEY=VALUE,... (repeatable)");
+  cmd->add_option("--crossfade", o->crossfade_s, "Sea-state library: length of a switch's crossfade, seconds of display time")
+      ->capture_default_str()
+      ->check(number_in(at_least(0), at_most(3600)));
   set_example(*cmd, "xvfb-run -a nearshore play demo-out/bake --frames 30 --screenshot shot.png --grid radial");
   // The sequence reader names the bake's options when a sequence is unfinished; the engine names
   // its own parameters.

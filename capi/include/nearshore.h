@@ -84,6 +84,18 @@ NEARSHORE_API void nearshore_sea_options_init(nearshore_sea_options* options);
  * options may be NULL (defaults). Any thread; the sea is then used as stated per call. */
 NEARSHORE_API nearshore_status nearshore_sea_open(const char* sequence_folder, const nearshore_sea_options* options,
                                                   nearshore_sea** sea);
+/* Opens a sea-state library (a `nearshore library` output folder, with library.json) and streams
+ * its baked state nearest `conditions`: "KEY=VALUE,..." with the quantities the library sweeps,
+ * e.g. "wind_direction_deg=30,tide_m=1.5" ("" or NULL: the first state). Any thread. */
+NEARSHORE_API nearshore_status nearshore_sea_open_library(const char* library_folder, const char* conditions,
+                                                          const nearshore_sea_options* options, nearshore_sea** sea);
+/* A sea opened from a library: crossfades to the baked state nearest `conditions` over
+ * `crossfade_s` seconds of display time from the next advance (0: a cut), e.g. the tide rising or
+ * the wind veering during an exercise. `state_id` (may be NULL) receives the chosen state's id.
+ * Render thread. */
+NEARSHORE_API nearshore_status nearshore_sea_request_conditions(nearshore_sea* sea, const char* conditions,
+                                                                double crossfade_s, char state_id[64]);
+
 /* Stops the decoder and frees everything. NULL is allowed. Render thread, after the last call on
  * any thread has returned. */
 NEARSHORE_API void nearshore_sea_close(nearshore_sea* sea);

@@ -20,12 +20,18 @@
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/playback/gl_loader.hpp"
 #include "nearshore/playback/water_renderer.hpp"
+#include "nearshore/runtime/library_player.hpp"
 #include "nearshore/runtime/streaming_engine.hpp"
 #include "nearshore/runtime/surface_sampler.hpp"
 
 struct nearshore_sea {
-  std::unique_ptr<nearshore::runtime::StreamingEngine> engine;
+  std::unique_ptr<nearshore::runtime::StreamingEngine> single;   // one baked sequence
+  std::unique_ptr<nearshore::runtime::LibraryPlayer> library;    // or a sea-state library
   std::optional<nearshore::MapProjection> projection;  // none for a laboratory grid
+
+  nearshore::runtime::StreamingEngine& engine() const { return library ? library->engine() : *single; }
+  nearshore::runtime::SurfaceSnapshot snapshot() const { return library ? library->snapshot() : single->snapshot(); }
+  void advance_to(double t) { library ? library->advance_to(t) : single->advance_to(t); }
 };
 
 struct nearshore_renderer {
@@ -169,45 +175,110 @@ void nearshore_sea_options_init(nearshore_sea_options* options) {
   options->wind_direction_deg = 225.0;  // a south-westerly, the prevailing wind of the mid-latitudes
 }
 
+}  // extern "C"
+
+namespace {
+
+nearshore::runtime::StreamingOptions streaming_options_of(const nearshore_sea_options* options) {
+  nearshore_sea_options chosen;
+  nearshore_sea_options_init(&chosen);
+  if (options) {
+    if (options->struct_size < sizeof(uint32_t) || options->struct_size > sizeof(nearshore_sea_options))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.struct_size = " + std::to_string(options->struct_size) +
+                                           "; call nearshore_sea_options_init first");
+    std::memcpy(&chosen, options, options->struct_size);
+  }
+  nearshore::runtime::StreamingOptions streaming;
+  streaming.plan = plan_kind(chosen.plan);
+  if (chosen.seed != 0) streaming.seed = chosen.seed;
+  if (chosen.ring_keyframes < 0 || chosen.ring_keyframes > 1024)
+    fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.ring_keyframes = " + std::to_string(chosen.ring_keyframes) +
+                                         " is outside 0-1024; 0 chooses it");
+  streaming.ring_capacity = chosen.ring_keyframes;
+  if (chosen.deep_water_interval_s != 0.0) {
+    if (!(chosen.deep_water_interval_s > 0.0 && chosen.deep_water_interval_s <= 1.0))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.deep_water_interval_s must be in (0, 1] s (0: 1/30 s)");
+    streaming.deep_water_interval_s = chosen.deep_water_interval_s;
+  }
+  if (chosen.beaufort_force >= 0) streaming.beaufort = beaufort_sea(chosen.beaufort_force, chosen.wind_direction_deg);
+  streaming.verify = chosen.verify_checksums ? nearshore::sequence::Verify::kYes : nearshore::sequence::Verify::kNo;
+  return streaming;
+}
+
+// The folder a sea opens, checked before anything is read: a missing one is an I/O error.
+fs::path existing_folder(const char* folder_text, const char* parameter, const char* needed_file, const char* made_by) {
+  const fs::path folder = require(folder_text, parameter);
+  if (!fs::is_directory(folder))
+    fail(NEARSHORE_IO_ERROR, folder.string() + ": no such folder; give the output folder of " + made_by);
+  if (!fs::is_regular_file(folder / needed_file))
+    fail(NEARSHORE_IO_ERROR, (folder / needed_file).string() + ": missing (an unfinished run of " + made_by +
+                                 "?); finish or resume it first");
+  return folder;
+}
+
+void set_projection(nearshore_sea& sea, const fs::path& folder) {
+  const nlohmann::json& projection = sea.engine().manifest().geometry.projection;
+  if (projection.is_object() && !projection.empty())
+    sea.projection = nearshore::MapProjection::from_json(projection, (folder / "manifest.json").string());
+}
+
+}  // namespace
+
+extern "C" {
+
 nearshore_status nearshore_sea_open(const char* sequence_folder, const nearshore_sea_options* options,
                                     nearshore_sea** sea) {
   return guarded(NEARSHORE_FORMAT_ERROR, [&] {
     require(sea, "sea");
     *sea = nullptr;
-    const fs::path folder = require(sequence_folder, "sequence_folder");
-    if (!fs::is_directory(folder))
-      fail(NEARSHORE_IO_ERROR, folder.string() + ": no such folder; give the output folder of `nearshore bake`");
-    if (!fs::is_regular_file(folder / "manifest.json"))
-      fail(NEARSHORE_IO_ERROR, (folder / "manifest.json").string() +
-                                   ": missing (an unfinished bake?); finish or resume the bake first");
-    nearshore_sea_options chosen;
-    nearshore_sea_options_init(&chosen);
-    if (options) {
-      if (options->struct_size < sizeof(uint32_t) || options->struct_size > sizeof(nearshore_sea_options))
-        fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.struct_size = " + std::to_string(options->struct_size) +
-                                             "; call nearshore_sea_options_init first");
-      std::memcpy(&chosen, options, options->struct_size);
-    }
-    nearshore::runtime::StreamingOptions streaming;
-    streaming.plan = plan_kind(chosen.plan);
-    if (chosen.seed != 0) streaming.seed = chosen.seed;
-    if (chosen.ring_keyframes < 0 || chosen.ring_keyframes > 1024)
-      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.ring_keyframes = " + std::to_string(chosen.ring_keyframes) +
-                                           " is outside 0-1024; 0 chooses it");
-    streaming.ring_capacity = chosen.ring_keyframes;
-    if (chosen.deep_water_interval_s != 0.0) {
-      if (!(chosen.deep_water_interval_s > 0.0 && chosen.deep_water_interval_s <= 1.0))
-        fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.deep_water_interval_s must be in (0, 1] s (0: 1/30 s)");
-      streaming.deep_water_interval_s = chosen.deep_water_interval_s;
-    }
-    if (chosen.beaufort_force >= 0) streaming.beaufort = beaufort_sea(chosen.beaufort_force, chosen.wind_direction_deg);
-    streaming.verify = chosen.verify_checksums ? nearshore::sequence::Verify::kYes : nearshore::sequence::Verify::kNo;
+    const fs::path folder = existing_folder(sequence_folder, "sequence_folder", "manifest.json", "`nearshore bake`");
     auto opened = std::make_unique<nearshore_sea>();
-    opened->engine = std::make_unique<nearshore::runtime::StreamingEngine>(folder, std::move(streaming));
-    const nlohmann::json& projection = opened->engine->manifest().geometry.projection;
-    if (projection.is_object() && !projection.empty())
-      opened->projection = nearshore::MapProjection::from_json(projection, (folder / "manifest.json").string());
+    opened->single = std::make_unique<nearshore::runtime::StreamingEngine>(folder, streaming_options_of(options));
+    set_projection(*opened, folder);
     *sea = opened.release();
+  });
+}
+
+nearshore_status nearshore_sea_open_library(const char* library_folder, const char* conditions,
+                                            const nearshore_sea_options* options, nearshore_sea** sea) {
+  return guarded(NEARSHORE_FORMAT_ERROR, [&] {
+    require(sea, "sea");
+    *sea = nullptr;
+    const fs::path folder = existing_folder(library_folder, "library_folder", "library.json", "`nearshore library`");
+    nearshore::sequence::SeaConditions requested;
+    try {
+      requested = nearshore::sequence::parse_sea_conditions(conditions ? conditions : "", "conditions");
+    } catch (const Error& error) {
+      fail(NEARSHORE_INVALID_ARGUMENT, error.what());
+    }
+    auto opened = std::make_unique<nearshore_sea>();
+    opened->library = std::make_unique<nearshore::runtime::LibraryPlayer>(folder, requested, streaming_options_of(options));
+    set_projection(*opened, folder);
+    *sea = opened.release();
+  });
+}
+
+nearshore_status nearshore_sea_request_conditions(nearshore_sea* sea, const char* conditions, double crossfade_s,
+                                                  char state_id[64]) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(sea, "sea");
+    if (!sea->library)
+      fail(NEARSHORE_INVALID_ARGUMENT, "this sea is one sequence, not a sea-state library; open it with "
+                                       "nearshore_sea_open_library");
+    nearshore::sequence::SeaConditions requested;
+    try {
+      requested = nearshore::sequence::parse_sea_conditions(conditions ? conditions : "", "conditions");
+    } catch (const Error& error) {
+      fail(NEARSHORE_INVALID_ARGUMENT, error.what());
+    }
+    if (!(crossfade_s >= 0.0 && crossfade_s <= 3600.0))
+      fail(NEARSHORE_INVALID_ARGUMENT, "crossfade_s = " + std::to_string(crossfade_s) + " is outside 0-3600 s");
+    const std::string& id = sea->library->request(requested, crossfade_s);
+    if (state_id) {
+      const std::size_t length = std::min<std::size_t>(id.size(), 63);
+      std::memcpy(state_id, id.data(), length);
+      state_id[length] = '\0';
+    }
   });
 }
 
@@ -218,14 +289,14 @@ nearshore_status nearshore_sea_advance(nearshore_sea* sea, double time_s) {
     require(sea, "sea");
     if (!std::isfinite(time_s) || time_s < 0)
       fail(NEARSHORE_INVALID_ARGUMENT, "time_s = " + std::to_string(time_s) + " is not a display time >= 0 s");
-    sea->engine->advance_to(time_s);
+    sea->advance_to(time_s);
   });
 }
 
 nearshore_status nearshore_sea_set_wind(nearshore_sea* sea, int beaufort_force, double wind_direction_deg) {
   return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
     require(sea, "sea");
-    sea->engine->set_beaufort(beaufort_sea(beaufort_force, wind_direction_deg));
+    sea->engine().set_beaufort(beaufort_sea(beaufort_force, wind_direction_deg));
   });
 }
 
@@ -235,7 +306,7 @@ nearshore_status nearshore_site_info_get(const nearshore_sea* sea, nearshore_sit
     require(info, "info");
     if (info->struct_size != sizeof(nearshore_site_info))
       fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_site_info.struct_size must be sizeof(nearshore_site_info)");
-    const nearshore::GridGeometry& geometry = sea->engine->manifest().geometry;
+    const nearshore::GridGeometry& geometry = sea->engine().manifest().geometry;
     info->columns = geometry.columns;
     info->rows = geometry.rows;
     info->cell_size_m = geometry.spacing_m;
@@ -249,8 +320,8 @@ nearshore_status nearshore_site_info_get(const nearshore_sea* sea, nearshore_sit
       info->origin_latitude_deg = corner.latitude_deg;
       info->origin_longitude_deg = corner.longitude_deg;
     }
-    info->frame_interval_s = sea->engine->frame_interval_s();
-    info->frame_count = sea->engine->manifest().frame_count;
+    info->frame_interval_s = sea->engine().frame_interval_s();
+    info->frame_count = sea->engine().manifest().frame_count;
   });
 }
 
@@ -267,7 +338,7 @@ nearshore_status nearshore_site_from_lat_lon(const nearshore_sea* sea, double la
       fail(NEARSHORE_INVALID_ARGUMENT, "latitude " + std::to_string(latitude_deg) + ", longitude " +
                                            std::to_string(longitude_deg) + " is not a place; give degrees (WGS 84)");
     const nearshore::ProjectedPoint point = sea->projection->forward({longitude_deg, latitude_deg});
-    const nearshore::GridGeometry& geometry = sea->engine->manifest().geometry;
+    const nearshore::GridGeometry& geometry = sea->engine().manifest().geometry;
     *x_m = point.x_m - geometry.origin_x_m;
     *y_m = point.y_m - geometry.origin_y_m;
   });
@@ -279,8 +350,8 @@ nearshore_status nearshore_sea_stats(const nearshore_sea* sea, nearshore_stats* 
     require(stats, "stats");
     if (stats->struct_size != sizeof(nearshore_stats))
       fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_stats.struct_size must be sizeof(nearshore_stats)");
-    const nearshore::runtime::StreamingStats s = sea->engine->stats();
-    stats->display_time_s = sea->engine->snapshot().display_time_s;
+    const nearshore::runtime::StreamingStats s = sea->engine().stats();
+    stats->display_time_s = sea->snapshot().display_time_s;
     stats->ring_filled = s.ring_fill;
     stats->ring_capacity = s.ring_capacity;
     stats->underruns = static_cast<uint64_t>(s.underruns);
@@ -301,7 +372,7 @@ nearshore_status nearshore_sea_query(const nearshore_sea* sea, const double* xy_
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     require(sea, "sea");
     if (count == 0) return;
-    query(sea->engine->snapshot(), require(xy_m, "xy_m"), count, require(samples, "samples"));
+    query(sea->snapshot(), require(xy_m, "xy_m"), count, require(samples, "samples"));
   });
 }
 
@@ -312,7 +383,7 @@ nearshore_status nearshore_sea_query_at(const nearshore_sea* sea, double time_s,
     if (!std::isfinite(time_s) || time_s < 0)
       fail(NEARSHORE_INVALID_ARGUMENT, "time_s = " + std::to_string(time_s) + " is not a display time >= 0 s");
     if (count == 0) return;
-    query(sea->engine->snapshot_at(time_s), require(xy_m, "xy_m"), count, require(samples, "samples"));
+    query(sea->engine().snapshot_at(time_s), require(xy_m, "xy_m"), count, require(samples, "samples"));
   });
 }
 
@@ -320,8 +391,8 @@ nearshore_status nearshore_sea_copy_harbour_elevation(const nearshore_sea* sea, 
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     require(sea, "sea");
     require(elevation_m, "elevation_m");
-    const nearshore::runtime::SurfaceSnapshot snapshot = sea->engine->snapshot();
-    const nearshore::GridGeometry& geometry = sea->engine->manifest().geometry;
+    const nearshore::runtime::SurfaceSnapshot snapshot = sea->snapshot();
+    const nearshore::GridGeometry& geometry = sea->engine().manifest().geometry;
     if (capacity < geometry.cell_count())
       fail(NEARSHORE_INVALID_ARGUMENT, "capacity = " + std::to_string(capacity) + " floats; the harbour has " +
                                            std::to_string(geometry.cell_count()) + " cells (columns x rows)");
@@ -395,8 +466,8 @@ nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nea
     nearshore::playback::Lighting lighting;
     lighting.sun_azimuth_deg = camera->sun_azimuth_deg;
     lighting.sun_elevation_deg = camera->sun_elevation_deg;
-    renderer->renderer->stage_upcoming(*renderer->sea->engine);
-    renderer->renderer->render(renderer->sea->engine->snapshot(), view, lighting, width_px, height_px);
+    renderer->renderer->stage_upcoming(renderer->sea->engine());
+    renderer->renderer->render(renderer->sea->snapshot(), view, lighting, width_px, height_px);
     renderer->renderer->blit_to_window(width_px, height_px);
     renderer->last_width_px = width_px;
     renderer->last_height_px = height_px;
@@ -429,7 +500,7 @@ nearshore_status nearshore_renderer_upload(nearshore_renderer* renderer, nearsho
     require(textures, "textures");
     if (textures->struct_size != sizeof(nearshore_gl_textures))
       fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_gl_textures.struct_size must be sizeof(nearshore_gl_textures)");
-    const nearshore::playback::GpuTextures& gpu = renderer->renderer->upload(renderer->sea->engine->snapshot());
+    const nearshore::playback::GpuTextures& gpu = renderer->renderer->upload(renderer->sea->snapshot());
     if (gpu.cascade_count > 8)
       fail(NEARSHORE_INTERNAL_ERROR, "the deep water has " + std::to_string(gpu.cascade_count) + " cascades; the C API carries 8");
     for (int k = 0; k < 2; ++k) {

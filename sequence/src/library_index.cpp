@@ -554,4 +554,37 @@ LibrarySelection select_library_states(const LibraryIndex& index, const SeaCondi
   return selection;
 }
 
+SeaConditions parse_sea_conditions(std::string_view text, const std::string& subject) {
+  SeaConditions conditions;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::string item(text.substr(start, end - start));
+    start = end + 1;
+    if (item.empty()) continue;
+    const std::size_t equals = item.find('=');
+    const std::optional<SeaQuantity> quantity =
+        equals == std::string::npos ? std::nullopt : sea_quantity_from_name(item.substr(0, equals));
+    if (!quantity)
+      throw Error(subject, "'" + item + "' is not KEY=VALUE with a quantity a library sweeps",
+                  "use direction_deg, height_m, period_s, spectrum, tide_m, wind_speed_m_s or wind_direction_deg");
+    const std::string value = item.substr(equals + 1);
+    if (*quantity == SeaQuantity::kSpectrum) {
+      conditions.spectrum = value;
+      continue;
+    }
+    std::size_t used = 0;
+    double number = std::numeric_limits<double>::quiet_NaN();
+    try {
+      number = std::stod(value, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != value.size() || !std::isfinite(number))
+      throw Error(subject, "'" + value + "' in '" + item + "' is not a finite number", "give KEY=NUMBER, e.g. tide_m=1.5");
+    conditions.set_number(*quantity, number);
+  }
+  return conditions;
+}
+
 }  // namespace nearshore::sequence

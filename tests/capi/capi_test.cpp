@@ -18,6 +18,7 @@
 
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/sequence/sequence_writer.hpp"
+#include "../runtime/runtime_test_support.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -198,6 +199,51 @@ TEST(CApi, QueriesFromOtherThreadsWhileTheRenderThreadAdvances) {
   EXPECT_GT(answered.load(), 0);
   EXPECT_EQ(failed.load(), 0);
   nearshore_sea_close(sea);
+}
+
+// A sea-state library through the C API: opened at the state nearest the conditions, switched
+// with a crossfade whose midpoint shows both states' waves, bad conditions named.
+TEST(CApi, ALibrarySwitchesSeaStateWithACrossfade) {
+  const fs::path folder = fs::current_path() / "capi_library";
+  fs::remove_all(folder);
+  nearshore::runtime::testing::write_two_state_library(folder);
+  nearshore_sea_options options;
+  nearshore_sea_options_init(&options);
+  options.plan = NEARSHORE_PLAN_FRAME_ORDER;
+  options.beaufort_force = 0;
+  nearshore_sea* sea = nullptr;
+  EXPECT_EQ(nearshore_sea_open_library(folder.c_str(), "speed=3", &options, &sea), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("speed=3"), std::string::npos) << nearshore_last_error();
+  ASSERT_EQ(nearshore_sea_open_library(folder.c_str(), "direction_deg=10", &options, &sea), NEARSHORE_OK)
+      << nearshore_last_error();
+  char state[64] = "";
+  ASSERT_EQ(nearshore_sea_request_conditions(sea, "direction_deg=85", 2.0, state), NEARSHORE_OK) << nearshore_last_error();
+  EXPECT_STREQ(state, "dir90");
+  // Fade from t = 1 s over 2 s: at 2 s the smoothstep weight is 1/2.
+  const double point[2] = {57.5, 47.5};
+  nearshore_surface_sample sample;
+  for (double t : {1.0, 2.0}) {
+    for (int tries = 0; tries < 2000; ++tries) {  // let the decoders reach t (start-up), then advance
+      ASSERT_EQ(nearshore_sea_advance(sea, t), NEARSHORE_OK);
+      nearshore_stats stats;
+      stats.struct_size = sizeof stats;
+      ASSERT_EQ(nearshore_sea_stats(sea, &stats), NEARSHORE_OK);
+      ASSERT_EQ(nearshore_sea_query(sea, point, 1, &sample), NEARSHORE_OK);
+      const double expected = t == 1.0 ? nearshore::runtime::testing::wave_elevation_m(
+                                             nearshore::runtime::testing::kLibraryFromWest, point[0], point[1], t)
+                                       : 0.5 * nearshore::runtime::testing::wave_elevation_m(
+                                                   nearshore::runtime::testing::kLibraryFromWest, point[0], point[1], t) +
+                                             0.5 * nearshore::runtime::testing::wave_elevation_m(
+                                                       nearshore::runtime::testing::kLibraryFromSouth, point[0], point[1], t);
+      if (std::abs(sample.elevation_m - expected) < 2e-3) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      if (tries == 1999) ADD_FAILURE() << "t = " << t << ": " << sample.elevation_m << " != " << expected;
+    }
+  }
+  nearshore_sea_close(sea);
+  nearshore_sea* single = open_calm(write_sequence("not_a_library"));
+  EXPECT_EQ(nearshore_sea_request_conditions(single, "direction_deg=0", 1.0, nullptr), NEARSHORE_INVALID_ARGUMENT);
+  nearshore_sea_close(single);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // sequence writer, loops.json tables written with the real loops writer, and scratch folders.
 #include <cmath>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "nearshore/sequence/loops_file.hpp"
 #include "nearshore/sequence/sequence_format.hpp"
 #include "nearshore/sequence/sequence_writer.hpp"
+#include "nearshore/sequence/library_index.hpp"
 
 namespace nearshore::runtime::testing {
 
@@ -131,6 +133,36 @@ inline sequence::LoopsFile walk_tables_for(const fs::path& folder, const std::ve
   tables.random_walk = {.start_frame = start_frame, .seed = seed};
   tables.report.graph.first_playable_frame = start_frame;
   return tables;
+}
+
+
+/// A sea-state library of two "baked" states written as a library run would leave them: states/dir0
+/// (a 0.4 m, 5 s wave travelling east) and states/dir90 (a 0.7 m, 6 s wave travelling north), 16
+/// frames 0.5 s apart over 24 x 20 cells of 5 m, and library.json indexing them on a direction axis.
+inline const std::vector<PlaneWave> kLibraryFromWest = {{0.4, 2 * 3.141592653589793 / 30.0, 0.0, 2 * 3.141592653589793 / 5.0, 0.0}};
+inline const std::vector<PlaneWave> kLibraryFromSouth = {{0.7, 0.0, 2 * 3.141592653589793 / 40.0, 2 * 3.141592653589793 / 6.0, 1.0}};
+inline void write_two_state_library(const fs::path& folder) {
+  const GridGeometry geometry = wave_geometry(24, 20, 5.0);
+  write_wave_sequence(folder / "states" / "dir0", geometry, kLibraryFromWest, 16, 0.5);
+  write_wave_sequence(folder / "states" / "dir90", geometry, kLibraryFromSouth, 16, 0.5);
+  sequence::LibraryIndex index;
+  index.title = "two directions";
+  index.library_file = "test.toml";
+  index.base_case = "test-case.toml";
+  index.axes.push_back({sequence::SeaQuantity::kDirection, {0.0, 90.0}, {}});
+  for (auto [id, direction] : {std::pair{"dir0", 0.0}, std::pair{"dir90", 90.0}}) {
+    sequence::LibraryIndex::State state;
+    state.id = id;
+    state.conditions.direction_deg = direction;
+    state.status = sequence::LibraryStateStatus::kBaked;
+    state.sequence = std::string("states/") + id;
+    state.case_file = std::string("cases/") + id + ".json";
+    const std::string manifest = sequence::read_file_bytes(folder / state.sequence / "manifest.json");
+    state.manifest_checksum = sequence::checksum_text(std::as_bytes(std::span(manifest.data(), manifest.size())));
+    state.loops_checksum = "xxh64:0000000000000000";
+    index.states.push_back(state);
+  }
+  sequence::write_library_index(folder, index);
 }
 
 }  // namespace nearshore::runtime::testing

@@ -148,6 +148,12 @@ struct LibrarySelection {
   std::vector<LibraryStateWeight> blend;
 };
 
+/// Conditions written as text, "KEY=VALUE,KEY=VALUE" with the quantities' names (e.g.
+/// "wind_direction_deg=30,tide_m=1.5", "spectrum=jonswap"): how a viewer's command line and a
+/// host through the C API ask for a sea state. "" is no condition at all. Throws nearshore::Error
+/// naming `subject` and the item for an unknown quantity or a value that is not a finite number.
+SeaConditions parse_sea_conditions(std::string_view text, const std::string& subject);
+
 /// Chooses among the index's baked states for `requested` conditions. The blend rule (multilinear
 /// interpolation on the sweep's grid, docs/library.md "Choosing a state"):
 ///  1. every numeric axis brackets the requested value between its two neighbouring values a <= x

@@ -1,0 +1,62 @@
+#pragma once
+// Playing a harbour's sea-state library (`nearshore library`, sequence/library_index.hpp): the
+// state nearest the conditions asked for streams like any sequence (a StreamingEngine); when the
+// conditions change during an exercise (the wind veering, the tide rising) the player crossfades
+// from the state on screen to the new one over a given span of display time.
+//
+// During a crossfade both states stream, and the snapshot shown is their blend with weight
+// w(t) = smoothstep((t - t0) / T) of the new state:
+//   harbour  = (1 - w) H_old(p, t) + w H_new(p, t)       (each first interpolated in time as drawn)
+//   deep     = (1 - w) sum_c D_old,c + w sum_c D_new,c   (the two states' cascades side by side,
+//                                                          each scaled by its weight)
+// a snapshot of the same form as one state's (surface_snapshot.hpp), so the renderer draws it and
+// the CPU queries sample it unchanged. Two uncorrelated seas blended this way keep
+// (1 - w)^2 + w^2 of their variance (half at mid-fade), as the index's selection rule says; the
+// smoothstep keeps that dip short. The harbour site (depth, land) is the new state's from the
+// first frame of the fade: states of one library share the grid, and a tide state differs only
+// by its still-water level, which the fade then shows as a change of depth at once.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "nearshore/runtime/streaming_engine.hpp"
+#include "nearshore/sequence/library_index.hpp"
+
+namespace nearshore::runtime {
+
+class LibraryPlayer {
+ public:
+  /// Reads `library_folder`/library.json and starts streaming the baked state nearest
+  /// `conditions` (select_library_states). Throws nearshore::Error naming the index for a library
+  /// with no baked state, and whatever StreamingEngine throws for that state's folder.
+  LibraryPlayer(const std::filesystem::path& library_folder, const sequence::SeaConditions& conditions,
+                StreamingOptions options = {});
+  ~LibraryPlayer();
+  LibraryPlayer(const LibraryPlayer&) = delete;
+  LibraryPlayer& operator=(const LibraryPlayer&) = delete;
+
+  /// Moves to the baked state nearest `conditions`, crossfading over `crossfade_s` of display time
+  /// from the next advance_to (0: a cut). Nothing changes when it is the state on screen. A
+  /// request during a crossfade finishes that one at once and starts the new one. Returns the id
+  /// of the state now on its way to the screen. Render thread.
+  const std::string& request(const sequence::SeaConditions& conditions, double crossfade_s);
+
+  /// As StreamingEngine::advance_to, for the state(s) on screen. Render thread.
+  void advance_to(double display_time_s);
+  /// The snapshot of the last advance_to: one state's, or the crossfade's blend. Any thread.
+  SurfaceSnapshot snapshot() const;
+
+  /// The engine of the state on screen (the new one during a crossfade).
+  StreamingEngine& engine();
+  const StreamingEngine& engine() const;
+  const std::string& state_id() const;
+  /// w of the new state in a crossfade on screen, 1 when none is.
+  double crossfade_weight() const;
+  const sequence::LibraryIndex& index() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace nearshore::runtime
