@@ -14,6 +14,12 @@ namespace nearshore::bake::detail {
 using namespace nearshore::ocean;       // spectra, sea states, the deep-water field
 using namespace nearshore::boussinesq;  // the solver and its parameters
 
+namespace {
+const char* face_depth_name(SolverParameters::FaceDepth face_depth) {
+  return face_depth == SolverParameters::FaceDepth::kMeanWhereWet ? "mean_where_wet" : "larger_of_mean_and_above_bed";
+}
+}  // namespace
+
 SolverParameters read_solver(TableReader& solver) {
   SolverParameters p;
   p.dispersion_coefficient = solver.number("dispersion_coefficient", p.dispersion_coefficient, 0.0, 1.0, false, "B (1/15 in Madsen & Sorensen 1992)");
@@ -21,6 +27,11 @@ SolverParameters read_solver(TableReader& solver) {
   p.dispersion_cutoff_kh = solver.non_negative("dispersion_cutoff_kh", p.dispersion_cutoff_kh, "k h below which dispersion is off");
   p.dry_depth_m = solver.positive("dry_depth_m", p.dry_depth_m, "wet/dry threshold in metres");
   p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
+  // The depth of the dispersive terms and of a face (docs/solver.md "Dispersion depth", "Face depth").
+  p.dispersion_depth = solver.choice("dispersion_depth", "still_water", {"still_water", "total"}) == 1
+                           ? DispersionDepth::kTotal : DispersionDepth::kStillWater;
+  p.face_depth = solver.choice("face_depth", face_depth_name(p.face_depth), {"mean_where_wet", "larger_of_mean_and_above_bed"}) == 0
+                     ? SolverParameters::FaceDepth::kMeanWhereWet : SolverParameters::FaceDepth::kLargerOfMeanAndAboveBed;
   p.nonlinear_iterations = solver.integer("nonlinear_iterations", p.nonlinear_iterations, 1, 20, "iterations per half step");
   p.adi_passes = solver.integer("adi_passes", p.adi_passes, 1, 4, "x + y sweep pairs per step");
   p.alternate_sweep_order = solver.boolean("alternate_sweep_order", p.alternate_sweep_order);
@@ -54,6 +65,8 @@ json solver_record(const SolverParameters& p) {
           {"dispersion_cutoff_kh", p.dispersion_cutoff_kh},
           {"dry_depth_m", p.dry_depth_m},
           {"chezy_coefficient", p.chezy_coefficient},
+          {"dispersion_depth", p.dispersion_depth == DispersionDepth::kTotal ? "total" : "still_water"},
+          {"face_depth", face_depth_name(p.face_depth)},
           {"nonlinear_iterations", p.nonlinear_iterations},
           {"adi_passes", p.adi_passes},
           {"shapiro_filter_order", p.shapiro_filter_order},

@@ -182,7 +182,9 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     s.fingerprint = h;
   }
   s.constants = {s.dt, parameters.dispersion_coefficient, parameters.dry_depth_m, parameters.chezy_coefficient,
-                 parameters.nonlinear_iterations};
+                 parameters.nonlinear_iterations,
+                 parameters.dispersion_depth == DispersionDepth::kTotal,
+                 parameters.face_depth == SolverParameters::FaceDepth::kMeanWhereWet};
   s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters.dispersion_coefficient);
   {
     std::vector<float> depth_t(cells), porosity_t(cells);

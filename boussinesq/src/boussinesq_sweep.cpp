@@ -41,6 +41,8 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   const double dt = k.time_step_s, g = kGravity_m_s2;
   const double B = k.dispersion_coefficient, B3 = B + 1.0 / 3.0;
   const double dry = k.dry_depth_m;
+  const bool total_depth_dispersion = k.dispersion_on_total_depth;
+  const bool mean_face_depth = k.mean_face_depth_where_wet;
   const double nu_explicit_max = 0.2 * dx * dx / dt;
   const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
 
@@ -183,10 +185,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const double slope_along = face_slope_along(depth, cL, cR, dx);
     const double slope_across = std::clamp(0.5 * (cell_slope_across[L * W + j] + cell_slope_across[R * W + j]),
                                            -kMaxDispersiveSlope, kMaxDispersiveSlope);
-    const double nBgd = n_f * B * g * d;
-    const double psi = -B3 * d * d * flux_xyt - nBgd * d * d * eta_xyy -
-                       d * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
-                       d * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
+    // D: the depth of the dispersive terms, d (seed 003) or the total depth at t^{n+1/2}
+    // (SweepConstants::dispersion_on_total_depth; docs/solver.md "Dispersion depth").
+    const double D = total_depth_dispersion ? std::max(d + 0.5 * (eta_across(cL) + eta_across(cR)), dry) : d;
+    const double nBgd = n_f * B * g * D;
+    const double psi = -B3 * D * D * flux_xyt - nBgd * D * D * eta_xyy -
+                       D * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
+                       D * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
     term -= w * psi;
 
     // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
@@ -277,10 +282,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
         const double n_f = kOpenWater ? 1.0 : face_porosity(porosity, inv_n, cL, cR), inv_n_f = kOpenWater ? 1.0 : 1.0 / n_f;
         const double d = face_depth(depth, cL, cR);
         const double e_L = eta_half[L * W + j], e_R = eta_half[R * W + j];
-        // Total depth at the face: the larger of the mean depth and the water above the higher bed
-        // (the latter governs a face next to a dry cell: flooding), never below dry_depth_m.
+        // Total depth at the face, never below dry_depth_m: the water above the higher bed governs a
+        // face next to a dry cell (flooding); between two wet cells the mean is the second-order
+        // value (SolverParameters::face_depth; the larger of the two everywhere adds
+        // g |eta_x| eta_x dx / 2, a spurious amplitude dispersion: docs/solver.md "Face depth").
         const double h_mean = d + 0.5 * (e_L + e_R), h_above_bed = std::max(e_L, e_R) + std::min(depth[cL], depth[cR]);
-        const double h_f = std::max(std::max(h_mean, h_above_bed), dry);
+        const bool both_wet = static_cast<double>(depth[cL]) + e_L > dry && static_cast<double>(depth[cR]) + e_R > dry;
+        const double h_f = std::max(both_wet && mean_face_depth ? h_mean : std::max(h_mean, h_above_bed), dry);
         const double inv_h_f = 1.0 / h_f;
 
         // Along-line explicit terms: convection (P^2/h)_x / n and the along parts of Psi_x:
@@ -290,11 +298,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
         const double eta_xxx = (e_p1 - 3.0 * e_R + 3.0 * e_L - e_m2) * inv_dx3;
         const double eta_xx = 0.5 * (e_p1 - e_R - e_L + e_m2) * inv_dx2;
         const double slope_along = face_slope_along(depth, cL, cR, dx);
+        // D: the depth of the dispersive terms (d, or h_mean with dispersion_on_total_depth).
+        const double D = total_depth_dispersion ? std::max(h_mean, dry) : d;
         const double along = -inv_n_f * (cell_term[R * W + j] - cell_term[L * W + j]) * inv_dx +
-                             w * n_f * B * g * d * d * (d * eta_xxx + 2.0 * slope_along * eta_xx);
-        // Implicit parts of Psi_x: -(B+1/3) d^2 P_xxt - (1/3) d d_x P_xt
-        const double D2 = w * B3 * d * d * inv_dx2;
-        const double S1 = w * d * slope_along * inv_dx / 6.0;
+                             w * n_f * B * g * D * D * (D * eta_xxx + 2.0 * slope_along * eta_xx);
+        // Implicit parts of Psi_x: -(B+1/3) D^2 P_xxt - (1/3) D d_x P_xt
+        const double D2 = w * B3 * D * D * inv_dx2;
+        const double S1 = w * D * slope_along * inv_dx / 6.0;
 
         // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
         // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.

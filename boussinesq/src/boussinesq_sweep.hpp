@@ -113,6 +113,13 @@ struct SweepConstants {
   double dry_depth_m = 0.01;
   double chezy_coefficient = 0.0;
   int iterations = 2;
+  /// The dispersive terms on the total depth h = d + eta at t^{n+1/2} instead of d
+  /// (SolverParameters::dispersion_depth = kTotal).
+  bool dispersion_on_total_depth = false;
+  /// The face depth of gravity and resistance is the mean of two wet cells
+  /// (SolverParameters::face_depth = kMeanWhereWet); otherwise the larger of the mean and the water
+  /// above the higher bed.
+  bool mean_face_depth_where_wet = false;
 };
 
 /// Per-thread scratch of one block (allocated once per thread, reused every step).

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "nearshore/boussinesq/model_nonlinear.hpp"
 #include "nearshore/ocean/wave_component.hpp"
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/raster.hpp"
@@ -84,6 +85,16 @@ struct SolverParameters {
   double time_step_s = 0.0;           ///< 0 = from courant_number
   double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
   double dispersion_coefficient = 1.0 / 15.0;  ///< B, Madsen & Sorensen (1992)
+  /// The depth in the dispersive terms: still-water d (seed 003 eq. 4-5, default) or total h = d + eta
+  /// (an option, docs/solver.md "Dispersion depth"; its nonlinear properties: model_nonlinear.hpp).
+  DispersionDepth dispersion_depth = DispersionDepth::kStillWater;
+  /// Total depth h of a face in the gravity term n g h eta_x and the resistance (docs/solver.md,
+  /// "Face depth"). kMeanWhereWet: the mean of the two cells where both are wet, the water above the
+  /// higher bed only next to a dry cell (flooding). kLargerOfMeanAndAboveBed: the larger of the two
+  /// everywhere (the solver before issue 19): on a flat bed that is d + max(eta_L, eta_R), a
+  /// first-order error g |eta_x| eta_x dx / 2 that acts as a spurious amplitude dispersion.
+  enum class FaceDepth { kMeanWhereWet, kLargerOfMeanAndAboveBed };
+  FaceDepth face_depth = FaceDepth::kLargerOfMeanAndAboveBed;
   /// Dispersion taper: the dispersive terms are multiplied by a weight that is 1 where the still-water
   /// depth d >= 2 * dispersion_cutoff_depth_m, 0 where d <= dispersion_cutoff_depth_m and a smooth
   /// (cubic) ramp between; likewise for the local k h of the peak wave when dispersion_cutoff_kh > 0

@@ -1,0 +1,109 @@
+// Weakly nonlinear properties of the continuous equations (model_nonlinear.hpp); the derivation of
+// the second-order transfer function is in docs/validation.md ("Nonlinear checks").
+#include "nearshore/boussinesq/model_nonlinear.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "nearshore/core/error.hpp"
+#include "nearshore/ocean/linear_waves.hpp"
+
+namespace nearshore::boussinesq {
+namespace {
+
+constexpr double g = ocean::kGravity_m_s2;
+
+// Linear phase speed squared of the equations: c0^2 = g d (1 + B (kd)^2) / (1 + (B+1/3) (kd)^2).
+double linear_phase_speed_squared(double k, double d, double B) {
+  const double kd2 = k * d * k * d;
+  return g * d * (1.0 + B * kd2) / (1.0 + (B + 1.0 / 3.0) * kd2);
+}
+
+}  // namespace
+
+double stokes_second_harmonic_m(double a, double k, double d) {
+  const double kd = k * d;
+  return 0.25 * k * a * a * std::cosh(kd) * (2.0 + std::cosh(2.0 * kd)) / std::pow(std::sinh(kd), 3);
+}
+
+double boussinesq_second_harmonic_m(double a, double k, double d, double B, DispersionDepth depth_kind) {
+  // eta = a cos(theta) + a2 cos(2 theta), P = c eta (mass with no mean flux), theta = k x - w t.
+  // The momentum residual divided by k, r = -c^2 eta' + c^2 (eta^2/h)' + g h eta' + K(D) eta''',
+  // K(D) = k^2 ((B+1/3) D^2 c^2 - B g D^3), at order a^2 on sin(2 theta):
+  //   linear part 2 (c0^2 - g d) a2 + 8 K(d) a2 = 6 (g d - c0^2) a2   (K(d) = g d - c0^2 from order a),
+  //   forcing    -(c0^2/d + g/2) a^2, and with D = h also + k^2 (2 d (B+1/3) c0^2 - 3 B g d^2) a^2 / 2.
+  const double c2 = linear_phase_speed_squared(k, d, B);
+  double forcing = c2 / d + 0.5 * g;
+  if (depth_kind == DispersionDepth::kTotal)
+    forcing -= 0.5 * k * k * (2.0 * d * (B + 1.0 / 3.0) * c2 - 3.0 * B * g * d * d);
+  return a * a * forcing / (6.0 * (g * d - c2));
+}
+
+double stokes_frequency_increase(double a, double k, double d) {
+  const double s = std::tanh(k * d), s4 = s * s * s * s, ka = k * a;
+  return ka * ka * ((9.0 - 10.0 * s * s + 9.0 * s4) / (16.0 * s4) - 1.0 / (2.0 * s * k * d));
+}
+
+SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, DispersionDepth depth_kind,
+                                  int harmonic_count) {
+  const int N = std::max(2, harmonic_count), M = 8 * N;  // quadrature points: products de-aliased
+  const double B3 = B + 1.0 / 3.0;
+  // Unknowns x = (c, a_2 .. a_N); residual R_m = projection of r(theta) on sin(m theta), m = 1..N
+  // (r is odd in theta for a wave symmetric about its crest, so these are all its components).
+  auto residual = [&](const Eigen::VectorXd& x, double a1) {
+    const double c = x[0], c2 = c * c;
+    Eigen::VectorXd R = Eigen::VectorXd::Zero(N);
+    for (int j = 0; j < M; ++j) {
+      const double theta = 2.0 * std::numbers::pi * j / M;
+      double eta = 0, eta_1 = 0, eta_3 = 0;
+      for (int n = 1; n <= N; ++n) {
+        const double amplitude = n == 1 ? a1 : x[n - 1];
+        eta += amplitude * std::cos(n * theta);
+        eta_1 -= n * amplitude * std::sin(n * theta);
+        eta_3 += n * n * n * amplitude * std::sin(n * theta);
+      }
+      const double h = d + eta, D = depth_kind == DispersionDepth::kTotal ? h : d;
+      const double r = -c2 * eta_1 + c2 * eta_1 * eta * (2.0 * d + eta) / (h * h) + g * h * eta_1 +
+                       k * k * (B3 * D * D * c2 - B * g * D * D * D) * eta_3;
+      for (int m = 1; m <= N; ++m) R[m - 1] += 2.0 / M * r * std::sin(m * theta);
+    }
+    return R;
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(N);
+  x[0] = std::sqrt(linear_phase_speed_squared(k, d, B));
+  // Continuation in amplitude from the linear wave: each step starts Newton close to its answer.
+  constexpr int kSteps = 8;
+  for (int step = 1; step <= kSteps; ++step) {
+    const double a1 = a * step / kSteps;
+    bool converged = false;
+    for (int iteration = 0; iteration < 40 && !converged; ++iteration) {
+      const Eigen::VectorXd R = residual(x, a1);
+      Eigen::MatrixXd J(N, N);
+      for (int u = 0; u < N; ++u) {
+        Eigen::VectorXd xp = x;
+        const double delta = u == 0 ? 1e-7 * x[0] : 1e-7 * a1;
+        xp[u] += delta;
+        J.col(u) = (residual(xp, a1) - R) / delta;
+      }
+      const Eigen::VectorXd dx = J.fullPivLu().solve(-R);
+      x += dx;
+      converged = std::abs(dx[0]) < 1e-13 * x[0] && dx.tail(N - 1).cwiseAbs().maxCoeff() < 1e-13 * a1 + 1e-300;
+    }
+    if (!converged || !std::isfinite(x[0]))
+      throw Error("boussinesq_steady_wave",
+                  fmt::format("no steady wave of amplitude {} m at k d = {} in depth {} m (Newton did not converge at {} m)",
+                              a, k * d, d, a1),
+                  "the wave is beyond the reach of the equations: ask for a smaller amplitude");
+  }
+  SteadyWave wave;
+  wave.phase_speed_m_s = x[0];
+  wave.harmonics_m.assign(N, 0.0);
+  wave.harmonics_m[0] = a;
+  for (int n = 2; n <= N; ++n) wave.harmonics_m[n - 1] = x[n - 1];
+  return wave;
+}
+
+}  // namespace nearshore::boussinesq
