@@ -130,10 +130,17 @@ float curvature_drop_m(vec2 p) {
   return rho2 / (u_earth_radius_m + sqrt(max(u_earth_radius_m * u_earth_radius_m - rho2, 0.0)));
 }
 
-// Still-water depth d at p (m): bilinear inside the harbour, the open sea's beyond.
+// Still-water depth d at p (m), for the water's colour: bilinear inside the harbour. Beyond it the
+// seabed continues from the rectangle's nearest edge and deepens to the open sea's depth over one
+// harbour extent, so the colour of the water (which sees the seabed through shallow water) shows
+// no edge where the rectangle ends.
 float still_water_depth_at(vec2 p) {
-  if (!u_has_site || any(lessThan(p, vec2(0.0))) || any(greaterThan(p, u_site_size_m))) return u_open_sea_depth_m;
-  return texture(u_still_water_depth, p / u_site_size_m).r;
+  if (!u_has_site) return u_open_sea_depth_m;
+  vec2 inside = clamp(p, vec2(0.0), u_site_size_m);
+  float edge = texture(u_still_water_depth, inside / u_site_size_m).r;
+  if (all(equal(inside, p))) return edge;
+  float beyond = length(p - inside);
+  return mix(max(edge, 2.0), u_open_sea_depth_m, smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond));
 }
 
 // Dry: no water is drawn over a land cell, a breakwater or quay cell (porosity < 1), or where

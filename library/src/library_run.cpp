@@ -162,7 +162,7 @@ LibraryPlan plan_library(const LibraryDefinition& definition, const LibraryOptio
                             "differs; the base case or {} changed)",
                             stale_count, stale_count == 1 ? "" : "s", kCasesFolder, states[first].id,
                             definition.library_file.string()),
-                "write the library into another folder, or set LibraryOptions::overwrite (--overwrite) to bake "
+                "write the library into another folder, or set LibraryOptions::overwrite to bake "
                 "those states again");
   }
 
