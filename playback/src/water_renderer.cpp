@@ -448,27 +448,23 @@ struct WaterRenderer::Impl {
     textures.deep_fraction = snapshot.deep_fraction;
   }
 
-  void upload(const runtime::SurfaceSnapshot& snapshot) {
+  // Makes the snapshot's keyframes resident (and spends the budget on staged ones): what a frame
+  // does before it draws, and all that a host drawing itself needs.
+  KeyframeTextures::Bound upload(const runtime::SurfaceSnapshot& snapshot) {
     statistics = FrameStatistics{};
     bind_site(snapshot.site);
     check_snapshot(snapshot);
     UploadCounters counters;
-    const KeyframeTextures::Bound bound = keyframes.prepare(snapshot, settings.upload_budget_bytes_per_frame, counters);
+    KeyframeTextures::Bound bound = keyframes.prepare(snapshot, settings.upload_budget_bytes_per_frame, counters);
     statistics.upload_bytes += counters.bytes;
     statistics.forced_upload_bytes = counters.forced_bytes;
     remember_textures(snapshot, bound);
+    return bound;
   }
 
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width,
               int height, const DrawOptions& options) {
-    statistics = FrameStatistics{};
-    bind_site(snapshot.site);
-    check_snapshot(snapshot);
-    UploadCounters counters;
-    const KeyframeTextures::Bound bound = keyframes.prepare(snapshot, settings.upload_budget_bytes_per_frame, counters);
-    statistics.upload_bytes += counters.bytes;
-    statistics.forced_upload_bytes = counters.forced_bytes;
-    remember_textures(snapshot, bound);
+    const KeyframeTextures::Bound bound = upload(snapshot);
 
     // Clip distances: near from the eye's height; far where the grid ends.
     const GridKind kind = settings.grid;

@@ -37,6 +37,35 @@ class FieldReader {
   FieldReader(std::string source, std::string fix) : source_(std::move(source)), fix_(std::move(fix)) {}
 
   [[noreturn]] void fail(const std::string& problem) const { throw Error(source_, problem, fix_); }
+
+  /// The root object of a versioned file: valid JSON, an object, "format": `format` (else it is
+  /// not `what`, e.g. "a loops table"), "version" an integer no newer than `version` (a newer one
+  /// is refused as such, with `newer_fix`, before any key it may have renamed) and equal to it.
+  nlohmann::json versioned_root(std::string_view text, std::string_view format, std::string_view what, int version,
+                                const std::string& newer_fix, const std::string& write_fix) const {
+    nlohmann::json root;
+    try {
+      root = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+      fail(fmt::format("is not valid JSON (byte {} of {}: truncated or corrupt)", e.byte, text.size()));
+    }
+    if (!root.is_object()) fail(fmt::format("is {}, not a JSON object", describe(root)));
+    const nlohmann::json& found_format = member(root, "", "format");
+    if (!found_format.is_string() || found_format.get_ref<const std::string&>() != format)
+      throw Error(source_, fmt::format("is not {} (\"format\" is {}, not \"{}\")", what, describe(found_format), format),
+                  write_fix);
+    const nlohmann::json& found_version = member(root, "", "version");
+    if (!found_version.is_number_integer()) wrong_type(found_version, "", "version", "an integer");
+    if (found_version > version)
+      throw Error(source_,
+                  fmt::format("has \"{}\" version {}, newer than version {} that this nearshore reads", format,
+                              found_version.dump(), version),
+                  newer_fix);
+    if (found_version != version)
+      fail(fmt::format("has \"{}\" version {}, which no nearshore writes (this one reads version {})", format,
+                       found_version.dump(), version));
+    return root;
+  }
   const std::string& fix() const { return fix_; }
 
   static std::string name(const std::string& path, std::string_view key) {

@@ -192,33 +192,13 @@ LibraryIndex::State parse_state(const FieldReader& r, const json& value, const s
 LibraryIndex parse_index(std::string_view text, const std::string& source, const std::string& command) {
   const FieldReader r(source, fmt::format("run `{}` again to rewrite it", command));
   try {
-    json root;
-    try {
-      root = json::parse(text);
-    } catch (const json::parse_error& e) {
-      r.fail(fmt::format("is not valid JSON (byte {} of {}: truncated or corrupt)", e.byte, text.size()));
-    }
-    if (!root.is_object()) r.fail(fmt::format("is {}, not a JSON object", describe(root)));
-
     // 1. Format and version first: a newer file is refused as such, not for a key it renamed.
-    const json& format = r.member(root, "", "format");
-    if (!format.is_string() || format.get_ref<const std::string&>() != kLibraryIndexFormat)
-      throw Error(source,
-                  fmt::format("is not a sea-state library index (\"format\" is {}, not \"{}\")", describe(format),
-                              kLibraryIndexFormat),
-                  fmt::format("remove it, or run `{}` to write one", command));
-    const json& version = r.member(root, "", "version");
-    if (!version.is_number_integer()) r.wrong_type(version, "", "version", "an integer");
-    if (version > kLibraryIndexVersion)
-      throw Error(source,
-                  fmt::format("has \"{}\" version {}, newer than version {} that this nearshore reads",
-                              kLibraryIndexFormat, version.dump(), kLibraryIndexVersion),
-                  fmt::format("read it with the nearshore release that wrote it, or run `{}` to rewrite it for "
-                              "this one (finished states are kept)",
-                              command));
-    if (version != kLibraryIndexVersion)
-      r.fail(fmt::format("has \"{}\" version {}, which no nearshore writes (this one reads version {})",
-                         kLibraryIndexFormat, version.dump(), kLibraryIndexVersion));
+    const json root = r.versioned_root(
+        text, kLibraryIndexFormat, "a sea-state library index", kLibraryIndexVersion,
+        fmt::format("read it with the nearshore release that wrote it, or run `{}` to rewrite it for this one (finished "
+                    "states are kept)",
+                    command),
+        fmt::format("remove it, or run `{}` to write one", command));
 
     // 2. The sweep, then its states: every combination of the axes' values exactly once.
     LibraryIndex index;

@@ -223,34 +223,11 @@ void parse_transitions(const FieldReader& r, const json& root, LoopsFile& file) 
 LoopsFile parse_loops(std::string_view text, const std::string& source, const std::string& command) {
   const FieldReader r(source, fmt::format("run `{}` again to rewrite it", command));
   try {
-    json root;
-    try {
-      root = json::parse(text);
-    } catch (const json::parse_error& e) {
-      r.fail(fmt::format("is not valid JSON (byte {} of {}: truncated or corrupt)", e.byte, text.size()));
-    }
-    if (!root.is_object()) r.fail(fmt::format("is {}, not a JSON object", describe(root)));
-
     // 1. Format and version first: a newer file is refused as such, not for a key it renamed.
-    const json& format = r.member(root, "", "format");
-    if (!format.is_string() || format.get_ref<const std::string&>() != kLoopsFileFormat)
-      throw Error(source,
-                  fmt::format("is not a loops table (\"format\" is {}, not \"{}\")", describe(format),
-                              kLoopsFileFormat),
-                  fmt::format("remove it, or run `{}` to write one", command));
-    const json& version = r.member(root, "", "version");
-    if (!version.is_number_integer()) r.wrong_type(version, "", "version", "an integer");
-    if (version > kLoopsFileVersion)
-      throw Error(
-          source,
-          fmt::format("has \"{}\" version {}, newer than version {} that this nearshore reads",
-                      kLoopsFileFormat, version.dump(), kLoopsFileVersion),
-          fmt::format(
-              "play it with the nearshore release that wrote it, or run `{}` to rewrite it for this one",
-              command));
-    if (version != kLoopsFileVersion)
-      r.fail(fmt::format("has \"{}\" version {}, which no nearshore writes (this one reads version {})",
-                         kLoopsFileFormat, version.dump(), kLoopsFileVersion));
+    const json root = r.versioned_root(
+        text, kLoopsFileFormat, "a loops table", kLoopsFileVersion,
+        fmt::format("play it with the nearshore release that wrote it, or run `{}` to rewrite it for this one", command),
+        fmt::format("remove it, or run `{}` to write one", command));
 
     // 2. The report, then what ties the table to its bake, then the table.
     LoopsFile file;
