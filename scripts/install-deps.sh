@@ -19,6 +19,7 @@ packages=(
   libeigen3-dev
   libtbb-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
+  libassimp-dev
   libopenmpi-dev openmpi-bin
   libspdlog-dev libfmt-dev libxxhash-dev
   libgtest-dev libbenchmark-dev

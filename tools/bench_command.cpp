@@ -13,6 +13,7 @@ void add_bench_command(CLI::App& app) {
   add_bench_loops(*bench);
   add_bench_play(*bench);
   add_bench_library(*bench);
+  add_bench_ships(*bench);
 }
 
 }  // namespace nearshore::tools

@@ -27,6 +27,7 @@ void add_bench_deepwater(CLI::App& bench);
 void add_bench_loops(CLI::App& bench);
 void add_bench_play(CLI::App& bench);
 void add_bench_library(CLI::App& bench);
+void add_bench_ships(CLI::App& bench);
 
 /// What `nearshore play SEQ --frames 15 --screenshot PNG --size W,H` does, for the demo: a headless
 /// picture of the sequence through the runtime. Returns a one-line description.

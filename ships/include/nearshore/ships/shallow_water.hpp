@@ -1,0 +1,133 @@
+#pragma once
+// The two-dimensional shallow-water equations (seed 000 eq. 4.7-4.9) solved by the second-order
+// central-upwind scheme of Kurganov & Petrova (2007, "A second-order well-balanced positivity
+// preserving central-upwind scheme for the Saint-Venant system", Commun. Math. Sci. 5, 133-160),
+// the flux of seed 000 eq. 4.10-4.15:
+//
+//   U = (w, hu, hv), w = h + B (surface elevation, z up), B the bottom elevation (-depth)
+//   dU/dt = -(H^x_{i+1/2,j} - H^x_{i-1/2,j}) / dx - (H^y_{i,j+1/2} - H^y_{i,j-1/2}) / dy + S_ij
+//
+// 1. B is given at cell corners (piecewise bilinear); interface values are the means of their two
+//    corners, the cell value the mean of its four interface values (KP eq. 3.2-3.4).
+// 2. Piecewise-linear reconstruction of w, hu, hv with the generalised minmod limiter
+//    (theta = 1.3) and KP's positivity correction: where the reconstructed w at an interface falls
+//    below B there, the slope is changed so that h = 0 at that interface (KP section 3.1).
+// 3. Velocities at the interfaces desingularised as in seed 000 eq. 4.14-4.15 (KP eq. 2.17):
+//    u = sqrt(2) h (hu) / sqrt(h^4 + max(h^4, eps)), eps = h_eps^4, and hu recomputed as h u.
+// 4. Local speeds a+- (eq. 4.12-4.13) and the central-upwind flux (eq. 4.11):
+//    H = (a+ F(U^E) - a- F(U^W)) / (a+ - a-) + a+ a- / (a+ - a-) (U^W - U^E),
+//    F = (hu, hu u + g h^2 / 2, hu v).
+// 5. The well-balanced source S = (0, -g hbar^x (B_{i+1/2} - B_{i-1/2}) / dx, -g hbar^y (...) / dy),
+//    hbar the mean of the two reconstructed interface depths of the cell (KP eq. 3.11): a lake at
+//    rest (w constant, u = v = 0) is an exact discrete steady state.
+// 6. Time: the second-order strong-stability-preserving Runge-Kutta (Heun) method; each stage is a
+//    forward-Euler step under dt <= cfl min(dx / a^x, dy / a^y) with cfl = 0.25, which keeps the
+//    cell depths non-negative (KP theorem 3.1).
+//
+// A pressure head on the surface (a floating hull's displacement, zeta = p / (rho g), m) enters
+// exactly like a raised bottom in the momentum equations (-g h grad(B + zeta)), so the scheme runs
+// on B' = B + zeta for the reconstruction, the fluxes and the source, with w' = w + zeta; mass still
+// moves with h. A hull at rest over its depression is then an exact steady state too.
+//
+// Edges: two ghost layers; kWall reflects (mirror, normal discharge negated), kOpen passes waves
+// out (mirror with the discharge kept: zero gradient); the bow-wave grid adds absorbing layers.
+#include <cstddef>
+#include <vector>
+
+namespace nearshore::ships {
+
+enum class EdgeKind { kWall, kOpen };
+
+struct ShallowWaterOptions {
+  double gravity_m_s2 = 9.81;
+  double cfl = 0.25;                   ///< KP's positivity bound for 2-D forward-Euler stages
+  double limiter_theta = 1.3;          ///< generalised minmod, in [1, 2]
+  double desingularisation_depth_m = 0.01;  ///< h_eps of step 3 (KP use eps = dx^4)
+};
+
+class ShallowWaterGrid {
+ public:
+  /// columns x rows cells of spacing_m, cell (i, j) centred at ((i + 0.5) dx, (j + 0.5) dx) of
+  /// the grid's own frame; flat bottom at elevation 0 and w = 0 (dry) until set.
+  ShallowWaterGrid(int columns, int rows, double spacing_m, EdgeKind edges, ShallowWaterOptions options = {});
+
+  int columns() const { return columns_; }
+  int rows() const { return rows_; }
+  double spacing_m() const { return spacing_m_; }
+  const ShallowWaterOptions& options() const { return options_; }
+
+  /// Bottom elevation (m, z up: -depth) at corner (i, j), i in [0, columns], j in [0, rows].
+  void set_bottom_corner(int i, int j, double elevation_m);
+  double bottom_corner(int i, int j) const;
+  /// Cell-average bottom (the mean of its four interface values).
+  double bottom_cell(int i, int j) const;
+  /// Pressure head zeta (m) at corner (i, j): see above. 0 by default.
+  void set_pressure_head_corner(int i, int j, double head_m);
+  double pressure_head_corner(int i, int j) const;
+  double pressure_head_cell(int i, int j) const;
+  /// Call after changing bottoms or heads: recomputes the interface and cell values.
+  void update_bottom();
+
+  /// Cell state: surface elevation w (m), discharges hu, hv (m^2/s). Depth h = w - B_cell.
+  double& surface_m(int i, int j) { return w_[padded(i, j)]; }
+  double surface_m(int i, int j) const { return w_[padded(i, j)]; }
+  double& discharge_x_m2_s(int i, int j) { return hu_[padded(i, j)]; }
+  double& discharge_y_m2_s(int i, int j) { return hv_[padded(i, j)]; }
+  double discharge_x_m2_s(int i, int j) const { return hu_[padded(i, j)]; }
+  double discharge_y_m2_s(int i, int j) const { return hv_[padded(i, j)]; }
+  double depth_m(int i, int j) const { return w_[padded(i, j)] - b_cell_[padded(i, j)]; }
+
+  /// Sum of h dx^2 over the cells (m^3).
+  double total_volume_m3() const;
+  /// The largest stable step for the current state (s): cfl dx / max(|u| + sqrt(g h)).
+  double stable_time_step_s() const;
+  /// Advances by dt_s in as many SSP-RK2 steps as the CFL condition needs; returns their number.
+  int advance(double dt_s);
+  /// One SSP-RK2 step of exactly dt_s (the caller keeps it under the CFL limit).
+  void step(double dt_s);
+
+  /// The most negative cell depth any stage produced before the round-off clamp to 0 (m; 0 when
+  /// none was negative). The scheme guarantees h >= 0; this shows it did.
+  double most_negative_depth_m() const { return most_negative_depth_m_; }
+
+  /// Moves the grid's content by (di, dj) whole cells (content at (i, j) goes to (i - di, j - dj):
+  /// the grid's window moved di cells east, dj north); cells entering the window are left at
+  /// w = 0, no discharge; the caller sets their bottom and calls update_bottom, then rest_new_cells.
+  void shift_window(int di, int dj);
+  /// After shift_window and update_bottom: cells that entered get w = max(-zeta, B) (rest: the
+  /// surface under a pressure head sits zeta lower), every cell gets w >= B (no negative depth
+  /// where the bottom rose).
+  void rest_new_cells();
+
+ private:
+  std::size_t padded(int i, int j) const {
+    return static_cast<std::size_t>(j + kGhost) * stride_ + static_cast<std::size_t>(i + kGhost);
+  }
+  std::size_t corner(int i, int j) const {
+    return static_cast<std::size_t>(j + kGhost) * (stride_ + 1) + static_cast<std::size_t>(i + kGhost);
+  }
+  void fill_ghosts(std::vector<double>& w, std::vector<double>& hu, std::vector<double>& hv) const;
+  /// dU/dt of the state (w, hu, hv) into rate_*; returns the largest local speed (m/s).
+  double rates(std::vector<double>& w, std::vector<double>& hu, std::vector<double>& hv);
+  void clamp_depths(std::vector<double>& w, std::vector<double>& hu, std::vector<double>& hv);
+
+  static constexpr int kGhost = 2;
+  int columns_, rows_;
+  double spacing_m_;
+  EdgeKind edges_;
+  ShallowWaterOptions options_;
+  std::size_t stride_;  // columns + 2 ghosts each side
+  std::vector<double> w_, hu_, hv_;
+  std::vector<double> bottom_corner_, head_corner_;          // (stride + 1) x (rows + 2 ghosts + 1)
+  std::vector<double> b_east_, b_north_;  // B' = B + zeta at the east / north interface of each padded cell
+  std::vector<double> b_cell_, head_cell_;  // cell means of B and zeta
+  std::vector<double> wp_;                  // w' = w + zeta (scratch)
+  std::vector<unsigned char> entered_;                        // cells that entered in the last shift
+  // Scratch.
+  std::vector<double> w1_, hu1_, hv1_, rate_w_, rate_hu_, rate_hv_;
+  std::vector<double> w_e_, w_w_, w_n_, w_s_, hu_e_, hu_w_, hu_n_, hu_s_, hv_e_, hv_w_, hv_n_, hv_s_;
+  std::vector<double> flux_x_[3], flux_y_[3];
+  double most_negative_depth_m_ = 0.0;
+};
+
+}  // namespace nearshore::ships

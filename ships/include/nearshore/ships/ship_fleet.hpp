@@ -1,0 +1,153 @@
+#pragma once
+// ShipFleet: every ship of a scene, stepped together on the shown sea. What a host (the viewer,
+// the C API) calls once per displayed frame:
+//
+//   ShipFleet fleet;
+//   fleet.set_site(engine.site());                        // grounding and the bow waves' bottom
+//   fleet.add_ship(definition);                           // or load_scenario(path, fleet)
+//   for each frame:
+//     engine.advance_to(t);
+//     fleet.step(engine.snapshot(), dt);                  // bodies, bow waves, wakes, contacts
+//     for (const Ship& s : fleet.ships()) draw(s.body().state(), s.bow_wave()->field(), s.wake().decals());
+//     double eta = fleet.shown_elevation_m(sampler, x, y);  // the sea + every ship's bow wave
+//
+// One step (dt, s), in this order:
+//   1. orders -> controls: a route is followed by a heading autopilot (rudder = clamp(2 e - T r),
+//      e the heading error to the next waypoint, r the yaw rate, T = L / U), a speed order by the
+//      engine (feed-forward (U / U_service)^2 plus proportional); a manual engine order and rudder
+//      (controls(i)) apply otherwise.
+//   2. ship-ship repulsion (seed 002 eq. 3, F_c) from the current poses: each hull's waterplane is
+//      a capsule (its centreline segment, radius half the beam); within a margin of half the summed
+//      radii a repulsion grows as m_r v_0^2 (s_0 / gap - 1) / s_0 (m_r the reduced mass,
+//      v_0 = 3 m/s: the barrier stops a closing speed of 7 m/s before contact), plus a damping of
+//      the closing speed, at the closest points, with their torques.
+//   3. each body steps on the sampled surface plus the OTHER ships' bow waves, over the seabed.
+//   4. each bow wave moves and steps with its hull; each wake ages and drops decals.
+//   5. grounding: a ship with hull points below the seabed is aground; its engine is stopped (its
+//      orders dropped: the ship stops by the bed's friction), and an event says where, how deep and
+//      at what heel; refloating is said too.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nearshore/runtime/surface_sampler.hpp"
+#include "nearshore/ships/bow_wave.hpp"
+#include "nearshore/ships/hull_mesh.hpp"
+#include "nearshore/ships/seabed.hpp"
+#include "nearshore/ships/ship_body.hpp"
+#include "nearshore/ships/stern_wake.hpp"
+
+namespace nearshore::ships {
+
+/// What a ship is told to do. Either an engine order or a speed; optionally a route.
+struct ShipOrders {
+  std::optional<double> engine_order;      ///< [-1, 1]
+  std::optional<double> speed_m_s;         ///< held by the engine (ahead only)
+  std::vector<Eigen::Vector2d> route_m;    ///< waypoints, site frame; followed by the autopilot
+  double waypoint_radius_lengths = 1.5;    ///< a waypoint is reached within this many ship lengths
+};
+
+struct ShipDefinition {
+  std::string name;
+  HullMesh hull;
+  int hull_points = 2000;                  ///< feature points (hull_samples.hpp)
+  HullLoading loading;
+  double x_m = 0.0, y_m = 0.0;             ///< start position of the hull's centre, site frame
+  double heading_deg = 0.0;                ///< compass (clockwise from north)
+  double initial_speed_m_s = 0.0;          ///< along the heading
+  ShipOrders orders;
+  bool bow_wave = true;
+  BowWaveOptions bow_wave_options;
+  SternWakeOptions wake_options;
+};
+
+struct ShipStatus {
+  bool aground = false;
+  Eigen::Vector3d contact_position_m = Eigen::Vector3d::Zero();
+  double max_penetration_m = 0.0;
+  int waypoint = 0;                        ///< index of the next waypoint
+};
+
+class Ship {
+ public:
+  Ship(std::string name, ShipBody body, ShipOrders orders, std::unique_ptr<BowWave> bow_wave, SternWake wake);
+  const std::string& name() const { return name_; }
+  const ShipBody& body() const { return body_; }
+  ShipBody& body() { return body_; }
+  const BowWave* bow_wave() const { return bow_wave_.get(); }
+  const SternWake& wake() const { return wake_; }
+  const ShipStatus& status() const { return status_; }
+  const ShipOrders& orders() const { return orders_; }
+  /// Replaces the orders (a host's engine telegraph and helm): clears the route unless given.
+  void set_orders(ShipOrders orders) { orders_ = std::move(orders); }
+  /// Manual controls: used when the orders hold no engine order, speed or route (a viewer's keys).
+  ShipControls& manual_controls() { return manual_; }
+  const ShipControls& controls() const { return controls_; }
+
+ private:
+  friend class ShipFleet;
+  std::string name_;
+  ShipBody body_;
+  ShipOrders orders_;
+  std::unique_ptr<BowWave> bow_wave_;
+  SternWake wake_;
+  ShipStatus status_;
+  ShipControls manual_, controls_;
+  ExternalLoad external_;
+};
+
+struct FleetOptions {
+  WaterProperties water;
+  double repulsion_speed_m_s = 3.0;  ///< v_0 above
+};
+
+class ShipFleet {
+ public:
+  explicit ShipFleet(FleetOptions options = {});
+
+  /// The seabed under the fleet: a site's harbour grid (grounding, placement, bow-wave bottom).
+  /// Without one the sea is bottomless (bow waves at max_depth_m).
+  void set_site(std::shared_ptr<const runtime::HarbourSite> site);
+  void set_seabed(Seabed seabed);
+  const Seabed* seabed() const { return seabed_ ? &*seabed_ : nullptr; }
+
+  /// Builds a ship (samples its hull, its particulars, its bow wave and wake) upright at its
+  /// design draft. Throws nearshore::Error naming the ship when its mass cannot float or it is
+  /// placed on land or in water shallower than its draft.
+  std::size_t add_ship(const ShipDefinition& definition);
+  /// Removes ship `index` (later ships move down by one).
+  void remove_ship(std::size_t index);
+
+  /// One frame on the sea a snapshot shows.
+  void step(const runtime::SurfaceSnapshot& snapshot, double dt_s);
+  /// One frame on a sampler's sea (null: flat still water).
+  void step(const runtime::SurfaceSampler* water, double dt_s);
+
+  std::size_t size() const { return ships_.size(); }
+  Ship& ship(std::size_t index) { return *ships_.at(index); }
+  const Ship& ship(std::size_t index) const { return *ships_.at(index); }
+
+  /// Sum of the ships' bow-wave heights at (x, y) (m), leaving out ship `exclude` (-1: none).
+  double bow_wave_elevation_m(double x_m, double y_m, long exclude = -1) const;
+  /// The shown surface at (x, y) with every ship's bow wave: what a host's other buoyant objects
+  /// and the renderer use.
+  double shown_elevation_m(const runtime::SurfaceSampler& water, double x_m, double y_m) const;
+  std::vector<BowWaveField> bow_wave_fields() const;
+
+  /// Messages since the last call ("ship 'Tug 1' ran aground at (812.4, 1033.0) m ..."), oldest first.
+  std::vector<std::string> take_events();
+
+ private:
+  void apply_orders(Ship& ship);
+  void repel();
+
+  FleetOptions options_;
+  std::optional<Seabed> seabed_;
+  std::vector<std::unique_ptr<Ship>> ships_;
+  std::vector<std::string> events_;
+};
+
+}  // namespace nearshore::ships

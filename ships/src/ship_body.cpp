@@ -1,0 +1,397 @@
+#include "nearshore/ships/ship_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::ships {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Seabed contact (see ship_body.hpp): a sand bed 50 times stiffer than water's hydrostatic
+// stiffness per unit area, damped over 0.1 s, Coulomb friction 0.4 regularised below 5 cm/s.
+constexpr double kSeabedStiffnessRatio = 50.0;
+constexpr double kSeabedDampingTime_s = 0.1;
+constexpr double kSeabedFriction = 0.4;
+constexpr double kFrictionVelocity_m_s = 0.05;
+
+// Over one hull piece (a triangle, corners r_k relative to G in the world frame) with the
+// pressure head f = eta - z linear over it (f_k at the corners): m0 = integral of f+ dA and
+// m1 = integral of f+ r dA, exactly. Where f changes sign the wet part is the polygon cut off by
+// f = 0; on each of its triangles f >= 0 is linear and
+//   integral f dA = A (f_a + f_b + f_c) / 3,  integral f r dA = A / 12 (sum f_k r_k + sum f_k sum r_k).
+void wet_moments(const Eigen::Vector3d r[3], const double f[3], double& m0, Eigen::Vector3d& m1) {
+  m0 = 0.0;
+  m1.setZero();
+  if (f[0] <= 0.0 && f[1] <= 0.0 && f[2] <= 0.0) return;
+  Eigen::Vector3d pr[4];
+  double pf[4];
+  int n = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    if (f[k] >= 0.0) {
+      pr[n] = r[k];
+      pf[n++] = f[k];
+    }
+    if ((f[k] > 0.0 && f[l] < 0.0) || (f[k] < 0.0 && f[l] > 0.0)) {
+      const double t = f[k] / (f[k] - f[l]);
+      pr[n] = r[k] + t * (r[l] - r[k]);
+      pf[n++] = 0.0;
+    }
+  }
+  for (int k = 1; k + 1 < n; ++k) {
+    const double area = 0.5 * (pr[k] - pr[0]).cross(pr[k + 1] - pr[0]).norm();
+    const double sum_f = pf[0] + pf[k] + pf[k + 1];
+    m0 += area * sum_f / 3.0;
+    m1 += area / 12.0 * (pf[0] * pr[0] + pf[k] * pr[k] + pf[k + 1] * pr[k + 1] + sum_f * (pr[0] + pr[k] + pr[k + 1]));
+  }
+}
+
+struct Load {
+  Eigen::Vector3d force_N = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque_N_m = Eigen::Vector3d::Zero();
+};
+
+// Pressure load about G in still water (eta = 0) with G at world height z_g and orientation R,
+// integrated piece by piece exactly as the body does.
+Load still_water_pressure(const HullSamples& samples, const Eigen::Vector3d& g_body,
+                          const Eigen::Matrix3d& rotation, double z_g, const WaterProperties& water) {
+  Load load;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    Eigen::Vector3d r[3];
+    double f[3];
+    for (int k = 0; k < 3; ++k) {
+      r[k] = rotation * (samples.corner_m[i][k] - g_body);
+      f[k] = -(z_g + r[k].z());
+    }
+    double m0;
+    Eigen::Vector3d m1;
+    wet_moments(r, f, m0, m1);
+    if (m0 <= 0.0) continue;
+    const Eigen::Vector3d n = rotation * samples.normal[i];
+    const double rho_g = water.density_kg_m3 * water.gravity_m_s2;
+    load.force_N += -rho_g * m0 * n;
+    load.torque_N_m += -rho_g * m1.cross(n);
+  }
+  return load;
+}
+
+}  // namespace
+
+ShipParticulars particulars_for_hull(const std::string& ship_name, const HullMesh& mesh, const HullSamples& samples,
+                                     const HullLoading& loading) {
+  const WaterProperties& water = loading.water;
+  const double rho = water.density_kg_m3, g = water.gravity_m_s2;
+  if (samples.size() == 0)
+    throw Error(ship_name, fmt::format("hull {} has no sample points", mesh.name), "give a hull with faces");
+  const MeshMassProperties solid = mesh_mass_properties(mesh);
+  ShipParticulars p;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = Eigen::Vector3d::Constant(-1e300);
+  for (const auto& v : mesh.vertices_m) {
+    low = low.cwiseMin(v);
+    high = high.cwiseMax(v);
+  }
+  p.length_m = high.x() - low.x();
+  p.beam_m = high.y() - low.y();
+  p.depth_m = high.z() - low.z();
+  p.hull_centre_m = 0.5 * (low + high);
+
+  // 1. Mass and draft.
+  const double whole_hull_kg = rho * solid.volume_m3;
+  if (loading.mass_kg) {
+    p.mass_kg = *loading.mass_kg;
+  } else if (loading.draft_m) {
+    if (!(*loading.draft_m > 0.0))
+      throw Error(ship_name, fmt::format("draft_m = {} must be positive", *loading.draft_m), "give the draft in metres");
+    p.mass_kg = rho * displaced_volume_m3(samples, low.z() + *loading.draft_m);
+  } else {
+    throw Error(ship_name, "has neither a mass nor a draft", "give mass_kg or draft_m");
+  }
+  if (!(p.mass_kg > 0.0) || !std::isfinite(p.mass_kg))
+    throw Error(ship_name, fmt::format("mass_kg = {} must be a positive number", p.mass_kg), "give the displacement in kg");
+  if (p.mass_kg >= whole_hull_kg)
+    throw Error(ship_name,
+                fmt::format("cannot float: its mass {:.4g} kg is more than the {:.4g} kg of water the whole hull {} "
+                            "displaces ({:.4g} m^3)",
+                            p.mass_kg, whole_hull_kg, mesh.name, solid.volume_m3),
+                "give a smaller mass_kg (or a draft_m below the deck), or a bigger hull");
+  const double volume = p.mass_kg / rho;
+  const double waterline_z = waterline_for_volume_m(samples, volume);
+  p.design_draft_m = waterline_z - low.z();
+
+  // 2. Centre of gravity and inertia (the solid's, scaled to the mass, moved to G by parallel axes).
+  p.centre_of_gravity_m = solid.centroid_m;
+  if (loading.centre_of_gravity_height_m) p.centre_of_gravity_m.z() = *loading.centre_of_gravity_height_m;
+  const Eigen::Vector3d d = p.centre_of_gravity_m - solid.centroid_m;
+  p.inertia_kg_m2 = solid.inertia_per_density_m5 * (p.mass_kg / solid.volume_m3) +
+                    p.mass_kg * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+
+  // 3. Waterplane and wetted surface at the design draft.
+  const double dz = 1e-3 * std::max(p.design_draft_m, 1e-3);
+  const double waterplane_m2 =
+      (displaced_volume_m3(samples, waterline_z + dz) - displaced_volume_m3(samples, waterline_z - dz)) / (2 * dz);
+  double wetted = 0.0, lwl_low = 1e300, lwl_high = -1e300, bwl = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (samples.position_m[i].z() >= waterline_z) continue;
+    wetted += samples.area_m2[i];
+    lwl_low = std::min(lwl_low, samples.position_m[i].x());
+    lwl_high = std::max(lwl_high, samples.position_m[i].x());
+    bwl = std::max(bwl, 2.0 * std::abs(samples.position_m[i].y() - p.hull_centre_m.y()));
+  }
+  const double lwl = std::max(lwl_high - lwl_low, 1e-3), draft = std::max(p.design_draft_m, 1e-3);
+  bwl = std::max(bwl, 1e-3);
+  p.design_wetted_area_m2 = std::max(wetted, 1e-6);
+
+  // 4. Added masses: flat-plate strip values at the free surface (high-frequency limit).
+  p.added_mass_kg = {0.05 * p.mass_kg, rho * kPi * draft * draft * lwl / 2.0, rho * kPi * bwl * bwl * lwl / 8.0};
+  p.added_inertia_kg_m2 = {0.1 * p.inertia_kg_m2(0, 0), p.added_mass_kg.z() * lwl * lwl / 12.0,
+                           p.added_mass_kg.y() * lwl * lwl / 12.0};
+
+  // 5. Restoring stiffness from the same pressure integration the body uses (small heel and trim).
+  const double z_g = p.centre_of_gravity_m.z() - waterline_z;
+  const double angle = 0.01;
+  // Restoring moment per radian about the upright pose (the upright pose may carry a trimming
+  // moment of its own when G is not over the centre of buoyancy: difference it out).
+  auto stiffness = [&](const Eigen::Vector3d& axis, int component) {
+    const double upright = still_water_pressure(samples, p.centre_of_gravity_m, Eigen::Matrix3d::Identity(), z_g, water)
+                               .torque_N_m[component];
+    const double turned =
+        still_water_pressure(samples, p.centre_of_gravity_m, Eigen::AngleAxisd(angle, axis).toRotationMatrix(), z_g, water)
+            .torque_N_m[component];
+    return std::max(-(turned - upright) / angle, 0.0);
+  };
+  const double roll_stiffness = stiffness(Eigen::Vector3d::UnitX(), 0);
+  const double pitch_stiffness = stiffness(Eigen::Vector3d::UnitY(), 1);
+  const double heave_stiffness = rho * g * waterplane_m2;
+  const double zeta = 0.05;  // radiation damping, fraction of critical
+  // Surge, sway and yaw have no restoring force: a linear (laminar, low-speed) damping with a 120 s
+  // time constant lets a ship that is left alone come to rest instead of coasting for ever.
+  const double coasting_s = 120.0;
+  p.linear_damping_N_s_m = {(p.mass_kg + p.added_mass_kg.x()) / coasting_s, (p.mass_kg + p.added_mass_kg.y()) / coasting_s,
+                            2 * zeta * std::sqrt(heave_stiffness * (p.mass_kg + p.added_mass_kg.z()))};
+  p.linear_damping_N_m_s = {
+      2 * zeta * std::sqrt(roll_stiffness * (p.inertia_kg_m2(0, 0) + p.added_inertia_kg_m2.x())),
+      2 * zeta * std::sqrt(pitch_stiffness * (p.inertia_kg_m2(1, 1) + p.added_inertia_kg_m2.y())),
+      (p.inertia_kg_m2(2, 2) + p.added_inertia_kg_m2.z()) / coasting_s};
+
+  // 6. Quadratic drag.
+  const double surge = 0.5 * rho * p.design_wetted_area_m2 * 0.006;
+  const double sway = 0.5 * rho * 1.0 * lwl * draft;
+  const double heave = 0.5 * rho * 1.0 * std::max(waterplane_m2, 1e-6);
+  const double l4 = std::pow(lwl, 4) / 32.0;
+  p.quadratic_drag_N_s2_m2 = {surge, sway, heave};
+  p.quadratic_drag_N_m_s2 = {0.5 * rho * 1.0 * lwl * std::pow(bwl, 4) / 32.0, heave / lwl * l4 * 1.0,
+                             sway / lwl * l4};
+
+  // 7. Engine and rudder.
+  p.service_speed_m_s = loading.service_speed_m_s.value_or(0.25 * std::sqrt(g * lwl));
+  p.max_thrust_N = (p.linear_damping_N_s_m.x() + surge * p.service_speed_m_s) * p.service_speed_m_s;
+  p.max_astern_thrust_N = 0.6 * p.max_thrust_N;
+  p.propeller_position_m = {lwl_low + 0.06 * lwl, p.hull_centre_m.y(), low.z() + 0.45 * draft};
+  p.propeller_diameter_m = 0.6 * draft;
+  p.rudder_area_m2 = 0.02 * lwl * draft;
+  p.rudder_position_m = {lwl_low + 0.02 * lwl, p.hull_centre_m.y(), low.z() + 0.5 * draft};
+  return p;
+}
+
+double ShipState::yaw_rad() const {
+  const Eigen::Matrix3d r = orientation.toRotationMatrix();
+  return std::atan2(r(1, 0), r(0, 0));
+}
+double ShipState::pitch_rad() const {
+  const Eigen::Matrix3d r = orientation.toRotationMatrix();
+  return -std::asin(std::clamp(r(2, 0), -1.0, 1.0));
+}
+double ShipState::roll_rad() const {
+  const Eigen::Matrix3d r = orientation.toRotationMatrix();
+  return std::atan2(r(2, 1), r(2, 2));
+}
+double ShipState::heading_deg() const {
+  double h = 90.0 - yaw_rad() * 180.0 / kPi;
+  h = std::fmod(h, 360.0);
+  return h < 0.0 ? h + 360.0 : h;
+}
+double ShipState::forward_speed_m_s() const { return velocity_m_s.dot(orientation * Eigen::Vector3d::UnitX()); }
+
+Eigen::Quaterniond orientation_from_euler(double yaw_rad, double pitch_rad, double roll_rad) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) *
+                            Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
+                            Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()));
+}
+
+double yaw_from_heading_rad(double heading_deg) { return (90.0 - heading_deg) * kPi / 180.0; }
+
+ShipBody::ShipBody(HullSamples samples, ShipParticulars particulars, ShipState initial)
+    : samples_(std::move(samples)), particulars_(std::move(particulars)), state_(initial) {
+  arm_m_.reserve(samples_.size());
+  for (const auto& x : samples_.position_m) arm_m_.push_back(x - particulars_.centre_of_gravity_m);
+  corner_arm_m_.reserve(samples_.size());
+  for (const auto& c : samples_.corner_m)
+    corner_arm_m_.push_back({c[0] - particulars_.centre_of_gravity_m, c[1] - particulars_.centre_of_gravity_m,
+                             c[2] - particulars_.centre_of_gravity_m});
+  query_points_.resize(samples_.size());
+  elevations_m_.resize(samples_.size());
+  world_arm_m_.resize(samples_.size());
+  state_.orientation.normalize();
+}
+
+std::vector<Eigen::Vector3d> ShipBody::world_points_m() const {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(arm_m_.size());
+  const Eigen::Matrix3d r = state_.orientation.toRotationMatrix();
+  for (const auto& a : arm_m_) out.push_back(state_.position_m + r * a);
+  return out;
+}
+
+Eigen::Vector3d ShipBody::to_world(const Eigen::Vector3d& body_point_m) const {
+  return state_.position_m + state_.orientation * (body_point_m - particulars_.centre_of_gravity_m);
+}
+
+void ShipBody::step(const ShipEnvironment& environment, const ShipControls& controls, const ExternalLoad& external,
+                    double dt_s) {
+  if (!(dt_s > 0.0)) return;
+  const int substeps = std::max(1, static_cast<int>(std::ceil(dt_s / max_substep_s - 1e-9)));
+  for (int s = 0; s < substeps; ++s) substep(environment, controls, external, dt_s / substeps);
+}
+
+void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& controls, const ExternalLoad& external,
+                       double dt_s) {
+  const ShipParticulars& p = particulars_;
+  const WaterProperties& water = environment.water_properties;
+  const double rho = water.density_kg_m3, g = water.gravity_m_s2;
+  const Eigen::Matrix3d rotation = state_.orientation.toRotationMatrix();
+  const std::size_t n = arm_m_.size();
+
+  // 1. Where the hull points are and the water over them.
+  for (std::size_t i = 0; i < n; ++i) {
+    world_arm_m_[i] = rotation * arm_m_[i];
+    query_points_[i] = {state_.position_m.x() + world_arm_m_[i].x(), state_.position_m.y() + world_arm_m_[i].y()};
+  }
+  if (environment.water != nullptr)
+    environment.water->elevations_m(query_points_, elevations_m_);
+  else
+    std::fill(elevations_m_.begin(), elevations_m_.end(), 0.0);
+  if (environment.extra_elevation_m)
+    for (std::size_t i = 0; i < n; ++i) elevations_m_[i] += environment.extra_elevation_m(query_points_[i].x_m, query_points_[i].y_m);
+
+  // 2. Pressure (eq. 4.21-4.22) and seabed contact, point by point.
+  BodyReport report;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+  const double bed_stiffness = kSeabedStiffnessRatio * rho * g;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& arm = world_arm_m_[i];
+    const double z = state_.position_m.z() + arm.z();
+    // The piece's pressure head eta - z, linear over it (eta: the surface over its centroid).
+    Eigen::Vector3d r[3];
+    double f[3];
+    for (int k = 0; k < 3; ++k) {
+      r[k] = rotation * corner_arm_m_[i][k];
+      f[k] = elevations_m_[i] - (state_.position_m.z() + r[k].z());
+    }
+    if (f[0] > 0.0 || f[1] > 0.0 || f[2] > 0.0) {
+      double m0;
+      Eigen::Vector3d m1;
+      wet_moments(r, f, m0, m1);
+      const Eigen::Vector3d normal = rotation * samples_.normal[i];
+      const Eigen::Vector3d f_piece = -(rho * g * m0) * normal;
+      force += f_piece;
+      torque += -(rho * g) * m1.cross(normal);
+      report.pressure_force_N += f_piece;
+      if (elevations_m_[i] > z) {
+        ++report.wet_points;
+        report.wetted_area_m2 += samples_.area_m2[i];
+      }
+    }
+    if (environment.seabed != nullptr) {
+      const double bed_z = -environment.seabed->depth_m(query_points_[i].x_m, query_points_[i].y_m);
+      const double penetration = bed_z - z;
+      if (penetration > 0.0) {
+        const Eigen::Vector3d point_velocity = state_.velocity_m_s + state_.angular_velocity_rad_s.cross(arm);
+        const double normal = std::max(
+            0.0, bed_stiffness * samples_.area_m2[i] * (penetration - kSeabedDampingTime_s * point_velocity.z()));
+        const Eigen::Vector2d slip(point_velocity.x(), point_velocity.y());
+        const Eigen::Vector2d friction =
+            -kSeabedFriction * normal * slip / std::sqrt(slip.squaredNorm() + kFrictionVelocity_m_s * kFrictionVelocity_m_s);
+        const Eigen::Vector3d f(friction.x(), friction.y(), normal);
+        force += f;
+        torque += arm.cross(f);
+        ++report.contact_points;
+        report.max_penetration_m = std::max(report.max_penetration_m, penetration);
+        report.contact_position_m += state_.position_m + arm;
+      }
+    }
+  }
+  if (report.contact_points > 0) report.contact_position_m /= report.contact_points;
+
+  // 3. Gravity at G.
+  force.z() -= p.mass_kg * g;
+
+  // 4. Drag relative to the water, in body axes, scaled by the wetted fraction.
+  const double wet_fraction = std::min(1.0, report.wetted_area_m2 / p.design_wetted_area_m2);
+  Eigen::Vector3d current = Eigen::Vector3d::Zero();
+  if (environment.water != nullptr && wet_fraction > 0.0) {
+    const runtime::SurfaceState s = environment.water->state(state_.position_m.x(), state_.position_m.y());
+    current = {s.velocity_x_m_s, s.velocity_y_m_s, 0.0};
+  }
+  const Eigen::Vector3d v_body = rotation.transpose() * (state_.velocity_m_s - current);
+  const Eigen::Vector3d w_body = rotation.transpose() * state_.angular_velocity_rad_s;
+  const Eigen::Vector3d drag_body =
+      -wet_fraction * (p.linear_damping_N_s_m.cwiseProduct(v_body) +
+                       p.quadratic_drag_N_s2_m2.cwiseProduct(v_body.cwiseAbs()).cwiseProduct(v_body));
+  const Eigen::Vector3d drag_moment_body =
+      -wet_fraction * (p.linear_damping_N_m_s.cwiseProduct(w_body) +
+                       p.quadratic_drag_N_m_s2.cwiseProduct(w_body.cwiseAbs()).cwiseProduct(w_body));
+  force += rotation * drag_body;
+  torque += rotation * drag_moment_body;
+
+  // 5. Engine (seed 002 eq. 3, F_e along the hull) and rudder, at their body points.
+  const double order = std::clamp(controls.engine_order, -1.0, 1.0);
+  const double thrust = wet_fraction * (order >= 0.0 ? order * p.max_thrust_N : order * p.max_astern_thrust_N);
+  const Eigen::Vector3d thrust_world = rotation * Eigen::Vector3d(thrust, 0.0, 0.0);
+  const Eigen::Vector3d propeller_arm = rotation * (p.propeller_position_m - p.centre_of_gravity_m);
+  force += thrust_world;
+  torque += propeller_arm.cross(thrust_world);
+
+  const double rudder_order = std::clamp(controls.rudder_order_rad, -p.max_rudder_angle_rad, p.max_rudder_angle_rad);
+  const double max_move = p.rudder_rate_rad_s * dt_s;
+  rudder_angle_rad_ += std::clamp(rudder_order - rudder_angle_rad_, -max_move, max_move);
+  const double forward = std::max(v_body.x(), 0.0);
+  const double slipstream = std::max(thrust, 0.0) * 8.0 / (kPi * rho * p.propeller_diameter_m * p.propeller_diameter_m);
+  const double lift = wet_fraction * 0.5 * rho * p.rudder_area_m2 * p.rudder_lift_slope_per_rad * rudder_angle_rad_ *
+                      (forward * forward + slipstream);
+  const Eigen::Vector3d lift_world = rotation * Eigen::Vector3d(0.0, -lift, 0.0);
+  const Eigen::Vector3d rudder_arm = rotation * (p.rudder_position_m - p.centre_of_gravity_m);
+  force += lift_world;
+  torque += rudder_arm.cross(lift_world);
+
+  force += external.force_N;
+  torque += external.torque_N_m;
+
+  // 6. Semi-implicit Euler: Newton with the world-frame mass matrix, Euler's equations with the
+  //    world-frame inertia tensor (eq. 4.19-4.20), then positions with the new velocities.
+  const Eigen::Matrix3d mass_world =
+      rotation * (p.mass_kg * Eigen::Matrix3d::Identity() + p.added_mass_kg.asDiagonal().toDenseMatrix()) *
+      rotation.transpose();
+  state_.velocity_m_s += mass_world.ldlt().solve(force) * dt_s;
+  const Eigen::Matrix3d inertia_world =
+      rotation * (p.inertia_kg_m2 + p.added_inertia_kg_m2.asDiagonal().toDenseMatrix()) * rotation.transpose();
+  const Eigen::Vector3d& w = state_.angular_velocity_rad_s;
+  const Eigen::Vector3d angular_acceleration = inertia_world.ldlt().solve(torque - w.cross(inertia_world * w));
+  state_.angular_velocity_rad_s += angular_acceleration * dt_s;
+  state_.position_m += state_.velocity_m_s * dt_s;
+  const double turn = state_.angular_velocity_rad_s.norm() * dt_s;
+  if (turn > 0.0)
+    state_.orientation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(turn, state_.angular_velocity_rad_s.normalized())) * state_.orientation;
+  state_.orientation.normalize();
+
+  report.rudder_angle_rad = rudder_angle_rad_;
+  report.thrust_N = thrust;
+  report_ = report;
+}
+
+}  // namespace nearshore::ships

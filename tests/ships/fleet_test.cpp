@@ -1,0 +1,220 @@
+// Ships together: grounding on the demo harbour's beach, ship-ship repulsion, stern-wake decals,
+// scenario files.
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "nearshore/bathymetry/demo_harbour.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/ships/generic_hulls.hpp"
+#include "nearshore/ships/scenario.hpp"
+#include "nearshore/ships/ship_fleet.hpp"
+#include "ships_test_support.hpp"
+
+namespace nearshore::ships {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+using testing::scratch_folder;
+
+// The demo harbour (bathymetry/demo_harbour.hpp) as a runtime site: its analytic depth at the
+// cell centres of an 8 m grid, land where the depth is negative.
+std::shared_ptr<const runtime::HarbourSite> demo_site() {
+  const bathymetry::DemoHarbourOptions options;
+  GridGeometry geometry;
+  geometry.spacing_m = 8.0;
+  geometry.columns = static_cast<int>(options.width_m / geometry.spacing_m);
+  geometry.rows = static_cast<int>(options.height_m / geometry.spacing_m);
+  auto site = std::make_shared<runtime::HarbourSite>();
+  site->harbour = HarbourGrid::open_water(geometry, 0.0f);
+  for (int j = 0; j < geometry.rows; ++j)
+    for (int i = 0; i < geometry.columns; ++i) {
+      const double d = bathymetry::demo_harbour_depth_m(options, (i + 0.5) * geometry.spacing_m, (j + 0.5) * geometry.spacing_m);
+      site->harbour.still_water_depth_m(i, j) = static_cast<float>(d);
+      site->harbour.land(i, j) = d < 0.0 ? 1 : 0;
+    }
+  site->width_m = geometry.width_m();
+  site->height_m = geometry.height_m();
+  return site;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {
+  ShipFleet fleet;
+  fleet.set_site(demo_site());
+  ShipDefinition tug;
+  tug.name = "Tug 1";
+  tug.hull = harbour_tug();
+  tug.loading.draft_m = 3.0;
+  tug.hull_points = 800;
+  tug.x_m = 200.0;
+  tug.y_m = 860.0;         // 5 m of water, the beach (shore at y = 1045 m) ahead
+  tug.heading_deg = 40.0;  // meets the depth contours obliquely: one side takes the ground first
+  tug.initial_speed_m_s = 3.0;
+  tug.orders.engine_order = 1.0;
+  tug.bow_wave_options.cells = 64;
+  fleet.add_ship(tug);
+  const double frame = 1.0 / 30;
+  std::vector<std::string> events;
+  double aground_at = -1.0;
+  for (int k = 0; k < 120 * 30; ++k) {
+    fleet.step(nullptr, frame);
+    for (auto& e : fleet.take_events()) events.push_back(e);
+    if (aground_at < 0 && fleet.ship(0).status().aground) aground_at = k * frame;
+    if (aground_at >= 0 && k * frame > aground_at + 30.0) break;
+  }
+  ASSERT_GE(aground_at, 0.0) << "the tug never reached the beach";
+  const Ship& ship = fleet.ship(0);
+  const ShipState& s = ship.body().state();
+  const double speed = s.velocity_m_s.head<2>().norm();
+  const double heel_deg = s.roll_rad() * 180 / kPi, trim_deg = s.pitch_rad() * 180 / kPi;
+  std::printf("aground after %.1f s at (%.1f, %.1f) m; 30 s later: speed %.3f m/s, heel %.2f deg, trim %.2f deg\n%s\n",
+              aground_at, ship.status().contact_position_m.x(), ship.status().contact_position_m.y(), speed, heel_deg,
+              trim_deg, events.empty() ? "(no event)" : events.front().c_str());
+  ASSERT_FALSE(events.empty());
+  EXPECT_NE(events.front().find("Tug 1"), std::string::npos);
+  EXPECT_NE(events.front().find("ran aground"), std::string::npos);
+  EXPECT_TRUE(ship.status().aground);
+  EXPECT_LT(speed, 0.05);                 // stopped by the bed's friction, engine stopped
+  EXPECT_GT(std::abs(heel_deg), 0.2);     // lists: the bed rises under one side first
+  EXPECT_GT(std::abs(trim_deg), 0.2);     // and its bow rides up the slope
+}
+
+// True when a body-frame point lies inside the Wigley hull 20 x 2 x 1 (depth 2) of the test below.
+bool inside_wigley(const Eigen::Vector3d& p) {
+  const double L = 20, B = 2, T = 1, D = 2;
+  if (std::abs(p.x()) >= L / 2 || p.z() <= 0 || p.z() >= D) return false;
+  const double f = 1 - std::pow(2 * p.x() / L, 2);
+  const double zeta = p.z() < T ? (T - p.z()) / T : 0.0;
+  return std::abs(p.y()) < B / 2 * f * (1 - zeta * zeta);
+}
+
+TEST(ShipFleet, TwoShipsOnACollisionCourseArePushedApartWithoutInterpenetrating) {
+  ShipFleet fleet;
+  for (int k = 0; k < 2; ++k) {
+    ShipDefinition d;
+    d.name = k == 0 ? "East-bound" : "West-bound";
+    d.hull = wigley_hull(20, 2, 1, 2);
+    d.loading.draft_m = 1.0;
+    d.x_m = k == 0 ? 0.0 : 100.0;
+    d.y_m = k == 0 ? 0.0 : 0.5;  // nearly head on
+    d.heading_deg = k == 0 ? 90.0 : 270.0;
+    d.initial_speed_m_s = 3.0;
+    d.orders.speed_m_s = 3.0;
+    d.hull_points = 600;
+    d.bow_wave = false;  // the repulsion alone
+    fleet.add_ship(d);
+  }
+  int intrusions = 0;
+  double closest = 1e9;
+  for (int k = 0; k < 40 * 30; ++k) {
+    fleet.step(nullptr, 1.0 / 30);
+    for (int a = 0; a < 2; ++a) {
+      const ShipBody& me = fleet.ship(a).body();
+      const ShipBody& other = fleet.ship(1 - a).body();
+      const Eigen::Quaterniond to_other = other.state().orientation.conjugate();
+      for (const Eigen::Vector3d& p : me.world_points_m()) {
+        const Eigen::Vector3d body =
+            to_other * (p - other.state().position_m) + other.particulars().centre_of_gravity_m;
+        if (inside_wigley(body)) ++intrusions;
+      }
+    }
+    closest = std::min(closest, (fleet.ship(0).body().state().position_m - fleet.ship(1).body().state().position_m).head<2>().norm());
+  }
+  const double separation = (fleet.ship(0).body().state().position_m - fleet.ship(1).body().state().position_m).head<2>().norm();
+  std::printf("closest approach of the centres %.2f m, final separation %.2f m, hull points inside the other hull: %d\n",
+              closest, separation, intrusions);
+  EXPECT_EQ(intrusions, 0);
+  EXPECT_GT(closest, 2.0);  // at least a beam apart (capsules of radius 1 m each)
+}
+
+TEST(SternWake, DecalsAreDroppedEveryBeamAndFadeOverTheirLifetime) {
+  ShipFleet fleet;
+  ShipDefinition d;
+  d.name = "Wake";
+  d.hull = harbour_tug();
+  d.loading.draft_m = 3.0;
+  d.heading_deg = 90.0;
+  d.initial_speed_m_s = 3.0;
+  d.orders.speed_m_s = 3.0;
+  d.bow_wave = false;
+  d.hull_points = 600;
+  d.wake_options.lifetime_s = 20.0;
+  fleet.add_ship(d);
+  for (int k = 0; k < 30 * 30; ++k) fleet.step(nullptr, 1.0 / 30);
+  const auto& decals = fleet.ship(0).wake().decals();
+  ASSERT_GT(decals.size(), 3u);
+  // About 20 s x 3 m/s / 9 m beam = 6-7 decals alive, oldest first, fading and widening with age.
+  EXPECT_LE(decals.size(), 8u);
+  for (std::size_t k = 1; k < decals.size(); ++k) {
+    EXPECT_GE(decals[k - 1].age_s, decals[k].age_s);
+    EXPECT_LE(decals[k - 1].opacity(), decals[k].opacity());
+    EXPECT_GE(decals[k - 1].width_m, decals[k].width_m);
+    EXPECT_NEAR(std::hypot(decals[k].x_m - decals[k - 1].x_m, decals[k].y_m - decals[k - 1].y_m), 9.0, 1.0);
+  }
+  EXPECT_LT(decals.front().age_s, 20.0);
+}
+
+TEST(Scenario, TheExampleFileLoadsAndSails) {
+  const std::filesystem::path file = std::filesystem::path(NEARSHORE_SOURCE_DIR) / "data" / "ships" / "demo_harbour.toml";
+  const auto definitions = read_scenario(file);
+  ASSERT_GE(definitions.size(), 2u);
+  ShipFleet fleet;
+  fleet.set_site(demo_site());
+  EXPECT_EQ(load_scenario(file, fleet), definitions.size());
+  for (int k = 0; k < 5 * 30; ++k) fleet.step(nullptr, 1.0 / 30);
+  for (std::size_t k = 0; k < fleet.size(); ++k) EXPECT_FALSE(fleet.ship(k).status().aground) << fleet.ship(k).name();
+}
+
+TEST(Scenario, BadFilesAndShipsAreClearErrorsNamingTheFileAndTheShip) {
+  const auto folder = scratch_folder();
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(folder / name) << text;
+    return folder / name;
+  };
+  ShipFleet fleet;
+  fleet.set_site(demo_site());
+
+  std::string m = error_of([&] { read_scenario(write("syntax.toml", "[[ship]]\nname = \"A\nhull = 1\n")); });
+  EXPECT_NE(m.find("syntax.toml"), std::string::npos) << m;
+  EXPECT_NE(m.find("line"), std::string::npos) << m;
+
+  m = error_of([&] { read_scenario(write("hull.toml", "[[ship]]\nname = \"A\"\nhull = \"no_such_hull.obj\"\ndraft_m = 1\nposition_m = [0, 0]\n")); });
+  EXPECT_NE(m.find("hull.toml"), std::string::npos) << m;
+  EXPECT_NE(m.find("no_such_hull.obj"), std::string::npos) << m;
+
+  m = error_of([&] { read_scenario(write("key.toml", "[[ship]]\nname = \"A\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\nspeed_knots = 3\n")); });
+  EXPECT_NE(m.find("speed_knots"), std::string::npos) << m;
+
+  const std::string sinks =
+      "[[ship]]\nname = \"Fine\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\n"
+      "[[ship]]\nname = \"Lead\"\nhull = \"tug\"\nmass_kg = 5e6\nposition_m = [500, 300]\n";
+  m = error_of([&] { load_scenario(write("sinks.toml", sinks), fleet); });
+  EXPECT_NE(m.find("sinks.toml"), std::string::npos) << m;
+  EXPECT_NE(m.find("Lead"), std::string::npos) << m;
+  EXPECT_NE(m.find("cannot float"), std::string::npos) << m;
+  EXPECT_EQ(fleet.size(), 0u);  // nothing of a refused file is added
+
+  m = error_of([&] { load_scenario(write("land.toml", "[[ship]]\nname = \"Ashore\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [200, 1100]\n"), fleet); });
+  EXPECT_NE(m.find("land.toml"), std::string::npos) << m;
+  EXPECT_NE(m.find("Ashore"), std::string::npos) << m;
+  EXPECT_NE(m.find("on land"), std::string::npos) << m;
+
+  m = error_of([&] { load_scenario(write("shallow.toml", "[[ship]]\nname = \"Shoal\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [200, 1010]\n"), fleet); });
+  EXPECT_NE(m.find("Shoal"), std::string::npos) << m;
+  EXPECT_NE(m.find("shallower than its draft"), std::string::npos) << m;
+  EXPECT_EQ(fleet.size(), 0u);
+}
+
+}  // namespace
+}  // namespace nearshore::ships

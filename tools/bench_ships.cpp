@@ -1,0 +1,169 @@
+// `nearshore bench ships`: what one ship costs a host per frame, on one core (docs/ships.md,
+// issue 18):
+//  1. the rigid body: one 1/60 s substep of a hull of --points feature points (a 24 x 9 x 4.5 m
+//     box barge at 3 m draft: its 12 faces sample to the count asked; the lofted tug has more faces),
+//     on a Beaufort --beaufort deep sea through the runtime's CPU queries, and in still water
+//     (the difference is the surface queries' share);
+//  2. one Kurganov-Petrova step (SSP-RK2, two stages) on a --grid x --grid shallow-water grid,
+//     and one bow-wave update per 30 Hz frame (forcing, the steps the CFL limit asks for,
+//     absorbing layer, heights) of the tug at 3 m/s over 10 m of water.
+// CPU time of the calling thread, median of --repeats; the load average is printed with it.
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "command_support.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/runtime/deep_water_source.hpp"
+#include "nearshore/runtime/surface_sampler.hpp"
+#include "nearshore/ships/bow_wave.hpp"
+#include "nearshore/ships/generic_hulls.hpp"
+#include "nearshore/ships/shallow_water.hpp"
+#include "nearshore/ships/ship_body.hpp"
+
+namespace nearshore::tools {
+namespace {
+
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+std::string load_average() {
+  std::string line;
+  std::getline(std::ifstream("/proc/loadavg"), line);
+  return line;
+}
+
+template <class F>
+double median_ms(int repeats, F&& f) {
+  std::vector<double> ms;
+  for (int k = 0; k < repeats; ++k) {
+    const double start = thread_cpu_s();
+    f();
+    ms.push_back(1e3 * (thread_cpu_s() - start));
+  }
+  std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+  return ms[ms.size() / 2];
+}
+
+struct Options {
+  int points = 1000, grid = 256, repeats = 200, beaufort = 5;
+  bool json = false;
+};
+
+}  // namespace
+
+void add_bench_ships(CLI::App& bench) {
+  auto o = std::make_shared<Options>();
+  CLI::App* command = bench.add_subcommand("ships", "Per-ship cost of the rigid body and of a bow-wave step, one core");
+  command->add_option("--points", o->points, "Hull feature points of the rigid body")->check(number_in(at_least(16), at_most(1e6)));
+  command->add_option("--grid", o->grid, "Cells per side of the shallow-water grid")->check(number_in(at_least(16), at_most(2048)));
+  command->add_option("--repeats", o->repeats, "Timed repetitions (the median is reported)")->check(number_in(at_least(1), at_most(1e6)));
+  command->add_option("--beaufort", o->beaufort, "Beaufort force of the deep sea the hull samples (1-12)")->check(number_in(at_least(1), at_most(12)));
+  command->add_flag("--json", o->json, "Print the results as JSON");
+  set_example(*command, "nearshore bench ships --points 1000 --grid 256");
+  command->callback([o]() {
+    // 1. Rigid body.
+    const ships::HullMesh hull = ships::box_barge(24.0, 9.0, 4.5);
+    ships::HullSamples samples = ships::sample_hull(hull, o->points);
+    const ships::HullSamples tug_samples = ships::sample_hull(ships::harbour_tug(), o->points);
+    ships::HullLoading loading;
+    loading.draft_m = 3.0;
+    const ships::ShipParticulars particulars = ships::particulars_for_hull("bench barge", hull, samples, loading);
+    const ships::ShipParticulars tug = ships::particulars_for_hull("bench tug", ships::harbour_tug(), tug_samples, loading);
+    const int point_count = static_cast<int>(samples.size());
+    ships::ShipState state;
+    state.position_m = {500.0, 500.0, particulars.centre_of_gravity_m.z() - particulars.design_draft_m};
+    state.velocity_m_s = {3.0, 0.0, 0.0};
+    ships::ShipBody body(samples, particulars, state);
+
+    runtime::BeaufortSea sea;
+    sea.force = o->beaufort;
+    const std::unique_ptr<ocean::DeepWaterField> field = runtime::build_beaufort_field(sea);
+    field->synthesise(10.0);
+    auto keyframe = std::make_shared<runtime::DeepWaterKeyframe>();
+    for (int c = 0; c < field->cascade_count(); ++c) keyframe->cascades.push_back(field->frame(c));
+    runtime::SurfaceSnapshot snapshot;
+    snapshot.deep_from = snapshot.deep_to = keyframe;
+    const runtime::SurfaceSampler water(snapshot);
+    ships::ShipEnvironment at_sea, still;
+    at_sea.water = &water;
+    const ships::ShipControls controls{0.5, 0.1};
+    const double substep_s = 1.0 / 60.0;
+    body.step(at_sea, controls, {}, substep_s);
+    const double body_sea_ms = median_ms(o->repeats, [&] { body.step(at_sea, controls, {}, substep_s); });
+    const double body_still_ms = median_ms(o->repeats, [&] { body.step(still, controls, {}, substep_s); });
+
+    // 2. Shallow water: one SSP-RK2 step on grid x grid cells of 0.5 m over 10 m with a hump.
+    ships::ShallowWaterGrid grid(o->grid, o->grid, 0.5, ships::EdgeKind::kOpen);
+    for (int j = 0; j <= o->grid; ++j)
+      for (int i = 0; i <= o->grid; ++i) grid.set_bottom_corner(i, j, -10.0);
+    grid.update_bottom();
+    for (int j = 0; j < o->grid; ++j)
+      for (int i = 0; i < o->grid; ++i)
+        grid.surface_m(i, j) = 0.3 * std::exp(-(std::pow(i - o->grid / 2.0, 2) + std::pow(j - o->grid / 2.0, 2)) / 50.0);
+    const double swe_dt = grid.stable_time_step_s();
+    const int swe_repeats = std::max(5, o->repeats / 10);
+    const double swe_step_ms = median_ms(swe_repeats, [&] { grid.step(swe_dt); });
+
+    // 3. The bow wave of the tug at 3 m/s, grid x grid cells over 4 ship lengths.
+    ships::BowWaveOptions wave_options;
+    wave_options.cells = o->grid;
+    ships::BowWave wave(tug, wave_options);
+    ships::ShipState tug_state = state;
+    tug_state.position_m.z() = tug.centre_of_gravity_m.z() - tug.design_draft_m;
+    ships::ShipBody mover(tug_samples, tug, tug_state);
+    const double frame_s = 1.0 / 30.0;
+    int steps = 0, frames = 0;
+    auto move = [&] {
+      ships::ShipState s = mover.state();
+      s.position_m.x() += 3.0 * frame_s;
+      mover.set_state(s);
+      wave.update(mover, nullptr, frame_s);
+      steps += wave.last_steps();
+      ++frames;
+    };
+    for (int k = 0; k < 30; ++k) move();  // leave the start-up behind
+    steps = frames = 0;
+    const double wave_frame_ms = median_ms(swe_repeats, move);
+    const double steps_per_frame = frames > 0 ? static_cast<double>(steps) / frames : 0.0;
+    const std::string load = load_average();
+
+    if (o->json) {
+      nlohmann::json j = {{"hull_points", point_count},
+                          {"rigid_body_substep_ms_at_sea", body_sea_ms},
+                          {"rigid_body_substep_ms_still_water", body_still_ms},
+                          {"beaufort", o->beaufort},
+                          {"grid", o->grid},
+                          {"shallow_water_step_ms", swe_step_ms},
+                          {"bow_wave_update_ms_per_30hz_frame", wave_frame_ms},
+                          {"bow_wave_steps_per_frame", steps_per_frame},
+                          {"bow_wave_spacing_m", wave.field().spacing_m},
+                          {"load_average", load}};
+      std::puts(j.dump(2).c_str());
+      return;
+    }
+    std::printf("nearshore bench ships: one core (CPU time of this thread, median of %d)\n", o->repeats);
+    std::printf("  rigid body (box barge), %d hull points, one 1/60 s substep: %.3f ms on a Beaufort %d sea (runtime queries), "
+                "%.3f ms in still water\n",
+                point_count, body_sea_ms, o->beaufort, body_still_ms);
+    std::printf("  shallow water, %d x %d cells, one SSP-RK2 step (2 stages): %.3f ms\n", o->grid, o->grid, swe_step_ms);
+    std::printf("  bow wave of a 24 m tug at 3 m/s, %d x %d cells of %.2f m over 10 m: %.3f ms per 30 Hz frame "
+                "(%.2f steps per frame)\n",
+                o->grid, o->grid, wave.field().spacing_m, wave_frame_ms, steps_per_frame);
+    std::printf("  load average (/proc/loadavg): %s\n", load.c_str());
+  });
+}
+
+}  // namespace nearshore::tools
