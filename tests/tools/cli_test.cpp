@@ -56,7 +56,7 @@ fs::path small_sequence(const std::string& name, double sea_period_s, double loo
   return folder;
 }
 
-const char* const kSubcommands[] = {"bathy", "bake", "loops", "play", "demo", "bench"};
+const char* const kSubcommands[] = {"bathy", "bake", "loops", "library", "play", "demo", "bench"};
 
 TEST(Cli, TopLevelHelpListsEverySubcommand) {
   const CommandResult help = run("--help");
@@ -140,13 +140,18 @@ TEST(Cli, EveryNumberOnTheCommandLineIsRangeCheckedBeforeAnyWork) {
       {"play " + seq + " --time nan", "--time", "[0, 1e+09]"},
       {"play " + seq + " --eye 1,2,nan", "--eye", "any finite number"},
       {"play " + seq + " --sun-elevation 91", "--sun-elevation", "[-90, 90]"},
+      {"play " + seq + " --beaufort 13", "--beaufort", "[0, 12]"},
+      {"play " + seq + " --size 8,100", "--size", "[16, 8192]"},
+      {"play " + seq + " --crossfade -1", "--crossfade", "[0, 3600]"},
       {"bathy " + seq + "/soundings.xyz --spacing 0 -o " + out, "--spacing", "(0, 100000]"},
       {"bathy " + seq + "/soundings.xyz --spacing 10 --structure quay=10:nan -o " + out, "--structure",
        "porosity must be in [0, 1]"},
       {"bathy " + seq + "/soundings.xyz --spacing 10 --bbox 1,2,nan,4 -o " + out, "--bbox", "not finite"},
       {"demo -o " + out + " --spacing 0", "--spacing", "[2, 50]"},
       {"bench bathy --grid 1", "--grid", "[2, 100000]"},
-      {"bench bake --repeats 0", "--repeats", "[1, 1000]"},
+      {"bench bake --steps 0", "--steps", "[1, 1e+06]"},
+      {"bench play --seconds 0", "--seconds", "[1, 36000]"},
+      {"bench ships --points 0", "--points", "["},
       {"bench deepwater --beaufort 13", "--beaufort", "[1, 12]"},
       {"bench loops --distance-frames 1", "--distance-frames", "[2, 100000]"},
   };
