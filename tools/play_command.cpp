@@ -175,24 +175,9 @@ nlohmann::json stats_json(const runtime::StreamingStats& s, const playback::Fram
           {"upload_bytes_last_frame", frame.upload_bytes}};
 }
 
-// What the viewer plays: one baked sequence, or a sea-state library with crossfades.
-struct PlayedSea {
-  std::unique_ptr<runtime::StreamingEngine> single;
-  std::unique_ptr<runtime::LibraryPlayer> library;
-
-  runtime::StreamingEngine& engine() { return library ? library->engine() : *single; }
-  void advance_to(double t) { library ? library->advance_to(t) : single->advance_to(t); }
-  runtime::SurfaceSnapshot snapshot() const { return library ? library->snapshot() : single->snapshot(); }
-};
-
-PlayedSea open_sea(const PlayOptions& o, const std::string& plan) {
-  PlayedSea sea;
-  if (fs::is_regular_file(o.sequence_folder / "library.json"))
-    sea.library = std::make_unique<runtime::LibraryPlayer>(o.sequence_folder, sequence::parse_sea_conditions(o.state, "--state " + o.state),
-                                                           streaming_options(o, plan));
-  else
-    sea.single = std::make_unique<runtime::StreamingEngine>(o.sequence_folder, streaming_options(o, plan));
-  return sea;
+runtime::PlayedSea open_sea(const PlayOptions& o, const std::string& plan) {
+  return runtime::PlayedSea(o.sequence_folder, sequence::parse_sea_conditions(o.state, "--state " + o.state),
+                            streaming_options(o, plan));
 }
 
 // "2.5:wind_direction_deg=30" -> (2.5 s, the conditions).
@@ -211,10 +196,10 @@ std::pair<double, sequence::SeaConditions> parse_switch(const std::string& text)
 std::string play(const PlayOptions& o) {
   const bool headless = !o.screenshot.empty() || o.frames > 0;
   std::string plan = o.plan;
-  PlayedSea sea = open_sea(o, plan);
+  runtime::PlayedSea sea = open_sea(o, plan);
   std::vector<std::pair<double, sequence::SeaConditions>> switches;
   for (const std::string& text : o.switches) switches.push_back(parse_switch(text));
-  if (!switches.empty() && !sea.library)
+  if (!switches.empty() && !sea.library())
     throw Error("--switch", "switches between the states of a sea-state library, and " + o.sequence_folder.string() +
                                 " is one sequence (no library.json)", "give the output folder of `nearshore library`");
   std::size_t next_switch = 0;
@@ -248,7 +233,7 @@ std::string play(const PlayOptions& o) {
   model.jump_lat_lon_deg = {looked_at.latitude_deg, looked_at.longitude_deg};
   if (!o.quiet) {
     std::fprintf(stderr, "OpenGL %s\nplaying %s%s; %s\n", window.gl_description().c_str(),
-                 sea.library ? ("sea state " + sea.library->state_id() + ": ").c_str() : "",
+                 sea.library() ? ("sea state " + sea.library()->state_id() + ": ").c_str() : "",
                  sea.engine().stats().plan.c_str(), sea.engine().memory_summary().c_str());
     if (!sea.engine().stats().last_message.empty())
       std::fprintf(stderr, "note: %s\n", sea.engine().stats().last_message.c_str());
@@ -274,7 +259,7 @@ std::string play(const PlayOptions& o) {
     }
     const auto main_start = std::chrono::steady_clock::now();
     while (next_switch < switches.size() && display_time_s >= switches[next_switch].first) {
-      const std::string& id = sea.library->request(switches[next_switch++].second, o.crossfade_s);
+      const std::string& id = sea.library()->request(switches[next_switch++].second, o.crossfade_s);
       if (!o.quiet) std::fprintf(stderr, "t = %.2f s: crossfading to sea state %s over %.1f s\n", display_time_s, id.c_str(), o.crossfade_s);
       if (headless) sea.engine().wait_until_ready(display_time_s, std::chrono::seconds(30));
     }
@@ -298,8 +283,8 @@ std::string play(const PlayOptions& o) {
       model.decode_real_time_multiple = s.decode_real_time_multiple();
       model.plan_step = s.plan_step;
       model.crossfading = s.in_crossfade;
-      model.plan_name = sea.library ? fmt::format("sea state {} (crossfade {:.0f} %): {}", sea.library->state_id(),
-                                                  100.0 * sea.library->crossfade_weight(), s.plan)
+      model.plan_name = sea.library() ? fmt::format("sea state {} (crossfade {:.0f} %): {}", sea.library()->state_id(),
+                                                  100.0 * sea.library()->crossfade_weight(), s.plan)
                                     : s.plan;
       model.message = s.last_message;
       const LonLat place = frame.lat_lon_of(control.camera.eye_m[0], control.camera.eye_m[1]);

@@ -25,13 +25,12 @@
 #include "nearshore/runtime/surface_sampler.hpp"
 
 struct nearshore_sea {
-  std::unique_ptr<nearshore::runtime::StreamingEngine> single;   // one baked sequence
-  std::unique_ptr<nearshore::runtime::LibraryPlayer> library;    // or a sea-state library
+  std::unique_ptr<nearshore::runtime::PlayedSea> played;  // one baked sequence, or a sea-state library
   std::optional<nearshore::MapProjection> projection;  // none for a laboratory grid
 
-  nearshore::runtime::StreamingEngine& engine() const { return library ? library->engine() : *single; }
-  nearshore::runtime::SurfaceSnapshot snapshot() const { return library ? library->snapshot() : single->snapshot(); }
-  void advance_to(double t) { library ? library->advance_to(t) : single->advance_to(t); }
+  nearshore::runtime::StreamingEngine& engine() const { return played->engine(); }
+  nearshore::runtime::SurfaceSnapshot snapshot() const { return played->snapshot(); }
+  void advance_to(double t) { played->advance_to(t); }
 };
 
 struct nearshore_renderer {
@@ -205,6 +204,15 @@ nearshore::runtime::StreamingOptions streaming_options_of(const nearshore_sea_op
   return streaming;
 }
 
+// "KEY=VALUE,..." (NULL: none) as the library's conditions; a bad item is an invalid argument.
+nearshore::sequence::SeaConditions conditions_of(const char* text) {
+  try {
+    return nearshore::sequence::parse_sea_conditions(text ? text : "", "conditions");
+  } catch (const Error& error) {
+    fail(NEARSHORE_INVALID_ARGUMENT, error.what());
+  }
+}
+
 // The folder a sea opens, checked before anything is read: a missing one is an I/O error.
 fs::path existing_folder(const char* folder_text, const char* parameter, const char* needed_file, const char* made_by) {
   const fs::path folder = require(folder_text, parameter);
@@ -233,7 +241,8 @@ nearshore_status nearshore_sea_open(const char* sequence_folder, const nearshore
     *sea = nullptr;
     const fs::path folder = existing_folder(sequence_folder, "sequence_folder", "manifest.json", "`nearshore bake`");
     auto opened = std::make_unique<nearshore_sea>();
-    opened->single = std::make_unique<nearshore::runtime::StreamingEngine>(folder, streaming_options_of(options));
+    opened->played = std::make_unique<nearshore::runtime::PlayedSea>(folder, nearshore::sequence::SeaConditions{},
+                                                                     streaming_options_of(options));
     set_projection(*opened, folder);
     *sea = opened.release();
   });
@@ -245,14 +254,9 @@ nearshore_status nearshore_sea_open_library(const char* library_folder, const ch
     require(sea, "sea");
     *sea = nullptr;
     const fs::path folder = existing_folder(library_folder, "library_folder", "library.json", "`nearshore library`");
-    nearshore::sequence::SeaConditions requested;
-    try {
-      requested = nearshore::sequence::parse_sea_conditions(conditions ? conditions : "", "conditions");
-    } catch (const Error& error) {
-      fail(NEARSHORE_INVALID_ARGUMENT, error.what());
-    }
+    const nearshore::sequence::SeaConditions requested = conditions_of(conditions);
     auto opened = std::make_unique<nearshore_sea>();
-    opened->library = std::make_unique<nearshore::runtime::LibraryPlayer>(folder, requested, streaming_options_of(options));
+    opened->played = std::make_unique<nearshore::runtime::PlayedSea>(folder, requested, streaming_options_of(options));
     set_projection(*opened, folder);
     *sea = opened.release();
   });
@@ -262,18 +266,14 @@ nearshore_status nearshore_sea_request_conditions(nearshore_sea* sea, const char
                                                   char state_id[64]) {
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     require(sea, "sea");
-    if (!sea->library)
+    nearshore::runtime::LibraryPlayer* library = sea->played->library();
+    if (!library)
       fail(NEARSHORE_INVALID_ARGUMENT, "this sea is one sequence, not a sea-state library; open it with "
                                        "nearshore_sea_open_library");
-    nearshore::sequence::SeaConditions requested;
-    try {
-      requested = nearshore::sequence::parse_sea_conditions(conditions ? conditions : "", "conditions");
-    } catch (const Error& error) {
-      fail(NEARSHORE_INVALID_ARGUMENT, error.what());
-    }
+    const nearshore::sequence::SeaConditions requested = conditions_of(conditions);
     if (!(crossfade_s >= 0.0 && crossfade_s <= 3600.0))
       fail(NEARSHORE_INVALID_ARGUMENT, "crossfade_s = " + std::to_string(crossfade_s) + " is outside 0-3600 s");
-    const std::string& id = sea->library->request(requested, crossfade_s);
+    const std::string& id = library->request(requested, crossfade_s);
     if (state_id) {
       const std::size_t length = std::min<std::size_t>(id.size(), 63);
       std::memcpy(state_id, id.data(), length);

@@ -179,4 +179,12 @@ const std::string& LibraryPlayer::state_id() const { return impl_->shown_id; }
 double LibraryPlayer::crossfade_weight() const { return impl_->weight; }
 const sequence::LibraryIndex& LibraryPlayer::index() const { return impl_->index; }
 
+PlayedSea::PlayedSea(const std::filesystem::path& folder, const sequence::SeaConditions& conditions,
+                     StreamingOptions options) {
+  if (std::filesystem::is_regular_file(folder / "library.json"))
+    library_ = std::make_unique<LibraryPlayer>(folder, conditions, std::move(options));
+  else
+    single_ = std::make_unique<StreamingEngine>(folder, std::move(options));
+}
+
 }  // namespace nearshore::runtime

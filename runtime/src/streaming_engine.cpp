@@ -44,6 +44,20 @@ struct DeepEntry {
   std::shared_ptr<const DeepWaterKeyframe> keyframe;
 };
 
+// Up to `count` keyframes of `ring` after `shown` (all from the front when nothing is shown).
+template <class Entry, class Keyframe>
+std::vector<std::shared_ptr<const Keyframe>> keyframes_after(const std::deque<Entry>& ring,
+                                                             const std::shared_ptr<const Keyframe>& shown, int count) {
+  std::vector<std::shared_ptr<const Keyframe>> upcoming;
+  bool past_shown = !shown;
+  for (const Entry& entry : ring) {
+    if (static_cast<int>(upcoming.size()) >= count) break;
+    if (past_shown) upcoming.push_back(entry.keyframe);
+    if (shown && entry.keyframe->serial == shown->serial) past_shown = true;
+  }
+  return upcoming;
+}
+
 // The entry of `index` in a ring of consecutive indices, or nullptr.
 template <class Entry>
 const Entry* find(const std::deque<Entry>& ring, long long index) {
@@ -514,30 +528,14 @@ void StreamingEngine::advance_to(double display_time_s) {
 
 std::vector<std::shared_ptr<const HarbourKeyframe>> StreamingEngine::upcoming_harbour_keyframes(int count) const {
   const Impl& m = *impl_;
-  std::vector<std::shared_ptr<const HarbourKeyframe>> upcoming;
-  const std::uint64_t shown_to = m.current.harbour_to ? m.current.harbour_to->serial : 0;  // this thread writes current
   const std::lock_guard<std::mutex> lock(m.mutex);
-  bool past_shown = shown_to == 0;
-  for (const auto& entry : m.harbour_ring) {
-    if (static_cast<int>(upcoming.size()) >= count) break;
-    if (past_shown) upcoming.push_back(entry.keyframe);
-    if (entry.keyframe->serial == shown_to) past_shown = true;
-  }
-  return upcoming;
+  return keyframes_after(m.harbour_ring, m.current.harbour_to, count);  // the render thread writes current
 }
 
 std::vector<std::shared_ptr<const DeepWaterKeyframe>> StreamingEngine::upcoming_deep_keyframes(int count) const {
   const Impl& m = *impl_;
-  std::vector<std::shared_ptr<const DeepWaterKeyframe>> upcoming;
-  const std::uint64_t shown_to = m.current.deep_to ? m.current.deep_to->serial : 0;
   const std::lock_guard<std::mutex> lock(m.mutex);
-  bool past_shown = shown_to == 0;
-  for (const auto& entry : m.deep_ring) {
-    if (static_cast<int>(upcoming.size()) >= count) break;
-    if (past_shown) upcoming.push_back(entry.keyframe);
-    if (entry.keyframe->serial == shown_to) past_shown = true;
-  }
-  return upcoming;
+  return keyframes_after(m.deep_ring, m.current.deep_to, count);
 }
 
 SurfaceSnapshot StreamingEngine::snapshot() const {

@@ -59,4 +59,26 @@ class LibraryPlayer {
   std::unique_ptr<Impl> impl_;
 };
 
+/// What a viewer or a host plays: one baked sequence, or a sea-state library (a folder holding
+/// library.json) with its crossfades, behind one interface.
+class PlayedSea {
+ public:
+  /// `folder` with library.json: a LibraryPlayer started at the state nearest `conditions`;
+  /// otherwise a StreamingEngine on the sequence (`conditions` unused). Throws what they throw.
+  PlayedSea(const std::filesystem::path& folder, const sequence::SeaConditions& conditions, StreamingOptions options);
+
+  /// The engine on screen (the new state's during a crossfade).
+  StreamingEngine& engine() const { return library_ ? library_->engine() : *single_; }
+  /// The library, or null for one sequence.
+  LibraryPlayer* library() const { return library_.get(); }
+  void advance_to(double display_time_s) {
+    library_ ? library_->advance_to(display_time_s) : single_->advance_to(display_time_s);
+  }
+  SurfaceSnapshot snapshot() const { return library_ ? library_->snapshot() : single_->snapshot(); }
+
+ private:
+  std::unique_ptr<StreamingEngine> single_;
+  std::unique_ptr<LibraryPlayer> library_;
+};
+
 }  // namespace nearshore::runtime
