@@ -18,6 +18,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 using testing::scratch_folder;
+using testing::error_of;
 
 // The demo harbour (bathymetry/demo_harbour.hpp) as a runtime site: its analytic depth at the
 // cell centres of an 8 m grid, land where the depth is negative.
@@ -38,15 +39,6 @@ std::shared_ptr<const runtime::HarbourSite> demo_site() {
   site->width_m = geometry.width_m();
   site->height_m = geometry.height_m();
   return site;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {

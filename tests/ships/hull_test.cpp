@@ -13,15 +13,7 @@ namespace nearshore::ships {
 namespace {
 
 using testing::scratch_folder;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 TEST(HullMesh, BoxIntegralsAreTheSolidsExactly) {
   const double L = 20, B = 8, D = 4;

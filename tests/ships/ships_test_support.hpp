@@ -4,18 +4,30 @@
 // samples it through runtime::SurfaceSampler exactly as it samples the sea the renderer draws.
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "nearshore/core/error.hpp"
 #include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/runtime/surface_sampler.hpp"
 
 namespace nearshore::ships::testing {
 
 namespace fs = std::filesystem;
+
+/// The message of the nearshore::Error `f` throws ("" when it throws none).
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 inline fs::path scratch_folder() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
