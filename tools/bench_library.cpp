@@ -85,7 +85,7 @@ void add_bench_library(CLI::App& bench) {
   struct Options {
     std::string work = "nearshore-bench-library";
     double spacing_m = 12.0, duration_s = 90.0;
-    bool keep = false;
+    bool keep = false, json = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command =
@@ -96,6 +96,7 @@ void add_bench_library(CLI::App& bench) {
   command->add_option("--duration-s", options->duration_s, "Simulated time of each state's bake, seconds")
       ->check(number_in(at_least(40), at_most(3600)));
   command->add_flag("--keep", options->keep, "Keep the scratch folder (the libraries and their logs)");
+  command->add_flag("--json", options->json, "Print the results as JSON on stdout instead of the table");
   set_example(*command, "nearshore bench library");
   command->callback([options]() {
     ProgressBar::set_quiet(true);
@@ -137,22 +138,44 @@ void add_bench_library(CLI::App& bench) {
 
     std::string load;
     std::getline(std::ifstream("/proc/loadavg"), load);
-    std::printf("sea-state library of the demo harbour: 8 states (%d x %d cells of %g m, %g s of regular swell each, with loop "
-                "tables)\n",
-                harbour.grid.geometry.columns, harbour.grid.geometry.rows, options->spacing_m, options->duration_s);
-    std::printf("| run | ranks | states baked | wall time (s) | states per hour | efficiency vs serial | per rank |\n");
-    std::printf("|---|---|---|---|---|---|---|\n");
     const double serial_rate = runs.front().summary["states_per_hour"].get<double>();
-    for (const Measured& m : runs) {
-      const double rate = m.summary["states_per_hour"].get<double>();
-      const int ranks = std::max(1, m.ranks);
-      std::printf("| %s | %s | %d | %.2f | %.0f | %.2f | %.2f |\n", m.label.c_str(),
-                  m.ranks == 0 ? "- (one process)" : std::to_string(m.ranks).c_str(),
-                  m.summary["actions"].value("baked", 0), m.summary["wall_time_s"].get<double>(), rate, rate / serial_rate,
-                  rate / serial_rate / ranks);
+    if (options->json) {
+      nlohmann::json rows = nlohmann::json::array();
+      for (const Measured& m : runs) {
+        const double rate = m.summary["states_per_hour"].get<double>();
+        rows.push_back({{"run", m.label},
+                        {"ranks", m.ranks},
+                        {"states_baked", m.summary["actions"].value("baked", 0)},
+                        {"wall_time_s", m.summary["wall_time_s"].get<double>()},
+                        {"states_per_hour", rate},
+                        {"efficiency_vs_serial", rate / serial_rate},
+                        {"efficiency_per_rank", rate / serial_rate / std::max(1, m.ranks)}});
+      }
+      const nlohmann::json out = {{"states", 8},
+                                  {"grid_cells", {harbour.grid.geometry.columns, harbour.grid.geometry.rows}},
+                                  {"spacing_m", options->spacing_m},
+                                  {"duration_s", options->duration_s},
+                                  {"runs", rows},
+                                  {"load_average", load},
+                                  {"cores", std::max(1u, std::thread::hardware_concurrency())}};
+      std::printf("%s\n", out.dump(2).c_str());
+    } else {
+      std::printf("sea-state library of the demo harbour: 8 states (%d x %d cells of %g m, %g s of regular swell each, "
+                  "with loop tables)\n",
+                  harbour.grid.geometry.columns, harbour.grid.geometry.rows, options->spacing_m, options->duration_s);
+      std::printf("| run | ranks | states baked | wall time (s) | states per hour | efficiency vs serial | per rank |\n");
+      std::printf("|---|---|---|---|---|---|---|\n");
+      for (const Measured& m : runs) {
+        const double rate = m.summary["states_per_hour"].get<double>();
+        const int ranks = std::max(1, m.ranks);
+        std::printf("| %s | %s | %d | %.2f | %.0f | %.2f | %.2f |\n", m.label.c_str(),
+                    m.ranks == 0 ? "- (one process)" : std::to_string(m.ranks).c_str(),
+                    m.summary["actions"].value("baked", 0), m.summary["wall_time_s"].get<double>(), rate,
+                    rate / serial_rate, rate / serial_rate / ranks);
+      }
+      std::printf("%sload average at the end of the runs: %s (/proc/loadavg); %u cores\n", mpi_note, load.c_str(),
+                  std::max(1u, std::thread::hardware_concurrency()));
     }
-    std::printf("%sload average at the end of the runs: %s (/proc/loadavg); %u cores\n", mpi_note, load.c_str(),
-                std::max(1u, std::thread::hardware_concurrency()));
     if (!options->keep) fs::remove_all(work);
   });
 }

@@ -51,7 +51,14 @@ CLI::Validator number_in(Bound low, Bound high) {
 CLI::Validator finite_number() { return number_in(unbounded(), unbounded()); }
 
 void set_example(CLI::App& command, const std::string& example) {
-  command.footer("\nExample:\n  " + example + "\n\nMore: docs/commands/" + command.get_name() + ".md");
+  // A top-level command has its own page; a subcommand (`bench play`) is a section of its parent's
+  // page, "## bench play", so the link names the section's anchor. tests/docs checks every link.
+  const CLI::App* parent = command.get_parent();
+  const bool top_level = parent == nullptr || parent->get_parent() == nullptr;
+  const std::string page = top_level ? "docs/commands/" + command.get_name() + ".md"
+                                     : "docs/commands/" + parent->get_name() + ".md#" + parent->get_name() + "-" +
+                                           command.get_name();
+  command.footer("\nExample:\n  " + example + "\n\nMore: " + page);
 }
 
 CLI::App* add_unbuilt_command(CLI::App& app, const std::string& name, const std::string& description,
