@@ -150,15 +150,109 @@ void write_png(const Image& picture, const std::filesystem::path& path) {
 
 namespace {
 constexpr int kHeatMapMargin = 50, kHeatMapBarWidth = 24, kHeatMapRight = 110;
+// With map axes: room for the northing labels on the left and the easting labels and the axis
+// title below the field.
+constexpr int kMapAxesLeft = 100, kMapAxesBelow = 48;
+
+// Tick labels of map coordinates: whole metres with thin-space thousands ("541 200"), so a UTM
+// easting reads as the chart prints it.
+std::string map_tick_label(double value_m, double step_m) {
+  if (step_m < 1.0) return tick_label(value_m, step_m);
+  const long long whole = std::llround(value_m);
+  std::string digits = std::to_string(std::llabs(whole)), grouped;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) grouped += ' ';
+    grouped += digits[i];
+  }
+  return (whole < 0 ? "-" : "") + grouped;
+}
+
+// The scale bar's length: the largest 1, 2 or 5 x 10^k metres not longer than a fifth of the field.
+double scale_bar_length_m(double field_width_m) {
+  const double limit = field_width_m / 5.0;
+  const double magnitude = std::pow(10.0, std::floor(std::log10(limit)));
+  double best = magnitude;
+  for (double nice : {1.0, 2.0, 5.0})
+    if (nice * magnitude <= limit) best = nice * magnitude;
+  return best;
+}
+
+std::string length_label(double metres) {
+  if (metres >= 1000.0) return fmt::format("{:g} km", metres / 1000.0);
+  if (metres >= 1.0) return fmt::format("{:g} m", metres);
+  return fmt::format("{:g} cm", metres * 100.0);
+}
+
+void draw_map_axes(Image& image, const HeatMapPlacement& placement, int columns, int rows, const MapAxes& axes) {
+  const Rgb ink = {0.1f, 0.1f, 0.1f}, white = {1.f, 1.f, 1.f};
+  const double left = placement.left_px, top = placement.top_px;
+  const double right = left + placement.width_px, bottom = top + placement.height_px;
+  const double width_m = columns * axes.cell_size_x_m, height_m = rows * axes.cell_size_y_m;
+  const double px_per_m_x = placement.width_px / width_m, px_per_m_y = placement.height_px / height_m;
+  draw_line(image, left, bottom, right, bottom, ink);
+  draw_line(image, left, top, left, bottom, ink);
+  // Ticks at round CRS values (not at round offsets from the corner), as a chart's graticule.
+  const double x_step = tick_step(width_m, 6), y_step = tick_step(height_m, 6);
+  const double x_end = axes.origin_x_m + width_m, y_end = axes.origin_y_m + height_m;
+  for (double x = std::ceil(axes.origin_x_m / x_step) * x_step; x <= x_end + 1e-9 * x_step; x += x_step) {
+    const double px = left + (x - axes.origin_x_m) * px_per_m_x;
+    draw_line(image, px, bottom, px, bottom + 5, ink);
+    const std::string label = map_tick_label(x, x_step);
+    draw_text(image, static_cast<int>(px) - static_cast<int>(3.5 * label.size()), static_cast<int>(bottom) + 19, label,
+              ink, 12);
+  }
+  for (double y = std::ceil(axes.origin_y_m / y_step) * y_step; y <= y_end + 1e-9 * y_step; y += y_step) {
+    const double py = bottom - (y - axes.origin_y_m) * px_per_m_y;
+    draw_line(image, left - 5, py, left, py, ink);
+    const std::string label = map_tick_label(y, y_step);
+    draw_text(image, static_cast<int>(left) - 8 - static_cast<int>(7 * label.size()), static_cast<int>(py) + 4, label,
+              ink, 12);
+  }
+  draw_text(image, static_cast<int>(left + placement.width_px / 2) - 40, static_cast<int>(bottom) + 37, axes.x_label,
+            ink, 13);
+  draw_text(image, 4, static_cast<int>(top) - 6, axes.y_label, ink, 13);
+  // Scale bar, lower left inside the field on a white plate, alternating black and white halves.
+  const double bar_m = scale_bar_length_m(width_m), bar_px = bar_m * px_per_m_x;
+  if (bar_px >= 20 && placement.height_px >= 60) {
+    const int x0 = static_cast<int>(left) + 10, y0 = static_cast<int>(bottom) - 30;
+    image.fill_rectangle(x0 - 6, y0 - 18, x0 + static_cast<int>(bar_px) + 8, y0 + 12, white);
+    image.fill_rectangle(x0, y0, x0 + static_cast<int>(bar_px / 2), y0 + 5, ink);
+    draw_line(image, x0, y0, x0 + bar_px, y0, ink);
+    draw_line(image, x0, y0 + 5, x0 + bar_px, y0 + 5, ink);
+    draw_line(image, x0 + bar_px, y0, x0 + bar_px, y0 + 5, ink);
+    draw_text(image, x0, y0 - 4, "0", ink, 11);
+    const std::string label = length_label(bar_m);
+    draw_text(image, x0 + static_cast<int>(bar_px) - static_cast<int>(6 * label.size()) + 4, y0 - 4, label, ink, 11);
+  }
+  // North arrow, upper right inside the field: an arrow turned by the grid convergence.
+  if (placement.width_px >= 80 && placement.height_px >= 80) {
+    const double cx = right - 28, cy = top + 38, length = 22;
+    const double a = axes.true_north_from_grid_deg * M_PI / 180.0;
+    const double dx = std::sin(a), dy = -std::cos(a);  // image y runs down
+    image.fill_rectangle(static_cast<int>(cx) - 20, static_cast<int>(cy) - 36, static_cast<int>(cx) + 20,
+                         static_cast<int>(cy) + 26, white);
+    const double tip_x = cx + dx * length, tip_y = cy + dy * length, tail_x = cx - dx * length * 0.8,
+                 tail_y = cy - dy * length * 0.8;
+    draw_line(image, tail_x, tail_y, tip_x, tip_y, ink, 2);
+    for (double side : {-1.0, 1.0}) {
+      const double bx = tip_x - dx * 9 + side * -dy * 5, by = tip_y - dy * 9 + side * dx * 5;
+      draw_line(image, tip_x, tip_y, bx, by, ink, 2);
+    }
+    draw_text(image, static_cast<int>(cx) - 4 - (axes.north_label.size() > 1 ? 6 : 0), static_cast<int>(cy) + 22,
+              axes.north_label, ink, 13);
+  }
+}
 }  // namespace
 
 HeatMapPlacement heat_map_placement(int columns, int rows, const HeatMapStyle& style) {
   HeatMapPlacement placement;
   placement.pixels_per_cell = std::min(1.0 * style.max_image_size_px / std::max({columns, rows, 1}), 8.0);
-  placement.left_px = kHeatMapMargin / 2;
+  placement.left_px = style.map_axes ? kMapAxesLeft : kHeatMapMargin / 2;
   placement.top_px = kHeatMapMargin;
   placement.width_px = std::max(1, static_cast<int>(columns * placement.pixels_per_cell));
   placement.height_px = std::max(1, static_cast<int>(rows * placement.pixels_per_cell));
+  placement.legend_top_px =
+      static_cast<int>(placement.top_px) + placement.height_px + (style.map_axes ? kMapAxesBelow : 0) + 8;
   return placement;
 }
 
@@ -169,7 +263,9 @@ Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
   const double scale = placement.pixels_per_cell;
   const int field_w = placement.width_px, field_h = placement.height_px;
   const int margin = kHeatMapMargin, bar_w = kHeatMapBarWidth, right = kHeatMapRight;
-  Image image(field_w + margin + bar_w + right, field_h + 2 * margin);
+  const int field_left = static_cast<int>(placement.left_px);
+  const int below = style.map_axes ? kMapAxesBelow : 0;
+  Image image(field_left + field_w + margin / 2 + bar_w + right, field_h + 2 * margin + below);
   const double span = style.high - style.low == 0 ? 1.0 : style.high - style.low;
   for (int py = 0; py < field_h; ++py) {
     int row = std::min(field.rows() - 1, static_cast<int>(py / scale));
@@ -183,18 +279,24 @@ Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
         colour = {1.f, 0.f, 1.f};  // NaN shows magenta, so it cannot hide
       else
         colour = colour_at(style.map, (field(column, row) - style.low) / span);
-      image.set(margin / 2 + px, margin + py, colour);
+      image.set(field_left + px, margin + py, colour);
     }
   }
-  const int bar_x = margin / 2 + field_w + 20;
+  const int bar_x = field_left + field_w + 20;
   for (int py = 0; py < field_h; ++py)
     image.fill_rectangle(bar_x, margin + py, bar_x + bar_w, margin + py,
                          colour_at(style.map, 1.0 - static_cast<double>(py) / std::max(1, field_h - 1)));
   const Rgb ink = {0.1f, 0.1f, 0.1f};
-  draw_text(image, margin / 2, margin - 18, style.title, ink, 18);
+  draw_text(image, field_left, margin - 18, style.title, ink, 18);
   draw_text(image, bar_x + bar_w + 6, margin + 12, fmt::format("{:.4g}", style.high), ink);
   draw_text(image, bar_x + bar_w + 6, margin + field_h, fmt::format("{:.4g}", style.low), ink);
   draw_text(image, bar_x, margin + field_h + 30, style.value_label, ink);
+  if (style.map_axes) {
+    if (style.first_row_at_top)
+      throw Error("heat map '" + style.title + "'", "has map axes but its first row at the top",
+                  "draw maps with north (the last row) at the top: HeatMapStyle::first_row_at_top = false");
+    draw_map_axes(image, placement, field.columns(), field.rows(), *style.map_axes);
+  }
   return image;
 }
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,21 @@ void draw_text(Image& image, int x, int y, const std::string& text, Rgb colour, 
 /// Writes a PNG atomically; throws nearshore::Error naming the path on failure.
 void write_png(const Image& image, const std::filesystem::path& path);
 
+/// The map furniture of a heat map whose field is a projected grid (issue 14 item 2: a gauge put on
+/// land must show on the preview): tick marks and labels in the grid's CRS along the bottom (x) and
+/// left (y) edges, a scale bar and a north arrow. Cell (i, j) covers x from origin_x_m + i *
+/// cell_size_x_m, y from origin_y_m + j * cell_size_y_m (row 0 south, docs/formats.md).
+struct MapAxes {
+  double origin_x_m = 0.0, origin_y_m = 0.0;      ///< the field's south-west corner in the CRS
+  double cell_size_x_m = 1.0, cell_size_y_m = 1.0;
+  std::string x_label = "easting (m)", y_label = "northing (m)";
+  /// Where true north points, degrees clockwise from the grid's +y (up): the projection's grid
+  /// convergence, negated (0 on a laboratory frame or on the central meridian).
+  double true_north_from_grid_deg = 0.0;
+  /// "N" for true north on a chart; a laboratory frame says "+y".
+  std::string north_label = "N";
+};
+
 /// A raster coloured by `map` between `low` and `high`, north (last row) at the top, with a
 /// colour bar and title. Cells where `mask` (if given, same size) is non-zero are drawn `mask_colour`.
 struct HeatMapStyle {
@@ -41,6 +57,8 @@ struct HeatMapStyle {
   int max_image_size_px = 1200;             ///< the longer side of the field area
   Rgb mask_colour = {0.55f, 0.47f, 0.36f};  ///< land brown
   bool first_row_at_top = false;            ///< true for matrices (row 0 = first frame at the top)
+  /// Ticks in the CRS, a scale bar and a north arrow (maps; needs first_row_at_top = false).
+  std::optional<MapAxes> map_axes;
 };
 Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
                       const Raster<std::uint8_t>* mask = nullptr);
@@ -51,6 +69,7 @@ Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
 struct HeatMapPlacement {
   double left_px = 0, top_px = 0, pixels_per_cell = 1;
   int width_px = 0, height_px = 0;  ///< the field's area
+  int legend_top_px = 0;            ///< the first pixel row below the field and its axis labels, free for a legend
 };
 HeatMapPlacement heat_map_placement(int columns, int rows, const HeatMapStyle& style);
 
