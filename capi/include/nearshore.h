@@ -35,7 +35,8 @@ extern "C" {
 #define NEARSHORE_API
 #endif
 
-#define NEARSHORE_API_VERSION 1
+/* 2: ships (nearshore_fleet_*). A host built against version N runs on a library of version >= N. */
+#define NEARSHORE_API_VERSION 2
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -223,6 +224,133 @@ NEARSHORE_API nearshore_status nearshore_renderer_upload(nearshore_renderer* ren
  * (columns x rows floats, row 0 south; `capacity` floats available). Any thread. */
 NEARSHORE_API nearshore_status nearshore_sea_copy_harbour_elevation(const nearshore_sea* sea, float* elevation_m,
                                                                     size_t capacity);
+
+/* ---- ships: buoyant hulls on the sea, bow waves, stern wakes (docs/ships.md) ------------------
+ * A fleet is bound to a sea: each nearshore_fleet_step moves every ship by the forces of the water
+ * the renderer draws (the sea after the last nearshore_sea_advance, plus the other ships' bow
+ * waves), runs each ship's bow-wave grid and stern wake, pushes ships apart and grounds them on the
+ * harbour's depth. Ships are numbered 0, 1, ... in the order they were added. Positions are site
+ * metres; the body frame is x forward, y port, z up. Every fleet call is render thread: not
+ * concurrent with nearshore_fleet_step. The sea must outlive its fleets. */
+typedef struct nearshore_fleet nearshore_fleet;
+
+typedef enum nearshore_ship_order {
+  NEARSHORE_ORDER_MANUAL = 0,  /* the host's telegraph and helm: nearshore_fleet_set_controls */
+  NEARSHORE_ORDER_ENGINE = 1,  /* a fixed engine order, `engine_order` */
+  NEARSHORE_ORDER_SPEED = 2    /* the engine holds `speed_m_s` ahead */
+} nearshore_ship_order;
+
+typedef struct nearshore_ship_options {
+  uint32_t struct_size;
+  const char* name;              /* in messages and events; NULL: "ship N" */
+  const char* hull;              /* "box_barge", "wigley", "tug", or a mesh file (OBJ, PLY, glTF, STL:
+                                    closed, normals out, metres, x forward, z up) */
+  double length_m, beam_m, depth_m; /* a generic hull's main dimensions; 0: the hull's default */
+  double draft_m;                /* the loading: the draft (m), or ... */
+  double mass_kg;                /* ... the displacement (kg) when > 0 (then draft_m is ignored) */
+  double x_m, y_m;               /* start position of the hull's centre, site frame, or ... */
+  int use_lat_lon;               /* ... 1: at latitude_deg, longitude_deg (WGS 84; the grid needs a CRS) */
+  double latitude_deg, longitude_deg;
+  double heading_deg;            /* compass, clockwise from north */
+  double initial_speed_m_s;      /* along the heading */
+  nearshore_ship_order order;
+  double engine_order;           /* NEARSHORE_ORDER_ENGINE: -1 full astern .. 1 full ahead */
+  double speed_m_s;              /* NEARSHORE_ORDER_SPEED */
+  const double* route_xy_m;      /* optional waypoints x0, y0, x1, y1, ... (site m), followed by an
+                                    autopilot (copied by add_ship); NULL: none */
+  size_t route_count;
+  int hull_points;               /* pressure points sampled on the hull; 0: 2000 */
+  int bow_wave;                  /* 1 (default): a bow-wave grid; 0: none */
+  int bow_wave_cells;            /* N of its N x N grid; 0: 128 */
+} nearshore_ship_options;
+
+/* Fills the defaults: a tug at draft 3 m, manual orders, bow wave on. Any thread. */
+NEARSHORE_API void nearshore_ship_options_init(nearshore_ship_options* options);
+
+/* A fleet on `sea` (grounding and bow-wave bottoms from its harbour depth). Render thread. */
+NEARSHORE_API nearshore_status nearshore_fleet_create(const nearshore_sea* sea, nearshore_fleet** fleet);
+/* Frees the fleet. NULL is allowed. */
+NEARSHORE_API void nearshore_fleet_destroy(nearshore_fleet* fleet);
+
+/* Adds a ship upright at its draft; `ship` (may be NULL) receives its number. Refused with a message
+ * naming the ship or the file: an unreadable, open or inverted mesh (NEARSHORE_IO_ERROR /
+ * NEARSHORE_FORMAT_ERROR), a mass the hull cannot float, a position on land or in water shallower
+ * than the draft (NEARSHORE_INVALID_ARGUMENT). A refused ship changes nothing. */
+NEARSHORE_API nearshore_status nearshore_fleet_add_ship(nearshore_fleet* fleet, const nearshore_ship_options* options,
+                                                        int* ship);
+NEARSHORE_API nearshore_status nearshore_fleet_ship_count(const nearshore_fleet* fleet, int* count);
+
+/* The host's telegraph and helm: engine order in [-1, 1], rudder order in degrees (> 0 turns to
+ * port; clamped to the rudder's limit). Drops the ship's orders (its engine order, speed or route). */
+NEARSHORE_API nearshore_status nearshore_fleet_set_controls(nearshore_fleet* fleet, int ship, double engine_order,
+                                                            double rudder_deg);
+/* Orders: hold `speed_m_s` ahead with the engine, and follow `route_xy_m` (route_count waypoints;
+ * NULL / 0: keep the heading under manual rudder). */
+NEARSHORE_API nearshore_status nearshore_fleet_set_speed(nearshore_fleet* fleet, int ship, double speed_m_s,
+                                                         const double* route_xy_m, size_t route_count);
+
+/* Advances every ship by dt_s (> 0, at most 1 s) on the sea as displayed after the last
+ * nearshore_sea_advance: call once per displayed frame, after advancing the sea. */
+NEARSHORE_API nearshore_status nearshore_fleet_step(nearshore_fleet* fleet, double dt_s);
+
+typedef struct nearshore_ship_pose {
+  uint32_t struct_size;
+  double x_m, y_m, z_m;              /* the centre of gravity, site frame (z up from still water) */
+  double orientation[4];             /* body -> site rotation as a unit quaternion (w, x, y, z) */
+  double heading_deg;                /* compass, [0, 360) */
+  double roll_deg;                   /* starboard down > 0 */
+  double pitch_deg;                  /* bow down > 0 */
+  double velocity_m_s[3];            /* of the centre of gravity, site frame */
+  double angular_velocity_rad_s[3];  /* site frame */
+  double speed_m_s;                  /* over ground along the body's x axis */
+  double engine_order, rudder_deg;   /* the controls applied in the last step */
+  int aground;                       /* 1 while hull points are below the seabed */
+} nearshore_ship_pose;
+NEARSHORE_API nearshore_status nearshore_fleet_ship_pose(const nearshore_fleet* fleet, int ship,
+                                                         nearshore_ship_pose* pose);
+
+/* The oldest message since the last call ("ship 'Tug 1' ran aground at (812.4, 1033.0) m ..."),
+ * copied into text (capacity chars, cut to fit, NUL-terminated); *has_event = 0 when none is left. */
+NEARSHORE_API nearshore_status nearshore_fleet_next_event(nearshore_fleet* fleet, char* text, size_t capacity,
+                                                          int* has_event);
+
+/* One stern-wake foam decal: a quad of width_m (across the track) x length_m (along it), centred
+ * at (x_m, y_m), rotated yaw_rad counter-clockwise from east, drawn with foam texture `variant`
+ * (0-3) at `opacity` (0-1). */
+typedef struct nearshore_wake_decal {
+  float x_m, y_m, yaw_rad, width_m, length_m, opacity;
+  int variant;
+} nearshore_wake_decal;
+/* Copies up to `capacity` of ship `ship`'s decals, oldest first; *count receives how many it has
+ * (call with capacity 0 to size the array). */
+NEARSHORE_API nearshore_status nearshore_fleet_wake_decals(const nearshore_fleet* fleet, int ship,
+                                                           nearshore_wake_decal* decals, size_t capacity,
+                                                           size_t* count);
+
+/* A ship's bow-wave height field, for hosts that draw it themselves: columns x rows floats (m above
+ * still water, added to the sea's surface), row 0 south, texel (i, j) at the site point
+ * (origin_x_m + (i + 0.5) spacing_m, origin_y_m + (j + 0.5) spacing_m); 0 outside. `serial`
+ * changes with every step (upload once per serial). columns = 0 when the ship has no bow wave. */
+typedef struct nearshore_bow_wave_field {
+  uint32_t struct_size;
+  int columns, rows;
+  double origin_x_m, origin_y_m, spacing_m;
+  uint64_t serial;
+} nearshore_bow_wave_field;
+/* Fills `field`; copies the heights into `heights_m` when it is not NULL (`capacity` floats, at
+ * least columns x rows). */
+NEARSHORE_API nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* fleet, int ship,
+                                                        nearshore_bow_wave_field* field, float* heights_m,
+                                                        size_t capacity);
+
+/* nearshore_sea_query / nearshore_sea_query_at with the fleet's bow waves added: elevation and
+ * normal include every ship's bow wave as of its last step (the velocity is the sea's). For buoys,
+ * other vessels and cameras that must ride the same surface the ships make. */
+NEARSHORE_API nearshore_status nearshore_fleet_query(const nearshore_fleet* fleet, const double* xy_m, size_t count,
+                                                     nearshore_surface_sample* samples);
+NEARSHORE_API nearshore_status nearshore_fleet_query_at(const nearshore_fleet* fleet, double time_s,
+                                                        const double* xy_m, size_t count,
+                                                        nearshore_surface_sample* samples);
 
 #ifdef __cplusplus
 }

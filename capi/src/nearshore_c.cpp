@@ -3,6 +3,7 @@
 // context). Every entry point catches everything: no exception crosses the C boundary; the message
 // goes to a per-thread last-error string and the call returns a status.
 #include "nearshore.h"
+#include "c_boundary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,65 +25,25 @@
 #include "nearshore/runtime/streaming_engine.hpp"
 #include "nearshore/runtime/surface_sampler.hpp"
 
-struct nearshore_sea {
-  std::unique_ptr<nearshore::runtime::PlayedSea> played;  // one baked sequence, or a sea-state library
-  std::optional<nearshore::MapProjection> projection;  // none for a laboratory grid
-
-  nearshore::runtime::StreamingEngine& engine() const { return played->engine(); }
-  nearshore::runtime::SurfaceSnapshot snapshot() const { return played->snapshot(); }
-  void advance_to(double t) { played->advance_to(t); }
-};
-
 struct nearshore_renderer {
   nearshore_sea* sea = nullptr;
   std::unique_ptr<nearshore::playback::WaterRenderer> renderer;
   int last_width_px = 0, last_height_px = 0;
 };
 
+namespace nearshore::capi {
+
+std::string& last_error() {
+  thread_local std::string message;
+  return message;
+}
+
+}  // namespace nearshore::capi
+
 namespace {
 namespace fs = std::filesystem;
 using nearshore::Error;
-
-thread_local std::string last_error;
-
-// A failure with its status: thrown inside an entry point, caught at its boundary.
-struct Failure {
-  nearshore_status status;
-  std::string message;
-};
-
-[[noreturn]] void fail(nearshore_status status, std::string message) { throw Failure{status, std::move(message)}; }
-
-template <class T>
-T* require(T* pointer, const char* name) {
-  if (!pointer) fail(NEARSHORE_INVALID_ARGUMENT, std::string(name) + " is NULL; pass a valid pointer");
-  return pointer;
-}
-
-// Runs `body`, turning every exception into a status and the thread's last error. nearshore::Error
-// is the library's "bad input" (a file or a value): `error_status` says which kind it is here.
-template <class Body>
-nearshore_status guarded(nearshore_status error_status, Body&& body) noexcept {
-  try {
-    body();
-    return NEARSHORE_OK;
-  } catch (const Failure& failure) {
-    last_error = failure.message;
-    return failure.status;
-  } catch (const Error& error) {
-    last_error = error.what();
-    return error_status;
-  } catch (const std::bad_alloc&) {
-    last_error = "out of memory; reduce nearshore_sea_options.ring_keyframes or close other seas";
-    return NEARSHORE_INTERNAL_ERROR;
-  } catch (const std::exception& error) {
-    last_error = std::string("internal error: ") + error.what();
-    return NEARSHORE_INTERNAL_ERROR;
-  } catch (...) {
-    last_error = "internal error: an unknown exception";
-    return NEARSHORE_INTERNAL_ERROR;
-  }
-}
+using namespace nearshore::capi;
 
 nearshore::runtime::PlanKind plan_kind(nearshore_plan plan) {
   switch (plan) {
@@ -114,30 +75,6 @@ nearshore::runtime::BeaufortSea beaufort_sea(int force, double wind_from_deg) {
   return sea;
 }
 
-void fill_sample(const nearshore::runtime::SurfaceState& state, nearshore_surface_sample& sample) {
-  sample.elevation_m = static_cast<float>(state.surface_elevation_m);
-  sample.velocity_x_m_s = static_cast<float>(state.velocity_x_m_s);
-  sample.velocity_y_m_s = static_cast<float>(state.velocity_y_m_s);
-  sample.normal[0] = static_cast<float>(state.normal_x);
-  sample.normal[1] = static_cast<float>(state.normal_y);
-  sample.normal[2] = static_cast<float>(state.normal_z);
-  sample.dry = state.dry ? 1 : 0;
-}
-
-void query(const nearshore::runtime::SurfaceSnapshot& snapshot, const double* xy_m, std::size_t count,
-           nearshore_surface_sample* samples) {
-  const nearshore::runtime::SurfaceSampler sampler(snapshot);
-  std::vector<nearshore::runtime::SitePoint> points(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    if (!std::isfinite(xy_m[2 * i]) || !std::isfinite(xy_m[2 * i + 1]))
-      fail(NEARSHORE_INVALID_ARGUMENT, "point " + std::to_string(i) + " of xy_m is not finite; give site metres");
-    points[i] = {xy_m[2 * i], xy_m[2 * i + 1]};
-  }
-  std::vector<nearshore::runtime::SurfaceState> states(count);
-  sampler.states(points, states);
-  for (std::size_t i = 0; i < count; ++i) fill_sample(states[i], samples[i]);
-}
-
 template <std::size_t N>
 void copy_text(char (&out)[N], const std::string& text) {
   const std::size_t length = std::min(text.size(), N - 1);
@@ -149,7 +86,7 @@ void copy_text(char (&out)[N], const std::string& text) {
 
 extern "C" {
 
-const char* nearshore_last_error(void) { return last_error.c_str(); }
+const char* nearshore_last_error(void) { return nearshore::capi::last_error().c_str(); }
 
 const char* nearshore_status_name(nearshore_status status) {
   switch (status) {
@@ -444,7 +381,7 @@ void nearshore_renderer_destroy(nearshore_renderer* renderer) {
   try {
     delete renderer;
   } catch (...) {
-    last_error = "nearshore_renderer_destroy: the GL objects could not be freed (was the context current?)";
+    nearshore::capi::last_error() = "nearshore_renderer_destroy: the GL objects could not be freed (was the context current?)";
   }
 }
 

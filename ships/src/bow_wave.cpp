@@ -92,10 +92,10 @@ void BowWave::absorb(double dt_s) {
       const double r = (width - inside) / width;
       const double keep = std::exp(-options_.absorbing_rate_per_s * r * r * dt_s);
       const double rest = std::max(-grid_.pressure_head_cell(i, j), grid_.bottom_cell(i, j));
-      double& w = grid_.surface_m(i, j);
-      w = rest + keep * (w - rest);
-      grid_.discharge_x_m2_s(i, j) *= keep;
-      grid_.discharge_y_m2_s(i, j) *= keep;
+      float& w = grid_.surface_m(i, j);
+      w = static_cast<float>(rest + keep * (w - rest));
+      grid_.discharge_x_m2_s(i, j) *= static_cast<float>(keep);
+      grid_.discharge_y_m2_s(i, j) *= static_cast<float>(keep);
     }
 }
 

@@ -162,4 +162,25 @@ HullMesh harbour_tug(double length_m, double beam_m, double depth_m) {
   return loft(name, stations, half);
 }
 
+std::optional<HullMesh> generic_hull(const std::string& name, const GenericHullDimensions& dimensions) {
+  for (const double value : {dimensions.length_m, dimensions.beam_m, dimensions.depth_m, dimensions.draft_m})
+    if (!(value >= 0.0))
+      throw Error(fmt::format("generic hull '{}'", name),
+                  fmt::format("has a dimension {} that is not a positive length", value),
+                  "give positive metres, or 0 for the hull's default");
+  auto or_default = [](double value, double fallback) { return value > 0.0 ? value : fallback; };
+  if (name == "box_barge")
+    return box_barge(or_default(dimensions.length_m, 20.0), or_default(dimensions.beam_m, 8.0),
+                     or_default(dimensions.depth_m, 3.0));
+  if (name == "wigley") {
+    const double draft = or_default(dimensions.draft_m, 1.25);
+    return wigley_hull(or_default(dimensions.length_m, 20.0), or_default(dimensions.beam_m, 2.0), draft,
+                       or_default(dimensions.depth_m, 2.0 * draft));
+  }
+  if (name == "tug")
+    return harbour_tug(or_default(dimensions.length_m, 24.0), or_default(dimensions.beam_m, 9.0),
+                       or_default(dimensions.depth_m, 4.5));
+  return std::nullopt;
+}
+
 }  // namespace nearshore::ships

@@ -2,71 +2,200 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
 #include "nearshore/core/error.hpp"
 
+// The hot loops are built twice, for AVX2 + FMA (x86-64-v3) and for the baseline, and the loader
+// picks one (GCC function multiversioning): the library stays portable and runs 4 doubles or 8
+// floats per instruction where it can. Not under the sanitizers (their runtime starts after the
+// resolvers run).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define NEARSHORE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define NEARSHORE_VECTOR_CLONES
+#endif
+
 namespace nearshore::ships {
 namespace {
 
-inline double minmod3(double a, double b, double c) {
-  if (a > 0.0 && b > 0.0 && c > 0.0) return std::min(a, std::min(b, c));
-  if (a < 0.0 && b < 0.0 && c < 0.0) return std::max(a, std::max(b, c));
-  return 0.0;
+// Larger and smaller of two values as selects (std::max returns a reference, which GCC does not
+// if-convert inside a loop, so the loop would not vectorise).
+template <class Real>
+inline Real larger(Real a, Real b) {
+  return a < b ? b : a;
+}
+template <class Real>
+inline Real smaller(Real a, Real b) {
+  return b < a ? b : a;
 }
 
-// One side of an interface: depth, desingularised normal and tangential velocities, recomputed
-// discharges (KP eq. 2.17; seed 000 eq. 4.14-4.15).
-struct InterfaceState {
-  double w, h, un, ut, qn, qt;
-};
-
-inline InterfaceState interface_state(double w, double b, double qn, double qt, double epsilon, double h_epsilon) {
-  InterfaceState s;
-  s.w = w;
-  s.h = std::max(w - b, 0.0);
-  if (s.h >= h_epsilon) {  // h^4 >= eps: the formula is exactly q / h
-    const double inverse = 1.0 / s.h;
-    s.un = qn * inverse;
-    s.ut = qt * inverse;
-  } else if (s.h > 0.0) {
-    const double h4 = s.h * s.h * s.h * s.h;
-    const double scale = std::sqrt(2.0) * s.h / std::sqrt(h4 + std::max(h4, epsilon));
-    s.un = scale * qn;
-    s.ut = scale * qt;
-  } else {
-    s.un = s.ut = 0.0;
-  }
-  s.qn = s.h * s.un;
-  s.qt = s.h * s.ut;
-  return s;
+// Generalised minmod of three slopes, branch-free: the smallest when all are positive, the largest
+// when all are negative, else 0 (max(low, 0) + min(high, 0) is exactly that).
+template <class Real>
+inline Real minmod3(Real a, Real b, Real c) {
+  const Real low = smaller(a, smaller(b, c)), high = larger(a, larger(b, c));
+  return larger(low, Real(0)) + smaller(high, Real(0));
 }
 
-// Central-upwind flux (seed 000 eq. 4.11-4.13) across an interface with normal n: returns the
-// largest |a| and writes (mass, normal momentum, tangential momentum).
-inline double central_upwind(const InterfaceState& l, const InterfaceState& r, double g, double& f0, double& fn,
-                             double& ft) {
-  const double cl = std::sqrt(g * l.h), cr = std::sqrt(g * r.h);
-  const double a_plus = std::max({l.un + cl, r.un + cr, 0.0});
-  const double a_minus = std::min({l.un - cl, r.un - cr, 0.0});
-  const double spread = a_plus - a_minus;
-  if (spread < 1e-14) {
-    f0 = fn = ft = 0.0;
-    return 0.0;
+// The desingularised 1/h of step 3 (KP eq. 2.17; seed 000 eq. 4.14-4.15):
+// u = sqrt(2) h (hu) / sqrt(h^4 + max(h^4, eps)); exactly 1/h where h^4 >= eps, finite (0) at h = 0.
+template <class Real>
+inline Real desingularised_inverse_depth(Real h, Real epsilon) {
+  const Real h4 = h * h * h * h;
+  return Real(std::numbers::sqrt2) * h / std::sqrt(h4 + larger(h4, epsilon));
+}
+
+// Step 2 along one direction for n cells of a row: the state at cell i and at i -+ `step` (1 for
+// x, a row for y), the bottom B' at the face ahead (b_ahead) and behind (b_behind). Writes the
+// face values ahead and behind, and the well-balanced source of the normal momentum,
+// -g hbar (B'_ahead - B'_behind) / dx, hbar the mean of the two face depths (KP eq. 3.11).
+template <class Real>
+NEARSHORE_VECTOR_CLONES void reconstruct_row(int n, std::ptrdiff_t step, Real theta, Real g_over_dx,
+                                             const Real* __restrict w, const Real* __restrict normal,
+                                             const Real* __restrict tangential, const Real* __restrict b_ahead,
+                                             const Real* __restrict b_behind, Real* __restrict w_ahead,
+                                             Real* __restrict w_behind, Real* __restrict normal_ahead,
+                                             Real* __restrict normal_behind, Real* __restrict tangential_ahead,
+                                             Real* __restrict tangential_behind, Real* __restrict source) {
+  const Real half(0.5);
+  for (int i = 0; i < n; ++i) {
+    // Half the limited slope times dx: the change from the centre to a face.
+    const Real w_back = w[i] - w[i - step], w_next = w[i + step] - w[i];
+    const Real dw = half * minmod3(theta * w_back, half * (w_back + w_next), theta * w_next);
+    const Real n_back = normal[i] - normal[i - step], n_next = normal[i + step] - normal[i];
+    const Real dn = half * minmod3(theta * n_back, half * (n_back + n_next), theta * n_next);
+    const Real t_back = tangential[i] - tangential[i - step], t_next = tangential[i + step] - tangential[i];
+    const Real dt = half * minmod3(theta * t_back, half * (t_back + t_next), theta * t_next);
+    // KP section 3.1: where a face value falls below the bottom there, the slope is changed so
+    // that the depth there is 0 (the cell mean, and so its mass, is kept).
+    const Real bh = b_ahead[i], bb = b_behind[i], centre = w[i];
+    const Real ahead = centre + dw, behind = centre - dw;
+    const bool dry_ahead = ahead < bh;
+    const bool dry_behind = !dry_ahead & (behind < bb);
+    const Real wa = dry_ahead ? bh : (dry_behind ? Real(2) * centre - bb : ahead);
+    const Real wb = dry_ahead ? Real(2) * centre - bh : (dry_behind ? bb : behind);
+    w_ahead[i] = wa;
+    w_behind[i] = wb;
+    normal_ahead[i] = normal[i] + dn;
+    normal_behind[i] = normal[i] - dn;
+    tangential_ahead[i] = tangential[i] + dt;
+    tangential_behind[i] = tangential[i] - dt;
+    source[i] = -g_over_dx * half * ((wa - bh) + (wb - bb)) * (bh - bb);
   }
-  const double fl0 = l.qn, fln = l.qn * l.un + 0.5 * g * l.h * l.h, flt = l.qn * l.ut;
-  const double fr0 = r.qn, frn = r.qn * r.un + 0.5 * g * r.h * r.h, frt = r.qn * r.ut;
-  const double inv = 1.0 / spread, product = a_plus * a_minus * inv;
-  f0 = (a_plus * fl0 - a_minus * fr0) * inv + product * (r.w - l.w);
-  fn = (a_plus * fln - a_minus * frn) * inv + product * (r.qn - l.qn);
-  ft = (a_plus * flt - a_minus * frt) * inv + product * (r.qt - l.qt);
-  return std::max(a_plus, -a_minus);
+}
+
+// Steps 3-4 for n faces: the face values on the low side (l) and the high side (r) of each face,
+// its bottom b. Writes the central-upwind flux (seed 000 eq. 4.11-4.13) of mass, normal and
+// tangential momentum, and the face's largest |a|.
+template <class Real>
+NEARSHORE_VECTOR_CLONES void face_fluxes(int n, Real g, Real epsilon, const Real* __restrict w_l,
+                                         const Real* __restrict normal_l, const Real* __restrict tangential_l,
+                                         const Real* __restrict w_r, const Real* __restrict normal_r,
+                                         const Real* __restrict tangential_r, const Real* __restrict b,
+                                         Real* __restrict flux_mass, Real* __restrict flux_normal,
+                                         Real* __restrict flux_tangential, Real* __restrict speed) {
+  const Real zero(0), half(0.5);
+  for (int i = 0; i < n; ++i) {
+    const Real hl = larger(w_l[i] - b[i], zero), hr = larger(w_r[i] - b[i], zero);
+    const Real inverse_l = desingularised_inverse_depth(hl, epsilon), inverse_r = desingularised_inverse_depth(hr, epsilon);
+    const Real ul = inverse_l * normal_l[i], vl = inverse_l * tangential_l[i];
+    const Real ur = inverse_r * normal_r[i], vr = inverse_r * tangential_r[i];
+    const Real ql = hl * ul, qr = hr * ur;  // discharges recomputed from the velocities
+    const Real cl = std::sqrt(g * hl), cr = std::sqrt(g * hr);
+    const Real a_plus = larger(larger(ul + cl, ur + cr), zero);
+    const Real a_minus = smaller(smaller(ul - cl, ur - cr), zero);
+    const Real spread = a_plus - a_minus;
+    const bool still = spread < Real(1e-14);  // both sides dry: no flux
+    const Real inverse = still ? zero : Real(1) / (still ? Real(1) : spread);
+    const Real product = a_plus * a_minus * inverse;
+    const Real fl_normal = ql * ul + half * g * hl * hl, fr_normal = qr * ur + half * g * hr * hr;
+    flux_mass[i] = (a_plus * ql - a_minus * qr) * inverse + product * (w_r[i] - w_l[i]);
+    flux_normal[i] = (a_plus * fl_normal - a_minus * fr_normal) * inverse + product * (qr - ql);
+    flux_tangential[i] = (a_plus * ql * vl - a_minus * qr * vr) * inverse + product * (hr * vr - hl * vl);
+    speed[i] = larger(a_plus, -a_minus);
+  }
+}
+
+// The rates of n cells of a row from its x fluxes (faces 0..n) and its two sources.
+template <class Real>
+NEARSHORE_VECTOR_CLONES void rates_from_x_fluxes(int n, Real inverse_dx, const Real* __restrict flux_mass,
+                                                 const Real* __restrict flux_normal,
+                                                 const Real* __restrict flux_tangential,
+                                                 const Real* __restrict source_x, const Real* __restrict source_y,
+                                                 Real* __restrict rate_w, Real* __restrict rate_hu,
+                                                 Real* __restrict rate_hv) {
+  for (int i = 0; i < n; ++i) {
+    rate_w[i] = -inverse_dx * (flux_mass[i + 1] - flux_mass[i]);
+    rate_hu[i] = -inverse_dx * (flux_normal[i + 1] - flux_normal[i]) + source_x[i];
+    rate_hv[i] = -inverse_dx * (flux_tangential[i + 1] - flux_tangential[i]) + source_y[i];
+  }
+}
+
+// Adds `sign / dx` times the y fluxes of a row of faces to a row's rates (+ below the face,
+// - above it). Across a y face the normal momentum is hv, the tangential hu.
+template <class Real>
+NEARSHORE_VECTOR_CLONES void add_y_fluxes(int n, Real factor, const Real* __restrict flux_mass,
+                                          const Real* __restrict flux_normal, const Real* __restrict flux_tangential,
+                                          Real* __restrict rate_w, Real* __restrict rate_hu, Real* __restrict rate_hv) {
+  for (int i = 0; i < n; ++i) {
+    rate_w[i] += factor * flux_mass[i];
+    rate_hv[i] += factor * flux_normal[i];
+    rate_hu[i] += factor * flux_tangential[i];
+  }
+}
+
+// One forward-Euler stage of a row (average: Heun's second stage, the mean with the old state),
+// then the round-off clamp: a negative depth becomes 0, a dry cell has no discharge. `depth`
+// receives each cell's depth before the clamp.
+template <class Real, bool kAverage>
+NEARSHORE_VECTOR_CLONES void euler_stage_row(int n, Real dt, const Real* __restrict from_w,
+                                             const Real* __restrict from_hu, const Real* __restrict from_hv,
+                                             const Real* __restrict rate_w, const Real* __restrict rate_hu,
+                                             const Real* __restrict rate_hv, const Real* __restrict b_cell,
+                                             Real* __restrict w, Real* __restrict hu, Real* __restrict hv,
+                                             Real* __restrict depth) {
+  const Real half(0.5), zero(0);
+  for (int i = 0; i < n; ++i) {
+    Real nw = from_w[i] + dt * rate_w[i], nhu = from_hu[i] + dt * rate_hu[i], nhv = from_hv[i] + dt * rate_hv[i];
+    if constexpr (kAverage) {
+      nw = half * (w[i] + nw);
+      nhu = half * (hu[i] + nhu);
+      nhv = half * (hv[i] + nhv);
+    }
+    const Real bottom = b_cell[i], h = nw - bottom;
+    depth[i] = h;
+    w[i] = h < zero ? bottom : nw;
+    hu[i] = h > zero ? nhu : zero;
+    hv[i] = h > zero ? nhv : zero;
+  }
+}
+
+// The largest (kLargest) or smallest of n values, in eight independent lanes so that the loop
+// vectorises without reassociating a single running maximum (which GCC allows only under
+// -ffinite-math-only).
+template <class Real, bool kLargest>
+NEARSHORE_VECTOR_CLONES Real extreme_of(int n, const Real* __restrict values, Real start) {
+  constexpr int kLanes = 8;
+  Real lanes[kLanes];
+  for (int k = 0; k < kLanes; ++k) lanes[k] = start;
+  int i = 0;
+  for (; i + kLanes <= n; i += kLanes)
+    for (int k = 0; k < kLanes; ++k)
+      lanes[k] = kLargest ? larger(lanes[k], values[i + k]) : smaller(lanes[k], values[i + k]);
+  for (; i < n; ++i) lanes[0] = kLargest ? larger(lanes[0], values[i]) : smaller(lanes[0], values[i]);
+  Real result = start;
+  for (int k = 0; k < kLanes; ++k) result = kLargest ? larger(result, lanes[k]) : smaller(result, lanes[k]);
+  return result;
 }
 
 }  // namespace
 
-ShallowWaterGrid::ShallowWaterGrid(int columns, int rows, double spacing_m, EdgeKind edges, ShallowWaterOptions options)
+template <class Real>
+BasicShallowWaterGrid<Real>::BasicShallowWaterGrid(int columns, int rows, double spacing_m, EdgeKind edges,
+                                                   ShallowWaterOptions options)
     : columns_(columns), rows_(rows), spacing_m_(spacing_m), edges_(edges), options_(options) {
   if (columns < 2 || rows < 2 || !(spacing_m > 0.0))
     throw Error("ShallowWaterGrid", fmt::format("{} x {} cells of {} m", columns, rows, spacing_m),
@@ -75,25 +204,46 @@ ShallowWaterGrid::ShallowWaterGrid(int columns, int rows, double spacing_m, Edge
   const std::size_t cells = stride_ * static_cast<std::size_t>(rows + 2 * kGhost);
   const std::size_t corners = (stride_ + 1) * static_cast<std::size_t>(rows + 2 * kGhost + 1);
   for (auto* v : {&w_, &hu_, &hv_, &b_east_, &b_north_, &b_cell_, &w1_, &hu1_, &hv1_, &rate_w_, &rate_hu_, &rate_hv_,
-                  &w_e_, &w_w_, &w_n_, &w_s_, &hu_e_, &hu_w_, &hu_n_, &hu_s_, &hv_e_, &hv_w_, &hv_n_, &hv_s_,
                   &head_cell_, &wp_})
-    v->assign(cells, 0.0);
+    v->assign(cells, Real(0));
   entered_.assign(cells, 0);
   bottom_corner_.assign(corners, 0.0);
   head_corner_.assign(corners, 0.0);
-  for (auto& f : flux_x_) f.assign(static_cast<std::size_t>(columns + 1) * rows, 0.0);
-  for (auto& f : flux_y_) f.assign(static_cast<std::size_t>(columns) * (rows + 1), 0.0);
+  for (RowFaces* faces : {&x_faces_, &y_faces_[0], &y_faces_[1]})
+    for (auto* v : {&faces->w_high, &faces->w_low, &faces->normal_high, &faces->normal_low, &faces->tangential_high,
+                    &faces->tangential_low, &faces->source})
+      v->assign(stride_, Real(0));
+  for (auto* v : {&flux_mass_, &flux_normal_, &flux_tangential_, &speed_}) v->assign(stride_, Real(0));
   update_bottom();
 }
 
-void ShallowWaterGrid::set_bottom_corner(int i, int j, double elevation_m) { bottom_corner_[corner(i, j)] = elevation_m; }
-double ShallowWaterGrid::bottom_corner(int i, int j) const { return bottom_corner_[corner(i, j)]; }
-void ShallowWaterGrid::set_pressure_head_corner(int i, int j, double head_m) { head_corner_[corner(i, j)] = head_m; }
-double ShallowWaterGrid::pressure_head_corner(int i, int j) const { return head_corner_[corner(i, j)]; }
-double ShallowWaterGrid::bottom_cell(int i, int j) const { return b_cell_[padded(i, j)]; }
-double ShallowWaterGrid::pressure_head_cell(int i, int j) const { return head_cell_[padded(i, j)]; }
+template <class Real>
+void BasicShallowWaterGrid<Real>::set_bottom_corner(int i, int j, double elevation_m) {
+  bottom_corner_[corner(i, j)] = elevation_m;
+}
+template <class Real>
+double BasicShallowWaterGrid<Real>::bottom_corner(int i, int j) const {
+  return bottom_corner_[corner(i, j)];
+}
+template <class Real>
+void BasicShallowWaterGrid<Real>::set_pressure_head_corner(int i, int j, double head_m) {
+  head_corner_[corner(i, j)] = head_m;
+}
+template <class Real>
+double BasicShallowWaterGrid<Real>::pressure_head_corner(int i, int j) const {
+  return head_corner_[corner(i, j)];
+}
+template <class Real>
+double BasicShallowWaterGrid<Real>::bottom_cell(int i, int j) const {
+  return b_cell_[padded(i, j)];
+}
+template <class Real>
+double BasicShallowWaterGrid<Real>::pressure_head_cell(int i, int j) const {
+  return head_cell_[padded(i, j)];
+}
 
-void ShallowWaterGrid::update_bottom() {
+template <class Real>
+void BasicShallowWaterGrid<Real>::update_bottom() {
   // Ghost corners mirror the real ones, so ghost cells are the mirror images of edge cells.
   auto mirror = [](int k, int n) { return k < 0 ? -k : (k > n ? 2 * n - k : k); };
   for (auto* field : {&bottom_corner_, &head_corner_})
@@ -108,39 +258,40 @@ void ShallowWaterGrid::update_bottom() {
       auto b = [&](int ci, int cj) { return bottom_corner_[corner(ci, cj)]; };
       auto z = [&](int ci, int cj) { return head_corner_[corner(ci, cj)]; };
       const std::size_t p = padded(i, j);
-      b_east_[p] = 0.5 * (bp(i + 1, j) + bp(i + 1, j + 1));
-      b_north_[p] = 0.5 * (bp(i, j + 1) + bp(i + 1, j + 1));
+      b_east_[p] = static_cast<Real>(0.5 * (bp(i + 1, j) + bp(i + 1, j + 1)));
+      b_north_[p] = static_cast<Real>(0.5 * (bp(i, j + 1) + bp(i + 1, j + 1)));
       // Mean of the four interface values = mean of the four corners.
-      b_cell_[p] = 0.25 * (b(i, j) + b(i + 1, j) + b(i, j + 1) + b(i + 1, j + 1));
-      head_cell_[p] = 0.25 * (z(i, j) + z(i + 1, j) + z(i, j + 1) + z(i + 1, j + 1));
+      b_cell_[p] = static_cast<Real>(0.25 * (b(i, j) + b(i + 1, j) + b(i, j + 1) + b(i + 1, j + 1)));
+      head_cell_[p] = static_cast<Real>(0.25 * (z(i, j) + z(i + 1, j) + z(i, j + 1) + z(i + 1, j + 1)));
     }
 }
 
-double ShallowWaterGrid::total_volume_m3() const {
+template <class Real>
+double BasicShallowWaterGrid<Real>::total_volume_m3() const {
   double volume = 0.0;
   for (int j = 0; j < rows_; ++j)
-    for (int i = 0; i < columns_; ++i) volume += depth_m(i, j);
+    for (int i = 0; i < columns_; ++i) volume += static_cast<double>(depth_m(i, j));
   return volume * spacing_m_ * spacing_m_;
 }
 
-double ShallowWaterGrid::stable_time_step_s() const {
+template <class Real>
+double BasicShallowWaterGrid<Real>::stable_time_step_s() const {
   double speed = 0.0;
-  const double g = options_.gravity_m_s2;
+  const double g = options_.gravity_m_s2, epsilon = std::pow(options_.desingularisation_depth_m, 4);
   for (int j = 0; j < rows_; ++j)
     for (int i = 0; i < columns_; ++i) {
       const std::size_t p = padded(i, j);
-      const double h = w_[p] - b_cell_[p];
+      const double h = static_cast<double>(w_[p]) - static_cast<double>(b_cell_[p]);
       if (h <= 0.0) continue;
-      const InterfaceState s = interface_state(w_[p] + head_cell_[p], b_cell_[p] + head_cell_[p], hu_[p], hv_[p],
-                                               std::pow(options_.desingularisation_depth_m, 4),
-                                               options_.desingularisation_depth_m);
-      speed = std::max(speed, std::hypot(s.un, s.ut) + std::sqrt(g * h));
+      const double inverse = desingularised_inverse_depth(h, epsilon);
+      speed = std::max(speed, std::hypot(inverse * hu_[p], inverse * hv_[p]) + std::sqrt(g * h));
     }
   return speed > 0.0 ? options_.cfl * spacing_m_ / speed : 1e300;
 }
 
-void ShallowWaterGrid::fill_ghosts(std::vector<double>& w, std::vector<double>& hu, std::vector<double>& hv) const {
-  const double sign = edges_ == EdgeKind::kWall ? -1.0 : 1.0;
+template <class Real>
+void BasicShallowWaterGrid<Real>::fill_ghosts(std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv) const {
+  const Real sign = edges_ == EdgeKind::kWall ? Real(-1) : Real(1);
   for (int j = 0; j < rows_; ++j)
     for (int k = 1; k <= kGhost; ++k) {
       const std::size_t west = padded(-k, j), west_src = padded(k - 1, j);
@@ -165,120 +316,89 @@ void ShallowWaterGrid::fill_ghosts(std::vector<double>& w, std::vector<double>& 
     }
 }
 
-double ShallowWaterGrid::rates(std::vector<double>& w, std::vector<double>& hu, std::vector<double>& hv) {
-  const double dx = spacing_m_, half = 0.5 * dx, g = options_.gravity_m_s2, theta = options_.limiter_theta;
-  const double h_epsilon = options_.desingularisation_depth_m, epsilon = std::pow(h_epsilon, 4);
+template <class Real>
+double BasicShallowWaterGrid<Real>::rates(const std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv) {
+  const Real g = static_cast<Real>(options_.gravity_m_s2), theta = static_cast<Real>(options_.limiter_theta);
+  const Real inverse_dx = static_cast<Real>(1.0 / spacing_m_), g_over_dx = g * inverse_dx;
+  const Real epsilon = static_cast<Real>(std::pow(options_.desingularisation_depth_m, 4));
   // w' = w + zeta (the pressure head acts as a raised bottom).
-  for (std::size_t p = 0; p < w.size(); ++p) wp_[p] = w[p] + head_cell_[p];
+  {
+    const Real* __restrict from = w.data();
+    const Real* __restrict head = head_cell_.data();
+    Real* __restrict to = wp_.data();
+    for (std::size_t p = 0; p < wp_.size(); ++p) to[p] = from[p] + head[p];
+  }
   fill_ghosts(wp_, hu, hv);
-  const std::ptrdiff_t sx = 1, sy = static_cast<std::ptrdiff_t>(stride_);
-
-  // 1. Reconstruction with the positivity correction, cells i in [-1, C], j in [-1, R].
-  for (int j = -1; j <= rows_; ++j)
-    for (int i = -1; i <= columns_; ++i) {
-      const std::size_t p = padded(i, j);
-      auto slope = [&](const std::vector<double>& f, std::ptrdiff_t s) {
-        const double back = f[p] - f[p - s], ahead = f[p + s] - f[p];
-        return minmod3(theta * back, 0.5 * (back + ahead), theta * ahead);  // times 1/dx, times dx/2 below
-      };
-      const double be = b_east_[p], bw = b_east_[p - sx], bn = b_north_[p], bs = b_north_[p - sy];
-      double dwx = 0.5 * slope(wp_, sx), dwy = 0.5 * slope(wp_, sy);
-      double we = wp_[p] + dwx, ww = wp_[p] - dwx, wn = wp_[p] + dwy, ws = wp_[p] - dwy;
-      if (we < be) {
-        we = be;
-        ww = 2.0 * wp_[p] - be;
-      } else if (ww < bw) {
-        ww = bw;
-        we = 2.0 * wp_[p] - bw;
-      }
-      if (wn < bn) {
-        wn = bn;
-        ws = 2.0 * wp_[p] - bn;
-      } else if (ws < bs) {
-        ws = bs;
-        wn = 2.0 * wp_[p] - bs;
-      }
-      w_e_[p] = we;
-      w_w_[p] = ww;
-      w_n_[p] = wn;
-      w_s_[p] = ws;
-      const double dux = 0.5 * slope(hu, sx), duy = 0.5 * slope(hu, sy);
-      const double dvx = 0.5 * slope(hv, sx), dvy = 0.5 * slope(hv, sy);
-      hu_e_[p] = hu[p] + dux;
-      hu_w_[p] = hu[p] - dux;
-      hu_n_[p] = hu[p] + duy;
-      hu_s_[p] = hu[p] - duy;
-      hv_e_[p] = hv[p] + dvx;
-      hv_w_[p] = hv[p] - dvx;
-      hv_n_[p] = hv[p] + dvy;
-      hv_s_[p] = hv[p] - dvy;
-    }
-  (void)half;
-
-  // 2. Fluxes across x faces (i + 1/2, j), i in [-1, C - 1], and y faces (i, j + 1/2).
+  const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(stride_);
+  const int columns = columns_;
   double max_speed = 0.0;
-  for (int j = 0; j < rows_; ++j)
-    for (int i = -1; i < columns_; ++i) {
-      const std::size_t l = padded(i, j), r = l + 1;
-      const double b = b_east_[l];
-      const InterfaceState left = interface_state(w_e_[l], b, hu_e_[l], hv_e_[l], epsilon, h_epsilon);
-      const InterfaceState right = interface_state(w_w_[r], b, hu_w_[r], hv_w_[r], epsilon, h_epsilon);
-      double f0, fn, ft;
-      max_speed = std::max(max_speed, central_upwind(left, right, g, f0, fn, ft));
-      const std::size_t f = static_cast<std::size_t>(j) * (columns_ + 1) + static_cast<std::size_t>(i + 1);
-      flux_x_[0][f] = f0;
-      flux_x_[1][f] = fn;
-      flux_x_[2][f] = ft;
+  auto fastest = [&](int n) {
+    max_speed = std::max(max_speed, static_cast<double>(extreme_of<Real, true>(n, speed_.data(), Real(0))));
+  };
+  // One sweep over the rows r = -1 .. R (the ghost rows give the edge faces): the y faces of row r,
+  // then (inner rows) its x faces, fluxes and rates, then the fluxes across the faces between row
+  // r - 1 and row r, which close the rates of row r - 1 and add to those of row r.
+  for (int r = -1; r <= rows_; ++r) {
+    RowFaces& y = y_faces_[(r + 1) & 1];
+    const RowFaces& y_below = y_faces_[r & 1];
+    const std::size_t p0 = padded(0, r);
+    reconstruct_row<Real>(columns, row, theta, g_over_dx, wp_.data() + p0, hv.data() + p0, hu.data() + p0,
+                          b_north_.data() + p0, b_north_.data() + p0 - row, y.w_high.data(), y.w_low.data(),
+                          y.normal_high.data(), y.normal_low.data(), y.tangential_high.data(),
+                          y.tangential_low.data(), y.source.data());
+    if (r >= 0 && r < rows_) {
+      // Cells -1 .. C of the row; face k (0 .. C) lies between cells k - 1 and k.
+      const std::size_t q0 = p0 - 1;
+      RowFaces& x = x_faces_;
+      reconstruct_row<Real>(columns + 2, 1, theta, g_over_dx, wp_.data() + q0, hu.data() + q0, hv.data() + q0,
+                            b_east_.data() + q0, b_east_.data() + q0 - 1, x.w_high.data(), x.w_low.data(),
+                            x.normal_high.data(), x.normal_low.data(), x.tangential_high.data(),
+                            x.tangential_low.data(), x.source.data());
+      face_fluxes<Real>(columns + 1, g, epsilon, x.w_high.data(), x.normal_high.data(), x.tangential_high.data(),
+                        x.w_low.data() + 1, x.normal_low.data() + 1, x.tangential_low.data() + 1,
+                        b_east_.data() + q0, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
+                        speed_.data());
+      fastest(columns + 1);
+      rates_from_x_fluxes<Real>(columns, inverse_dx, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
+                                x.source.data() + 1, y.source.data(), rate_w_.data() + p0, rate_hu_.data() + p0,
+                                rate_hv_.data() + p0);
     }
-  for (int j = -1; j < rows_; ++j)
-    for (int i = 0; i < columns_; ++i) {
-      const std::size_t l = padded(i, j), r = l + stride_;
-      const double b = b_north_[l];
-      const InterfaceState low = interface_state(w_n_[l], b, hv_n_[l], hu_n_[l], epsilon, h_epsilon);
-      const InterfaceState high = interface_state(w_s_[r], b, hv_s_[r], hu_s_[r], epsilon, h_epsilon);
-      double f0, fn, ft;
-      max_speed = std::max(max_speed, central_upwind(low, high, g, f0, fn, ft));
-      const std::size_t f = static_cast<std::size_t>(j + 1) * columns_ + static_cast<std::size_t>(i);
-      flux_y_[0][f] = f0;
-      flux_y_[1][f] = ft;  // x momentum is tangential across a y face
-      flux_y_[2][f] = fn;
+    if (r >= 0) {
+      face_fluxes<Real>(columns, g, epsilon, y_below.w_high.data(), y_below.normal_high.data(),
+                        y_below.tangential_high.data(), y.w_low.data(), y.normal_low.data(), y.tangential_low.data(),
+                        b_north_.data() + p0 - row, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
+                        speed_.data());
+      fastest(columns);
+      if (r >= 1)
+        add_y_fluxes<Real>(columns, -inverse_dx, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
+                           rate_w_.data() + p0 - row, rate_hu_.data() + p0 - row, rate_hv_.data() + p0 - row);
+      if (r < rows_)
+        add_y_fluxes<Real>(columns, inverse_dx, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
+                           rate_w_.data() + p0, rate_hu_.data() + p0, rate_hv_.data() + p0);
     }
-
-  // 3. Rates with the well-balanced source (KP eq. 3.11).
-  const double inv_dx = 1.0 / dx;
-  for (int j = 0; j < rows_; ++j)
-    for (int i = 0; i < columns_; ++i) {
-      const std::size_t p = padded(i, j);
-      const std::size_t fe = static_cast<std::size_t>(j) * (columns_ + 1) + static_cast<std::size_t>(i + 1), fw = fe - 1;
-      const std::size_t fn = static_cast<std::size_t>(j + 1) * columns_ + static_cast<std::size_t>(i), fs = fn - columns_;
-      const double be = b_east_[p], bw = b_east_[p - sx], bn = b_north_[p], bs = b_north_[p - sy];
-      const double hbar_x = 0.5 * ((w_e_[p] - be) + (w_w_[p] - bw));
-      const double hbar_y = 0.5 * ((w_n_[p] - bn) + (w_s_[p] - bs));
-      rate_w_[p] = -inv_dx * (flux_x_[0][fe] - flux_x_[0][fw] + flux_y_[0][fn] - flux_y_[0][fs]);
-      rate_hu_[p] = -inv_dx * (flux_x_[1][fe] - flux_x_[1][fw] + flux_y_[1][fn] - flux_y_[1][fs]) -
-                    g * hbar_x * (be - bw) * inv_dx;
-      rate_hv_[p] = -inv_dx * (flux_x_[2][fe] - flux_x_[2][fw] + flux_y_[2][fn] - flux_y_[2][fs]) -
-                    g * hbar_y * (bn - bs) * inv_dx;
-    }
+  }
   return max_speed;
 }
 
-void ShallowWaterGrid::clamp_depths(std::vector<double>& w, std::vector<double>& hu, std::vector<double>& hv) {
-  for (int j = 0; j < rows_; ++j)
-    for (int i = 0; i < columns_; ++i) {
-      const std::size_t p = padded(i, j);
-      const double h = w[p] - b_cell_[p];
-      if (h < 0.0) {
-        most_negative_depth_m_ = std::min(most_negative_depth_m_, h);
-        w[p] = b_cell_[p];
-        hu[p] = hv[p] = 0.0;
-      } else if (h == 0.0) {
-        hu[p] = hv[p] = 0.0;
-      }
-    }
+template <class Real>
+void BasicShallowWaterGrid<Real>::stage_update(const std::vector<Real>& from_w, const std::vector<Real>& from_hu,
+                                               const std::vector<Real>& from_hv, double dt_s, bool average,
+                                               std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv) {
+  const Real dt = static_cast<Real>(dt_s);
+  Real lowest(0);
+  for (int j = 0; j < rows_; ++j) {
+    const std::size_t p = padded(0, j);
+    const auto stage = average ? &euler_stage_row<Real, true> : &euler_stage_row<Real, false>;
+    stage(columns_, dt, from_w.data() + p, from_hu.data() + p, from_hv.data() + p, rate_w_.data() + p,
+          rate_hu_.data() + p, rate_hv_.data() + p, b_cell_.data() + p, w.data() + p, hu.data() + p, hv.data() + p,
+          speed_.data());
+    lowest = extreme_of<Real, false>(columns_, speed_.data(), lowest);
+  }
+  most_negative_depth_m_ = std::min(most_negative_depth_m_, static_cast<double>(lowest));
 }
 
-int ShallowWaterGrid::advance(double dt_s) {
+template <class Real>
+int BasicShallowWaterGrid<Real>::advance(double dt_s) {
   int steps = 0;
   double remaining = dt_s;
   while (remaining > 1e-12 * dt_s) {
@@ -286,55 +406,29 @@ int ShallowWaterGrid::advance(double dt_s) {
     const double speed = rates(w_, hu_, hv_);
     const double limit = speed > 0.0 ? options_.cfl * spacing_m_ / speed : remaining;
     const double dt = std::min(remaining, limit);
-    for (int j = 0; j < rows_; ++j)
-      for (int i = 0; i < columns_; ++i) {
-        const std::size_t p = padded(i, j);
-        w1_[p] = w_[p] + dt * rate_w_[p];
-        hu1_[p] = hu_[p] + dt * rate_hu_[p];
-        hv1_[p] = hv_[p] + dt * rate_hv_[p];
-      }
-    clamp_depths(w1_, hu1_, hv1_);
+    stage_update(w_, hu_, hv_, dt, false, w1_, hu1_, hv1_);
     // Stage 2: U = (U + U1 + dt L(U1)) / 2.
     rates(w1_, hu1_, hv1_);
-    for (int j = 0; j < rows_; ++j)
-      for (int i = 0; i < columns_; ++i) {
-        const std::size_t p = padded(i, j);
-        w_[p] = 0.5 * (w_[p] + w1_[p] + dt * rate_w_[p]);
-        hu_[p] = 0.5 * (hu_[p] + hu1_[p] + dt * rate_hu_[p]);
-        hv_[p] = 0.5 * (hv_[p] + hv1_[p] + dt * rate_hv_[p]);
-      }
-    clamp_depths(w_, hu_, hv_);
+    stage_update(w1_, hu1_, hv1_, dt, true, w_, hu_, hv_);
     remaining -= dt;
     ++steps;
   }
   return steps;
 }
 
-void ShallowWaterGrid::step(double dt_s) {
+template <class Real>
+void BasicShallowWaterGrid<Real>::step(double dt_s) {
   rates(w_, hu_, hv_);
-  for (int j = 0; j < rows_; ++j)
-    for (int i = 0; i < columns_; ++i) {
-      const std::size_t p = padded(i, j);
-      w1_[p] = w_[p] + dt_s * rate_w_[p];
-      hu1_[p] = hu_[p] + dt_s * rate_hu_[p];
-      hv1_[p] = hv_[p] + dt_s * rate_hv_[p];
-    }
-  clamp_depths(w1_, hu1_, hv1_);
+  stage_update(w_, hu_, hv_, dt_s, false, w1_, hu1_, hv1_);
   rates(w1_, hu1_, hv1_);
-  for (int j = 0; j < rows_; ++j)
-    for (int i = 0; i < columns_; ++i) {
-      const std::size_t p = padded(i, j);
-      w_[p] = 0.5 * (w_[p] + w1_[p] + dt_s * rate_w_[p]);
-      hu_[p] = 0.5 * (hu_[p] + hu1_[p] + dt_s * rate_hu_[p]);
-      hv_[p] = 0.5 * (hv_[p] + hv1_[p] + dt_s * rate_hv_[p]);
-    }
-  clamp_depths(w_, hu_, hv_);
+  stage_update(w1_, hu1_, hv1_, dt_s, true, w_, hu_, hv_);
 }
 
-void ShallowWaterGrid::shift_window(int di, int dj) {
+template <class Real>
+void BasicShallowWaterGrid<Real>::shift_window(int di, int dj) {
   std::fill(entered_.begin(), entered_.end(), 0);
   if (di == 0 && dj == 0) return;
-  const std::vector<double> w = w_, hu = hu_, hv = hv_;
+  const std::vector<Real> w = w_, hu = hu_, hv = hv_;
   for (int j = 0; j < rows_; ++j)
     for (int i = 0; i < columns_; ++i) {
       const int si = i + di, sj = j + dj;
@@ -345,24 +439,28 @@ void ShallowWaterGrid::shift_window(int di, int dj) {
         hu_[p] = hu[q];
         hv_[p] = hv[q];
       } else {
-        w_[p] = 0.0;
-        hu_[p] = hv_[p] = 0.0;
+        w_[p] = Real(0);
+        hu_[p] = hv_[p] = Real(0);
         entered_[p] = 1;
       }
     }
 }
 
-void ShallowWaterGrid::rest_new_cells() {
+template <class Real>
+void BasicShallowWaterGrid<Real>::rest_new_cells() {
   for (int j = 0; j < rows_; ++j)
     for (int i = 0; i < columns_; ++i) {
       const std::size_t p = padded(i, j);
       if (entered_[p]) w_[p] = std::max(-head_cell_[p], b_cell_[p]);  // w' = w + zeta = 0 where wet
       if (w_[p] < b_cell_[p]) {
         w_[p] = b_cell_[p];
-        hu_[p] = hv_[p] = 0.0;
+        hu_[p] = hv_[p] = Real(0);
       }
     }
   std::fill(entered_.begin(), entered_.end(), 0);
 }
+
+template class BasicShallowWaterGrid<double>;
+template class BasicShallowWaterGrid<float>;
 
 }  // namespace nearshore::ships

@@ -4,6 +4,7 @@
 // threads while the render thread advances. The sequences are written here with the C++ API that
 // libnearshore.so exports too (sequence::SequenceWriter).
 #include "nearshore.h"
+#include "capi_test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -22,53 +23,7 @@
 
 namespace {
 namespace fs = std::filesystem;
-
-constexpr double kAmplitudeM = 0.5, kWavelengthM = 40.0, kPeriodS = 6.0, kSpacingM = 4.0;
-constexpr int kColumns = 40, kRows = 30, kFrames = 12;
-constexpr double kFrameIntervalS = 0.5;
-
-double analytic_eta(double x_m, double t_s) {
-  return kAmplitudeM * std::cos(2 * std::numbers::pi * (x_m / kWavelengthM - t_s / kPeriodS));
-}
-
-// A 160 m x 120 m basin of 10 m water in UTM zone 51N, a plane wave travelling east, float frames.
-fs::path write_sequence(const std::string& name) {
-  const fs::path folder = fs::current_path() / ("capi_" + name);
-  fs::remove_all(folder);
-  nearshore::GridGeometry geometry;
-  geometry.columns = kColumns;
-  geometry.rows = kRows;
-  geometry.spacing_m = kSpacingM;
-  geometry.origin_x_m = 386000.0;
-  geometry.origin_y_m = 4306400.0;
-  geometry.projection = {{"kind", "utm"}, {"zone", 51}, {"north", true}, {"datum", "WGS84"}};
-  nearshore::sequence::SequenceDescription description;
-  description.frame_interval_s = kFrameIntervalS;
-  description.encoding.surface_elevation = nearshore::sequence::Precision::kFloat;
-  description.encoding.flux = nearshore::sequence::Precision::kFloat;
-  nearshore::sequence::SequenceWriter writer(folder, nearshore::HarbourGrid::open_water(geometry, 10.f), description);
-  nearshore::Raster<float> eta(kColumns, kRows), flux(kColumns, kRows), zero(kColumns, kRows);
-  for (int frame = 0; frame < kFrames; ++frame) {
-    for (int row = 0; row < kRows; ++row)
-      for (int column = 0; column < kColumns; ++column) {
-        eta(column, row) = static_cast<float>(analytic_eta((column + 0.5) * kSpacingM, frame * kFrameIntervalS));
-        flux(column, row) = static_cast<float>(kWavelengthM / kPeriodS * eta(column, row));  // c eta
-      }
-    writer.write_frame(frame, {&eta, &flux, &zero, &zero});
-  }
-  writer.finish(kFrames);
-  return folder;
-}
-
-nearshore_sea* open_calm(const fs::path& folder) {
-  nearshore_sea_options options;
-  nearshore_sea_options_init(&options);
-  options.plan = NEARSHORE_PLAN_FRAME_ORDER;
-  options.beaufort_force = 0;  // a calm sea beyond the harbour: the queries see the frames alone
-  nearshore_sea* sea = nullptr;
-  EXPECT_EQ(nearshore_sea_open(folder.c_str(), &options, &sea), NEARSHORE_OK) << nearshore_last_error();
-  return sea;
-}
+using namespace nearshore::capi_test;
 
 TEST(CApi, BadInputReturnsAStatusAndAMessageNamingTheFix) {
   EXPECT_EQ(nearshore_api_version(), NEARSHORE_API_VERSION);

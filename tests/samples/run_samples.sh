@@ -15,6 +15,9 @@ test -f "$work/prefix/lib/pkgconfig/nearshore.pc"
 PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" cc -std=c11 -pedantic -Wall -Wextra -Werror \
   $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags nearshore) \
   -c "$source_dir/samples/query_track.c" -o "$work/query_track_c11.o"
+PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" cc -std=c11 -pedantic -Wall -Wextra -Werror \
+  $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags nearshore) \
+  -c "$source_dir/samples/ship_track.c" -o "$work/ship_track_c11.o"
 cmake -S "$source_dir/samples" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"
 cmake --build "$work/build" > "$work/build.log"
@@ -27,6 +30,16 @@ awk -F, 'NR > 1 && ($4 + 0 > 3 || $4 + 0 < -3 || $7 != 0) { print "implausible r
 # Bad input: a clear message and a non-zero status, no crash.
 if "$work/build/query_track" /nonexistent/bake 2> "$work/missing.err"; then exit 1; fi
 grep -q "/nonexistent/bake" "$work/missing.err"
+
+# 1b. C, a ship: the small bay is flat 12 m deep to x = 250 m, then a beach rises to land at
+# x = 378 m. A tug from x = 100 m heading east at 4 m/s sails, then grounds where the water is
+# shallower than its 3 m draft (x about 346 m), and says so; the one placed on land is refused.
+"$work/build/ship_track" "$sequence" 90 > "$work/ship.csv" 2> "$work/ship.err"
+test "$(wc -l < "$work/ship.csv")" -eq 91
+grep -q "ship 'Ashore': is placed on land" "$work/ship.err"
+grep -q "ship 'Tug 1' ran aground" "$work/ship.err"
+awk -F, 'NR == 11 && !($7 + 0 > 3.0 && $7 + 0 < 5.0) { print "not under way at 4 m/s: " $0; bad = 1 }
+         END { if ($8 != 1) { print "not aground at the end: " $0; bad = 1 } exit bad }' "$work/ship.csv"
 
 # 2. and 3. GL hosts under Xvfb (a display number from the pid, as the GL tests do).
 xvfb() { xvfb-run -a -n $((100 + $$ % 800)) -s '-screen 0 1024x768x24 -noreset' "$@"; }

@@ -5,6 +5,7 @@
 
 #include "nearshore/core/error.hpp"
 #include "nearshore/ships/generic_hulls.hpp"
+#include "nearshore/ships/hull_file.hpp"
 #include "nearshore/ships/hull_mesh.hpp"
 #include "nearshore/ships/hull_samples.hpp"
 #include "ships_test_support.hpp"

@@ -65,7 +65,7 @@ class BowWave {
   /// eta_bow (m) at site point (x, y): bilinear between cell centres, 0 outside the grid.
   double elevation_m(double x_m, double y_m) const;
   BowWaveField field() const;
-  const ShallowWaterGrid& grid() const { return grid_; }
+  const BowWaveGrid& grid() const { return grid_; }
   const BowWaveOptions& options() const { return options_; }
   int last_steps() const { return last_steps_; }
 
@@ -77,7 +77,7 @@ class BowWave {
 
   BowWaveOptions options_;
   double spacing_m_;
-  ShallowWaterGrid grid_;
+  BowWaveGrid grid_;  ///< float: see "Precision" in shallow_water.hpp
   bool started_ = false;
   long long origin_i_ = 0, origin_j_ = 0;  ///< the window's south-west corner in cells of the site frame
   std::vector<double> head_;               ///< corners, scratch

@@ -1,6 +1,7 @@
 #pragma once
 // Hull meshes: a closed, outward-oriented triangle surface in the BODY frame of a ship, its mass
-// properties by closed-mesh integrals, and the loader for hull files.
+// properties by closed-mesh integrals, and an OBJ writer. Mesh files are read by load_hull_mesh
+// (hull_file.hpp, library nearshore_ships_mesh: assimp).
 //
 // Body frame (every ship quantity in ships/ uses it): x forward (towards the bow), y to port, z up
 // (right-handed), metres. The generic hulls (generic_hulls.hpp) put the origin on the keel at
@@ -47,12 +48,6 @@ MeshMassProperties mesh_mass_properties(const HullMesh& mesh);
 /// mesh.name, the problem (open edges and where, edges used twice in one direction, inward normals)
 /// and the fix.
 void require_closed_outward(const HullMesh& mesh);
-
-/// Loads a hull from a mesh file (OBJ, PLY, glTF 2.0 / GLB, STL, anything assimp reads), welds
-/// coincident vertices (a file's per-face normals or UVs split them), applies the node transforms,
-/// and runs require_closed_outward. Throws nearshore::Error naming the file for a missing or
-/// unreadable file, no triangles, an open or inverted surface.
-HullMesh load_hull_mesh(const std::filesystem::path& path);
 
 /// Writes a hull as Wavefront OBJ (v/f lines, 1-based), for the tests and for users who want to
 /// edit a generic hull. Throws nearshore::Error naming the path.

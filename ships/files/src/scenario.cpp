@@ -10,6 +10,7 @@
 
 #include "nearshore/core/error.hpp"
 #include "nearshore/ships/generic_hulls.hpp"
+#include "nearshore/ships/hull_file.hpp"
 
 namespace nearshore::ships {
 namespace {
@@ -81,14 +82,14 @@ ShipDefinition read_ship(const fs::path& file, const toml::table& table, int num
   const std::string hull = t.text("hull").value_or("");
   if (hull.empty()) t.fail("hull", "is missing", "give hull = \"tug\", \"wigley\", \"box_barge\" or a mesh file");
   try {
-    if (hull == "box_barge") {
-      d.hull = box_barge(t.positive("length_m", 20.0), t.positive("beam_m", 8.0), t.positive("depth_m", 3.0));
-    } else if (hull == "wigley") {
-      const double draft = t.positive("draft_m", 1.25);
-      d.hull = wigley_hull(t.positive("length_m", 20.0), t.positive("beam_m", 2.0), draft,
-                           t.positive("depth_m", 2.0 * draft));
-    } else if (hull == "tug") {
-      d.hull = harbour_tug(t.positive("length_m", 24.0), t.positive("beam_m", 9.0), t.positive("depth_m", 4.5));
+    GenericHullDimensions dimensions;
+    auto given = [&](const char* key) { return t.number(key) ? t.positive(key, 0.0) : 0.0; };
+    dimensions.length_m = given("length_m");
+    dimensions.beam_m = given("beam_m");
+    dimensions.depth_m = given("depth_m");
+    dimensions.draft_m = given("draft_m");
+    if (std::optional<HullMesh> generic = generic_hull(hull, dimensions)) {
+      d.hull = std::move(*generic);
     } else {
       fs::path mesh = hull;
       if (mesh.is_relative()) mesh = file.parent_path() / mesh;

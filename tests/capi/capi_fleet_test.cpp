@@ -1,0 +1,263 @@
+// Ships through the C API (nearshore_fleet_*, docs/ships.md): bad hulls, masses and positions are
+// refused with a message naming the file or the ship while the fleet goes on; a box floats at
+// Archimedes' draft; a ship under way makes a bow wave that the fleet's queries add to the sea
+// exactly as its height field says; a ship driven onto land grounds and says so; the wake drops
+// decals. The numbers come from hydrostatics and from the contract of the returned fields, not
+// from the code.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "capi_test_support.hpp"
+#include "nearshore.h"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace nearshore::capi_test;
+
+constexpr double kWaterDensityKgM3 = 1025.0;  // the fleet's sea water (ships::WaterProperties)
+
+fs::path write_text(const std::string& name, const std::string& text) {
+  const fs::path path = fs::current_path() / ("capi_fleet_" + name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// A unit cube as OBJ, outward (counter-clockwise seen from outside), with `drop` faces left out
+// and `invert` reversing every face.
+std::string cube_obj(int drop, bool invert) {
+  std::string text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+  const int faces[12][3] = {{1, 3, 2}, {1, 4, 3}, {5, 6, 7}, {5, 7, 8}, {1, 2, 6}, {1, 6, 5},
+                            {2, 3, 7}, {2, 7, 6}, {3, 4, 8}, {3, 8, 7}, {4, 1, 5}, {4, 5, 8}};
+  for (int f = drop; f < 12; ++f) {
+    const int* v = faces[f];
+    text += invert ? "f " + std::to_string(v[0]) + " " + std::to_string(v[2]) + " " + std::to_string(v[1]) + "\n"
+                   : "f " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
+  }
+  return text;
+}
+
+std::string error() { return nearshore_last_error(); }
+
+TEST(CApiFleet, BadHullsMassesAndPositionsAreRefusedByNameAndNothingElseStops) {
+  nearshore_sea* sea = open_calm(write_sequence("fleet_bad", 0.0, 8));
+  ASSERT_NE(sea, nullptr);
+  nearshore_fleet* fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << error();
+  nearshore_ship_options options;
+  nearshore_ship_options_init(&options);
+  options.x_m = 60.0;
+  options.y_m = 60.0;
+  int ship = -1;
+
+  options.name = "Holed";
+  const fs::path open = write_text("open.obj", cube_obj(1, false));
+  options.hull = open.c_str();
+  EXPECT_EQ(nearshore_fleet_add_ship(fleet, &options, &ship), NEARSHORE_FORMAT_ERROR);
+  EXPECT_NE(error().find(open.string()), std::string::npos) << error();
+  EXPECT_NE(error().find("not closed"), std::string::npos) << error();
+  EXPECT_NE(error().find("Holed"), std::string::npos) << error();
+
+  const fs::path inverted = write_text("inverted.obj", cube_obj(0, true));
+  options.hull = inverted.c_str();
+  EXPECT_EQ(nearshore_fleet_add_ship(fleet, &options, &ship), NEARSHORE_FORMAT_ERROR);
+  EXPECT_NE(error().find(inverted.string()), std::string::npos) << error();
+  EXPECT_NE(error().find("inward"), std::string::npos) << error();
+
+  options.hull = "/nonexistent/hull.obj";
+  EXPECT_EQ(nearshore_fleet_add_ship(fleet, &options, &ship), NEARSHORE_IO_ERROR);
+  EXPECT_NE(error().find("/nonexistent/hull.obj"), std::string::npos) << error();
+
+  // A 20 x 8 x 3 m barge displaces at most 20 * 8 * 3 * 1025 = 4.9e5 kg: 1e6 kg sinks it.
+  options.name = "Overloaded";
+  options.hull = "box_barge";
+  options.mass_kg = 1e6;
+  EXPECT_EQ(nearshore_fleet_add_ship(fleet, &options, &ship), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("Overloaded"), std::string::npos) << error();
+  EXPECT_NE(error().find("cannot float"), std::string::npos) << error();
+
+  // The eastern 8 columns (x > 128 m) are land.
+  options.name = "Ashore";
+  options.mass_kg = 0.0;
+  options.draft_m = 1.0;
+  options.x_m = 150.0;
+  EXPECT_EQ(nearshore_fleet_add_ship(fleet, &options, &ship), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("Ashore"), std::string::npos) << error();
+  EXPECT_NE(error().find("placed on land"), std::string::npos) << error();
+
+  options.hull = "";
+  EXPECT_EQ(nearshore_fleet_add_ship(fleet, &options, &ship), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("hull"), std::string::npos) << error();
+
+  // Nothing was added, and the fleet works on: a good ship is ship 0 and steps.
+  int count = -1;
+  ASSERT_EQ(nearshore_fleet_ship_count(fleet, &count), NEARSHORE_OK);
+  EXPECT_EQ(count, 0);
+  options.name = "Good";
+  options.hull = "tug";
+  options.draft_m = 3.0;
+  options.x_m = 60.0;
+  options.bow_wave_cells = 64;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, &ship), NEARSHORE_OK) << error();
+  EXPECT_EQ(ship, 0);
+  ASSERT_EQ(nearshore_sea_advance(sea, 0.1), NEARSHORE_OK);
+  EXPECT_EQ(nearshore_fleet_step(fleet, 0.1), NEARSHORE_OK) << error();
+  EXPECT_EQ(nearshore_fleet_step(fleet, 0.0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_EQ(nearshore_fleet_set_controls(fleet, 1, 0.5, 0.0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("ship = 1"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_set_controls(fleet, 0, 2.0, 0.0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("engine_order"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_add_ship(nullptr, &options, &ship), NEARSHORE_INVALID_ARGUMENT);
+  nearshore_fleet_destroy(fleet);
+  nearshore_sea_close(sea);
+}
+
+TEST(CApiFleet, ABoxFloatsAtTheDraftOfArchimedesAndDoesNotDrift) {
+  nearshore_sea* sea = open_calm(write_sequence("fleet_box", 0.0));
+  ASSERT_NE(sea, nullptr);
+  nearshore_fleet* fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << error();
+  nearshore_ship_options options;
+  nearshore_ship_options_init(&options);
+  options.name = "Barge";
+  options.hull = "box_barge";  // 20 x 8 x 3 m
+  const double draft_m = 1.5;
+  options.mass_kg = kWaterDensityKgM3 * 20.0 * 8.0 * draft_m;
+  options.x_m = 80.0;
+  options.y_m = 60.0;
+  options.heading_deg = 90.0;
+  options.bow_wave_cells = 64;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
+  for (int frame = 1; frame <= 300; ++frame) {
+    ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
+    ASSERT_EQ(nearshore_fleet_step(fleet, 1.0 / 30.0), NEARSHORE_OK) << error();
+  }
+  nearshore_ship_pose pose;
+  pose.struct_size = sizeof pose;
+  ASSERT_EQ(nearshore_fleet_ship_pose(fleet, 0, &pose), NEARSHORE_OK) << error();
+  // G of a uniform box is at half its depth, 1.5 m above the keel; at draft m / (rho L B) = 1.5 m
+  // the keel is 1.5 m down, so G sits at the still-water level: within 1 % of the draft.
+  std::printf("barge: G at z = %.4f m (0 expected), at (%.3f, %.3f) m, heading %.2f deg\n", pose.z_m, pose.x_m, pose.y_m,
+              pose.heading_deg);
+  EXPECT_NEAR(pose.z_m, 0.0, 0.01 * draft_m);
+  EXPECT_NEAR(pose.x_m, 80.0, 0.01);
+  EXPECT_NEAR(pose.y_m, 60.0, 0.01);
+  EXPECT_NEAR(pose.heading_deg, 90.0, 0.01);
+  EXPECT_NEAR(pose.roll_deg, 0.0, 0.01);
+  EXPECT_EQ(pose.aground, 0);
+  nearshore_fleet_destroy(fleet);
+  nearshore_sea_close(sea);
+}
+
+TEST(CApiFleet, AShipUnderWayMakesABowWaveThatTheFleetQueriesAddAndAWake) {
+  nearshore_sea* sea = open_calm(write_sequence("fleet_bow", 0.0));
+  ASSERT_NE(sea, nullptr);
+  nearshore_fleet* fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << error();
+  nearshore_ship_options options;
+  nearshore_ship_options_init(&options);
+  options.name = "Tug";
+  options.x_m = 30.0;
+  options.y_m = 60.0;
+  options.heading_deg = 90.0;  // east
+  options.order = NEARSHORE_ORDER_SPEED;
+  options.speed_m_s = 3.0;
+  options.initial_speed_m_s = 3.0;
+  options.bow_wave_cells = 64;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
+  for (int frame = 1; frame <= 450; ++frame) {
+    ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
+    ASSERT_EQ(nearshore_fleet_step(fleet, 1.0 / 30.0), NEARSHORE_OK) << error();
+  }
+  nearshore_ship_pose pose;
+  pose.struct_size = sizeof pose;
+  ASSERT_EQ(nearshore_fleet_ship_pose(fleet, 0, &pose), NEARSHORE_OK);
+  std::printf("tug under way: (%.1f, %.1f) m, %.2f m/s, heading %.1f deg\n", pose.x_m, pose.y_m, pose.speed_m_s,
+              pose.heading_deg);
+  EXPECT_GT(pose.x_m, 50.0);
+  EXPECT_NEAR(pose.speed_m_s, 3.0, 0.5);  // the engine holds the ordered speed
+
+  nearshore_bow_wave_field field;
+  field.struct_size = sizeof field;
+  ASSERT_EQ(nearshore_fleet_bow_wave(fleet, 0, &field, nullptr, 0), NEARSHORE_OK) << error();
+  ASSERT_EQ(field.columns, 64);
+  std::vector<float> heights(static_cast<std::size_t>(field.columns) * field.rows);
+  EXPECT_EQ(nearshore_fleet_bow_wave(fleet, 0, &field, heights.data(), 10), NEARSHORE_INVALID_ARGUMENT);
+  ASSERT_EQ(nearshore_fleet_bow_wave(fleet, 0, &field, heights.data(), heights.size()), NEARSHORE_OK);
+  // The crest outside the hull (the hull's depression is under the ship, 9 m wide around its track).
+  std::size_t crest = 0;
+  for (std::size_t k = 0; k < heights.size(); ++k)
+    if (heights[k] > heights[crest]) crest = k;
+  ASSERT_GT(heights[crest], 0.005f);
+  // At that texel's centre the fleet's query is the sea's plus exactly that texel (the field's
+  // layout contract: row 0 south, texel centres at origin + (i + 0.5) spacing).
+  const int i = static_cast<int>(crest % field.columns), j = static_cast<int>(crest / field.columns);
+  const double xy[2] = {field.origin_x_m + (i + 0.5) * field.spacing_m, field.origin_y_m + (j + 0.5) * field.spacing_m};
+  nearshore_surface_sample sea_only, with_ships;
+  ASSERT_EQ(nearshore_sea_query(sea, xy, 1, &sea_only), NEARSHORE_OK);
+  ASSERT_EQ(nearshore_fleet_query(fleet, xy, 1, &with_ships), NEARSHORE_OK) << error();
+  std::printf("bow-wave crest %.4f m at (%.1f, %.1f) m; fleet query - sea query = %.4f m\n", heights[crest], xy[0], xy[1],
+              with_ships.elevation_m - sea_only.elevation_m);
+  EXPECT_NEAR(with_ships.elevation_m - sea_only.elevation_m, heights[crest], 1e-5);
+  EXPECT_LE(with_ships.normal[2], 1.0f);
+  nearshore_surface_sample at_time;
+  ASSERT_EQ(nearshore_fleet_query_at(fleet, 450 / 30.0, xy, 1, &at_time), NEARSHORE_OK) << error();
+  EXPECT_NEAR(at_time.elevation_m, with_ships.elevation_m, 1e-5);
+
+  size_t decal_count = 0;
+  ASSERT_EQ(nearshore_fleet_wake_decals(fleet, 0, nullptr, 0, &decal_count), NEARSHORE_OK);
+  // One decal per beam (9 m) of travel: about 3 m/s * 15 s / 9 m = 5.
+  EXPECT_GE(decal_count, 3u);
+  std::vector<nearshore_wake_decal> decals(decal_count);
+  ASSERT_EQ(nearshore_fleet_wake_decals(fleet, 0, decals.data(), decals.size(), &decal_count), NEARSHORE_OK);
+  for (const nearshore_wake_decal& d : decals) {
+    EXPECT_GT(d.opacity, 0.f);
+    EXPECT_LE(d.opacity, 1.f);
+    EXPECT_LT(d.x_m, pose.x_m);  // behind the ship, on its track
+    EXPECT_NEAR(d.y_m, 60.0, 1.0);
+  }
+  nearshore_fleet_destroy(fleet);
+  nearshore_sea_close(sea);
+}
+
+TEST(CApiFleet, AShipDrivenOntoLandGroundsAndSaysSo) {
+  nearshore_sea* sea = open_calm(write_sequence("fleet_ground", 0.0, 8));
+  ASSERT_NE(sea, nullptr);
+  nearshore_fleet* fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << error();
+  nearshore_ship_options options;
+  nearshore_ship_options_init(&options);
+  options.name = "Runaway";
+  options.x_m = 70.0;
+  options.y_m = 60.0;
+  options.heading_deg = 90.0;  // towards the land east of x = 128 m
+  options.bow_wave = 0;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
+  ASSERT_EQ(nearshore_fleet_set_controls(fleet, 0, 1.0, 0.0), NEARSHORE_OK) << error();
+  std::string events;
+  nearshore_ship_pose pose{};
+  pose.struct_size = sizeof pose;
+  for (int frame = 1; frame <= 1800 && pose.aground == 0; ++frame) {
+    ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
+    ASSERT_EQ(nearshore_fleet_step(fleet, 1.0 / 30.0), NEARSHORE_OK) << error();
+    ASSERT_EQ(nearshore_fleet_ship_pose(fleet, 0, &pose), NEARSHORE_OK);
+    char text[512];
+    int has_event = 1;
+    while (has_event) {
+      ASSERT_EQ(nearshore_fleet_next_event(fleet, text, sizeof text, &has_event), NEARSHORE_OK);
+      if (has_event) events += std::string(text) + "\n";
+    }
+  }
+  std::printf("%s", events.c_str());
+  EXPECT_EQ(pose.aground, 1);
+  EXPECT_NE(events.find("ship 'Runaway' ran aground"), std::string::npos) << events;
+  // Its bow is over the step to the land (x = 128 m), its centre a half length (12 m) back.
+  EXPECT_GT(pose.x_m + 12.0, 120.0);
+  nearshore_fleet_destroy(fleet);
+  nearshore_sea_close(sea);
+}
+
+}  // namespace

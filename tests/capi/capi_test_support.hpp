@@ -1,0 +1,74 @@
+#pragma once
+// Shared by the C API tests: a small basin written as a real sequence (sequence::SequenceWriter,
+// exported by libnearshore.so too) and a sea opened on it with a calm deep water.
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "nearshore.h"
+#include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/sequence/sequence_writer.hpp"
+
+namespace nearshore::capi_test {
+namespace fs = std::filesystem;
+
+constexpr double kAmplitudeM = 0.5, kWavelengthM = 40.0, kPeriodS = 6.0, kSpacingM = 4.0;
+constexpr int kColumns = 40, kRows = 30, kFrames = 12;
+constexpr double kFrameIntervalS = 0.5;
+
+inline double analytic_eta(double x_m, double t_s, double amplitude_m = kAmplitudeM) {
+  return amplitude_m * std::cos(2 * std::numbers::pi * (x_m / kWavelengthM - t_s / kPeriodS));
+}
+
+// A 160 m x 120 m basin of 10 m water in UTM zone 51N, a plane wave of `amplitude_m` travelling
+// east, float frames; the eastern `land_columns` columns are land 2 m above still water.
+inline fs::path write_sequence(const std::string& name, double amplitude_m = kAmplitudeM, int land_columns = 0) {
+  const fs::path folder = fs::current_path() / ("capi_" + name);
+  fs::remove_all(folder);
+  nearshore::GridGeometry geometry;
+  geometry.columns = kColumns;
+  geometry.rows = kRows;
+  geometry.spacing_m = kSpacingM;
+  geometry.origin_x_m = 386000.0;
+  geometry.origin_y_m = 4306400.0;
+  geometry.projection = {{"kind", "utm"}, {"zone", 51}, {"north", true}, {"datum", "WGS84"}};
+  nearshore::sequence::SequenceDescription description;
+  description.frame_interval_s = kFrameIntervalS;
+  description.encoding.surface_elevation = nearshore::sequence::Precision::kFloat;
+  description.encoding.flux = nearshore::sequence::Precision::kFloat;
+  nearshore::HarbourGrid harbour = nearshore::HarbourGrid::open_water(geometry, 10.f);
+  for (int row = 0; row < kRows; ++row)
+    for (int column = kColumns - land_columns; column < kColumns; ++column) {
+      harbour.still_water_depth_m(column, row) = -2.f;
+      harbour.land(column, row) = 1;
+      harbour.coast_distance_m(column, row) = -kSpacingM * static_cast<float>(column - (kColumns - land_columns) + 1);
+    }
+  nearshore::sequence::SequenceWriter writer(folder, harbour, description);
+  nearshore::Raster<float> eta(kColumns, kRows), flux(kColumns, kRows), zero(kColumns, kRows);
+  for (int frame = 0; frame < kFrames; ++frame) {
+    for (int row = 0; row < kRows; ++row)
+      for (int column = 0; column < kColumns; ++column) {
+        const bool on_land = column >= kColumns - land_columns;
+        eta(column, row) = on_land ? 0.f : static_cast<float>(analytic_eta((column + 0.5) * kSpacingM, frame * kFrameIntervalS, amplitude_m));
+        flux(column, row) = static_cast<float>(kWavelengthM / kPeriodS * eta(column, row));  // c eta
+      }
+    writer.write_frame(frame, {&eta, &flux, &zero, &zero});
+  }
+  writer.finish(kFrames);
+  return folder;
+}
+
+inline nearshore_sea* open_calm(const fs::path& folder) {
+  nearshore_sea_options options;
+  nearshore_sea_options_init(&options);
+  options.plan = NEARSHORE_PLAN_FRAME_ORDER;
+  options.beaufort_force = 0;  // a calm sea beyond the harbour: the queries see the frames alone
+  nearshore_sea* sea = nullptr;
+  EXPECT_EQ(nearshore_sea_open(folder.c_str(), &options, &sea), NEARSHORE_OK) << nearshore_last_error();
+  return sea;
+}
+
+}  // namespace nearshore::capi_test
