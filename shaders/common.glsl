@@ -1,69 +1,124 @@
-// Shared by every nearshore shader (prepended after #version). Lighting of seed 003 eq. (12)-(16);
-// playback/src/lighting.cpp is the CPU reference of these functions, tested pixel against pixel.
-// Coordinates: x east, y north, z up, metres, in the harbour grid's frame.
+// Shared by every nearshore shader (prepended after #version): the lighting of docs/lighting.md.
+// Each function is the twin of the C++ function of the same name in playback/src/ (sky_model.cpp,
+// ocean_brdf.cpp, water_optics.cpp, lighting.cpp); tests/playback/lighting_render_test.cpp
+// renders through them on Mesa and compares the pixels with the twins.
+// Coordinates: x east, y north, z up, metres, in the harbour grid's frame. Radiance in kcd/m2
+// (luminance-weighted linear sRGB), illuminance in klx.
 
-uniform vec3 u_sun_direction;      // unit vector towards the sun
-uniform vec3 u_sun_radiance;       // sun colour x intensity
-uniform vec3 u_sky_zenith;         // sky colour straight up
-uniform vec3 u_sky_horizon;        // sky colour at the horizon
-uniform vec3 u_water_colour;       // C_water of eq. (14): deep-water body colour
-uniform vec3 u_water_attenuation;  // atten of eq. (14), per metre, red absorbed most
-uniform vec3 u_seabed_albedo;      // C_object of eq. (14): sand
-uniform vec3 u_foam_colour;        // C_foam of eq. (15)
-uniform float u_exposure;
-
+const float kPi = 3.14159265358979;
 const float kWaterIndex = 1.333;
-const float kSunShininess = 900.0;  // Blinn-Phong exponent: a small sharp glitter highlight
 
-// The sky seen along `direction`: horizon-to-zenith gradient, plus a glow round the sun.
+// The sky (sky_model.hpp): Preetham's Perez coefficients and zenith values, the sun.
+uniform vec3 u_sun_direction;      // unit vector towards the sun
+uniform vec3 u_sun_illuminance;    // klx per band on a plane facing the sun (0 once it set)
+uniform vec3 u_sky_illuminance;    // klx per band of the sky dome on a horizontal plane
+uniform float u_perez_Y[5], u_perez_x[5], u_perez_y[5];
+uniform vec3 u_zenith_Yxy;         // Y_zenith (kcd/m2, twilight-dimmed), x_zenith, y_zenith
+uniform vec3 u_perez_zenith;       // F(0, theta_s) of Y, x, y
+uniform float u_night_luminance;   // kcd/m2 floor
+// The water (water_optics.hpp) and the surfaces.
+uniform vec3 u_water_attenuation;  // K = a + b_b per band, 1/m
+uniform vec3 u_deep_reflectance;   // R_inf per band
+uniform vec3 u_seabed_albedo;      // I_g of eq. (3.25): sand
+uniform vec3 u_foam_albedo;        // C_foam, seed 003 eq. (15)
+uniform float u_slope_variance;    // sigma^2 per axis the drawn normals cannot show
+uniform float u_translucency;      // mu scale of eq. (3.38)
+uniform float u_exposure;          // display = 1 - exp(-exposure L)
+
+// ---- sky: Preetham (1999), seed 001 eq. (3)-(12) -------------------------------------------
+float perez(float c[5], float cos_theta, float gamma) {
+  float cos_gamma = cos(gamma);
+  return (1.0 + c[0] * exp(c[1] / cos_theta)) * (1.0 + c[2] * exp(c[3] * gamma) + c[4] * cos_gamma * cos_gamma);
+}
+
+vec3 xyY_to_linear_srgb(float x, float y, float Y) {
+  y = max(y, 1e-4);
+  float X = x * Y / y, Z = (1.0 - x - y) * Y / y;
+  return max(vec3(3.240479 * X - 1.537150 * Y - 0.498535 * Z, -0.969256 * X + 1.875991 * Y + 0.041556 * Z,
+                  0.055648 * X - 0.204043 * Y + 1.057311 * Z), vec3(0.0));
+}
+
 vec3 sky_radiance(vec3 direction) {
-  float up = clamp(direction.z, 0.0, 1.0);
-  vec3 gradient = mix(u_sky_horizon, u_sky_zenith, sqrt(up));
-  float towards_sun = max(dot(direction, u_sun_direction), 0.0);
-  return gradient + u_sun_radiance * (0.04 * pow(towards_sun, 8.0));
+  float cos_theta = max(direction.z, 0.01);
+  float gamma = acos(clamp(dot(direction, u_sun_direction), -1.0, 1.0));
+  float Y = max(u_zenith_Yxy.x * perez(u_perez_Y, cos_theta, gamma) / u_perez_zenith.x, u_night_luminance);
+  float x = u_zenith_Yxy.y * perez(u_perez_x, cos_theta, gamma) / u_perez_zenith.y;
+  float y = u_zenith_Yxy.z * perez(u_perez_y, cos_theta, gamma) / u_perez_zenith.z;
+  return xyY_to_linear_srgb(x, y, Y);
 }
 
-// Schlick's approximation of the Fresnel reflectance of water (F0 = 0.02) at cos(theta).
-float fresnel_reflectance(float cos_theta) {
-  float f0 = 0.02;
-  return f0 + (1.0 - f0) * pow(1.0 - clamp(cos_theta, 0.0, 1.0), 5.0);
+// ---- Fresnel and the Bruneton (2010) BRDF, seed 000 eq. (3.13)-(3.24) -----------------------
+float fresnel_reflectance(float cos_incidence) {
+  const float r = 0.020373;  // ((n - 1) / (n + 1))^2, n = 1.333
+  return r + (1.0 - r) * pow(1.0 - clamp(cos_incidence, 0.0, 1.0), 5.0);
 }
 
-// Light reaching a Lambertian surface facing `normal` (sun + sky ambient).
-vec3 diffuse_irradiance(vec3 normal) {
-  return u_sun_radiance * max(dot(normal, u_sun_direction), 0.0) + 0.6 * mix(u_sky_horizon, u_sky_zenith, 0.5);
+float erfc_approximation(float x) { return 2.0 * exp(-x * x) / (2.319 * x + sqrt(4.0 + 1.52 * x * x)); }
+
+float smith_lambda(float cos_theta, float slope_variance) {
+  float c = clamp(cos_theta, 1e-4, 1.0);
+  float a = c / sqrt(2.0 * slope_variance * max(1.0 - c * c, 1e-12));
+  return max(0.0, (exp(-a * a) - a * sqrt(kPi) * erfc_approximation(a)) / (2.0 * a * sqrt(kPi)));
 }
 
-// Seed 003 eq. (12)-(16) at one point of the sea surface.
-//   normal: surface normal; to_eye: unit vector to the viewer; water_depth_m: total depth d + eta
-//   under the point; foam: foam concentration in [0, 1].
-vec3 shade_water(vec3 normal, vec3 to_eye, float water_depth_m, float foam) {
-  float cos_view = max(dot(normal, to_eye), 1e-3);
-  float reflectance = fresnel_reflectance(cos_view);
-  // eq. (13): sky + sun (local reflections would add here)
-  vec3 reflected_direction = reflect(-to_eye, normal);
-  reflected_direction.z = abs(reflected_direction.z);
-  vec3 half_vector = normalize(u_sun_direction + to_eye);
-  float glitter = (kSunShininess + 8.0) / 25.1327 * pow(max(dot(normal, half_vector), 0.0), kSunShininess);
-  vec3 reflected = sky_radiance(reflected_direction) + u_sun_radiance * glitter * step(0.0, u_sun_direction.z);
-  // eq. (14): light from the seabed attenuated along the refracted path down and back up,
-  // blended with the colour of the water body itself.
-  float sin_view = sqrt(max(1.0 - cos_view * cos_view, 0.0));
-  float cos_refracted = sqrt(max(1.0 - (sin_view / kWaterIndex) * (sin_view / kWaterIndex), 0.0));
-  float path_m = max(water_depth_m, 0.0) * (1.0 + 1.0 / max(cos_refracted, 0.2));
-  vec3 transmitted = exp(-u_water_attenuation * path_m);
-  vec3 seabed = u_seabed_albedo * diffuse_irradiance(vec3(0.0, 0.0, 1.0));
-  vec3 water_body = u_water_colour * diffuse_irradiance(vec3(0.0, 0.0, 1.0));
-  vec3 refracted = transmitted * seabed + (vec3(1.0) - transmitted) * water_body;
-  // eq. (12)
-  vec3 surface = reflectance * reflected + (1.0 - reflectance) * refracted;
-  // eq. (15): blend the foam in
-  vec3 foam_lit = u_foam_colour * diffuse_irradiance(normal);
+float mean_fresnel_reflectance(float cos_view, float slope_variance) {
+  const float r = 0.020373;
+  float sigma = sqrt(slope_variance);
+  return r + (1.0 - r) * pow(1.0 - clamp(cos_view, 0.0, 1.0), 5.0 * exp(-2.69 * sigma)) / (1.0 + 22.7 * pow(sigma, 1.5));
+}
+
+// ---- surfaces -----------------------------------------------------------------------------
+vec3 shade_lambertian(vec3 normal, vec3 albedo) {
+  return albedo * (u_sun_illuminance * max(dot(normal, u_sun_direction), 0.0) + u_sky_illuminance * 0.5 * (1.0 + normal.z)) / kPi;
+}
+
+// The sea surface (lighting.cpp shade_water, step for step).
+//   normal, to_eye: unit; water_depth_m: d + eta under the point; foam in [0, 1];
+//   extra_slope_variance: what the drawn normals filtered out here; crest_thinness: mu of eq. (3.38).
+//   local_reflection: radiance of land or structures seen in the mirror direction, alpha = covered.
+vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_slope_variance, float crest_thinness,
+                 vec4 local_reflection) {
+  vec3 l = u_sun_direction;
+  float cos_v = max(dot(n, v), 1e-3);
+  float sigma2 = u_slope_variance + max(extra_slope_variance, 0.0);
+  // 1. sky reflected, eq. (3.23)-(3.24)
+  vec3 mirror = reflect(-v, n);
+  mirror.z = abs(mirror.z);
+  float sky_fresnel = mean_fresnel_reflectance(cos_v, sigma2);
+  vec3 sky = mix(sky_radiance(mirror), local_reflection.rgb, clamp(local_reflection.a, 0.0, 1.0));
+  // 2. sun glitter, eq. (3.22)
+  float glitter = 0.0;
+  float cos_l = dot(n, l);
+  if (cos_l > 0.0) {
+    vec3 h = normalize(v + l);
+    float h_z = max(dot(n, h), 1e-4);
+    float zeta2 = (1.0 - h_z * h_z) / (h_z * h_z);
+    float p = exp(-0.5 * zeta2 / sigma2) / (2.0 * kPi * sigma2);
+    glitter = p * fresnel_reflectance(dot(v, h)) /
+              (4.0 * pow(h_z, 4.0) * cos_v * (1.0 + smith_lambda(cos_v, sigma2) + smith_lambda(cos_l, sigma2)));
+  }
+  // 3. water body and seabed, eq. (3.25) with the shallow-water reflectance (water_optics.hpp)
+  float mu_s = max(l.z, 0.0);
+  float n2 = kWaterIndex * kWaterIndex;
+  float cos_v_water = sqrt(max(1.0 - (1.0 - cos_v * cos_v) / n2, 0.0));
+  float path_factor = 1.0 / 0.8 + 1.0 / max(cos_v_water, 0.1);
+  vec3 seen = exp(-u_water_attenuation * path_factor * max(water_depth_m, 0.0));
+  vec3 reflectance = u_deep_reflectance * (1.0 - seen) + u_seabed_albedo * seen;
+  // 4. thin crests lit from behind, eq. (3.38)
+  float lobe = pow(clamp(0.5 * (cos_l - dot(v, l)), 0.0, 1.0), 5.0);
+  float crest = u_translucency * clamp(crest_thinness, 0.0, 1.0) * lobe * 0.15;
+  float sun_in = 1.0 - fresnel_reflectance(mu_s);
+  vec3 e_down = u_sun_illuminance * mu_s * sun_in + u_sky_illuminance * (1.0 - 0.066);
+  vec3 water_leaving = (1.0 - sky_fresnel) / n2 * e_down * reflectance / kPi;
+  vec3 through_crest = crest * u_sun_illuminance * sun_in / kPi * exp(-u_water_attenuation * 4.0);
+  vec3 surface = sky_fresnel * sky + u_sun_illuminance * glitter + water_leaving + through_crest;
+  // 5. foam, seed 003 eq. (15)
+  vec3 foam_lit = u_foam_albedo * (u_sun_illuminance * max(cos_l, 0.0) + u_sky_illuminance * 0.5 * (1.0 + n.z)) / kPi;
   return mix(surface, foam_lit, clamp(foam, 0.0, 1.0));
 }
 
 // Exposure and display gamma (the default framebuffer is not sRGB).
 vec3 to_display(vec3 radiance) {
-  vec3 exposed = vec3(1.0) - exp(-u_exposure * radiance);
+  vec3 exposed = vec3(1.0) - exp(-u_exposure * max(radiance, vec3(0.0)));
   return pow(exposed, vec3(1.0 / 2.2));
 }

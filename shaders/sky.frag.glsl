@@ -1,3 +1,4 @@
+// The sky behind everything: Preetham's clear sky (common.glsl sky_radiance) and the sun's disc.
 uniform mat4 u_inverse_view_projection;
 uniform vec3 u_eye_m;
 in vec2 v_ndc;
@@ -6,7 +7,7 @@ void main() {
   vec4 far_point = u_inverse_view_projection * vec4(v_ndc, 1.0, 1.0);
   vec3 direction = normalize(far_point.xyz / far_point.w - u_eye_m);
   vec3 radiance = sky_radiance(direction);
-  // The sun disc itself (0.53 degree across).
-  if (dot(direction, u_sun_direction) > 0.99996) radiance += u_sun_radiance * 20.0;
+  // The sun's disc, 0.53 degree across (6.8e-5 sr): its illuminance spread over that solid angle.
+  if (dot(direction, u_sun_direction) > 0.99998930) radiance += u_sun_illuminance / 6.8e-5;
   fragment_colour = vec4(to_display(radiance), 1.0);
 }

@@ -6,7 +6,7 @@
 // The CPU evaluates the same formulas (runtime's surface sampler); the height pass compares them.
 // Prepended (after common.glsl) to the water and height-pass shaders. Site frame, metres.
 
-const float kPi = 3.14159265358979;
+// kPi: common.glsl
 
 uniform vec3 u_eye_m;              // the viewer (site frame)
 uniform float u_earth_radius_m;    // > 0: the surface lies on a sphere touching still water under the eye

@@ -4,7 +4,9 @@
 //     throughput (frames/s and x real time), upload bytes per displayed frame;
 //  2. CPU surface queries per second on one core (batched elevations, both query points);
 //  3. per grid: vertices drawn and frames/s on this machine's OpenGL at 640x360 and 1280x720, every
-//     grid set to the same screen-space error (--screen-error px).
+//     grid set to the same screen-space error (--screen-error px);
+//  4. the lighting's cost (docs/lighting.md): frames/s at both sizes on the quadtree grid with the
+//     full lighting and with lighting off (a flat-coloured sea, no sky).
 // Without SEQ it writes a 1024 x 1024 synthetic sequence (irregular linear sea) to --work first.
 #include <time.h>
 
@@ -175,6 +177,32 @@ void bench_play(const Options& o) {
                                  {"frames_per_s", draws / wall}});
     }
   }
+  // 4. Lighting on and off, quadtree grid, the same view.
+  for (auto [width, height] : {std::pair{640, 360}, std::pair{1280, 720}}) {
+    for (const bool lit : {true, false}) {
+      playback::RendererSettings settings;
+      settings.quadtree.screen_error_px = o.screen_error_px;
+      playback::WaterRenderer renderer(settings);
+      const auto site = engine.site();
+      const playback::Camera camera = playback::Camera::overlooking_site(site->width_m, site->height_m);
+      playback::DrawOptions options;
+      if (!lit) {
+        options.colouring = playback::SurfaceColouring::flat;
+        options.flat_colour = {0.05f, 0.25f, 0.35f};
+        options.sky = false;
+      }
+      renderer.render(engine.snapshot(), camera, {}, width, height, options);
+      const int draws = 5;
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int k = 0; k < draws; ++k) {
+        renderer.render(engine.snapshot(), camera, {}, width, height, options);
+        (void)renderer.read_pixels();
+      }
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      report["lighting"].push_back({{"lighting", lit ? "full" : "off"}, {"size", fmt::format("{}x{}", width, height)},
+                                    {"frames_per_s", draws / wall}});
+    }
+  }
   report["load_average_after"] = load_average();
   if (o.json) {
     std::printf("%s\n", report.dump(1).c_str());
@@ -202,6 +230,10 @@ void bench_play(const Options& o) {
   for (const auto& g : report["grids"])
     std::printf("| %s | %s | %lld | %.2f |\n", g["size"].get<std::string>().c_str(), g["grid"].get<std::string>().c_str(),
                 g["vertices_drawn"].get<long long>(), g["frames_per_s"].get<double>());
+  std::printf("lighting (quadtree grid)\n| size | lighting | fps |\n|---|---|---|\n");
+  for (const auto& g : report["lighting"])
+    std::printf("| %s | %s | %.2f |\n", g["size"].get<std::string>().c_str(), g["lighting"].get<std::string>().c_str(),
+                g["frames_per_s"].get<double>());
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include "command_support.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
+#include "nearshore/ocean/sea_state_beaufort.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/plot/plot.hpp"
@@ -45,6 +46,11 @@ struct PlayOptions {
   int beaufort_force = 3;
   double wind_from_deg = 225;
   double sun_azimuth_deg = 200, sun_elevation_deg = 35;
+  // Lighting (docs/lighting.md): the sun from a UTC time at the site (or --lat-lon), the air, the water.
+  std::string utc;
+  std::vector<double> lat_lon;
+  double haze = 2.5, turbidity_ntu = 0.5, chlorophyll_mg_m3 = 0.3, cdom_per_m = -1, exposure = 1.0;
+  std::string lighting_mode = "full";
   bool panel = false, json = false, quiet = false;
   // A sea-state library (a folder with library.json): the state to start with, and scripted
   // switches "TIME:KEY=VALUE,..." crossfaded over crossfade_s.
@@ -193,6 +199,41 @@ std::pair<double, sequence::SeaConditions> parse_switch(const std::string& text)
   return {at_s, sequence::parse_sea_conditions(text.substr(colon + 1), "--switch " + text)};
 }
 
+// The lighting of the flags: the sun where it stands over the site (its own latitude/longitude
+// through the grid's projection, or --lat-lon) at --utc, else --sun-azimuth/--sun-elevation; the
+// wind of the deep water (its sub-grid roughness from the bake's spectrum when the bake carries
+// the deep water, else Cox & Munk's for the Beaufort wind); what is in the air and the water.
+playback::Lighting scene_lighting(const PlayOptions& o, const runtime::StreamingEngine& engine,
+                                  const runtime::HarbourSite& site, const SiteFrame& frame) {
+  playback::Lighting lighting;
+  lighting.sun_azimuth_deg = o.sun_azimuth_deg;
+  lighting.sun_elevation_deg = o.sun_elevation_deg;
+  if (!o.utc.empty()) {
+    const playback::UtcTime time = playback::UtcTime::parse(o.utc);
+    LonLat place;
+    if (!o.lat_lon.empty()) {
+      place = {o.lat_lon[1], o.lat_lon[0]};
+    } else if (frame.projection) {
+      place = frame.lat_lon_of(0.5 * site.width_m, 0.5 * site.height_m);
+    } else {
+      throw Error("--utc " + o.utc, "needs a place, and this bake's grid has no map projection (local metres)",
+                  "give the place with --lat-lon LAT,LON");
+    }
+    lighting.set_sun_for(place.latitude_deg, place.longitude_deg, time);
+  }
+  lighting.atmospheric_turbidity = o.haze;
+  lighting.water.turbidity_ntu = o.turbidity_ntu;
+  lighting.water.chlorophyll_mg_m3 = o.chlorophyll_mg_m3;
+  lighting.water.cdom_absorption_440_per_m = o.cdom_per_m;
+  lighting.exposure_compensation = o.exposure;
+  lighting.wind_direction_rad = travel_direction_rad(o.wind_from_deg);
+  lighting.wind_speed_m_s = ocean::beaufort_preset(o.beaufort_force).wind_speed_10_m_s;
+  const auto& deep = engine.manifest().deep_water;
+  if (engine.deep_water_is_bakes() && deep && deep->unresolved_slope_variance > 0.0)
+    lighting.sub_grid_slope_variance = deep->unresolved_slope_variance;
+  return lighting;
+}
+
 std::string play(const PlayOptions& o) {
   const bool headless = !o.screenshot.empty() || o.frames > 0;
   std::string plan = o.plan;
@@ -218,9 +259,14 @@ std::string play(const PlayOptions& o) {
   g_camera_control = &control;
   if (!headless) glfwSetScrollCallback(window.glfw_window(), on_scroll);  // before ImGui, which chains it
 
-  playback::Lighting lighting;
-  lighting.sun_azimuth_deg = o.sun_azimuth_deg;
-  lighting.sun_elevation_deg = o.sun_elevation_deg;
+  playback::Lighting lighting = scene_lighting(o, sea.engine(), *site, frame);
+  playback::DrawOptions draw_options;
+  if (o.lighting_mode == "off") {  // the cheapest picture: flat-coloured sea, no sky (bench baseline)
+    draw_options.colouring = playback::SurfaceColouring::flat;
+    draw_options.flat_colour = {0.05f, 0.25f, 0.35f};
+    draw_options.sky = false;
+    draw_options.background = {0.6f, 0.7f, 0.8f};
+  }
   ViewerPanelModel model;
   model.grid = static_cast<int>(settings.grid);
   model.plan = static_cast<int>(std::find(std::begin(kPlanNames), std::end(kPlanNames), plan) - std::begin(kPlanNames));
@@ -229,6 +275,9 @@ std::string play(const PlayOptions& o) {
   model.wind_from_deg = o.wind_from_deg;
   model.deep_water_from_bake = sea.engine().deep_water_is_bakes();
   model.gl_description = window.gl_description();
+  model.sun_azimuth_deg = lighting.sun_azimuth_deg, model.sun_elevation_deg = lighting.sun_elevation_deg;
+  model.haze = lighting.atmospheric_turbidity, model.turbidity_ntu = lighting.water.turbidity_ntu;
+  model.chlorophyll_mg_m3 = lighting.water.chlorophyll_mg_m3, model.exposure = lighting.exposure_compensation;
   const LonLat looked_at = frame.lat_lon_of(control.camera.target_m[0], control.camera.target_m[1]);
   model.jump_lat_lon_deg = {looked_at.latitude_deg, looked_at.longitude_deg};
   if (!o.quiet) {
@@ -267,7 +316,7 @@ std::string play(const PlayOptions& o) {
     renderer.stage_upcoming(sea.engine());
     if (!headless) control.update(window.glfw_window(), dt_s, panel && panel->wants_input());
     renderer.render(sea.snapshot(), control.camera, lighting, window.framebuffer_width_px(),
-                    window.framebuffer_height_px());
+                    window.framebuffer_height_px(), draw_options);
     renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
     const double main_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - main_start).count();
     if (panel) {
@@ -303,6 +352,13 @@ std::string play(const PlayOptions& o) {
           beaufort.force = model.beaufort_force;
           beaufort.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
           sea.engine().set_beaufort(beaufort);
+        }
+        lighting.sun_azimuth_deg = model.sun_azimuth_deg, lighting.sun_elevation_deg = model.sun_elevation_deg;
+        lighting.atmospheric_turbidity = model.haze, lighting.water.turbidity_ntu = model.turbidity_ntu;
+        lighting.water.chlorophyll_mg_m3 = model.chlorophyll_mg_m3, lighting.exposure_compensation = model.exposure;
+        if (model.beaufort_force != before.beaufort_force || model.wind_from_deg != before.wind_from_deg) {
+          lighting.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
+          lighting.wind_speed_m_s = ocean::beaufort_preset(model.beaufort_force).wind_speed_10_m_s;
         }
         if (model.jump_requested) {
           model.jump_requested = false;
@@ -387,12 +443,28 @@ void add_play_command(CLI::App& app) {
       ->delimiter(',')->expected(3)->check(finite_number());
   cmd->add_option("--target-lat-lon", o->target_lat_lon, "Look at LAT,LON (WGS 84 degrees) on the sea")
       ->delimiter(',')->expected(2)->check(finite_number());
-  cmd->add_option("--sun-azimuth", o->sun_azimuth_deg, "Sun bearing, degrees from north")
+  CLI::Option* sun_azimuth = cmd->add_option("--sun-azimuth", o->sun_azimuth_deg, "Sun bearing, degrees from north")
       ->capture_default_str()
       ->check(number_in(at_least(-360), at_most(360)));
-  cmd->add_option("--sun-elevation", o->sun_elevation_deg, "Sun height above the horizon, degrees")
+  CLI::Option* sun_elevation = cmd->add_option("--sun-elevation", o->sun_elevation_deg, "Sun height above the horizon, degrees")
       ->capture_default_str()
       ->check(number_in(at_least(-90), at_most(90)));
+  cmd->add_option("--utc", o->utc, "Put the sun where it stands at this UTC time over the site, e.g. 2026-06-21T04:00:00Z")
+      ->excludes(sun_azimuth)->excludes(sun_elevation);
+  cmd->add_option("--lat-lon", o->lat_lon, "Place the --utc sun is seen from, LAT,LON (default: the site's own centre)")
+      ->delimiter(',')->expected(2)->check(finite_number());
+  cmd->add_option("--haze", o->haze, "Atmospheric turbidity (Preetham's T): 2 very clear, 3 clear, 6 hazy, 10 thin fog")
+      ->check(number_in(at_least(1.7), at_most(10)))->capture_default_str();
+  cmd->add_option("--turbidity", o->turbidity_ntu, "Water turbidity from suspended sediment, NTU (0 clear ocean, 10 a muddy harbour)")
+      ->check(number_in(at_least(0), at_most(200)))->capture_default_str();
+  cmd->add_option("--chlorophyll", o->chlorophyll_mg_m3, "Chlorophyll, mg/m3 (0.05 open ocean, 1 coastal, 10 a bloom)")
+      ->check(number_in(at_least(0), at_most(100)))->capture_default_str();
+  cmd->add_option("--cdom", o->cdom_per_m, "Absorption of dissolved organic matter at 440 nm, 1/m (default: from the chlorophyll)")
+      ->check(number_in(at_least(0), at_most(20)));
+  cmd->add_option("--exposure", o->exposure, "Exposure compensation, a factor on the automatic exposure")
+      ->check(number_in(at_least(0.01), at_most(100)))->capture_default_str();
+  cmd->add_option("--lighting", o->lighting_mode, "full (docs/lighting.md) or off (a flat sea, no sky: the cost baseline)")
+      ->check(CLI::IsMember({"full", "off"}))->capture_default_str();
   cmd->add_option("--frames", o->frames, "Headless: draw this many frames at 30 fps display time, then exit")
       ->check(number_in(at_least(1), at_most(1e6)));
   cmd->add_option("--screenshot", o->screenshot, "Headless: write the last frame to this PNG (hidden window)");

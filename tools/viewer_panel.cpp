@@ -75,6 +75,17 @@ bool ViewerPanel::draw(ViewerPanelModel& m) {
   ImGui::InputDouble("latitude", &m.jump_lat_lon_deg[0], 0.0, 0.0, "%.6f");
   ImGui::InputDouble("longitude", &m.jump_lat_lon_deg[1], 0.0, 0.0, "%.6f");
   if (ImGui::Button("jump there")) m.jump_requested = true, changed = true;
+  // Lighting (docs/lighting.md): the sun, the air, what is in the water.
+  const auto slider = [&changed](const char* label, double& value, float low, float high, const char* format) {
+    float v = float(value);
+    if (ImGui::SliderFloat(label, &v, low, high, format)) value = v, changed = true;
+  };
+  slider("sun azimuth", m.sun_azimuth_deg, 0.f, 360.f, "%.0f deg");
+  slider("sun elevation", m.sun_elevation_deg, -20.f, 90.f, "%.1f deg");
+  slider("haze (T)", m.haze, 1.7f, 10.f, "%.1f");
+  slider("turbidity", m.turbidity_ntu, 0.f, 30.f, "%.1f NTU");
+  slider("chlorophyll", m.chlorophyll_mg_m3, 0.f, 20.f, "%.2f mg/m3");
+  slider("exposure", m.exposure, 0.1f, 10.f, "%.2fx");
   ImGui::TextDisabled("%s", m.gl_description.c_str());
   ImGui::End();
   ImGui::Render();

@@ -33,6 +33,10 @@ struct ViewerPanelModel {
   std::array<double, 2> jump_lat_lon_deg = {0.0, 0.0};
   bool jump_requested = false;
   bool paused = false;
+  double sun_azimuth_deg = 200.0, sun_elevation_deg = 35.0;  ///< compass bearing, apparent height
+  double haze = 2.5;               ///< Preetham's atmospheric turbidity T
+  double turbidity_ntu = 0.5, chlorophyll_mg_m3 = 0.3;  ///< what is in the water
+  double exposure = 1.0;           ///< factor on the automatic exposure
 };
 
 class ViewerPanel {

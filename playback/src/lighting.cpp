@@ -4,82 +4,140 @@
 #include <cmath>
 #include <numbers>
 
+#include "nearshore/ocean/deep_water.hpp"
+
 namespace nearshore::playback {
 namespace {
-// Mirrors shaders/common.glsl constants.
-constexpr double kWaterIndex = 1.333;
-constexpr double kSunShininess = 900.0;
+constexpr double kPi = std::numbers::pi;
+// Mean Fresnel reflectance of a uniform sky seen from under a flat surface... from above: the
+// fraction of diffuse sky light a calm sea reflects (6.6 %, Mobley 1994 section 4.4).
+constexpr double kDiffuseSkyReflectance = 0.066;
+// Mean cosine of the downwelling light just under the surface (Kirk 2011: 0.8-0.9 in clear water).
+constexpr double kDownwellingMeanCosine = 0.8;
+// Exposure: a white Lambertian surface under the day's light maps to 1 - e^-0.9 (0.59 linear): the
+// sky near the horizon, often brighter than that surface (Preetham), keeps some headroom.
+constexpr double kExposureKey = 0.9;
+constexpr double kAdaptationFloorKcdM2 = 0.01;  // the eye stops adapting at dusk (~10 cd/m2)
+// Path through a wave crest for eq. (3.38)'s colour (m) and the fraction of light it lets through.
+constexpr double kCrestPathM = 4.0;
+constexpr double kCrestTransmission = 0.15;
 
 double dot(const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 Vector3 normalize(const Vector3& v) {
   const double length = std::sqrt(dot(v, v));
   return {v[0] / length, v[1] / length, v[2] / length};
 }
-Radiance add(const Radiance& a, const Radiance& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Radiance scale(const Radiance& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-Radiance multiply(const Radiance& a, const Radiance& b) { return {a[0] * b[0], a[1] * b[1], a[2] * b[2]}; }
-Radiance mix(const Radiance& a, const Radiance& b, double t) { return add(scale(a, 1 - t), scale(b, t)); }
-
-Radiance diffuse_irradiance(const Lighting& l, const Vector3& normal) {
-  return add(scale(l.sun_radiance, std::max(dot(normal, l.sun_direction()), 0.0)),
-             scale(mix(l.sky_horizon, l.sky_zenith, 0.5), 0.6));
-}
+double luminance(const Radiance& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 }  // namespace
 
+static_assert(Lighting{}.jacobian_foam_onset - ocean::kStokesBreakingJacobian < 1e-12 &&
+                  ocean::kStokesBreakingJacobian - Lighting{}.jacobian_foam_onset < 1e-12,
+              "Lighting::jacobian_foam_onset defaults to the Stokes limit of ocean/deep_water.hpp");
+
 Vector3 Lighting::sun_direction() const {
-  const double azimuth = sun_azimuth_deg * std::numbers::pi / 180.0;
-  const double elevation = sun_elevation_deg * std::numbers::pi / 180.0;
+  const double azimuth = sun_azimuth_deg * kPi / 180.0;
+  const double elevation = sun_elevation_deg * kPi / 180.0;
   return {std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth), std::sin(elevation)};
 }
 
-Radiance sky_radiance(const Lighting& l, const Vector3& direction) {
-  const double up = std::clamp(direction[2], 0.0, 1.0);
-  const Radiance gradient = mix(l.sky_horizon, l.sky_zenith, std::sqrt(up));
-  const double towards_sun = std::max(dot(direction, l.sun_direction()), 0.0);
-  return add(gradient, scale(l.sun_radiance, 0.04 * std::pow(towards_sun, 8.0)));
+void Lighting::set_sun_for(double latitude_deg, double longitude_deg, const UtcTime& time) {
+  const SunPosition sun = sun_position(latitude_deg, longitude_deg, time);
+  sun_azimuth_deg = sun.azimuth_deg;
+  sun_elevation_deg = sun.elevation_deg;
 }
 
-double fresnel_reflectance(double cos_theta) {
-  constexpr double f0 = 0.02;
-  return f0 + (1.0 - f0) * std::pow(1.0 - std::clamp(cos_theta, 0.0, 1.0), 5.0);
+LightingFrame prepare_lighting(const Lighting& l) {
+  LightingFrame f;
+  f.sky = make_sky(l.sun_azimuth_deg, l.sun_elevation_deg, l.atmospheric_turbidity);
+  f.sky_illuminance_klx = sky_illuminance_klx(f.sky);
+  f.water = water_optics(l.water);
+  f.seabed_albedo = l.seabed_albedo;
+  f.foam_albedo = l.foam_albedo;
+  const double total = l.sub_grid_slope_variance >= 0.0 ? l.sub_grid_slope_variance : cox_munk_slope_variance(l.wind_speed_m_s);
+  f.slope_variance_per_axis = std::max(0.5 * total, 1e-4);
+  f.foam_onset_m = l.foam_onset_m;
+  f.foam_full_m = l.foam_full_m;
+  f.translucency = std::max(l.translucency, 0.0);
+  f.jacobian_foam_onset = l.jacobian_foam_onset;
+  f.wind_direction_rad = l.wind_direction_rad;
+  f.shore_wave_amplitude_m = std::max(l.shore_wave_amplitude_m, 0.0) * std::clamp(l.wind_speed_m_s / 10.0, 0.0, 1.0);
+  f.shore_band_m = std::max(l.shore_band_m, 1.0);
+  // The luminance of a white Lambertian surface under sun and sky sets the exposure; at a low sun
+  // the sky, twice as bright as its mean (E_sky / pi) towards the horizon, fills the view instead.
+  const double sky_mean = luminance(f.sky_illuminance_klx) / kPi;
+  const double adaptation = std::max(
+      luminance(f.sky.sun_illuminance_klx) * std::max(f.sky.sun_direction[2], 0.0) / kPi + sky_mean, 2.0 * sky_mean);
+  f.exposure = std::max(l.exposure_compensation, 0.0) * kExposureKey / std::max(adaptation, kAdaptationFloorKcdM2);
+  return f;
 }
 
-Radiance shade_water(const Lighting& l, const Vector3& normal, const Vector3& to_eye, double water_depth_m,
-                     double foam) {
-  const double cos_view = std::max(dot(normal, to_eye), 1e-3);
-  const double reflectance = fresnel_reflectance(cos_view);
-  // eq. (13): sky + sun glitter (Blinn-Phong, normalised)
-  Vector3 reflected_direction = {2 * dot(normal, to_eye) * normal[0] - to_eye[0],
-                                 2 * dot(normal, to_eye) * normal[1] - to_eye[1],
-                                 2 * dot(normal, to_eye) * normal[2] - to_eye[2]};
-  reflected_direction[2] = std::abs(reflected_direction[2]);
-  const Vector3 sun = l.sun_direction();
-  const Vector3 half_vector = normalize({sun[0] + to_eye[0], sun[1] + to_eye[1], sun[2] + to_eye[2]});
-  const double glitter =
-      (kSunShininess + 8.0) / 25.1327 * std::pow(std::max(dot(normal, half_vector), 0.0), kSunShininess);
-  const Radiance reflected =
-      add(sky_radiance(l, reflected_direction), scale(l.sun_radiance, sun[2] >= 0 ? glitter : 0.0));
-  // eq. (14)
-  const double sin_view = std::sqrt(std::max(1.0 - cos_view * cos_view, 0.0));
-  const double cos_refracted = std::sqrt(std::max(1.0 - std::pow(sin_view / kWaterIndex, 2), 0.0));
-  const double path_m = std::max(water_depth_m, 0.0) * (1.0 + 1.0 / std::max(cos_refracted, 0.2));
-  const Radiance transmitted = {std::exp(-l.water_attenuation_per_m[0] * path_m),
-                                std::exp(-l.water_attenuation_per_m[1] * path_m),
-                                std::exp(-l.water_attenuation_per_m[2] * path_m)};
-  const Vector3 up = {0, 0, 1};
-  const Radiance seabed = multiply(l.seabed_albedo, diffuse_irradiance(l, up));
-  const Radiance water_body = multiply(l.water_colour, diffuse_irradiance(l, up));
-  const Radiance refracted = add(multiply(transmitted, seabed),
-                                 multiply({1 - transmitted[0], 1 - transmitted[1], 1 - transmitted[2]}, water_body));
-  // eq. (12), then eq. (15)
-  const Radiance surface = add(scale(reflected, reflectance), scale(refracted, 1.0 - reflectance));
-  const Radiance foam_lit = multiply(l.foam_colour, diffuse_irradiance(l, normal));
-  return mix(surface, foam_lit, std::clamp(foam, 0.0, 1.0));
+Radiance shade_lambertian(const LightingFrame& f, const Vector3& normal, const Radiance& albedo) {
+  const double sun = std::max(dot(normal, f.sky.sun_direction), 0.0);
+  const double sky = 0.5 * (1.0 + normal[2]);  // the part of the sky dome the surface faces
+  Radiance out{};
+  for (std::size_t c = 0; c < 3; ++c)
+    out[c] = albedo[c] * (f.sky.sun_illuminance_klx[c] * sun + f.sky_illuminance_klx[c] * sky) / kPi;
+  return out;
 }
 
-Radiance to_display(const Lighting& l, const Radiance& radiance) {
+Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
+  const Vector3& n = s.normal;
+  const Vector3& v = s.to_eye;
+  const Vector3& l = f.sky.sun_direction;
+  const double cos_v = std::max(dot(n, v), 1e-3);
+  const double sigma2 = f.slope_variance_per_axis + std::max(s.extra_slope_variance_per_axis, 0.0);
+  // 1. Sky light reflected, eq. (3.23)-(3.24): the sky in the mirror direction times the mean
+  //    Fresnel reflectance of the rough surface. A ray mirrored downwards sees the sky's lowest band.
+  Vector3 mirror = {2 * dot(n, v) * n[0] - v[0], 2 * dot(n, v) * n[1] - v[1], 2 * dot(n, v) * n[2] - v[2]};
+  mirror[2] = std::abs(mirror[2]);
+  const double sky_fresnel = mean_fresnel_reflectance(cos_v, sigma2);
+  const Radiance sky_seen = sky_radiance(f.sky, mirror);
+  const double covered = std::clamp(s.local_reflection_coverage, 0.0, 1.0);
+  Radiance sky{};
+  for (std::size_t c = 0; c < 3; ++c) sky[c] = (1.0 - covered) * sky_seen[c] + covered * s.local_reflection[c];
+  // 2. Sun glitter, eq. (3.22): E_sun p(zeta_h) F(v.h) / (4 h_z^4 cos theta_v (1 + Lambda_v + Lambda_l)).
+  double glitter = 0.0;
+  const double cos_l = dot(n, l);
+  if (cos_l > 0.0) {
+    const Vector3 h = normalize({v[0] + l[0], v[1] + l[1], v[2] + l[2]});
+    const double h_z = std::max(dot(n, h), 1e-4);
+    const double zeta2 = (1.0 - h_z * h_z) / (h_z * h_z);
+    const double p = std::exp(-0.5 * zeta2 / sigma2) / (2.0 * kPi * sigma2);
+    glitter = p * fresnel_reflectance(dot(v, h)) /
+              (4.0 * std::pow(h_z, 4) * cos_v * (1.0 + smith_lambda(cos_v, sigma2) + smith_lambda(cos_l, sigma2)));
+  }
+  // 3. Light from the water body and the seabed, eq. (3.25): the downwelling illuminance that
+  //    crosses the surface, times the shallow-water reflectance along the refracted view, back
+  //    out through the surface ((1 - F) / n^2, the radiance of a beam leaving a denser medium).
+  const double mu_s = std::max(l[2], 0.0);
+  const double n2 = kWaterRefractiveIndex * kWaterRefractiveIndex;
+  const double cos_v_water = std::sqrt(std::max(1.0 - (1.0 - cos_v * cos_v) / n2, 0.0));
+  const double path_factor = 1.0 / kDownwellingMeanCosine + 1.0 / std::max(cos_v_water, 0.1);
+  const Radiance reflectance = shallow_water_reflectance(f.water, f.seabed_albedo, s.water_depth_m, path_factor);
+  // 4. Thin crests lit from behind, eq. (3.38): (n.l + v.l)^5 mu, v the viewing direction (from
+  //    the eye); halved so the lobe peaks at 1 looking straight into the sun through the crest.
+  const double lobe = std::pow(std::clamp(0.5 * (cos_l - dot(v, l)), 0.0, 1.0), 5.0);
+  const double crest = f.translucency * std::clamp(s.crest_thinness, 0.0, 1.0) * lobe * kCrestTransmission;
+  const double sun_in = 1.0 - fresnel_reflectance(mu_s);
+  const double sun_normal = std::max(cos_l, 0.0);
+  Radiance out{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double e_sun = f.sky.sun_illuminance_klx[c], e_sky = f.sky_illuminance_klx[c];
+    const double e_down = e_sun * mu_s * sun_in + e_sky * (1.0 - kDiffuseSkyReflectance);
+    const double water_leaving = (1.0 - sky_fresnel) / n2 * e_down * reflectance[c] / kPi;
+    const double through_crest = crest * e_sun * sun_in / kPi * std::exp(-f.water.diffuse_attenuation_per_m[c] * kCrestPathM);
+    const double surface = sky_fresnel * sky[c] + e_sun * glitter + water_leaving + through_crest;
+    // 5. Foam, seed 003 eq. (15): a Lambertian white over the water.
+    const double foam_lit = f.foam_albedo[c] * (e_sun * sun_normal + e_sky * 0.5 * (1.0 + n[2])) / kPi;
+    const double foam = std::clamp(s.foam, 0.0, 1.0);
+    out[c] = (1.0 - foam) * surface + foam * foam_lit;
+  }
+  return out;
+}
+
+Radiance to_display(const LightingFrame& f, const Radiance& radiance) {
   Radiance out;
-  for (int c = 0; c < 3; ++c) out[c] = std::pow(1.0 - std::exp(-l.exposure * radiance[c]), 1.0 / 2.2);
+  for (std::size_t c = 0; c < 3; ++c) out[c] = std::pow(1.0 - std::exp(-f.exposure * std::max(radiance[c], 0.0)), 1.0 / 2.2);
   return out;
 }
 

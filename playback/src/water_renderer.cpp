@@ -47,8 +47,9 @@ constexpr const char* kSamplerUnits[] = {
     "u_still_water_depth", "u_porosity",          "u_land",                  "u_deep_eta_from",
     "u_deep_eta_to",       "u_deep_dx_from",      "u_deep_dx_to",            "u_deep_dy_from",
     "u_deep_dy_to",        "u_deep_slope_x_from", "u_deep_slope_x_to",       "u_deep_slope_y_from",
-    "u_deep_slope_y_to"};
-enum Unit { kHarbourEta = 0, kHarbourBreaking = 2, kDepth = 4, kPorosity = 5, kLand = 6, kDeepFirst = 7 };
+    "u_deep_slope_y_to",   "u_coast_distance",    "u_reflection"};
+enum Unit { kHarbourEta = 0, kHarbourBreaking = 2, kDepth = 4, kPorosity = 5, kLand = 6, kDeepFirst = 7, kCoast = 17,
+            kReflection = 18 };
 
 GLuint link_program(std::initializer_list<const char*> vertex_prefixes, const std::string& vertex_name,
                     std::initializer_list<const char*> fragment_prefixes, const std::string& fragment_name) {
@@ -87,18 +88,30 @@ void set_uniform(GLuint program, const char* name, const Matrix4& value) {
   glUniformMatrix4fv(at(program, name), 1, GL_FALSE, values);
 }
 
-void set_lighting_uniforms(GLuint program, const Lighting& l) {
-  set_uniform(program, "u_sun_direction", l.sun_direction());
-  set_uniform(program, "u_sun_radiance", l.sun_radiance);
-  set_uniform(program, "u_sky_zenith", l.sky_zenith);
-  set_uniform(program, "u_sky_horizon", l.sky_horizon);
-  set_uniform(program, "u_water_colour", l.water_colour);
-  set_uniform(program, "u_water_attenuation", l.water_attenuation_per_m);
-  set_uniform(program, "u_seabed_albedo", l.seabed_albedo);
-  set_uniform(program, "u_foam_colour", l.foam_colour);
-  set_uniform(program, "u_exposure", float(l.exposure));
-  set_uniform(program, "u_foam_onset_m", float(l.foam_onset_m));
-  set_uniform(program, "u_foam_full_m", float(l.foam_full_m));
+void set_lighting_uniforms(GLuint program, const LightingFrame& f) {
+  const SkyModel& sky = f.sky;
+  set_uniform(program, "u_sun_direction", sky.sun_direction);
+  set_uniform(program, "u_sun_illuminance", sky.sun_illuminance_klx);
+  set_uniform(program, "u_sky_illuminance", f.sky_illuminance_klx);
+  const auto set_perez = [&](const char* name, const PerezCoefficients& c) {
+    const float values[5] = {float(c[0]), float(c[1]), float(c[2]), float(c[3]), float(c[4])};
+    glUniform1fv(at(program, name), 5, values);
+  };
+  set_perez("u_perez_Y", sky.perez_Y);
+  set_perez("u_perez_x", sky.perez_x);
+  set_perez("u_perez_y", sky.perez_y);
+  set_uniform(program, "u_zenith_Yxy", std::array<double, 3>{sky.zenith_luminance_kcd_m2, sky.zenith_x, sky.zenith_y});
+  set_uniform(program, "u_perez_zenith", std::array<double, 3>{sky.perez_zenith_Y, sky.perez_zenith_x, sky.perez_zenith_y});
+  set_uniform(program, "u_night_luminance", float(sky.night_luminance_kcd_m2));
+  set_uniform(program, "u_water_attenuation", f.water.diffuse_attenuation_per_m);
+  set_uniform(program, "u_deep_reflectance", f.water.deep_reflectance);
+  set_uniform(program, "u_seabed_albedo", f.seabed_albedo);
+  set_uniform(program, "u_foam_albedo", f.foam_albedo);
+  set_uniform(program, "u_slope_variance", float(f.slope_variance_per_axis));
+  set_uniform(program, "u_translucency", float(f.translucency));
+  set_uniform(program, "u_exposure", float(f.exposure));
+  set_uniform(program, "u_foam_onset_m", float(f.foam_onset_m));
+  set_uniform(program, "u_foam_full_m", float(f.foam_full_m));
 }
 
 // ---- meshes ------------------------------------------------------------------------------
@@ -193,6 +206,43 @@ struct Target {
   }
 };
 
+// The local reflection: land and structures mirrored in still water, drawn as linear radiance
+// (RGBA16F, alpha = covered) into a texture the water shader samples at its own screen position.
+struct ReflectionTarget {
+  GLuint framebuffer = 0, colour = 0, depth = 0;
+  int width = 0, height = 0;
+  void resize(int w, int h) {
+    if (w == width && h == height && framebuffer) return;
+    release();
+    glGenFramebuffers(1, &framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glGenTextures(1, &colour);
+    glActiveTexture(GLenum(GL_TEXTURE0 + kReflection));  // never disturb the units the draw has bound
+    glBindTexture(GL_TEXTURE_2D, colour);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour, 0);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw Error("water renderer", "the reflection framebuffer is incomplete", "set RendererSettings::local_reflections = false");
+    width = w;
+    height = h;
+  }
+  void release() {
+    if (!framebuffer) return;
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &colour);
+    glDeleteRenderbuffers(1, &depth);
+    *this = ReflectionTarget{};
+  }
+};
+
 bool same(const RadialGridSettings& a, const RadialGridSettings& b) {
   return a.segment_count == b.segment_count && a.inner_spacing_m == b.inner_spacing_m && a.outer_radius_m == b.outer_radius_m;
 }
@@ -208,11 +258,15 @@ struct WaterRenderer::Impl {
   GLuint terrain_program = 0, sky_program = 0;
   GLuint empty_vertex_array = 0;
   Target target, height_target;
+  ReflectionTarget reflection;
 
   // The site (static for a sequence): uploaded when the snapshot's site changes.
   std::shared_ptr<const runtime::HarbourSite> site;
-  GLuint depth_texture = 0, porosity_texture = 0, land_texture = 0;
+  GLuint depth_texture = 0, porosity_texture = 0, land_texture = 0, coast_texture = 0;
   Mesh terrain;
+  // Slope variance (per axis) of each cascade's tiles: measured once on the first deep keyframe
+  // (the spectrum is stationary: the next keyframes hold the same variance to sampling noise).
+  std::vector<float> cascade_slope_variance;
   float open_sea_depth_m = 20.f;
 
   Mesh radial, quadtree_patch, projected, height_lattice;
@@ -240,10 +294,11 @@ struct WaterRenderer::Impl {
     glDeleteVertexArrays(1, &empty_vertex_array);
     target.release();
     height_target.release();
+    reflection.release();
   }
 
   void release_site() {
-    for (GLuint* texture : {&depth_texture, &porosity_texture, &land_texture})
+    for (GLuint* texture : {&depth_texture, &porosity_texture, &land_texture, &coast_texture})
       if (*texture) glDeleteTextures(1, texture), *texture = 0;
     terrain.release();
     site.reset();
@@ -266,6 +321,12 @@ struct WaterRenderer::Impl {
     depth_texture = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.still_water_depth_m.data(), GL_LINEAR);
     porosity_texture = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.porosity.data(), GL_LINEAR);
     land_texture = site_texture(GL_R8, GL_UNSIGNED_BYTE, columns, rows, h.land.data(), GL_NEAREST);
+    // The coastline's distance field for the shoreline waves; infinite (no coast) becomes far.
+    std::vector<float> coast(std::size_t(columns) * rows, 1e4f);
+    if (h.coast_distance_m.columns() == columns && h.coast_distance_m.rows() == rows)
+      for (std::size_t k = 0; k < coast.size(); ++k)
+        coast[k] = std::isfinite(h.coast_distance_m.data()[k]) ? std::clamp(h.coast_distance_m.data()[k], -1e4f, 1e4f) : 1e4f;
+    coast_texture = site_texture(GL_R32F, GL_FLOAT, columns, rows, coast.data(), GL_LINEAR);
     statistics.upload_bytes += std::size_t(columns) * rows * 9;
     // The sea beyond the grid takes the deepest depth found on its edges (lighting only).
     float edge_depth = 0.f;
@@ -322,6 +383,7 @@ struct WaterRenderer::Impl {
     bind(kDepth, GL_TEXTURE_2D, depth_texture);
     bind(kPorosity, GL_TEXTURE_2D, porosity_texture);
     bind(kLand, GL_TEXTURE_2D, land_texture);
+    bind(kCoast, GL_TEXTURE_2D, coast_texture);
     for (int field = 0; field < kDeepFieldCount; ++field)
       for (int k = 0; k < 2; ++k) bind(kDeepFirst + 2 * field + k, GL_TEXTURE_2D_ARRAY, bound.deep[field][k]);
     glActiveTexture(GL_TEXTURE0);
@@ -462,9 +524,32 @@ struct WaterRenderer::Impl {
     return bound;
   }
 
+  // What only the sea's lighting needs: the cascades' slope variances (detail fading), the
+  // Jacobian's foam threshold, the shoreline waves' wind and clock.
+  void set_water_lighting_uniforms(GLuint program, const runtime::SurfaceSnapshot& snapshot, const LightingFrame& light) {
+    if (snapshot.deep_from && cascade_slope_variance.size() != snapshot.deep_from->cascades.size()) {
+      cascade_slope_variance.clear();
+      for (const ocean::DeepWaterFrame& cascade : snapshot.deep_from->cascades) {
+        double sum = 0.0;
+        for (std::size_t k = 0; k < cascade.slope_x.size(); ++k)
+          sum += double(cascade.slope_x[k]) * cascade.slope_x[k] + double(cascade.slope_y[k]) * cascade.slope_y[k];
+        cascade_slope_variance.push_back(cascade.slope_x.empty() ? 0.f : float(0.5 * sum / double(cascade.slope_x.size())));
+      }
+    }
+    std::vector<float> variances(8, 0.f);
+    std::copy_n(cascade_slope_variance.begin(), std::min<std::size_t>(cascade_slope_variance.size(), 8), variances.begin());
+    glUniform1fv(at(program, "u_cascade_slope_variance"), 8, variances.data());
+    set_uniform(program, "u_jacobian_foam_onset", float(light.jacobian_foam_onset));
+    set_uniform(program, "u_time_s", float(std::fmod(snapshot.display_time_s, 3600.0)));
+    glUniform2f(at(program, "u_wind_toward"), float(std::cos(light.wind_direction_rad)), float(std::sin(light.wind_direction_rad)));
+    set_uniform(program, "u_shore_amplitude_m", float(light.shore_wave_amplitude_m));
+    set_uniform(program, "u_shore_band_m", float(light.shore_band_m));
+  }
+
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width,
               int height, const DrawOptions& options) {
     const KeyframeTextures::Bound bound = upload(snapshot);
+    const LightingFrame light = prepare_lighting(lighting);
 
     // Clip distances: near from the eye's height; far where the grid ends.
     const GridKind kind = settings.grid;
@@ -496,7 +581,7 @@ struct WaterRenderer::Impl {
     // 1. Sky at the far plane.
     if (options.sky) {
       glUseProgram(sky_program);
-      set_lighting_uniforms(sky_program, lighting);
+      set_lighting_uniforms(sky_program, light);
       set_uniform(sky_program, "u_inverse_view_projection", inverse(view.view_projection));
       set_uniform(sky_program, "u_eye_m", view.eye_m);
       glBindVertexArray(empty_vertex_array);
@@ -507,20 +592,46 @@ struct WaterRenderer::Impl {
     // 2. Seabed, land and structures.
     if (site) {
       glUseProgram(terrain_program);
-      set_lighting_uniforms(terrain_program, lighting);
+      set_lighting_uniforms(terrain_program, light);
       set_uniform(terrain_program, "u_view_projection", view.view_projection);
       set_surface_uniforms(terrain_program, snapshot, bound, view.eye_m, earth_radius);
       set_uniform(terrain_program, "u_structure_crest_m", settings.structure_crest_m);
+      set_uniform(terrain_program, "u_mirror", 0);
       glBindVertexArray(terrain.vertex_array);
       glDrawElements(GL_TRIANGLES, terrain.index_count, GL_UNSIGNED_INT, nullptr);
     }
+    // 2b. Land and structures mirrored in still water (z -> -z), for the sea's local reflection.
+    const bool reflect = site && settings.local_reflections && options.colouring == SurfaceColouring::lit;
+    if (reflect) {
+      const int downscale = std::max(settings.reflection_downscale, 1);
+      reflection.resize(std::max(width / downscale, 1), std::max(height / downscale, 1));
+      glBindFramebuffer(GL_FRAMEBUFFER, reflection.framebuffer);
+      glViewport(0, 0, reflection.width, reflection.height);
+      glClearColor(0.f, 0.f, 0.f, 0.f);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      Matrix4 mirror{};
+      mirror[0] = mirror[5] = mirror[15] = 1.0;
+      mirror[10] = -1.0;
+      set_uniform(terrain_program, "u_view_projection", multiply(view.view_projection, mirror));
+      set_uniform(terrain_program, "u_mirror", 1);
+      glDrawElements(GL_TRIANGLES, terrain.index_count, GL_UNSIGNED_INT, nullptr);
+      set_uniform(terrain_program, "u_mirror", 0);
+      glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+      glViewport(0, 0, width, height);
+    }
+    glActiveTexture(GLenum(GL_TEXTURE0 + kReflection));
+    glBindTexture(GL_TEXTURE_2D, reflect ? reflection.colour : 0);
+    glActiveTexture(GL_TEXTURE0);
     // 3. The sea surface, and its grid's edges over it when asked.
     QuadtreeSelection selection;
     ProjectedGridLayout layout;
     prepare_grid(kind, view, selection, layout);
     const GLuint program = kind == GridKind::radial ? radial_program : kind == GridKind::quadtree ? quadtree_program : projected_program;
     glUseProgram(program);
-    set_lighting_uniforms(program, lighting);
+    set_lighting_uniforms(program, light);
+    set_water_lighting_uniforms(program, snapshot, light);
+    set_uniform(program, "u_has_reflection", reflect ? 1 : 0);
+    glUniform2f(at(program, "u_viewport_px"), float(width), float(height));
     draw_water(program, kind, view, earth_radius, snapshot, bound, options, &selection, &layout, true);
     if (options.wireframe) {
       glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);

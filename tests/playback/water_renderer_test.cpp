@@ -65,7 +65,11 @@ TEST(WaterRenderer, FlatSeaSeenFromAboveMatchesTheCpuReference) {
   const auto pixel = image.get(16, 16);
   const double depth = harbour.still_water_depth_m(60, row);
   const auto to_eye = playback::Vector3{0, -0.01 / std::hypot(0.01, 200.0), 200.0 / std::hypot(0.01, 200.0)};
-  const auto expected = playback::to_display(lighting, playback::shade_water(lighting, {0, 0, 1}, to_eye, depth, 0.0));
+  const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+  playback::SurfacePoint point;
+  point.to_eye = to_eye;
+  point.water_depth_m = depth;
+  const auto expected = playback::to_display(frame, playback::shade_water(frame, point));
   // 8-bit output: 2/255 for rounding plus llvmpipe's float32 vs the reference's double.
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(pixel[c], expected[c], 2.5 / 255) << "channel " << c << " on " << window.gl_description();
 }
@@ -93,7 +97,9 @@ TEST(WaterRenderer, WavesLandAndSkyAllAppearInTheOverview) {
     }
   EXPECT_GT(land_pixels, 100);
   // The waves modulate the shading of the water in the foreground: along a row and a column
-  // there, the pixel-to-pixel variation is several times that of the same view of a flat sea.
+  // there, the pixel-to-pixel variation is well above that of the same view of a flat sea (whose
+  // own variation is the 8-bit steps of its smooth gradient: the seabed shoaling under clear
+  // water and the view angle changing the Fresnel reflectance, docs/lighting.md).
   const auto variation = [](const Image& picture) {
     double sum = 0;
     for (int x = 1; x < 320; ++x) sum += std::abs(picture.get(x, 190)[2] - picture.get(x - 1, 190)[2]);
@@ -102,7 +108,7 @@ TEST(WaterRenderer, WavesLandAndSkyAllAppearInTheOverview) {
   };
   renderer.render(snapshot_of(harbour, Raster<float>(120, 100, 0.f)), camera, playback::Lighting{}, 320, 200);
   const double flat = variation(renderer.read_pixels());
-  EXPECT_GT(variation(image), 3.0 * flat + 0.1) << "flat sea: " << flat;
+  EXPECT_GT(variation(image), 2.0 * flat + 0.1) << "flat sea: " << flat;
 }
 
 TEST(WaterRenderer, GeoreferencedGridRendersLikeTheSameGridAtTheOrigin) {

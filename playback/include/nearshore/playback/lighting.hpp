@@ -1,41 +1,93 @@
 #pragma once
-// Lighting of the sea surface: seed 003 eq. (12)-(16) (Fresnel blend of reflected sky and sun with
-// refracted seabed and water colour; foam). The GLSL in shaders/common.glsl computes it per pixel;
-// the functions here are its CPU reference, with the same formulas, so the shading logic is tested
-// without a GPU and the rendered pixels are checked against it.
+// Lighting of the harbour: what a host sets (Lighting: the sun, or the place and UTC time it
+// stands at; the atmosphere; what is in the water; the wind) and what every shader and its CPU
+// twin compute from it (LightingFrame, prepared once a frame). The models, each a GL-free core
+// with analytic tests (docs/lighting.md):
+//   sun_position.hpp  NOAA/Meeus sun position from latitude, longitude and UTC
+//   sky_model.hpp     Preetham clear sky with seed 001's zenith luminance and chromaticity; sunlight
+//   ocean_brdf.hpp    Fresnel (n = 1.333), Bruneton (2010) BRDF with slope variance, seed 000 eq. 3.12-3.24
+//   water_optics.hpp  water colour from inherent optical properties, seed 000 eq. 3.25-3.37
+// and here the sea surface put together (seed 000 eq. 3.22-3.25, 3.38; seed 003 eq. 12-16).
+// shaders/common.glsl computes the same per pixel; tests/playback compares pixel against twin.
+//
+// Units: radiance in kcd/m2 (luminance-weighted linear sRGB), illuminance in klx.
 #include <array>
+
+#include "nearshore/playback/ocean_brdf.hpp"
+#include "nearshore/playback/sky_model.hpp"
+#include "nearshore/playback/sun_position.hpp"
+#include "nearshore/playback/water_optics.hpp"
 
 namespace nearshore::playback {
 
-using Vector3 = std::array<double, 3>;
-using Radiance = std::array<double, 3>;  ///< linear RGB
-
+/// Everything a host controls about the light and the look of the water.
 struct Lighting {
   double sun_azimuth_deg = 200.0;   ///< compass bearing of the sun (0 north, 90 east)
-  double sun_elevation_deg = 35.0;  ///< above the horizon
-  Radiance sun_radiance = {1.6, 1.5, 1.35};
-  Radiance sky_zenith = {0.18, 0.35, 0.70};
-  Radiance sky_horizon = {0.62, 0.72, 0.82};
-  Radiance water_colour = {0.02, 0.11, 0.14};       ///< C_water, eq. (14)
-  Radiance water_attenuation_per_m = {0.45, 0.10, 0.07};  ///< atten, eq. (14); clear coastal water
-  Radiance seabed_albedo = {0.62, 0.56, 0.42};      ///< C_object, eq. (14): sand
-  Radiance foam_colour = {0.9, 0.92, 0.94};         ///< C_foam, eq. (15)
-  double foam_onset_m = 0.6;  ///< h0 of eq. (16): crests below this carry no foam
-  double foam_full_m = 1.6;   ///< h_max of eq. (16)
-  double exposure = 1.4;
+  double sun_elevation_deg = 35.0;  ///< apparent height above the horizon (negative: set)
+  /// Preetham's atmospheric turbidity T (1.7 .. 10): 2 very clear, 3 clear, 6 hazy, 10 thin fog.
+  double atmospheric_turbidity = 2.5;
+  WaterConstituents water;                          ///< chlorophyll, CDOM, turbidity of the water
+  Radiance seabed_albedo = {0.55, 0.50, 0.38};      ///< C_object / I_g of eq. (3.25): sand
+  Radiance foam_albedo = {0.85, 0.87, 0.88};        ///< C_foam, seed 003 eq. (15)
+  double wind_speed_m_s = 5.0;      ///< at 10 m; the fallback slope variance and the shoreline waves
+  double wind_direction_rad = 0.0;  ///< where the wind blows TOWARDS, counter-clockwise from east
+  /// Mean square slope (both axes summed) of the waves the drawn surface cannot show: the
+  /// spectrum's tail beyond the finest cascade (ocean::DeepWaterField::unresolved_slope_variance).
+  /// Negative: Cox & Munk's for wind_speed_m_s.
+  double sub_grid_slope_variance = -1.0;
+  double foam_onset_m = 0.6;        ///< h0 of seed 003 eq. (16): crests below this carry no foam
+  double foam_full_m = 1.6;         ///< h_max of eq. (16)
+  double translucency = 1.0;        ///< mu scale of eq. (3.38): light through thin crests, 0 off
+  /// J_b of seed 000 eq. (3.45): deep water foams where its Jacobian falls below this (the Stokes
+  /// limit of a single wave, ocean::kStokesBreakingJacobian).
+  double jacobian_foam_onset = 0.557;
+  /// Seed 000 section 4.1's shoreline waves: amplitude (m) on a shore the wind blows straight
+  /// onto at 10 m/s or more (less in lighter wind, none on a lee shore; 0 turns them off), and how
+  /// far from the coastline (m) they reach.
+  double shore_wave_amplitude_m = 0.25;
+  double shore_band_m = 80.0;
+  double exposure_compensation = 1.0;  ///< multiplies the automatic exposure (2: one stop brighter)
 
   /// Unit vector towards the sun in the harbour frame (x east, y north, z up).
   Vector3 sun_direction() const;
+  /// Puts the sun where it stands seen from (latitude, longitude) at `time` (sun_position.hpp).
+  void set_sun_for(double latitude_deg, double longitude_deg, const UtcTime& time);
 };
 
-/// Sky radiance seen along a unit direction (shaders/common.glsl sky_radiance).
-Radiance sky_radiance(const Lighting& lighting, const Vector3& direction);
-/// Schlick's Fresnel reflectance of water, F0 = 0.02 (shaders/common.glsl fresnel_reflectance).
-double fresnel_reflectance(double cos_theta);
-/// eq. (12)-(15) at one surface point (shaders/common.glsl shade_water).
-Radiance shade_water(const Lighting& lighting, const Vector3& normal, const Vector3& to_eye, double water_depth_m,
-                     double foam);
+/// What the shaders receive, derived once a frame from a Lighting.
+struct LightingFrame {
+  SkyModel sky;                 ///< sun direction and illuminance, Perez coefficients, zenith values
+  Radiance sky_illuminance_klx{};  ///< of the sky dome on a horizontal plane
+  WaterOptics water;
+  Radiance seabed_albedo{}, foam_albedo{};
+  double slope_variance_per_axis = 0.0;  ///< sigma^2 of eq. (3.13), each axis
+  double foam_onset_m = 0.6, foam_full_m = 1.6, translucency = 1.0, jacobian_foam_onset = 0.557;
+  double wind_direction_rad = 0.0, shore_wave_amplitude_m = 0.0, shore_band_m = 80.0;
+  double exposure = 1.0;        ///< 1 / (kcd/m2): display = 1 - exp(-exposure L)
+};
+LightingFrame prepare_lighting(const Lighting& lighting);
+
+/// One point of the sea surface as the fragment shader sees it.
+struct SurfacePoint {
+  Vector3 normal = {0, 0, 1};    ///< unit, up
+  Vector3 to_eye = {0, 0, 1};    ///< unit, towards the viewer
+  double water_depth_m = 100.0;  ///< total depth d + eta under the point
+  double foam = 0.0;             ///< foam coverage in [0, 1]
+  double extra_slope_variance_per_axis = 0.0;  ///< what the drawn normals filtered out (detail fading)
+  double crest_thinness = 0.0;   ///< [0, 1]: how thin the water is here (mu of eq. 3.38)
+  /// Land or a structure seen in the mirror direction (the renderer's planar reflection): its
+  /// radiance replaces the sky's in proportion to the coverage.
+  Radiance local_reflection{};
+  double local_reflection_coverage = 0.0;
+};
+
+/// Sea surface radiance: sky (eq. 3.23-3.24) and sun (eq. 3.22) reflection, the water body and
+/// seabed through it (eq. 3.25 with water_optics.hpp), thin-crest translucency (eq. 3.38), foam
+/// (seed 003 eq. 15).
+Radiance shade_water(const LightingFrame& frame, const SurfacePoint& point);
+/// A Lambertian surface (land, structures, foam): albedo (E_sun max(n.s, 0) + E_sky (1 + n_z) / 2) / pi.
+Radiance shade_lambertian(const LightingFrame& frame, const Vector3& normal, const Radiance& albedo);
 /// Exposure and display gamma, 0..1 (shaders/common.glsl to_display).
-Radiance to_display(const Lighting& lighting, const Radiance& radiance);
+Radiance to_display(const LightingFrame& frame, const Radiance& radiance);
 
 }  // namespace nearshore::playback

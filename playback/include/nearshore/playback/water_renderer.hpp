@@ -39,6 +39,10 @@ struct RendererSettings {
   int harbour_texture_slots = 6;  ///< keyframes kept on the GPU: the pair on screen + staged ones
   int deep_texture_slots = 6;
   float structure_crest_m = 2.5f;  ///< breakwaters and quays stand at least this high (drawing only)
+  /// Land, breakwaters and quays mirrored in the sea (planar reflection in still water, one extra
+  /// terrain pass into a texture of 1/reflection_downscale the picture's size; docs/lighting.md).
+  bool local_reflections = true;
+  int reflection_downscale = 2;
 };
 
 /// How the sea is coloured: lit (the frame loop), or flat and by level of detail for tests and
