@@ -7,6 +7,7 @@
 #   runtime -> sequence, ocean (GL-free: streaming, deep water, CPU queries); playback -> runtime.
 #   ships -> runtime, ocean (CPU only: hulls, rigid bodies, bow-wave grids on the runtime's queries);
 #   ships_mesh (hull files, assimp) -> ships; ships_scenario (TOML) -> ships, ships_mesh.
+#   export (sequence -> NetCDF, GeoTIFF, EXR, VDB files) -> sequence only.
 #   library (the sea-state library) -> bake, loops, sequence; library_mpi -> library (built only
 #   where MPI is found: a rule whose library name ends in "?" applies when that target exists).
 set(NEARSHORE_ALLOWED_ARROWS
@@ -25,7 +26,8 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_ships_scenario:nearshore_ships,nearshore_ships_mesh,nearshore_core"
   "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
   "nearshore_library:nearshore_bake,nearshore_loops,nearshore_sequence,nearshore_core"
-  "nearshore_library_mpi?:nearshore_library,nearshore_core")
+  "nearshore_library_mpi?:nearshore_library,nearshore_core"
+  "nearshore_export:nearshore_sequence,nearshore_core")
 
 function(nearshore_check_architecture)
   foreach(rule IN LISTS NEARSHORE_ALLOWED_ARROWS)

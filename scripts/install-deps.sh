@@ -15,6 +15,7 @@ packages=(
   libopenimageio-dev openimageio-tools libpng-dev libfreetype-dev
   libglfw3-dev libimgui-dev
   libgdal-dev gdal-bin
+  libnetcdf-dev netcdf-bin
   libfftw3-dev
   libeigen3-dev
   libtbb-dev

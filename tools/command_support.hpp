@@ -20,6 +20,7 @@ void add_play_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_library_command(CLI::App& app);
+void add_export_command(CLI::App& app);
 /// `nearshore bench <stage>` subcommands, one file each (bench_<stage>.cpp).
 void add_bench_bathy(CLI::App& bench);
 void add_bench_bake(CLI::App& bench);

@@ -1,6 +1,7 @@
 // nearshore: bake the harbour, stream the sea. One executable, one subcommand per stage:
 //   bathy (chart -> grid), bake (grid -> sequence), loops (sequence -> loop tables and report),
-//   play (sequence -> screen), demo (all of it on the generated demo harbour), bench (throughput).
+//   play (sequence -> screen), export (sequence -> NetCDF, GeoTIFF, EXR, VDB files),
+//   demo (all of it on the generated demo harbour), bench (throughput).
 #include <cstdio>
 #include <exception>
 
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   nearshore::tools::add_play_command(app);
   nearshore::tools::add_demo_command(app);
   nearshore::tools::add_library_command(app);
+  nearshore::tools::add_export_command(app);
   nearshore::tools::add_bench_command(app);
   try {
     app.parse(argc, argv);

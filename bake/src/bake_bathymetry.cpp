@@ -11,14 +11,17 @@
 namespace nearshore::bake {
 namespace {
 
-GridGeometry flume_geometry(double length_m, double width_m, double spacing_m, const std::string& subject) {
-  if (!(spacing_m > 0.0) || !(length_m >= 2 * spacing_m) || !(width_m >= spacing_m))
-    throw Error(subject, fmt::format("a flume of {} m x {} m with {} m cells is not a grid", length_m, width_m, spacing_m),
+GridGeometry flume_geometry(double length_m, double width_m, CellSize spacing, const std::string& subject) {
+  if (!(spacing.x_m > 0.0) || !(spacing.y_m > 0.0) || !(length_m >= 2 * spacing.x_m) || !(width_m >= spacing.y_m))
+    throw Error(subject,
+                spacing.square() ? fmt::format("a flume of {} m x {} m with {} m cells is not a grid", length_m, width_m, spacing.x_m)
+                                 : fmt::format("a flume of {} m x {} m with {} m x {} m cells is not a grid", length_m, width_m,
+                                               spacing.x_m, spacing.y_m),
                 "give length_m and width_m of at least two and one cells, and spacing_m > 0");
   GridGeometry geometry;
-  geometry.columns = static_cast<int>(std::lround(length_m / spacing_m));
-  geometry.rows = std::max(1, static_cast<int>(std::lround(width_m / spacing_m)));
-  geometry.spacing_m = spacing_m;
+  geometry.columns = static_cast<int>(std::lround(length_m / spacing.x_m));
+  geometry.rows = std::max(1, static_cast<int>(std::lround(width_m / spacing.y_m)));
+  geometry.set_spacing(spacing.x_m, spacing.y_m);
   return geometry;
 }
 
@@ -45,7 +48,7 @@ double profile_depth_m(const std::vector<std::pair<double, double>>& profile, do
   return lower->second + t * (upper->second - lower->second);
 }
 
-HarbourGrid flume_from_profile(double length_m, double width_m, double spacing_m,
+HarbourGrid flume_from_profile(double length_m, double width_m, CellSize spacing,
                                const std::vector<std::pair<double, double>>& profile, const std::string& subject) {
   if (profile.empty())
     throw Error(subject, "the depth profile is empty", "give at least one [x_m, depth_m] point");
@@ -54,7 +57,7 @@ HarbourGrid flume_from_profile(double length_m, double width_m, double spacing_m
       throw Error(subject, fmt::format("profile point {} (x = {} m) does not lie beyond point {} (x = {} m)", i + 1,
                                        profile[i].first, i, profile[i - 1].first),
                   "list the [x_m, depth_m] points with strictly increasing x");
-  HarbourGrid grid = HarbourGrid::open_water(flume_geometry(length_m, width_m, spacing_m, subject), 0.f);
+  HarbourGrid grid = HarbourGrid::open_water(flume_geometry(length_m, width_m, spacing, subject), 0.f);
   for (int column = 0; column < grid.geometry.columns; ++column) {
     const float depth = static_cast<float>(profile_depth_m(profile, grid.geometry.cell_centre_x_m(column)));
     for (int row = 0; row < grid.geometry.rows; ++row) grid.still_water_depth_m(column, row) = depth;
@@ -79,8 +82,8 @@ double berkhoff_shoal_depth_m(const BerkhoffShoal& shoal, double x_m, double y_m
   return depth;
 }
 
-HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, double spacing_m, const BerkhoffShoal& shoal) {
-  HarbourGrid grid = HarbourGrid::open_water(flume_geometry(length_m, width_m, spacing_m, "Berkhoff shoal"), 0.f);
+HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, CellSize spacing, const BerkhoffShoal& shoal) {
+  HarbourGrid grid = HarbourGrid::open_water(flume_geometry(length_m, width_m, spacing, "Berkhoff shoal"), 0.f);
   for (int row = 0; row < grid.geometry.rows; ++row)
     for (int column = 0; column < grid.geometry.columns; ++column)
       grid.still_water_depth_m(column, row) = static_cast<float>(
@@ -89,17 +92,20 @@ HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, double spacing_
   return grid;
 }
 
-HarbourGrid resample_harbour_grid(const HarbourGrid& grid, double spacing_m) {
+HarbourGrid resample_harbour_grid(const HarbourGrid& grid, CellSize spacing) {
   const GridGeometry& from = grid.geometry;
-  if (std::abs(spacing_m - from.spacing_m) <= 1e-9 * from.spacing_m) return grid;
+  if (std::abs(spacing.x_m - from.spacing_x_m()) <= 1e-9 * from.spacing_x_m() &&
+      std::abs(spacing.y_m - from.spacing_y_m()) <= 1e-9 * from.spacing_y_m())
+    return grid;
   GridGeometry to = from;
-  to.spacing_m = spacing_m;
-  to.columns = std::max(2, static_cast<int>(std::lround(from.width_m() / spacing_m)));
-  to.rows = std::max(1, static_cast<int>(std::lround(from.height_m() / spacing_m)));
+  to.set_spacing(spacing.x_m, spacing.y_m);
+  to.columns = std::max(2, static_cast<int>(std::lround(from.width_m() / spacing.x_m)));
+  to.rows = std::max(1, static_cast<int>(std::lround(from.height_m() / spacing.y_m)));
   HarbourGrid out = HarbourGrid::open_water(to, 0.f);
-  // Source cell coordinates (continuous, cell centres at integers) of a target cell centre.
-  const auto source_index = [&](double position_m, double origin_m, int count) {
-    return std::clamp((position_m - origin_m) / from.spacing_m - 0.5, 0.0, static_cast<double>(count - 1));
+  // Source cell coordinates (continuous, cell centres at integers) of a target cell centre, on the
+  // source's own spacing along that axis.
+  const auto source_index = [&](double position_m, double origin_m, double source_spacing_m, int count) {
+    return std::clamp((position_m - origin_m) / source_spacing_m - 0.5, 0.0, static_cast<double>(count - 1));
   };
   const auto bilinear = [](const Raster<float>& field, double fi, double fj) {
     const int i0 = static_cast<int>(fi), j0 = static_cast<int>(fj);
@@ -110,9 +116,9 @@ HarbourGrid resample_harbour_grid(const HarbourGrid& grid, double spacing_m) {
     return static_cast<float>((1 - tj) * south + tj * north);
   };
   for (int row = 0; row < to.rows; ++row) {
-    const double fj = source_index(to.cell_centre_y_m(row), from.origin_y_m, from.rows);
+    const double fj = source_index(to.cell_centre_y_m(row), from.origin_y_m, from.spacing_y_m(), from.rows);
     for (int column = 0; column < to.columns; ++column) {
-      const double fi = source_index(to.cell_centre_x_m(column), from.origin_x_m, from.columns);
+      const double fi = source_index(to.cell_centre_x_m(column), from.origin_x_m, from.spacing_x_m(), from.columns);
       const int ni = static_cast<int>(std::lround(fi)), nj = static_cast<int>(std::lround(fj));
       out.still_water_depth_m(column, row) = bilinear(grid.still_water_depth_m, fi, fj);
       // Open-water grids hold +infinity as coast distance, which bilinear weights would turn into NaN.

@@ -63,7 +63,8 @@ TimeRequest read_timing(TableReader& time, BakeTiming& timing) {
 // case file's key). `d_max` as the solver takes it: the deepest cell of the grid.
 void check_time_step(TableReader& time, const TimeRequest& request, const BakeCase& bake_case) {
   const double step_s = bake_case.solver.time_step_s;
-  const double spacing_m = bake_case.harbour.geometry.spacing_m;
+  // The smaller cell size: the Courant number of rectangular cells is sqrt(g d_max) dt / min(dx, dy).
+  const double spacing_m = bake_case.harbour.geometry.smaller_spacing_m();
   const double deepest_m = deepest_still_water_m(bake_case.harbour);
   const bool step_given = request.time_step_s > 0.0;
   const std::string step_text = step_given && step_s != request.time_step_s
@@ -74,8 +75,8 @@ void check_time_step(TableReader& time, const TimeRequest& request, const BakeCa
     const double largest_step_s = kMaxCourantNumber * spacing_m / std::sqrt(kGravity_m_s2 * deepest_m);
     if (courant > kMaxCourantNumber)  // only a given time step gets here: courant_number is bounded above
       time.fail(time.full("time_step_s"),
-                fmt::format("= {} gives a Courant number sqrt(g d_max) dt / dx = {:.3g} (d_max {} m, the deepest cell; "
-                            "dx {} m), above {}, the solver's stability limit (docs/solver.md)",
+                fmt::format("= {} gives a Courant number sqrt(g d_max) dt / min(dx, dy) = {:.3g} (d_max {} m, the deepest cell; "
+                            "min(dx, dy) {} m), above {}, the solver's stability limit (docs/solver.md)",
                             step_text, courant, deepest_m, spacing_m, kMaxCourantNumber),
                 fmt::format("give time.time_step_s <= {:.4g} s, or leave it out and give time.courant_number "
                             "(0.5 by default)", largest_step_s));
@@ -90,7 +91,7 @@ void check_time_step(TableReader& time, const TimeRequest& request, const BakeCa
               "give a longer time.time_step_s, or leave it out and give time.courant_number (0.5 by default), or "
               "shorten time.duration_s");
   time.fail(time.full("duration_s"),
-            fmt::format("= {} s makes {:.3g} solver steps of {:.6g} s (time.courant_number = {} with dx {} m and the deepest "
+            fmt::format("= {} s makes {:.3g} solver steps of {:.6g} s (time.courant_number = {} with min(dx, dy) {} m and the deepest "
                         "water {} m), {}",
                         bake_case.timing.duration_s, steps, step_s, request.courant_number, spacing_m, deepest_m, limit),
             "shorten time.duration_s, or give the bathymetry a coarser spacing_m");
@@ -111,8 +112,8 @@ double resolve_time_step(double requested_time_step_s, double courant_number, co
   if (!(step_s > 0.0)) {
     float deepest_m = 0.f;
     for (float depth : harbour.still_water_depth_m.values()) deepest_m = std::max(deepest_m, depth);
-    // Courant number of the shallow-water celerity in the deepest water: sqrt(g d_max) dt / dx.
-    step_s = courant_number * harbour.geometry.spacing_m / std::sqrt(kGravity_m_s2 * std::max(deepest_m, 0.01f));
+    // Courant number of the shallow-water celerity in the deepest water: sqrt(g d_max) dt / min(dx, dy).
+    step_s = courant_number * harbour.geometry.smaller_spacing_m() / std::sqrt(kGravity_m_s2 * std::max(deepest_m, 0.01f));
   }
   const double steps_per_output = std::ceil(output_interval_s / step_s * (1.0 - 1e-12));
   return output_interval_s / std::max(1.0, steps_per_output);

@@ -28,7 +28,7 @@ void check_plausible_depths(TableReader& bathymetry, const std::string& key, con
       const float depth_m = grid.still_water_depth_m(column, row);
       if (depth_m <= kDeepestPlausibleDepth_m) continue;  // NaN fails too
       const std::string where = fmt::format("cell (column {}, row {}; {:.2f} m, {:.2f} m from the south-west corner)",
-                                            column, row, (column + 0.5) * g.spacing_m, (row + 0.5) * g.spacing_m);
+                                            column, row, (column + 0.5) * g.spacing_x_m(), (row + 0.5) * g.spacing_y_m());
       if (!std::isfinite(depth_m))
         bathymetry.fail(bathymetry.full(key), fmt::format("gives a depth of {} at {}", depth_m, where),
                         "fill the hole in the bathymetry (regrid the chart data with its holes filled or masked as land)");
@@ -65,18 +65,22 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
     const fs::path file = bathymetry.path("file", base);
     grid = bathymetry.reading_file("file", [&] { return read_harbour_grid(file); });
     check_plausible_depths(bathymetry, "file", grid);
-    if (bathymetry.has("spacing_m"))
-      grid = resample_harbour_grid(grid, bathymetry.positive("spacing_m", std::nullopt, "cell size in metres"));
+    if (bathymetry.has("spacing_m")) {
+      const auto [dx, dy] = bathymetry.cell_size("spacing_m");
+      grid = resample_harbour_grid(grid, CellSize(dx, dy));
+    }
   } else {
     const double length_m = bathymetry.positive("length_m", std::nullopt, "flume length along x in metres");
     const double width_m = bathymetry.positive("width_m", std::nullopt, "flume width along y in metres");
-    const double spacing_m = bathymetry.positive("spacing_m", std::nullopt, "cell size in metres");
-    if (length_m / spacing_m > 20000 || width_m / spacing_m > 20000)
+    // spacing_m: one number (square cells) or [dx, dy] (rectangular cells, issue 15).
+    const auto [spacing_x_m, spacing_y_m] = bathymetry.cell_size("spacing_m");
+    const CellSize spacing(spacing_x_m, spacing_y_m);
+    if (length_m / spacing_x_m > 20000 || width_m / spacing_y_m > 20000)
       bathymetry.fail(bathymetry.full("spacing_m"), "makes more than 20000 cells along a side",
                       "use a larger spacing_m (cells of at least 1/20000 of the flume)");
     // The bake's memory estimate (bake_estimate.hpp) before the grid is allocated: a grid the
     // machine cannot bake is refused in a moment, not after the case reader has built it.
-    const double cells = std::ceil(length_m / spacing_m) * std::ceil(width_m / spacing_m);
+    const double cells = std::ceil(length_m / spacing_x_m) * std::ceil(width_m / spacing_y_m);
     const double needed_bytes = cells * kBakeBytesPerCell + kBakeFixedBytes;
     const std::optional<double> available_bytes = available_memory_bytes();
     if (!options.allow_over_budget && available_bytes && needed_bytes > *available_bytes)
@@ -87,7 +91,7 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
                       "use a larger spacing_m or a smaller flume; or, if the estimate is too pessimistic, set "
                       "CaseReadOptions::allow_over_budget and BakeOptions::allow_over_budget");
     if (kind == 1) {
-      grid = flume_from_profile(length_m, width_m, spacing_m,
+      grid = flume_from_profile(length_m, width_m, spacing,
                                 bathymetry.pairs("profile", "[[x_m, depth_m], ...] with increasing x"),
                                 bathymetry.subject() + ": key `" + bathymetry.full("profile") + "`");
       check_plausible_depths(bathymetry, "profile", grid);
@@ -102,7 +106,7 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
     shoal.slope = bathymetry.non_negative("slope", 0.02, "bed slope (rise over run)");
     shoal.slope_start_m = bathymetry.number("slope_start_m", 5.84, -1e6, 1e6, false, "distance up-wave of the shoal centre where the slope starts, metres");
     shoal.minimum_depth_m = bathymetry.positive("minimum_depth_m", 0.07, "depth where the slope is clipped, metres");
-    grid = berkhoff_shoal_grid(length_m, width_m, spacing_m, shoal);
+    grid = berkhoff_shoal_grid(length_m, width_m, spacing, shoal);
     check_plausible_depths(bathymetry, "deep_depth_m", grid);
   }
   return grid;

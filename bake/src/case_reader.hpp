@@ -131,6 +131,19 @@ class TableReader {
     return static_cast<std::size_t>(found - choices.begin());
   }
   /// An array of exactly `count` numbers (count 0 = any length >= 1).
+  /// A cell size in metres: one positive number (square cells) or two, [dx, dy] (rectangular
+  /// cells along x and y, issue 15). Returns {dx, dy}.
+  std::pair<double, double> cell_size(const std::string& key) {
+    const json* value = find(key);
+    if (value && value->is_array()) {
+      const std::vector<double> sizes = numbers(key, 2, "[dx_m, dy_m], the cell size along x and along y in metres");
+      if (!(sizes[0] > 0.0) || !(sizes[1] > 0.0))
+        fail(full(key), fmt::format("= [{}, {}] is not a cell size", sizes[0], sizes[1]), "give two sizes > 0 in metres");
+      return {sizes[0], sizes[1]};
+    }
+    const double size = positive(key, std::nullopt, "cell size in metres, or [dx_m, dy_m] for rectangular cells");
+    return {size, size};
+  }
   std::vector<double> numbers(const std::string& key, std::size_t count, const std::string& meaning) {
     const json* value = find(key);
     if (!value) fail(full(key), "is missing", "add " + full(key) + " = " + meaning);

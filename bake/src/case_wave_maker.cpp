@@ -76,14 +76,19 @@ void check_loop_period(TableReader& maker, const std::string& key, double loop_p
 
 double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength) {
   const double deepest_m = deepest_still_water_m(grid);
-  const double k_max = std::min(3.0 / std::max(deepest_m, 1e-3),
-                                2 * std::numbers::pi / (cells_per_wavelength * grid.geometry.spacing_m));
+  // Rectangular cells: the larger size counts, since a component may travel along either axis.
+  const double coarser_spacing_m = std::max(grid.geometry.spacing_x_m(), grid.geometry.spacing_y_m());
+  const double k_max = std::min(3.0 / std::max(deepest_m, 1e-3), 2 * std::numbers::pi / (cells_per_wavelength * coarser_spacing_m));
   return frequency_from_wavenumber(k_max, deepest_m);
 }
 
 std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength) {
+  const GridGeometry& g = grid.geometry;
+  if (!g.square_cells())
+    return fmt::format("k d <= 3 at the deepest {:.2f} m and {} cells per wavelength on the larger side of {} m x {} m cells",
+                       deepest_still_water_m(grid), cells_per_wavelength, g.spacing_x_m(), g.spacing_y_m());
   return fmt::format("k d <= 3 at the deepest {:.2f} m and {} cells of {} m per wavelength",
-                     deepest_still_water_m(grid), cells_per_wavelength, grid.geometry.spacing_m);
+                     deepest_still_water_m(grid), cells_per_wavelength, g.spacing_m);
 }
 
 namespace {

@@ -44,10 +44,11 @@ const char* side_name(Side side) {
 // at depth d (top of deep_water_coupling.hpp); 0 where the wave does not reach (evanescent).
 double discrete_normal_wavenumber_rad_m(double w, double l, double d, const InlandPropagation& model) {
   if (!(d > 0.0)) return 0.0;
-  const double dx = model.spacing_m, dt = model.time_step_s;
+  // dx normal to the line, dy along it (rectangular cells: each axis its own size).
+  const double dx = model.spacing_m, dy = model.tangential_spacing_m, dt = model.time_step_s;
   const double w_continuous = dt > 0.0 ? 2.0 / dt * std::tan(0.5 * w * dt) : w;  // Crank-Nicolson phase lag
   const double k = boussinesq_wavenumber(w_continuous, d, model.dispersion_coefficient);
-  const double l_grid = 2.0 / dx * std::sin(0.5 * l * dx);  // staggered differences: k -> (2/dx) sin(k dx/2)
+  const double l_grid = 2.0 / dy * std::sin(0.5 * l * dy);  // staggered differences: k -> (2/dy) sin(k dy/2)
   const double normal_grid_squared = k * k - l_grid * l_grid;
   if (!(normal_grid_squared > 0.0)) return 0.0;
   return 2.0 / dx * std::asin(std::min(1.0, 0.5 * dx * std::sqrt(normal_grid_squared)));
@@ -140,7 +141,7 @@ double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
   const bool along_x = normal_is_x(maker.facing);
   const int normal_count = along_x ? g.columns : g.rows, tangential_count = along_x ? g.rows : g.columns;
   const double line_index =
-      (maker.source_line_m - (along_x ? g.origin_x_m : g.origin_y_m)) / g.spacing_m - 0.5;
+      (maker.source_line_m - (along_x ? g.origin_x_m : g.origin_y_m)) / (along_x ? g.spacing_x_m() : g.spacing_y_m()) - 0.5;
   const int line_cell = std::clamp(static_cast<int>(std::lround(line_index)), 0, normal_count - 1);
   double sum_m = 0.0;
   int wet = 0;
@@ -215,11 +216,12 @@ CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker&
 
   // 3. What the solver does inland (the drift model): its dx, dt and B, and the mean wet depth of
   //    every grid line parallel to the source line, from the line's own to the far edge.
-  coupled.inland.spacing_m = g.spacing_m;
+  coupled.inland.spacing_m = along_x ? g.spacing_x_m() : g.spacing_y_m();
+  coupled.inland.tangential_spacing_m = along_x ? g.spacing_y_m() : g.spacing_x_m();
   coupled.inland.time_step_s = solver.time_step_s;
   coupled.inland.dispersion_coefficient = dispersion_coefficient;
   const int normal_count = along_x ? g.columns : g.rows, tangential_count = along_x ? g.rows : g.columns;
-  const double line_index = line_local_m / g.spacing_m - 0.5;  // fractional cell index of the line
+  const double line_index = line_local_m / coupled.inland.spacing_m - 0.5;  // fractional cell index of the line
   for (int j = 0;; ++j) {
     const int cell = static_cast<int>(std::lround(line_index + sign * j));
     if (cell < 0 || cell >= normal_count) break;
@@ -252,7 +254,7 @@ CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker&
     if (end_error(zone.width_m) > kSeamlessRelativeRms) {
       double seamless_m = 0.5 * peak_wavelength_m, too_wide_m = peak_wavelength_m;
       if (end_error(seamless_m) > kSeamlessRelativeRms) too_wide_m = seamless_m;
-      for (int iteration = 0; iteration < 30 && too_wide_m - seamless_m > 0.01 * g.spacing_m; ++iteration) {
+      for (int iteration = 0; iteration < 30 && too_wide_m - seamless_m > 0.01 * coupled.inland.spacing_m; ++iteration) {
         const double middle_m = 0.5 * (seamless_m + too_wide_m);
         (end_error(middle_m) > kSeamlessRelativeRms ? too_wide_m : seamless_m) = middle_m;
       }

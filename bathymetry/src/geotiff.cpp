@@ -31,7 +31,8 @@ void write_depth_geotiff(const std::filesystem::path& path, const GridGeometry& 
     const char* options[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", nullptr};
     GDALDataset* dataset = driver->Create(temporary.c_str(), columns, rows, 1, GDT_Float32, const_cast<char**>(options));
     if (!dataset) throw fail("cannot create GeoTIFF");
-    double geotransform[6] = {g.origin_x_m, g.spacing_m, 0.0, g.origin_y_m + rows * g.spacing_m, 0.0, -g.spacing_m};
+    // GDAL's pixel size per axis: rectangular cells (issue 15) write dx and -dy.
+    double geotransform[6] = {g.origin_x_m, g.spacing_x_m(), 0.0, g.origin_y_m + rows * g.spacing_y_m(), 0.0, -g.spacing_y_m()};
     dataset->SetGeoTransform(geotransform);
     if (!g.crs_wkt.empty()) {
       OGRSpatialReference crs;

@@ -18,6 +18,7 @@
 #include "nearshore/bathymetry/natural_neighbour.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/map_projection.hpp"
 #include "nearshore/plot/plot.hpp"
 #include "nearshore/core/progress.hpp"
 
@@ -682,6 +683,32 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   return result;
 }
 
+namespace {
+// The preview's map furniture (issue 14 item 2): ticks in the grid's CRS, and true north from the
+// projection's grid convergence at the grid's centre (the bearing of a step due north, seen in the
+// grid; UTM's convergence reaches about 2 degrees at a zone's edge at mid latitudes).
+MapAxes preview_map_axes(const GridGeometry& g) {
+  MapAxes axes;
+  axes.origin_x_m = g.origin_x_m;
+  axes.origin_y_m = g.origin_y_m;
+  axes.cell_size_x_m = g.spacing_x_m();
+  axes.cell_size_y_m = g.spacing_y_m();
+  if (g.projection.is_null() || g.projection.empty()) {
+    axes.north_label = "+y";
+    axes.x_label = "x (m)";
+    axes.y_label = "y (m)";
+    return axes;
+  }
+  const MapProjection projection = MapProjection::from_json(g.projection, "the harbour grid's projection");
+  const ProjectedPoint centre{g.origin_x_m + g.width_m() / 2, g.origin_y_m + g.height_m() / 2};
+  const LonLat place = projection.reverse(centre);
+  const ProjectedPoint north = projection.forward({place.longitude_deg, place.latitude_deg + 0.01});
+  axes.true_north_from_grid_deg = std::atan2(north.x_m - centre.x_m, north.y_m - centre.y_m) * 180.0 / M_PI;
+  axes.x_label = "easting (m), " + projection.describe();
+  return axes;
+}
+}  // namespace
+
 nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResult& result, double coastline_band_m) {
   const HarbourGrid& grid = result.grid;
   const GridGeometry& g = grid.geometry;
@@ -692,6 +719,7 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
   style.map = ColourMap::kBathymetry;
   style.low = 0.0;
   style.high = result.summary["water_depth_m"].value("max", 1.0);
+  style.map_axes = preview_map_axes(g);
   Image preview = render_heat_map(grid.still_water_depth_m, style, &grid.land);
   // Overlays go where render_heat_map put the field (north at the top).
   const HeatMapPlacement placement = heat_map_placement(g.columns, g.rows, style);
@@ -710,10 +738,10 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
                              static_cast<int>(std::max(x0, x0 + scale - 1)), static_cast<int>(std::max(y1 - scale, y1 - 1)),
                              n <= 0.0f ? wall_colour : porous_colour);
     }
-  const int legend_y = static_cast<int>(bottom) + 30;
-  draw_text(preview, static_cast<int>(left), legend_y, "coastline (chart)", coast_colour, 14);
-  draw_text(preview, 170, legend_y, "vertical walls (n = 0)", wall_colour, 14);
-  draw_text(preview, 350, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
+  const int legend_y = placement.legend_top_px + 14, legend_x = static_cast<int>(left);
+  draw_text(preview, legend_x, legend_y, "coastline (chart)", coast_colour, 14);
+  draw_text(preview, legend_x + 145, legend_y, "vertical walls (n = 0)", wall_colour, 14);
+  draw_text(preview, legend_x + 325, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
   for (const auto& line : result.coastline_m)
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const double x0 = pixel_x(line[i].x_m), y0 = pixel_y(line[i].y_m), x1 = pixel_x(line[i + 1].x_m), y1 = pixel_y(line[i + 1].y_m);

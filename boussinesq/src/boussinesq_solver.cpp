@@ -61,12 +61,13 @@ double dispersion_weight(double depth_m, const SolverParameters& p, double peak_
 // in the frame's layout (cell (c along, l line) at c * rows + l; boussinesq_sweep.hpp). The face
 // values the sweep derives from the cells (boussinesq_sweep.hpp) are used here for the taper and
 // the porous blocks, so both agree by construction.
-StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, int cols, int rows, double spacing_m,
-                        const SolverParameters& p, double peak_w) {
+StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, int cols, int rows,
+                        double spacing_along_m, double spacing_across_m, const SolverParameters& p, double peak_w) {
   StaticFrame frame;
   frame.cols = cols;
   frame.rows = rows;
-  frame.spacing_m = spacing_m;
+  frame.spacing_along_m = spacing_along_m;
+  frame.spacing_across_m = spacing_across_m;
   frame.depth_m = std::move(depth);
   frame.porosity = std::move(porosity);
   frame.inverse_porosity.resize(frame.depth_m.size());
@@ -106,9 +107,10 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   Implementation& s = *implementation_;
   const GridGeometry& geometry = harbour.geometry;
   const std::string subject = "Boussinesq solver";
-  if (geometry.columns < 3 || geometry.rows < 1 || !(geometry.spacing_m > 0.0))
+  if (geometry.columns < 3 || geometry.rows < 1 || !(geometry.spacing_x_m() > 0.0) || !(geometry.spacing_y_m() > 0.0))
     throw Error(subject, "the harbour grid is " + std::to_string(geometry.columns) + " x " + std::to_string(geometry.rows) +
-                             " cells of " + std::to_string(geometry.spacing_m) + " m", "give at least 3 x 1 cells and a positive spacing");
+                             " cells of " + std::to_string(geometry.spacing_x_m()) + " x " + std::to_string(geometry.spacing_y_m()) + " m",
+                "give at least 3 x 1 cells and positive spacings");
   if (harbour.still_water_depth_m.columns() != geometry.columns || harbour.still_water_depth_m.rows() != geometry.rows ||
       harbour.porosity.columns() != geometry.columns || harbour.porosity.rows() != geometry.rows)
     throw Error(subject, "the depth and porosity rasters do not match the grid geometry", "rebuild the harbour grid with nearshore bathy");
@@ -116,7 +118,11 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.parameters = parameters;
   s.nx = geometry.columns;
   s.ny = geometry.rows;
-  s.dx = geometry.spacing_m;
+  s.dx = geometry.spacing_x_m();
+  s.dy = geometry.spacing_y_m();
+  // The time step and the Courant limit follow the smaller cell size: the gravity wave crosses a
+  // cell of min(dx, dy) fastest (FUNWAVE-TVD and MIKE 21 BW likewise).
+  const double smaller_spacing = std::min(s.dx, s.dy);
   const std::size_t cells = geometry.cell_count();
 
   // Depth and porosity stay in the harbour grid's float (exact); the solver computes in double.
@@ -134,9 +140,9 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   }
   if (max_depth <= 0.0) throw Error(subject, "the grid holds no water (every depth <= 0)", "check the sign of the depths (positive down)");
   const double celerity = std::sqrt(kGravity_m_s2 * max_depth);
-  s.dt = parameters.time_step_s > 0.0 ? parameters.time_step_s : parameters.courant_number * s.dx / celerity;
+  s.dt = parameters.time_step_s > 0.0 ? parameters.time_step_s : parameters.courant_number * smaller_spacing / celerity;
   if (!(s.dt > 0.0)) throw Error(subject, "no time step: time_step_s and courant_number are both 0", "set one of them");
-  const double courant = celerity * s.dt / s.dx;
+  const double courant = celerity * s.dt / smaller_spacing;
   if (courant > kMaxCourantNumber) {
     // The library-level guard: a bake case is checked against the same limit first, naming its key.
     const bool step_given = parameters.time_step_s > 0.0;
@@ -145,10 +151,10 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
       problem << "SolverParameters::time_step_s = " << s.dt << " s gives";
     else
       problem << "SolverParameters::courant_number = " << parameters.courant_number << " (a time step of " << s.dt << " s) gives";
-    problem << " a Courant number sqrt(g d_max) dt/dx = " << courant << " (d_max " << max_depth << " m, the deepest cell; dx "
-            << s.dx << " m), above the stability limit " << kMaxCourantNumber;
+    problem << " a Courant number sqrt(g d_max) dt/min(dx, dy) = " << courant << " (d_max " << max_depth
+            << " m, the deepest cell; min(dx, dy) " << smaller_spacing << " m), above the stability limit " << kMaxCourantNumber;
     throw Error(subject, problem.str(),
-                step_given ? "set SolverParameters::time_step_s to at most " + std::to_string(kMaxCourantNumber * s.dx / celerity) +
+                step_given ? "set SolverParameters::time_step_s to at most " + std::to_string(kMaxCourantNumber * smaller_spacing / celerity) +
                                  " s, or to 0 with SolverParameters::courant_number at most " + std::to_string(kMaxCourantNumber)
                            : "set SolverParameters::courant_number to at most " + std::to_string(kMaxCourantNumber));
   }
@@ -177,6 +183,7 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     std::uint64_t h = hash_bytes(&s.nx, sizeof s.nx);
     h = hash_bytes(&s.ny, sizeof s.ny, h);
     h = hash_bytes(&s.dx, sizeof s.dx, h);
+    if (s.dy != s.dx) h = hash_bytes(&s.dy, sizeof s.dy, h);  // square grids keep their fingerprint (saved states load)
     h = hash_bytes(&s.dt, sizeof s.dt, h);
     h = hash_bytes(depth_double.data(), depth_double.size() * sizeof(double), h);
     s.fingerprint = h;
@@ -190,9 +197,9 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     std::vector<float> depth_t(cells), porosity_t(cells);
     detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
     detail::transpose(porosity.data(), porosity_t.data(), s.nx, s.ny);
-    s.frame_x = build_frame(std::move(depth_t), std::move(porosity_t), s.nx, s.ny, s.dx, parameters, peak_w);
+    s.frame_x = build_frame(std::move(depth_t), std::move(porosity_t), s.nx, s.ny, s.dx, s.dy, parameters, peak_w);
   }
-  s.frame_y = build_frame(std::move(depth), std::move(porosity), s.ny, s.nx, s.dx, parameters, peak_w);
+  s.frame_y = build_frame(std::move(depth), std::move(porosity), s.ny, s.nx, s.dy, s.dx, parameters, peak_w);
   const float* const cell_depth = s.frame_y.depth_m.data();
   const std::size_t faces_x = static_cast<std::size_t>(s.nx + 1) * s.ny, faces_y = static_cast<std::size_t>(s.nx) * (s.ny + 1);
 
@@ -212,8 +219,8 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
           switch (sponge.side) {
             case Side::kWest: distance = (c + 0.5) * s.dx; break;
             case Side::kEast: distance = (s.nx - c - 0.5) * s.dx; break;
-            case Side::kSouth: distance = (r + 0.5) * s.dx; break;
-            case Side::kNorth: distance = (s.ny - r - 0.5) * s.dx; break;
+            case Side::kSouth: distance = (r + 0.5) * s.dy; break;
+            case Side::kNorth: distance = (s.ny - r - 0.5) * s.dy; break;
           }
           if (distance < sponge.width_m) {
             const double x = 1.0 - distance / sponge.width_m;
@@ -297,11 +304,13 @@ void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame,
 }
 
 void BoussinesqSolver::Implementation::step() {
-  const double ratio = dt / dx;
+  // dt/dx, and dx/dy for the y divergence: ratio (dP + aspect dQ) = dt (dP/dx + dQ/dy), and square
+  // cells (aspect exactly 1) keep the square scheme's bits.
+  const double ratio = dt / dx, aspect = dx / dy;
 
   // One ADI step is a pair of sweeps, x then y on even steps and y then x on odd steps when
   // `alternate_sweep_order` is set (docs/solver.md, "Sweep order"). The FIRST sweep of a pair has
-  //   E = eta^n - dt/(n dx) (dP^n + dQ^n) + dt S   (seed 003 eq. 1, the flux across the lines explicit)
+  //   E = eta^n - dt/n (dP^n/dx + dQ^n/dy) + dt S   (seed 003 eq. 1, the flux across the lines explicit)
   // and estimates everything ACROSS its lines at t^{n+1/2}: on pass 0 from the last steps (the other
   // flux at t^n + its last increment / 2, its rate lagged half a step as its last increment / dt,
   // eta extrapolated from eta^{n-1} and eta^n); on later passes (`adi_passes` > 1) from the previous
@@ -327,7 +336,8 @@ void BoussinesqSolver::Implementation::step() {
     tbb::parallel_for(0, ny, [&](int r) {
       for (int c = 0; c < nx; ++c) {
         const std::size_t i = x_layout ? px(c, r) : index(c, r, nx);
-        const double divergence = flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y[qy(c, r + 1)] - flux_y[qy(c, r)];
+        const double divergence =
+            flux_x[px(c + 1, r)] - flux_x[px(c, r)] + flux_y[qy(c, r + 1)] * aspect - flux_y[qy(c, r)] * aspect;
         base[i] = eta_layout[i] - ratio * frame_y.inverse_porosity[index(c, r, nx)] * divergence;
       }
     });
@@ -448,7 +458,7 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
   const std::size_t cells = static_cast<std::size_t>(nx) * ny;
   for (std::size_t i = 0; i < cells; ++i)
     if (frame_y.inverse_porosity[i] > 0.0 && depth[i] + eta_next[i] < 0.0) pending.push_back(i);
-  const double ratio = dt / dx;
+  const double ratio_x = dt / dx, ratio_y = dt / dy;  // a face's flux over the step in metres of level
   for (int pass = 0; pass < 20 && !pending.empty(); ++pass) {
     std::vector<std::size_t> next;
     for (std::size_t i : pending) {
@@ -456,17 +466,17 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
       if (h >= 0.0) continue;
       const int c = static_cast<int>(i % nx), r = static_cast<int>(i / nx);
       // Faces: west, east (x), south, north (y); outgoing sign for each.
-      struct FaceRef { double* new_flux; const double* old_flux; double outward; std::ptrdiff_t neighbour; };
+      struct FaceRef { double* new_flux; const double* old_flux; double outward; std::ptrdiff_t neighbour; double ratio; };
       const std::size_t fw = px(c, r), fe = px(c + 1, r), fs = qy(c, r), fn = qy(c, r + 1);
       FaceRef faces[4] = {
-          {&flux_x_new[fw], &flux_x[fw], -1.0, c > 0 ? static_cast<std::ptrdiff_t>(i) - 1 : -1},
-          {&flux_x_new[fe], &flux_x[fe], 1.0, c + 1 < nx ? static_cast<std::ptrdiff_t>(i) + 1 : -1},
-          {&flux_y_new[fs], &flux_y[fs], -1.0, r > 0 ? static_cast<std::ptrdiff_t>(i) - nx : -1},
-          {&flux_y_new[fn], &flux_y[fn], 1.0, r + 1 < ny ? static_cast<std::ptrdiff_t>(i) + nx : -1}};
+          {&flux_x_new[fw], &flux_x[fw], -1.0, c > 0 ? static_cast<std::ptrdiff_t>(i) - 1 : -1, ratio_x},
+          {&flux_x_new[fe], &flux_x[fe], 1.0, c + 1 < nx ? static_cast<std::ptrdiff_t>(i) + 1 : -1, ratio_x},
+          {&flux_y_new[fs], &flux_y[fs], -1.0, r > 0 ? static_cast<std::ptrdiff_t>(i) - nx : -1, ratio_y},
+          {&flux_y_new[fn], &flux_y[fn], 1.0, r + 1 < ny ? static_cast<std::ptrdiff_t>(i) + nx : -1, ratio_y}};
       double outflow = 0.0;  // metres of water level over the step (times n)
       for (const FaceRef& face : faces) {
         const double mass_flux = 0.5 * (*face.new_flux + *face.old_flux) * face.outward;
-        if (mass_flux > 0.0) outflow += mass_flux * ratio;
+        if (mass_flux > 0.0) outflow += mass_flux * face.ratio;
       }
       if (outflow <= 0.0) { eta_next[i] = -depth[i]; continue; }  // round-off only
       const double n = 1.0 / frame_y.inverse_porosity[i];
@@ -478,7 +488,7 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
         *face.new_flux -= 2.0 * removed * face.outward;
         if (face.neighbour >= 0) {
           const std::size_t j = static_cast<std::size_t>(face.neighbour);
-          eta_next[j] -= removed * ratio * frame_y.inverse_porosity[j];
+          eta_next[j] -= removed * face.ratio * frame_y.inverse_porosity[j];
           if (depth[j] + eta_next[j] < 0.0) next.push_back(j);
         }
       }
@@ -624,7 +634,7 @@ void BoussinesqSolver::set_initial_condition(const std::function<double(double, 
     for (int c = 0; c < s.nx; ++c)
       if (detail::face_open(s.frame_y.inverse_porosity.data(), index(c, k - 1, s.nx), index(c, k, s.nx)) != 0.0 &&
           detail::face_depth(s.frame_y.depth_m.data(), index(c, k - 1, s.nx), index(c, k, s.nx)) > 0.0)
-        s.flux_y[s.qy(c, k)] = flux_y_m2_s(g.cell_centre_x_m(c), g.origin_y_m + k * s.dx);
+        s.flux_y[s.qy(c, k)] = flux_y_m2_s(g.cell_centre_x_m(c), g.origin_y_m + k * s.dy);
   detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
   for (auto* v : {&s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
   s.publish();
@@ -652,7 +662,7 @@ void BoussinesqSolver::cell_centred_fluxes(Raster<float>& flux_x_m2_s, Raster<fl
 double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
   const Implementation& s = *implementation_;
   const double u = std::clamp((x_m - s.geometry.origin_x_m) / s.dx - 0.5, 0.0, s.nx - 1.0);
-  const double v = std::clamp((y_m - s.geometry.origin_y_m) / s.dx - 0.5, 0.0, s.ny - 1.0);
+  const double v = std::clamp((y_m - s.geometry.origin_y_m) / s.dy - 0.5, 0.0, s.ny - 1.0);
   const int c0 = std::min(static_cast<int>(u), s.nx - 1), r0 = std::min(static_cast<int>(v), s.ny - 1);
   const int c1 = std::min(c0 + 1, s.nx - 1), r1 = std::min(r0 + 1, s.ny - 1);
   const double a = u - c0, b = v - r0;
@@ -751,12 +761,12 @@ std::size_t BoussinesqSolver::memory_bytes() const {
 }
 
 double BoussinesqSolver::water_volume_m3() const {
-  // Sum of n h dx^2 in a fixed order (deterministic).
+  // Sum of n h dx dy in a fixed order (deterministic).
   const Implementation& s = *implementation_;
   double volume = 0.0;
   for (std::size_t i = 0; i < s.eta.size(); ++i)
     if (s.frame_y.inverse_porosity[i] > 0.0) volume += (s.frame_y.depth_m[i] + s.eta[i]) / s.frame_y.inverse_porosity[i];
-  return volume * s.dx * s.dx;
+  return volume * s.dx * s.dy;
 }
 
 }  // namespace nearshore::boussinesq

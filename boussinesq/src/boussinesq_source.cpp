@@ -64,9 +64,12 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   if (maker.kind != WaveMaker::Kind::kComponents && maker.kind != WaveMaker::Kind::kTimeSeries) return;
   cols_ = geometry.columns;
   rows_ = geometry.rows;
-  spacing_m_ = geometry.spacing_m;
   ramp_time_s_ = maker.ramp_time_s;
   normal_is_x_ = maker.facing == Side::kWest || maker.facing == Side::kEast;
+  // Rectangular cells: the strip's profile and its transform I use the cell size normal to the
+  // line, the phase along the line the size along it.
+  spacing_m_ = normal_is_x_ ? geometry.spacing_x_m() : geometry.spacing_y_m();
+  tangential_spacing_m_ = normal_is_x_ ? geometry.spacing_y_m() : geometry.spacing_x_m();
   const double travel_sign = (maker.facing == Side::kWest || maker.facing == Side::kSouth) ? 1.0 : -1.0;
   const int normal_count = normal_is_x_ ? cols_ : rows_, tangential_count = normal_is_x_ ? rows_ : cols_;
   const double normal_origin = normal_is_x_ ? geometry.origin_x_m : geometry.origin_y_m;
@@ -164,9 +167,9 @@ void SourceFunction::add(double time_s, double dt, double* eta_base, std::size_t
   const int tangential_count = static_cast<int>(line_.size());
   // Sum along the line by complex rotation: exp(i (l t_j - w t + psi)) advanced cell by cell.
   for (const Component& c : components_) {
-    const double t0 = tangential_origin_m_ + 0.5 * spacing_m_;
+    const double t0 = tangential_origin_m_ + 0.5 * tangential_spacing_m_;
     std::complex<double> z = std::polar(c.strength_m_s, c.tangential_wavenumber_rad_m * t0 - c.angular_frequency_rad_s * time_s + c.phase_rad);
-    const std::complex<double> rotation = std::polar(1.0, c.tangential_wavenumber_rad_m * spacing_m_);
+    const std::complex<double> rotation = std::polar(1.0, c.tangential_wavenumber_rad_m * tangential_spacing_m_);
     for (int j = 0; j < tangential_count; ++j) {
       line_[static_cast<std::size_t>(j)] += z.real();
       z *= rotation;

@@ -35,7 +35,9 @@ class SourceFunction {
   int strip_begin_ = 0, strip_end_ = 0;  // cell indices along the normal axis, [begin, end)
   std::vector<double> profile_;          // Gaussian g(s - s_line) per strip index
   int cols_ = 0, rows_ = 0;
-  double tangential_origin_m_ = 0.0, spacing_m_ = 1.0, ramp_time_s_ = 0.0;
+  double tangential_origin_m_ = 0.0, ramp_time_s_ = 0.0;
+  double spacing_m_ = 1.0;             // cell size normal to the line (x for kWest/kEast), metres
+  double tangential_spacing_m_ = 1.0;  // cell size along the line, metres
   std::vector<unsigned char> water_;     // 1 where the strip cell is water, strip x tangential
   std::vector<double> line_;             // sum over components along the line (scratch)
 };

@@ -37,13 +37,18 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   constexpr int W = kBlockLines;
   const int cols = frame.cols, rows = frame.rows, faces = cols + 1, n = kFullBlock ? W : le - lb;
   const std::size_t stride = static_cast<std::size_t>(rows), tstride = static_cast<std::size_t>(rows) + 1;
-  const double dx = frame.spacing_m, inv_dx = 1.0 / dx, inv_dx2 = inv_dx * inv_dx, inv_dx3 = inv_dx2 * inv_dx;
+  // dx: along the sweep (the line's own derivatives), dy: across it (between lines). With square
+  // cells dy = dx and every expression below is the one of the square scheme, bit for bit (the
+  // aspect ratio dx/dy is then exactly 1).
+  const double dx = frame.spacing_along_m, inv_dx = 1.0 / dx, inv_dx2 = inv_dx * inv_dx, inv_dx3 = inv_dx2 * inv_dx;
+  const double dy = frame.spacing_across_m, inv_dy = 1.0 / dy, inv_dy2 = inv_dy * inv_dy, aspect = dx / dy;
   const double dt = k.time_step_s, g = kGravity_m_s2;
   const double B = k.dispersion_coefficient, B3 = B + 1.0 / 3.0;
   const double dry = k.dry_depth_m;
   const bool total_depth_dispersion = k.dispersion_on_total_depth;
   const bool mean_face_depth = k.mean_face_depth_where_wet;
-  const double nu_explicit_max = 0.2 * dx * dx / dt;
+  // The explicit cross stress d/dy (nu P_y) is stable for nu dt / dy^2 <= 0.2 (docs/solver.md).
+  const double nu_explicit_max = 0.2 * dy * dy / dt;
   const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
 
   const float* __restrict depth = frame.depth_m.data();
@@ -130,14 +135,14 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const double h_here = std::max(depth[i] + e_here, dry);
     h_pair_north[c * W + j] = h_here + std::max(depth[in_] + e_north, dry);
     h_pair_south[c * W + j] = h_here + std::max(depth[is] + e_south, dry);
-    cell_eta_yy[c * W + j] = (e_north - 2.0 * e_here + e_south) * inv_dx2;
-    cell_eta_y[c * W + j] = (e_north - e_south) * 0.5 * inv_dx;
+    cell_eta_yy[c * W + j] = (e_north - 2.0 * e_here + e_south) * inv_dy2;
+    cell_eta_y[c * W + j] = (e_north - e_south) * 0.5 * inv_dy;
     // Bed slope across the lines (one-sided at the grid edges, 0 on a single line); the face takes
     // the mean of its two cells.
     cell_slope_across[c * W + j] =
-        ln == ls ? 0.0 : (static_cast<double>(depth[in_]) - static_cast<double>(depth[is])) / ((ln - ls) * dx);
-    cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dx;
-    // The cross stress is explicit: its viscosity is capped for stability (nu dt/dx^2 <= 0.2);
+        ln == ls ? 0.0 : (static_cast<double>(depth[in_]) - static_cast<double>(depth[is])) / ((ln - ls) * dy);
+    cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dy;
+    // The cross stress is explicit: its viscosity is capped for stability (nu dt/dy^2 <= 0.2);
     // the along-line stress is implicit and uses nu in full.
     if (kOpenWater) return;
     const double nu_i = std::min(static_cast<double>(nu[i]), nu_explicit_max);
@@ -167,10 +172,12 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
                                 (normal_across(face) + normal_across(f * stride + ln)) / h_north;
     const double corner_south = south * 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)]) *
                                 (normal_across(face) + normal_across(f * stride + ls)) / h_south;
-    double term = -inv_n_f * (corner_north - corner_south) * inv_dx;
+    double term = -inv_n_f * (corner_north - corner_south) * inv_dy;
 
     // Psi_x of seed 003 eq. (4) (Madsen & Sorensen 1992 eq. 12), the cross-derivative parts:
     //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
+    // Mixed derivatives take each axis' own size: the per-cell y parts (eta_yy, eta_y, Q_yt, d_y)
+    // are divided by dy above, their x differences here by dx.
     const double w = face_weight[face] * (static_cast<double>(dispersive[cL]) * static_cast<double>(dispersive[cR]));
     const double eta_yy_L = cell_eta_yy[L * W + j], eta_yy_R = cell_eta_yy[R * W + j];
     const double eta_y_L = cell_eta_y[L * W + j], eta_y_R = cell_eta_y[R * W + j];
@@ -194,15 +201,16 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
                        D * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
     term -= w * psi;
 
-    // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n.
+    // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n. P_y + Q_x is
+    // (dP dx/dy + dQ) / dx, so square cells (dx/dy = 1 exactly) keep the square scheme's bits.
     if (!kOpenWater) {
     const double nu_north = north * 0.25 * (nu_pair_north[L * W + j] + nu_pair_north[R * W + j]);
     const double nu_south = south * 0.25 * (nu_pair_south[L * W + j] + nu_pair_south[R * W + j]);
-    const double stress_north = nu_north * ((normal_across(f * stride + ln) - normal_across(face)) +
+    const double stress_north = nu_north * ((normal_across(f * stride + ln) - normal_across(face)) * aspect +
                                             (tangential[t_at(R, l + 1)] - tangential[t_at(L, l + 1)])) * inv_dx;
-    const double stress_south = nu_south * ((normal_across(face) - normal_across(f * stride + ls)) +
+    const double stress_south = nu_south * ((normal_across(face) - normal_across(f * stride + ls)) * aspect +
                                             (tangential[t_at(R, l)] - tangential[t_at(L, l)])) * inv_dx;
-    term += inv_n_f * (stress_north - stress_south) * inv_dx;
+    term += inv_n_f * (stress_north - stress_south) * inv_dy;
     }
     fixed_term[f * W + j] = term;
     const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);

@@ -22,7 +22,9 @@ namespace nearshore::boussinesq::detail {
 /// inside the sweep, where the cell values are read anyway; see the face_* functions below.
 struct StaticFrame {
   int cols = 0, rows = 0;
-  double spacing_m = 1.0;
+  /// Cell size along the sweep (between normal faces) and across it (between lines), metres: dx and
+  /// dy for the x sweep, dy and dx for the y sweep. Every difference divides by its own axis' size.
+  double spacing_along_m = 1.0, spacing_across_m = 1.0;
   /// Van Gent (1995) porous resistance of the faces (build_frame): alpha = laminar_factor (1-n)^2 /
   /// (n^3 D^2), beta = turbulent_factor (1-n) / (n^3 D); porous_stone_diameter_m = D (0: none).
   double porous_laminar_factor = 0.0, porous_turbulent_factor = 0.0, porous_stone_diameter_m = 0.0;

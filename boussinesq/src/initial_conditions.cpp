@@ -12,7 +12,8 @@ void start_solitary_wave(BoussinesqSolver& solver, const HarbourGrid& harbour, c
   const GridGeometry& geometry = harbour.geometry;
   const bool along_x = wave.facing == Side::kWest || wave.facing == Side::kEast;
   const double sign = (wave.facing == Side::kWest || wave.facing == Side::kSouth) ? 1.0 : -1.0;
-  const double H = wave.height_m, s0 = wave.crest_position_m, dx = geometry.spacing_m;
+  const double H = wave.height_m, s0 = wave.crest_position_m;
+  const double dx = along_x ? geometry.spacing_x_m() : geometry.spacing_y_m();  // along the travel
   const int nx = geometry.columns, ny = geometry.rows;
   const double origin = along_x ? geometry.origin_x_m : geometry.origin_y_m;
   const int crest = std::clamp(static_cast<int>(std::floor((s0 - origin) / dx)), 0, (along_x ? nx : ny) - 1);

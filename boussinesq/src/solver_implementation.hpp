@@ -29,7 +29,7 @@ struct BoussinesqSolver::Implementation {
   GridGeometry geometry;
   SolverParameters parameters;
   int nx = 0, ny = 0;
-  double dx = 1.0, dt = 0.0, time_s = 0.0;
+  double dx = 1.0, dy = 1.0, dt = 0.0, time_s = 0.0;  // cell sizes along x and y (dy = dx: square cells)
   long step_count = 0;
   std::uint64_t fingerprint = 0;
 

@@ -24,8 +24,8 @@ HarbourSite read_harbour_site(const sequence::SequenceReader& reader, double edg
   HarbourSite site;
   site.harbour = reader.read_harbour_grid(verify);
   const GridGeometry& geometry = reader.geometry();
-  site.width_m = geometry.columns * geometry.spacing_m;
-  site.height_m = geometry.rows * geometry.spacing_m;
+  site.width_m = geometry.width_m();  // columns dx, rows dy (rectangular cells alike)
+  site.height_m = geometry.height_m();
   const sequence::SequenceManifest& manifest = reader.manifest();
   std::string source_side;
   if (manifest.deep_water) {

@@ -30,10 +30,11 @@ inline void axis_tap(double texel, int count, int& lo, int& hi, double& fraction
   fraction = texel - lo;
 }
 
-inline Tap harbour_tap(double x_m, double y_m, double inverse_spacing, int columns, int rows) {
+// Rectangular cells (dx != dy): each axis scaled by its own inverse spacing.
+inline Tap harbour_tap(double x_m, double y_m, double inverse_spacing_x, double inverse_spacing_y, int columns, int rows) {
   Tap t;
-  axis_tap(x_m * inverse_spacing - 0.5, columns, t.i0, t.i1, t.a);
-  axis_tap(y_m * inverse_spacing - 0.5, rows, t.j0, t.j1, t.b);
+  axis_tap(x_m * inverse_spacing_x - 0.5, columns, t.i0, t.i1, t.a);
+  axis_tap(y_m * inverse_spacing_y - 0.5, rows, t.j0, t.j1, t.b);
   const std::size_t c = static_cast<std::size_t>(columns);
   t.i00 = static_cast<std::size_t>(t.j0) * c + static_cast<std::size_t>(t.i0);
   t.i10 = static_cast<std::size_t>(t.j0) * c + static_cast<std::size_t>(t.i1);
@@ -71,23 +72,23 @@ inline Tap cascade_tap(double x_m, double y_m, double inverse_tile_length, int n
 struct Gradient {
   double x = 0.0, y = 0.0;
 };
-inline Gradient texel_gradient(const float* f, int i, int j, int columns, int rows, double spacing_m) {
+inline Gradient texel_gradient(const float* f, int i, int j, int columns, int rows, double spacing_x_m, double spacing_y_m) {
   Gradient g;
   const int west = std::max(i - 1, 0), east = std::min(i + 1, columns - 1);
   const int south = std::max(j - 1, 0), north = std::min(j + 1, rows - 1);
   const std::size_t c = static_cast<std::size_t>(columns);
   if (east > west)
-    g.x = (f[static_cast<std::size_t>(j) * c + east] - f[static_cast<std::size_t>(j) * c + west]) / ((east - west) * spacing_m);
+    g.x = (f[static_cast<std::size_t>(j) * c + east] - f[static_cast<std::size_t>(j) * c + west]) / ((east - west) * spacing_x_m);
   if (north > south)
     g.y = (f[static_cast<std::size_t>(north) * c + i] - f[static_cast<std::size_t>(south) * c + i]) /
-          ((north - south) * spacing_m);
+          ((north - south) * spacing_y_m);
   return g;
 }
-inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int rows, double spacing_m) {
-  const Gradient g00 = texel_gradient(f, t.i0, t.j0, columns, rows, spacing_m);
-  const Gradient g10 = texel_gradient(f, t.i1, t.j0, columns, rows, spacing_m);
-  const Gradient g01 = texel_gradient(f, t.i0, t.j1, columns, rows, spacing_m);
-  const Gradient g11 = texel_gradient(f, t.i1, t.j1, columns, rows, spacing_m);
+inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int rows, double spacing_x_m, double spacing_y_m) {
+  const Gradient g00 = texel_gradient(f, t.i0, t.j0, columns, rows, spacing_x_m, spacing_y_m);
+  const Gradient g10 = texel_gradient(f, t.i1, t.j0, columns, rows, spacing_x_m, spacing_y_m);
+  const Gradient g01 = texel_gradient(f, t.i0, t.j1, columns, rows, spacing_x_m, spacing_y_m);
+  const Gradient g11 = texel_gradient(f, t.i1, t.j1, columns, rows, spacing_x_m, spacing_y_m);
   const double w00 = (1 - t.a) * (1 - t.b), w10 = t.a * (1 - t.b), w01 = (1 - t.a) * t.b, w11 = t.a * t.b;
   return {w00 * g00.x + w10 * g10.x + w01 * g01.x + w11 * g11.x, w00 * g00.y + w10 * g10.y + w01 * g01.y + w11 * g11.y};
 }
@@ -109,8 +110,10 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
     const HarbourSite& site = *s.site;
     columns_ = site.harbour.geometry.columns;
     rows_ = site.harbour.geometry.rows;
-    spacing_m_ = site.harbour.geometry.spacing_m;
-    inverse_spacing_ = 1.0 / spacing_m_;
+    spacing_x_m_ = site.harbour.geometry.spacing_x_m();
+    spacing_y_m_ = site.harbour.geometry.spacing_y_m();
+    inverse_spacing_x_ = 1.0 / spacing_x_m_;
+    inverse_spacing_y_ = 1.0 / spacing_y_m_;
     const HarbourKeyframe& from = *s.harbour_from;
     const HarbourKeyframe& to = s.harbour_to ? *s.harbour_to : from;
     eta_ = {data_or_null(from.surface_elevation_m, columns_, rows_), data_or_null(to.surface_elevation_m, columns_, rows_)};
@@ -165,7 +168,7 @@ double SurfaceSampler::weight(double x_m, double y_m) const {
 }
 
 double SurfaceSampler::harbour_eta(double x_m, double y_m) const {
-  const Tap t = harbour_tap(x_m, y_m, inverse_spacing_, columns_, rows_);
+  const Tap t = harbour_tap(x_m, y_m, inverse_spacing_x_, inverse_spacing_y_, columns_, rows_);
   return (1.0 - harbour_fraction_) * bilinear(eta_.from, t) + harbour_fraction_ * bilinear(eta_.to, t);
 }
 
@@ -298,15 +301,15 @@ SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) co
   double harbour_u = 0.0, harbour_v = 0.0, deep_u = 0.0, deep_v = 0.0;
   Gradient harbour_slope, deep_slope;
   if (w.weight > 0.0) {
-    const Tap t = harbour_tap(p.x_m, p.y_m, inverse_spacing_, columns_, rows_);
+    const Tap t = harbour_tap(p.x_m, p.y_m, inverse_spacing_x_, inverse_spacing_y_, columns_, rows_);
     const double f = harbour_fraction_;
     harbour_eta_m = (1.0 - f) * bilinear(eta_.from, t) + f * bilinear(eta_.to, t);
-    const Gradient a = bilinear_gradient(eta_.from, t, columns_, rows_, spacing_m_);
-    const Gradient b = bilinear_gradient(eta_.to, t, columns_, rows_, spacing_m_);
+    const Gradient a = bilinear_gradient(eta_.from, t, columns_, rows_, spacing_x_m_, spacing_y_m_);
+    const Gradient b = bilinear_gradient(eta_.to, t, columns_, rows_, spacing_x_m_, spacing_y_m_);
     harbour_slope = {(1.0 - f) * a.x + f * b.x, (1.0 - f) * a.y + f * b.y};
     // Formula 5: dry where the cell is land or the total depth is at most the dry depth.
-    const int column = std::clamp(static_cast<int>(std::floor(p.x_m * inverse_spacing_)), 0, columns_ - 1);
-    const int row = std::clamp(static_cast<int>(std::floor(p.y_m * inverse_spacing_)), 0, rows_ - 1);
+    const int column = std::clamp(static_cast<int>(std::floor(p.x_m * inverse_spacing_x_)), 0, columns_ - 1);
+    const int row = std::clamp(static_cast<int>(std::floor(p.y_m * inverse_spacing_y_)), 0, rows_ - 1);
     const bool land = land_ && land_[static_cast<std::size_t>(row) * static_cast<std::size_t>(columns_) + column] != 0;
     const double depth_m = depth_ ? bilinear(depth_, t) : 0.0;
     const double total_depth_m = depth_m + harbour_eta_m;

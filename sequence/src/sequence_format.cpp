@@ -119,17 +119,25 @@ SequenceManifest parse_manifest(std::string_view text, const std::string& source
     if (count < 1 || count > 65536 || count != std::floor(count))
       throw Error(source, fmt::format("\"geometry.{}\" is {}, not a cell count", key, count), "rewrite the sequence");
   }
-  for (const char* key : {"spacing_m", "origin_x_m", "origin_y_m"}) require_number(geometry, key, source);
+  // Square cells carry one "spacing_m" (every manifest before issue 15); rectangular cells carry
+  // "spacing_x_m" and "spacing_y_m" instead (core/src/raster.cpp, docs/formats/sequence.md).
+  const bool rectangular = !geometry.contains("spacing_m") && geometry.contains("spacing_x_m");
+  for (const char* key : {"origin_x_m", "origin_y_m"}) require_number(geometry, key, source);
+  if (rectangular)
+    for (const char* key : {"spacing_x_m", "spacing_y_m"}) require_number(geometry, key, source);
+  else
+    require_number(geometry, "spacing_m", source);
   try {
     manifest.geometry = geometry.get<GridGeometry>();
   } catch (const std::exception& e) {
     throw Error(source, std::string("\"geometry\" is malformed: ") + e.what(), "rewrite the sequence");
   }
   const GridGeometry& g = manifest.geometry;
-  if (g.columns <= 0 || g.rows <= 0 || g.columns > 65536 || g.rows > 65536 || !(g.spacing_m > 0) ||
-      !std::isfinite(g.spacing_m) || !std::isfinite(g.origin_x_m) || !std::isfinite(g.origin_y_m))
-    throw Error(source, fmt::format("\"geometry\" is {} x {} cells of {} m, which is not a grid", g.columns, g.rows,
-                                    g.spacing_m),
+  if (g.columns <= 0 || g.rows <= 0 || g.columns > 65536 || g.rows > 65536 || !(g.spacing_x_m() > 0) ||
+      !std::isfinite(g.spacing_x_m()) || !(g.spacing_y_m() > 0) || !std::isfinite(g.spacing_y_m()) ||
+      !std::isfinite(g.origin_x_m) || !std::isfinite(g.origin_y_m))
+    throw Error(source, fmt::format("\"geometry\" is {} x {} cells of {} m x {} m, which is not a grid", g.columns, g.rows,
+                                    g.spacing_x_m(), g.spacing_y_m()),
                 "rewrite the sequence");
   const double frame_count = require_number(json, "frame_count", source);
   if (frame_count < 1 || frame_count > 10'000'000 || frame_count != std::floor(frame_count))

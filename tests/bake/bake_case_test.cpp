@@ -50,6 +50,21 @@ TEST(BakeCase, ReadsTheSmallFlume) {
   EXPECT_EQ(c.wave_conditions["case"]["kind"], "regular");
 }
 
+// Issue 15: spacing_m = [dx, dy] gives rectangular cells; the time step follows the smaller size.
+TEST(BakeCase, ReadsRectangularCells) {
+  const auto file = write_text(scratch_folder() / "case.toml", edited("spacing_m = 0.1", "spacing_m = [0.1, 0.2]"));
+  const BakeCase c = read_bake_case(file);
+  EXPECT_EQ(c.harbour.geometry.columns, 120);
+  EXPECT_EQ(c.harbour.geometry.rows, 3);
+  EXPECT_DOUBLE_EQ(c.harbour.geometry.spacing_x_m(), 0.1);
+  EXPECT_DOUBLE_EQ(c.harbour.geometry.spacing_y_m(), 0.2);
+  EXPECT_EQ(whole_steps(c.timing.output_interval_s, c.solver.time_step_s), 23);  // as the square 0.1 m flume
+  const BakeCase tall = read_bake_case(write_text(scratch_folder() / "tall.toml", edited("spacing_m = 0.1", "spacing_m = [0.2, 0.05]")));
+  EXPECT_LE(tall.solver.time_step_s, 0.5 * 0.05 / std::sqrt(kGravity_m_s2 * 0.5) + 1e-12);  // min(dx, dy) = 0.05 m
+  expect_case_error(edited("spacing_m = 0.1", "spacing_m = [0.1]"), {"key `bathymetry.spacing_m`", "[dx_m, dy_m]"});
+  expect_case_error(edited("spacing_m = 0.1", "spacing_m = [0.1, -0.2]"), {"key `bathymetry.spacing_m`", "not a cell size"});
+}
+
 TEST(BakeCase, JsonAndTomlGiveTheSameCase) {
   const auto folder = scratch_folder();
   const BakeCase from_toml = read_bake_case(write_text(folder / "case.toml", small_flume_case()));

@@ -57,6 +57,31 @@ TEST(Resample, KeepsALinearBedAndTheExtent) {
   EXPECT_EQ(resample_harbour_grid(grid, 1.0).geometry.columns, 40);
 }
 
+// Issue 15: to rectangular cells and back, each axis interpolated on its own spacing.
+TEST(Resample, ToAndFromRectangularCells) {
+  // A bed linear in x and y: bilinear resampling is exact in the interior.
+  HarbourGrid grid = flume_from_profile(40.0, 20.0, 1.0, {{0.0, 10.0}, {40.0, 2.0}}, "test");
+  for (int row = 0; row < grid.geometry.rows; ++row)
+    for (int column = 0; column < grid.geometry.columns; ++column)
+      grid.still_water_depth_m(column, row) += static_cast<float>(0.1 * grid.geometry.cell_centre_y_m(row));
+  const auto bed = [](double x, double y) { return 10.0 - 0.2 * x + 0.1 * y; };
+  const HarbourGrid rectangular = resample_harbour_grid(grid, CellSize(0.5, 2.0));
+  EXPECT_EQ(rectangular.geometry.columns, 80);
+  EXPECT_EQ(rectangular.geometry.rows, 10);
+  EXPECT_DOUBLE_EQ(rectangular.geometry.height_m(), 20.0);
+  for (int column = 2; column < 78; column += 7)
+    for (int row = 1; row < 9; row += 3)
+      EXPECT_NEAR(rectangular.still_water_depth_m(column, row),
+                  bed(rectangular.geometry.cell_centre_x_m(column), rectangular.geometry.cell_centre_y_m(row)), 1e-5);
+  const HarbourGrid back = resample_harbour_grid(rectangular, 1.0);
+  EXPECT_TRUE(back.geometry.square_cells());
+  for (int column = 2; column < 38; column += 5)
+    for (int row = 2; row < 18; row += 5)
+      EXPECT_NEAR(back.still_water_depth_m(column, row), bed(back.geometry.cell_centre_x_m(column), back.geometry.cell_centre_y_m(row)), 1e-5);
+  // The same cells again: the grid itself.
+  EXPECT_EQ(resample_harbour_grid(rectangular, CellSize(0.5, 2.0)).geometry.rows, 10);
+}
+
 TEST(TimeSeries, ReadsOneColumnInCentimetresAndTimedColumns) {
   const auto folder = scratch_folder();
   const auto one = write_text(folder / "r2d.dat", "   -2.5\n   1.5\n# comment\n\n   3.0\n");

@@ -279,5 +279,42 @@ TEST(SurfaceSampler, TheSurfaceIsContinuousAcrossTheRectangleEdgeAndTheBlendingZ
   EXPECT_GT(std::abs(sampler.harbour_elevation_m(64.0, 48.0) - sampler.deep_elevation_m(64.0, 48.0)), 0.01);
 }
 
+// Issue 15: rectangular cells (dx = 2 m, dy = 5 m). A surface linear in x and y is reproduced
+// exactly by formula 1 on (x / dx, y / dy), and its slope (formula 6, central differences divided
+// by each axis' own spacing) is exactly the plane's; a sampler that used dx along y would put the
+// crest of every cell row 2.5 times too far north and get d eta / dy wrong by the same factor.
+TEST(SurfaceSampler, RectangularCellsInterpolateOnEachAxisSpacing) {
+  constexpr double kDx = 2.0, kDy = 5.0, kEta0 = 0.3, kSlopeX = 0.01, kSlopeY = -0.004;
+  auto site = std::make_shared<HarbourSite>();
+  GridGeometry geometry;
+  geometry.columns = 8;
+  geometry.rows = 6;
+  geometry.set_spacing(kDx, kDy);
+  site->harbour = HarbourGrid::open_water(geometry, 4.0f);
+  site->width_m = geometry.width_m();
+  site->height_m = geometry.height_m();
+  site->edge_fade_m = 1.0;  // the interior below is beyond every ramp: w = 1
+  SurfaceSnapshot s;
+  s.site = site;
+  auto keyframe = std::make_shared<HarbourKeyframe>();
+  keyframe->surface_elevation_m = Raster<float>(geometry.columns, geometry.rows);
+  for (int row = 0; row < geometry.rows; ++row)
+    for (int column = 0; column < geometry.columns; ++column)
+      keyframe->surface_elevation_m(column, row) = static_cast<float>(
+          kEta0 + kSlopeX * geometry.cell_centre_x_m(column) + kSlopeY * geometry.cell_centre_y_m(row));
+  keyframe->flux_x_m2_s = keyframe->flux_y_m2_s = keyframe->breaking = Raster<float>(geometry.columns, geometry.rows, 0.0f);
+  s.harbour_from = s.harbour_to = keyframe;
+  const SurfaceSampler sampler(s);
+  for (double x : {3.0, 5.5, 8.1, 12.9})
+    for (double y : {6.0, 11.3, 17.5, 23.9}) {
+      const double plane = kEta0 + kSlopeX * x + kSlopeY * y;
+      EXPECT_NEAR(sampler.harbour_elevation_m(x, y), plane, 1e-6) << x << ", " << y;  // float texels
+      const SurfaceState state = sampler.state(x, y, ChoppyPoint::kLattice);
+      EXPECT_DOUBLE_EQ(state.harbour_weight, 1.0);
+      EXPECT_NEAR(state.slope_x, kSlopeX, 1e-6) << x << ", " << y;
+      EXPECT_NEAR(state.slope_y, kSlopeY, 1e-6) << x << ", " << y;
+    }
+}
+
 }  // namespace
 }  // namespace nearshore::runtime

@@ -51,6 +51,39 @@ TEST(SequenceRoundTrip, FloatFramesComeBackBitExactWithManifest) {
   reader.verify_checksums();
 }
 
+// Issue 15: rectangular cells. The manifest records both spacings (and no "spacing_m", so a reader
+// that predates them refuses the file instead of taking dx for dy); a square grid's manifest keeps
+// the one key it always had, and both read back.
+TEST(SequenceRoundTrip, RectangularCellsRecordBothSpacings) {
+  const auto read_manifest_geometry = [](const std::filesystem::path& folder) {
+    std::ifstream in(folder / "manifest.json");
+    return nlohmann::json::parse(in).at("geometry");
+  };
+  GridGeometry rectangular = test_geometry();
+  rectangular.set_spacing(4.0, 8.0);
+  const auto folder = fresh_folder("rectangular");
+  write_test_sequence(folder, 2, {Compression::kZip, Precision::kFloat, Precision::kFloat, Precision::kFloat}, rectangular);
+  const nlohmann::json recorded = read_manifest_geometry(folder);
+  EXPECT_FALSE(recorded.contains("spacing_m"));
+  EXPECT_EQ(recorded.at("spacing_x_m"), 4.0);
+  EXPECT_EQ(recorded.at("spacing_y_m"), 8.0);
+  const SequenceReader reader(folder);
+  EXPECT_DOUBLE_EQ(reader.geometry().spacing_x_m(), 4.0);
+  EXPECT_DOUBLE_EQ(reader.geometry().spacing_y_m(), 8.0);
+  EXPECT_DOUBLE_EQ(reader.geometry().height_m(), 8.0 * rectangular.rows);
+  const HarbourGrid harbour = reader.read_harbour_grid(Verify::kYes);
+  EXPECT_DOUBLE_EQ(harbour.geometry.spacing_y_m(), 8.0);
+  EXPECT_EQ(max_difference(reader.read_frame(1, ChannelSelection::all(), Verify::kYes).surface_elevation_m,
+                           TestFields(rectangular, 1).eta), 0.0);
+
+  const auto square_folder = fresh_folder("square_spacing");
+  write_test_sequence(square_folder, 1);
+  const nlohmann::json square = read_manifest_geometry(square_folder);
+  EXPECT_EQ(square.at("spacing_m"), 4.0);
+  EXPECT_FALSE(square.contains("spacing_x_m"));
+  EXPECT_TRUE(SequenceReader(square_folder).geometry().square_cells());
+}
+
 // Half keeps 11 significant bits: relative error <= 2^-11 after round-to-nearest (half of the
 // 2^-10 spacing). Every lossless compression must return exactly the half values.
 TEST(SequenceRoundTrip, HalfFramesAreWithinHalfRoundingForLosslessCompressions) {

@@ -10,11 +10,20 @@
 
 namespace nearshore::bake {
 
-/// A flume `length_m` (x, along the waves) by `width_m` (y) with cells of `spacing_m`, whose depth
+/// The size of a cell along x and y, metres: one number for square cells, two for rectangular
+/// cells (dx != dy, issue 15; GridGeometry::set_spacing). Converts from a number (square cells).
+struct CellSize {
+  double x_m = 1.0, y_m = 1.0;
+  CellSize(double square_m) : x_m(square_m), y_m(square_m) {}  // implicit: a number means square cells
+  CellSize(double along_x_m, double along_y_m) : x_m(along_x_m), y_m(along_y_m) {}
+  bool square() const { return x_m == y_m; }
+};
+
+/// A flume `length_m` (x, along the waves) by `width_m` (y) with cells of `spacing`, whose depth
 /// varies only along x: piecewise linear through `profile` = (x_m, depth_m) points with increasing
 /// x, constant beyond the first and last points. Cells with depth <= 0 are marked land.
 /// Throws nearshore::Error(subject, ...) for a profile that is not increasing or a bad size.
-HarbourGrid flume_from_profile(double length_m, double width_m, double spacing_m,
+HarbourGrid flume_from_profile(double length_m, double width_m, CellSize spacing,
                                const std::vector<std::pair<double, double>>& profile, const std::string& subject);
 
 /// Depth of a piecewise-linear profile at x (constant beyond the ends). `profile` must be increasing in x.
@@ -36,12 +45,13 @@ struct BerkhoffShoal {
   double minimum_depth_m = 0.07;
 };
 double berkhoff_shoal_depth_m(const BerkhoffShoal& shoal, double x_m, double y_m);
-HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, double spacing_m, const BerkhoffShoal& shoal);
+HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, CellSize spacing, const BerkhoffShoal& shoal);
 
-/// The grid resampled to `spacing_m` over the same extent (bilinear depth and coast distance;
-/// nearest-cell land and porosity so walls stay walls). Returns the input unchanged when the
-/// spacing already matches to 1e-9 relative.
-HarbourGrid resample_harbour_grid(const HarbourGrid& grid, double spacing_m);
+/// The grid resampled to cells of `spacing` (square or rectangular, from square or rectangular
+/// cells) over the same extent (bilinear depth and coast distance, on each axis' own spacing;
+/// nearest-cell land and porosity so walls stay walls). Returns the input unchanged when both
+/// spacings already match to 1e-9 relative.
+HarbourGrid resample_harbour_grid(const HarbourGrid& grid, CellSize spacing);
 
 /// The grid under still water `level_m` above the datum its depths refer to (a tide, or a surge):
 /// every still-water depth d becomes d + level_m, so land lower than the level floods, higher

@@ -87,7 +87,10 @@ struct BlendingZone {
 
 /// What the solver does to the carried waves inland of the source line (the drift model above).
 struct InlandPropagation {
-  double spacing_m = 1.0, time_step_s = 0.0, dispersion_coefficient = 1.0 / 15.0;
+  /// Cell size normal to the source line (the step of depth_m) and along it, metres: dx and dy for
+  /// a line facing west or east, dy and dx for one facing south or north (rectangular cells).
+  double spacing_m = 1.0, tangential_spacing_m = 1.0;
+  double time_step_s = 0.0, dispersion_coefficient = 1.0 / 15.0;
   /// The mean wet depth of the grid line at s = 0, dx, 2 dx, ... inland (to the grid's edge).
   std::vector<double> depth_m;
 };

@@ -7,9 +7,10 @@
 // Frame: site metres (surface_snapshot.hpp): x east, y north of the harbour grid's south-west
 // corner; z up from still water. Arithmetic: double on the CPU, texel values are float.
 //
-// 1. Harbour raster F (columns C, rows R, spacing s; texel (i, j) is the cell centre
-//    ((i + 0.5) s, (j + 0.5) s), row 0 south), bilinear with clamping at the rectangle's edge:
-//      u = clamp(x / s - 0.5, 0, C - 1),  v = clamp(y / s - 0.5, 0, R - 1)
+// 1. Harbour raster F (columns C, rows R, spacings s_x, s_y: equal for square cells; texel (i, j)
+//    is the cell centre ((i + 0.5) s_x, (j + 0.5) s_y), row 0 south), bilinear with clamping at
+//    the rectangle's edge:
+//      u = clamp(x / s_x - 0.5, 0, C - 1),  v = clamp(y / s_y - 0.5, 0, R - 1)
 //      i0 = min(floor(u), C - 2), i1 = i0 + 1, a = u - i0   (C = 1: i0 = i1 = 0, a = 0; rows alike)
 //      F(x, y) = (1 - b) ((1 - a) F[i0, j0] + a F[i1, j0]) + b ((1 - a) F[i0, j1] + a F[i1, j1])
 //    i.e. GL_CLAMP_TO_EDGE with texture coordinates (x / width, y / height). Within half a cell of
@@ -130,7 +131,7 @@ class SurfaceSampler {
   SurfaceSnapshot snapshot_;
   bool has_harbour_ = false, has_deep_ = false, has_deep_flux_ = false;
   int columns_ = 0, rows_ = 0;
-  double spacing_m_ = 1.0, inverse_spacing_ = 1.0;
+  double spacing_x_m_ = 1.0, spacing_y_m_ = 1.0, inverse_spacing_x_ = 1.0, inverse_spacing_y_ = 1.0;  // dx, dy
   double harbour_fraction_ = 0.0, deep_fraction_ = 0.0, choppiness_ = 0.0;
   // Where w = 1 exactly (beyond the maker's zone and every edge fade): no ramp to evaluate.
   double full_x0_ = 0.0, full_x1_ = -1.0, full_y0_ = 0.0, full_y1_ = -1.0;
