@@ -112,7 +112,7 @@ NEARSHORE_API nearshore_status nearshore_sea_set_wind(nearshore_sea* sea, int be
 typedef struct nearshore_site_info {
   uint32_t struct_size;
   int columns, rows;               /* harbour grid cells */
-  double cell_size_m;
+  double cell_size_x_m, cell_size_y_m;  /* dx (east) and dy (north); equal for square cells */
   double width_m, height_m;        /* the harbour rectangle in the site frame: [0, width] x [0, height] */
   double origin_x_m, origin_y_m;   /* the site origin in the grid's projected CRS */
   double origin_latitude_deg, origin_longitude_deg; /* the site origin (NaN if the grid has no CRS) */
@@ -199,11 +199,44 @@ NEARSHORE_API nearshore_status nearshore_renderer_draw(nearshore_renderer* rende
 NEARSHORE_API nearshore_status nearshore_renderer_read_pixels(nearshore_renderer* renderer, int width_px,
                                                               int height_px, uint8_t* rgba);
 
+/* ---- lighting (docs/lighting.md) -------------------------------------------------------------
+ * What a renderer draws the sea under: the sun (from a place and a UTC time, or the camera's
+ * sun_azimuth_deg / sun_elevation_deg), the clear sky of that sun (Preetham), what is in the air
+ * and in the water, the wind's sub-grid roughness. Set once or per frame; kept until changed. */
+typedef struct nearshore_lighting {
+  uint32_t struct_size;
+  /* When not empty, the sun stands where it does at this UTC instant ("2026-06-21T11:00:00Z"),
+   * seen from latitude_deg / longitude_deg (WGS 84), or from the site's centre when either is
+   * NaN; when empty (the default), the camera's sun_azimuth_deg / sun_elevation_deg hold. */
+  char utc_iso8601[40];
+  double latitude_deg, longitude_deg;  /* NaN: the site's centre */
+  double atmospheric_turbidity;        /* Preetham T: 2 very clear, 3 clear, 6 hazy, 10 thin fog (1.7-10) */
+  double chlorophyll_mg_m3;            /* phytoplankton (0-100): greener water */
+  double cdom_absorption_440_per_m;    /* dissolved organic matter at 440 nm (browner); < 0: from the chlorophyll */
+  double water_turbidity_ntu;          /* suspended sediment (0-1000 NTU): milkier, the seabed hides sooner */
+  double wind_speed_m_s;               /* at 10 m: the roughness the grid cannot show, shoreline waves */
+  double wind_direction_deg;           /* compass direction the wind blows FROM, degrees */
+  double exposure_compensation;        /* 1: automatic exposure; 2: one stop brighter */
+  int local_reflections;               /* 1: land and structures mirrored in the water; 0: sky only */
+} nearshore_lighting;
+/* Fills the defaults (struct_size, no UTC time, T 2.5, chlorophyll 0.3, sediment 0.5 NTU, wind
+ * 5 m/s from the north, exposure 1, local reflections on). */
+NEARSHORE_API void nearshore_lighting_init(nearshore_lighting* lighting);
+/* Render thread. A bad value (a UTC string that does not parse, a place with no map projection,
+ * a number out of its range) is refused, naming the field, and the previous lighting is kept. */
+NEARSHORE_API nearshore_status nearshore_renderer_set_lighting(nearshore_renderer* renderer,
+                                                               const nearshore_lighting* lighting);
+/* Where the sun stands (compass azimuth, apparent elevation in degrees) seen from a place at a UTC
+ * instant (NOAA/Meeus). Needs no sea and no OpenGL. Any thread. */
+NEARSHORE_API nearshore_status nearshore_sun_position(double latitude_deg, double longitude_deg,
+                                                      const char* utc_iso8601, double* azimuth_deg,
+                                                      double* elevation_deg);
+
 /* ---- the host draws itself: the current fields as GL textures or CPU arrays -------------------- */
 typedef struct nearshore_gl_textures {
   uint32_t struct_size;
   /* Harbour: R32F GL_TEXTURE_2D, columns x rows texels, texel (i, j) at the centre of cell (i, j)
-   * ((i + 0.5) cell_size_m, (j + 0.5) cell_size_m), row 0 south. [0] from, [1] to. */
+   * ((i + 0.5) cell_size_x_m, (j + 0.5) cell_size_y_m), row 0 south. [0] from, [1] to. */
   unsigned int harbour_elevation[2], harbour_breaking[2];
   float harbour_fraction;               /* shown = (1 - f) from + f to */
   /* Deep water: R32F GL_TEXTURE_2D_ARRAY, N x N texels, one layer per cascade; texel (i, j) of

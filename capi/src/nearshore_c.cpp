@@ -20,6 +20,8 @@
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/playback/gl_loader.hpp"
+#include "nearshore/playback/lighting.hpp"
+#include "nearshore/playback/sun_position.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/runtime/library_player.hpp"
 #include "nearshore/runtime/streaming_engine.hpp"
@@ -29,6 +31,9 @@ struct nearshore_renderer {
   nearshore_sea* sea = nullptr;
   std::unique_ptr<nearshore::playback::WaterRenderer> renderer;
   int last_width_px = 0, last_height_px = 0;
+  // Set by nearshore_renderer_set_lighting; the sun is the camera's unless sun_from_time.
+  nearshore::playback::Lighting lighting;
+  bool sun_from_time = false;
 };
 
 namespace nearshore::capi {
@@ -246,7 +251,8 @@ nearshore_status nearshore_site_info_get(const nearshore_sea* sea, nearshore_sit
     const nearshore::GridGeometry& geometry = sea->engine().manifest().geometry;
     info->columns = geometry.columns;
     info->rows = geometry.rows;
-    info->cell_size_m = geometry.spacing_m;
+    info->cell_size_x_m = geometry.spacing_x_m();
+    info->cell_size_y_m = geometry.spacing_y_m();
     info->width_m = geometry.width_m();
     info->height_m = geometry.height_m();
     info->origin_x_m = geometry.origin_x_m;
@@ -400,14 +406,109 @@ nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nea
     view.vertical_field_of_view_deg = camera->vertical_fov_deg;
     view.near_m = camera->near_m;
     view.far_m = camera->far_m;
-    nearshore::playback::Lighting lighting;
-    lighting.sun_azimuth_deg = camera->sun_azimuth_deg;
-    lighting.sun_elevation_deg = camera->sun_elevation_deg;
+    nearshore::playback::Lighting lighting = renderer->lighting;
+    if (!renderer->sun_from_time) {
+      lighting.sun_azimuth_deg = camera->sun_azimuth_deg;
+      lighting.sun_elevation_deg = camera->sun_elevation_deg;
+    }
     renderer->renderer->stage_upcoming(renderer->sea->engine());
     renderer->renderer->render(renderer->sea->snapshot(), view, lighting, width_px, height_px);
     renderer->renderer->blit_to_window(width_px, height_px);
     renderer->last_width_px = width_px;
     renderer->last_height_px = height_px;
+  });
+}
+
+void nearshore_lighting_init(nearshore_lighting* lighting) {
+  if (!lighting) return;
+  const nearshore::playback::Lighting defaults;
+  *lighting = nearshore_lighting{};
+  lighting->struct_size = sizeof(nearshore_lighting);
+  lighting->latitude_deg = lighting->longitude_deg = std::numeric_limits<double>::quiet_NaN();
+  lighting->atmospheric_turbidity = defaults.atmospheric_turbidity;
+  lighting->chlorophyll_mg_m3 = defaults.water.chlorophyll_mg_m3;
+  lighting->cdom_absorption_440_per_m = defaults.water.cdom_absorption_440_per_m;
+  lighting->water_turbidity_ntu = defaults.water.turbidity_ntu;
+  lighting->wind_speed_m_s = defaults.wind_speed_m_s;
+  lighting->wind_direction_deg = 0.0;
+  lighting->exposure_compensation = defaults.exposure_compensation;
+  lighting->local_reflections = 1;
+}
+
+namespace {
+// A number of nearshore_lighting inside its documented range, or the call fails naming the field.
+double lighting_field(double value, const char* field, double low, double high) {
+  if (!std::isfinite(value) || value < low || value > high)
+    fail(NEARSHORE_INVALID_ARGUMENT, std::string("nearshore_lighting.") + field + " = " + std::to_string(value) +
+                                         " is outside " + std::to_string(low) + " .. " + std::to_string(high));
+  return value;
+}
+
+nearshore::playback::UtcTime parse_utc(const char* text, const char* field) {
+  try {
+    return nearshore::playback::UtcTime::parse(text);
+  } catch (const std::exception& e) {
+    fail(NEARSHORE_INVALID_ARGUMENT, std::string(field) + " = \"" + text + "\" is not a UTC time like " +
+                                         "2026-06-21T11:00:00Z: " + e.what());
+  }
+}
+}  // namespace
+
+nearshore_status nearshore_renderer_set_lighting(nearshore_renderer* renderer, const nearshore_lighting* lighting) {
+  return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
+    require(renderer, "renderer");
+    require(lighting, "lighting");
+    if (lighting->struct_size != sizeof(nearshore_lighting))
+      fail(NEARSHORE_INVALID_ARGUMENT,
+           "nearshore_lighting.struct_size must be sizeof(nearshore_lighting); call nearshore_lighting_init");
+    // Built aside and swapped in whole, so a refused field leaves the previous lighting.
+    nearshore::playback::Lighting next = renderer->lighting;
+    next.atmospheric_turbidity = lighting_field(lighting->atmospheric_turbidity, "atmospheric_turbidity", 1.7, 10.0);
+    next.water.chlorophyll_mg_m3 = lighting_field(lighting->chlorophyll_mg_m3, "chlorophyll_mg_m3", 0.0, 100.0);
+    next.water.cdom_absorption_440_per_m =
+        lighting->cdom_absorption_440_per_m < 0
+            ? -1.0
+            : lighting_field(lighting->cdom_absorption_440_per_m, "cdom_absorption_440_per_m", 0.0, 50.0);
+    next.water.turbidity_ntu = lighting_field(lighting->water_turbidity_ntu, "water_turbidity_ntu", 0.0, 1000.0);
+    next.wind_speed_m_s = lighting_field(lighting->wind_speed_m_s, "wind_speed_m_s", 0.0, 60.0);
+    next.wind_direction_rad =
+        travel_direction_rad(lighting_field(lighting->wind_direction_deg, "wind_direction_deg", -360.0, 720.0));
+    next.exposure_compensation = lighting_field(lighting->exposure_compensation, "exposure_compensation", 1e-3, 1e3);
+    bool sun_from_time = false;
+    const std::string utc(lighting->utc_iso8601, strnlen(lighting->utc_iso8601, sizeof(lighting->utc_iso8601)));
+    if (!utc.empty()) {
+      const nearshore::playback::UtcTime time = parse_utc(utc.c_str(), "nearshore_lighting.utc_iso8601");
+      nearshore::LonLat place{lighting->longitude_deg, lighting->latitude_deg};
+      if (std::isnan(place.latitude_deg) || std::isnan(place.longitude_deg)) {
+        if (!renderer->sea->projection)
+          fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_lighting.utc_iso8601 needs a place, and this sea's grid has no "
+                                           "map projection (local metres): give latitude_deg and longitude_deg");
+        const nearshore::GridGeometry& g = renderer->sea->engine().manifest().geometry;
+        place = renderer->sea->projection->reverse({g.origin_x_m + 0.5 * g.width_m(), g.origin_y_m + 0.5 * g.height_m()});
+      } else {
+        lighting_field(place.latitude_deg, "latitude_deg", -90.0, 90.0);
+        lighting_field(place.longitude_deg, "longitude_deg", -180.0, 360.0);
+      }
+      next.set_sun_for(place.latitude_deg, place.longitude_deg, time);
+      sun_from_time = true;
+    }
+    renderer->renderer->settings().local_reflections = lighting->local_reflections != 0;
+    renderer->lighting = next;
+    renderer->sun_from_time = sun_from_time;
+  });
+}
+
+nearshore_status nearshore_sun_position(double latitude_deg, double longitude_deg, const char* utc_iso8601,
+                                        double* azimuth_deg, double* elevation_deg) {
+  return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
+    require(azimuth_deg, "azimuth_deg");
+    require(elevation_deg, "elevation_deg");
+    lighting_field(latitude_deg, "latitude_deg", -90.0, 90.0);
+    lighting_field(longitude_deg, "longitude_deg", -180.0, 360.0);
+    const nearshore::playback::UtcTime time = parse_utc(require(utc_iso8601, "utc_iso8601"), "utc_iso8601");
+    const nearshore::playback::SunPosition sun = nearshore::playback::sun_position(latitude_deg, longitude_deg, time);
+    *azimuth_deg = sun.azimuth_deg;
+    *elevation_deg = sun.elevation_deg;
   });
 }
 

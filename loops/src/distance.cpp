@@ -61,7 +61,7 @@ GramMatrices compute_gram_matrices(const sequence::SequenceReader& reader, const
   gram.flux_x = Eigen::MatrixXd::Zero(frames, frames);
   gram.flux_y = Eigen::MatrixXd::Zero(frames, frames);
   gram.volume_m3.assign(static_cast<std::size_t>(frames), 0.0);
-  gram.cell_area_m2 = geometry.spacing_m * geometry.spacing_m;
+  gram.cell_area_m2 = geometry.cell_area_m2();
   tbb::task_arena arena(std::max(1, options.threads));
   ProgressBar progress("distance matrix", static_cast<double>(rows), "rows");
   Eigen::MatrixXd stripe[3];

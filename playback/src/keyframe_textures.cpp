@@ -141,6 +141,16 @@ void KeyframeTextures::start_deep(Slot& slot, std::shared_ptr<const runtime::Dee
 
 std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) {
   const std::size_t row_bytes = std::size_t(slot.width) * sizeof(float);
+  // A calm sea (Beaufort 0) has deep-water keyframes without cascades: nothing to send, and the
+  // keyframe counts as resident (else the staging loop would wait on it for ever).
+  if (row_bytes == 0 || slot.rows_done >= slot.rows_total) {
+    slot.rows_done = slot.rows_total;
+    slot.complete = true;
+    slot.harbour.reset();
+    slot.deep.reset();
+    slot.last_used = frame_;
+    return 0;
+  }
   long long rows = std::max<long long>(1, static_cast<long long>(std::min<std::size_t>(budget_bytes / row_bytes, 1u << 30)));
   rows = std::min(rows, slot.rows_total - slot.rows_done);
   std::size_t sent = 0;

@@ -21,11 +21,11 @@ Seabed Seabed::flat(double depth_m) {
 double Seabed::depth_m(double x_m, double y_m) const {
   if (!site_) return flat_depth_m_;
   const Raster<float>& d = site_->harbour.still_water_depth_m;
-  const double s = site_->harbour.geometry.spacing_m;
+  const double dx = site_->harbour.geometry.spacing_x_m(), dy = site_->harbour.geometry.spacing_y_m();
   const int columns = d.columns(), rows = d.rows();
   // surface_sampler.hpp formula 1: cell centres, clamp to edge.
-  const double u = std::clamp(x_m / s - 0.5, 0.0, static_cast<double>(columns - 1));
-  const double v = std::clamp(y_m / s - 0.5, 0.0, static_cast<double>(rows - 1));
+  const double u = std::clamp(x_m / dx - 0.5, 0.0, static_cast<double>(columns - 1));
+  const double v = std::clamp(y_m / dy - 0.5, 0.0, static_cast<double>(rows - 1));
   const int i0 = std::min(static_cast<int>(u), std::max(columns - 2, 0)), j0 = std::min(static_cast<int>(v), std::max(rows - 2, 0));
   const int i1 = std::min(i0 + 1, columns - 1), j1 = std::min(j0 + 1, rows - 1);
   const double a = columns > 1 ? u - i0 : 0.0, b = rows > 1 ? v - j0 : 0.0;

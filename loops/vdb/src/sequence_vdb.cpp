@@ -25,7 +25,10 @@ void export_sequence_vdb(const std::filesystem::path& sequence_folder, const std
                 "choose a frame range inside the sequence and a stride >= 1");
   const HarbourGrid harbour = reader.read_harbour_grid();
   openvdb::initialize();
-  const openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(g.spacing_m);
+  // Voxels dx x dy in the plane (rectangular cells, docs/formats.md); the frame axis keeps dx.
+  openvdb::math::Mat4d voxel_scale = openvdb::math::Mat4d::identity();
+  voxel_scale.preScale(openvdb::math::Vec3d(g.spacing_x_m(), g.spacing_y_m(), g.spacing_x_m()));
+  const openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(voxel_scale);
   auto make = [&](const char* name) {
     openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
     grid->setName(name);
@@ -57,7 +60,8 @@ void export_sequence_vdb(const std::filesystem::path& sequence_folder, const std
   openvdb::MetaMap metadata;
   metadata.insertMeta("nearshore_origin_x_m", openvdb::DoubleMetadata(g.origin_x_m));
   metadata.insertMeta("nearshore_origin_y_m", openvdb::DoubleMetadata(g.origin_y_m));
-  metadata.insertMeta("nearshore_spacing_m", openvdb::DoubleMetadata(g.spacing_m));
+  metadata.insertMeta("nearshore_spacing_m", openvdb::DoubleMetadata(g.spacing_x_m()));
+  metadata.insertMeta("nearshore_spacing_y_m", openvdb::DoubleMetadata(g.spacing_y_m()));
   metadata.insertMeta("nearshore_crs_wkt", openvdb::StringMetadata(g.crs_wkt));
   metadata.insertMeta("nearshore_frame_interval_s", openvdb::DoubleMetadata(reader.frame_interval_s()));
   metadata.insertMeta("nearshore_first_frame", openvdb::Int32Metadata(options.first_frame));

@@ -1,0 +1,127 @@
+// The C API's drawing functions through libnearshore.so, as a host with its own OpenGL context
+// calls them (issue 12, issue 17): a renderer created in the host's context (GLFW here) draws the
+// sea, reads the picture back, and takes its lighting from nearshore_renderer_set_lighting: a UTC
+// time and a place put the sun where it stands (sunset warmer than noon), and a refused field keeps
+// the previous lighting (the next picture is unchanged). Also nearshore_sun_position against a
+// published ephemeris value. Runs under Xvfb (tests/capi/CMakeLists.txt).
+#include "nearshore.h"
+#include "capi_test_support.hpp"
+
+#include <GLFW/glfw3.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+using namespace nearshore::capi_test;
+
+// The NREL Solar Position Algorithm's worked example (Reda & Andreas 2004, NREL/TP-560-34302,
+// table A5.1): Golden, Colorado, 2003-10-17 12:30:30 local time (UTC - 7): topocentric zenith
+// 50.11162 deg (refraction included), azimuth 194.34024 deg. NOAA/Meeus is good to about 0.01 deg
+// over 1800-2100 for the sun itself; 0.1 deg allows for the refraction models differing.
+TEST(CApiLighting, SunPositionMatchesThePublishedEphemeris) {
+  double azimuth_deg = 0, elevation_deg = 0;
+  ASSERT_EQ(nearshore_sun_position(39.742476, -105.1786, "2003-10-17T19:30:30Z", &azimuth_deg, &elevation_deg),
+            NEARSHORE_OK)
+      << nearshore_last_error();
+  EXPECT_NEAR(azimuth_deg, 194.34024, 0.1);
+  EXPECT_NEAR(elevation_deg, 90.0 - 50.11162, 0.1);
+  EXPECT_EQ(nearshore_sun_position(39.7, -105.2, "17 October 2003", &azimuth_deg, &elevation_deg),
+            NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("utc_iso8601"), std::string::npos) << nearshore_last_error();
+  EXPECT_EQ(nearshore_sun_position(95.0, 0.0, "2003-10-17T19:30:30Z", &azimuth_deg, &elevation_deg),
+            NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("latitude_deg"), std::string::npos) << nearshore_last_error();
+}
+
+struct Window {
+  GLFWwindow* window = nullptr;
+  Window(int width, int height) {
+    if (!glfwInit()) return;
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    window = glfwCreateWindow(width, height, "capi_render_test", nullptr, nullptr);
+    if (window) glfwMakeContextCurrent(window);
+  }
+  ~Window() {
+    if (window) glfwDestroyWindow(window);
+    glfwTerminate();
+  }
+};
+
+void* proc_address(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+
+struct Picture {
+  std::vector<std::uint8_t> rgba;
+  double mean(int channel) const {
+    double sum = 0;
+    for (std::size_t i = channel; i < rgba.size(); i += 4) sum += rgba[i];
+    return sum / (rgba.size() / 4);
+  }
+};
+
+TEST(CApiLighting, TheRendererDrawsUnderTheSunOfAPlaceAndTimeAndKeepsItsLightingWhenAFieldIsRefused) {
+  constexpr int kWidth = 160, kHeight = 90;
+  Window host(kWidth, kHeight);
+  ASSERT_NE(host.window, nullptr) << "no OpenGL 3.3 context (run under xvfb-run)";
+  nearshore_sea* sea = open_calm(write_sequence("render"));
+  ASSERT_NE(sea, nullptr);
+  ASSERT_EQ(nearshore_sea_advance(sea, 1.0), NEARSHORE_OK) << nearshore_last_error();
+  nearshore_renderer* renderer = nullptr;
+  ASSERT_EQ(nearshore_renderer_create(sea, NEARSHORE_GRID_QUADTREE, proc_address, &renderer), NEARSHORE_OK)
+      << nearshore_last_error();
+  nearshore_camera camera;
+  nearshore_camera_init(&camera);
+  // From 30 m up at the basin's west edge, looking west-south-west out to sea and the horizon:
+  // in the evening the sun stands there.
+  camera.eye_m[0] = 0.0, camera.eye_m[1] = 60.0, camera.eye_m[2] = 30.0;
+  camera.target_m[0] = -400.0, camera.target_m[1] = -100.0, camera.target_m[2] = 0.0;
+  const auto draw = [&]() {
+    Picture picture;
+    picture.rgba.resize(std::size_t(kWidth) * kHeight * 4);
+    EXPECT_EQ(nearshore_renderer_draw(renderer, &camera, kWidth, kHeight), NEARSHORE_OK) << nearshore_last_error();
+    EXPECT_EQ(nearshore_renderer_read_pixels(renderer, kWidth, kHeight, picture.rgba.data()), NEARSHORE_OK)
+        << nearshore_last_error();
+    return picture;
+  };
+  // The basin lies in UTM 51N near 38.9 N 121.7 E (UTC + 8): local noon is about 04:00 UTC; on
+  // 21 June the sun sets there at about 11:20 UTC in the west-north-west.
+  nearshore_lighting lighting;
+  nearshore_lighting_init(&lighting);
+  std::strcpy(lighting.utc_iso8601, "2026-06-21T04:00:00Z");
+  ASSERT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_OK) << nearshore_last_error();
+  const Picture noon = draw();
+  std::strcpy(lighting.utc_iso8601, "2026-06-21T11:05:00Z");
+  ASSERT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_OK) << nearshore_last_error();
+  const Picture sunset = draw();
+  const double noon_warmth = noon.mean(0) / std::max(1.0, noon.mean(2));
+  const double sunset_warmth = sunset.mean(0) / std::max(1.0, sunset.mean(2));
+  EXPECT_GT(sunset_warmth, 1.2 * noon_warmth) << "red/blue at noon " << noon_warmth << ", at sunset " << sunset_warmth;
+
+  // A refused field names itself and changes nothing: the next picture is the sunset again.
+  lighting.chlorophyll_mg_m3 = -3.0;
+  EXPECT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("chlorophyll_mg_m3"), std::string::npos) << nearshore_last_error();
+  lighting.chlorophyll_mg_m3 = 0.3;
+  std::strcpy(lighting.utc_iso8601, "tomorrow at dawn");
+  EXPECT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("utc_iso8601"), std::string::npos) << nearshore_last_error();
+  const Picture again = draw();
+  EXPECT_EQ(again.rgba, sunset.rgba);
+
+  // Without a UTC time the camera's sun holds again.
+  nearshore_lighting_init(&lighting);
+  ASSERT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_OK) << nearshore_last_error();
+  camera.sun_elevation_deg = 60.0;
+  const Picture camera_sun = draw();
+  EXPECT_NE(camera_sun.rgba, sunset.rgba);
+  nearshore_renderer_destroy(renderer);
+  nearshore_sea_close(sea);
+}
+
+}  // namespace
