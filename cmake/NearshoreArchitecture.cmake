@@ -2,7 +2,8 @@
 # libraries listed for it, all of them further down the data flow. Checked at configure time from
 # the targets' own link lists, so a new arrow fails the build before anyone compiles it.
 #   ocean, sequence, plot -> core; boussinesq -> ocean; bathymetry -> core, plot;
-#   bake -> boussinesq, ocean, sequence; loops -> sequence, ocean, plot; playback -> sequence, ocean;
+#   bake -> bathymetry (a case file's grid in local metres), boussinesq, ocean, sequence;
+#   loops -> sequence, ocean, plot; playback -> sequence, ocean;
 #   tools -> all. Never: playback to bathymetry, bake, boussinesq, loops or plot; no library to tools.
 #   runtime -> sequence, ocean (GL-free: streaming, deep water, CPU queries); playback -> runtime.
 #   ships -> runtime, ocean (CPU only: hulls, rigid bodies, bow-wave grids on the runtime's queries);
@@ -17,7 +18,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_sequence:nearshore_core"
   "nearshore_boussinesq:nearshore_ocean,nearshore_core"
   "nearshore_bathymetry:nearshore_plot,nearshore_core"
-  "nearshore_bake:nearshore_boussinesq,nearshore_ocean,nearshore_sequence,nearshore_core"
+  "nearshore_bake:nearshore_bathymetry,nearshore_boussinesq,nearshore_ocean,nearshore_sequence,nearshore_core"
   "nearshore_loops:nearshore_sequence,nearshore_ocean,nearshore_plot,nearshore_core"
   "nearshore_sequence_vdb:nearshore_sequence,nearshore_core"
   "nearshore_runtime:nearshore_sequence,nearshore_ocean,nearshore_core"

@@ -51,6 +51,8 @@ void add_bake_command(CLI::App& app) {
     if (!options->json)
       std::fprintf(stderr, "%s\n",
                    fmt::format("estimate: {}", bake::estimate_bake_resources(bake_case, options->resume).describe()).c_str());
+    if (const std::string band = bake::describe_carried_band(bake_case); !options->json && !band.empty())
+      std::fprintf(stderr, "%s\n", band.c_str());
     const bake::BakeSummary summary = bake::run_bake(bake_case, bake_options);
     if (options->json) {
       std::printf("%s\n", summary.to_json().dump(2).c_str());

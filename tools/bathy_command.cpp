@@ -90,6 +90,8 @@ FlagTable bathy_flags() {
           {"BathyRequest::bbox_projected_m", "--bbox-m"},
           {"BathyRequest::sign", "--sign"},
           {"ReadOptions::sign", "--sign"},
+          {"DepthSign::kPositiveDown", "--sign depth"},
+          {"DepthSign::kPositiveUp", "--sign elevation"},
           {"BathyRequest::text_crs", "--xyz-crs"},
           {"ReadOptions::text_crs", "--xyz-crs"},
           {"BathyRequest::projection", "--projection"},
@@ -178,6 +180,9 @@ void add_bathy_command(CLI::App& app) {
     if (options->json) ProgressBar::set_quiet(true);
     const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
     const nlohmann::json summary = bathymetry::write_bathymetry_outputs(options->output, result, options->band_m);
+    // Warnings go to stderr (also with --json, whose stdout stays one JSON document), named by flag.
+    for (const std::string& warning : result.warnings)
+      std::fprintf(stderr, "warning: %s\n", name_flags(warning, bathy_flags()).c_str());
     if (options->json) {
       std::printf("%s\n", summary.dump(2).c_str());
       return;

@@ -142,6 +142,10 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
 
   TableReader solver = root.table("solver");
   bake_case.solver = read_solver(solver);
+  DispersionBound dispersion_bound;
+  dispersion_bound.dispersion_coefficient = bake_case.solver.dispersion_coefficient;
+  dispersion_bound.effective_depth_limit_given = solver.has("effective_depth_limit_m");
+  dispersion_bound.effective_depth_limit_m = bake_case.solver.effective_depth_limit_m;
   solver.finish();
   for (TableReader& entry : root.tables("sponges")) {
     SpongeLayer sponge;
@@ -171,8 +175,18 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");
   TableReader maker = root.table("wave_maker");
   MakerRequest maker_request;
-  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, maker_request);
+  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, dispersion_bound, maker_request);
   maker.finish();
+  // The effective-depth limit the band needs (docs/solver.md, "Effective depth"), unless [solver]
+  // gives one: from the highest frequency the maker makes; 0 (inactive) where the grid is nowhere
+  // deeper than k d = 3 for it, so such a case runs exactly as before the limit existed. Set before
+  // the deep-water coupling below, which sees the solver's depths through it.
+  if (!dispersion_bound.effective_depth_limit_given) {
+    double highest_rad_s = maker_request.from_deep_water ? maker_request.band.max_frequency_rad_s : 0.0;
+    for (const WaveComponent& component : bake_case.wave_maker.sea_state.components)
+      highest_rad_s = std::max(highest_rad_s, component.angular_frequency_rad_s);
+    bake_case.solver.effective_depth_limit_m = automatic_effective_depth_limit_m(bake_case.harbour, highest_rad_s);
+  }
   bake_case.solitary_wave = maker_request.solitary_wave;
   if (maker_request.from_deep_water && !root.has("deep_water"))
     root.fail("deep_water", "is missing, but wave_maker.kind = \"deep_water\" takes its waves from it",
@@ -232,8 +246,46 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
     bake_case.wave_conditions["deep_water_variance_fraction"] =
         bake_case.deep_water_maker->variance_fraction();
   }
+  if (maker_request.split) {
+    // The split and its Hs budget, for the record and the bake's report (docs/commands/bake.md).
+    const SpectrumSplit& split = *maker_request.split;
+    bake_case.wave_conditions["spectrum_split"] = {
+        {"bake_min_frequency_hz", split.min_frequency_hz},
+        {"bake_max_frequency_hz", split.max_frequency_hz},
+        {"bake_components", split.bake_components},
+        {"deep_water_components", split.left_components},
+        {"bake_significant_wave_height_m", split.bake_significant_height_m},
+        {"deep_water_significant_wave_height_m", split.left_significant_height_m},
+        {"total_significant_wave_height_m", split.total_significant_height_m},
+        {"deep_water_layer_present", bake_case.deep_water.has_value()},
+        {"reason", split.reason}};
+  }
   bake_case.solver_record = solver_record(bake_case.solver);
   return bake_case;
+}
+
+std::string describe_carried_band(const BakeCase& bake_case) {
+  std::string text;
+  if (bake_case.solver.effective_depth_limit_m > 0.0 &&
+      bake_case.solver.effective_depth_limit_m < deepest_still_water_m(bake_case.harbour))
+    text += fmt::format("effective depth: the equations see at most {:.1f} m of the {:.1f} m deepest water (k d <= 3 for the "
+                        "shortest baked wave; docs/solver.md, \"Effective depth\")",
+                        bake_case.solver.effective_depth_limit_m, deepest_still_water_m(bake_case.harbour));
+  if (bake_case.wave_conditions.contains("spectrum_split")) {
+    const json& split = bake_case.wave_conditions["spectrum_split"];
+    if (!text.empty()) text += "\n";
+    text += fmt::format("spectrum split: Hs {:.2f} m = the bake's {:.2f} m ({} components, {:.3f}-{:.3f} Hz) + the deep-water "
+                        "layer's {:.2f} m ({} components above {:.3f} Hz: {}){}",
+                        split["total_significant_wave_height_m"].get<double>(), split["bake_significant_wave_height_m"].get<double>(),
+                        split["bake_components"].get<int>(), split["bake_min_frequency_hz"].get<double>(),
+                        split["bake_max_frequency_hz"].get<double>(), split["deep_water_significant_wave_height_m"].get<double>(),
+                        split["deep_water_components"].get<int>(), split["bake_max_frequency_hz"].get<double>(),
+                        split["reason"].get<std::string>(),
+                        split["deep_water_layer_present"].get<bool>()
+                            ? ""
+                            : "; the case has no [deep_water], so nothing draws them: add one (docs/commands/bake.md)");
+  }
+  return text;
 }
 
 json read_case_document(const fs::path& case_file) { return parse_case_document(case_file); }

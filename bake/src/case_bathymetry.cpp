@@ -2,12 +2,16 @@
 #include "nearshore/bake/bake_bathymetry.hpp"
 #include "nearshore/bake/bake_estimate.hpp"
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string_view>
+#include <utility>
 
 #include <fmt/core.h>
 
+#include "nearshore/bathymetry/local_grid.hpp"
 #include "nearshore/core/error.hpp"
 #include "case_reader.hpp"
 
@@ -48,7 +52,8 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
                                       const CaseReadOptions& options);
 
 HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const CaseReadOptions& options) {
-  const std::size_t kind = bathymetry.choice("kind", std::nullopt, {"harbour_grid", "profile", "berkhoff_shoal"});
+  const std::size_t kind =
+      bathymetry.choice("kind", std::nullopt, {"harbour_grid", "profile", "berkhoff_shoal", "local_grid"});
   // A tide (or surge) above the datum of the depths: bathymetry/ refuses water levels beyond the
   // same +-30 m (the largest tidal range on Earth, the Bay of Fundy, is 16 m).
   const double still_water_level_m =
@@ -58,9 +63,61 @@ HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const
   return grid;
 }
 
+// kind = "local_grid": a raster or "x y depth" text in local metres with no CRS, a laboratory flume
+// or basin (issue 19), read by bathymetry/local_grid.hpp with no projection invented for it. The
+// sign is required: a wrong guess turns a whole basin into land, or land into water.
+static HarbourGrid read_local_grid(TableReader& bathymetry, const fs::path& base) {
+  nearshore::bathymetry::LocalGridRequest request;
+  request.file = bathymetry.path("file", base);
+  request.sign = bathymetry.choice("depth_sign", std::nullopt, {"positive_down", "positive_up"}) == 0
+                     ? nearshore::bathymetry::DepthSign::kPositiveDown
+                     : nearshore::bathymetry::DepthSign::kPositiveUp;
+  request.minimum_depth_m = bathymetry.number("minimum_depth_m", 0.0, 0.0, kDeepestPlausibleDepth_m, false,
+                                              "the depth shallower water is deepened to, metres (0 keeps the file's)");
+  if (bathymetry.has("pixel_size_m")) {
+    const auto [dx, dy] = bathymetry.cell_size("pixel_size_m");
+    request.pixel_size_m = std::array<double, 2>{dx, dy};
+  }
+  // spacing_m: the cells laid over text soundings (required for them); for a raster, the cells it
+  // is resampled to (default: its own).
+  const bool soundings = nearshore::bathymetry::is_text_soundings(request.file);
+  std::optional<CellSize> spacing;
+  if (soundings || bathymetry.has("spacing_m")) {
+    const auto [dx, dy] = bathymetry.cell_size("spacing_m");
+    spacing = CellSize(dx, dy);
+  }
+  if (soundings) request.spacing_m = std::array<double, 2>{spacing->x_m, spacing->y_m};
+  // The library names its own fields; the case file's user knows the keys of this table.
+  const auto in_case_keys = [&](std::string text) {
+    const std::pair<const char*, std::string> names[] = {
+        {"LocalGridRequest::sign", bathymetry.full("depth_sign")},
+        {"DepthSign::kPositiveDown", "\"positive_down\""},
+        {"DepthSign::kPositiveUp", "\"positive_up\""},
+        {"LocalGridRequest::spacing_m", bathymetry.full("spacing_m")},
+        {"LocalGridRequest::pixel_size_m", bathymetry.full("pixel_size_m")},
+        {"LocalGridRequest::minimum_depth_m", bathymetry.full("minimum_depth_m")}};
+    for (const auto& [field, key] : names)
+      for (auto at = text.find(field); at != std::string::npos; at = text.find(field, at + key.size()))
+        text.replace(at, std::string_view(field).size(), key);
+    return text;
+  };
+  HarbourGrid grid;
+  try {
+    grid = nearshore::bathymetry::read_local_grid(request).grid;
+  } catch (const Error& error) {
+    bathymetry.fail(bathymetry.full("file"),
+                    "names a grid that cannot be used: " + in_case_keys(error.problem()) + " (" + error.subject() + ")",
+                    in_case_keys(error.fix()));
+  }
+  check_plausible_depths(bathymetry, "file", grid);
+  if (spacing && !soundings) grid = resample_harbour_grid(grid, *spacing);
+  return grid;
+}
+
 static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind, const fs::path& base,
                                       const CaseReadOptions& options) {
   HarbourGrid grid;
+  if (kind == 3) return read_local_grid(bathymetry, base);
   if (kind == 0) {
     const fs::path file = bathymetry.path("file", base);
     grid = bathymetry.reading_file("file", [&] { return read_harbour_grid(file); });

@@ -267,8 +267,19 @@ inline const std::vector<std::string> kMakerKindNames = {"none",     "regular", 
 
 // What the [wave_maker] table asks of the sea beyond the single maker: the irregular maker's spectrum
 // and spreading (which [deep_water] shares), or for kind "deep_water" the band of the field it makes.
+/// An irregular sea split between the bake and the FFT deep-water layer (docs/commands/bake.md,
+/// "The spectrum is split"): the bake keeps the components its grid carries, the deep-water layer
+/// draws the rest; Hs_total^2 = Hs_bake^2 + Hs_left^2 (variances add).
+struct SpectrumSplit {
+  double min_frequency_hz = 0.0, max_frequency_hz = 0.0;  // the bake's band (its components' range)
+  double bake_significant_height_m = 0.0, left_significant_height_m = 0.0, total_significant_height_m = 0.0;
+  int bake_components = 0, left_components = 0;
+  std::string reason;  // why the band ends there (carried_band_reason)
+};
+
 struct MakerRequest {
   bool from_deep_water = false;  // kind = "deep_water": the components come from [deep_water]
+  std::optional<SpectrumSplit> split;                     // irregular: components the grid does not carry
   std::shared_ptr<const ocean::FrequencySpectrum> spectrum;      // irregular
   std::shared_ptr<const ocean::DirectionalSpreading> spreading;  // irregular
   bool long_crested = false;                              // irregular with spreading_s = 0
@@ -276,15 +287,32 @@ struct MakerRequest {
   std::optional<boussinesq::SolitaryWave> solitary_wave;  // solitary: the initial condition
 };
 
+/// What bounds the band the bake carries besides the grid: the solver's B and its effective-depth
+/// limit, given in [solver] (`given`) or derived from the band (docs/solver.md, "Effective depth").
+struct DispersionBound {
+  double dispersion_coefficient = 1.0 / 15.0;
+  bool effective_depth_limit_given = false;
+  double effective_depth_limit_m = 0.0;  // when given; 0 = none
+};
+
 /// [wave_maker] (case_wave_maker.cpp).
 boussinesq::WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
-                                      MakerRequest& request);
+                                      const DispersionBound& bound, MakerRequest& request);
 /// The wave maker as recorded in the sequence's wave_conditions.
 json wave_record(const boussinesq::WaveMaker& maker, const json& as_written);
-/// The highest frequency (rad/s) the grid carries with `cells_per_wavelength` cells per wavelength
-/// and k d <= 3 at the deepest still water, and that rule in words.
-double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength);
-std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength);
+/// The highest frequency (rad/s) the grid carries in a band starting at `lowest_rad_s` (0 when not
+/// known): `cells_per_wavelength` cells per wavelength and k d <= 3 over the deepest water the
+/// solver sees, which an effective-depth limit may make shallower as long as the band's longest wave
+/// stays within boussinesq::carried_phase_speed_tolerance() of Airy over the true deepest
+/// (docs/solver.md, "Effective depth"); and that rule in words.
+double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength, double lowest_rad_s,
+                                       const DispersionBound& bound);
+std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength, double lowest_rad_s,
+                                const DispersionBound& bound);
+/// The effective-depth limit a band whose highest frequency is `highest_rad_s` needs: the depth
+/// where that wave has k d = 3 (boussinesq::effective_depth_limit_m), or 0 where the grid is not
+/// that deep (the limit is then inactive and the solver sees the grid unchanged).
+double automatic_effective_depth_limit_m(const HarbourGrid& grid, double highest_rad_s);
 
 // Whether the deep-water field gives the wave maker its components, and in which band.
 struct DeepWaterDrive {

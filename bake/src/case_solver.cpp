@@ -25,6 +25,9 @@ SolverParameters read_solver(TableReader& solver) {
   p.dispersion_coefficient = solver.number("dispersion_coefficient", p.dispersion_coefficient, 0.0, 1.0, false, "B (1/15 in Madsen & Sorensen 1992)");
   p.dispersion_cutoff_depth_m = solver.non_negative("dispersion_cutoff_depth_m", p.dispersion_cutoff_depth_m, "depth in metres below which dispersion is off");
   p.dispersion_cutoff_kh = solver.non_negative("dispersion_cutoff_kh", p.dispersion_cutoff_kh, "k h below which dispersion is off");
+  // 0 = none; left out, the bake derives it from the band it carries (bake_case.cpp).
+  p.effective_depth_limit_m = solver.non_negative("effective_depth_limit_m", 0.0,
+                                                  "depth in metres the equations see at most (0 = no limit; docs/solver.md, \"Effective depth\")");
   p.dry_depth_m = solver.positive("dry_depth_m", p.dry_depth_m, "wet/dry threshold in metres");
   p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
   // The depth of the dispersive terms and of a face (docs/solver.md "Dispersion depth", "Face depth").
@@ -63,6 +66,7 @@ json solver_record(const SolverParameters& p) {
           {"dispersion_coefficient", p.dispersion_coefficient},
           {"dispersion_cutoff_depth_m", p.dispersion_cutoff_depth_m},
           {"dispersion_cutoff_kh", p.dispersion_cutoff_kh},
+          {"effective_depth_limit_m", p.effective_depth_limit_m},
           {"dry_depth_m", p.dry_depth_m},
           {"chezy_coefficient", p.chezy_coefficient},
           {"dispersion_depth", p.dispersion_depth == DispersionDepth::kTotal ? "total" : "still_water"},

@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 
+#include "nearshore/boussinesq/model_dispersion.hpp"
 #include "nearshore/core/error.hpp"
 #include "case_reader.hpp"
 
@@ -68,47 +69,122 @@ void check_loop_period(TableReader& maker, const std::string& key, double loop_p
                            period_s * std::max(1.0, std::round(loop_period_s / period_s))));
 }
 
-// The grid can carry a component only if it is long enough: at the deepest still water, k d <= 3
-// (the range where the B = 1/15 equations hold linear dispersion within 2 %, Madsen & Sorensen 1992)
-// and at least `cells_per_wavelength` cells per wavelength. Shorter waves are not waves the bake can
-// make: they alias, or blow up at the source line. Returns that highest frequency (rad/s).
+// The grid can carry a component only if it is long enough: k d <= 3 over the deepest water the
+// solver sees (the range Madsen & Sorensen 1992 give B = 1/15; its phase speed is then within
+// 4.1 % of Airy at a given frequency, model_dispersion.hpp) and at least `cells_per_wavelength`
+// cells per wavelength. Over a channel deeper than that, an effective-depth limit (docs/solver.md,
+// "Effective depth") lets shorter waves through. Shorter waves are not waves the bake can make:
+// they alias, or travel at the wrong speed; an irregular sea leaves them to the deep-water layer.
 }  // namespace
 
-double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength) {
-  const double deepest_m = deepest_still_water_m(grid);
-  // Rectangular cells: the larger size counts, since a component may travel along either axis.
-  const double coarser_spacing_m = std::max(grid.geometry.spacing_x_m(), grid.geometry.spacing_y_m());
-  const double k_max = std::min(3.0 / std::max(deepest_m, 1e-3), 2 * std::numbers::pi / (cells_per_wavelength * coarser_spacing_m));
-  return frequency_from_wavenumber(k_max, deepest_m);
+namespace {
+
+// The deepest water the solver sees for a band reaching `highest_rad_s`.
+double seen_depth_m(const HarbourGrid& grid, double highest_rad_s, const DispersionBound& bound) {
+  const double deepest_m = std::max(deepest_still_water_m(grid), 1e-3);
+  const double limit_m = bound.effective_depth_limit_given ? bound.effective_depth_limit_m
+                                                           : automatic_effective_depth_limit_m(grid, highest_rad_s);
+  return limit_m > 0.0 ? std::min(deepest_m, limit_m) : deepest_m;
 }
 
-std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength) {
+}  // namespace
+
+double automatic_effective_depth_limit_m(const HarbourGrid& grid, double highest_rad_s) {
+  if (!(highest_rad_s > 0.0)) return 0.0;
+  // Active only where the grid is deeper than the limit by more than round-off: a band that ends
+  // exactly at k d = 3 over the deepest cell (the default band of a "deep_water" maker) needs none.
+  const double limit_m = effective_depth_limit_m(highest_rad_s);
+  return limit_m < deepest_still_water_m(grid) * (1 - 1e-6) ? limit_m : 0.0;
+}
+
+double highest_carried_frequency_rad_s(const HarbourGrid& grid, int cells_per_wavelength, double lowest_rad_s,
+                                       const DispersionBound& bound) {
+  const double deepest_m = std::max(deepest_still_water_m(grid), 1e-3);
+  // Rectangular cells: the larger size counts, since a component may travel along either axis.
+  const double coarser_spacing_m = std::max(grid.geometry.spacing_x_m(), grid.geometry.spacing_y_m());
+  const double k_grid = 2 * std::numbers::pi / (cells_per_wavelength * coarser_spacing_m);
+  if (bound.effective_depth_limit_given) {
+    const double seen_m = seen_depth_m(grid, 0.0, bound);
+    return frequency_from_wavenumber(std::min(kLargestCarriedKd / seen_m, k_grid), seen_m);
+  }
+  // Derived limit: the dispersion bound first, then the grid's, over the depth the solver would see
+  // for that band (a shallower limit shortens the wavelength of a frequency, so the grid's bound
+  // falls; a few rounds settle it, each lowering the frequency and deepening the limit).
+  const double dispersion_rad_s = highest_frequency_over_effective_depth_rad_s(lowest_rad_s, deepest_m, bound.dispersion_coefficient);
+  double w = std::min(dispersion_rad_s, frequency_from_wavenumber(k_grid, deepest_m));
+  for (int round = 0; round < 20; ++round) {
+    const double next = std::min(dispersion_rad_s, frequency_from_wavenumber(k_grid, seen_depth_m(grid, w, bound)));
+    if (std::abs(next - w) <= 1e-12 * w) break;
+    w = next;
+  }
+  return w;
+}
+
+std::string carried_band_reason(const HarbourGrid& grid, int cells_per_wavelength, double lowest_rad_s,
+                                const DispersionBound& bound) {
   const GridGeometry& g = grid.geometry;
+  const double deepest_m = deepest_still_water_m(grid);
+  const double seen_m = seen_depth_m(grid, highest_carried_frequency_rad_s(grid, cells_per_wavelength, lowest_rad_s, bound), bound);
+  const std::string depth =
+      seen_m < deepest_m
+          ? (bound.effective_depth_limit_given
+                 ? fmt::format("k d <= 3 over solver.effective_depth_limit_m = {:.1f} m (the deepest water is {:.2f} m)", seen_m,
+                               deepest_m)
+                 : fmt::format("k d <= 3 over an effective-depth limit no shallower than {:.1f} m, where the band's longest wave "
+                               "keeps within {:.1f} % of Airy over the deepest {:.2f} m",
+                               seen_m, 100 * carried_phase_speed_tolerance(bound.dispersion_coefficient), deepest_m))
+          : fmt::format("k d <= 3 at the deepest {:.2f} m", deepest_m);
   if (!g.square_cells())
-    return fmt::format("k d <= 3 at the deepest {:.2f} m and {} cells per wavelength on the larger side of {} m x {} m cells",
-                       deepest_still_water_m(grid), cells_per_wavelength, g.spacing_x_m(), g.spacing_y_m());
-  return fmt::format("k d <= 3 at the deepest {:.2f} m and {} cells of {} m per wavelength",
-                     deepest_still_water_m(grid), cells_per_wavelength, g.spacing_m);
+    return fmt::format("{} and {} cells per wavelength on the larger side of {} m x {} m cells", depth, cells_per_wavelength,
+                       g.spacing_x_m(), g.spacing_y_m());
+  return fmt::format("{} and {} cells of {} m per wavelength", depth, cells_per_wavelength, g.spacing_m);
 }
 
 namespace {
 
-// An irregular maker whose components the grid cannot carry is refused with the band to give.
-void check_resolvable(TableReader& maker, const SeaState& sea, const HarbourGrid& grid,
-                      int cells_per_wavelength) {
-  const double w_max = highest_carried_frequency_rad_s(grid, cells_per_wavelength);
-  double highest = 0, lowest = std::numeric_limits<double>::infinity();
+double significant_height_m(const std::vector<WaveComponent>& components) {
+  double variance_m2 = 0.0;
+  for (const WaveComponent& c : components) variance_m2 += 0.5 * c.amplitude_m * c.amplitude_m;
+  return 4.0 * std::sqrt(variance_m2);
+}
+
+// An irregular sea is split, not refused (issue 14): the bake keeps the components the grid
+// carries, the FFT deep-water layer draws the rest. Refused only when the grid carries none.
+SpectrumSplit split_carried(TableReader& maker, SeaState& sea, const HarbourGrid& grid, int cells_per_wavelength,
+                            const DispersionBound& bound) {
+  double lowest = std::numeric_limits<double>::infinity(), highest = 0.0;
   for (const WaveComponent& component : sea.components)
-    highest = std::max(highest, component.angular_frequency_rad_s), lowest = std::min(lowest, component.angular_frequency_rad_s);
-  if (highest > w_max * (1 + 1e-9))
+    lowest = std::min(lowest, component.angular_frequency_rad_s), highest = std::max(highest, component.angular_frequency_rad_s);
+  const double w_max = highest_carried_frequency_rad_s(grid, cells_per_wavelength, lowest, bound);
+  SpectrumSplit split;
+  split.reason = carried_band_reason(grid, cells_per_wavelength, lowest, bound);
+  split.total_significant_height_m = significant_height_m(sea.components);
+  constexpr double kHz = 0.5 / std::numbers::pi;
+  if (lowest > w_max * (1 + 1e-9)) {
+    // Nothing to bake: the whole band lies above what the grid carries. Name the cell size that
+    // would carry the spectrum's lowest frequency.
+    const double seen_m = std::min(static_cast<double>(deepest_still_water_m(grid)),
+                                   std::max(automatic_effective_depth_limit_m(grid, lowest), 1e-3));
+    const double needed_spacing_m = 2 * std::numbers::pi / wavenumber_from_frequency(lowest, seen_m) / cells_per_wavelength;
     maker.fail("wave_maker",
-               fmt::format("(irregular) has components up to {:.3f} Hz, but the grid carries waves only up "
-                           "to {:.3f} Hz ({})",
-                           highest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi),
-                           carried_band_reason(grid, cells_per_wavelength)),
-               fmt::format("give the band explicitly, e.g. min_frequency_hz = {:.3f} and max_frequency_hz = "
-                           "{:.3f}, or use a finer grid",
-                           lowest / (2 * std::numbers::pi), w_max / (2 * std::numbers::pi)));
+               fmt::format("(irregular) has components from {:.3f} Hz to {:.3f} Hz, all above the {:.3f} Hz the grid carries ({})",
+                           lowest * kHz, highest * kHz, w_max * kHz, split.reason),
+               fmt::format("use cells of at most {:.2f} m, or fewer cells per wavelength (wave_maker.min_cells_per_wavelength)",
+                           needed_spacing_m));
+  }
+  std::vector<WaveComponent> carried, left;
+  for (const WaveComponent& component : sea.components)
+    (component.angular_frequency_rad_s <= w_max * (1 + 1e-9) ? carried : left).push_back(component);
+  sea.components = std::move(carried);
+  double band_top = 0.0;
+  for (const WaveComponent& component : sea.components) band_top = std::max(band_top, component.angular_frequency_rad_s);
+  split.min_frequency_hz = lowest * kHz;
+  split.max_frequency_hz = band_top * kHz;
+  split.bake_components = static_cast<int>(sea.components.size());
+  split.left_components = static_cast<int>(left.size());
+  split.bake_significant_height_m = significant_height_m(sea.components);
+  split.left_significant_height_m = significant_height_m(left);
+  return split;
 }
 
 WaveComponent component_from(TableReader& reader, const std::string& amplitude_key, double amplitude_factor,
@@ -126,7 +202,7 @@ WaveComponent component_from(TableReader& reader, const std::string& amplitude_k
 }  // namespace
 
 WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
-                          MakerRequest& request) {
+                          const DispersionBound& bound, MakerRequest& request) {
   WaveMaker wave_maker;
   const auto kind = static_cast<MakerKind>(maker.choice("kind", std::nullopt, kMakerKindNames));
   if (kind == MakerKind::kNone) return wave_maker;
@@ -180,6 +256,13 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     if (maker.has("min_frequency_hz") || maker.has("max_frequency_hz")) {
       specification.min_frequency_rad_s = 2 * std::numbers::pi * read_wave_frequency_hz(maker, "min_frequency_hz", std::nullopt, false);
       specification.max_frequency_rad_s = 2 * std::numbers::pi * read_wave_frequency_hz(maker, "max_frequency_hz", std::nullopt, false);
+      // Checked here, so that the message names the case file's keys (the builder names its own).
+      if (!(specification.max_frequency_rad_s > specification.min_frequency_rad_s))
+        maker.fail(maker.full("min_frequency_hz"),
+                   fmt::format("= {:.4g} Hz is not below wave_maker.max_frequency_hz = {:.4g} Hz",
+                               specification.min_frequency_rad_s / (2 * std::numbers::pi),
+                               specification.max_frequency_rad_s / (2 * std::numbers::pi)),
+                   "give min_frequency_hz < max_frequency_hz, or leave both out (the band holding 99.5 % of the variance)");
     }
     request.spectrum = specification.spectrum;
     request.spreading = specification.spreading;
@@ -190,7 +273,8 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     } catch (const Error& error) {
       maker.fail("wave_maker", "(irregular) cannot be built: " + error.problem(), error.fix());
     }
-    check_resolvable(maker, sea, grid, cells_per_wavelength);
+    SpectrumSplit split = split_carried(maker, sea, grid, cells_per_wavelength, bound);
+    if (split.left_components > 0) request.split = std::move(split);
   } else if (kind == MakerKind::kDeepWater) {
     // The components are the [deep_water] field's (read_deep_water, couple_wave_maker): here only
     // the loop period both share and the band of the field the grid carries.
@@ -199,21 +283,25 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     sea.loop_period_s = read_loop_period_s(maker);
     const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000,
                                                    "cells per wavelength the grid must give every component");
-    const double carried_rad_s = highest_carried_frequency_rad_s(grid, cells_per_wavelength);
     request.band.min_frequency_rad_s = 2 * std::numbers::pi * read_wave_frequency_hz(maker, "min_frequency_hz", 0.0, true);
     // A periodic field puts every wave on a harmonic of 2 pi / T; those below half the fundamental
     // land on frequency 0, a frozen surface with an infinite wavelength that no maker can make (it
     // hung the coupling's blending-zone search: found by the case-file fuzzer with loop_period_s = 3).
     if (sea.loop_period_s > 0)
       request.band.min_frequency_rad_s = std::max(request.band.min_frequency_rad_s, std::numbers::pi / sea.loop_period_s);
+    // The band's lowest frequency bounds how shallow an effective-depth limit may be (0: no limit).
+    // The default top stays what the grid carries without a limit (a case that leaves the band out
+    // bakes as before the limit existed); a higher max_frequency_hz may reach what a limit carries.
+    const double carried_rad_s = highest_carried_frequency_rad_s(grid, cells_per_wavelength, request.band.min_frequency_rad_s, bound);
+    const double default_rad_s = std::min(carried_rad_s, highest_carried_frequency_rad_s(grid, cells_per_wavelength, 0.0, bound));
     request.band.max_frequency_rad_s =
-        2 * std::numbers::pi * read_wave_frequency_hz(maker, "max_frequency_hz", std::min(carried_rad_s / (2 * std::numbers::pi), kHighestWaveFrequency_hz), false);
+        2 * std::numbers::pi * read_wave_frequency_hz(maker, "max_frequency_hz", std::min(default_rad_s / (2 * std::numbers::pi), kHighestWaveFrequency_hz), false);
     if (request.band.max_frequency_rad_s > carried_rad_s * (1 + 1e-9))
       maker.fail(maker.full("max_frequency_hz"),
                  fmt::format("= {:.4f} Hz is above what the grid carries ({:.4f} Hz: {})",
                              request.band.max_frequency_rad_s / (2 * std::numbers::pi),
                              carried_rad_s / (2 * std::numbers::pi),
-                             carried_band_reason(grid, cells_per_wavelength)),
+                             carried_band_reason(grid, cells_per_wavelength, request.band.min_frequency_rad_s, bound)),
                  "leave max_frequency_hz out (the grid's limit is the default), or use a finer grid");
     if (!(request.band.max_frequency_rad_s > request.band.min_frequency_rad_s))
       maker.fail(maker.full("min_frequency_hz"), "is not below the highest frequency the maker makes",

@@ -134,7 +134,14 @@ sequence::DeepWaterMakerRecord CoupledWaveMaker::record() const {
           highest / (2 * kPi)};
 }
 
-double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
+namespace {
+// The depth the solver sees in a cell (boussinesq_solver.cpp: min(d, limit) where a limit is set).
+double seen_depth_m(double depth_m, double effective_depth_limit_m) {
+  return effective_depth_limit_m > 0.0 ? std::min(depth_m, effective_depth_limit_m) : depth_m;
+}
+}  // namespace
+
+double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid, double effective_depth_limit_m) {
   // As boussinesq_source.cpp: the grid line of cell index round((line - origin) / dx - 0.5), the
   // mean of its cells deeper than 0 m summed along the line, in double from the float raster.
   const GridGeometry& g = grid.geometry;
@@ -146,8 +153,8 @@ double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid) {
   double sum_m = 0.0;
   int wet = 0;
   for (int t = 0; t < tangential_count; ++t) {
-    const double d =
-        along_x ? grid.still_water_depth_m(line_cell, t) : grid.still_water_depth_m(t, line_cell);
+    const double d = seen_depth_m(along_x ? grid.still_water_depth_m(line_cell, t) : grid.still_water_depth_m(t, line_cell),
+                                  effective_depth_limit_m);
     if (d > 0.0) sum_m += d, ++wet;
   }
   return wet > 0 ? sum_m / wet : 0.0;
@@ -161,13 +168,17 @@ CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker&
   const GridGeometry& g = grid.geometry;
   const bool along_x = normal_is_x(maker.facing);
   const double sign = travel_sign(maker.facing);
-  const double d = source_line_depth_m(maker, grid);
+  // The field is built at the true depth of the source line (Airy, the sea as it is); the maker
+  // converts its waves with the depth the solver sees there, which an effective-depth limit may make
+  // shallower (docs/solver.md, "Effective depth": within its phase-speed tolerance of the field's).
+  const double true_depth_m = source_line_depth_m(maker, grid);
+  const double d = source_line_depth_m(maker, grid, solver.effective_depth_limit_m);
   coupled.source_depth_m = d;
   const double field_depth_m = field.specification().still_water_depth_m;
-  if (!(d > 0.0) || std::abs(field_depth_m - d) > 1e-6 * std::max(1.0, d))
+  if (!(d > 0.0) || std::abs(field_depth_m - true_depth_m) > 1e-6 * std::max(1.0, true_depth_m))
     throw Error(
         "deep-water field",
-        fmt::format("is built at {} m depth, but the source line generates in {} m", field_depth_m, d),
+        fmt::format("is built at {} m depth, but the source line generates in {} m", field_depth_m, true_depth_m),
         "build the field at the source line's depth (leave deep_water.depth_m out), so both have one "
         "dispersion relation");
   // 1. Positions along the normal (n) and tangential (t) axes: the line's projected S_line and local
@@ -228,7 +239,8 @@ CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker&
     double sum_m = 0.0;
     int wet = 0;
     for (int t = 0; t < tangential_count; ++t) {
-      const double depth = along_x ? grid.still_water_depth_m(cell, t) : grid.still_water_depth_m(t, cell);
+      const double depth = seen_depth_m(along_x ? grid.still_water_depth_m(cell, t) : grid.still_water_depth_m(t, cell),
+                                        solver.effective_depth_limit_m);
       if (depth > 0.0) sum_m += depth, ++wet;
     }
     coupled.inland.depth_m.push_back(wet > 0 ? sum_m / wet : 0.0);

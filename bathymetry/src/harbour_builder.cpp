@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <string_view>
 #include <unordered_map>
 
 #include <fmt/core.h>
@@ -69,15 +70,17 @@ GridGeometry lay_grid(const std::array<double, 4>& box_m, double spacing_m, cons
   const double cells = columns * rows;
   const double needed = estimated_peak_bytes(cells, request.inputs.size());
   const double available = request.memory_limit_bytes > 0 ? request.memory_limit_bytes : available_memory_bytes();
+  const bool area_given = request.bbox_lon_lat || request.bbox_projected_m;  // name a box only when given
   if (needed > available || columns > 1e9 || rows > 1e9)
     throw Error(fmt::format("grid of {:.0f} x {:.0f} cells at {} m", columns, rows, spacing_m),
                 fmt::format("would need about {:.3g} GB of memory but {:.3g} GB are available", needed / 1e9, available / 1e9),
-                fmt::format("use a BathyRequest::spacing_m of about {:.3g} m or more, or a smaller "
-                            "BathyRequest::bbox_lon_lat",
-                            spacing_m * std::sqrt(needed / available) * 1.05));
+                fmt::format("use a BathyRequest::spacing_m of about {:.3g} m or more, or {} BathyRequest::bbox_lon_lat",
+                            spacing_m * std::sqrt(needed / available) * 1.05,
+                            area_given ? "a smaller" : "grid part of the data with"));
   if (columns < 2 || rows < 2)
     throw Error(fmt::format("grid at {} m", spacing_m), fmt::format("has only {:.0f} x {:.0f} cells", columns, rows),
-                "use a finer BathyRequest::spacing_m or a larger BathyRequest::bbox_lon_lat");
+                area_given ? "use a finer BathyRequest::spacing_m or a larger BathyRequest::bbox_lon_lat"
+                           : "use a finer BathyRequest::spacing_m: the data cover less than two cells");
   g.columns = static_cast<int>(columns);
   g.rows = static_cast<int>(rows);
   g.crs_wkt = crs_wkt(projection);
@@ -314,6 +317,41 @@ double percentile(std::vector<double> values, double q) {
   return values[static_cast<std::size_t>(std::min<double>(values.size() - 1, q * values.size()))];
 }
 
+// The fix when every cell came out land. A raster read as elevations by default (no sign in its
+// metadata) whose values are in fact depths is the usual cause: every depth negated is land. Only a
+// box the caller gave is named (issue 19: "check --bbox" was said when no box was given).
+std::string every_cell_land_fix(const std::vector<SourceData>& sources, const BathyRequest& request) {
+  std::vector<std::string> fixes;
+  for (const SourceData& source : sources)
+    if ((source.raster || !source.soundings.empty()) && source.sign_used.starts_with("positive_up"))
+      fixes.push_back(fmt::format("{} was read as elevations, positive up{}: if its values are depths (positive "
+                                  "down), set BathyRequest::sign to DepthSign::kPositiveDown",
+                                  source.path.filename().string(), source.sign_used.substr(std::string_view("positive_up").size())));
+  if (request.bbox_lon_lat || request.bbox_projected_m)  // only a box the caller gave
+    fixes.emplace_back("move BathyRequest::bbox_lon_lat (or BathyRequest::bbox_projected_m) over water");
+  if (request.water_level_m < 0.0)
+    fixes.push_back(fmt::format("BathyRequest::water_level_m = {} m lowers still water below the datum; raise it",
+                                request.water_level_m));
+  if (fixes.empty())
+    fixes.emplace_back("check that the inputs give depths below the datum (positive down) somewhere in the area: "
+                       "every cell is at or above still water");
+  std::string text;
+  for (const auto& fix : fixes) text += (text.empty() ? "" : "; or ") + fix;
+  return text;
+}
+
+// The warning when the minimum depth raised water cells (issue 19: a whole 0.45 m laboratory basin
+// was silently flattened to the 0.5 m default). Says how many, by how much, and how to keep them.
+std::string minimum_depth_warning(std::size_t raised_cells, std::size_t water_cells, double shallowest_m,
+                                  double largest_raise_m, double minimum_depth_m) {
+  const double share = water_cells > 0 ? 100.0 * static_cast<double>(raised_cells) / static_cast<double>(water_cells) : 0.0;
+  return fmt::format("{} of {} water cells ({:.1f} %) were shallower than BathyRequest::minimum_depth_m = {} m and "
+                     "were raised to it, by up to {:.3g} m (the shallowest was {:.3g} m){}; to keep the depths as "
+                     "given, lower BathyRequest::minimum_depth_m (0 keeps every wet cell as it is)",
+                     raised_cells, water_cells, share, minimum_depth_m, largest_raise_m, shallowest_m,
+                     share > 50.0 ? ": most of the water changed depth" : "");
+}
+
 }  // namespace
 
 std::map<std::string, StructureStyle> default_structure_styles() {
@@ -403,6 +441,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
                   "give X0,Y0,X1,Y1 in metres overlapping the data");
   }
   const GridGeometry g = lay_grid(box_m, request.spacing_m, projection, request);
+  const bool area_given = request.bbox_lon_lat || request.bbox_projected_m;  // messages name a box only when given
   const int columns = g.columns, rows = g.rows;
   BathyResult result;
   nlohmann::json inputs_json = nlohmann::json::array();
@@ -451,7 +490,8 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
       info["coastline_vertices"] = scattered.coastline_vertices;
       if (scattered.sounding_count == 0 && scattered.contour_vertices == 0)
         throw Error(source.path.string(), "has no soundings or contours inside the grid's area",
-                    "widen BathyRequest::bbox_lon_lat or drop this input");
+                    area_given ? "widen BathyRequest::bbox_lon_lat (or BathyRequest::bbox_projected_m), or drop this input"
+                               : "drop this input, or give soundings inside the area the other inputs cover");
       NaturalNeighbourSurface surface(scattered.points);
       info["triangulation_vertices"] = surface.vertex_count();
       {
@@ -523,8 +563,10 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   for (std::size_t i = 0; i < depth.size(); ++i) covered_cells += covered.values()[i] = std::isfinite(depth.values()[i]);
   if (covered_cells == 0)
     throw Error("grid " + projection.describe(), "no input covers any cell of the grid",
-                "check BathyRequest::bbox_lon_lat or BathyRequest::bbox_projected_m against the inputs' extent "
-                "(gdalinfo / ogrinfo)");
+                area_given ? "check BathyRequest::bbox_lon_lat or BathyRequest::bbox_projected_m against the inputs' "
+                             "extent (gdalinfo / ogrinfo)"
+                           : "check that the inputs hold depths where they claim to (gdalinfo / ogrinfo): their "
+                             "extent was gridded, yet none gave a depth there");
   ChangeReport uncovered;
   if (covered_cells < depth.size()) {
     std::optional<NearestSeed> nearest;
@@ -561,15 +603,20 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
     }
   }
   if (land_cells == depth.size())
-    throw Error("grid " + projection.describe(), "every cell is land", "move BathyRequest::bbox_lon_lat over water");
+    throw Error("grid " + projection.describe(), "every cell is land", every_cell_land_fix(sources, request));
   // 7. Conditioning: minimum depth, then optional slope limiting (water cells only).
   ChangeReport clamped, smoothed;
+  double shallowest_water_m = INFINITY;
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < columns; ++c)
       if (!grid.land(c, r) && depth(c, r) < request.minimum_depth_m) {
+        shallowest_water_m = std::min<double>(shallowest_water_m, depth(c, r));
         clamped.record(c, r, request.minimum_depth_m - depth(c, r));
         depth(c, r) = static_cast<float>(request.minimum_depth_m);
       }
+  if (clamped.cells > 0)
+    result.warnings.push_back(minimum_depth_warning(clamped.cells, depth.size() - land_cells, shallowest_water_m,
+                                                    clamped.max_change_m, request.minimum_depth_m));
   int slope_iterations = 0;
   if (request.maximum_slope > 0) {
     const Raster<float> before = depth;
@@ -673,6 +720,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
                              {"slope_smoothing", smoothed.to_json(g, projection)},
                              {"slope_smoothing_sweeps", slope_iterations},
                              {"land_elevation_m_where_unknown", request.land_elevation_m}};
+  summary["warnings"] = result.warnings;
   if (request.leave_one_out && !result.leave_one_out_error_m.empty()) {
     std::vector<double> absolute;
     for (double e : result.leave_one_out_error_m) absolute.push_back(std::abs(e));

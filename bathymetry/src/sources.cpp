@@ -15,6 +15,7 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
+#include "depth_readers.hpp"
 
 namespace nearshore::bathymetry {
 namespace fs = std::filesystem;
@@ -313,72 +314,64 @@ bool raster_is_depth(GDALDataset& dataset, GDALRasterBand& band, DepthSign sign,
   return false;
 }
 
+// A raster in longitude/latitude that runs east of 180 degrees (NOAA's grids and many NetCDF files
+// count longitude 0..360): its geotransform shifted by -360 degrees when it lies wholly east of the
+// antimeridian, or its columns rotated to -180..180 when it wraps the whole globe. A regional raster
+// that straddles the antimeridian cannot be laid on one UTM grid and is refused.
+void wrap_longitudes_to_180(GeoRaster& raster, const fs::path& path) {
+  auto& gt = raster.geotransform;
+  constexpr double kSlack_deg = 1e-9;
+  const double west = gt[0], east = gt[0] + raster.columns * gt[1];
+  if (east <= 180.0 + kSlack_deg) return;
+  if (west >= 180.0 - kSlack_deg) {
+    gt[0] -= 360.0;
+    return;
+  }
+  const double columns_at_180 = (180.0 - west) / gt[1];
+  const int split = static_cast<int>(std::lround(columns_at_180));
+  const bool whole_globe = std::abs(east - west - 360.0) <= 0.5 * gt[1];
+  if (!whole_globe || std::abs(columns_at_180 - split) > 1e-6)
+    throw Error(path.string(),
+                fmt::format("the raster runs from longitude {:.4f} to {:.4f}, across the antimeridian (180 degrees)",
+                            west, east),
+                "crop it to one side of 180 degrees (gdal_translate with a -projwin box), or wrap it to "
+                "-180..180 with gdalwarp to EPSG:4326 under GDAL's configuration option CENTER_LONG = 0");
+  for (int row = 0; row < raster.rows; ++row) {
+    const auto first = raster.depth_m.begin() + static_cast<std::ptrdiff_t>(row) * raster.columns;
+    std::rotate(first, first + split, first + raster.columns);
+  }
+  gt[0] = west + split * gt[1] - 360.0;
+}
+
+// The fix for a file whose coordinates are metres in a local frame with no CRS (a laboratory flume
+// or basin, a survey in site coordinates): the bake reads such a grid directly.
+constexpr const char* kLocalGridFix =
+    "for a laboratory or survey grid in local metres, name it in a case file's [bathymetry] with "
+    "kind = \"local_grid\" (docs/commands/bake.md), which needs no CRS";
+
 void read_raster(GDALDataset& dataset, const ReadOptions& options, SourceData& out) {
   GeoRaster raster;
   raster.columns = dataset.GetRasterXSize();
   raster.rows = dataset.GetRasterYSize();
   if (dataset.GetGeoTransform(raster.geotransform.data()) != CE_None)
     throw Error(out.path.string(), "the raster has no georeference (geotransform)",
-                "georeference it first, e.g. gdal_translate -a_srs EPSG:32610 -a_ullr ...");
+                std::string("georeference it first, e.g. gdal_translate -a_srs EPSG:32610 -a_ullr ...; ") + kLocalGridFix);
   if (raster.geotransform[2] != 0.0 || raster.geotransform[4] != 0.0 || raster.geotransform[5] >= 0.0)
     throw Error(out.path.string(), "the raster is rotated or south-up", "warp it north-up with gdalwarp");
   const OGRSpatialReference* crs = dataset.GetSpatialRef();
-  if (!crs) throw Error(out.path.string(), "the raster has no coordinate reference system", "assign one with gdal_edit.py -a_srs");
+  if (!crs)
+    throw Error(out.path.string(), "the raster has no coordinate reference system",
+                std::string("assign one with gdal_edit.py -a_srs; ") + kLocalGridFix);
+  if (crs->IsLocal())
+    throw Error(out.path.string(), "the raster is in a local engineering frame, not on the Earth",
+                std::string(kLocalGridFix) + "; or assign a real CRS with gdal_edit.py -a_srs");
   char* wkt = nullptr;
   crs->exportToWkt(&wkt);
   raster.crs_wkt = wkt ? wkt : "";
   CPLFree(wkt);
-  GDALRasterBand* band = dataset.GetRasterBand(1);
-  std::string why;
-  const bool is_depth = raster_is_depth(dataset, *band, options.sign, why);
-  out.sign_used = std::string(is_depth ? "positive_down" : "positive_up") + " (" + why + ")";
-  raster.depth_m.resize(static_cast<std::size_t>(raster.columns) * raster.rows);
-  if (band->RasterIO(GF_Read, 0, 0, raster.columns, raster.rows, raster.depth_m.data(), raster.columns, raster.rows,
-                     GDT_Float32, 0, 0) != CE_None)
-    throw Error(out.path.string(), std::string("reading the raster failed: ") + CPLGetLastErrorMsg(), "check the file is complete");
-  int has_nodata = 0;
-  const double nodata = band->GetNoDataValue(&has_nodata);
-  const bool nan_is_nodata = has_nodata && std::isnan(nodata);
-  std::size_t nan_cells = 0, first_nan = 0, implausible_cells = 0, first_implausible = 0;
-  float most_implausible = 0.0f;
-  for (std::size_t i = 0; i < raster.depth_m.size(); ++i) {
-    float& v = raster.depth_m[i];
-    if (std::isnan(v)) {
-      if (!nan_is_nodata && nan_cells++ == 0) first_nan = i;
-      continue;
-    }
-    if (has_nodata && v == static_cast<float>(nodata)) {
-      v = std::numeric_limits<float>::quiet_NaN();
-      continue;
-    }
-    if (!is_depth) v = -v;
-    if (!plausible_depth(v)) {
-      if (implausible_cells++ == 0) first_implausible = i;
-      if (std::abs(v) > std::abs(most_implausible)) most_implausible = v;
-    }
-  }
+  raster.depth_m = detail::read_depth_band(dataset, out.path, options.sign, raster.geotransform, out.sign_used);
+  if (crs->IsGeographic()) wrap_longitudes_to_180(raster, out.path);
   const auto& gt = raster.geotransform;
-  // "pixel (c, r), x=... y=... in its CRS" of the cell at row-major index i (row 0 north).
-  const auto where = [&](std::size_t i) {
-    const double column = i % raster.columns + 0.5, row = i / raster.columns + 0.5;
-    return fmt::format("pixel ({}, {}), x={:.1f} y={:.1f} in its CRS", static_cast<int>(column), static_cast<int>(row),
-                       gt[0] + column * gt[1], gt[3] + row * gt[5]);
-  };
-  if (nan_cells > 0)
-    throw Error(out.path.string(),
-                fmt::format("{} cells are NaN but the band declares no NaN nodata, the first at {}", nan_cells,
-                            where(first_nan)),
-                "declare them nodata (gdal_edit.py -a_nodata nan) or fill them (gdal_fillnodata.py)");
-  if (implausible_cells > 0)
-    throw Error(out.path.string(),
-                fmt::format("{} cells hold depths (positive down, {}) outside {:.0f} .. {:.0f} m, up to {} m: {}; "
-                            "the first is {} m at {}",
-                            implausible_cells, is_depth ? "as stored" : "the stored elevations negated",
-                            -kHighestPlausibleElevation_m, kDeepestPlausibleDepth_m, most_implausible,
-                            plausibility_bound(most_implausible), raster.depth_m[first_implausible],
-                            where(first_implausible)),
-                "such values are a fill value not declared as nodata (gdal_edit.py -a_nodata VALUE), a unit "
-                "other than metres, or a wrong sign (ReadOptions::sign)");
   // Extent in lon/lat from the corners and edge midpoints.
   auto to_wgs84 = transformation_to_wgs84(crs);
   for (double u : {0.0, 0.5, 1.0})
@@ -391,9 +384,16 @@ void read_raster(GDALDataset& dataset, const ReadOptions& options, SourceData& o
   out.raster = std::move(raster);
 }
 
-// --- Text soundings: "x y depth" per line, separated by spaces, tabs, commas or semicolons ----------
-void read_text_soundings(const ReadOptions& options, SourceData& out) {
-  std::ifstream in(out.path);
+// --- Text soundings in lon/lat (or in ReadOptions::text_crs) -----------------------------------------
+// Soundings read as longitude/latitude that fall within a degree of 0 N 0 E lie in the Gulf of
+// Guinea, open ocean 4 000-5 000 m deep (GEBCO) with no coast within 300 km: a file that puts
+// depths of less than 1 000 m there counts x and y in metres from a local origin (a flume, a basin,
+// a site survey), not in degrees. Read as degrees they would grid a grid thousands of kilometres
+// wide, or fail deep in the projection ("Latitude 91d out of legal range").
+constexpr double kNullIslandHalfWidth_deg = 1.0;
+constexpr double kShallowestOceanNearNullIsland_m = 1000.0;
+
+void read_lon_lat_soundings(const ReadOptions& options, SourceData& out) {
   std::unique_ptr<OGRCoordinateTransformation> to_wgs84;
   if (!options.text_crs.empty()) {
     OGRSpatialReference crs;
@@ -404,38 +404,38 @@ void read_text_soundings(const ReadOptions& options, SourceData& out) {
   const bool elevation = options.sign == DepthSign::kPositiveUp;
   out.sign_used = elevation ? "positive_up (from ReadOptions::sign)"
                             : "positive_down (soundings are depths; override with ReadOptions::sign)";
-  std::string text;
-  int line_number = 0;
-  while (std::getline(in, text)) {
-    ++line_number;
-    std::replace_if(text.begin(), text.end(), [](char c) { return c == ',' || c == ';' || c == '\t'; }, ' ');
-    std::istringstream fields(text);
-    double x = 0, y = 0, value = 0;
-    if (!(fields >> x >> y >> value)) {
-      if (out.soundings.empty() && line_number == 1) continue;  // a header line
-      if (text.find_first_not_of(" \r") == std::string::npos) continue;
-      throw Error(out.path.string(), fmt::format("line {} is not 'x y depth': '{}'", line_number, text),
-                  "give three numbers per line");
+  const std::vector<detail::TextSounding> soundings = detail::read_text_soundings(out.path, elevation);
+  if (!to_wgs84) {
+    std::array<double, 4> box{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    double deepest_m = -INFINITY;
+    for (const auto& s : soundings) {
+      box = {std::min(box[0], s.x), std::min(box[1], s.y), std::max(box[2], s.x), std::max(box[3], s.y)};
+      deepest_m = std::max(deepest_m, s.depth_m);
     }
-    if (!std::isfinite(value))
-      throw Error(out.path.string(), fmt::format("line {} has a NaN depth", line_number), "remove the line");
-    if (const double depth_m = elevation ? -value : value; !plausible_depth(depth_m))
+    const std::string span = fmt::format("x runs {} .. {} and y {} .. {}", box[0], box[2], box[1], box[3]);
+    const bool beyond_the_globe = box[0] < -180.0 || box[2] > 360.0 || box[1] < -90.0 || box[3] > 90.0;
+    const bool at_null_island = box[0] <= kNullIslandHalfWidth_deg && box[2] >= -kNullIslandHalfWidth_deg &&
+                                box[1] <= kNullIslandHalfWidth_deg && box[3] >= -kNullIslandHalfWidth_deg &&
+                                deepest_m < kShallowestOceanNearNullIsland_m;
+    if (beyond_the_globe || at_null_island)
       throw Error(out.path.string(),
-                  fmt::format("line {} gives a depth of {} m (positive down), {}", line_number, depth_m,
-                              plausibility_bound(depth_m)),
-                  kImplausibleDepthFix);
-    if (to_wgs84) {
-      if (!to_wgs84->Transform(1, &x, &y))
-        throw Error(out.path.string(), fmt::format("line {}: cannot transform ({}, {})", line_number, x, y),
-                    "check ReadOptions::text_crs, the CRS of the file's x y");
-    } else if (std::abs(x) > 180.0 || std::abs(y) > 90.0) {
-      throw Error(out.path.string(), fmt::format("line {}: ({}, {}) is not a longitude/latitude", line_number, x, y),
-                  "projected coordinates need their CRS in ReadOptions::text_crs, e.g. EPSG:32610");
-    }
-    out.soundings.push_back({{x, y}, elevation ? -value : value});
+                  fmt::format("{}, with no CRS given: {}, so these are metres, not longitude/latitude", span,
+                              beyond_the_globe ? "that is not a longitude/latitude"
+                                               : fmt::format("as degrees they would lie at 0 N 0 E in the Gulf of "
+                                                             "Guinea, 4000 m deep, yet the deepest is {} m", deepest_m)),
+                  std::string(kLocalGridFix) + "; for a projected survey give its CRS in ReadOptions::text_crs, e.g. EPSG:32610");
   }
-  if (out.soundings.empty())
-    throw Error(out.path.string(), "has no soundings", "give lines of 'x y depth' (lon lat depth by default)");
+  // Longitudes 0..360 (NOAA's convention) wrap to -180..180 where the file uses them.
+  for (detail::TextSounding s : soundings) {
+    if (to_wgs84) {
+      if (!to_wgs84->Transform(1, &s.x, &s.y))
+        throw Error(out.path.string(), fmt::format("line {}: cannot transform ({}, {})", s.line, s.x, s.y),
+                    "check ReadOptions::text_crs, the CRS of the file's x y");
+    } else if (s.x > 180.0) {
+      s.x -= 360.0;
+    }
+    out.soundings.push_back({{s.x, s.y}, s.depth_m});
+  }
 }
 
 }  // namespace
@@ -451,7 +451,7 @@ SourceData read_source(const fs::path& path, const ReadOptions& options) {
                         std::isdigit(static_cast<unsigned char>(extension[2])) && std::isdigit(static_cast<unsigned char>(extension[3]));
   if (extension == ".xyz" || extension == ".csv" || extension == ".txt") {
     out.format = "XYZ";
-    read_text_soundings(options, out);
+    read_lon_lat_soundings(options, out);
   } else {
     // S-57: apply the update files, one point per sounding with its depth as an attribute.
     const char* s57_options[] = {"UPDATES=APPLY", "SPLIT_MULTIPOINT=ON", "ADD_SOUNDG_DEPTH=ON", nullptr};
@@ -491,5 +491,94 @@ SourceData read_source(const fs::path& path, const ReadOptions& options) {
     throw Error(path.string(), "holds no data with a position", "check the file with gdalinfo / ogrinfo");
   return out;
 }
+
+namespace detail {
+
+std::vector<float> read_depth_band(GDALDataset& dataset, const fs::path& path, DepthSign sign,
+                                   const std::array<double, 6>& gt, std::string& sign_used) {
+  const int columns = dataset.GetRasterXSize(), rows = dataset.GetRasterYSize();
+  GDALRasterBand* band = dataset.GetRasterBand(1);
+  std::string why;
+  const bool is_depth = raster_is_depth(dataset, *band, sign, why);
+  sign_used = std::string(is_depth ? "positive_down" : "positive_up") + " (" + why + ")";
+  std::vector<float> depth_m(static_cast<std::size_t>(columns) * rows);
+  if (band->RasterIO(GF_Read, 0, 0, columns, rows, depth_m.data(), columns, rows, GDT_Float32, 0, 0) != CE_None)
+    throw Error(path.string(), std::string("reading the raster failed: ") + CPLGetLastErrorMsg(), "check the file is complete");
+  int has_nodata = 0;
+  const double nodata = band->GetNoDataValue(&has_nodata);
+  const bool nan_is_nodata = has_nodata && std::isnan(nodata);
+  std::size_t nan_cells = 0, first_nan = 0, implausible_cells = 0, first_implausible = 0;
+  float most_implausible = 0.0f;
+  for (std::size_t i = 0; i < depth_m.size(); ++i) {
+    float& v = depth_m[i];
+    if (std::isnan(v)) {
+      if (!nan_is_nodata && nan_cells++ == 0) first_nan = i;
+      continue;
+    }
+    if (has_nodata && v == static_cast<float>(nodata)) {
+      v = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    if (!is_depth) v = -v;
+    if (!plausible_depth(v)) {
+      if (implausible_cells++ == 0) first_implausible = i;
+      if (std::abs(v) > std::abs(most_implausible)) most_implausible = v;
+    }
+  }
+  // "pixel (c, r), x=... y=... in its CRS" of the cell at row-major index i (row 0 north).
+  const auto where = [&](std::size_t i) {
+    const double column = i % columns + 0.5, row = i / columns + 0.5;
+    return fmt::format("pixel ({}, {}), x={:.1f} y={:.1f} in its CRS", static_cast<int>(column), static_cast<int>(row),
+                       gt[0] + column * gt[1], gt[3] + row * gt[5]);
+  };
+  if (nan_cells > 0)
+    throw Error(path.string(),
+                fmt::format("{} cells are NaN but the band declares no NaN nodata, the first at {}", nan_cells,
+                            where(first_nan)),
+                "declare them nodata (gdal_edit.py -a_nodata nan) or fill them (gdal_fillnodata.py)");
+  if (implausible_cells > 0)
+    throw Error(path.string(),
+                fmt::format("{} cells hold depths (positive down, {}) outside {:.0f} .. {:.0f} m, up to {} m: {}; "
+                            "the first is {} m at {}",
+                            implausible_cells, is_depth ? "as stored" : "the stored elevations negated",
+                            -kHighestPlausibleElevation_m, kDeepestPlausibleDepth_m, most_implausible,
+                            plausibility_bound(most_implausible), depth_m[first_implausible], where(first_implausible)),
+                "such values are a fill value not declared as nodata (gdal_edit.py -a_nodata VALUE), a unit "
+                "other than metres, or a wrong sign (ReadOptions::sign)");
+  return depth_m;
+}
+
+std::vector<TextSounding> read_text_soundings(const fs::path& path, bool elevation) {
+  std::ifstream in(path);
+  std::vector<TextSounding> soundings;
+  std::string text;
+  int line_number = 0;
+  while (std::getline(in, text)) {
+    ++line_number;
+    std::replace_if(text.begin(), text.end(), [](char c) { return c == ',' || c == ';' || c == '\t'; }, ' ');
+    std::istringstream fields(text);
+    double x = 0, y = 0, value = 0;
+    if (!(fields >> x >> y >> value)) {
+      if (soundings.empty() && line_number == 1) continue;  // a header line
+      if (text.find_first_not_of(" \r") == std::string::npos) continue;
+      throw Error(path.string(), fmt::format("line {} is not 'x y depth': '{}'", line_number, text),
+                  "give three numbers per line");
+    }
+    if (!std::isfinite(value))
+      throw Error(path.string(), fmt::format("line {} has a NaN depth", line_number), "remove the line");
+    const double depth_m = elevation ? -value : value;
+    if (!plausible_depth(depth_m))
+      throw Error(path.string(),
+                  fmt::format("line {} gives a depth of {} m (positive down), {}", line_number, depth_m,
+                              plausibility_bound(depth_m)),
+                  kImplausibleDepthFix);
+    soundings.push_back({x, y, depth_m, line_number});
+  }
+  if (soundings.empty())
+    throw Error(path.string(), "has no soundings", "give lines of 'x y depth' (lon lat depth by default)");
+  return soundings;
+}
+
+}  // namespace detail
 
 }  // namespace nearshore::bathymetry

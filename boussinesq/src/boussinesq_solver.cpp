@@ -125,11 +125,18 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   const double smaller_spacing = std::min(s.dx, s.dy);
   const std::size_t cells = geometry.cell_count();
 
+  if (!(parameters.effective_depth_limit_m >= 0.0))
+    throw Error(subject, "SolverParameters::effective_depth_limit_m = " + std::to_string(parameters.effective_depth_limit_m) + " m",
+                "give a positive depth, or 0 for no limit (docs/solver.md, \"Effective depth\")");
   // Depth and porosity stay in the harbour grid's float (exact); the solver computes in double.
   std::vector<float> depth(cells), porosity(cells);
   double max_depth = 0.0;
   for (std::size_t i = 0; i < cells; ++i) {
+    // The effective-depth limit (docs/solver.md, "Effective depth"): the one depth every term, the
+    // source function and the time step see; land (d <= 0) is never capped.
     depth[i] = harbour.still_water_depth_m.values()[i];
+    if (parameters.effective_depth_limit_m > 0.0 && depth[i] > parameters.effective_depth_limit_m)
+      depth[i] = static_cast<float>(parameters.effective_depth_limit_m);
     porosity[i] = std::clamp(harbour.porosity.values()[i], 0.0f, 1.0f);
     if (!std::isfinite(depth[i])) {
       const int c = static_cast<int>(i % s.nx), r = static_cast<int>(i / s.nx);

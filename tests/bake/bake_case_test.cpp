@@ -202,8 +202,14 @@ TEST(BakeCase, IrregularSeaFromTheSpectrumBuilder) {
   text.replace(text.find("kind = \"regular\""), 16, "kind = \"irregular\"\nspectrum = \"jonswap\"\nsignificant_height_m = 0.03\n"
                                                      "peak_period_s = 1.5\nfrequency_count = 32\nseed = 42\nloop_period_s = 64.0");
   text.replace(text.find("height_m = 0.02\nperiod_s = 2.0\n"), 31, "");
-  // The automatic band reaches 2-3 Hz: waves of 0.2-0.4 m that 0.1 m cells cannot carry.
-  expect_case_error(text, {"key `wave_maker`", "carries waves only up to", "max_frequency_hz = "});
+  // The automatic band reaches 2-3 Hz: waves of 0.2-0.4 m that 0.1 m cells cannot carry. They are
+  // split off for the deep-water layer (issue 14), not refused, and the split is recorded.
+  {
+    const BakeCase split = read_bake_case(write_text(scratch_folder() / "split.toml", text));
+    ASSERT_TRUE(split.wave_conditions.contains("spectrum_split"));
+    EXPECT_LT(split.wave_maker.sea_state.components.size(), 32u);
+    EXPECT_GT(split.wave_conditions["spectrum_split"]["deep_water_components"].get<int>(), 0);
+  }
   text.replace(text.find("seed = 42"), 9, "seed = 42\nmin_frequency_hz = 0.25\nmax_frequency_hz = 1.2");
   const BakeCase c = read_bake_case(write_text(scratch_folder() / "case.toml", text));
   EXPECT_EQ(c.wave_maker.sea_state.seed, 42u);

@@ -93,6 +93,12 @@ BakeCase parse_bake_case(const nlohmann::json& document, const std::filesystem::
 double resolve_time_step(double requested_time_step_s, double courant_number, const HarbourGrid& harbour,
                          double output_interval_s);
 
+/// What the bake carries of the sea asked for, in words for the bake's report: the effective-depth
+/// limit when one is active (docs/solver.md, "Effective depth") and an irregular sea's split between
+/// the bake and the FFT deep-water layer with its Hs budget (docs/commands/bake.md, "The spectrum is
+/// split"). Empty when neither applies.
+std::string describe_carried_band(const BakeCase& bake_case);
+
 /// The number of steps of `step_s` in `interval_s`, if it is a whole number (to 1e-9 relative), else -1.
 long whole_steps(double interval_s, double step_s);
 

@@ -118,8 +118,10 @@ struct CoupledWaveMaker {
 };
 
 /// The still-water depth the source line generates in: the mean over the wet cells of the grid line
-/// (row or column) holding the source line, as boussinesq_source.cpp computes it.
-double source_line_depth_m(const boussinesq::WaveMaker& maker, const HarbourGrid& grid);
+/// (row or column) holding the source line, as boussinesq_source.cpp computes it. With
+/// `effective_depth_limit_m` > 0 every cell counts as at most that deep, as the solver sees it
+/// (SolverParameters::effective_depth_limit_m); 0 gives the true depth (the field's).
+double source_line_depth_m(const boussinesq::WaveMaker& maker, const HarbourGrid& grid, double effective_depth_limit_m = 0.0);
 
 /// The maker for `field` on `grid`: keeps the lattice waves that travel into the domain from
 /// `maker.facing` within the source's 78 degrees, inside `band`, converts them as at the top of the

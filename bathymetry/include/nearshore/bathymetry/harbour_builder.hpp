@@ -72,6 +72,9 @@ struct BathyResult {
   nlohmann::json summary;                 ///< what summary.json holds (docs/formats/harbour-grid.md)
   std::vector<PlaneLine> coastline_m;     ///< coastline polylines in grid metres, for the preview
   std::vector<double> leave_one_out_error_m;  ///< estimate - charted depth per sounding (if asked)
+  /// What was done to the data that the caller should know, in words naming the BathyRequest
+  /// field that controls it (e.g. water cells raised to minimum_depth_m); also summary "warnings".
+  std::vector<std::string> warnings;
 };
 
 /// Runs steps 1-7. Throws nearshore::Error (naming the file, the problem and the fix) before

@@ -101,6 +101,12 @@ struct SolverParameters {
   /// (weight 0 below kh_cut, 1 above 2 kh_cut). 0 disables the respective taper. See docs/solver.md.
   double dispersion_cutoff_depth_m = 0.0;
   double dispersion_cutoff_kh = 0.0;
+  /// Effective-depth limit, metres (0 = none): every term of the equations, and the source
+  /// function, sees min(d, effective_depth_limit_m) as the still-water depth. Waves with k d > pi
+  /// do not feel the bottom (tanh k d > 0.996), so over a channel deeper than the limit the waves
+  /// keep their deep-water speed while the B = 1/15 equations stay inside the k d they hold
+  /// (docs/solver.md, "Effective depth"; effective_depth_limit_m() in model_dispersion.hpp).
+  double effective_depth_limit_m = 0.0;
   double dry_depth_m = 0.01;          ///< wet/dry threshold of the moving shoreline, metres
   double chezy_coefficient = 60.0;    ///< C, m^0.5/s (0 = no friction)
   BreakingParameters breaking;
