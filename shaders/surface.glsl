@@ -21,7 +21,7 @@ uniform sampler2D u_porosity;
 uniform sampler2D u_land;          // R8: 1 land
 uniform float u_harbour_fraction;  // f_h
 uniform ivec2 u_cells;             // columns, rows
-uniform float u_spacing_m;         // cell size
+uniform vec2 u_spacing_m;          // cell size dx, dy (rectangular cells: docs/solver.md)
 uniform vec2 u_site_size_m;        // width, height
 uniform int u_source_axis;         // HarbourSite: the bake's blending record
 uniform float u_inward_sign, u_source_line_m, u_blend_start_m, u_blend_width_m, u_edge_fade_m;
@@ -93,6 +93,42 @@ float harbour_weight(vec2 p) {
   return weight;
 }
 
+// Height patches (playback::SurfaceLayers, a ship's bow wave): local fields added to the shown
+// surface. All in one R32F atlas (unit 19), patch k in rows u_patch_row0[k] .. + rows - 1; texel
+// (i, j) of a patch centred at origin + (i + 0.5, j + 0.5) spacing; bilinear between centres, 0
+// outside them: ships::BowWave::elevation_m's rule, written out with texelFetch as the harbour is.
+const int kMaxHeightPatches = 16;  // playback::SurfaceLayers::kMaxHeightPatches
+uniform int u_patch_count;
+uniform sampler2D u_patches;
+uniform vec2 u_patch_origin_m[kMaxHeightPatches];
+uniform float u_patch_spacing_m[kMaxHeightPatches];
+uniform ivec2 u_patch_cells[kMaxHeightPatches];
+uniform int u_patch_row0[kMaxHeightPatches];
+
+float patch_elevation(vec2 p) {
+  float sum = 0.0;
+  for (int k = 0; k < u_patch_count; ++k) {
+    vec2 u = (p - u_patch_origin_m[k]) / u_patch_spacing_m[k] - 0.5;
+    ivec2 n = u_patch_cells[k];
+    if (any(lessThan(u, vec2(0.0))) || any(greaterThan(u, vec2(n - 1)))) continue;
+    ivec2 i0 = min(ivec2(u), n - 2);
+    vec2 w = u - vec2(i0);
+    i0.y += u_patch_row0[k];
+    float south = mix(texelFetch(u_patches, i0, 0).r, texelFetch(u_patches, i0 + ivec2(1, 0), 0).r, w.x);
+    float north = mix(texelFetch(u_patches, i0 + ivec2(0, 1), 0).r, texelFetch(u_patches, i0 + ivec2(1, 1), 0).r, w.x);
+    sum += mix(south, north, w.y);
+  }
+  return sum;
+}
+
+// The patches' slope at p by central differences half a patch cell wide (for the normal).
+vec2 patch_slope(vec2 p) {
+  if (u_patch_count == 0) return vec2(0.0);
+  float h = 0.5 * u_patch_spacing_m[0];
+  return vec2(patch_elevation(p + vec2(h, 0.0)) - patch_elevation(p - vec2(h, 0.0)),
+              patch_elevation(p + vec2(0.0, h)) - patch_elevation(p - vec2(0.0, h))) / (2.0 * h);
+}
+
 struct Surface {
   float eta;     // shown surface elevation (m)
   vec2 shift;    // horizontal displacement of the point (m)
@@ -119,6 +155,9 @@ Surface surface_at(vec2 p) {
   float deep = mix(deep_from, deep_to, u_deep_fraction);
   s.eta = s.weight * harbour + (1.0 - s.weight) * deep;
   s.shift = (1.0 - s.weight) * u_choppiness * mix(shift_from, shift_to, u_deep_fraction);
+  // The height patches where this point is shown (after the shift): the CPU's displaced query
+  // plus the patches at the same place (ships::ShipFleet::shown_elevation_m).
+  if (u_patch_count > 0) s.eta += patch_elevation(p + s.shift);
   return s;
 }
 

@@ -14,6 +14,9 @@ uniform sampler2D u_coast_distance;     // signed distance to the coastline (m),
 uniform bool u_has_reflection;          // the terrain mirrored in still water was drawn
 uniform sampler2D u_reflection;         // ... as linear radiance, alpha = covered
 uniform vec2 u_viewport_px;
+uniform bool u_has_decal_foam;          // playback::SurfaceLayers foam decals were drawn into ...
+uniform sampler2D u_decal_foam;         // ... this foam map (R8, cover 0..1) over ...
+uniform vec4 u_decal_foam_rect_m;       // ... x0, y0, width, height of the site frame
 in vec2 v_site_m;
 in vec3 v_position_m;
 in float v_lod;
@@ -95,7 +98,7 @@ void main() {
   for (int c = 0; c < u_cascade_count; ++c) {
     float texel_m = u_tile_length_m[c] / float(u_deep_size);
     float detail = 1.0 - smoothstep(texel_m, 4.0 * texel_m, footprint_m);
-    bool over_harbour = u_has_site && u_tile_length_m[c] < 32.0 * u_spacing_m;
+    bool over_harbour = u_has_site && u_tile_length_m[c] < 32.0 * max(u_spacing_m.x, u_spacing_m.y);
     float share = (1.0 - weight) + (over_harbour ? weight : 0.0);
     extra_variance += share * (1.0 - detail) * u_cascade_slope_variance[c];
     if (detail <= 0.0 || share <= 0.0) continue;
@@ -115,6 +118,7 @@ void main() {
       gradient += detail * mix(from, to, u_deep_fraction) / (2.0 * texel_m);
     }
   }
+  slope += patch_slope(p);  // the height patches (bow waves) tilt the normal as they lift the surface
   float lambda = u_choppiness;
   float jacobian = (1.0 + lambda * gradient.x) * (1.0 + lambda * gradient.y) - lambda * lambda * gradient.z * gradient.w;
   float deep_foam = (1.0 - weight) * clamp(u_jacobian_foam_onset - jacobian, 0.0, 1.0);  // seed 000 eq. (3.45)
@@ -132,6 +136,10 @@ void main() {
   float depth_limited = smoothstep(0.25, 0.39, eta / max(still_water_depth_at(p) + eta, 0.05));
   float crest_foam = weight * depth_limited * clamp((eta - u_foam_onset_m) / (u_foam_full_m - u_foam_onset_m), 0.0, 1.0);
   float foam = max(max(breaking, crest_foam), max(deep_foam, shore_foam));
+  if (u_has_decal_foam) {  // the wakes' decals, shaded as the sea's own foam
+    vec2 uv = (p - u_decal_foam_rect_m.xy) / u_decal_foam_rect_m.zw;
+    if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)))) foam = max(foam, texture(u_decal_foam, uv).r);
+  }
   float crest_thinness = clamp(eta / max(u_foam_onset_m, 0.1), 0.0, 1.0);
   vec3 to_eye = normalize(u_eye_m - v_position_m);
   // Land and structures seen in the water: the mirrored terrain at this pixel, displaced by the

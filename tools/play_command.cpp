@@ -2,7 +2,9 @@
 // (runtime/) plays the bake by its plan inside the endless deep water; the renderer (playback/)
 // draws it on the chosen grid; Dear ImGui shows the streaming state (tools/viewer_panel.hpp).
 // Headless (--frames N --screenshot out.png) it draws N frames on a fixed 30 fps clock, waiting
-// for each frame's keyframes so identical inputs give identical pictures.
+// for each frame's keyframes so identical inputs give identical pictures. With --ships a scenario's
+// ships sail on the shown sea (tools/viewer_ships.hpp), stepped on the same display clock, so a
+// headless run with the scenario's orders is a script too; the arrow keys steer ship 0.
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
@@ -29,6 +31,7 @@
 #include "nearshore/runtime/library_player.hpp"
 #include "nearshore/runtime/streaming_engine.hpp"
 #include "viewer_panel.hpp"
+#include "viewer_ships.hpp"
 
 namespace nearshore::tools {
 namespace fs = std::filesystem;
@@ -57,6 +60,9 @@ struct PlayOptions {
   std::string state;
   std::vector<std::string> switches;
   double crossfade_s = 5.0;
+  // Ships (docs/ships.md): a scenario file; the camera may follow one of its ships.
+  fs::path ships_scenario;
+  int follow_ship = -1;
 };
 
 const char* const kPlanNames[] = {"auto", "period", "loop", "random", "order"};
@@ -163,9 +169,33 @@ void on_scroll(GLFWwindow*, double, double y_offset) {
   if (g_camera_control) g_camera_control->scroll += y_offset;
 }
 
+// Where each ship is at the end, and what the fleet cost.
+struct ShipsSummary {
+  std::vector<ShipReadout> ships;
+  std::vector<ships::WakeAngle> wake_angles;
+  int events = 0;
+  double step_ms_mean = 0.0, main_thread_ms_mean = 0.0;
+};
+
+nlohmann::json ships_json(const ShipsSummary& summary) {
+  nlohmann::json ships = nlohmann::json::array();
+  for (std::size_t i = 0; i < summary.ships.size(); ++i) {
+    const ShipReadout& r = summary.ships[i];
+    const ships::WakeAngle& wake = summary.wake_angles[i];
+    ships.push_back({{"name", r.name}, {"x_m", r.x_m}, {"y_m", r.y_m}, {"speed_kn", r.speed_kn},
+                     {"heading_deg", r.heading_deg}, {"heel_deg", r.heel_deg}, {"aground", r.aground},
+                     {"wake_half_angle_deg", wake.half_angle_deg}, {"wake_stations", wake.stations}});
+  }
+  return ships;
+}
+
 nlohmann::json stats_json(const runtime::StreamingStats& s, const playback::FrameStatistics& frame, int frames_drawn,
-                          double wall_s) {
+                          double wall_s, const ShipsSummary& ships) {
   return {{"frames_drawn", frames_drawn},
+          {"ships", ships_json(ships)},
+          {"ship_events", ships.events},
+          {"ships_ms_per_frame", ships.step_ms_mean},
+          {"main_thread_ms_per_frame", ships.main_thread_ms_mean},
           {"wall_s", wall_s},
           {"plan", s.plan},
           {"plan_step", s.plan_step},
@@ -249,6 +279,13 @@ std::string play(const PlayOptions& o) {
   if (frame.geometry.projection.is_object() && !frame.geometry.projection.empty())
     frame.projection = MapProjection::from_json(frame.geometry.projection, (o.sequence_folder / "manifest.json").string());
   CameraControl control{initial_camera(o, *site, frame)};  // before a window opens: it may refuse a position
+  std::unique_ptr<ViewerShips> ships;  // before a window opens too: a bad scenario is said at once
+  if (!o.ships_scenario.empty()) ships = std::make_unique<ViewerShips>(o.ships_scenario, site);
+  if (o.follow_ship >= 0 && (!ships || std::size_t(o.follow_ship) >= ships->fleet().size()))
+    throw Error("--follow-ship " + std::to_string(o.follow_ship),
+                ships ? "is not a ship of " + o.ships_scenario.string() + " (it has " + std::to_string(ships->fleet().size()) + ")"
+                      : "needs ships to follow",
+                ships ? "give an index from 0" : "give a scenario with --ships");
   const int width = o.size_px[0], height = o.size_px[1];
   playback::GlWindow window(width, height, "nearshore play " + o.sequence_folder.string(), !headless);
   playback::RendererSettings settings;
@@ -293,6 +330,9 @@ std::string play(const PlayOptions& o) {
   double display_time_s = o.time_s;
   int frames_drawn = 0;
   double wall_s = 0;
+  double ships_time_s = display_time_s;  // the display time the fleet has reached
+  ShipsSummary ships_summary;
+  double ships_ms_sum = 0, main_ms_sum = 0;
   for (;;) {
     const auto now = std::chrono::steady_clock::now();
     const double dt_s = std::chrono::duration<double>(now - previous).count();
@@ -315,10 +355,34 @@ std::string play(const PlayOptions& o) {
     sea.advance_to(display_time_s);
     renderer.stage_upcoming(sea.engine());
     if (!headless) control.update(window.glfw_window(), dt_s, panel && panel->wants_input());
+    if (ships) {
+      // The fleet follows the display clock (at most 0.1 s a frame: a stalled window does not
+      // throw the ships forward); ship 0 from the arrow keys in a window.
+      const double ship_dt_s = std::clamp(display_time_s - ships_time_s, 0.0, 0.1);
+      ships_time_s = display_time_s;
+      if (!headless && !(panel && panel->wants_input())) {
+        auto key = [&](int k) { return glfwGetKey(window.glfw_window(), k) == GLFW_PRESS ? 1 : 0; };
+        ships->steer_first_ship(key(GLFW_KEY_UP) - key(GLFW_KEY_DOWN), key(GLFW_KEY_LEFT) - key(GLFW_KEY_RIGHT),
+                                key(GLFW_KEY_ENTER) != 0, ship_dt_s);
+      }
+      const Eigen::Vector3d before = o.follow_ship >= 0 ? ships->fleet().ship(std::size_t(o.follow_ship)).body().state().position_m
+                                                        : Eigen::Vector3d::Zero();
+      ships->step(sea.snapshot(), ship_dt_s);
+      ships_ms_sum += ships->last_step_ms();
+      for (const std::string& event : ships->take_events()) {
+        ++ships_summary.events;
+        if (!o.quiet) std::fprintf(stderr, "t = %.2f s: %s\n", display_time_s, event.c_str());
+      }
+      if (o.follow_ship >= 0) {  // the camera moves with the ship, keeping its view of it
+        const Eigen::Vector3d moved = ships->fleet().ship(std::size_t(o.follow_ship)).body().state().position_m - before;
+        for (int axis = 0; axis < 2; ++axis) control.camera.eye_m[axis] += moved[axis], control.camera.target_m[axis] += moved[axis];
+      }
+    }
     renderer.render(sea.snapshot(), control.camera, lighting, window.framebuffer_width_px(),
-                    window.framebuffer_height_px(), draw_options);
+                    window.framebuffer_height_px(), draw_options, ships ? &ships->layers() : nullptr);
     renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
     const double main_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - main_start).count();
+    main_ms_sum += main_ms;
     if (panel) {
       const runtime::StreamingStats s = sea.engine().stats();
       model.frames_per_s = dt_s > 0 ? 1.0 / dt_s : 0.0;
@@ -339,6 +403,7 @@ std::string play(const PlayOptions& o) {
       const LonLat place = frame.lat_lon_of(control.camera.eye_m[0], control.camera.eye_m[1]);
       model.camera_latitude_deg = place.latitude_deg, model.camera_longitude_deg = place.longitude_deg;
       model.camera_height_m = control.camera.eye_m[2];
+      if (ships) model.ships = ships->readouts(), model.ships_ms = ships->last_step_ms();
       const ViewerPanelModel before = model;
       if (panel->draw(model)) {
         if (model.grid != before.grid) renderer.settings().grid = static_cast<playback::GridKind>(model.grid);
@@ -374,6 +439,12 @@ std::string play(const PlayOptions& o) {
     window.present();
   }
   const runtime::StreamingStats s = sea.engine().stats();
+  if (ships) {
+    ships_summary.ships = ships->readouts();
+    for (std::size_t i = 0; i < ships->fleet().size(); ++i) ships_summary.wake_angles.push_back(ships->wake_angle(i));
+  }
+  ships_summary.step_ms_mean = frames_drawn > 0 ? ships_ms_sum / frames_drawn : 0.0;
+  ships_summary.main_thread_ms_mean = frames_drawn > 0 ? main_ms_sum / frames_drawn : 0.0;
   const std::string summary = fmt::format("{} ({} x {}, t = {:.2f} s, {} grid, {}; {})", o.screenshot.string(), width,
                                           height, display_time_s, o.grid, s.plan, window.gl_description());
   if (!o.screenshot.empty()) {
@@ -384,13 +455,16 @@ std::string play(const PlayOptions& o) {
   }
   if (o.quiet) {
   } else if (o.json) {
-    std::printf("%s\n", stats_json(s, renderer.last_frame(), frames_drawn, wall_s).dump(1).c_str());
+    std::printf("%s\n", stats_json(s, renderer.last_frame(), frames_drawn, wall_s, ships_summary).dump(1).c_str());
   } else {
     std::printf("played %.1f s of display time in %.1f s, %d frames drawn (%.1f fps); %lld underruns, %lld frames held, "
                 "%lld transitions\n",
                 display_time_s - o.time_s, wall_s, frames_drawn, frames_drawn / std::max(wall_s, 1e-9), s.underruns,
                 s.bad_frames_held, s.transitions_taken);
     if (!s.last_message.empty()) std::printf("note: %s\n", s.last_message.c_str());
+    for (const ShipReadout& r : ships_summary.ships)
+      std::printf("ship '%s' at (%.1f, %.1f) m, %.1f kn, heading %03.0f deg, %s\n", r.name.c_str(), r.x_m, r.y_m, r.speed_kn,
+                  r.heading_deg, r.aground ? "aground" : "afloat");
   }
   g_camera_control = nullptr;
   return summary;
@@ -482,6 +556,10 @@ void add_play_command(CLI::App& app) {
   cmd->add_option("--crossfade", o->crossfade_s, "Sea-state library: length of a switch's crossfade, seconds of display time")
       ->capture_default_str()
       ->check(number_in(at_least(0), at_most(3600)));
+  cmd->add_option("--ships", o->ships_scenario, "Ships to sail on the sea: a scenario file (TOML, docs/ships.md); the "
+                                                "arrow keys steer ship 0 in the window, Enter centres its rudder");
+  cmd->add_option("--follow-ship", o->follow_ship, "Move the camera with this ship of --ships (index from 0)")
+      ->check(number_in(at_least(0), at_most(1e6)));
   set_example(*cmd, "xvfb-run -a nearshore play demo-out/bake --frames 30 --screenshot shot.png --grid radial");
   // The sequence reader names the bake's options when a sequence is unfinished; the engine names
   // its own parameters.

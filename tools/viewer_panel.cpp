@@ -56,6 +56,32 @@ bool ViewerPanel::draw(ViewerPanelModel& m) {
     ImGui::TextWrapped("%s", m.message.c_str());
     ImGui::PopStyleColor();
   }
+  if (!m.ships.empty()) {
+    ImGui::Separator();
+    ImGui::Text("ships: %.2f ms a frame   ship 0: arrows throttle and helm, Enter midships", m.ships_ms);
+    if (ImGui::BeginTable("ships", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
+      for (const char* heading : {"ship", "speed kn", "heading", "engine / rudder", "state"}) ImGui::TableSetupColumn(heading);
+      ImGui::TableHeadersRow();
+      for (const ShipReadout& ship : m.ships) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("%s%s", ship.name.c_str(), ship.manual ? " (keys)" : "");
+        ImGui::TableNextColumn();
+        ImGui::Text("%.1f", ship.speed_kn);
+        ImGui::TableNextColumn();
+        ImGui::Text("%03.0f deg", ship.heading_deg);
+        ImGui::TableNextColumn();
+        ImGui::Text("%+.2f / %+.0f deg", ship.engine_order, ship.rudder_deg);
+        ImGui::TableNextColumn();
+        if (ship.aground) {
+          ImGui::TextColored(ImVec4(1.f, 0.4f, 0.3f, 1.f), "AGROUND, heel %.1f deg", ship.heel_deg);
+        } else {
+          ImGui::Text("afloat");
+        }
+      }
+      ImGui::EndTable();
+    }
+  }
   ImGui::Separator();
   ImGui::Text("camera %.5f, %.5f  height %.0f m", m.camera_latitude_deg, m.camera_longitude_deg, m.camera_height_m);
   const char* grids[] = {"radial", "quadtree", "projected"};

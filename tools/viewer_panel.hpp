@@ -7,10 +7,18 @@
 // engine's statistics and applies the controls it returns.
 #include <array>
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
 namespace nearshore::tools {
+
+/// One row of the panel's ship table (`nearshore play --ships`, tools/viewer_ships.hpp).
+struct ShipReadout {
+  std::string name;
+  double x_m = 0, y_m = 0, speed_kn = 0, heading_deg = 0, engine_order = 0, rudder_deg = 0, heel_deg = 0;
+  bool aground = false, manual = false;  ///< manual: steered from the keyboard
+};
 
 struct ViewerPanelModel {
   // ---- shown ----
@@ -23,6 +31,8 @@ struct ViewerPanelModel {
   bool crossfading = false;
   std::string plan_name, message, gl_description;
   double camera_latitude_deg = 0.0, camera_longitude_deg = 0.0, camera_height_m = 0.0;
+  std::vector<ShipReadout> ships;  ///< empty without --ships
+  double ships_ms = 0.0;           ///< CPU time of the fleet's step and its layers this frame
   // ---- controls (the panel edits these; the viewer applies what changed) ----
   int grid = 0;             ///< 0 radial, 1 quadtree, 2 projected
   int plan = 0;             ///< 0 auto, 1 exact period, 2 optimal loop, 3 random walk, 4 frame order

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "keyframe_textures.hpp"
+#include "surface_layer_gpu.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::playback {
@@ -47,9 +48,10 @@ constexpr const char* kSamplerUnits[] = {
     "u_still_water_depth", "u_porosity",          "u_land",                  "u_deep_eta_from",
     "u_deep_eta_to",       "u_deep_dx_from",      "u_deep_dx_to",            "u_deep_dy_from",
     "u_deep_dy_to",        "u_deep_slope_x_from", "u_deep_slope_x_to",       "u_deep_slope_y_from",
-    "u_deep_slope_y_to",   "u_coast_distance",    "u_reflection"};
+    "u_deep_slope_y_to",   "u_coast_distance",    "u_reflection",            "u_patches",
+    "u_decal_foam"};
 enum Unit { kHarbourEta = 0, kHarbourBreaking = 2, kDepth = 4, kPorosity = 5, kLand = 6, kDeepFirst = 7, kCoast = 17,
-            kReflection = 18 };
+            kReflection = 18, kPatches = 19, kDecalFoam = 20 };
 
 GLuint link_program(std::initializer_list<const char*> vertex_prefixes, const std::string& vertex_name,
                     std::initializer_list<const char*> fragment_prefixes, const std::string& fragment_name) {
@@ -255,8 +257,10 @@ struct WaterRenderer::Impl {
   FrameStatistics statistics;
   GpuTextures textures;  // of the last render or upload
   GLuint radial_program = 0, quadtree_program = 0, projected_program = 0, height_program = 0;
-  GLuint terrain_program = 0, sky_program = 0;
+  GLuint terrain_program = 0, sky_program = 0, mesh_program = 0, decal_program = 0;
   GLuint empty_vertex_array = 0;
+  SurfaceLayerGpu layer_gpu;  // the SurfaceLayers' patches, foam map and meshes
+  bool patches_active = false;  // this draw adds the patches uploaded last
   Target target, height_target;
   ReflectionTarget reflection;
 
@@ -283,11 +287,14 @@ struct WaterRenderer::Impl {
     height_program = link_program(water_vertex, "height.vert.glsl", surface, "height.frag.glsl");
     terrain_program = link_program(surface, "terrain.vert.glsl", {"common.glsl"}, "terrain.frag.glsl");
     sky_program = link_program({"common.glsl"}, "sky.vert.glsl", {"common.glsl"}, "sky.frag.glsl");
+    mesh_program = link_program(surface, "mesh.vert.glsl", surface, "mesh.frag.glsl");
+    decal_program = link_program({}, "decal.vert.glsl", {}, "decal.frag.glsl");
     glGenVertexArrays(1, &empty_vertex_array);
   }
 
   ~Impl() {
-    for (GLuint program : {radial_program, quadtree_program, projected_program, height_program, terrain_program, sky_program})
+    for (GLuint program : {radial_program, quadtree_program, projected_program, height_program, terrain_program, sky_program,
+                           mesh_program, decal_program})
       glDeleteProgram(program);
     release_site();
     for (Mesh* mesh : {&radial, &quadtree_patch, &projected, &height_lattice}) mesh->release();
@@ -351,7 +358,7 @@ struct WaterRenderer::Impl {
     if (site) {
       const GridGeometry& g = site->harbour.geometry;
       glUniform2i(at(program, "u_cells"), g.columns, g.rows);
-      set_uniform(program, "u_spacing_m", float(g.spacing_m));
+      glUniform2f(at(program, "u_spacing_m"), float(g.spacing_x_m()), float(g.spacing_y_m()));  // dx, dy
       glUniform2f(at(program, "u_site_size_m"), float(site->width_m), float(site->height_m));
       set_uniform(program, "u_source_axis", site->source_axis);
       set_uniform(program, "u_inward_sign", float(site->inward_sign));
@@ -369,6 +376,49 @@ struct WaterRenderer::Impl {
     set_uniform(program, "u_deep_fraction", float(snapshot.deep_fraction));
     if (!bound.tile_lengths_m.empty())
       glUniform1fv(at(program, "u_tile_length_m"), GLsizei(bound.tile_lengths_m.size()), bound.tile_lengths_m.data());
+    const PatchUniforms& patches = layer_gpu.patch_uniforms();
+    const int patch_count = patches_active ? patches.count : 0;
+    set_uniform(program, "u_patch_count", patch_count);
+    if (patch_count > 0) {
+      glUniform2fv(at(program, "u_patch_origin_m"), patch_count, patches.origin_m.data());
+      glUniform1fv(at(program, "u_patch_spacing_m"), patch_count, patches.spacing_m.data());
+      glUniform2iv(at(program, "u_patch_cells"), patch_count, patches.cells.data());
+      glUniform1iv(at(program, "u_patch_row0"), patch_count, patches.row0.data());
+    }
+  }
+
+  // The layers' height patches onto their unit (before any surface uniforms are set).
+  void prepare_patches(const SurfaceLayers* layers) {
+    patches_active = layers && !layers->height_patches.empty();
+    if (patches_active) statistics.layer_upload_bytes += layer_gpu.upload_patches(layers->height_patches, kPatches);
+    statistics.height_patches = patches_active ? int(layers->height_patches.size()) : 0;
+    glActiveTexture(GLenum(GL_TEXTURE0 + kPatches));
+    glBindTexture(GL_TEXTURE_2D, patches_active ? layer_gpu.patch_atlas() : 0);
+    glActiveTexture(GL_TEXTURE0);
+  }
+
+  // The layers' meshes, lit as the land, depth-tested against everything drawn.
+  void draw_meshes(const SurfaceLayers& layers, const CameraView& view, const runtime::SurfaceSnapshot& snapshot,
+                   const KeyframeTextures::Bound& bound, const LightingFrame& light, double earth_radius_m) {
+    if (layers.meshes.empty()) return;
+    glUseProgram(mesh_program);
+    set_lighting_uniforms(mesh_program, light);
+    set_uniform(mesh_program, "u_view_projection", view.view_projection);
+    set_surface_uniforms(mesh_program, snapshot, bound, view.eye_m, earth_radius_m);
+    for (const SolidMesh& solid : layers.meshes) {
+      const SurfaceLayerGpu::GpuMesh& gpu = layer_gpu.mesh(solid, statistics.layer_upload_bytes);
+      float rotation[9];
+      for (int k = 0; k < 9; ++k) rotation[k] = float(solid.rotation[std::size_t(k)]);
+      glUniformMatrix3fv(at(mesh_program, "u_rotation"), 1, GL_TRUE, rotation);  // row-major
+      set_uniform(mesh_program, "u_position_m", solid.position_m);
+      set_uniform(mesh_program, "u_albedo_above", solid.albedo_above);
+      set_uniform(mesh_program, "u_albedo_below", solid.albedo_below);
+      set_uniform(mesh_program, "u_boot_top_z_m", float(solid.boot_top_z_m));
+      glBindVertexArray(gpu.vertex_array);
+      glDrawElements(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr);
+    }
+    glBindVertexArray(0);
+    statistics.meshes = int(layers.meshes.size());
   }
 
   void bind_textures(const KeyframeTextures::Bound& bound) const {
@@ -547,9 +597,15 @@ struct WaterRenderer::Impl {
   }
 
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width,
-              int height, const DrawOptions& options) {
+              int height, const DrawOptions& options, const SurfaceLayers* layers) {
     const KeyframeTextures::Bound bound = upload(snapshot);
     const LightingFrame light = prepare_lighting(lighting);
+    prepare_patches(layers);
+    // The wakes' foam map first: it draws into its own framebuffer.
+    const bool decal_foam = layers && options.colouring == SurfaceColouring::lit &&
+                            layer_gpu.draw_decals(layers->foam_decals, decal_program, settings.decal_foam_texels,
+                                                  settings.decal_foam_finest_m);
+    statistics.foam_decals = decal_foam ? int(layers->foam_decals.size()) : 0;
 
     // Clip distances: near from the eye's height; far where the grid ends.
     const GridKind kind = settings.grid;
@@ -621,7 +677,11 @@ struct WaterRenderer::Impl {
     }
     glActiveTexture(GLenum(GL_TEXTURE0 + kReflection));
     glBindTexture(GL_TEXTURE_2D, reflect ? reflection.colour : 0);
+    glActiveTexture(GLenum(GL_TEXTURE0 + kDecalFoam));
+    glBindTexture(GL_TEXTURE_2D, decal_foam ? layer_gpu.decal_foam() : 0);
     glActiveTexture(GL_TEXTURE0);
+    // 2c. Hulls and other solids, before the sea: the sea's depth test then hides what is under water.
+    if (layers) draw_meshes(*layers, view, snapshot, bound, light, earth_radius);
     // 3. The sea surface, and its grid's edges over it when asked.
     QuadtreeSelection selection;
     ProjectedGridLayout layout;
@@ -631,6 +691,11 @@ struct WaterRenderer::Impl {
     set_lighting_uniforms(program, light);
     set_water_lighting_uniforms(program, snapshot, light);
     set_uniform(program, "u_has_reflection", reflect ? 1 : 0);
+    set_uniform(program, "u_has_decal_foam", decal_foam ? 1 : 0);
+    if (decal_foam) {
+      const std::array<float, 4>& rect = layer_gpu.decal_rect_m();
+      glUniform4f(at(program, "u_decal_foam_rect_m"), rect[0], rect[1], rect[2], rect[3]);
+    }
     glUniform2f(at(program, "u_viewport_px"), float(width), float(height));
     draw_water(program, kind, view, earth_radius, snapshot, bound, options, &selection, &layout, true);
     if (options.wireframe) {
@@ -645,7 +710,8 @@ struct WaterRenderer::Impl {
       throw Error("water renderer", "OpenGL error " + std::to_string(error) + " while drawing", "report this bug");
   }
 
-  Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& r, int columns, int rows) {
+  Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& r, int columns, int rows,
+                                  const SurfaceLayers* layers) {
     if (columns < 1 || rows < 1 || columns > 8192 || rows > 8192 || !(r.x1_m > r.x0_m) || !(r.y1_m > r.y0_m))
       throw Error("height map", std::to_string(columns) + " x " + std::to_string(rows) + " cells over x " +
                                     std::to_string(r.x0_m) + ".." + std::to_string(r.x1_m) + ", y " +
@@ -655,6 +721,7 @@ struct WaterRenderer::Impl {
     check_snapshot(snapshot);
     UploadCounters counters;
     const KeyframeTextures::Bound bound = keyframes.prepare(snapshot, 0, counters);
+    prepare_patches(layers);
     // One lattice vertex per cell centre, plus a margin of cells so the choppy shift never
     // uncovers the rectangle's edge.
     const double dx = (r.x1_m - r.x0_m) / columns, dy = (r.y1_m - r.y0_m) / rows;
@@ -704,8 +771,8 @@ bool WaterRenderer::stage(std::shared_ptr<const runtime::HarbourKeyframe> k) { r
 bool WaterRenderer::stage(std::shared_ptr<const runtime::DeepWaterKeyframe> k) { return impl_->keyframes.stage(std::move(k)); }
 
 void WaterRenderer::render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting,
-                           int width_px, int height_px, const DrawOptions& options) {
-  impl_->render(snapshot, camera, lighting, width_px, height_px, options);
+                           int width_px, int height_px, const DrawOptions& options, const SurfaceLayers* layers) {
+  impl_->render(snapshot, camera, lighting, width_px, height_px, options, layers);
 }
 
 void WaterRenderer::stage_upcoming(const runtime::StreamingEngine& engine) {
@@ -723,8 +790,8 @@ const GpuTextures& WaterRenderer::textures() const { return impl_->textures; }
 const FrameStatistics& WaterRenderer::last_frame() const { return impl_->statistics; }
 
 Raster<float> WaterRenderer::render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& rectangle,
-                                               int columns, int rows) {
-  return impl_->render_height_map(snapshot, rectangle, columns, rows);
+                                               int columns, int rows, const SurfaceLayers* layers) {
+  return impl_->render_height_map(snapshot, rectangle, columns, rows, layers);
 }
 
 void WaterRenderer::blit_to_window(int window_width_px, int window_height_px) const {

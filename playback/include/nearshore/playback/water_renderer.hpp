@@ -23,6 +23,7 @@
 #include "nearshore/playback/camera.hpp"
 #include "nearshore/playback/lighting.hpp"
 #include "nearshore/playback/surface_grids.hpp"
+#include "nearshore/playback/surface_layers.hpp"
 #include "nearshore/runtime/streaming_engine.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
 
@@ -43,6 +44,10 @@ struct RendererSettings {
   /// terrain pass into a texture of 1/reflection_downscale the picture's size; docs/lighting.md).
   bool local_reflections = true;
   int reflection_downscale = 2;
+  /// Side of the square foam map the SurfaceLayers' decals are drawn into (texels), over the
+  /// decals' bounding box but never finer than decal_foam_finest_m per texel.
+  int decal_foam_texels = 1024;
+  double decal_foam_finest_m = 0.25;
 };
 
 /// How the sea is coloured: lit (the frame loop), or flat and by level of detail for tests and
@@ -66,6 +71,8 @@ struct FrameStatistics {
   long long triangles_drawn = 0;
   int quadtree_patches = 0, quadtree_levels = 0;
   double near_m = 0, far_m = 0;           ///< the clip distances used
+  std::size_t layer_upload_bytes = 0;     ///< height patches and meshes sent (SurfaceLayers)
+  int height_patches = 0, foam_decals = 0, meshes = 0;  ///< the layers drawn
 };
 
 /// A rectangle of the site frame, metres.
@@ -109,8 +116,11 @@ class WaterRenderer {
   /// Draws `snapshot` seen by `camera` (site frame) into the renderer's framebuffer. Throws
   /// nearshore::Error for a snapshot it cannot draw (keyframes of another size than the site's
   /// grid, deep-water cascades of different sizes) and for a camera that looks nowhere.
+  /// `layers` (may be null): height patches, foam decals and meshes drawn with the sea
+  /// (surface_layers.hpp); throws nearshore::Error for more patches than kMaxHeightPatches or a
+  /// patch or mesh without data.
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width_px,
-              int height_px, const DrawOptions& options = {});
+              int height_px, const DrawOptions& options = {}, const SurfaceLayers* layers = nullptr);
   const FrameStatistics& last_frame() const;
   /// Makes the snapshot's keyframes resident without drawing (and spends the upload budget on
   /// staged ones), for a host that draws them itself; returns what textures() returns after.
@@ -122,8 +132,10 @@ class WaterRenderer {
   /// vertex path, one value per cell of a columns x rows raster (cell (i, j) centred at x0 + (i +
   /// 0.5) (x1 - x0) / columns, row 0 south); NaN where no water is drawn (land, structures, dry).
   /// For tests and documentation (it reads the GPU back): never in the frame loop.
+  /// With `layers`, their height patches are added as in render() (the CPU twin of the sum:
+  /// ships::ShipFleet::shown_elevation_m).
   Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& rectangle, int columns,
-                                  int rows);
+                                  int rows, const SurfaceLayers* layers = nullptr);
 
   /// Copies the last render to the window's back buffer (call GlWindow::present after).
   void blit_to_window(int window_width_px, int window_height_px) const;
