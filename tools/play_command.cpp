@@ -73,8 +73,7 @@ runtime::PlanKind plan_kind_of(const std::string& name) {
   throw Error("--plan " + name, "is not a plan", "use auto, period, loop, random or order");
 }
 
-// Compass bearing the wind blows FROM (deg) -> the direction the waves travel, anticlockwise from east.
-double travel_direction_rad(double wind_from_deg) { return (90.0 - (wind_from_deg + 180.0)) * std::numbers::pi / 180.0; }
+using ocean::travel_direction_rad;  // compass "from" bearing -> travel direction
 
 runtime::StreamingOptions streaming_options(const PlayOptions& o, const std::string& plan) {
   runtime::StreamingOptions options;

@@ -19,6 +19,7 @@
 
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
+#include "nearshore/ocean/sea_state_beaufort.hpp"
 #include "nearshore/playback/gl_loader.hpp"
 #include "nearshore/playback/lighting.hpp"
 #include "nearshore/playback/sun_position.hpp"
@@ -62,12 +63,7 @@ nearshore::runtime::PlanKind plan_kind(nearshore_plan plan) {
                                        " is not a nearshore_plan; use NEARSHORE_PLAN_AUTO .. NEARSHORE_PLAN_FRAME_ORDER");
 }
 
-// Compass direction the wind blows FROM (deg, clockwise from north) -> the direction the waves
-// travel, counter-clockwise from east (rad), as ocean/ and the runtime take it.
-double travel_direction_rad(double wind_from_deg) {
-  const double towards_compass_deg = wind_from_deg + 180.0;
-  return (90.0 - towards_compass_deg) * std::acos(-1.0) / 180.0;
-}
+using nearshore::ocean::travel_direction_rad;  // compass "from" bearing -> travel direction
 
 nearshore::runtime::BeaufortSea beaufort_sea(int force, double wind_from_deg) {
   if (force < 0 || force > 12)

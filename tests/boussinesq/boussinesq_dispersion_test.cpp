@@ -38,16 +38,7 @@ DispersionPoint measure(double kh, int points_per_wavelength, double courant) {
   BoussinesqSolver solver(harbour, testing::inviscid_parameters(courant), WaveMaker{});
   const double amplitude_m = 1e-5 * depth_m;  // linear: nonlinearity a/d = 1e-5
   solver.set_surface_elevation([&](double x, double) { return amplitude_m * std::cos(k * x); });
-  std::vector<double> crossings;
-  double previous = solver.surface_elevation_at(0.0, 0.0);
-  while (crossings.size() < 9) {
-    solver.step();
-    const double now = solver.surface_elevation_at(0.0, 0.0);
-    if ((previous > 0.0) != (now > 0.0))  // linear interpolation of the zero crossing
-      crossings.push_back(solver.time_s() - solver.time_step_s() * now / (now - previous));
-    previous = now;
-  }
-  const double period_s = 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1.0);
+  const double period_s = testing::standing_mode_period_s(solver);
   DispersionPoint point;
   point.kh = kh;
   point.airy_m_s = phase_speed_m_s(k, depth_m);
@@ -102,15 +93,7 @@ TEST(BoussinesqDispersion, ObliqueStandingWaveAgainstAiry) {
     BoussinesqSolver solver(harbour, testing::inviscid_parameters(0.5), WaveMaker{});
     const double amplitude_m = 1e-5 * depth_m;
     solver.set_surface_elevation([&](double x, double y) { return amplitude_m * std::cos(k_axis * x) * std::cos(k_axis * y); });
-    std::vector<double> crossings;
-    double previous = solver.surface_elevation_at(0.0, 0.0);
-    while (crossings.size() < 9) {
-      solver.step();
-      const double now = solver.surface_elevation_at(0.0, 0.0);
-      if ((previous > 0.0) != (now > 0.0)) crossings.push_back(solver.time_s() - solver.time_step_s() * now / (now - previous));
-      previous = now;
-    }
-    const double period_s = 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1.0);
+    const double period_s = testing::standing_mode_period_s(solver);
     const double error = 2.0 * kPi / period_s / k / phase_speed_m_s(k, depth_m) - 1.0;
     std::printf("45 deg, kh = %.1f: c/c_Airy - 1 = %+.3f %%\n", kh, 100 * error);
     EXPECT_LT(std::abs(error), 0.02) << "kh = " << kh;  // the bound, as along an axis

@@ -48,18 +48,7 @@ struct Mode {
   double kx = 0.0, ky = 0.0;  // rad/m, along x and y (a standing wave cos(kx x) cos(ky y))
 };
 
-// Period of the standing mode from the zero crossings of the corner cell (0, 0).
-double measured_period_s(BoussinesqSolver& solver) {
-  std::vector<double> crossings;
-  double previous = solver.surface_elevation_at(0.0, 0.0);
-  while (crossings.size() < 9) {
-    solver.step();
-    const double now = solver.surface_elevation_at(0.0, 0.0);
-    if ((previous > 0.0) != (now > 0.0)) crossings.push_back(solver.time_s() - solver.time_step_s() * now / (now - previous));
-    previous = now;
-  }
-  return 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1.0);
-}
+double measured_period_s(BoussinesqSolver& solver) { return testing::standing_mode_period_s(solver); }
 
 struct PhaseSpeed {
   double measured = 0.0, predicted = 0.0, continuous = 0.0, truncation_bound = 0.0, time_step_s = 0.0;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "nearshore/boussinesq/boussinesq_solver.hpp"
 
@@ -27,6 +28,21 @@ inline SolverParameters inviscid_parameters(double courant_number = 0.5) {
 }
 
 /// Where tests write plots: <build>/validation/boussinesq/.
+// Period of a standing mode (a closed basin's eigenmode set by set_surface_elevation) from the
+// zero crossings of the corner cell (0, 0), each interpolated linearly within its time step:
+// eight half periods.
+inline double standing_mode_period_s(BoussinesqSolver& solver) {
+  std::vector<double> crossings;
+  double previous = solver.surface_elevation_at(0.0, 0.0);
+  while (crossings.size() < 9) {
+    solver.step();
+    const double now = solver.surface_elevation_at(0.0, 0.0);
+    if ((previous > 0.0) != (now > 0.0)) crossings.push_back(solver.time_s() - solver.time_step_s() * now / (now - previous));
+    previous = now;
+  }
+  return 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1.0);
+}
+
 inline std::filesystem::path plot_folder() {
   std::filesystem::path folder = std::filesystem::path(NEARSHORE_BINARY_DIR) / "validation" / "boussinesq";
   std::filesystem::create_directories(folder);

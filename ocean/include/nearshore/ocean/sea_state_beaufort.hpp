@@ -47,6 +47,13 @@ struct BeaufortPreset {
   std::string note;                      ///< why the preset deviates from the table, if it does
 };
 
+/// A wind as charts and sailors give it, the compass bearing it blows FROM (degrees, clockwise
+/// from north), turned into the direction its waves travel TOWARD, counter-clockwise from east
+/// (radians): the convention of every spectrum and preset here.
+inline double travel_direction_rad(double wind_from_compass_deg) {
+  return (90.0 - (wind_from_compass_deg + 180.0)) * 3.14159265358979323846 / 180.0;
+}
+
 /// The preset for `force` (0-12; anything else is a nearshore::Error naming the fix).
 BeaufortPreset beaufort_preset(int force, double wind_direction_rad = 0.0,
                                BeaufortSpectrum choice = BeaufortSpectrum::kSeedChoice);
