@@ -19,9 +19,10 @@ namespace nearshore::bake {
 /// rounded up. The one figure every memory estimate of a bake uses.
 inline constexpr double kBakeBytesPerCell = 300.0;
 /// What a bake allocates whatever its grid: worker threads and their stacks, the case, buffers,
-/// bytes (the whole bake_runner process peaked at 9 MiB on a tiny grid on 2 cores; more cores,
+/// bytes (bake_runner peaked 9 MiB above its own start-up on a tiny grid on 2 cores; more cores,
 /// more stacks). The code and libraries of the process are not counted: they are resident before
-/// the bake starts (the `nearshore` executable alone holds about 65 MiB).
+/// the bake starts (the `nearshore` executable alone holds about 65 MiB; since the bake reads
+/// local-metres grids through bathymetry/, a bake process loads GDAL too, about 40 MiB at start).
 inline constexpr double kBakeFixedBytes = 16.0 * 1024 * 1024;
 
 struct BakeResourceEstimate {
