@@ -1,5 +1,8 @@
 #include "exr_frame.hpp"
 
+#include <string_view>
+#include <utility>
+
 #include <OpenEXR/Iex.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfDoubleAttribute.h>
@@ -117,15 +120,30 @@ void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::
   };
   const std::size_t available = header_bytes.size();
   const auto byte_at = [&](std::size_t k) { return static_cast<unsigned char>(header_bytes[k]); };
+  if (available < 8) return;  // OpenEXR refuses it
+  // Names and type names are at most 31 bytes, 255 with the long-names flag (bit 10 of the version
+  // field). OpenEXR stops reading a name at that length even without its terminating zero, so a
+  // longer one would be split where this scan does not split it, and OpenEXR would take a size
+  // this scan never saw (a fuzzed frame made it allocate 1.6 GB): refuse it here instead.
+  const bool long_names = (byte_at(5) & 0x04) != 0;
+  const std::size_t longest_name = long_names ? 255 : 31;
   std::size_t position = 8;  // magic number and version field
+  // The end (its zero) of the name starting at `start`, or `available` if the prefix ends first.
+  const auto name_end_from = [&](std::size_t start, const char* what) {
+    for (std::size_t k = start; k < available; ++k) {
+      if (byte_at(k) == 0) return k;
+      if (k - start >= longest_name)
+        throw corrupt(fmt::format("a header attribute's {} at byte {} is longer than {} bytes", what, start,
+                                  longest_name));
+    }
+    return available;
+  };
   while (position < available) {
     if (byte_at(position) == 0) return;  // end of header
-    std::size_t name_end = position;
-    int terminators = 0;
-    std::size_t type_end = position;
-    for (std::size_t k = position; k < available && terminators < 2; ++k)
-      if (byte_at(k) == 0) (terminators++ == 0 ? name_end : type_end) = k;
-    if (terminators < 2 || type_end + 4 >= available) return;  // beyond the prefix: OpenEXR checks the rest
+    const std::size_t name_end = name_end_from(position, "name");
+    if (name_end + 1 >= available) return;  // beyond the prefix: OpenEXR checks the rest
+    const std::size_t type_end = name_end_from(name_end + 1, "type name");
+    if (type_end >= available || type_end + 4 >= available) return;  // beyond the prefix: OpenEXR checks the rest
     const std::int32_t size = static_cast<std::int32_t>(static_cast<std::uint32_t>(byte_at(type_end + 1)) |
                                                         static_cast<std::uint32_t>(byte_at(type_end + 2)) << 8 |
                                                         static_cast<std::uint32_t>(byte_at(type_end + 3)) << 16 |
@@ -135,7 +153,30 @@ void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::
       throw corrupt(fmt::format("header attribute '{}' claims {} bytes but the file has {} bytes in all",
                                 std::string(reinterpret_cast<const char*>(header_bytes.data()) + position, name_end - position),
                                 size, file_size));
-    position = value_start + static_cast<std::size_t>(size);
+    // Where OpenEXR goes on reading: a value of a known type is read by its structure, whatever
+    // size the file claims (a channel list up to its empty name, an int as 4 bytes), so the next
+    // attribute starts where the structure ends; strings and unknown types take the claimed size.
+    const std::string type(reinterpret_cast<const char*>(header_bytes.data()) + name_end + 1, type_end - name_end - 1);
+    if (type == "chlist") {
+      std::size_t k = value_start;
+      while (k < available && byte_at(k) != 0) {
+        k = name_end_from(k, "channel name");
+        if (k >= available) return;  // beyond the prefix: OpenEXR checks the rest
+        k += 1 + 16;  // pixel type, pLinear and reserved, x and y sampling
+      }
+      if (k >= available) return;
+      position = k + 1;
+      continue;
+    }
+    static constexpr std::pair<std::string_view, std::size_t> kFixedSizes[] = {
+        {"box2i", 16}, {"box2f", 16}, {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1},
+        {"int", 4},    {"float", 4},  {"double", 8},      {"v2i", 8},       {"v2f", 8},    {"v2d", 16},
+        {"v3i", 12},   {"v3f", 12},   {"v3d", 24},        {"m33f", 36},     {"m33d", 72},  {"m44f", 64},
+        {"m44d", 128}, {"rational", 8}, {"timecode", 8},  {"keycode", 28},  {"tiledesc", 9}, {"chromaticities", 32}};
+    std::size_t value_size = static_cast<std::size_t>(size);
+    for (const auto& [known, bytes] : kFixedSizes)
+      if (type == known) value_size = bytes;
+    position = value_start + value_size;
   }
 }
 
