@@ -1,4 +1,5 @@
 #include "keyframe_textures.hpp"
+#include "gl_texture.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -12,16 +13,9 @@ namespace {
 constexpr std::size_t kUnlimited = std::numeric_limits<std::size_t>::max();
 
 GLuint new_texture(GLenum target) {
-  GLuint texture = 0;
-  glGenTextures(1, &texture);
-  glBindTexture(target, texture);
   // Linear for the fragment shader's slopes and foam; the vertex path fetches texels itself.
-  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   const GLint wrap = target == GL_TEXTURE_2D_ARRAY ? GL_REPEAT : GL_CLAMP_TO_EDGE;  // deep tiles are periodic
-  glTexParameteri(target, GL_TEXTURE_WRAP_S, wrap);
-  glTexParameteri(target, GL_TEXTURE_WRAP_T, wrap);
-  return texture;
+  return playback::new_texture(target, GL_LINEAR, wrap);
 }
 
 const std::vector<float>& deep_field(const ocean::DeepWaterFrame& frame, int field) {

@@ -1,4 +1,5 @@
 #include "surface_layer_gpu.hpp"
+#include "gl_texture.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -96,13 +97,11 @@ bool SurfaceLayerGpu::draw_decals(const std::vector<FoamDecal>& decals, GLuint p
   foam_rect_m_ = {float(0.5 * (x0 + x1) - 0.5 * side), float(0.5 * (y0 + y1) - 0.5 * side), float(side), float(side)};
   // 2. The target (R8: cover 0..1), made once.
   if (foam_texels_ != texels) {
-    if (!foam_texture_) glGenTextures(1, &foam_texture_);
-    glBindTexture(GL_TEXTURE_2D, foam_texture_);
+    if (!foam_texture_)
+      foam_texture_ = new_texture(GL_TEXTURE_2D, GL_LINEAR, GL_CLAMP_TO_EDGE);
+    else
+      glBindTexture(GL_TEXTURE_2D, foam_texture_);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, texels, texels, 0, GL_RED, GL_UNSIGNED_BYTE, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     if (!foam_framebuffer_) glGenFramebuffers(1, &foam_framebuffer_);
     glBindFramebuffer(GL_FRAMEBUFFER, foam_framebuffer_);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, foam_texture_, 0);
