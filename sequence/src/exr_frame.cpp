@@ -113,8 +113,13 @@ class MemoryInput : public Imf::IStream {
 // attributes "name\0 type\0 int32 size, value" up to an empty name) and refuse any attribute
 // whose value would run past the end of the file. `header_bytes` may be a prefix of the file;
 // the walk stops where it ends (sizes are still bounded by `file_size`).
+// The data window is checked here too, against the grid of `manifest`: OpenEXR's InputFile sizes
+// its line buffers and decompressor from the data window while it opens the file, before
+// validate_header can look at it, so a bent window in a compressed frame made it allocate 566 MB
+// (found by the libFuzzer target with -malloc_limit_mb=500). Tiled headers are refused for the
+// same reason (their tile buffers come from the tile description); frames are scanline files.
 void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::uint64_t file_size,
-                                  const std::string& source) {
+                                  const std::string& source, const GridGeometry& grid) {
   const auto corrupt = [&](const std::string& problem) {
     return Error(source, problem, kCorruptFrameFix);
   };
@@ -126,6 +131,9 @@ void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::
   // longer one would be split where this scan does not split it, and OpenEXR would take a size
   // this scan never saw (a fuzzed frame made it allocate 1.6 GB): refuse it here instead.
   const bool long_names = (byte_at(5) & 0x04) != 0;
+  // Version field bits 9 (tiled), 11 (deep) and 12 (multi-part): a frame is none of these.
+  if ((byte_at(5) & (0x02 | 0x08 | 0x10)) != 0)
+    throw corrupt("its version field marks a tiled, deep or multi-part file; a frame is a single-part scanline file");
   const std::size_t longest_name = long_names ? 255 : 31;
   std::size_t position = 8;  // magic number and version field
   // The end (its zero) of the name starting at `start`, or `available` if the prefix ends first.
@@ -176,6 +184,21 @@ void check_header_attribute_sizes(std::span<const std::byte> header_bytes, std::
     std::size_t value_size = static_cast<std::size_t>(size);
     for (const auto& [known, bytes] : kFixedSizes)
       if (type == known) value_size = bytes;
+    const std::string_view name(reinterpret_cast<const char*>(header_bytes.data()) + position, name_end - position);
+    if (name == "dataWindow" && type == "box2i" && value_start + 16 <= available) {
+      const auto int_at = [&](std::size_t k) {
+        return static_cast<std::int32_t>(static_cast<std::uint32_t>(byte_at(k)) | static_cast<std::uint32_t>(byte_at(k + 1)) << 8 |
+                                         static_cast<std::uint32_t>(byte_at(k + 2)) << 16 |
+                                         static_cast<std::uint32_t>(byte_at(k + 3)) << 24);
+      };
+      const std::int32_t min_x = int_at(value_start), min_y = int_at(value_start + 4);
+      const std::int32_t max_x = int_at(value_start + 8), max_y = int_at(value_start + 12);
+      if (min_x != 0 || min_y != 0 || max_x != grid.columns - 1 || max_y != grid.rows - 1)
+        throw Error(source,
+                    fmt::format("has a header data window of pixels ({}, {})-({}, {}) but the grid is {} x {}", min_x,
+                                min_y, max_x, max_y, grid.columns, grid.rows),
+                    "the frame does not belong to this sequence; rewrite the sequence");
+    }
     position = value_start + value_size;
   }
 }
@@ -514,7 +537,7 @@ void decode_frame_rows(const std::filesystem::path& path, const SequenceManifest
     std::ifstream stream(path, std::ios::binary);
     stream.read(reinterpret_cast<char*>(header.data()), static_cast<std::streamsize>(header.size()));
     check_header_attribute_sizes(std::span(header.data(), static_cast<std::size_t>(stream.gcount())),
-                                 std::filesystem::file_size(path), path.string());
+                                 std::filesystem::file_size(path), path.string(), manifest.geometry);
     Imf::InputFile file(path.c_str());
     decode(file, path.string(), manifest, expected_index, first_row, row_count, selection, frame);
   } catch (const Error&) {
@@ -529,7 +552,7 @@ void decode_frame_rows(const std::filesystem::path& path, const SequenceManifest
 void decode_frame(std::span<const std::byte> bytes, const std::string& source, const SequenceManifest& manifest,
                   int expected_index, ChannelSelection channels, Frame& frame) {
   try {
-    check_header_attribute_sizes(bytes, bytes.size(), source);
+    check_header_attribute_sizes(bytes, bytes.size(), source, manifest.geometry);
     MemoryInput input(bytes, source);
     Imf::InputFile file(input);
     if (file.header().compression() == Imf::NO_COMPRESSION && file.header().channels().begin() != file.header().channels().end()) {

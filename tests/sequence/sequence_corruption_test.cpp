@@ -122,6 +122,33 @@ TEST(SequenceCorruption, HeaderAttributeClaimingMoreThanTheFileIsRejectedBeforeA
   EXPECT_NE(rows_message.find("claims"), std::string::npos) << rows_message;
 }
 
+// Found by the libFuzzer target with -malloc_limit_mb=500: OpenEXR sizes a compressed file's line
+// buffers from the data window while it opens the file, so a bent window asked for 566 MB before
+// the header could be compared with the manifest. Both decoders must refuse the window first.
+TEST(SequenceCorruption, DataWindowLargerThanTheGridIsRejectedBeforeAllocation) {
+  const auto folder = fresh_folder("oversized_window");
+  write_test_sequence(folder, 1, FrameEncoding{Compression::kZip, Precision::kHalf, Precision::kFloat, Precision::kHalf},
+                      test_geometry(9, 7));
+  const SequenceManifest manifest = parse_manifest(read_file_bytes(folder / "manifest.json"), "manifest.json");
+  std::string bytes = read_file_bytes(folder / "frame_000000.exr");
+  const std::string attribute("dataWindow\0box2i\0", 17);
+  const std::size_t at = bytes.find(attribute);
+  ASSERT_NE(at, std::string::npos);
+  const std::int32_t huge_column = 1 << 24;  // max.x: lines of 16.8 million pixels, 200 MB each
+  std::memcpy(bytes.data() + at + attribute.size() + 4 + 8, &huge_column, sizeof huge_column);
+  Frame frame;
+  const std::string message = error_of([&] {
+    decode_frame(std::as_bytes(std::span(bytes.data(), bytes.size())), "frame_000000.exr", manifest, 0,
+                 ChannelSelection::all(), frame);
+  });
+  EXPECT_NE(message.find("header data window of pixels (0, 0)-(16777216, 6) but the grid is 9 x 7"), std::string::npos)
+      << message;
+  overwrite(folder / "frame_000000.exr", bytes);
+  const SequenceReader reader(folder);
+  const std::string rows_message = error_of([&] { reader.read_frame_rows(0, 0, 3, frame, ChannelSelection::all()); });
+  EXPECT_NE(rows_message.find("header data window"), std::string::npos) << rows_message;
+}
+
 // Issue 13 item 4: a NaN or an infinity in a frame must stop the reader even without checksum
 // verification (the loop inspector took a NaN distance for a perfect seam, the player drew a wall).
 // Both decoders (NONE: nearshore's own; ZIP: OpenEXR's) and the row-stripe reader are checked, on
