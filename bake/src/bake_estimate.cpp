@@ -10,21 +10,32 @@
 // square grid). Counting the arrays gives the same picture: the solver holds 173 B per cell plus
 // its sponge lists (docs/solver.md "Memory", BoussinesqSolver::memory_bytes()); the bake adds the
 // two cell-centred flux rasters (8 B), the frame being encoded (half-float channel copies and the
-// file in memory, ~26 B) and the harbour grid (13 B): 220 B. The constant rounds the larger
-// measurement up by about 8 %; the test BakeEstimate.CoversTheMeasuredPeakOfARealBake fails when
-// a new array outgrows it. Before issue 15 the figure was 640 B (530-574 B measured).
+// file in memory, ~26 B) and the harbour grid (13 B): 220 B. Before issue 15 the figure was 640 B
+// (530-574 B measured).
+//
+// Since 2026-11-24 (issue 15, scale) the estimate splits the two: kBakeBytesPerCell = 250 B per
+// cell and kBakeBytesPerLinePerThread = 3.5 kB per cell of the longest side per thread (the
+// sweep's 19 scratch arrays of 16 lanes and the filter's 128-line block). Measured on 4000 x 4000
+// (the Berkhoff basin at 7.5 x 5 mm, 5 steps, two frames, a checkpoint, two threads; docs/solver.md
+// "Scale"): peak 4.29e9 B, 262 B per cell above the 73 MB of code and libraries, of which 41 B are
+// the wave statistics; the single 300 B figure estimated 5.46e9 B (27 % over), this one 4.70e9 B
+// (+10 %). BakeEstimate.CoversTheMeasuredPeakOfARealBake checks the narrow flume against the
+// estimate's growth per added cell (per-line buffers included).
 #include "nearshore/bake/bake_estimate.hpp"
 
 #include <sys/statvfs.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include <fmt/core.h>
+#include <tbb/info.h>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/bake/wave_statistics.hpp"
 #include "nearshore/sequence/sequence_format.hpp"
 
 namespace nearshore::bake {
@@ -56,8 +67,9 @@ std::string format_bytes(double bytes) {
 }
 
 std::string BakeResourceEstimate::describe() const {
-  std::string text = fmt::format("{} of memory ({} cells x {:.0f} B + {}), {} of disk ({:.0f} frames of {}",
-                                 format_bytes(memory_bytes), cells, kBakeBytesPerCell, format_bytes(kBakeFixedBytes),
+  std::string text = fmt::format("{} of memory ({} cells x {:.0f} B + {} + {}), {} of disk ({:.0f} frames of {}",
+                                 format_bytes(memory_bytes), cells, kBakeBytesPerCell, format_bytes(line_bytes),
+                                 format_bytes(kBakeFixedBytes),
                                  format_bytes(disk_bytes), frames, format_bytes(frame_bytes));
   if (checkpoint_bytes > 0) text += fmt::format(", checkpoints of {}", format_bytes(checkpoint_bytes));
   return text + ")";
@@ -79,7 +91,7 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
   estimate.gauge_samples = std::floor(estimate.steps / per_gauge) + 1;
   const double gauge_values = estimate.gauge_samples * (1.0 + static_cast<double>(bake_case.gauges.size()));
 
-  const sequence::FrameEncoding encoding;  // run_bake writes the default encoding
+  const sequence::FrameEncoding& encoding = bake_case.output.frame_encoding;  // [output] frame_precision
   const double frame_bytes_per_cell = channel_bytes(encoding.surface_elevation) + 2 * channel_bytes(encoding.flux) +
                                       channel_bytes(encoding.breaking);
   // Scan-line files: each line has an offset-table entry and a line header (y, size), 8 bytes each.
@@ -90,15 +102,24 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
     // bake_run.cpp (magic, fingerprint, gauges), boussinesq_state.cpp (header, 9 sized arrays, checksum;
     // counted as doubles, an upper bound: state version 3 stores two of them as float).
     estimate.checkpoint_bytes = 16 + 8 + names + 8 + gauge_values * 8 + 36 + kStateArrays * (8 + cells * 8) + 8;
+    // The wave statistics' state (header, then their sums and envelope; wave_statistics.cpp).
+    if (bake_case.output.wave_statistics) estimate.checkpoint_bytes += 24 + cells * WaveStatistics::kBytesPerCell;
   }
 
-  estimate.memory_bytes = kBakeFixedBytes + cells * kBakeBytesPerCell + gauge_values * kGaugeValueMemoryBytes +
-                          (resume ? kStateArrays * cells * 8 : 0.0);
+  // The wave statistics' sums and envelope came after kBakeBytesPerCell was measured: added here,
+  // with the four float bands written at the end (wave_statistics_geotiff.cpp).
+  const double statistics_bytes_per_cell = bake_case.output.wave_statistics ? WaveStatistics::kBytesPerCell + 5 * 4.0 : 0.0;
+  // Buffers per cell of the longest side, one set per worker thread (the solver's sweep and filter).
+  const double threads = std::max(1, tbb::info::default_concurrency());
+  estimate.line_bytes = std::max(geometry.columns, geometry.rows) * kBakeBytesPerLinePerThread * threads;
+  estimate.memory_bytes = kBakeFixedBytes + cells * (kBakeBytesPerCell + statistics_bytes_per_cell) + estimate.line_bytes +
+                          gauge_values * kGaugeValueMemoryBytes + (resume ? kStateArrays * cells * 8 : 0.0);
   const double harbour_grid_bytes = cells * 16 + kFrameHeaderBytes;  // depth.exr: 4 float channels, ZIP at most that
   const double gauges_csv_bytes = gauge_values * kGaugeValueTextBytes;
   // While under way, the checkpoint and gauges.csv are rewritten beside their last copies.
+  const double statistics_file_bytes = bake_case.output.wave_statistics ? cells * 16 + kFrameHeaderBytes : 0.0;  // 4 float bands, DEFLATE at most that
   estimate.disk_bytes = estimate.frames * estimate.frame_bytes + harbour_grid_bytes + 2 * gauges_csv_bytes +
-                        2 * estimate.checkpoint_bytes;
+                        2 * estimate.checkpoint_bytes + statistics_file_bytes;
   return estimate;
 }
 
@@ -133,7 +154,7 @@ void check_bake_resources(const BakeCase& bake_case, const BakeResourceEstimate&
     problems.push_back(fmt::format("needs about {} of memory ({} cells x {:.0f} B per cell + {}) but this machine has {} "
                                    "available (MemAvailable, /proc/meminfo)",
                                    format_bytes(estimate.memory_bytes), estimate.cells, kBakeBytesPerCell,
-                                   format_bytes(kBakeFixedBytes), format_bytes(*memory)));
+                                   format_bytes(kBakeFixedBytes + estimate.line_bytes), format_bytes(*memory)));
   if (const auto disk = free_disk_bytes(output_folder); disk && estimate.disk_bytes > *disk + replaced_bytes) {
     std::string parts = fmt::format("{:.4g} frames of {}", estimate.frames, format_bytes(estimate.frame_bytes));
     if (estimate.checkpoint_bytes > 0) parts += fmt::format(", checkpoints of {}", format_bytes(estimate.checkpoint_bytes));

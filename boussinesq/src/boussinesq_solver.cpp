@@ -40,6 +40,22 @@ void for_each_index(std::size_t count, const Body& body) {
   });
 }
 
+// The first i in [0, count) with bad(i) != 0 (an int 0 or 1), or count: blocks of 1024 are scanned
+// without a branch (the loop vectorises), and only a block holding a bad value element by element.
+template <class Bad>
+std::size_t first_index_where(std::size_t count, const Bad& bad) {
+  constexpr std::size_t kBlock = 1024;
+  for (std::size_t begin = 0; begin < count; begin += kBlock) {
+    const std::size_t end = std::min(count, begin + kBlock);
+    int any = 0;
+    for (std::size_t i = begin; i < end; ++i) any |= bad(i);
+    if (any != 0)
+      for (std::size_t i = begin; i < end; ++i)
+        if (bad(i) != 0) return i;
+  }
+  return count;
+}
+
 double smooth_step(double t) {  // cubic 0..1 on t in [0, 1]
   t = std::clamp(t, 0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
@@ -297,7 +313,7 @@ void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame,
   tbb::parallel_for(0, cols, [&](int c) {
     const std::size_t line = static_cast<std::size_t>(c) * rows;
     for (int l = 0; l < rows; ++l)
-      wet[line + l] = frame.inverse_porosity[line + l] > 0.0 && frame.depth_m[line + l] + eta_frame[line + l] > dry ? 1 : 0;
+      wet[line + l] = (frame.inverse_porosity[line + l] > 0.0f) & (frame.depth_m[line + l] + eta_frame[line + l] > dry);
   });
   tbb::parallel_for(0, cols, [&](int c) {
     const unsigned char* here = wet + static_cast<std::size_t>(c) * rows;
@@ -522,7 +538,7 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
     const float* inverse_porosity = frame_x.inverse_porosity.data();
     const unsigned char *west = wet_x + px(f - 1, 0), *east = wet_x + px(f, 0);
     for (int r = 0; r < ny; ++r)
-      out[r] = detail::face_open(inverse_porosity, px(f - 1, r), px(f, r)) != 0.0 && west[r] && east[r] ? 1 : 0;
+      out[r] = (detail::face_open(inverse_porosity, px(f - 1, r), px(f, r)) != 0.0) & west[r] & east[r];  // & not &&: vectorises
   });
   tbb::parallel_for(0, ny + 1, [&](int k) {
     unsigned char* out = filterable_y.data() + qy(0, k);
@@ -533,7 +549,7 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
     const float* inverse_porosity = frame_y.inverse_porosity.data();
     const unsigned char *south = wet_y + index(0, k - 1, nx), *north = wet_y + index(0, k, nx);
     for (int c = 0; c < nx; ++c)
-      out[c] = detail::face_open(inverse_porosity, index(c, k - 1, nx), index(c, k, nx)) != 0.0 && south[c] && north[c] ? 1 : 0;
+      out[c] = (detail::face_open(inverse_porosity, index(c, k - 1, nx), index(c, k, nx)) != 0.0) & south[c] & north[c];
   });
   // P: along x is its slow index (normal to the west and east walls), along y its fast index.
   flux_filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
@@ -680,8 +696,18 @@ double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
 std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {
   const Implementation& s = *implementation_;
   const double ratio = s.parameters.blowup_elevation_depth_ratio;
-  for (int r = 0; r < s.ny; ++r)
-    for (int c = 0; c < s.nx; ++c) {
+  // The bake calls this every step: a branch-free scan for the first bad cell (in row order, so the
+  // report is the same as a cell-by-cell search), the report built only for it. A value is bad when
+  // it is not finite (|v| <= max fails for NaN and infinities) or exceeds the guard.
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  const std::size_t cells = s.eta.size();
+  const std::size_t first_bad = first_index_where(cells, [&](std::size_t i) {
+    const double d = s.frame_y.depth_m[i], eta = s.eta[i];
+    const double excess = d > 0.0 ? std::abs(eta) : d + eta;
+    return static_cast<int>(!(std::abs(eta) <= kLargest)) | static_cast<int>(excess > ratio * std::max(d, 1.0));
+  });
+  for (int r = static_cast<int>(first_bad / s.nx); r < s.ny; ++r)
+    for (int c = r == static_cast<int>(first_bad / s.nx) ? static_cast<int>(first_bad % s.nx) : 0; c < s.nx; ++c) {
       const std::size_t i = index(c, r, s.nx);
       const double d = s.frame_y.depth_m[i], eta = s.eta[i];
       InstabilityReport report{s.time_s, c, r, s.geometry.cell_centre_x_m(c), s.geometry.cell_centre_y_m(r), d, eta, {}};
@@ -697,6 +723,11 @@ std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {
         return report;
       }
     }
+  auto all_finite = [&](const std::vector<double>& values) {
+    return first_index_where(values.size(), [&](std::size_t i) { return static_cast<int>(!(std::abs(values[i]) <= kLargest)); }) ==
+           values.size();
+  };
+  if (all_finite(s.flux_x) && all_finite(s.flux_y)) return std::nullopt;
   for (std::size_t f = 0; f < s.flux_x.size(); ++f)
     if (!std::isfinite(s.flux_x[f])) {
       const int r = static_cast<int>(f % s.ny), c = std::min(static_cast<int>(f / s.ny), s.nx - 1);
@@ -762,7 +793,7 @@ std::size_t BoussinesqSolver::memory_bytes() const {
                           &scratch.cell_term, &scratch.fixed_term, &scratch.tangential_squared, &scratch.active,
                           &scratch.face_velocity, &scratch.h_pair_north, &scratch.h_pair_south, &scratch.cell_eta_yy,
                           &scratch.cell_eta_y, &scratch.cell_flux_yt, &scratch.cell_slope_across, &scratch.nu_pair_north,
-                          &scratch.nu_pair_south})
+                          &scratch.nu_pair_south, &scratch.dispersion_weight})
       add(*v);
   return bytes;
 }

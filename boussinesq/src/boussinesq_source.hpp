@@ -25,12 +25,18 @@ class SourceFunction {
 
  private:
   struct Component {
-    double strength_m_s;   // D of Wei et al. (1999), metres per second
+    double amplitude_m;    // the requested amplitude a at the line
     double angular_frequency_rad_s;
     double tangential_wavenumber_rad_m;  // l: wavenumber along the source line
     double phase_rad;      // psi: phase of the source at tangential coordinate 0
+    double strength_m_s = 0.0;  // D of Wei et al. (1999), metres per second, for time_step_s_
   };
+  /// D for a component on this grid and time step: the discrete transfer of the scheme (docs/solver.md,
+  /// "Wave maker"), which tends to the continuous equations' as dx, dt -> 0.
+  double discrete_strength_m_s(const Component& component, double dt) const;
   std::vector<Component> components_;
+  double time_step_s_ = 0.0;             // the dt the strengths were computed for (set on first add)
+  double depth_m_ = 0.0, dispersion_coefficient_ = 1.0 / 15.0, line_index_ = 0.0;
   bool normal_is_x_ = true;
   int strip_begin_ = 0, strip_end_ = 0;  // cell indices along the normal axis, [begin, end)
   std::vector<double> profile_;          // Gaussian g(s - s_line) per strip index

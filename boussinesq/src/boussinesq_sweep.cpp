@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 
 #include <tbb/parallel_for.h>
 
@@ -19,11 +21,22 @@ void SweepScratch::resize(int cols) {
   const std::size_t size = static_cast<std::size_t>(cols + 5) * kBlockLines;
   for (auto* v : {&upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
                   &tangential_squared, &active, &face_velocity, &h_pair_north, &h_pair_south, &cell_eta_yy,
-                  &cell_eta_y, &cell_flux_yt, &cell_slope_across, &nu_pair_north, &nu_pair_south})
+                  &cell_eta_y, &cell_flux_yt, &cell_slope_across, &nu_pair_north, &nu_pair_south, &dispersion_weight})
     v->assign(size, 0.0);
 }
 
 namespace {
+
+// body(std::true_type{}) or body(std::false_type{}): a run-time switch made a compile-time one
+// for the loop inside `body`. GCC vectorises no select on a loop-invariant bool (the loop stays
+// scalar), so the sweep's options are decided outside its loops over the lines.
+template <class Body>
+__attribute__((always_inline)) inline void with_constant(bool flag, const Body& body) {
+  if (flag)
+    body(std::true_type{});
+  else
+    body(std::false_type{});
+}
 
 // The body of sweep_lines. kFullBlock: the block holds exactly kBlockLines lines, so every
 // lock-step loop over the lines has a trip count the compiler knows (whole vectors, no remainder).
@@ -46,7 +59,10 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   const double B = k.dispersion_coefficient, B3 = B + 1.0 / 3.0;
   const double dry = k.dry_depth_m;
   const bool total_depth_dispersion = k.dispersion_on_total_depth;
-  const bool mean_face_depth = k.mean_face_depth_where_wet;
+  // mean_face_depth_where_wet: a face takes the mean depth when both cells are deeper than this, i.e.
+  // wet (dry_depth_m), or never (infinity). A threshold rather than a flag ANDed in the loop: GCC
+  // cannot vectorise a select on a loop-invariant bool.
+  const double mean_face_wet_depth = k.mean_face_depth_where_wet ? dry : std::numeric_limits<double>::infinity();
   // The explicit cross stress d/dy (nu P_y) is stable for nu dt / dy^2 <= 0.2 (docs/solver.md).
   const double nu_explicit_max = 0.2 * dy * dy / dt;
   const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
@@ -73,9 +89,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     return f == 0 || f == cols ? 0.0 : face_depth(depth, face - stride, face);
   };
   // eta at t^{n+1/2} for the derivatives across the lines, and the normal flux likewise (SweepInput).
-  auto eta_across = [&](std::size_t i) __attribute__((always_inline)) {
+  // `extrapolates`: eta_extrapolates as std::true_type or std::false_type (with_constant).
+  auto eta_across = [&](auto extrapolates, std::size_t i) __attribute__((always_inline)) {
     const double here = eta_old[i], partner = eta_partner[i];
-    return eta_extrapolates ? here + 0.5 * (here - partner) : 0.5 * (here + partner);
+    if constexpr (decltype(extrapolates)::value)
+      return here + 0.5 * (here - partner);
+    else
+      return 0.5 * (here + partner);
   };
   auto normal_across = [&](std::size_t face) __attribute__((always_inline)) {
     return normal_old[face] + 0.5 * normal_guess[face];
@@ -92,6 +112,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   double* __restrict cell_term = s.cell_term.data();
   double* __restrict upper = s.upper.data();
   double* __restrict right = s.right.data();
+  double* __restrict dispersion_weight = s.dispersion_weight.data();
 
   // 1. Which faces carry flux this step (moving shoreline, docs/solver.md "Wet and dry"): a face
   // is active when it is open and the water above the higher of its two beds is deeper than
@@ -106,11 +127,23 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) {
       const std::size_t face = f * stride + lb + j, L = face - stride, R = face;
-      const double wet = std::max(eta_old[L], eta_old[R]) + std::min(depth[L], depth[R]) > dry ? 1.0 : 0.0;
+      const double eta_L = eta_old[L], eta_R = eta_old[R];
+      const float depth_L = depth[L], depth_R = depth[R];
+      const double wet = std::max(eta_L, eta_R) + std::min(depth_L, depth_R) > dry ? 1.0 : 0.0;
       const double on = face_open(inv_n, L, R) * wet;
       active[f * W + j] = on;
       const double guess = normal_guess[face], closed = -normal_old[face];
       increment[f * W + j] = on != 0.0 ? guess : closed;
+    }
+  // The weight of the dispersive terms at each face: the taper times the dispersion mask of both
+  // cells. Formed once here, as double: a byte in the loops below would make GCC's vectorisation
+  // factor 64 lanes, more than a block has, and leave them scalar.
+  for (int f = 1; f < cols; ++f)
+    #pragma GCC ivdep
+    for (int j = 0; j < n; ++j) {
+      const std::size_t face = f * stride + lb + j;
+      dispersion_weight[f * W + j] =
+          face_weight[face] * (static_cast<double>(dispersive[face - stride]) * static_cast<double>(dispersive[face]));
     }
 
   // 2. The explicit terms built only from values ACROSS the lines (they do not change during the
@@ -129,9 +162,10 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   double* __restrict cell_slope_across = s.cell_slope_across.data();
   double* __restrict nu_pair_north = s.nu_pair_north.data();
   double* __restrict nu_pair_south = s.nu_pair_south.data();
-  auto cell_terms = [&](int c, int j, int l, int ln, int ls) __attribute__((always_inline)) {
+  auto cell_terms = [&](auto extrapolates, int c, int j, int l, int ln, int ls) __attribute__((always_inline)) {
     const std::size_t i = c * stride + l, in_ = c * stride + ln, is = c * stride + ls;
-    const double e_here = eta_across(i), e_north = eta_across(in_), e_south = eta_across(is);
+    const double e_here = eta_across(extrapolates, i), e_north = eta_across(extrapolates, in_),
+                 e_south = eta_across(extrapolates, is);
     const double h_here = std::max(depth[i] + e_here, dry);
     h_pair_north[c * W + j] = h_here + std::max(depth[in_] + e_north, dry);
     h_pair_south[c * W + j] = h_here + std::max(depth[is] + e_south, dry);
@@ -139,8 +173,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     cell_eta_y[c * W + j] = (e_north - e_south) * 0.5 * inv_dy;
     // Bed slope across the lines (one-sided at the grid edges, 0 on a single line); the face takes
     // the mean of its two cells.
-    cell_slope_across[c * W + j] =
-        ln == ls ? 0.0 : (static_cast<double>(depth[in_]) - static_cast<double>(depth[is])) / ((ln - ls) * dy);
+    // (The quotient is formed on every line and selected, so no division sits under a condition.)
+    const double slope = (static_cast<double>(depth[in_]) - static_cast<double>(depth[is])) / ((ln == ls ? 1 : ln - ls) * dy);
+    cell_slope_across[c * W + j] = ln == ls ? 0.0 : slope;
     cell_flux_yt[c * W + j] = (tangential_rate[c * tstride + l + 1] - tangential_rate[c * tstride + l]) * inv_dy;
     // The cross stress is explicit: its viscosity is capped for stability (nu dt/dy^2 <= 0.2);
     // the along-line stress is implicit and uses nu in full.
@@ -150,14 +185,18 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     nu_pair_south[c * W + j] = nu_i + std::min(static_cast<double>(nu[is]), nu_explicit_max);
   };
   const int j_first = lb == 0 ? 1 : 0, j_last = le == rows ? n - 1 : n;
-  for (int c = 0; c < cols; ++c) {
-    #pragma GCC ivdep
-    for (int j = j_first; j < j_last; ++j) cell_terms(c, j, lb + j, lb + j + 1, lb + j - 1);
-    if (j_first == 1) cell_terms(c, 0, 0, std::min(1, rows - 1), 0);
-    if (j_last == n - 1 && !(j_first == 1 && n == 1)) cell_terms(c, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0));
-  }
+  with_constant(eta_extrapolates, [&](auto extrapolates) __attribute__((always_inline)) {
+    for (int c = 0; c < cols; ++c) {
+      #pragma GCC ivdep
+      for (int j = j_first; j < j_last; ++j) cell_terms(extrapolates, c, j, lb + j, lb + j + 1, lb + j - 1);
+      if (j_first == 1) cell_terms(extrapolates, c, 0, 0, std::min(1, rows - 1), 0);
+      if (j_last == n - 1 && !(j_first == 1 && n == 1))
+        cell_terms(extrapolates, c, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0));
+    }
+  });
 
-  auto fixed_face = [&](int f, int j, int l, int ln, int ls, double north, double south) __attribute__((always_inline)) {
+  auto fixed_face = [&](auto extrapolates, auto total_depth, int f, int j, int l, int ln, int ls, double north,
+                        double south) __attribute__((always_inline)) {
     const int L = f - 1, R = f;
     const std::size_t face = f * stride + l;
     auto c_at = [stride](int c, int line) { return c * stride + line; };
@@ -178,7 +217,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     //   -(B+1/3) d^2 Q_xyt - n B g d^3 eta_xyy - d d_x (Q_yt/6 + n B g d eta_yy) - d d_y (Q_xt/6 + n B g d eta_xy)
     // Mixed derivatives take each axis' own size: the per-cell y parts (eta_yy, eta_y, Q_yt, d_y)
     // are divided by dy above, their x differences here by dx.
-    const double w = face_weight[face] * (static_cast<double>(dispersive[cL]) * static_cast<double>(dispersive[cR]));
+    const double w = dispersion_weight[f * W + j];
     const double eta_yy_L = cell_eta_yy[L * W + j], eta_yy_R = cell_eta_yy[R * W + j];
     const double eta_y_L = cell_eta_y[L * W + j], eta_y_R = cell_eta_y[R * W + j];
     const double flux_yt_L = cell_flux_yt[L * W + j], flux_yt_R = cell_flux_yt[R * W + j];
@@ -190,11 +229,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const double flux_xt = 0.5 * ((tangential_rate[t_at(R, l)] - tangential_rate[t_at(L, l)]) +
                                   (tangential_rate[t_at(R, l + 1)] - tangential_rate[t_at(L, l + 1)])) * inv_dx;
     const double slope_along = face_slope_along(depth, cL, cR, dx);
-    const double slope_across = std::clamp(0.5 * (cell_slope_across[L * W + j] + cell_slope_across[R * W + j]),
-                                           -kMaxDispersiveSlope, kMaxDispersiveSlope);
+    const double slope_across = clamped(0.5 * (cell_slope_across[L * W + j] + cell_slope_across[R * W + j]),
+                                        -kMaxDispersiveSlope, kMaxDispersiveSlope);
     // D: the depth of the dispersive terms, d (seed 003) or the total depth at t^{n+1/2}
     // (SweepConstants::dispersion_on_total_depth; docs/solver.md "Dispersion depth").
-    const double D = total_depth_dispersion ? std::max(d + 0.5 * (eta_across(cL) + eta_across(cR)), dry) : d;
+    double D = d;
+    if constexpr (decltype(total_depth)::value)
+      D = std::max(d + 0.5 * (eta_across(extrapolates, cL) + eta_across(extrapolates, cR)), dry);
     const double nBgd = n_f * B * g * D;
     const double psi = -B3 * D * D * flux_xyt - nBgd * D * D * eta_xyy -
                        D * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
@@ -216,13 +257,24 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     const double flux_t = 0.25 * (tangential[t_at(L, l)] + tangential[t_at(R, l)] + tangential[t_at(L, l + 1)] + tangential[t_at(R, l + 1)]);
     tangential_squared[f * W + j] = flux_t * flux_t;
   };
-  for (int f = 1; f < cols; ++f) {
-    #pragma GCC ivdep
-    for (int j = j_first; j < j_last; ++j) fixed_face(f, j, lb + j, lb + j + 1, lb + j - 1, 1.0, 1.0);
-    if (j_first == 1) fixed_face(f, 0, 0, std::min(1, rows - 1), 0, rows > 1 ? 1.0 : 0.0, 0.0);
-    if (j_last == n - 1 && !(j_first == 1 && n == 1))
-      fixed_face(f, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0), 0.0, rows > 1 ? 1.0 : 0.0);
-  }
+  // eta^{n+1/2} enters the fixed terms only through the total depth: one instance without it.
+  auto fixed_faces = [&](auto extrapolates, auto total_depth) __attribute__((always_inline)) {
+    for (int f = 1; f < cols; ++f) {
+      #pragma GCC ivdep
+      for (int j = j_first; j < j_last; ++j)
+        fixed_face(extrapolates, total_depth, f, j, lb + j, lb + j + 1, lb + j - 1, 1.0, 1.0);
+      if (j_first == 1) fixed_face(extrapolates, total_depth, f, 0, 0, std::min(1, rows - 1), 0, rows > 1 ? 1.0 : 0.0, 0.0);
+      if (j_last == n - 1 && !(j_first == 1 && n == 1))
+        fixed_face(extrapolates, total_depth, f, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0), 0.0,
+                   rows > 1 ? 1.0 : 0.0);
+    }
+  };
+  if (total_depth_dispersion)
+    with_constant(eta_extrapolates, [&](auto extrapolates) __attribute__((always_inline)) {
+      fixed_faces(extrapolates, std::true_type{});
+    });
+  else
+    fixed_faces(std::false_type{}, std::false_type{});
 
   // 3. Iterate the time-centred terms that depend on the lines' own unknowns.
   // seed 003 eq. (1): n (eta - E)/dt = -(1/2) d(increment)/dx  (the Crank-Nicolson half of the new flux)
@@ -282,76 +334,81 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       upper[j] = 0.0;
       right[j] = -normal_old[lb + j];
     }
-    for (int f = 1; f < cols; ++f) {
-      const int L = f - 1, R = f;
-      #pragma GCC ivdep
-      for (int j = 0; j < n; ++j) {
-        const std::size_t face = f * stride + lb + j, cL = L * stride + lb + j, cR = R * stride + lb + j;
-        const double n_f = kOpenWater ? 1.0 : face_porosity(porosity, inv_n, cL, cR), inv_n_f = kOpenWater ? 1.0 : 1.0 / n_f;
-        const double d = face_depth(depth, cL, cR);
-        const double e_L = eta_half[L * W + j], e_R = eta_half[R * W + j];
-        // Total depth at the face, never below dry_depth_m: the water above the higher bed governs a
-        // face next to a dry cell (flooding); between two wet cells the mean is the second-order
-        // value (SolverParameters::face_depth; the larger of the two everywhere adds
-        // g |eta_x| eta_x dx / 2, a spurious amplitude dispersion: docs/solver.md "Face depth").
-        const double h_mean = d + 0.5 * (e_L + e_R), h_above_bed = std::max(e_L, e_R) + std::min(depth[cL], depth[cR]);
-        const bool both_wet = static_cast<double>(depth[cL]) + e_L > dry && static_cast<double>(depth[cR]) + e_R > dry;
-        const double h_f = std::max(both_wet && mean_face_depth ? h_mean : std::max(h_mean, h_above_bed), dry);
-        const double inv_h_f = 1.0 / h_f;
+    with_constant(total_depth_dispersion, [&](auto total_depth) __attribute__((always_inline)) {
+      for (int f = 1; f < cols; ++f) {
+        const int L = f - 1, R = f;
+        #pragma GCC ivdep
+        for (int j = 0; j < n; ++j) {
+          const std::size_t face = f * stride + lb + j, cL = L * stride + lb + j, cR = R * stride + lb + j;
+          const double n_f = kOpenWater ? 1.0 : face_porosity(porosity, inv_n, cL, cR), inv_n_f = kOpenWater ? 1.0 : 1.0 / n_f;
+          const double d = face_depth(depth, cL, cR);
+          const double e_L = eta_half[L * W + j], e_R = eta_half[R * W + j];
+          // Total depth at the face, never below dry_depth_m: the water above the higher bed governs a
+          // face next to a dry cell (flooding); between two wet cells the mean is the second-order
+          // value (SolverParameters::face_depth; the larger of the two everywhere adds
+          // g |eta_x| eta_x dx / 2, a spurious amplitude dispersion: docs/solver.md "Face depth").
+          const float depth_L = depth[cL], depth_R = depth[cR];
+          const double h_mean = d + 0.5 * (e_L + e_R), h_above_bed = std::max(e_L, e_R) + std::min(depth_L, depth_R);
+          const bool use_mean = (static_cast<double>(depth_L) + e_L > mean_face_wet_depth) &
+                                (static_cast<double>(depth_R) + e_R > mean_face_wet_depth);
+          const double h_f = std::max(use_mean ? h_mean : std::max(h_mean, h_above_bed), dry);
+          const double inv_h_f = 1.0 / h_f;
 
-        // Along-line explicit terms: convection (P^2/h)_x / n and the along parts of Psi_x:
-        //   -n B g d^3 eta_xxx - d d_x n B g d 2 eta_xx   (time-centred, iterated)
-        const double w = face_weight[face] * (static_cast<double>(dispersive[cL]) * static_cast<double>(dispersive[cR]));
-        const double e_m2 = eta_half[(f - 2) * W + j], e_p1 = eta_half[(f + 1) * W + j];
-        const double eta_xxx = (e_p1 - 3.0 * e_R + 3.0 * e_L - e_m2) * inv_dx3;
-        const double eta_xx = 0.5 * (e_p1 - e_R - e_L + e_m2) * inv_dx2;
-        const double slope_along = face_slope_along(depth, cL, cR, dx);
-        // D: the depth of the dispersive terms (d, or h_mean with dispersion_on_total_depth).
-        const double D = total_depth_dispersion ? std::max(h_mean, dry) : d;
-        const double along = -inv_n_f * (cell_term[R * W + j] - cell_term[L * W + j]) * inv_dx +
-                             w * n_f * B * g * D * D * (D * eta_xxx + 2.0 * slope_along * eta_xx);
-        // Implicit parts of Psi_x: -(B+1/3) D^2 P_xxt - (1/3) D d_x P_xt
-        const double D2 = w * B3 * D * D * inv_dx2;
-        const double S1 = w * D * slope_along * inv_dx / 6.0;
+          // Along-line explicit terms: convection (P^2/h)_x / n and the along parts of Psi_x:
+          //   -n B g d^3 eta_xxx - d d_x n B g d 2 eta_xx   (time-centred, iterated)
+          const double w = dispersion_weight[f * W + j];
+          const double e_m2 = eta_half[(f - 2) * W + j], e_p1 = eta_half[(f + 1) * W + j];
+          const double eta_xxx = (e_p1 - 3.0 * e_R + 3.0 * e_L - e_m2) * inv_dx3;
+          const double eta_xx = 0.5 * (e_p1 - e_R - e_L + e_m2) * inv_dx2;
+          const double slope_along = face_slope_along(depth, cL, cR, dx);
+          // D: the depth of the dispersive terms (d, or h_mean with dispersion_on_total_depth).
+          double D = d;
+        if constexpr (decltype(total_depth)::value) D = std::max(h_mean, dry);
+          const double along = -inv_n_f * (cell_term[R * W + j] - cell_term[L * W + j]) * inv_dx +
+                               w * n_f * B * g * D * D * (D * eta_xxx + 2.0 * slope_along * eta_xx);
+          // Implicit parts of Psi_x: -(B+1/3) D^2 P_xxt - (1/3) D d_x P_xt
+          const double D2 = w * B3 * D * D * inv_dx2;
+          const double S1 = w * D * slope_along * inv_dx / 6.0;
 
-        // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
-        // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
-        const double flux_f = flux_half[f * W + j];  // |(P, Q)|; sqrt vectorises (-fno-math-errno)
-        const double flux_magnitude = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
-        const double friction = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f;
-        double resistance = friction;
-        if (!kOpenWater) {
-          const double n3 = n_f * n_f * n_f;  // laminar alpha (1/s) and turbulent beta (1/m) of eq. (2)
-          const double alpha = laminar_factor * (1.0 - n_f) * (1.0 - n_f) / (n3 * stone_diameter * stone_diameter);
-          const double beta = turbulent_factor * (1.0 - n_f) / (n3 * stone_diameter);
-          resistance = friction + n_f * (alpha + beta * flux_magnitude * inv_h_f);
+          // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
+          // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
+          const double flux_f = flux_half[f * W + j];  // |(P, Q)|; sqrt vectorises (-fno-math-errno)
+          const double flux_magnitude = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
+          const double friction = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f;
+          double resistance = friction;
+          if (!kOpenWater) {
+            const double n3 = n_f * n_f * n_f;  // laminar alpha (1/s) and turbulent beta (1/m) of eq. (2)
+            const double alpha = laminar_factor * (1.0 - n_f) * (1.0 - n_f) / (n3 * stone_diameter * stone_diameter);
+            const double beta = turbulent_factor * (1.0 - n_f) / (n3 * stone_diameter);
+            resistance = friction + n_f * (alpha + beta * flux_magnitude * inv_h_f);
+          }
+
+          // Gravity n g h eta_x at t^{n+1/2} with eta* = E - dt/(2 n dx) d(increment): couples three faces.
+          const double G = n_f * g * h_f * dt * dt * inv_dx2 * 0.25;
+          // Eddy viscosity along the line, (1/n) d/dx (nu dP/dx), Crank-Nicolson.
+          const double V_L = kOpenWater ? 0.0 : 0.5 * dt * nu[cL] * inv_n_f * inv_dx2;
+          const double V_R = kOpenWater ? 0.0 : 0.5 * dt * nu[cR] * inv_n_f * inv_dx2;
+
+          const double gravity = -dt * n_f * g * h_f * 0.5 * inv_dx * (eta_base[cR] - eta_base[cL] + eta_old[cR] - eta_old[cL]);
+          const double old_f = normal_old[face];
+          const double eddy_old =
+              kOpenWater ? 0.0 : 2.0 * (V_R * (normal_old[face + stride] - old_f) - V_L * (old_f - normal_old[face - stride]));
+          // Inactive faces get the identity row (flux to 0), selected arithmetically so the loop
+          // has no branch and vectorises.
+          const double on = active[f * W + j];  // 1 or 0: blended arithmetically, no branch
+          const double lower_f = -D2 + S1 - G * inv_n[cL] - V_L, upper_f = -D2 - S1 - G * inv_n[cR] - V_R;
+          const double diagonal_f = 1.0 + 2.0 * D2 + G * (inv_n[cL] + inv_n[cR]) + V_L + V_R + resistance * dt;
+          const double right_f = gravity + dt * (fixed_term[f * W + j] + along) - resistance * dt * old_f + eddy_old;
+          const double row_lower = on * lower_f, row_upper = on * upper_f;
+          const double row_diagonal = on * diagonal_f + (1.0 - on), row_right = on * right_f - (1.0 - on) * old_f;
+          // Double sweep (Thomas algorithm), forward elimination, all lines of the block in lock-step.
+          // The systems are diagonally dominant (docs/solver.md), so no pivoting is needed.
+          const double inverse_pivot = 1.0 / (row_diagonal - row_lower * upper[(f - 1) * W + j]);
+          upper[f * W + j] = row_upper * inverse_pivot;
+          right[f * W + j] = (row_right - row_lower * right[(f - 1) * W + j]) * inverse_pivot;
         }
-
-        // Gravity n g h eta_x at t^{n+1/2} with eta* = E - dt/(2 n dx) d(increment): couples three faces.
-        const double G = n_f * g * h_f * dt * dt * inv_dx2 * 0.25;
-        // Eddy viscosity along the line, (1/n) d/dx (nu dP/dx), Crank-Nicolson.
-        const double V_L = kOpenWater ? 0.0 : 0.5 * dt * nu[cL] * inv_n_f * inv_dx2;
-        const double V_R = kOpenWater ? 0.0 : 0.5 * dt * nu[cR] * inv_n_f * inv_dx2;
-
-        const double gravity = -dt * n_f * g * h_f * 0.5 * inv_dx * (eta_base[cR] - eta_base[cL] + eta_old[cR] - eta_old[cL]);
-        const double old_f = normal_old[face];
-        const double eddy_old =
-            kOpenWater ? 0.0 : 2.0 * (V_R * (normal_old[face + stride] - old_f) - V_L * (old_f - normal_old[face - stride]));
-        // Inactive faces get the identity row (flux to 0), selected arithmetically so the loop
-        // has no branch and vectorises.
-        const double on = active[f * W + j];  // 1 or 0: blended arithmetically, no branch
-        const double lower_f = -D2 + S1 - G * inv_n[cL] - V_L, upper_f = -D2 - S1 - G * inv_n[cR] - V_R;
-        const double diagonal_f = 1.0 + 2.0 * D2 + G * (inv_n[cL] + inv_n[cR]) + V_L + V_R + resistance * dt;
-        const double right_f = gravity + dt * (fixed_term[f * W + j] + along) - resistance * dt * old_f + eddy_old;
-        const double row_lower = on * lower_f, row_upper = on * upper_f;
-        const double row_diagonal = on * diagonal_f + (1.0 - on), row_right = on * right_f - (1.0 - on) * old_f;
-        // Double sweep (Thomas algorithm), forward elimination, all lines of the block in lock-step.
-        // The systems are diagonally dominant (docs/solver.md), so no pivoting is needed.
-        const double inverse_pivot = 1.0 / (row_diagonal - row_lower * upper[(f - 1) * W + j]);
-        upper[f * W + j] = row_upper * inverse_pivot;
-        right[f * W + j] = (row_right - row_lower * right[(f - 1) * W + j]) * inverse_pivot;
       }
-    }
+    });
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) {  // row `cols`, the east grid edge: identity, flux 0
       upper[cols * W + j] = 0.0;
@@ -374,7 +431,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
                                          0.5 * (eta_half[(f - 1) * W + j] + eta_half[f * W + j]), dry);
       const double limit = kMaxFroude * h_face * std::sqrt(g * h_face);
       const double old_f = normal_old[f * stride + lb + j];
-      const double flux_new = std::clamp(old_f + increment[f * W + j], -limit, limit);
+      const double flux_new = clamped(old_f + increment[f * W + j], -limit, limit);
       increment[f * W + j] = flux_new - old_f;
     }
   const std::size_t eta_cell_stride = out.eta_cell_stride, eta_line_stride = out.eta_line_stride;

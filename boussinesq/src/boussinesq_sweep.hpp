@@ -59,11 +59,20 @@ inline constexpr double kMaxFroude = 3.0;
 /// Lines solved together in one block.
 inline constexpr int kBlockLines = 16;
 
+/// std::clamp by value: x < lo ? lo : (hi < x ? hi : x), the same result bit for bit. std::clamp,
+/// std::min and std::max return a reference; on array elements that is a load from a selected
+/// address, which keeps GCC from vectorising a loop over the lines (boussinesq_sweep.cpp).
+inline double clamped(double x, double lo, double hi) { return x < lo ? lo : (hi < x ? hi : x); }
+
 // The face values, from the two cells of normal face `face` (cells L = face - rows, R = face) of a
-// frame; faces 0 and cols (the grid edges) are walls and are never asked.
+// frame; faces 0 and cols (the grid edges) are walls and are never asked. Both cells are read
+// unconditionally and the result selected by value (`&`, not `&&`): a load under a condition
+// keeps the sweep's loops from vectorising.
 /// 1 when the face can carry flux (neither cell is a solid wall), else 0.
 inline double face_open(const float* inverse_porosity, std::size_t L, std::size_t R) {
-  return inverse_porosity[L] > 0.0f && inverse_porosity[R] > 0.0f ? 1.0 : 0.0;
+  // Compared as double: a float mask selecting doubles does not vectorise either.
+  const double left = inverse_porosity[L], right = inverse_porosity[R];
+  return (left > 0.0) & (right > 0.0) ? 1.0 : 0.0;
 }
 /// Still-water depth d at the face: the mean of the two cells.
 inline double face_depth(const float* depth, std::size_t L, std::size_t R) {
@@ -71,14 +80,13 @@ inline double face_depth(const float* depth, std::size_t L, std::size_t R) {
 }
 /// Porosity n at an open face: the mean of the two cells; 1 at a closed face (no flux: no resistance).
 inline double face_porosity(const float* porosity, const float* inverse_porosity, std::size_t L, std::size_t R) {
-  return face_open(inverse_porosity, L, R) != 0.0
-             ? 0.5 * (static_cast<double>(porosity[L]) + static_cast<double>(porosity[R]))
-             : 1.0;
+  const double mean = 0.5 * (static_cast<double>(porosity[L]) + static_cast<double>(porosity[R]));
+  return face_open(inverse_porosity, L, R) != 0.0 ? mean : 1.0;
 }
 /// Bed slope along the sweep at the face, clamped to kMaxDispersiveSlope (the dispersive terms only).
 inline double face_slope_along(const float* depth, std::size_t L, std::size_t R, double spacing_m) {
-  return std::clamp((static_cast<double>(depth[R]) - static_cast<double>(depth[L])) / spacing_m, -kMaxDispersiveSlope,
-                    kMaxDispersiveSlope);
+  return clamped((static_cast<double>(depth[R]) - static_cast<double>(depth[L])) / spacing_m, -kMaxDispersiveSlope,
+                 kMaxDispersiveSlope);
 }
 
 /// The time-dependent input of one sweep, all in the frame's layout.
@@ -128,7 +136,7 @@ struct SweepConstants {
 struct SweepScratch {
   std::vector<double> upper, right, increment, eta_half, flux_half, cell_term, fixed_term,
       tangential_squared, active, face_velocity, h_pair_north, h_pair_south, cell_eta_yy, cell_eta_y, cell_flux_yt,
-      cell_slope_across, nu_pair_north, nu_pair_south;
+      cell_slope_across, nu_pair_north, nu_pair_south, dispersion_weight;
   void resize(int cols);
 };
 

