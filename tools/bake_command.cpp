@@ -53,9 +53,13 @@ void add_bake_command(CLI::App& app) {
                    fmt::format("estimate: {}", bake::estimate_bake_resources(bake_case, options->resume).describe()).c_str());
     if (const std::string band = bake::describe_carried_band(bake_case); !options->json && !band.empty())
       std::fprintf(stderr, "%s\n", band.c_str());
+    // Positions on land or outside the chart (issue 14 item 2): on stderr, also under --json.
+    for (const std::string& warning : bake_case.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     const bake::BakeSummary summary = bake::run_bake(bake_case, bake_options);
     if (options->json) {
-      std::printf("%s\n", summary.to_json().dump(2).c_str());
+      nlohmann::json printed = summary.to_json();
+      printed["warnings"] = bake_case.warnings;
+      std::printf("%s\n", printed.dump(2).c_str());
       return;
     }
     std::printf("%s\n", fmt::format("baked {} frames ({} s apart from t = {} s) into {}", summary.frames, summary.frame_interval_s,

@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "command_support.hpp"
+#include "nearshore/bathymetry/geo_position.hpp"
 #include "nearshore/bathymetry/harbour_builder.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
@@ -115,6 +116,7 @@ void add_bathy_command(CLI::App& app) {
     std::vector<std::string> structures;
     double water_level_m = 0.0, minimum_depth_m = 0.5, maximum_slope = 0.0, land_elevation_m = 2.0, band_m = 200.0;
     bool json = false, leave_one_out = false, fill_uncovered = false;
+    std::vector<std::string> marks;  // NAME:POSITION, drawn on the preview
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("bathy", "Turn chart data into a solver-ready harbour grid");
@@ -151,8 +153,12 @@ void add_bathy_command(CLI::App& app) {
   command->add_option("--coastline-band", options->band_m, "Half-width (m) of the narrow band stored in coastline.vdb")
       ->check(number_in(above(0), at_most(100000)));
   command->add_flag("--fill-uncovered", options->fill_uncovered,
-                    "Cells no input covers take the nearest covered depth (default: they become land)");
+                    "Cells no input covers take the nearest covered depth (default: they are no data, outside the chart; the bake's [bathymetry] outside_chart decides)");
   command->add_flag("--leave-one-out", options->leave_one_out, "Cross-validate: re-grid each chart sounding from the others");
+  command->add_option("--mark", options->marks,
+                      "Draw a named place on the preview, NAME:POSITION with POSITION as lat=..,lon=.., "
+                      "easting_m=..,northing_m=.. (the grid's CRS) or X,Y from the grid's south-west corner; repeatable "
+                      "(e.g. a case file's gauges)");
   command->add_flag("--json", options->json, "Print summary.json instead of the short report");
   set_example(*command, "nearshore bathy ../shared/charts/tacoma_us5wa22m/US5WA22M.000 --spacing 10 -o out/tacoma");
   command->callback(naming_flags_in_errors(bathy_flags(), [options]() {
@@ -179,7 +185,21 @@ void add_bathy_command(CLI::App& app) {
     request.fill_uncovered_from_nearest = options->fill_uncovered;
     if (options->json) ProgressBar::set_quiet(true);
     const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
-    const nlohmann::json summary = bathymetry::write_bathymetry_outputs(options->output, result, options->band_m);
+    // Marks are placed through the one position parser (bathymetry/geo_position.hpp), as the bake
+    // places a case's gauges, so the preview shows where the bake will put them.
+    std::vector<bathymetry::PreviewMark> marks;
+    for (const std::string& text : options->marks) {
+      const auto colon = text.find(':');
+      if (colon == std::string::npos || colon == 0)
+        throw Error("--mark " + text, "has no name", "write NAME:POSITION, e.g. thea_foss:lat=47.2620,lon=-122.4383");
+      const bathymetry::GeoPosition position = bathymetry::parse_geo_position(text.substr(colon + 1), "--mark " + text);
+      marks.push_back({text.substr(0, colon),
+                       bathymetry::place_in_grid(position, result.grid.geometry, "--mark " + text, "the mark")});
+    }
+    const nlohmann::json summary = bathymetry::write_bathymetry_outputs(options->output, result, options->band_m, marks);
+    if (summary.contains("marks"))
+      for (std::size_t i = result.warnings.size(); i < summary["warnings"].size(); ++i)
+        std::fprintf(stderr, "warning: %s\n", summary["warnings"][i].get<std::string>().c_str());
     // Warnings go to stderr (also with --json, whose stdout stays one JSON document), named by flag.
     for (const std::string& warning : result.warnings)
       std::fprintf(stderr, "warning: %s\n", name_flags(warning, bathy_flags()).c_str());
@@ -195,7 +215,7 @@ void add_bathy_command(CLI::App& app) {
     std::printf("%s\n", fmt::format("cells: {} water, {} land, {} outside every input ({}), {} bounded by depth areas, "
                                     "{} clamped to {} m, {} smoothed",
                                     cells["water"].get<std::size_t>(), cells["land"].get<std::size_t>(),
-                                    cells["uncovered"].get<std::size_t>(), request.fill_uncovered_from_nearest ? "filled from nearest" : "land",
+                                    cells["uncovered"].get<std::size_t>(), request.fill_uncovered_from_nearest ? "filled from nearest" : "no data, outside the chart",
                                     cells["bounded_by_depth_areas"].get<std::size_t>(),
                                     summary["conditioning"]["minimum_depth_clamp"]["cells"].get<std::size_t>(),
                                     request.minimum_depth_m,

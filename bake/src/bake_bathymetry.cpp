@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <fmt/core.h>
 
+#include "nearshore/bathymetry/distance_transform.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake {
@@ -36,6 +38,40 @@ void raise_still_water_level(HarbourGrid& grid, double level_m) {
   if (level_m == 0.0) return;
   for (float& depth_m : grid.still_water_depth_m.values()) depth_m += static_cast<float>(level_m);
   mark_land_from_depth(grid);
+}
+
+std::size_t resolve_outside_chart(HarbourGrid& grid, const OutsideChartRule& rule, const std::string& subject) {
+  std::size_t outside = 0;
+  for (const std::uint8_t land : grid.land.values()) outside += land == kOutsideChartCell;
+  if (outside == 0) return 0;
+  if (rule.treatment == OutsideChartRule::Treatment::kLand) {
+    // Today's behaviour, and what a reader that knows only land and water makes of such a cell.
+    for (std::uint8_t& land : grid.land.values())
+      if (land == kOutsideChartCell) land = kLandCell;
+    return outside;
+  }
+  // Extended sea: the nearest charted water cell's depth (or the constant asked for). The seeds are
+  // the water cells; the transform's spacing is the smaller cell size, exact for the square grids
+  // `nearshore bathy` writes (this runs before any resampling to rectangular cells).
+  Raster<std::uint8_t> water(grid.geometry.columns, grid.geometry.rows, 0);
+  std::size_t water_cells = 0;
+  for (std::size_t i = 0; i < water.size(); ++i) water_cells += water.values()[i] = grid.land.values()[i] == kWaterCell;
+  if (water_cells == 0)
+    throw Error(subject, "has no charted water cell whose depth the cells outside the chart could take",
+                "set outside_chart = \"land\", or give outside_chart_depth_m");
+  std::optional<bathymetry::NearestSeed> nearest;
+  if (!(rule.depth_m > 0.0)) nearest = bathymetry::nearest_seed_transform(water, grid.geometry.smaller_spacing_m());
+  for (int row = 0; row < grid.geometry.rows; ++row)
+    for (int column = 0; column < grid.geometry.columns; ++column) {
+      if (grid.land(column, row) != kOutsideChartCell) continue;
+      grid.still_water_depth_m(column, row) =
+          nearest ? grid.still_water_depth_m(nearest->nearest_column(column, row), nearest->nearest_row(column, row))
+                  : static_cast<float>(rule.depth_m);
+      grid.land(column, row) = kWaterCell;
+      grid.porosity(column, row) = 1.0f;
+    }
+  grid.coast_distance_m = bathymetry::signed_coast_distance(grid.land, grid.geometry.smaller_spacing_m());
+  return outside;
 }
 
 double profile_depth_m(const std::vector<std::pair<double, double>>& profile, double x_m) {

@@ -188,6 +188,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
     bake_case.solver.effective_depth_limit_m = automatic_effective_depth_limit_m(bake_case.harbour, highest_rad_s);
   }
   bake_case.solitary_wave = maker_request.solitary_wave;
+  bake_case.warnings.insert(bake_case.warnings.end(), maker_request.warnings.begin(), maker_request.warnings.end());
   if (maker_request.from_deep_water && !root.has("deep_water"))
     root.fail("deep_water", "is missing, but wave_maker.kind = \"deep_water\" takes its waves from it",
               "add a [deep_water] table with a spectrum (docs/commands/bake.md), or give the wave maker "
@@ -227,8 +228,10 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   for (TableReader& entry : root.tables("gauges")) {
     GaugeSpec gauge;
     gauge.name = entry.string("name", std::nullopt, "gauge name");
-    gauge.x_m = geometry.origin_x_m + entry.number("x_m", std::nullopt, 0.0, geometry.width_m(), false, "x from the south-west corner, inside the grid, metres");
-    gauge.y_m = geometry.origin_y_m + entry.number("y_m", std::nullopt, 0.0, geometry.height_m(), false, "y from the south-west corner, inside the grid, metres");
+    // x_m/y_m from the south-west corner, easting_m/northing_m or lat/lon (case_bathymetry.cpp).
+    const ProjectedPoint place = read_case_position(entry, bake_case.harbour, fmt::format("gauge \"{}\" ({})", gauge.name, entry.full("").substr(0, entry.full("").size() - 1)), bake_case.warnings);
+    gauge.x_m = place.x_m;
+    gauge.y_m = place.y_m;
     entry.finish();
     if (gauge.name.empty() || gauge.name.find_first_of(",\"\n") != std::string::npos)
       entry.fail(entry.full("name"), fmt::format("= \"{}\" is empty or holds a comma, quote or newline", gauge.name),
@@ -238,6 +241,9 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
         entry.fail(entry.full("name"), fmt::format("= \"{}\" is used by another gauge", gauge.name), "give every gauge its own name");
     bake_case.gauges.push_back(gauge);
   }
+  TableReader output = root.table("output");
+  bake_case.output = read_output(output);
+  output.finish();
   root.finish();
 
   bake_case.wave_conditions = wave_record(bake_case.wave_maker, document.value("wave_maker", json::object()));
@@ -258,7 +264,13 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
         {"deep_water_significant_wave_height_m", split.left_significant_height_m},
         {"total_significant_wave_height_m", split.total_significant_height_m},
         {"deep_water_layer_present", bake_case.deep_water.has_value()},
-        {"reason", split.reason}};
+        {"reason", split.reason},
+        // Where the runtime's inside layer starts (docs/runtime.md "The split"): the field's waves
+        // above it are drawn on top of the bake. Driven by the field, the maker made the field's
+        // own waves up to its highest frequency; else its cells end half-way between its highest
+        // component and the lowest left one (sea_state_builder.hpp: cells tile the band).
+        {"split_frequency_hz", bake_case.deep_water_maker ? split.max_frequency_hz
+                                                          : 0.5 * (split.max_frequency_hz + split.left_min_frequency_hz)}};
   }
   bake_case.solver_record = solver_record(bake_case.solver);
   return bake_case;

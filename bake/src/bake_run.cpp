@@ -16,6 +16,7 @@
 
 #include "nearshore/bake/bake_estimate.hpp"
 #include "nearshore/bake/bake_gauges.hpp"
+#include "nearshore/bake/wave_statistics.hpp"
 #include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/bake/deep_water_record.hpp"
 #include "nearshore/boussinesq/initial_conditions.hpp"
@@ -35,7 +36,9 @@ namespace fs = std::filesystem;
 namespace {
 
 // Version 2: the case fingerprint and the solver state's checksums are XXH64 (were FNV-1a).
-constexpr char kCheckpointMagic[16] = "nearshore-ckpt2";
+// Version 3: the wave statistics (wave_statistics.hpp) follow the solver state, so a resumed bake
+// maps the whole run.
+constexpr char kCheckpointMagic[16] = "nearshore-ckpt3";
 // The stability guard looks at the whole field after every step: a scan costs a few per cent of a
 // step, and a blow-up caught in its first step names the cell where it starts, before the implicit
 // sweeps have carried NaN along the whole row.
@@ -57,6 +60,9 @@ struct StepPlan {
 // steps must stay exact in a double, and frame names hold 8 digits (sequence_format.hpp).
 constexpr double kMostSteps = 1e15;
 constexpr long kMostFrames = 99'999'999;
+
+// The maps of every step after spin-up, beside the frames (docs/formats/wave-statistics.md).
+constexpr const char* kWaveStatisticsFile = "wave_statistics.tif";
 
 StepPlan plan_steps(const BakeCase& bake_case) {
   const double dt = bake_case.solver.time_step_s;
@@ -117,7 +123,7 @@ double replaced_bytes(const fs::path& folder) {
   for (const auto& item : fs::directory_iterator(folder, ec)) {
     const std::string name = item.path().filename().string();
     const bool replaced = (name.starts_with("frame_") && name.ends_with(".exr")) ||
-                          item.path() == checkpoint_path(folder) || name == "gauges.csv" ||
+                          item.path() == checkpoint_path(folder) || name == "gauges.csv" || name == kWaveStatisticsFile ||
                           name == std::string(sequence::kHarbourGridFile);
     std::error_code size_error;
     if (replaced && item.is_regular_file(size_error)) bytes += static_cast<double>(item.file_size(size_error));
@@ -209,7 +215,7 @@ class CheckpointFileBuffer : public std::streambuf {
 }
 
 void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const BoussinesqSolver& solver,
-                      const GaugeRecorder& gauges) {
+                      const GaugeRecorder& gauges, const WaveStatistics* statistics) {
   write_file_atomically(file, [&](const fs::path& temporary) {
     CheckpointFileBuffer buffer(temporary);
     if (buffer.error() != 0)
@@ -221,6 +227,7 @@ void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const Bou
       out.write(reinterpret_cast<const char*>(&fingerprint), sizeof fingerprint);
       gauges.save(out);
       solver.save_state(out);  // throws when the stream failed: the buffer knows why
+      if (statistics) statistics->save(out);
     } catch (const Error&) {
       if (buffer.error() == 0) throw;
     }
@@ -249,6 +256,9 @@ std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
   if (magic_read && std::string(magic) == "nearshore-ckpt1")
     throw Error(subject, "is a checkpoint of an older nearshore (version 1, FNV-1a fingerprints)",
                 "bake again from the start (BakeOptions::resume = false)");
+  if (magic_read && std::string(magic) == "nearshore-ckpt2")
+    throw Error(subject, "is a checkpoint of an older nearshore (version 2, without the wave statistics)",
+                "bake again from the start (BakeOptions::resume = false)");
   if (!magic_read || std::string(magic, sizeof magic) != std::string(kCheckpointMagic, sizeof magic))
     throw Error(subject, "is not a nearshore bake checkpoint", "delete it and bake again from the start (BakeOptions::resume = false)");
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != fingerprint)
@@ -257,7 +267,8 @@ std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
   return in;
 }
 
-void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, BoussinesqSolver& solver, GaugeRecorder& gauges) {
+void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, BoussinesqSolver& solver, GaugeRecorder& gauges,
+                     WaveStatistics* statistics) {
   const std::string subject = file.string();
   std::ifstream in = open_checkpoint(file, fingerprint);
   gauges.load(in, subject);
@@ -266,6 +277,7 @@ void read_checkpoint(const fs::path& file, std::uint64_t fingerprint, Boussinesq
   } catch (const Error& error) {  // the solver reads a stream and knows no file: name it here
     throw Error(subject, error.subject() + " " + error.problem(), error.fix());
   }
+  if (statistics) statistics->load(in, subject);
 }
 
 // How the deep-water field sits on the harbour grid and meets the bake (docs/deep-water.md,
@@ -328,7 +340,8 @@ nlohmann::json BakeSummary::to_json() const {
             {"frames", frames},
             {"first_frame_time_s", first_frame_time_s},
             {"frame_interval_s", frame_interval_s},
-            {"gauges_csv", gauges_csv.string()}}},
+            {"gauges_csv", gauges_csv.string()},
+            {"wave_statistics", wave_statistics}}},
           {"deep_water", deep_water}};
 }
 
@@ -358,10 +371,13 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
 
   BoussinesqSolver solver(bake_case.harbour, bake_case.solver, bake_case.wave_maker);
   GaugeRecorder gauges(bake_case.gauges);
+  std::optional<WaveStatistics> statistics;
+  if (bake_case.output.wave_statistics) statistics.emplace(bake_case.harbour, bake_case.solver.dry_depth_m);
+  WaveStatistics* statistics_or_null = statistics ? &*statistics : nullptr;
   BakeSummary summary;
   summary.time_step_s = solver.time_step_s();
   if (options.resume) {
-    read_checkpoint(checkpoint, fingerprint, solver, gauges);
+    read_checkpoint(checkpoint, fingerprint, solver, gauges, statistics_or_null);
     summary.resumed_from_s = solver.time_s();
   } else {
     fs::remove(checkpoint, ignored);  // a stale checkpoint of an earlier run must never be resumed
@@ -376,6 +392,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   description.seed = bake_case.wave_maker.sea_state.seed;
   description.loop_period_s = bake_case.wave_maker.sea_state.loop_period_s;
   description.solver = bake_case.solver_record;
+  description.encoding = bake_case.output.frame_encoding;
   if (bake_case.deep_water) {
     // What the runtime needs to synthesise the sea beyond the baked domain (docs/deep-water.md):
     // the cascades' coefficients beside the frames, their description in the manifest.
@@ -417,6 +434,8 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     const long frame = frame_index_at(step);
     const bool checkpoint_due = plan.per_checkpoint > 0 && step > 0 && step % plan.per_checkpoint == 0 && step < plan.total;
     if (step % plan.per_gauge == 0) gauges.record(solver.time_s(), solver);
+    // Every step from the first frame on, before a checkpoint that must hold it.
+    if (statistics && step >= plan.first_frame) statistics->add_step(solver.surface_elevation_m());
     if (step % kStabilityCheckSteps == 0 || frame >= 0 || checkpoint_due || step == plan.total)
       if (const auto report = solver.check_stability()) report_instability(bake_case, *report, checkpoint, checkpoint_time_s);
     if (frame >= 0) {
@@ -431,7 +450,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     if (checkpoint_due) {
       timed([&] {
         gauges.write_csv(folder / "gauges.csv");  // a killed run still leaves the gauges up to here
-        write_checkpoint(checkpoint, fingerprint, solver, gauges);
+        write_checkpoint(checkpoint, fingerprint, solver, gauges, statistics_or_null);
       });
       checkpoint_time_s = solver.time_s();
     }
@@ -449,6 +468,19 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   const double stepping_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - stepping_start).count();
   summary.frames = static_cast<int>(plan.frames);
   gauges.write_csv(folder / "gauges.csv");
+  nlohmann::json statistics_json;
+  if (statistics) {
+    timed([&] {
+      write_wave_statistics_geotiff(folder / kWaveStatisticsFile, *statistics, bake_case.harbour.geometry,
+                                    description.first_frame_time_s, solver.time_s());
+    });
+    statistics_json = {{"file", (folder / kWaveStatisticsFile).string()}, {"steps", statistics->step_count()}};
+    if (const auto runup = statistics->highest_runup())
+      statistics_json["runup"] = {{"water_level_m", runup->water_level_m}, {"ground_elevation_m", runup->ground_elevation_m},
+                                  {"x_m", runup->x_m}, {"y_m", runup->y_m}};
+  } else {
+    fs::remove(folder / kWaveStatisticsFile, ignored);  // a map of an earlier bake would describe another sea
+  }
   writer.finish(summary.frames);
   progress.finish(fmt::format("{} frames", summary.frames));
   fs::remove(checkpoint, ignored);  // the bake is complete; the manifest marks it so
@@ -466,6 +498,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   summary.output_folder = folder;
   summary.gauges_csv = folder / "gauges.csv";
   summary.deep_water = std::move(deep_water_summary_json);
+  summary.wave_statistics = std::move(statistics_json);
   summary.estimated_memory_bytes = estimate.memory_bytes;
   summary.estimated_disk_bytes = estimate.disk_bytes;
   struct rusage usage {};

@@ -5,12 +5,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <string_view>
 #include <utility>
 
 #include <fmt/core.h>
 
+#include "nearshore/bathymetry/geo_position.hpp"
 #include "nearshore/bathymetry/local_grid.hpp"
 #include "nearshore/core/error.hpp"
 #include "case_reader.hpp"
@@ -121,6 +123,20 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
   if (kind == 0) {
     const fs::path file = bathymetry.path("file", base);
     grid = bathymetry.reading_file("file", [&] { return read_harbour_grid(file); });
+    // Cells outside the chart's coverage (issue 14 item 3): land (default, a reflecting wall as
+    // before nodata existed) or extended sea, before any resampling so the rule sees the chart's
+    // own cells (docs/commands/bake.md, "Outside the chart").
+    OutsideChartRule outside_chart;
+    if (bathymetry.choice("outside_chart", "land", {"land", "sea"}) == 1)
+      outside_chart.treatment = OutsideChartRule::Treatment::kSea;
+    if (bathymetry.has("outside_chart_depth_m")) {
+      if (outside_chart.treatment != OutsideChartRule::Treatment::kSea)
+        bathymetry.fail(bathymetry.full("outside_chart_depth_m"), "is given but outside_chart is not \"sea\"",
+                        "set outside_chart = \"sea\", or remove outside_chart_depth_m");
+      outside_chart.depth_m = bathymetry.number("outside_chart_depth_m", std::nullopt, 0.0, kDeepestPlausibleDepth_m, true,
+                                                "the depth of the sea outside the chart, metres");
+    }
+    resolve_outside_chart(grid, outside_chart, bathymetry.subject() + ": key `" + bathymetry.full("outside_chart") + "`");
     check_plausible_depths(bathymetry, "file", grid);
     if (bathymetry.has("spacing_m")) {
       const auto [dx, dy] = bathymetry.cell_size("spacing_m");
@@ -167,6 +183,32 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
     check_plausible_depths(bathymetry, "deep_depth_m", grid);
   }
   return grid;
+}
+
+ProjectedPoint read_case_position(TableReader& table, const HarbourGrid& grid, const std::string& entry,
+                                  std::vector<std::string>& warnings) {
+  // Every position key present, read as a number through the table (so it counts as known); the
+  // pairing rules and the frames are bathymetry/geo_position.hpp's, the one parser of positions.
+  // Metres from the south-west corner are bounded by the grid here, so such an error names the key
+  // (`gauges[0].x_m` = 50 is out of range) as it always has; the other frames are bounded by
+  // place_in_grid, which names the grid's extent in lat/lon.
+  const GridGeometry& g = grid.geometry;
+  std::map<std::string, double> keys;
+  for (const auto& [first, second] : nearshore::bathymetry::geo_position_keys())
+    for (const std::string& key : {first, second}) {
+      if (!table.has(key)) continue;
+      if (key == "x_m" || key == "y_m")
+        keys[key] = table.number(key, std::nullopt, 0.0, key == "x_m" ? g.width_m() : g.height_m(), false,
+                                 fmt::format("{} from the south-west corner, inside the grid, metres", key == "x_m" ? "x" : "y"));
+      else
+        keys[key] = table.number(key, std::nullopt, -std::numeric_limits<double>::infinity(),
+                                 std::numeric_limits<double>::infinity(), false, "a coordinate (docs/commands/bake.md, \"Positions\")");
+    }
+  const nearshore::bathymetry::GeoPosition position =
+      nearshore::bathymetry::geo_position_from_keys(keys, table.subject(), entry);
+  const ProjectedPoint point = nearshore::bathymetry::place_in_grid(position, grid.geometry, table.subject(), entry);
+  if (auto warning = nearshore::bathymetry::land_warning(grid, point, table.subject(), entry)) warnings.push_back(*warning);
+  return point;
 }
 
 // Rectangles of porous structure (rubble mounds) or walls laid over any bathymetry.

@@ -23,6 +23,7 @@
 #include "nearshore/bake/deep_water_coupling.hpp"
 #include "nearshore/boussinesq/initial_conditions.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/map_projection.hpp"
 #include "nearshore/ocean/spectrum_registry.hpp"
 
 namespace nearshore::bake::detail {
@@ -62,6 +63,8 @@ class TableReader {
   }
 
   bool has(const std::string& key) const { return table_.contains(key); }
+  /// Whether `key` is present and a table (for keys that take a value or a table of values).
+  bool has_table(const std::string& key) const { return table_.contains(key) && table_.at(key).is_object(); }
 
   /// A number; `minimum`/`maximum` are inclusive bounds unless `exclusive_minimum`.
   double number(const std::string& key, std::optional<double> fallback, double minimum, double maximum,
@@ -252,6 +255,13 @@ double deepest_still_water_m(const HarbourGrid& grid);
 HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const CaseReadOptions& options);
 /// [[porous_blocks]]: rectangles of porous structure (rubble mounds) or walls over any bathymetry.
 void apply_porous_blocks(std::vector<TableReader> blocks, HarbourGrid& grid);
+/// A position given in `table` by one pair of bathymetry::geo_position_keys() (x_m/y_m from the
+/// south-west corner, easting_m/northing_m in the grid's CRS, or lat/lon; case_bathymetry.cpp): the
+/// point in the solver's frame (GridGeometry origin included). Outside the grid it fails naming
+/// `entry` and the grid's extent; on land or outside the chart it appends a warning naming `entry`
+/// and the cell's depth (docs/commands/bake.md, "Positions").
+ProjectedPoint read_case_position(TableReader& table, const HarbourGrid& grid, const std::string& entry,
+                                  std::vector<std::string>& warnings);
 
 /// The spectrum named by `key` (the registry's names; `fallback` when absent, required when
 /// nullopt) built from the table's keys (ocean/spectrum_registry.hpp; case_sea_state.cpp).
@@ -272,6 +282,7 @@ inline const std::vector<std::string> kMakerKindNames = {"none",     "regular", 
 /// draws the rest; Hs_total^2 = Hs_bake^2 + Hs_left^2 (variances add).
 struct SpectrumSplit {
   double min_frequency_hz = 0.0, max_frequency_hz = 0.0;  // the bake's band (its components' range)
+  double left_min_frequency_hz = 0.0;  // the lowest left component's frequency (the edge lies half-way)
   double bake_significant_height_m = 0.0, left_significant_height_m = 0.0, total_significant_height_m = 0.0;
   int bake_components = 0, left_components = 0;
   std::string reason;  // why the band ends there (carried_band_reason)
@@ -285,6 +296,7 @@ struct MakerRequest {
   bool long_crested = false;                              // irregular with spreading_s = 0
   WaveMakerBand band;                                     // deep_water
   std::optional<boussinesq::SolitaryWave> solitary_wave;  // solitary: the initial condition
+  std::vector<std::string> warnings;                      // a source line on land (BakeCase::warnings)
 };
 
 /// What bounds the band the bake carries besides the grid: the solver's B and its effective-depth
@@ -324,6 +336,9 @@ struct DeepWaterDrive {
 ocean::DeepWaterSpecification read_deep_water(TableReader& deep, const boussinesq::WaveMaker& maker,
                                               const MakerRequest& request, const HarbourGrid& grid,
                                               DeepWaterDrive& drive, BakeCase& bake_case);
+
+/// [output] (case_output.cpp): frame codec and precision, the wave-statistics maps.
+BakeOutput read_output(TableReader& output);
 
 /// [solver] and its record (case_solver.cpp).
 boussinesq::SolverParameters read_solver(TableReader& solver);

@@ -182,6 +182,9 @@ SpectrumSplit split_carried(TableReader& maker, SeaState& sea, const HarbourGrid
   split.max_frequency_hz = band_top * kHz;
   split.bake_components = static_cast<int>(sea.components.size());
   split.left_components = static_cast<int>(left.size());
+  double left_bottom = std::numeric_limits<double>::infinity();
+  for (const WaveComponent& component : left) left_bottom = std::min(left_bottom, component.angular_frequency_rad_s);
+  split.left_min_frequency_hz = left.empty() ? split.max_frequency_hz : left_bottom * kHz;
   split.bake_significant_height_m = significant_height_m(sea.components);
   split.left_significant_height_m = significant_height_m(left);
   return split;
@@ -212,10 +215,46 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   const double origin_m = along_x ? grid.geometry.origin_x_m : grid.geometry.origin_y_m;
   const std::string where = kind == MakerKind::kSolitary ? "crest_position_m" : "source_line_m";
   // Case positions are metres from the grid's south-west corner; the solver's frame includes the origin.
-  const double position_m = origin_m + maker.number(where, std::nullopt, 0.0, extent_m, false,
-                                                    fmt::format("position along {} from the south-west corner, inside the grid, metres",
-                                                                along_x ? "x" : "y"));
+  // Or a point the source line passes through, [wave_maker.source_line] in any frame of
+  // bathymetry/geo_position.hpp (lat/lon, the grid's CRS): the line runs parallel to the `facing` side.
+  double position_m = 0.0;
+  if (kind != MakerKind::kSolitary && maker.has("source_line")) {
+    if (maker.has("source_line_m"))
+      maker.fail(maker.full("source_line"), "and source_line_m are both given",
+                 "give one: source_line_m (metres from the south-west corner) or source_line = { lat = ..., lon = ... }");
+    TableReader point_table = maker.table("source_line");
+    const ProjectedPoint point = read_case_position(point_table, grid, "key `" + maker.full("source_line") + "`", request.warnings);
+    point_table.finish();
+    position_m = along_x ? point.x_m : point.y_m;
+  } else {
+    position_m = origin_m + maker.number(where, std::nullopt, 0.0, extent_m, false,
+                                         fmt::format("position along {} from the south-west corner, inside the grid, metres "
+                                                     "(or source_line = {{ lat = ..., lon = ... }})",
+                                                     along_x ? "x" : "y"));
+  }
   wave_maker.source_line_m = position_m;
+  if (kind != MakerKind::kSolitary) {
+    // A line mostly over land makes its waves on the few wet cells left, which is rarely what was
+    // meant (a line over land only is refused by the solver): warn, naming the share and a depth.
+    const GridGeometry& g = grid.geometry;
+    const double spacing_m = along_x ? g.spacing_x_m() : g.spacing_y_m();
+    const int line = std::clamp(static_cast<int>(std::floor((position_m - origin_m) / spacing_m)), 0,
+                                (along_x ? g.columns : g.rows) - 1);
+    const int count = along_x ? g.rows : g.columns;
+    int dry = 0;
+    float highest_m = std::numeric_limits<float>::infinity();
+    for (int t = 0; t < count; ++t) {
+      const int column = along_x ? line : t, row = along_x ? t : line;
+      if (grid.land(column, row)) ++dry, highest_m = std::min(highest_m, grid.still_water_depth_m(column, row));
+    }
+    if (2 * dry > count)
+      request.warnings.push_back(fmt::format(
+          "{}: key `{}` puts the source line ({} = {:.1f} m from the south-west corner) over land or outside the chart for "
+          "{} of its {} cells ({:.0f} %; ground up to {:.2f} m above still water there): it makes waves only on the {} wet cells; move it "
+          "into open water",
+          maker.subject(), maker.full(maker.has("source_line") ? "source_line" : where), along_x ? "x" : "y", position_m - origin_m,
+          dry, count, 100.0 * dry / count, -highest_m, count - dry));
+  }
   wave_maker.ramp_time_s = maker.non_negative("ramp_time_s", 0.0, "smooth start in seconds");
   const double default_direction_rad = direction_away_from(wave_maker.facing);
   SeaState& sea = wave_maker.sea_state;

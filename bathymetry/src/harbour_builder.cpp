@@ -1,4 +1,5 @@
 #include "nearshore/bathymetry/harbour_builder.hpp"
+#include "nearshore/bathymetry/geo_position.hpp"
 
 #include <ogr_spatialref.h>
 
@@ -578,7 +579,10 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
           depth(c, r) = depth(nearest->nearest_column(c, r), nearest->nearest_row(c, r));
           uncovered.record(c, r, nearest->distance_m(c, r));  // "change" = how far the value was carried
         } else {
-          land_polygons(c, r) = 1;
+          // No data (issue 14 item 3): not land, but outside what the chart says. Kept apart in the
+          // land channel so the bake decides ([bathymetry] outside_chart) and the preview shows it;
+          // a reader that knows only land and water sees land, as before.
+          land_polygons(c, r) = kOutsideChartCell;
           uncovered.record(c, r, 0.0);
         }
       }
@@ -705,13 +709,16 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   summary["extent_lon_lat"] = {{"south_west", {south_west.longitude_deg, south_west.latitude_deg}},
                                {"north_east", {north_east.longitude_deg, north_east.latitude_deg}}};
   summary["water_depth_m"] = {{"min", depth_min}, {"max", depth_max}};
-  summary["cells"] = {{"total", g.cell_count()}, {"land", land_cells}, {"water", g.cell_count() - land_cells},
+  const std::size_t outside_chart_cells = request.fill_uncovered_from_nearest ? 0 : uncovered.cells;
+  summary["cells"] = {{"total", g.cell_count()}, {"land", land_cells - outside_chart_cells}, {"water", g.cell_count() - land_cells},
+                      {"outside_chart", outside_chart_cells},
                       {"uncovered", uncovered.cells}, {"bounded_by_depth_areas", bounded.cells}};
   summary["structure_cells"] = structure_cells;
   summary["uncovered"] = uncovered.to_json(g, projection);
   summary["uncovered"]["treatment"] = request.fill_uncovered_from_nearest
                                           ? "depth of the nearest covered cell (max_change_m: farthest carried, metres)"
-                                          : "masked as land";
+                                          : "no data: land channel 2 in depth.exr (a land/water reader sees land), nodata in "
+                                            "depth.tif; the bake treats them as its case says (bathymetry.outside_chart)";
   summary["bounded_by_depth_areas"] = bounded.to_json(g, projection);
   summary["water_level_m"] = request.water_level_m;
   summary["conditioning"] = {{"minimum_depth_m", request.minimum_depth_m},
@@ -757,7 +764,8 @@ MapAxes preview_map_axes(const GridGeometry& g) {
 }
 }  // namespace
 
-nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResult& result, double coastline_band_m) {
+nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResult& result, double coastline_band_m,
+                                        const std::vector<PreviewMark>& marks) {
   const HarbourGrid& grid = result.grid;
   const GridGeometry& g = grid.geometry;
   // Everything that can fail on content is computed before the first file is written.
@@ -768,6 +776,8 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
   style.low = 0.0;
   style.high = result.summary["water_depth_m"].value("max", 1.0);
   style.map_axes = preview_map_axes(g);
+  const Rgb no_data_colour{0.78f, 0.78f, 0.78f};  // outside the chart: hatched grey (issue 14 item 3)
+  style.second_mask_colour = no_data_colour;
   Image preview = render_heat_map(grid.still_water_depth_m, style, &grid.land);
   // Overlays go where render_heat_map put the field (north at the top).
   const HeatMapPlacement placement = heat_map_placement(g.columns, g.rows, style);
@@ -790,6 +800,10 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
   draw_text(preview, legend_x, legend_y, "coastline (chart)", coast_colour, 14);
   draw_text(preview, legend_x + 145, legend_y, "vertical walls (n = 0)", wall_colour, 14);
   draw_text(preview, legend_x + 325, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
+  draw_text(preview, legend_x + 560, legend_y, "land", style.mask_colour, 14);
+  preview.fill_rectangle(legend_x + 610, legend_y - 11, legend_x + 630, legend_y + 1, no_data_colour);
+  draw_line(preview, legend_x + 610, legend_y + 1, legend_x + 622, legend_y - 11, Rgb{0.45f, 0.45f, 0.45f}, 1);
+  draw_text(preview, legend_x + 636, legend_y, "no data (outside the chart)", Rgb{0.35f, 0.35f, 0.35f}, 14);
   for (const auto& line : result.coastline_m)
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const double x0 = pixel_x(line[i].x_m), y0 = pixel_y(line[i].y_m), x1 = pixel_x(line[i + 1].x_m), y1 = pixel_y(line[i + 1].y_m);
@@ -800,12 +814,45 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
           y1 <= bottom)
         draw_line(preview, x0, y0, x1, y1, coast_colour, 1);
     }
+  // Marks (gauges, a source line's point): a black-rimmed white ring and the name beside it.
+  nlohmann::json mark_list = nlohmann::json::array();
+  std::vector<std::string> mark_warnings;
+  for (const PreviewMark& mark : marks) {
+    const double x = pixel_x(mark.point.x_m), y = pixel_y(mark.point.y_m);
+    for (int ring = 0; ring < 2; ++ring) {
+      const double radius = 6.0 - 2.0 * ring;
+      const Rgb colour = ring == 0 ? Rgb{0.f, 0.f, 0.f} : Rgb{1.f, 1.f, 1.f};
+      for (int step = 0; step < 24; ++step) {
+        const double a0 = step * M_PI / 12.0, a1 = (step + 1) * M_PI / 12.0;
+        draw_line(preview, x + radius * std::cos(a0), y + radius * std::sin(a0), x + radius * std::cos(a1),
+                  y + radius * std::sin(a1), colour, 2);
+      }
+    }
+    draw_text(preview, static_cast<int>(x + 9), static_cast<int>(y + 5), mark.name, Rgb{0.f, 0.f, 0.f}, 13);
+    nlohmann::json entry = {{"name", mark.name}, {"x_m", mark.point.x_m}, {"y_m", mark.point.y_m}};
+    if (!g.projection.is_null() && !g.projection.empty()) {
+      const LonLat place = MapProjection::from_json(g.projection, "the harbour grid's projection").reverse(mark.point);
+      entry["lon"] = place.longitude_deg;
+      entry["lat"] = place.latitude_deg;
+    }
+    mark_list.push_back(entry);
+    if (auto warning = land_warning(grid, mark.point, "preview mark", "\"" + mark.name + "\"")) mark_warnings.push_back(*warning);
+  }
   create_output_folder(folder);
-  write_depth_geotiff(folder / "depth.tif", g, grid.still_water_depth_m, "chart sounding datum of the inputs");
+  // Outside the chart's coverage is nodata (-9999) in the GeoTIFF, so GIS tools and a later
+  // `nearshore bathy` reading it as a survey skip those cells.
+  Raster<float> charted_depth_m = grid.still_water_depth_m;
+  for (std::size_t i = 0; i < charted_depth_m.size(); ++i)
+    if (grid.land.values()[i] == kOutsideChartCell) charted_depth_m.values()[i] = std::numeric_limits<float>::quiet_NaN();
+  write_depth_geotiff(folder / "depth.tif", g, charted_depth_m, "chart sounding datum of the inputs");
   write_harbour_grid(folder / "depth.exr", grid);
   const std::size_t voxels = write_coastline_level_set(folder / "coastline.vdb", g, grid.coast_distance_m, coastline_band_m);
   write_png(preview, folder / "preview.png");
   nlohmann::json summary = result.summary;
+  if (!marks.empty()) {
+    summary["marks"] = mark_list;
+    for (const std::string& warning : mark_warnings) summary["warnings"].push_back(warning);
+  }
   summary["outputs"] = {{"depth_tif", "depth.tif"}, {"depth_exr", "depth.exr"},
                         {"coastline_vdb", {{"file", "coastline.vdb"}, {"active_voxels", voxels}, {"half_band_m", coastline_band_m}}},
                         {"preview_png", "preview.png"}, {"summary_json", "summary.json"}};

@@ -54,7 +54,8 @@ HarbourGrid HarbourGrid::open_water(const GridGeometry& geometry, float depth_m)
 void write_harbour_grid(const fs::path& depth_exr, const HarbourGrid& grid) {
   const int columns = grid.geometry.columns, rows = grid.geometry.rows;
   Raster<float> land(columns, rows);
-  for (std::size_t i = 0; i < land.size(); ++i) land.values()[i] = grid.land.values()[i] ? 1.f : 0.f;
+  for (std::size_t i = 0; i < land.size(); ++i)
+    land.values()[i] = grid.land.values()[i] == kOutsideChartCell ? 2.f : grid.land.values()[i] ? 1.f : 0.f;
   const std::pair<const char*, const Raster<float>*> channels[] = {{"depth", &grid.still_water_depth_m},
                                                                    {"land", &land},
                                                                    {"porosity", &grid.porosity},
@@ -121,7 +122,8 @@ HarbourGrid read_harbour_grid(const fs::path& depth_exr) {
     grid.still_water_depth_m = from_exr_lines(lines[0], columns, rows);
     const Raster<float> land = from_exr_lines(lines[1], columns, rows);
     grid.land = Raster<std::uint8_t>(columns, rows);
-    for (std::size_t i = 0; i < land.size(); ++i) grid.land.values()[i] = land.values()[i] > 0.5f ? 1 : 0;
+    for (std::size_t i = 0; i < land.size(); ++i)
+      grid.land.values()[i] = land.values()[i] > 1.5f ? kOutsideChartCell : land.values()[i] > 0.5f ? kLandCell : kWaterCell;
     grid.porosity = from_exr_lines(lines[2], columns, rows);
     grid.coast_distance_m = from_exr_lines(lines[3], columns, rows);
   } catch (const Error&) {

@@ -273,7 +273,11 @@ Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
     for (int px = 0; px < field_w; ++px) {
       const int column = std::min(field.columns() - 1, static_cast<int>(px / scale));
       Rgb colour;
-      if (mask && (*mask)(column, row))
+      if (mask && (*mask)(column, row) == 2 && style.second_mask_colour)
+        // No data: grey with diagonal hatching (every 8th pixel diagonal darker), so it reads as
+        // "nothing known here" and not as land or shallow water (issue 14 item 3).
+        colour = (px + py) % 8 < 2 ? Rgb{0.45f, 0.45f, 0.45f} : *style.second_mask_colour;
+      else if (mask && (*mask)(column, row))
         colour = style.mask_colour;
       else if (!std::isfinite(field(column, row)))
         colour = {1.f, 0.f, 1.f};  // NaN shows magenta, so it cannot hide

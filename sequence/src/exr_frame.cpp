@@ -51,6 +51,9 @@ Imf::Compression to_exr(Compression compression) {
     case Compression::kPiz: return Imf::PIZ_COMPRESSION;
     case Compression::kB44: return Imf::B44_COMPRESSION;
     case Compression::kDwaa: return Imf::DWAA_COMPRESSION;
+    case Compression::kRle: return Imf::RLE_COMPRESSION;
+    case Compression::kZips: return Imf::ZIPS_COMPRESSION;
+    case Compression::kPxr24: return Imf::PXR24_COMPRESSION;
   }
   return Imf::ZIP_COMPRESSION;
 }

@@ -12,7 +12,8 @@ namespace {
 
 constexpr std::pair<Compression, std::string_view> kCompressionNames[] = {
     {Compression::kNone, "none"}, {Compression::kZip, "zip"}, {Compression::kPiz, "piz"},
-    {Compression::kB44, "b44"},   {Compression::kDwaa, "dwaa"}};
+    {Compression::kB44, "b44"},   {Compression::kDwaa, "dwaa"}, {Compression::kRle, "rle"},
+    {Compression::kZips, "zips"}, {Compression::kPxr24, "pxr24"}};
 
 Precision parse_precision(const nlohmann::json& value, const std::string& source, const std::string& key) {
   if (value == "half") return Precision::kHalf;
@@ -50,8 +51,18 @@ std::string_view compression_name(Compression compression) {
 Compression parse_compression(std::string_view name) {
   for (const auto& [value, known] : kCompressionNames)
     if (known == name) return value;
-  throw Error(fmt::format("compression \"{}\"", name), "is not one nearshore writes",
-              "use one of none, zip, piz, b44, dwaa");
+  std::string names;
+  for (const auto& [value, known] : kCompressionNames) names += (names.empty() ? "" : ", ") + std::string(known);
+  throw Error(fmt::format("compression \"{}\"", name), "is not one nearshore writes", "use one of " + names);
+}
+
+const std::vector<Compression>& all_compressions() {
+  static const std::vector<Compression> all = [] {
+    std::vector<Compression> out;
+    for (const auto& [value, name] : kCompressionNames) out.push_back(value);
+    return out;
+  }();
+  return all;
 }
 
 std::string_view precision_name(Precision precision) { return precision == Precision::kHalf ? "half" : "float"; }

@@ -82,6 +82,9 @@ TEST(BakeEffectiveDepth, InactiveInEverySharedCase) {
   int read = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(NEARSHORE_SOURCE_DIR) / "data" / "cases")) {
     if (entry.path().extension() != ".toml") continue;
+    // The real chart's case needs the limit (a 168 m deep bay; docs/commands/bake.md, "Example: a
+    // real chart"): it was written with it, so no result of it predates the limit.
+    if (entry.path().filename() == "tacoma.toml") continue;
     try {
       const BakeCase c = read_bake_case(entry.path());
       EXPECT_DOUBLE_EQ(c.solver.effective_depth_limit_m, 0.0) << entry.path();

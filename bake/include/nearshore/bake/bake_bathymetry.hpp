@@ -60,4 +60,22 @@ HarbourGrid resample_harbour_grid(const HarbourGrid& grid, CellSize spacing);
 /// Case key `bathymetry.still_water_level_m`; the sea-state library sweeps it (library/).
 void raise_still_water_level(HarbourGrid& grid, double level_m);
 
+/// What the bake does with the harbour grid's cells outside the chart's coverage (land ==
+/// kOutsideChartCell, issue 14 item 3; case key `bathymetry.outside_chart`).
+struct OutsideChartRule {
+  enum class Treatment {
+    kLand,  ///< solid land, as high as the grid says (bathy's land elevation, 2 m): a wall that reflects
+    kSea,   ///< open water: `depth_m` if > 0, else the depth of the nearest charted water cell
+  };
+  Treatment treatment = Treatment::kLand;
+  double depth_m = 0.0;  ///< kSea only: a constant depth, metres; 0 = the nearest charted water depth
+};
+
+/// Resolves every outside-chart cell by `rule`, so the grid the solver sees holds only land and water.
+/// kSea: the nearest charted water cell is the exact Euclidean one (Felzenszwalb-Huttenlocher feature
+/// transform, bathymetry/distance_transform.hpp); porosity becomes 1 and the coastline distance is
+/// recomputed, since the coast moved. Returns the number of cells changed. Throws nearshore::Error
+/// naming `subject` when kSea has no charted water cell to extend.
+std::size_t resolve_outside_chart(HarbourGrid& grid, const OutsideChartRule& rule, const std::string& subject);
+
 }  // namespace nearshore::bake

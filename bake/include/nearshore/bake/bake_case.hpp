@@ -21,14 +21,29 @@
 #include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/bake/deep_water_coupling.hpp"
 #include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/sequence/sequence_format.hpp"
 
 namespace nearshore::bake {
 
-/// A named point where the surface elevation is recorded every gauge interval (gauges.csv).
+/// A named point where the surface elevation is recorded every gauge interval (gauges.csv): bilinear
+/// between the four cell centres around it (BoussinesqSolver::surface_elevation_at).
 struct GaugeSpec {
   std::string name;
   double x_m = 0.0;  ///< grid frame (GridGeometry origin included), metres; the case file gives it from the SW corner
   double y_m = 0.0;
+};
+
+/// [output]: how the frames are stored and which maps the bake writes beside them
+/// (docs/commands/bake.md, "[output]"; case_output.cpp reads it).
+struct BakeOutput {
+  /// Codec and per-channel precision of every frame (sequence_format.hpp); the manifest records
+  /// both, and the bake's disk estimate counts the precision.
+  sequence::FrameEncoding frame_encoding;
+  /// Write DIR/wave_statistics.tif (wave_statistics.hpp): the maximum-elevation envelope, Hs, the
+  /// mean level and the run-up line over every solver step after time.spin_up_s. Off unless asked
+  /// for: it holds 24 bytes per cell for the whole bake (two double sums, the float envelope, the
+  /// depth), a tenth of the solver's budget of 250 B per cell (docs/solver.md "Memory", issue 15).
+  bool wave_statistics = false;
 };
 
 /// Time control of a bake. All in seconds of simulated time.
@@ -49,6 +64,11 @@ struct BakeCase {
   std::optional<boussinesq::SolitaryWave> solitary_wave;
   BakeTiming timing;
   std::vector<GaugeSpec> gauges;
+  /// What the case asks that is allowed but likely a mistake, in sentences naming the case file and
+  /// the entry: a gauge or source line on land or outside the chart (docs/commands/bake.md,
+  /// "Positions"). `nearshore bake` prints them on stderr and in its JSON summary's "warnings".
+  std::vector<std::string> warnings;
+  BakeOutput output;                ///< [output]: frame encoding, wave-statistics maps
   nlohmann::json wave_conditions;   ///< the wave maker as configured, recorded in the sequence
   nlohmann::json solver_record;     ///< the solver parameters as resolved, recorded in the sequence
   nlohmann::json source;            ///< the parsed case document (for the checkpoint fingerprint)

@@ -2,8 +2,9 @@
 // The bake run: a BakeCase through the Boussinesq solver into a sequence folder (seed 003 section
 // 3: solve, keep every frame's height and flux fields). In the output folder:
 //   the frame sequence (sequence::SequenceWriter: frames every output interval after spin-up, the
-//   manifest written LAST by finish()), gauges.csv (bake_gauges.hpp), and checkpoint.bin while the
-//   run is under way (removed when it completes).
+//   manifest written LAST by finish()), gauges.csv (bake_gauges.hpp), wave_statistics.tif (the
+//   envelope, Hs, mean level and run-up line over every step after spin-up; wave_statistics.hpp),
+//   and checkpoint.bin while the run is under way (removed when it completes).
 // Checkpoints hold the solver state, the gauge records and a fingerprint of the case; a run
 // resumed from one writes byte-identical frames and gauges to an uninterrupted run.
 #include <cstdint>
@@ -48,6 +49,10 @@ struct BakeSummary {
   /// field drives the wave maker its component count, the variance fraction it carries, the carried
   /// Hs and the blending zone (deep_water_coupling.hpp); the tile set when baked.
   nlohmann::json deep_water;
+  /// null unless [output] wave_statistics (the default): the GeoTIFF's path, the steps it maps and,
+  /// when water went above the still-water shoreline, the run-up R (`runup`: water_level_m,
+  /// ground_elevation_m, x_m, y_m; wave_statistics.hpp).
+  nlohmann::json wave_statistics;
   nlohmann::json to_json() const;
 };
 

@@ -82,10 +82,19 @@ struct BathyResult {
 /// memory, no water cell, ...
 BathyResult build_harbour_grid(const BathyRequest& request);
 
+/// A named place drawn on the preview (a case's gauges, its source line), in the grid's projected
+/// frame: placed with geo_position.hpp, so a gauge given by lat/lon shows where the bake will put it.
+struct PreviewMark {
+  std::string name;
+  ProjectedPoint point;
+};
+
 /// Writes depth.tif, depth.exr, coastline.vdb, preview.png and summary.json into `folder`
-/// (created if needed), each atomically. Returns the summary with the output list added.
+/// (created if needed), each atomically. Returns the summary with the output list added. `marks`
+/// are drawn on the preview and listed in summary.json `marks` (name, x/y, lon/lat); one on land or
+/// outside the chart also adds a sentence to `warnings` (geo_position.hpp's land_warning).
 nlohmann::json write_bathymetry_outputs(const std::filesystem::path& folder, const BathyResult& result,
-                                        double coastline_band_m = 200.0);
+                                        double coastline_band_m = 200.0, const std::vector<PreviewMark>& marks = {});
 
 /// Bytes the grid of `cells` cells needs at the peak of build_harbour_grid (an upper estimate).
 double estimated_peak_bytes(double cells, std::size_t input_count);

@@ -2,7 +2,9 @@
 // HarbourGrid: the solver-ready harbour that `nearshore bathy` writes and `nearshore bake` reads
 // (docs/formats.md, "Harbour grid"). Stored as one OpenEXR file (depth.exr) with float channels
 //   depth            still-water depth d, metres, positive DOWN; land cells hold minus their elevation
-//   land             1 where the cell is land at still water, else 0
+//   land             1 where the cell is land at still water, 0 water, 2 no data: outside the chart's
+//                    coverage (issue 14 item 3; a reader that knows only land/water sees it as land,
+//                    the safe default; the bake decides, [bathymetry] outside_chart)
 //   porosity         n of seed 003 eq. (2)-(3): 1 open water, 0 < n < 1 porous structure
 //                    (rubble-mound breakwater), 0 a solid vertical wall (quay)
 //   coast_distance   signed distance to the coastline, metres, negative on land
@@ -16,10 +18,13 @@
 
 namespace nearshore {
 
+/// Values of HarbourGrid::land. Code that tests `land(c, r)` as a flag treats outside-chart cells as land.
+inline constexpr std::uint8_t kWaterCell = 0, kLandCell = 1, kOutsideChartCell = 2;
+
 struct HarbourGrid {
   GridGeometry geometry;
   Raster<float> still_water_depth_m;  ///< d, positive down; land = -elevation
-  Raster<std::uint8_t> land;          ///< 1 land, 0 water
+  Raster<std::uint8_t> land;          ///< kLandCell 1, kWaterCell 0, kOutsideChartCell 2 (no data)
   Raster<float> porosity;             ///< 1 open water .. 0 solid wall
   Raster<float> coast_distance_m;     ///< signed, negative on land
 

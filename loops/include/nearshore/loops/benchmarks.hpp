@@ -26,6 +26,13 @@ struct CompressionMeasurement {
 /// columns x rows with `compression` (half channels) into `work_folder`, then reads them back.
 CompressionMeasurement measure_compression(const std::filesystem::path& work_folder, sequence::Compression compression,
                                            int columns, int rows, int frames);
+/// The same on the frames of a real bake: `frames` frames spread evenly over the sequence in
+/// `source_folder` (its harbour grid included) are written again with `compression` (half channels)
+/// and read back; errors are against the source's values (exact when it was baked with
+/// `[output] frame_precision = "float"`, docs/commands/bake.md).
+CompressionMeasurement measure_compression_of_sequence(const std::filesystem::path& work_folder,
+                                                       sequence::Compression compression,
+                                                       const std::filesystem::path& source_folder, int frames);
 
 struct DistanceThroughput {
   int columns = 0, rows = 0, frames = 0, threads = 0;

@@ -48,7 +48,8 @@ struct MapAxes {
 };
 
 /// A raster coloured by `map` between `low` and `high`, north (last row) at the top, with a
-/// colour bar and title. Cells where `mask` (if given, same size) is non-zero are drawn `mask_colour`.
+/// colour bar and title. Cells where `mask` (if given, same size) is non-zero are drawn `mask_colour`
+/// (value 2 in `second_mask_colour`, hatched, when that is set).
 struct HeatMapStyle {
   std::string title;
   std::string value_label;  ///< e.g. "depth (m)"
@@ -56,6 +57,9 @@ struct HeatMapStyle {
   double low = 0.0, high = 1.0;
   int max_image_size_px = 1200;             ///< the longer side of the field area
   Rgb mask_colour = {0.55f, 0.47f, 0.36f};  ///< land brown
+  /// When set, cells where `mask` is 2 (a harbour grid's kOutsideChartCell: no data) are drawn in
+  /// this colour, hatched with darker diagonals; unset, they are drawn as mask_colour.
+  std::optional<Rgb> second_mask_colour;
   bool first_row_at_top = false;            ///< true for matrices (row 0 = first frame at the top)
   /// Ticks in the CRS, a scale bar and a north arrow (maps; needs first_row_at_top = false).
   std::optional<MapAxes> map_axes;

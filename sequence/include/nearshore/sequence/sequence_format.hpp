@@ -30,8 +30,12 @@ inline constexpr std::string_view kManifestFile = "manifest.json";
 inline constexpr std::string_view kHarbourGridFile = "depth.exr";
 
 /// OpenEXR compression of the frames; the default comes from the measured table in
-/// docs/formats/sequence.md (`nearshore bench loops --compression`).
-enum class Compression { kNone, kZip, kPiz, kB44, kDwaa };
+/// docs/formats/sequence.md (`nearshore bench loops --compression`). kRle (run lengths), kZips
+/// (zlib on one line per block instead of 16) and kPxr24 (zlib after a byte predictor; lossless on
+/// half channels, rounds float channels to 24 bits) are OpenEXR's own codecs, measured beside the
+/// others on a real bake. New values go at the end: the enum's order is no file format (the
+/// manifest stores the name), but callers initialise FrameEncoding by position.
+enum class Compression { kNone, kZip, kPiz, kB44, kDwaa, kRle, kZips, kPxr24 };
 /// Storage of one channel: half (16-bit, 11 significant bits) or float (32-bit).
 enum class Precision { kHalf, kFloat };
 
@@ -46,8 +50,10 @@ struct FrameEncoding {
 /// The four channels, in file order.
 inline constexpr const char* kChannelNames[4] = {"surface_elevation", "flux_x", "flux_y", "breaking"};
 
-std::string_view compression_name(Compression compression);     ///< "none", "zip", "piz", "b44", "dwaa"
+std::string_view compression_name(Compression compression);     ///< "none", "zip", "piz", "b44", "dwaa", "rle", "zips", "pxr24"
 Compression parse_compression(std::string_view name);           ///< throws Error listing the names
+/// Every codec nearshore writes, in the enum's order (for messages and the benchmark's table).
+const std::vector<Compression>& all_compressions();
 std::string_view precision_name(Precision precision);           ///< "half" or "float"
 std::string frame_file_name(int index);                          ///< "frame_000123.exr"
 
