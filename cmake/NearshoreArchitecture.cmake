@@ -7,7 +7,8 @@
 #   tools -> all. Never: playback to bathymetry, bake, boussinesq, loops or plot; no library to tools.
 #   runtime -> sequence, ocean (GL-free: streaming, deep water, CPU queries); playback -> runtime.
 #   ships -> runtime, ocean (CPU only: hulls, rigid bodies, bow-wave grids on the runtime's queries);
-#   ships_mesh (hull files, assimp) -> ships; ships_scenario (TOML) -> ships, ships_mesh.
+#   ships_mesh (hull files, assimp) -> ships; ships_scenario (TOML) -> ships, ships_mesh;
+#   ships_layers (a fleet as the renderer's SurfaceLayers) -> ships, playback.
 #   export (sequence -> NetCDF, GeoTIFF, EXR, VDB files) -> sequence only.
 #   library (the sea-state library) -> bake, loops, sequence; library_mpi -> library (built only
 #   where MPI is found: a rule whose library name ends in "?" applies when that target exists).
@@ -25,6 +26,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_ships:nearshore_runtime,nearshore_ocean,nearshore_core"
   "nearshore_ships_mesh:nearshore_ships,nearshore_core"
   "nearshore_ships_scenario:nearshore_ships,nearshore_ships_mesh,nearshore_core"
+  "nearshore_ships_layers:nearshore_ships,nearshore_playback,nearshore_core"
   "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
   "nearshore_library:nearshore_bake,nearshore_loops,nearshore_sequence,nearshore_core"
   "nearshore_library_mpi?:nearshore_library,nearshore_core"

@@ -1,6 +1,8 @@
 // samples/embed_window.cpp: a host with its own GLFW window, in which nearshore draws the sea
 // (C++ API). The host owns the window, the context and the clock; nearshore streams the baked
-// harbour, synthesises the deep water around it and draws both.
+// harbour, synthesises the deep water around it and draws both, with a tug under way (its hull,
+// bow wave and wake: ships::ShipFleet drawn through ships::FleetLayers; from C the same is
+// nearshore_renderer_set_fleet).
 //
 //   embed_window SEQUENCE_FOLDER [FRAMES [OUT.ppm]]
 //
@@ -18,6 +20,8 @@
 #include "nearshore/playback/gl_loader.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/runtime/streaming_engine.hpp"
+#include "nearshore/ships/fleet_layers.hpp"
+#include "nearshore/ships/generic_hulls.hpp"
 
 namespace {
 
@@ -53,14 +57,38 @@ int run(int argc, char** argv) {
     const nearshore::playback::Lighting lighting;
     sea.wait_until_ready(0.0, std::chrono::seconds(10));  // start-up only; the loop never waits
 
-    // 2. Per frame: advance the sea on the host's clock, draw, present.
+    // 2. A tug at 3 m/s heading east from a quarter of the way across; a place it cannot float
+    //    (land, too shallow) is refused by name and the sea plays on without it.
+    nearshore::ships::ShipFleet fleet;
+    nearshore::ships::FleetLayers fleet_layers;
+    fleet.set_site(site);
+    nearshore::ships::ShipDefinition tug;
+    tug.name = "Tug";
+    tug.hull = nearshore::ships::harbour_tug();
+    tug.loading.draft_m = 3.0;
+    tug.x_m = 0.25 * site->width_m, tug.y_m = 0.5 * site->height_m;
+    tug.heading_deg = 90.0;
+    tug.initial_speed_m_s = 3.0;
+    tug.orders.speed_m_s = 3.0;
+    try {
+      const std::size_t index = fleet.add_ship(tug);
+      fleet_layers.set_hull(index, tug.hull, fleet.ship(index).body().particulars());
+    } catch (const nearshore::Error& refused) {
+      std::fprintf(stderr, "embed_window: no tug: %s\n", refused.what());
+    }
+
+    // 3. Per frame: advance the sea on the host's clock, step the ships on it, draw, present.
+    double previous_s = 0.0;
     for (int frame = 0; !glfwWindowShouldClose(window) && (frame_limit == 0 || frame < frame_limit); ++frame) {
       const double time_s = frame_limit > 0 ? frame / 30.0 : glfwGetTime();
+      const double dt_s = frame_limit > 0 || frame == 0 ? 1.0 / 30.0 : time_s - previous_s;
+      previous_s = time_s;
       sea.advance_to(time_s);
+      if (dt_s > 0) fleet.step(sea.snapshot(), dt_s);
       renderer.stage_upcoming(sea);  // the next keyframes go up within the upload budget
       int fb_width = 0, fb_height = 0;
       glfwGetFramebufferSize(window, &fb_width, &fb_height);
-      renderer.render(sea.snapshot(), camera, lighting, fb_width, fb_height);
+      renderer.render(sea.snapshot(), camera, lighting, fb_width, fb_height, {}, &fleet_layers.update(fleet));
       renderer.blit_to_window(fb_width, fb_height);
       glfwSwapBuffers(window);
       glfwPollEvents();

@@ -23,7 +23,7 @@ uniform vec3 u_seabed_albedo;      // I_g of eq. (3.25): sand
 uniform vec3 u_foam_albedo;        // C_foam, seed 003 eq. (15)
 uniform float u_slope_variance;    // sigma^2 per axis the drawn normals cannot show
 uniform float u_translucency;      // mu scale of eq. (3.38)
-uniform float u_exposure;          // display = 1 - exp(-exposure L)
+uniform float u_exposure;          // displayed luminance = 1 - exp(-exposure Y)
 
 // ---- sky: Preetham (1999), seed 001 eq. (3)-(12) -------------------------------------------
 float perez(float c[5], float cos_theta, float gamma) {
@@ -117,8 +117,35 @@ vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_sl
   return mix(surface, foam_lit, clamp(foam, 0.0, 1.0));
 }
 
-// Exposure and display gamma (the default framebuffer is not sRGB).
+// ---- detail normals (lighting.hpp, the same names) -----------------------------------------
+const float kMeshVertexSpacingPx = 4.0;      // the grids' vertex spacing on screen (surface_grids.hpp)
+const float kParallaxMinViewCosine = 0.12;   // eye rays of eq. (5) no flatter than ~7 degrees
+
+// How much of a cascade's normal map a pixel of footprint_m keeps: all while it covers one texel,
+// none from four on (its slopes move into the BRDF's variance instead: Bruneton 2010 section 4).
+float detail_normal_weight(float texel_m, float footprint_m) { return 1.0 - smoothstep(texel_m, 4.0 * texel_m, footprint_m); }
+// How much of a cascade's height the grid (a vertex every kMeshVertexSpacingPx pixels) cannot draw.
+float unresolved_relief_weight(float texel_m, float footprint_m) {
+  return smoothstep(texel_m, 4.0 * texel_m, kMeshVertexSpacingPx * footprint_m);
+}
+// Seed 004 section 1.3, eq. (5): the eye ray through the drawn point meets a relief relief_m above
+// it at to_eye.xy / to_eye.z * relief_m further towards the eye; the normal map is read there.
+vec2 parallax_offset_m(vec3 to_eye, float relief_m) { return to_eye.xy / max(to_eye.z, kParallaxMinViewCosine) * relief_m; }
+
+// Exposure and display gamma (the default framebuffer is not sRGB). The exposure curve
+// 1 - exp(-k Y) acts on the luminance Y alone and the colour keeps its chromaticity: applied per
+// channel it squeezed the brightest channel most and turned a bright blue sky grey-violet. A
+// colour whose brightest channel would pass 1 is moved towards the grey of the same luminance
+// just far enough to fit (Y stays, so the picture's brightness is unchanged; Y_display < 1, so
+// that grey always fits).
+const vec3 kLuminanceWeights = vec3(0.2126, 0.7152, 0.0722);  // linear sRGB (ITU-R BT.709)
 vec3 to_display(vec3 radiance) {
-  vec3 exposed = vec3(1.0) - exp(-u_exposure * max(radiance, vec3(0.0)));
-  return pow(exposed, vec3(1.0 / 2.2));
+  vec3 c = max(radiance, vec3(0.0));
+  float Y = dot(c, kLuminanceWeights);
+  if (!(Y > 0.0)) return vec3(0.0);
+  float Y_display = 1.0 - exp(-u_exposure * Y);
+  vec3 exposed = c * (Y_display / Y);
+  float brightest = max(exposed.r, max(exposed.g, exposed.b));
+  if (brightest > 1.0) exposed = vec3(Y_display) + (exposed - vec3(Y_display)) * ((1.0 - Y_display) / (brightest - Y_display));
+  return pow(clamp(exposed, 0.0, 1.0), vec3(1.0 / 2.2));
 }

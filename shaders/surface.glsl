@@ -71,6 +71,29 @@ float deep_bilinear(sampler2DArray field, DeepTaps t, int layer) {
   return mix(south, north, t.w.y);
 }
 
+// The lighting's reads of a cascade (hardware-filtered: they shade, they do not place the surface):
+// the tile coordinate of p (sample i at x = i L / N) and the displacement gradient there,
+// (dDx/dx, dDy/dy, dDx/dy, dDy/dx) by central differences, from/to blended: seed 000 eq. (3.41)-(3.44).
+vec3 cascade_uvw(vec2 p, int c) { return vec3(p / u_tile_length_m[c] + 0.5 / float(u_deep_size), float(c)); }
+vec4 cascade_displacement_gradient(vec2 p, int c) {
+  vec3 uvw = cascade_uvw(p, c);
+  vec3 dx = vec3(1.0 / float(u_deep_size), 0.0, 0.0), dy = vec3(0.0, 1.0 / float(u_deep_size), 0.0);
+  vec4 from = vec4(texture(u_deep_dx_from, uvw + dx).r - texture(u_deep_dx_from, uvw - dx).r,
+                   texture(u_deep_dy_from, uvw + dy).r - texture(u_deep_dy_from, uvw - dy).r,
+                   texture(u_deep_dx_from, uvw + dy).r - texture(u_deep_dx_from, uvw - dy).r,
+                   texture(u_deep_dy_from, uvw + dx).r - texture(u_deep_dy_from, uvw - dx).r);
+  vec4 to = vec4(texture(u_deep_dx_to, uvw + dx).r - texture(u_deep_dx_to, uvw - dx).r,
+                 texture(u_deep_dy_to, uvw + dy).r - texture(u_deep_dy_to, uvw - dy).r,
+                 texture(u_deep_dx_to, uvw + dy).r - texture(u_deep_dx_to, uvw - dy).r,
+                 texture(u_deep_dy_to, uvw + dx).r - texture(u_deep_dy_to, uvw - dx).r);
+  return mix(from, to, u_deep_fraction) / (2.0 * u_tile_length_m[c] / float(u_deep_size));
+}
+// J of seed 000 eq. (3.39) from the summed gradient, lambda the choppiness (ocean::jacobian).
+float jacobian_of(vec4 gradient) {
+  float lambda = u_choppiness;
+  return (1.0 + lambda * gradient.x) * (1.0 + lambda * gradient.y) - lambda * lambda * gradient.z * gradient.w;
+}
+
 // sin^2 ramp from 0 at s = 0 to 1 at s = width (runtime/src/surface_snapshot.cpp sin2_ramp).
 float sin2_ramp(float s, float width) {
   if (width <= 0.0) return s > 0.0 ? 1.0 : 0.0;

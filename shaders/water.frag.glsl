@@ -17,6 +17,9 @@ uniform vec2 u_viewport_px;
 uniform bool u_has_decal_foam;          // playback::SurfaceLayers foam decals were drawn into ...
 uniform sampler2D u_decal_foam;         // ... this foam map (R8, cover 0..1) over ...
 uniform vec4 u_decal_foam_rect_m;       // ... x0, y0, width, height of the site frame
+uniform float u_detail_parallax;        // seed 004 eq. (5) on (1) or off (0): Lighting::detail_parallax
+uniform bool u_has_deep_foam;           // the persistent foam f_t of seed 000 eq. (3.46) (foam_decay.frag.glsl) ...
+uniform sampler2D u_deep_foam;          // ... over the largest cascade's tile, repeating
 in vec2 v_site_m;
 in vec3 v_position_m;
 in float v_lod;
@@ -31,12 +34,37 @@ vec3 lod_colour(float lod) {
   return mix(palette[level % 6], palette[(level + 1) % 6], fract(lod));
 }
 
+// A smooth value noise in [0, 1] on a unit lattice (an integer hash per lattice point, smoothstep
+// between them): the "foam map" of seed 000 eq. (3.48) and section 4.1, which the paper lays over
+// the foam "to lower its continuity", made procedurally (no texture asset to ship or to tile).
+float lattice_hash(vec2 cell) {
+  uvec2 q = uvec2(ivec2(cell)) * uvec2(1597334677u, 3812015801u);
+  uint n = (q.x ^ q.y) * 1597334677u;
+  return float(n >> 8) * (1.0 / 16777215.0);
+}
+float value_noise(vec2 x) {
+  vec2 i = floor(x), f = fract(x), u = f * f * (3.0 - 2.0 * f);
+  return mix(mix(lattice_hash(i), lattice_hash(i + vec2(1.0, 0.0)), u.x),
+             mix(lattice_hash(i + vec2(0.0, 1.0)), lattice_hash(i + vec2(1.0, 1.0)), u.x), u.y);
+}
+// Foam's texture at p (m): two octaves of noise 6 m and 2.5 m across, sharpened into patches and
+// streaks; where one pixel spans the texture's detail it fades to its mean (0.5) so it never shimmers.
+float foam_texture(vec2 p, float footprint_m) {
+  float n = 0.65 * value_noise(p / 6.0) + 0.35 * value_noise(p / 2.5 + 17.3);
+  float patches = smoothstep(0.30, 0.70, n);
+  return mix(patches, 0.5, smoothstep(0.6, 2.5, footprint_m));
+}
+
 // Seed 000 section 4.1: a pair of Gerstner-like waves running up the coast-distance gradient on
 // shores the wind blows onto (eq. 4.1, 4.3: phase from the distance to the coast; amplitude
 // falling off with that distance, eq. 4.4), and the breaking and turbulent foam bands of their
 // phase (eq. 4.5, 4.6). They shade (normal and foam) but do not move the surface: the CPU queries
-// a ship's physics reads must see the same water the bake made.
-void shoreline_waves(vec2 p, float still_depth_m, inout vec2 slope, inout float foam) {
+// a ship's physics reads must see the same water the bake made. Along the shore the crests are
+// not one line: eq. (4.3)'s phase carries a term beside the distance (the wind's, cos theta_w (1 -
+// s_p)), here a slowly varying phase (noise 45 m across, up to +-1.2 wavelengths) so each crest
+// breaks in segments that lead and lag, sets of larger and smaller waves along the beach (noise
+// 70 m across), and the foam map over the bands (eq. 3.48).
+void shoreline_waves(vec2 p, float still_depth_m, float footprint_m, inout vec2 slope, inout float foam) {
   if (u_shore_amplitude_m <= 0.0 || !u_has_site || any(lessThan(p, vec2(0.0))) || any(greaterThan(p, u_site_size_m))) return;
   vec2 uv = clamp(p / u_site_size_m, vec2(0.0), vec2(1.0));
   float distance_m = texture(u_coast_distance, uv).r;
@@ -49,20 +77,32 @@ void shoreline_waves(vec2 p, float still_depth_m, inout vec2 slope, inout float 
   float windward = clamp(dot(u_wind_toward, -seaward), 0.0, 1.0);  // wind onto the shore
   float alpha_s = distance_m / u_shore_band_m;                       // eq. 4.3's normalised distance
   // How strong the surf is here: windward, in enough wind (the amplitude reaches 0.15 m at about
-  // force 4), fading out towards the band's outer edge and onto the dry beach.
-  float surf = windward * clamp(u_shore_amplitude_m / 0.15, 0.0, 1.0) * sqrt(1.0 - alpha_s) * smoothstep(0.0, 0.4, still_depth_m);
+  // force 4), fading out towards the band's outer edge and onto the dry beach, in sets along the shore.
+  float sets = mix(0.45, 1.0, value_noise(p / 70.0 + 3.1));
+  float surf = windward * sets * clamp(u_shore_amplitude_m / 0.15, 0.0, 1.0) * sqrt(1.0 - alpha_s) * smoothstep(0.0, 0.4, still_depth_m);
   float amplitude = u_shore_amplitude_m * surf;
+  float texture_here = foam_texture(p, footprint_m);
   const float lengths_m[2] = float[2](14.0, 9.0);
   for (int i = 0; i < 2; ++i) {
     float k = 2.0 * kPi / lengths_m[i];
     float omega = sqrt(9.81 * k);
-    float phase = k * distance_m + omega * u_time_s + 1.7 * float(i);  // crests run shorewards
+    float along = 2.0 * kPi * 1.2 * (2.0 * value_noise(p / 45.0 + 11.0 * float(i)) - 1.0);
+    float phase = k * distance_m + omega * u_time_s + 1.7 * float(i) + along;  // crests run shorewards
     slope += amplitude * k * cos(phase) * seaward / float(i + 1);
     float f = fract(phase / (2.0 * kPi));
     float breaking = clamp(20.0 * f, 0.0, 1.0) - clamp(17.0 * f, 0.0, 1.0);  // eq. (4.6)
     float turbulent = clamp(20.0 * f, 0.0, 1.0) - clamp(2.0 * f, 0.0, 1.0);  // eq. (4.5)
-    foam = max(foam, surf * (breaking + 0.5 * turbulent));
+    // the breaking band half solid, half torn by the foam map; the turbulent band behind it torn
+    foam = max(foam, surf * (breaking * mix(texture_here, 1.0, 0.5) + 0.5 * turbulent * texture_here));
   }
+}
+
+// How much of cascade c's normal map a point of harbour weight w gets: all of it beyond the
+// harbour; over the harbour only the finest cascades (tiles under 32 harbour cells), which stand
+// for the wind chop a bake's grid is too coarse to carry.
+float cascade_share(int c, float w) {
+  bool over_harbour = u_has_site && u_tile_length_m[c] < 32.0 * max(u_spacing_m.x, u_spacing_m.y);
+  return (1.0 - w) + (over_harbour ? w : 0.0);
 }
 
 void main() {
@@ -90,41 +130,49 @@ void main() {
     slope += weight * vec2(ex, ey) / (2.0 * u_spacing_m);
     breaking = weight * mix(texture(u_harbour_breaking_from, uv).r, texture(u_harbour_breaking_to, uv).r, f);
   }
+  vec3 to_eye = normalize(u_eye_m - v_position_m);
   // Deep cascades: their slopes as a normal map (the finest ones also over the harbour, where they
   // stand for the wind chop a bake's grid is too coarse to carry), each fading with distance into
   // slope variance; their displacement gradients give the Jacobian of seed 000 eq. (3.39)-(3.44).
+  // Parallax (seed 004 section 1.3, eq. 5): the grid draws only what its vertices sample; the
+  // finer cascades' relief stands above or below the drawn triangle, and at a grazing view the eye
+  // ray meets that relief short of (or beyond) the drawn point. All the cascades' normals are read
+  // where it meets it: the drawn point moved along the view by eq. (5) for the relief the grid
+  // leaves out (each cascade's height weighted by how much of it the grid cannot draw and, as
+  // its normals are, by how much detail the pixel keeps).
+  float relief_m = 0.0;
+  for (int c = 0; c < u_cascade_count && u_detail_parallax > 0.0; ++c) {
+    float texel_m = u_tile_length_m[c] / float(u_deep_size);
+    float share = cascade_share(c, weight);
+    float w = share * detail_normal_weight(texel_m, footprint_m) * unresolved_relief_weight(texel_m, footprint_m);
+    if (w <= 0.0) continue;
+    vec3 uvw = cascade_uvw(p, c);
+    relief_m += w * mix(texture(u_deep_eta_from, uvw).r, texture(u_deep_eta_to, uvw).r, u_deep_fraction);
+  }
+  vec2 p_detail = p + u_detail_parallax * parallax_offset_m(to_eye, relief_m);
   float extra_variance = 0.0;
   vec4 gradient = vec4(0.0);  // dDx/dx, dDy/dy, dDx/dy, dDy/dx
   for (int c = 0; c < u_cascade_count; ++c) {
     float texel_m = u_tile_length_m[c] / float(u_deep_size);
-    float detail = 1.0 - smoothstep(texel_m, 4.0 * texel_m, footprint_m);
-    bool over_harbour = u_has_site && u_tile_length_m[c] < 32.0 * max(u_spacing_m.x, u_spacing_m.y);
-    float share = (1.0 - weight) + (over_harbour ? weight : 0.0);
+    float detail = detail_normal_weight(texel_m, footprint_m);
+    float share = cascade_share(c, weight);
     extra_variance += share * (1.0 - detail) * u_cascade_slope_variance[c];
     if (detail <= 0.0 || share <= 0.0) continue;
-    vec3 uvw = vec3(p / u_tile_length_m[c] + 0.5 / float(u_deep_size), float(c));  // sample i at x = i L / N
+    vec3 uvw = cascade_uvw(p_detail, c);
     slope += share * detail * mix(vec2(texture(u_deep_slope_x_from, uvw).r, texture(u_deep_slope_y_from, uvw).r),
                                   vec2(texture(u_deep_slope_x_to, uvw).r, texture(u_deep_slope_y_to, uvw).r), u_deep_fraction);
-    if (weight < 1.0) {
-      vec3 dx = vec3(1.0 / float(u_deep_size), 0.0, 0.0), dy = vec3(0.0, 1.0 / float(u_deep_size), 0.0);
-      vec4 from = vec4(texture(u_deep_dx_from, uvw + dx).r - texture(u_deep_dx_from, uvw - dx).r,
-                       texture(u_deep_dy_from, uvw + dy).r - texture(u_deep_dy_from, uvw - dy).r,
-                       texture(u_deep_dx_from, uvw + dy).r - texture(u_deep_dx_from, uvw - dy).r,
-                       texture(u_deep_dy_from, uvw + dx).r - texture(u_deep_dy_from, uvw - dx).r);
-      vec4 to = vec4(texture(u_deep_dx_to, uvw + dx).r - texture(u_deep_dx_to, uvw - dx).r,
-                     texture(u_deep_dy_to, uvw + dy).r - texture(u_deep_dy_to, uvw - dy).r,
-                     texture(u_deep_dx_to, uvw + dy).r - texture(u_deep_dx_to, uvw - dy).r,
-                     texture(u_deep_dy_to, uvw + dx).r - texture(u_deep_dy_to, uvw - dx).r);
-      gradient += detail * mix(from, to, u_deep_fraction) / (2.0 * texel_m);
-    }
+    if (weight < 1.0) gradient += detail * cascade_displacement_gradient(p_detail, c);
   }
   slope += patch_slope(p);  // the height patches (bow waves) tilt the normal as they lift the surface
-  float lambda = u_choppiness;
-  float jacobian = (1.0 + lambda * gradient.x) * (1.0 + lambda * gradient.y) - lambda * lambda * gradient.z * gradient.w;
-  float deep_foam = (1.0 - weight) * clamp(u_jacobian_foam_onset - jacobian, 0.0, 1.0);  // seed 000 eq. (3.45)
+  // Seed 000 eq. (3.45) f_b here and now, and eq. (3.46)'s f_t: the foam that stays and fades after
+  // the crest stopped breaking (kept over the largest tile by foam_decay.frag.glsl), both under
+  // the foam map (eq. 3.48).
+  float deep_breaking = clamp(u_jacobian_foam_onset - jacobian_of(gradient), 0.0, 1.0);
+  if (u_has_deep_foam) deep_breaking = max(deep_breaking, texture(u_deep_foam, p_detail / u_tile_length_m[0]).r);
+  float deep_foam = (1.0 - weight) * deep_breaking * mix(foam_texture(p_detail, footprint_m), 1.0, deep_breaking);
   float still_depth = still_water_depth_at(p);
   float shore_foam = 0.0;
-  shoreline_waves(p, still_depth, slope, shore_foam);
+  shoreline_waves(p, still_depth, footprint_m, slope, shore_foam);
   vec3 normal = normalize(vec3(-slope, 1.0));
   float total_depth = still_depth + eta;
   // Seed 003 eq. (16): foam grows with the surface elevation ("the higher the sea surface, the
@@ -141,7 +189,6 @@ void main() {
     if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)))) foam = max(foam, texture(u_decal_foam, uv).r);
   }
   float crest_thinness = clamp(eta / max(u_foam_onset_m, 0.1), 0.0, 1.0);
-  vec3 to_eye = normalize(u_eye_m - v_position_m);
   // Land and structures seen in the water: the mirrored terrain at this pixel, displaced by the
   // surface's slope (a planar reflection's usual distortion, 3 % of the picture per unit slope).
   vec4 local = vec4(0.0);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -22,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_support.hpp"
+#include "nearshore/bathymetry/geo_position.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/ocean/sea_state_beaufort.hpp"
@@ -45,7 +47,8 @@ struct PlayOptions {
   double time_s = 0, time_scale = 1.0, seconds = 0;
   int frames = 0;
   std::vector<int> size_px = {1280, 720};
-  std::vector<double> eye_m, target_m, eye_lat_lon, target_lat_lon;
+  std::string eye, target;  // bathymetry/geo_position.hpp's text form, plus z_m
+  std::vector<double> eye_lat_lon, target_lat_lon;
   int beaufort_force = 3;
   double wind_from_deg = 225;
   double sun_azimuth_deg = 200, sun_elevation_deg = 35;
@@ -54,6 +57,7 @@ struct PlayOptions {
   std::vector<double> lat_lon;
   double haze = 2.5, turbidity_ntu = 0.5, chlorophyll_mg_m3 = 0.3, cdom_per_m = -1, exposure = 1.0;
   std::string lighting_mode = "full";
+  double detail_parallax = 1.0, foam_decay_s = 3.0;
   bool panel = false, json = false, quiet = false;
   // A sea-state library (a folder with library.json): the state to start with, and scripted
   // switches "TIME:KEY=VALUE,..." crossfaded over crossfade_s.
@@ -108,10 +112,40 @@ struct SiteFrame {
   }
 };
 
+// --eye/--target's text is checked before any work, like every number on the command line (CLI11's
+// status 105, tests/tools/cli_test.cpp); where it lies on the grid is known only once the sequence
+// is read (initial_camera).
+CLI::Validator position_text(const std::string& flag) {
+  return CLI::Validator(
+      [flag](std::string& text) -> std::string {
+        try {
+          std::map<std::string, double> extras;
+          bathymetry::parse_geo_position(text, flag, {"z_m"}, &extras);
+          return {};
+        } catch (const Error& e) {
+          return e.problem() + "; allowed: each coordinate any finite number";
+        }
+      },
+      "POSITION");
+}
+
 playback::Camera initial_camera(const PlayOptions& o, const runtime::HarbourSite& site, const SiteFrame& frame) {
   playback::Camera camera = playback::Camera::overlooking_site(site.width_m, site.height_m);
-  if (!o.eye_m.empty()) camera.eye_m = {o.eye_m[0], o.eye_m[1], o.eye_m[2]};
-  if (!o.target_m.empty()) camera.target_m = {o.target_m[0], o.target_m[1], o.target_m[2]};
+  // --eye/--target: metres from the south-west corner, the grid's CRS or lat/lon, through the one
+  // position parser (bathymetry/geo_position.hpp); z_m is the height above still water.
+  const auto site_point = [&](const std::string& text, const std::string& flag, std::optional<double> default_z_m) {
+    std::map<std::string, double> extras;
+    const bathymetry::GeoPosition position = bathymetry::parse_geo_position(text, flag, {"z_m"}, &extras);
+    if (!extras.count("z_m") && !default_z_m)
+      throw Error(flag + " " + text, "has no height", "add z_m, the height above still water in metres: X,Y,Z or ...,z_m=30");
+    const ProjectedPoint p = bathymetry::place_in_grid(position, frame.geometry, flag, "the camera", false);
+    if (auto warning = bathymetry::land_warning(site.harbour, p, flag, flag == "--eye" ? "the camera" : "the point looked at"))
+      std::fprintf(stderr, "warning: %s\n", warning->c_str());
+    return std::array<double, 3>{p.x_m - frame.geometry.origin_x_m, p.y_m - frame.geometry.origin_y_m,
+                                 extras.count("z_m") ? extras["z_m"] : *default_z_m};
+  };
+  if (!o.eye.empty()) camera.eye_m = site_point(o.eye, "--eye", std::nullopt);
+  if (!o.target.empty()) camera.target_m = site_point(o.target, "--target", 0.0);
   if (!o.eye_lat_lon.empty()) {
     const auto xy = frame.from_lat_lon(o.eye_lat_lon[0], o.eye_lat_lon[1], "--eye-lat-lon");
     camera.eye_m = {xy[0], xy[1], o.eye_lat_lon[2]};
@@ -183,7 +217,8 @@ nlohmann::json ships_json(const ShipsSummary& summary) {
     const ships::WakeAngle& wake = summary.wake_angles[i];
     ships.push_back({{"name", r.name}, {"x_m", r.x_m}, {"y_m", r.y_m}, {"speed_kn", r.speed_kn},
                      {"heading_deg", r.heading_deg}, {"heel_deg", r.heel_deg}, {"aground", r.aground},
-                     {"wake_half_angle_deg", wake.half_angle_deg}, {"wake_stations", wake.stations}});
+                     {"wake_half_angle_deg", wake.half_angle_deg}, {"wake_stations", wake.stations},
+                     {"wake_r_squared", wake.r_squared}, {"wake_wedge", wake.wedge}});
   }
   return ships;
 }
@@ -255,6 +290,8 @@ playback::Lighting scene_lighting(const PlayOptions& o, const runtime::Streaming
   lighting.water.chlorophyll_mg_m3 = o.chlorophyll_mg_m3;
   lighting.water.cdom_absorption_440_per_m = o.cdom_per_m;
   lighting.exposure_compensation = o.exposure;
+  lighting.detail_parallax = o.detail_parallax;
+  lighting.foam_decay_time_s = o.foam_decay_s;
   lighting.wind_direction_rad = travel_direction_rad(o.wind_from_deg);
   lighting.wind_speed_m_s = ocean::beaufort_preset(o.beaufort_force).wind_speed_10_m_s;
   const auto& deep = engine.manifest().deep_water;
@@ -508,10 +545,12 @@ void add_play_command(CLI::App& app) {
   cmd->add_option("--time-scale", o->time_scale, "Playback speed (1 = real time)")
       ->capture_default_str()
       ->check(number_in(at_least(0), at_most(16)));
-  cmd->add_option("--eye", o->eye_m, "Camera position x,y,z in metres from the grid's south-west corner, z up (default: overview)")
-      ->delimiter(',')->expected(3)->check(finite_number());
-  cmd->add_option("--target", o->target_m, "Point looked at x,y,z in metres from the grid's south-west corner")
-      ->delimiter(',')->expected(3)->check(finite_number());
+  cmd->add_option("--eye", o->eye, "Camera position: X,Y,Z in metres from the grid's south-west corner (z up), or "
+                                   "lat=..,lon=..,z_m=.. or easting_m=..,northing_m=..,z_m=.. in the grid's CRS (default: overview)")
+      ->check(position_text("--eye"));
+  cmd->add_option("--target", o->target, "Point looked at: X,Y[,Z] from the grid's south-west corner, or lat=..,lon=.. or "
+                                         "easting_m=..,northing_m=.. (z_m=.. optional, default 0)")
+      ->check(position_text("--target"));
   cmd->add_option("--eye-lat-lon", o->eye_lat_lon, "Camera at LAT,LON,HEIGHT (WGS 84 degrees, metres above the sea)")
       ->delimiter(',')->expected(3)->check(finite_number());
   cmd->add_option("--target-lat-lon", o->target_lat_lon, "Look at LAT,LON (WGS 84 degrees) on the sea")
@@ -536,6 +575,11 @@ void add_play_command(CLI::App& app) {
       ->check(number_in(at_least(0), at_most(20)));
   cmd->add_option("--exposure", o->exposure, "Exposure compensation, a factor on the automatic exposure")
       ->check(number_in(at_least(0.01), at_most(100)))->capture_default_str();
+  cmd->add_option("--detail-parallax", o->detail_parallax,
+                  "Parallax of the detail normals at grazing views (seed 004 eq. 5): 1 on, 0 off")
+      ->check(number_in(at_least(0), at_most(4)))->capture_default_str();
+  cmd->add_option("--foam-decay", o->foam_decay_s, "Seconds over which the deep water's foam fades by 1/e (0: no lasting foam)")
+      ->check(number_in(at_least(0), at_most(60)))->capture_default_str();
   cmd->add_option("--lighting", o->lighting_mode, "full (docs/lighting.md) or off (a flat sea, no sky: the cost baseline)")
       ->check(CLI::IsMember({"full", "off"}))->capture_default_str();
   cmd->add_option("--frames", o->frames, "Headless: draw this many frames at 30 fps display time, then exit")

@@ -15,20 +15,8 @@ ViewerShips::ViewerShips(const std::filesystem::path& scenario_toml, std::shared
   // the hull meshes to draw, in the same order.
   ships::load_scenario(scenario_toml, fleet_);
   const std::vector<ships::ShipDefinition> definitions = ships::read_scenario(scenario_toml);
-  for (std::size_t index = 0; index < definitions.size(); ++index) {
-    const ships::ShipDefinition& definition = definitions[index];
-    // The hull as the renderer draws it: relative to G, so that world = position + R p
-    // (ShipState::position_m is G; docs/ships.md "What a renderer needs").
-    const ships::ShipParticulars& particulars = fleet_.ship(index).body().particulars();
-    const Eigen::Vector3d& g = particulars.centre_of_gravity_m;
-    HullGeometry hull;
-    for (const Eigen::Vector3d& v : definition.hull.vertices_m)
-      hull.vertices_m.insert(hull.vertices_m.end(), {float(v.x() - g.x()), float(v.y() - g.y()), float(v.z() - g.z())});
-    for (const auto& t : definition.hull.triangles)
-      hull.triangles.insert(hull.triangles.end(), {std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
-    hull.boot_top_z_m = particulars.design_draft_m - g.z();
-    hulls_.push_back(std::move(hull));
-  }
+  for (std::size_t index = 0; index < definitions.size(); ++index)
+    layers_.set_hull(index, definitions[index].hull, fleet_.ship(index).body().particulars());
   build_layers();
 }
 
@@ -56,35 +44,7 @@ void ViewerShips::step(const runtime::SurfaceSnapshot& snapshot, double dt_s) {
   last_step_ms_ = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void ViewerShips::build_layers() {
-  layers_.height_patches.clear();
-  layers_.foam_decals.clear();
-  layers_.meshes.clear();
-  for (std::size_t i = 0; i < fleet_.size(); ++i) {
-    const ships::Ship& ship = fleet_.ship(i);
-    if (ship.bow_wave() && layers_.height_patches.size() < std::size_t(playback::SurfaceLayers::kMaxHeightPatches)) {
-      const ships::BowWaveField f = ship.bow_wave()->field();
-      if (f.heights_m && f.columns >= 2)
-        layers_.height_patches.push_back(
-            {f.origin_x_m, f.origin_y_m, f.spacing_m, f.columns, f.rows, f.heights_m->data(), f.serial});
-    }
-    for (const ships::WakeDecal& d : ship.wake().decals())  // oldest first
-      layers_.foam_decals.push_back({d.x_m, d.y_m, d.yaw_rad, d.length_m, d.width_m, d.opacity(), d.variant});
-    const ships::ShipState& state = ship.body().state();
-    playback::SolidMesh mesh;
-    mesh.id = i + 1;
-    mesh.vertices_m = hulls_[i].vertices_m.data();
-    mesh.vertex_count = hulls_[i].vertices_m.size() / 3;
-    mesh.triangles = hulls_[i].triangles.data();
-    mesh.triangle_count = hulls_[i].triangles.size() / 3;
-    mesh.position_m = {state.position_m.x(), state.position_m.y(), state.position_m.z()};
-    const Eigen::Matrix3d r = state.orientation.toRotationMatrix();
-    for (int row = 0; row < 3; ++row)
-      for (int column = 0; column < 3; ++column) mesh.rotation[std::size_t(3 * row + column)] = r(row, column);
-    mesh.boot_top_z_m = hulls_[i].boot_top_z_m;
-    layers_.meshes.push_back(mesh);
-  }
-}
+void ViewerShips::build_layers() { layers_.update(fleet_); }
 
 std::vector<ShipReadout> ViewerShips::readouts() const {
   std::vector<ShipReadout> rows;
@@ -113,7 +73,10 @@ namespace nearshore::tools {
 ships::WakeAngle ViewerShips::wake_angle(std::size_t i) const {
   const ships::Ship& ship = fleet_.ship(i);
   if (!ship.bow_wave()) return {};
-  return ships::measure_wake_half_angle(*ship.bow_wave(), ship.body().state(), ship.body().particulars().length_m);
+  // The envelope's ray (robust: the largest |eta| per distance behind the bow), the hull's own
+  // trough within half a beam of the track left out.
+  const ships::ShipParticulars& p = ship.body().particulars();
+  return ships::measure_wake_envelope_angle(*ship.bow_wave(), ship.body().state(), p.length_m, 1.0, 0.5 * p.beam_m);
 }
 
 }  // namespace nearshore::tools

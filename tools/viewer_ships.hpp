@@ -2,8 +2,8 @@
 // The ships of `nearshore play --ships SCENARIO.toml`: a ships::ShipFleet loaded from a scenario
 // file (ships/files/scenario.hpp), stepped once per displayed frame on the sea the viewer shows,
 // and handed to the renderer as playback::SurfaceLayers (bow waves as height patches, stern-wake
-// decals as foam, hulls as lit meshes). The renderer knows nothing of ships; this is the one place
-// that turns one into the other (docs/ships.md "What a renderer needs").
+// decals as foam, hulls as lit meshes) through ships::FleetLayers (ships/layers), the conversion
+// the C API's renderer uses too (docs/ships.md "What a renderer needs").
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -11,6 +11,7 @@
 
 #include "nearshore/playback/surface_layers.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
+#include "nearshore/ships/fleet_layers.hpp"
 #include "nearshore/ships/ship_fleet.hpp"
 #include "viewer_panel.hpp"
 
@@ -28,12 +29,13 @@ class ViewerShips {
 
   /// One frame: the fleet on the snapshot's sea (dt_s of display time), then the layers rebuilt.
   void step(const runtime::SurfaceSnapshot& snapshot, double dt_s);
-  const playback::SurfaceLayers& layers() const { return layers_; }
+  const playback::SurfaceLayers& layers() const { return layers_.layers(); }
   /// Events since the last call ("ship 'Tug 1' ran aground at ..."), oldest first.
   std::vector<std::string> take_events() { return fleet_.take_events(); }
   std::vector<ShipReadout> readouts() const;
-  /// The half-angle of ship i's wake pattern on its bow-wave grid (ships::measure_wake_half_angle;
-  /// Kelvin's 19.47 degrees in deep water); zero stations without a bow wave.
+  /// The half-angle of ship i's wake envelope on its bow-wave grid (ships::measure_wake_envelope_angle;
+  /// Kelvin's 19.47 degrees in deep water) with its r^2 and whether a wedge was found; zero
+  /// stations without a bow wave.
   ships::WakeAngle wake_angle(std::size_t i) const;
   const ships::ShipFleet& fleet() const { return fleet_; }
   /// CPU time of the last step() (the fleet and the layers), milliseconds.
@@ -43,13 +45,7 @@ class ViewerShips {
   void build_layers();
 
   ships::ShipFleet fleet_;
-  struct HullGeometry {
-    std::vector<float> vertices_m;  // body frame, relative to the centre of gravity
-    std::vector<std::uint32_t> triangles;
-    double boot_top_z_m = 0;        // the design waterline, same frame
-  };
-  std::vector<HullGeometry> hulls_;
-  playback::SurfaceLayers layers_;
+  ships::FleetLayers layers_;
   bool manual_ = false;
   double last_step_ms_ = 0;
 };

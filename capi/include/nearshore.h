@@ -35,8 +35,9 @@ extern "C" {
 #define NEARSHORE_API
 #endif
 
-/* 2: ships (nearshore_fleet_*). A host built against version N runs on a library of version >= N. */
-#define NEARSHORE_API_VERSION 2
+/* 2: ships (nearshore_fleet_*). 3: the renderer draws a fleet (nearshore_renderer_set_fleet).
+ * A host built against version N runs on a library of version >= N. */
+#define NEARSHORE_API_VERSION 3
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -384,6 +385,15 @@ NEARSHORE_API nearshore_status nearshore_fleet_query(const nearshore_fleet* flee
 NEARSHORE_API nearshore_status nearshore_fleet_query_at(const nearshore_fleet* fleet, double time_s,
                                                         const double* xy_m, size_t count,
                                                         nearshore_surface_sample* samples);
+
+/* Since version 3. The renderer draws `fleet` with its sea from the next nearshore_renderer_draw
+ * on: every ship's bow wave added to the drawn surface and its normal (the first 16 ships'; the
+ * same sum nearshore_fleet_query makes on the CPU), the stern-wake decals as foam, each hull at
+ * its pose (lit, its bottom paint below the design waterline, hidden by the water below it), as
+ * they stand after the last nearshore_fleet_step. The fleet must be bound to the renderer's sea;
+ * NULL unbinds. The fleet must outlive the binding (unbind before nearshore_fleet_destroy). Render
+ * thread, with the renderer's context current. */
+NEARSHORE_API nearshore_status nearshore_renderer_set_fleet(nearshore_renderer* renderer, nearshore_fleet* fleet);
 
 #ifdef __cplusplus
 }

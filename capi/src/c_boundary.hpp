@@ -26,7 +26,16 @@ struct nearshore_sea {
   void advance_to(double t) { played->advance_to(t); }
 };
 
+namespace nearshore::playback {
+struct SurfaceLayers;
+}
+
 namespace nearshore::capi {
+
+/// The sea a fleet is bound to, and the fleet as the renderer's layers, rebuilt from its ships
+/// as they stand (ships::FleetLayers; nearshore_fleet.cpp): what nearshore_renderer_draw adds.
+const nearshore_sea* fleet_sea(const nearshore_fleet& fleet);
+const nearshore::playback::SurfaceLayers& fleet_surface_layers(nearshore_fleet& fleet);
 
 /// The message of the last failed call on this thread (nearshore_last_error).
 std::string& last_error();

@@ -35,6 +35,7 @@ struct nearshore_renderer {
   // Set by nearshore_renderer_set_lighting; the sun is the camera's unless sun_from_time.
   nearshore::playback::Lighting lighting;
   bool sun_from_time = false;
+  nearshore_fleet* fleet = nullptr;  // drawn with the sea (nearshore_renderer_set_fleet)
 };
 
 namespace nearshore::capi {
@@ -408,10 +409,22 @@ nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nea
       lighting.sun_elevation_deg = camera->sun_elevation_deg;
     }
     renderer->renderer->stage_upcoming(renderer->sea->engine());
-    renderer->renderer->render(renderer->sea->snapshot(), view, lighting, width_px, height_px);
+    const nearshore::playback::SurfaceLayers* layers =
+        renderer->fleet ? &nearshore::capi::fleet_surface_layers(*renderer->fleet) : nullptr;
+    renderer->renderer->render(renderer->sea->snapshot(), view, lighting, width_px, height_px, {}, layers);
     renderer->renderer->blit_to_window(width_px, height_px);
     renderer->last_width_px = width_px;
     renderer->last_height_px = height_px;
+  });
+}
+
+nearshore_status nearshore_renderer_set_fleet(nearshore_renderer* renderer, nearshore_fleet* fleet) {
+  return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
+    require(renderer, "renderer");
+    if (fleet && nearshore::capi::fleet_sea(*fleet) != renderer->sea)
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_renderer_set_fleet: the fleet is bound to another sea than the "
+                                       "renderer's; create the fleet with the renderer's sea");
+    renderer->fleet = fleet;
   });
 }
 

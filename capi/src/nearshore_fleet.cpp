@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "c_boundary.hpp"
+#include "nearshore/ships/fleet_layers.hpp"
 #include "nearshore/ships/generic_hulls.hpp"
 #include "nearshore/ships/hull_file.hpp"
 #include "nearshore/ships/ship_fleet.hpp"
@@ -18,6 +19,7 @@
 struct nearshore_fleet {
   const nearshore_sea* sea = nullptr;
   nearshore::ships::ShipFleet ships;
+  nearshore::ships::FleetLayers layers;  // the hulls as drawn; the layers nearshore_renderer_draw adds
   std::deque<std::string> events;  // taken from the fleet after each step, handed out one by one
 };
 
@@ -151,6 +153,16 @@ void add_bow_waves(const ships::ShipFleet& fleet, const double* xy_m, std::size_
 
 }  // namespace
 
+namespace nearshore::capi {
+
+const nearshore_sea* fleet_sea(const nearshore_fleet& fleet) { return fleet.sea; }
+
+const nearshore::playback::SurfaceLayers& fleet_surface_layers(nearshore_fleet& fleet) {
+  return fleet.layers.update(fleet.ships);
+}
+
+}  // namespace nearshore::capi
+
 extern "C" {
 
 void nearshore_ship_options_init(nearshore_ship_options* options) {
@@ -183,7 +195,9 @@ nearshore_status nearshore_fleet_add_ship(nearshore_fleet* fleet, const nearshor
     if (options->struct_size != sizeof(nearshore_ship_options))
       fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_ship_options.struct_size must be sizeof(nearshore_ship_options); "
                                        "call nearshore_ship_options_init");
-    const std::size_t index = fleet->ships.add_ship(definition_of(*fleet, *options));
+    const ships::ShipDefinition definition = definition_of(*fleet, *options);
+    const std::size_t index = fleet->ships.add_ship(definition);
+    fleet->layers.set_hull(index, definition.hull, fleet->ships.ship(index).body().particulars());
     if (ship) *ship = static_cast<int>(index);
   });
 }

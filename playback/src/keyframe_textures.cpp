@@ -27,6 +27,17 @@ const std::vector<float>& deep_field(const ocean::DeepWaterFrame& frame, int fie
     default: return frame.slope_y;
   }
 }
+
+// Layer `layer` of a deep keyframe's texture arrays: the field's cascades, then the split's
+// band-limited inside cascades (runtime/surface_snapshot.hpp; issue 14 item 1).
+int deep_layer_count(const runtime::DeepWaterKeyframe& keyframe) {
+  return static_cast<int>(keyframe.cascades.size() + keyframe.inside_cascades.size());
+}
+const ocean::DeepWaterFrame& deep_layer(const runtime::DeepWaterKeyframe& keyframe, int layer) {
+  const std::size_t field_layers = keyframe.cascades.size();
+  return std::size_t(layer) < field_layers ? keyframe.cascades[std::size_t(layer)]
+                                           : keyframe.inside_cascades[std::size_t(layer) - field_layers];
+}
 }  // namespace
 
 KeyframeTextures::KeyframeTextures(int harbour_slot_count, int deep_slot_count)
@@ -106,9 +117,10 @@ void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::
 }
 
 void KeyframeTextures::start_deep(Slot& slot, std::shared_ptr<const runtime::DeepWaterKeyframe> keyframe) {
-  const int cascades = static_cast<int>(keyframe->cascades.size());
+  const int cascades = deep_layer_count(*keyframe);
   const int n = cascades ? keyframe->cascades.front().grid_size : 0;
-  for (const ocean::DeepWaterFrame& frame : keyframe->cascades) {
+  for (int layer = 0; layer < cascades; ++layer) {
+    const ocean::DeepWaterFrame& frame = deep_layer(*keyframe, layer);
     const std::size_t expected = std::size_t(n) * n;
     if (frame.grid_size != n || frame.surface_elevation_m.size() != expected || frame.displacement_x_m.size() != expected ||
         frame.displacement_y_m.size() != expected || frame.slope_x.size() != expected || frame.slope_y.size() != expected)
@@ -174,7 +186,7 @@ std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) 
       const int row = static_cast<int>(slot.rows_done % slot.height);
       const int count = static_cast<int>(std::min<long long>(rows, slot.height - row));
       glBindTexture(GL_TEXTURE_2D_ARRAY, slot.textures[field]);
-      const std::vector<float>& values = deep_field(slot.deep->cascades[std::size_t(layer)], field);
+      const std::vector<float>& values = deep_field(deep_layer(*slot.deep, layer), field);
       glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, row, layer, slot.width, count, 1, GL_RED, GL_FLOAT,
                       values.data() + std::size_t(row) * slot.width);
       slot.rows_done += count;
@@ -250,6 +262,8 @@ KeyframeTextures::Bound KeyframeTextures::prepare(const runtime::SurfaceSnapshot
   pinned_deep_[1] = deep_to ? deep_to->serial : 0;
   if (deep_from && !deep_from->cascades.empty()) {
     if (deep_to->cascades.size() != deep_from->cascades.size() ||
+        deep_to->inside_cascades.size() != deep_from->inside_cascades.size() ||
+        deep_to->inside_cascade_mask != deep_from->inside_cascade_mask ||
         deep_to->cascades.front().grid_size != deep_from->cascades.front().grid_size)
       throw Error("deep-water keyframes " + std::to_string(deep_from->serial) + " and " + std::to_string(deep_to->serial),
                   "have different cascades", "blend keyframes of one deep-water field");
@@ -260,8 +274,11 @@ KeyframeTextures::Bound KeyframeTextures::prepare(const runtime::SurfaceSnapshot
       bound.deep[field][1] = to.textures[field];
     }
     bound.deep_size = from.width;
-    bound.cascade_count = from.layers;
-    for (const ocean::DeepWaterFrame& frame : deep_from->cascades) bound.tile_lengths_m.push_back(float(frame.tile_length_m));
+    bound.cascade_count = static_cast<int>(deep_from->cascades.size());
+    bound.inside_layer_count = from.layers - bound.cascade_count;
+    bound.inside_cascade_mask = deep_from->inside_cascade_mask;
+    for (int layer = 0; layer < from.layers; ++layer)
+      bound.tile_lengths_m.push_back(float(deep_layer(*deep_from, layer).tile_length_m));
   }
   // 2. The staged keyframes, within the budget, oldest first.
   auto advance = [&](auto& queue, std::vector<Slot>& slots, const std::uint64_t* pinned, auto start) {

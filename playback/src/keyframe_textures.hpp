@@ -41,8 +41,13 @@ class KeyframeTextures {
   struct Bound {
     GLuint harbour_eta[2] = {0, 0}, harbour_breaking[2] = {0, 0};
     GLuint deep[kDeepFieldCount][2] = {};
-    int deep_size = 0, cascade_count = 0;
-    std::vector<float> tile_lengths_m;
+    int deep_size = 0, cascade_count = 0;  ///< cascade_count: the field's cascades (layers 0 .. count - 1)
+    /// The split's inside layer (runtime/surface_snapshot.hpp): bit c of the mask draws the
+    /// field's cascade c inside the harbour rectangle; layers cascade_count .. + inside_layer_count
+    /// - 1 are the band-limited cascades drawn only there.
+    int inside_layer_count = 0;
+    std::uint32_t inside_cascade_mask = 0;
+    std::vector<float> tile_lengths_m;  ///< per layer (the field's cascades, then the inside ones)
   };
   /// Makes the snapshot's keyframes resident (finishing any that are not: forced), then spends
   /// `budget_bytes` on the staged queue (at least one row, so a queue always advances).

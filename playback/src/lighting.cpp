@@ -28,6 +28,10 @@ Vector3 normalize(const Vector3& v) {
   return {v[0] / length, v[1] / length, v[2] / length};
 }
 double luminance(const Radiance& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+double smoothstep(double edge0, double edge1, double x) {  // GLSL's
+  const double t = std::clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
 }  // namespace
 
 static_assert(Lighting{}.jacobian_foam_onset - ocean::kStokesBreakingJacobian < 1e-12 &&
@@ -68,6 +72,8 @@ LightingFrame prepare_lighting(const Lighting& l) {
   const double adaptation = std::max(
       luminance(f.sky.sun_illuminance_klx) * std::max(f.sky.sun_direction[2], 0.0) / kPi + sky_mean, 2.0 * sky_mean);
   f.exposure = std::max(l.exposure_compensation, 0.0) * kExposureKey / std::max(adaptation, kAdaptationFloorKcdM2);
+  f.detail_parallax = std::max(l.detail_parallax, 0.0);
+  f.foam_decay_time_s = std::max(l.foam_decay_time_s, 0.0);
   return f;
 }
 
@@ -135,9 +141,38 @@ Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   return out;
 }
 
+double detail_normal_weight(double texel_m, double footprint_m) {
+  return 1.0 - smoothstep(texel_m, 4.0 * texel_m, footprint_m);
+}
+
+double unresolved_relief_weight(double texel_m, double footprint_m) {
+  return smoothstep(texel_m, 4.0 * texel_m, kMeshVertexSpacingPx * footprint_m);
+}
+
+std::array<double, 2> parallax_offset_m(const Vector3& to_eye, double relief_m) {
+  // The eye ray through the drawn point B climbs to_eye.z per unit of its path; it crosses the
+  // relief's height h at B + to_eye.xy / to_eye.z * h (seed 004 fig. 2: the point A seen, whose
+  // texture coordinate D is B's shifted along the view).
+  const double z = std::max(to_eye[2], kParallaxMinViewCosine);
+  return {to_eye[0] / z * relief_m, to_eye[1] / z * relief_m};
+}
+
 Radiance to_display(const LightingFrame& f, const Radiance& radiance) {
+  // The exposure acts on the luminance and keeps the chromaticity (a per-channel curve greyed the
+  // blue sky); a colour too saturated for its luminance is desaturated towards the grey of the
+  // same luminance until its brightest channel fits (shaders/common.glsl to_display).
+  Radiance c;
+  for (std::size_t i = 0; i < 3; ++i) c[i] = std::max(radiance[i], 0.0);
+  const double y = luminance(c);
+  if (!(y > 0.0)) return {0.0, 0.0, 0.0};
+  const double y_display = 1.0 - std::exp(-f.exposure * y);
+  Radiance exposed;
+  for (std::size_t i = 0; i < 3; ++i) exposed[i] = c[i] * y_display / y;
+  const double brightest = std::max({exposed[0], exposed[1], exposed[2]});
+  if (brightest > 1.0)
+    for (double& e : exposed) e = y_display + (e - y_display) * (1.0 - y_display) / (brightest - y_display);
   Radiance out;
-  for (std::size_t c = 0; c < 3; ++c) out[c] = std::pow(1.0 - std::exp(-f.exposure * std::max(radiance[c], 0.0)), 1.0 / 2.2);
+  for (std::size_t i = 0; i < 3; ++i) out[i] = std::pow(std::clamp(exposed[i], 0.0, 1.0), 1.0 / 2.2);
   return out;
 }
 

@@ -50,9 +50,9 @@ constexpr const char* kSamplerUnits[] = {
     "u_deep_eta_to",       "u_deep_dx_from",      "u_deep_dx_to",            "u_deep_dy_from",
     "u_deep_dy_to",        "u_deep_slope_x_from", "u_deep_slope_x_to",       "u_deep_slope_y_from",
     "u_deep_slope_y_to",   "u_coast_distance",    "u_reflection",            "u_patches",
-    "u_decal_foam"};
+    "u_decal_foam",        "u_deep_foam",         "u_previous_foam"};
 enum Unit { kHarbourEta = 0, kHarbourBreaking = 2, kDepth = 4, kPorosity = 5, kLand = 6, kDeepFirst = 7, kCoast = 17,
-            kReflection = 18, kPatches = 19, kDecalFoam = 20 };
+            kReflection = 18, kPatches = 19, kDecalFoam = 20, kDeepFoam = 21, kPreviousFoam = 22 };
 
 GLuint link_program(std::initializer_list<const char*> vertex_prefixes, const std::string& vertex_name,
                     std::initializer_list<const char*> fragment_prefixes, const std::string& fragment_name) {
@@ -235,6 +235,40 @@ struct ReflectionTarget {
   }
 };
 
+// The deep water's persistent foam (seed 000 eq. 3.46): f_t over the largest cascade's tile, one
+// texel per deep sample, in two R32F textures updated in turn (foam_decay.frag.glsl reads one,
+// writes the other), so the foam a crest leaves fades with the display time, not the frame rate.
+struct DeepFoamMap {
+  GLuint framebuffer[2] = {0, 0}, texture[2] = {0, 0};
+  int size = 0, current = 0;  // texture[current] holds f_t
+  float tile_length_m = 0.f;
+  double time_s = 0.0;        // the display time f_t belongs to
+  bool valid = false;
+  void resize(int n, float tile_m) {
+    if (n == size && tile_m == tile_length_m && framebuffer[0]) return;
+    release();
+    for (int k = 0; k < 2; ++k) {
+      glActiveTexture(GLenum(GL_TEXTURE0 + kPreviousFoam));  // never disturb the units the draw has bound
+      texture[k] = new_texture(GL_TEXTURE_2D, GL_LINEAR, GL_REPEAT);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, n, n, 0, GL_RED, GL_FLOAT, nullptr);
+      glGenFramebuffers(1, &framebuffer[k]);
+      glBindFramebuffer(GL_FRAMEBUFFER, framebuffer[k]);
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture[k], 0);
+      if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("water renderer", "the deep-water foam framebuffer is incomplete", "set Lighting::foam_decay_time_s = 0");
+    }
+    size = n;
+    tile_length_m = tile_m;
+    valid = false;
+  }
+  void release() {
+    if (!framebuffer[0]) return;
+    glDeleteFramebuffers(2, framebuffer);
+    glDeleteTextures(2, texture);
+    *this = DeepFoamMap{};
+  }
+};
+
 bool same(const RadialGridSettings& a, const RadialGridSettings& b) {
   return a.segment_count == b.segment_count && a.inner_spacing_m == b.inner_spacing_m && a.outer_radius_m == b.outer_radius_m;
 }
@@ -247,12 +281,13 @@ struct WaterRenderer::Impl {
   FrameStatistics statistics;
   GpuTextures textures;  // of the last render or upload
   GLuint radial_program = 0, quadtree_program = 0, projected_program = 0, height_program = 0;
-  GLuint terrain_program = 0, sky_program = 0, mesh_program = 0, decal_program = 0;
+  GLuint terrain_program = 0, sky_program = 0, mesh_program = 0, decal_program = 0, foam_program = 0;
   GLuint empty_vertex_array = 0;
   SurfaceLayerGpu layer_gpu;  // the SurfaceLayers' patches, foam map and meshes
   bool patches_active = false;  // this draw adds the patches uploaded last
   Target target, height_target;
   ReflectionTarget reflection;
+  DeepFoamMap deep_foam;
 
   // The site (static for a sequence): uploaded when the snapshot's site changes.
   std::shared_ptr<const runtime::HarbourSite> site;
@@ -279,12 +314,13 @@ struct WaterRenderer::Impl {
     sky_program = link_program({"common.glsl"}, "sky.vert.glsl", {"common.glsl"}, "sky.frag.glsl");
     mesh_program = link_program(surface, "mesh.vert.glsl", surface, "mesh.frag.glsl");
     decal_program = link_program({}, "decal.vert.glsl", {}, "decal.frag.glsl");
+    foam_program = link_program({"common.glsl"}, "sky.vert.glsl", surface, "foam_decay.frag.glsl");
     glGenVertexArrays(1, &empty_vertex_array);
   }
 
   ~Impl() {
     for (GLuint program : {radial_program, quadtree_program, projected_program, height_program, terrain_program, sky_program,
-                           mesh_program, decal_program})
+                           mesh_program, decal_program, foam_program})
       glDeleteProgram(program);
     release_site();
     for (Mesh* mesh : {&radial, &quadtree_patch, &projected, &height_lattice}) mesh->release();
@@ -292,6 +328,7 @@ struct WaterRenderer::Impl {
     target.release();
     height_target.release();
     reflection.release();
+    deep_foam.release();
   }
 
   void release_site() {
@@ -362,6 +399,9 @@ struct WaterRenderer::Impl {
       set_uniform(program, "u_choppiness", 1.f);
     }
     set_uniform(program, "u_cascade_count", bound.cascade_count);
+    // The split (issue 14 item 1): what water_vertex.glsl draws inside the harbour rectangle.
+    set_uniform(program, "u_inside_cascade_mask", static_cast<int>(bound.inside_cascade_mask));
+    set_uniform(program, "u_inside_layer_count", bound.inside_layer_count);
     set_uniform(program, "u_deep_size", std::max(bound.deep_size, 1));
     set_uniform(program, "u_deep_fraction", float(snapshot.deep_fraction));
     if (!bound.tile_lengths_m.empty())
@@ -387,14 +427,19 @@ struct WaterRenderer::Impl {
     glActiveTexture(GL_TEXTURE0);
   }
 
-  // The layers' meshes, lit as the land, depth-tested against everything drawn.
+  // The layers' meshes, lit as the land, depth-tested against everything drawn. `mirrored`: the
+  // reflection pass (z -> -z through `mirror`, the eye mirrored too so each face turns towards the
+  // eye that sees its image; only what stands above still water, as linear radiance).
   void draw_meshes(const SurfaceLayers& layers, const CameraView& view, const runtime::SurfaceSnapshot& snapshot,
-                   const KeyframeTextures::Bound& bound, const LightingFrame& light, double earth_radius_m) {
+                   const KeyframeTextures::Bound& bound, const LightingFrame& light, double earth_radius_m,
+                   const Matrix4* mirror = nullptr) {
     if (layers.meshes.empty()) return;
     glUseProgram(mesh_program);
     set_lighting_uniforms(mesh_program, light);
-    set_uniform(mesh_program, "u_view_projection", view.view_projection);
-    set_surface_uniforms(mesh_program, snapshot, bound, view.eye_m, earth_radius_m);
+    set_uniform(mesh_program, "u_view_projection", mirror ? multiply(view.view_projection, *mirror) : view.view_projection);
+    const Vector3 eye = mirror ? Vector3{view.eye_m[0], view.eye_m[1], -view.eye_m[2]} : view.eye_m;
+    set_surface_uniforms(mesh_program, snapshot, bound, eye, earth_radius_m);
+    set_uniform(mesh_program, "u_mirror", mirror ? 1 : 0);
     for (const SolidMesh& solid : layers.meshes) {
       const SurfaceLayerGpu::GpuMesh& gpu = layer_gpu.mesh(solid, statistics.layer_upload_bytes);
       float rotation[9];
@@ -408,7 +453,7 @@ struct WaterRenderer::Impl {
       glDrawElements(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr);
     }
     glBindVertexArray(0);
-    statistics.meshes = int(layers.meshes.size());
+    if (!mirror) statistics.meshes = int(layers.meshes.size());
   }
 
   void bind_textures(const KeyframeTextures::Bound& bound) const {
@@ -586,6 +631,52 @@ struct WaterRenderer::Impl {
     set_uniform(program, "u_shore_band_m", float(light.shore_band_m));
   }
 
+  // Seed 000 eq. (3.46) one step on: f_t = exp(-dt / decay time) f_t + f_b over the largest tile,
+  // dt the display time since the last step. The same display time again (a paused picture, a
+  // second view) changes nothing; time running backwards, another tile or decay time 0 starts
+  // afresh (f_t = f_b). Needs the deep textures bound; leaves framebuffer 0 bound.
+  bool update_deep_foam(const runtime::SurfaceSnapshot& snapshot, const KeyframeTextures::Bound& bound, const LightingFrame& light) {
+    if (bound.cascade_count == 0 || light.foam_decay_time_s <= 0.0) {
+      deep_foam.valid = false;
+      return false;
+    }
+    deep_foam.resize(bound.deep_size, bound.tile_lengths_m[0]);
+    const double dt = snapshot.display_time_s - deep_foam.time_s;
+    if (deep_foam.valid && dt == 0.0) return true;
+    const float persistence = deep_foam.valid && dt > 0.0 ? float(std::exp(-dt / light.foam_decay_time_s)) : 0.f;
+    const int next = 1 - deep_foam.current;
+    glBindFramebuffer(GL_FRAMEBUFFER, deep_foam.framebuffer[next]);
+    glViewport(0, 0, deep_foam.size, deep_foam.size);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(foam_program);
+    set_surface_uniforms(foam_program, snapshot, bound, {0.0, 0.0, 0.0}, 0.0);
+    set_uniform(foam_program, "u_foam_persistence", persistence);
+    set_uniform(foam_program, "u_jacobian_foam_onset", float(light.jacobian_foam_onset));
+    set_uniform(foam_program, "u_map_texel_m", deep_foam.tile_length_m / float(deep_foam.size));
+    glActiveTexture(GLenum(GL_TEXTURE0 + kPreviousFoam));
+    glBindTexture(GL_TEXTURE_2D, deep_foam.texture[deep_foam.current]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindVertexArray(empty_vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glEnable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    deep_foam.current = next;
+    deep_foam.time_s = snapshot.display_time_s;
+    deep_foam.valid = true;
+    return true;
+  }
+
+  Raster<float> deep_foam_map() const {
+    if (!deep_foam.valid) return Raster<float>(0, 0);
+    Raster<float> map(deep_foam.size, deep_foam.size);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, deep_foam.framebuffer[deep_foam.current]);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, deep_foam.size, deep_foam.size, GL_RED, GL_FLOAT, map.data());  // row 0 = y 0 = south
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    return map;
+  }
+
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width,
               int height, const DrawOptions& options, const SurfaceLayers* layers) {
     const KeyframeTextures::Bound bound = upload(snapshot);
@@ -613,6 +704,9 @@ struct WaterRenderer::Impl {
     statistics.near_m = near;
     statistics.far_m = far;
 
+    const bool lit = options.colouring == SurfaceColouring::lit;
+    bind_textures(bound);
+    const bool deep_foam_drawn = lit && update_deep_foam(snapshot, bound, light);
     target.resize(width, height, GL_RGBA8);
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
     glViewport(0, 0, width, height);
@@ -662,6 +756,7 @@ struct WaterRenderer::Impl {
       set_uniform(terrain_program, "u_mirror", 1);
       glDrawElements(GL_TRIANGLES, terrain.index_count, GL_UNSIGNED_INT, nullptr);
       set_uniform(terrain_program, "u_mirror", 0);
+      if (layers) draw_meshes(*layers, view, snapshot, bound, light, earth_radius, &mirror);  // the hulls mirrored too
       glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
       glViewport(0, 0, width, height);
     }
@@ -669,6 +764,8 @@ struct WaterRenderer::Impl {
     glBindTexture(GL_TEXTURE_2D, reflect ? reflection.colour : 0);
     glActiveTexture(GLenum(GL_TEXTURE0 + kDecalFoam));
     glBindTexture(GL_TEXTURE_2D, decal_foam ? layer_gpu.decal_foam() : 0);
+    glActiveTexture(GLenum(GL_TEXTURE0 + kDeepFoam));
+    glBindTexture(GL_TEXTURE_2D, deep_foam_drawn ? deep_foam.texture[deep_foam.current] : 0);
     glActiveTexture(GL_TEXTURE0);
     // 2c. Hulls and other solids, before the sea: the sea's depth test then hides what is under water.
     if (layers) draw_meshes(*layers, view, snapshot, bound, light, earth_radius);
@@ -682,6 +779,8 @@ struct WaterRenderer::Impl {
     set_water_lighting_uniforms(program, snapshot, light);
     set_uniform(program, "u_has_reflection", reflect ? 1 : 0);
     set_uniform(program, "u_has_decal_foam", decal_foam ? 1 : 0);
+    set_uniform(program, "u_has_deep_foam", deep_foam_drawn ? 1 : 0);
+    set_uniform(program, "u_detail_parallax", float(light.detail_parallax));
     if (decal_foam) {
       const std::array<float, 4>& rect = layer_gpu.decal_rect_m();
       glUniform4f(at(program, "u_decal_foam_rect_m"), rect[0], rect[1], rect[2], rect[3]);
@@ -778,6 +877,8 @@ const GpuTextures& WaterRenderer::upload(const runtime::SurfaceSnapshot& snapsho
 const GpuTextures& WaterRenderer::textures() const { return impl_->textures; }
 
 const FrameStatistics& WaterRenderer::last_frame() const { return impl_->statistics; }
+
+Raster<float> WaterRenderer::deep_foam_map() const { return impl_->deep_foam_map(); }
 
 Raster<float> WaterRenderer::render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& rectangle,
                                                int columns, int rows, const SurfaceLayers* layers) {

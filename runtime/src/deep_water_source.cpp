@@ -1,6 +1,7 @@
 #include "nearshore/runtime/deep_water_source.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -60,6 +61,87 @@ std::optional<ocean::RecordedDeepWater> read_recorded_deep_water(const sequence:
     recorded.cascades.push_back(std::move(out));
   }
   return recorded;
+}
+
+std::optional<SpectrumSplitRecord> read_spectrum_split(const sequence::SequenceManifest& manifest,
+                                                       const std::string& manifest_name) {
+  const nlohmann::json& conditions = manifest.wave_conditions;
+  if (!conditions.is_object() || !conditions.contains("spectrum_split")) return std::nullopt;
+  const nlohmann::json& split = conditions["spectrum_split"];
+  const std::string fix = "bake the sequence again (the bake writes this record; docs/commands/bake.md \"The spectrum is split\")";
+  if (!split.is_object())
+    throw Error(manifest_name, "wave_conditions.spectrum_split is not an object", fix);
+  const auto number = [&](const char* key, bool required, double fallback) {
+    if (!split.contains(key)) {
+      if (required) throw Error(manifest_name, fmt::format("wave_conditions.spectrum_split has no {}", key), fix);
+      return fallback;
+    }
+    if (!split[key].is_number() || !std::isfinite(split[key].get<double>()) || split[key].get<double>() < 0.0)
+      throw Error(manifest_name, fmt::format("wave_conditions.spectrum_split.{} is not a non-negative number", key), fix);
+    return split[key].get<double>();
+  };
+  SpectrumSplitRecord record;
+  record.bake_min_frequency_hz = number("bake_min_frequency_hz", true, 0.0);
+  record.bake_max_frequency_hz = number("bake_max_frequency_hz", true, 0.0);
+  record.split_frequency_hz = number("split_frequency_hz", false, record.bake_max_frequency_hz);
+  record.bake_significant_wave_height_m = number("bake_significant_wave_height_m", true, 0.0);
+  record.deep_water_significant_wave_height_m = number("deep_water_significant_wave_height_m", true, 0.0);
+  record.total_significant_wave_height_m = number("total_significant_wave_height_m", true, 0.0);
+  record.deep_water_layer_present =
+      split.contains("deep_water_layer_present") && split["deep_water_layer_present"].is_boolean() &&
+      split["deep_water_layer_present"].get<bool>();
+  if (!(record.split_frequency_hz > 0.0))
+    throw Error(manifest_name, "wave_conditions.spectrum_split.split_frequency_hz is 0", fix);
+  return record;
+}
+
+double DeepWaterInsideLayer::significant_wave_height_m() const { return 4.0 * std::sqrt(variance_m2); }
+
+DeepWaterInsideLayer split_deep_water(const ocean::RecordedDeepWater& field, double split_angular_frequency_rad_s) {
+  if (!(split_angular_frequency_rad_s > 0.0) || !std::isfinite(split_angular_frequency_rad_s))
+    throw Error("split_deep_water", fmt::format("split_angular_frequency_rad_s = {}", split_angular_frequency_rad_s),
+                "give the split frequency of the manifest's wave_conditions.spectrum_split (positive, rad/s)");
+  DeepWaterInsideLayer layer;
+  layer.split_angular_frequency_rad_s = split_angular_frequency_rad_s;
+  layer.lowest_angular_frequency_rad_s = std::numeric_limits<double>::infinity();
+  // The bake's own guard (case_sea_state.cpp: a band ends at w (1 + 1e-9)), so a component the
+  // maker made at the band's top is never drawn again.
+  const double above_rad_s = split_angular_frequency_rad_s * (1.0 + 1e-9);
+  layer.straddling.still_water_depth_m = field.still_water_depth_m;
+  layer.straddling.loop_period_s = field.loop_period_s;
+  layer.straddling.choppiness = field.choppiness;
+  layer.straddling.seed = field.seed;
+  layer.straddling.unresolved_slope_variance = 0.0;  // the lighting takes it from the whole field
+  for (std::size_t c = 0; c < field.cascades.size(); ++c) {
+    const ocean::RecordedCascade& cascade = field.cascades[c];
+    int above = 0, below = 0;
+    for (std::size_t i = 0; i < cascade.amplitude_m.size(); ++i) {
+      if (cascade.amplitude_m[i] == 0.0f) continue;
+      const double w = cascade.angular_frequency_rad_s[i];
+      if (w > above_rad_s) {
+        ++above;
+        const double a = cascade.amplitude_m[i];
+        layer.variance_m2 += 0.5 * a * a;
+        layer.lowest_angular_frequency_rad_s = std::min(layer.lowest_angular_frequency_rad_s, w);
+      } else {
+        ++below;
+      }
+    }
+    layer.component_count += above;
+    if (above == 0) continue;  // wholly the bake's (or below it): not drawn inside
+    if (below == 0) {
+      layer.whole_cascade_mask |= std::uint32_t{1} << c;
+      continue;
+    }
+    // Straddling: the same lattice with the bake's components (and any below them) zeroed.
+    ocean::RecordedCascade kept = cascade;
+    for (std::size_t i = 0; i < kept.amplitude_m.size(); ++i)
+      if (!(kept.angular_frequency_rad_s[i] > above_rad_s)) kept.amplitude_m[i] = 0.0f;
+    layer.straddling.cascades.push_back(std::move(kept));
+    layer.straddling_cascades.push_back(static_cast<int>(c));
+  }
+  if (layer.component_count == 0) layer.lowest_angular_frequency_rad_s = 0.0;
+  return layer;
 }
 
 std::unique_ptr<ocean::DeepWaterField> build_beaufort_field(const BeaufortSea& sea) {

@@ -52,9 +52,12 @@ void add_scaled_cascades(const SurfaceSnapshot& s, double weight, DeepWaterKeyfr
   const DeepWaterKeyframe& to = s.deep_to ? *s.deep_to : from;
   const float f = static_cast<float>(s.deep_fraction);
   const float w0 = static_cast<float>(weight) * (1.f - f), w1 = static_cast<float>(weight) * f;
-  for (std::size_t c = 0; c < from.cascades.size() && c < to.cascades.size(); ++c) {
-    ocean::DeepWaterFrame frame = from.cascades[c];
-    const ocean::DeepWaterFrame& next = to.cascades[c];
+  // The split's inside layer (surface_snapshot.hpp): its whole cascades keep their bits, moved
+  // past the cascades already in `out`; its straddling ones are scaled like the rest.
+  if (from.inside_cascade_mask == to.inside_cascade_mask && out.cascades.size() < 32)
+    out.inside_cascade_mask |= from.inside_cascade_mask << out.cascades.size();
+  const auto scaled = [&](const ocean::DeepWaterFrame& first, const ocean::DeepWaterFrame& next) {
+    ocean::DeepWaterFrame frame = first;
     for (auto channel : {&ocean::DeepWaterFrame::surface_elevation_m, &ocean::DeepWaterFrame::displacement_x_m,
                          &ocean::DeepWaterFrame::displacement_y_m, &ocean::DeepWaterFrame::slope_x,
                          &ocean::DeepWaterFrame::slope_y, &ocean::DeepWaterFrame::displacement_xx,
@@ -68,8 +71,12 @@ void add_scaled_cascades(const SurfaceSnapshot& s, double weight, DeepWaterKeyfr
       }
       for (std::size_t i = 0; i < values.size(); ++i) values[i] = w0 * values[i] + w1 * later[i];
     }
-    out.cascades.push_back(std::move(frame));
-  }
+    return frame;
+  };
+  for (std::size_t c = 0; c < from.cascades.size() && c < to.cascades.size(); ++c)
+    out.cascades.push_back(scaled(from.cascades[c], to.cascades[c]));
+  for (std::size_t c = 0; c < from.inside_cascades.size() && c < to.inside_cascades.size(); ++c)
+    out.inside_cascades.push_back(scaled(from.inside_cascades[c], to.inside_cascades[c]));
 }
 
 double smoothstep(double u) {

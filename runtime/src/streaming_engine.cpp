@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <deque>
 #include <mutex>
+#include <numbers>
 #include <thread>
 #include <utility>
 
@@ -121,6 +122,11 @@ struct StreamingEngine::Impl {
   // Worker-only state.
   PlaybackPlan harbour_plan = PlaybackPlan::frame_order(1), deep_plan = PlaybackPlan::frame_order(1);
   std::unique_ptr<ocean::DeepWaterField> field;
+  // The split's inside layer (deep_water_source.hpp): its straddling cascades as a field of their
+  // own (worker's and slow path's: a field's synthesis is not reentrant). Static for the sequence.
+  std::optional<SpectrumSplitRecord> split;
+  std::shared_ptr<const DeepWaterInsideLayer> inside_layer;
+  std::unique_ptr<ocean::DeepWaterField> inside_field, slow_inside_field;
   sequence::Frame source_frame, target_frame, blended_frame;
   std::shared_ptr<const HarbourKeyframe> last_good;
   std::thread harbour_worker, deep_worker;
@@ -145,9 +151,10 @@ struct StreamingEngine::Impl {
   // Harbour keyframe of a plan step: the frame, or the planned crossfade blend; a frame that
   // cannot be read is replaced by the last good keyframe (held). `message` gets the problem.
   void decode_harbour(const PlanStep& step, HarbourKeyframe& keyframe, std::string& message);
-  // Deep keyframe `index` (display time index * interval) from `deep_field` (null: flat).
+  // Deep keyframe `index` (display time index * interval) from `deep_field` (null: flat), and the
+  // split's inside layer from `inside` (null: none; only with the bake's field).
   void synthesise_deep(long long index, PlaybackPlan& plan, ocean::DeepWaterField* deep_field,
-                       DeepWaterKeyframe& keyframe);
+                       ocean::DeepWaterField* inside, DeepWaterKeyframe& keyframe);
   // Drops keyframes before (k, j) when `consume`, and restarts the worker at k (j) when the rings
   // cannot reach it: a time behind them, or far ahead of the worker. Caller holds `mutex`.
   void schedule_locked(long long k, long long j, bool consume);
@@ -195,10 +202,12 @@ void StreamingEngine::Impl::decode_harbour(const PlanStep& step, HarbourKeyframe
 }
 
 void StreamingEngine::Impl::synthesise_deep(long long index, PlaybackPlan& plan, ocean::DeepWaterField* deep_field,
-                                            DeepWaterKeyframe& keyframe) {
+                                            ocean::DeepWaterField* inside, DeepWaterKeyframe& keyframe) {
   keyframe.serial = ++serial;
   keyframe.display_time_s = static_cast<double>(index) * deep_interval_s;
   keyframe.still_water_depth_m = deep_depth_m;
+  keyframe.inside_cascade_mask = 0;
+  keyframe.inside_cascades.clear();
   if (!deep_field) {
     keyframe.cascades.clear();  // a calm sea
     return;
@@ -212,6 +221,11 @@ void StreamingEngine::Impl::synthesise_deep(long long index, PlaybackPlan& plan,
     const BakeTimes times =
         bake_times(now, next, steps - static_cast<double>(k), frame_interval_s, reader.manifest().first_frame_time_s);
     deep_field->synthesise_into(times.span(), keyframe.cascades, deep_with_flux);
+    if (inside_layer) {
+      // The split: the same bake times, so the layer is the same waves the field shows outside.
+      keyframe.inside_cascade_mask = inside_layer->whole_cascade_mask;
+      if (inside) inside->synthesise_into(times.span(), keyframe.inside_cascades, deep_with_flux);
+    }
   } else {
     // A Beaufort sea of its own: its time is the display time.
     const ocean::TimedWeight at{keyframe.display_time_s, 1.0};
@@ -306,9 +320,11 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
       std::unique_ptr<DeepWaterKeyframe> keyframe = deep_pool.acquire();
       std::string message;
       try {
-        synthesise_deep(index, deep_plan, deep_field, *keyframe);
+        synthesise_deep(index, deep_plan, deep_field, inside_field.get(), *keyframe);
       } catch (const std::exception& error) {
         keyframe->cascades.clear();
+        keyframe->inside_cascade_mask = 0;
+        keyframe->inside_cascades.clear();
         message = fmt::format("deep water at {} s: {}; a calm sea is shown", keyframe->display_time_s, error.what());
       }
       std::shared_ptr<const DeepWaterKeyframe> published = deep_pool.publish(std::move(keyframe));
@@ -398,6 +414,23 @@ StreamingEngine::StreamingEngine(const std::filesystem::path& folder, StreamingO
     m.field = std::make_unique<ocean::DeepWaterField>(*recorded);
     m.record = std::make_shared<const ocean::RecordedDeepWater>(std::move(*recorded));
     m.deep_depth_m = m.record->still_water_depth_m;
+    // 2b. The split (issue 14 item 1): the components the bake left to the deep-water layer are
+    // drawn inside the rectangle too, on top of the frames, band-limited to above the bake's band.
+    m.split = read_spectrum_split(m.reader.manifest(), (folder / "manifest.json").string());
+    if (m.split) {
+      auto layer = std::make_shared<DeepWaterInsideLayer>(
+          split_deep_water(*m.record, 2.0 * std::numbers::pi * m.split->split_frequency_hz));
+      if (!layer->straddling.cascades.empty()) {
+        m.inside_field = std::make_unique<ocean::DeepWaterField>(layer->straddling);
+        m.slow_inside_field = std::make_unique<ocean::DeepWaterField>(layer->straddling);
+      }
+      if (layer->component_count > 0) {
+        m.inside_layer = std::move(layer);
+      } else {
+        m.inside_field.reset();
+        m.slow_inside_field.reset();
+      }
+    }
   } else if (o.deep_water != DeepWaterChoice::kNone) {
     m.deep_kind = Impl::DeepKind::kBeaufort;
     m.field = build_beaufort_field(o.beaufort);
@@ -415,6 +448,10 @@ StreamingEngine::StreamingEngine(const std::filesystem::path& folder, StreamingO
   m.bytes_harbour = std::size_t{4} * sizeof(float) * static_cast<std::size_t>(g.columns) * static_cast<std::size_t>(g.rows);
   if (m.record)
     for (const ocean::RecordedCascade& cascade : m.record->cascades)
+      m.bytes_deep += (m.deep_with_flux ? 10u : 8u) * sizeof(float) * static_cast<std::size_t>(cascade.grid_size) *
+                      static_cast<std::size_t>(cascade.grid_size);
+  if (m.inside_layer)
+    for (const ocean::RecordedCascade& cascade : m.inside_layer->straddling.cascades)
       m.bytes_deep += (m.deep_with_flux ? 10u : 8u) * sizeof(float) * static_cast<std::size_t>(cascade.grid_size) *
                       static_cast<std::size_t>(cascade.grid_size);
   if (o.ring_capacity > 0) {
@@ -629,7 +666,7 @@ SurfaceSnapshot StreamingEngine::snapshot_at(double display_time_s) {
     }
     for (long long index : {j, j + 1}) {
       auto keyframe = std::make_shared<DeepWaterKeyframe>();
-      m.synthesise_deep(index, m.slow_plan, m.slow_field.get(), *keyframe);
+      m.synthesise_deep(index, m.slow_plan, m.slow_field.get(), m.slow_inside_field.get(), *keyframe);
       (index == j ? result.deep_from : result.deep_to) = std::move(keyframe);
     }
   }
@@ -678,5 +715,7 @@ const sequence::SequenceManifest& StreamingEngine::manifest() const { return imp
 double StreamingEngine::frame_interval_s() const { return impl_->frame_interval_s; }
 PlaybackPlan StreamingEngine::plan() const { return impl_->plan_template; }
 bool StreamingEngine::deep_water_is_bakes() const { return impl_->deep_kind == Impl::DeepKind::kBake; }
+std::shared_ptr<const DeepWaterInsideLayer> StreamingEngine::deep_water_inside_layer() const { return impl_->inside_layer; }
+const std::optional<SpectrumSplitRecord>& StreamingEngine::spectrum_split() const { return impl_->split; }
 
 }  // namespace nearshore::runtime

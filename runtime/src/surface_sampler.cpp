@@ -140,6 +140,21 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
       has_deep_flux_ = has_deep_flux_ && !a.flux_x_m2_s.empty() && !b.flux_x_m2_s.empty();
     }
     has_deep_ = !cascades_.empty();
+    // The split's inside layer (surface_snapshot.hpp): the field's cascades wholly above the
+    // bake's band as they are, then the straddling ones band-limited.
+    if (from.inside_cascade_mask != to.inside_cascade_mask || from.inside_cascades.size() != to.inside_cascades.size())
+      throw Error("surface snapshot", "its two deep-water keyframes have different inside layers (the split)",
+                  "give the sampler keyframes of one field");
+    has_inside_flux_ = from.still_water_depth_m > 0.0;
+    const auto add_inside = [&](const ocean::DeepWaterFrame& a, const ocean::DeepWaterFrame& b) {
+      if (a.surface_elevation_m.empty() || b.surface_elevation_m.size() != a.surface_elevation_m.size()) return;
+      inside_.push_back({a.grid_size, a.tile_length_m, 1.0 / a.tile_length_m, &a, &b});
+      has_inside_flux_ = has_inside_flux_ && !a.flux_x_m2_s.empty() && !b.flux_x_m2_s.empty();
+    };
+    for (std::size_t c = 0; c < from.cascades.size() && c < 32; ++c)
+      if ((from.inside_cascade_mask >> c) & 1u) add_inside(from.cascades[c], to.cascades[c]);
+    for (std::size_t c = 0; c < from.inside_cascades.size(); ++c) add_inside(from.inside_cascades[c], to.inside_cascades[c]);
+    has_inside_ = !inside_.empty();
     deep_fraction_ = std::clamp(s.deep_fraction, 0.0, 1.0);
   }
   choppiness_ = s.site ? s.site->choppiness : 1.0;
@@ -172,14 +187,39 @@ double SurfaceSampler::harbour_eta(double x_m, double y_m) const {
   return (1.0 - harbour_fraction_) * bilinear(eta_.from, t) + harbour_fraction_ * bilinear(eta_.to, t);
 }
 
-double SurfaceSampler::deep_eta(double x_m, double y_m) const {
+double SurfaceSampler::cascades_eta(const std::vector<Cascade>& cascades, double x_m, double y_m) const {
   double from = 0.0, to = 0.0;
-  for (const Cascade& c : cascades_) {
+  for (const Cascade& c : cascades) {
     const Tap t = cascade_tap(x_m, y_m, c.inverse_tile_length, c.n);
     from += bilinear(c.from->surface_elevation_m.data(), t);
     to += bilinear(c.to->surface_elevation_m.data(), t);
   }
   return (1.0 - deep_fraction_) * from + deep_fraction_ * to;
+}
+
+double SurfaceSampler::deep_eta(double x_m, double y_m) const { return cascades_eta(cascades_, x_m, y_m); }
+
+SurfaceSampler::CascadeSum SurfaceSampler::cascades_sum(const std::vector<Cascade>& cascades, double x_m, double y_m,
+                                                        bool with_flux) const {
+  const double f = deep_fraction_;
+  CascadeSum from, to;
+  for (const Cascade& c : cascades) {
+    const Tap t = cascade_tap(x_m, y_m, c.inverse_tile_length, c.n);
+    for (int which = 0; which < 2; ++which) {
+      const ocean::DeepWaterFrame& frame = which == 0 ? *c.from : *c.to;
+      CascadeSum& sum = which == 0 ? from : to;
+      sum.eta += bilinear(frame.surface_elevation_m.data(), t);
+      sum.slope_x += bilinear(frame.slope_x.data(), t);
+      sum.slope_y += bilinear(frame.slope_y.data(), t);
+      if (with_flux) {
+        sum.flux_x += bilinear(frame.flux_x_m2_s.data(), t);
+        sum.flux_y += bilinear(frame.flux_y_m2_s.data(), t);
+      }
+    }
+  }
+  return {(1.0 - f) * from.eta + f * to.eta, (1.0 - f) * from.slope_x + f * to.slope_x,
+          (1.0 - f) * from.slope_y + f * to.slope_y, (1.0 - f) * from.flux_x + f * to.flux_x,
+          (1.0 - f) * from.flux_y + f * to.flux_y};
 }
 
 void SurfaceSampler::deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const {
@@ -257,6 +297,10 @@ double SurfaceSampler::harbour_elevation_m(double x_m, double y_m) const {
 
 double SurfaceSampler::deep_elevation_m(double x_m, double y_m) const { return has_deep_ ? deep_eta(x_m, y_m) : 0.0; }
 
+double SurfaceSampler::inside_elevation_m(double x_m, double y_m) const {
+  return has_inside_ ? cascades_eta(inside_, x_m, y_m) : 0.0;
+}
+
 double SurfaceSampler::elevation_m(double x_m, double y_m, ChoppyPoint point) const {
   const SitePoint p = point == ChoppyPoint::kDisplaced ? solve_lattice_point(x_m, y_m, {}) : SitePoint{x_m, y_m};
   return elevation_at_lattice(p);
@@ -266,6 +310,7 @@ double SurfaceSampler::elevation_at_lattice(SitePoint p) const {
   const double w = weight(p.x_m, p.y_m);
   double eta = 0.0;
   if (w > 0.0) eta += w * harbour_eta(p.x_m, p.y_m);
+  if (w > 0.0 && has_inside_) eta += w * cascades_eta(inside_, p.x_m, p.y_m);
   if (w < 1.0 && has_deep_) eta += (1.0 - w) * deep_eta(p.x_m, p.y_m);
   return eta;
 }
@@ -319,32 +364,27 @@ SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) co
       harbour_v = ((1.0 - f) * bilinear(flux_y_.from, t) + f * bilinear(flux_y_.to, t)) / total_depth_m;
     }
   }
-  if (w.weight < 1.0 && has_deep_) {
-    const double f = deep_fraction_;
-    double eta_a = 0.0, eta_b = 0.0, sx_a = 0.0, sx_b = 0.0, sy_a = 0.0, sy_b = 0.0;
-    double px_a = 0.0, px_b = 0.0, py_a = 0.0, py_b = 0.0;
-    for (const Cascade& c : cascades_) {
-      const Tap t = cascade_tap(p.x_m, p.y_m, c.inverse_tile_length, c.n);
-      eta_a += bilinear(c.from->surface_elevation_m.data(), t);
-      eta_b += bilinear(c.to->surface_elevation_m.data(), t);
-      sx_a += bilinear(c.from->slope_x.data(), t);
-      sx_b += bilinear(c.to->slope_x.data(), t);
-      sy_a += bilinear(c.from->slope_y.data(), t);
-      sy_b += bilinear(c.to->slope_y.data(), t);
-      if (has_deep_flux_) {
-        px_a += bilinear(c.from->flux_x_m2_s.data(), t);
-        px_b += bilinear(c.to->flux_x_m2_s.data(), t);
-        py_a += bilinear(c.from->flux_y_m2_s.data(), t);
-        py_b += bilinear(c.to->flux_y_m2_s.data(), t);
-      }
+  if (w.weight > 0.0 && has_inside_) {
+    // The split's inside layer rides on the harbour's part (formulas 3, 5, 6).
+    const CascadeSum inside = cascades_sum(inside_, p.x_m, p.y_m, has_inside_flux_);
+    harbour_eta_m += inside.eta;
+    harbour_slope.x += inside.slope_x;
+    harbour_slope.y += inside.slope_y;
+    const double total_depth_m = snapshot_.deep_from->still_water_depth_m + inside.eta;
+    if (!s.dry && has_inside_flux_ && total_depth_m > 0.0) {
+      harbour_u += inside.flux_x / total_depth_m;
+      harbour_v += inside.flux_y / total_depth_m;
     }
-    deep_eta_m = (1.0 - f) * eta_a + f * eta_b;
-    deep_slope = {(1.0 - f) * sx_a + f * sx_b, (1.0 - f) * sy_a + f * sy_b};
+  }
+  if (w.weight < 1.0 && has_deep_) {
+    const CascadeSum deep = cascades_sum(cascades_, p.x_m, p.y_m, has_deep_flux_);
+    deep_eta_m = deep.eta;
+    deep_slope = {deep.slope_x, deep.slope_y};
     if (has_deep_flux_) {
       const double total_depth_m = snapshot_.deep_from->still_water_depth_m + deep_eta_m;
       if (total_depth_m > 0.0) {
-        deep_u = ((1.0 - f) * px_a + f * px_b) / total_depth_m;
-        deep_v = ((1.0 - f) * py_a + f * py_b) / total_depth_m;
+        deep_u = deep.flux_x / total_depth_m;
+        deep_v = deep.flux_y / total_depth_m;
       }
     }
   }

@@ -157,53 +157,34 @@ BowWaveField BowWave::field() const {
   return f;
 }
 
-WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, double length_m,
-                                  double threshold_fraction, double start_lengths) {
-  const BowWaveField f = wave.field();
-  const double side = f.columns * f.spacing_m;
-  const double margin = wave.options().absorbing_fraction * side;
-  auto interior = [&](double x, double y) {
-    return x > f.origin_x_m + margin && x < f.origin_x_m + side - margin && y > f.origin_y_m + margin &&
-           y < f.origin_y_m + side - margin;
-  };
-  const Eigen::Vector3d forward = state.orientation * Eigen::Vector3d::UnitX();
-  const Eigen::Vector2d ahead = Eigen::Vector2d(forward.x(), forward.y()).normalized();
-  const Eigen::Vector2d port(-ahead.y(), ahead.x());
-  const Eigen::Vector2d bow = Eigen::Vector2d(state.position_m.x(), state.position_m.y()) + 0.5 * length_m * ahead;
-  const double step = 0.5 * f.spacing_m;
-  auto at = [&](double xi, double lateral) { return bow - xi * ahead + lateral * port; };
-  // The largest |eta| behind start_lengths.
-  double peak = 0.0;
-  for (double xi = start_lengths * length_m; xi < side; xi += step)
-    for (double lateral = -side; lateral <= side; lateral += step) {
-      const Eigen::Vector2d p = at(xi, lateral);
-      if (!interior(p.x(), p.y())) continue;
-      peak = std::max(peak, std::abs(wave.elevation_m(p.x(), p.y())));
-    }
-  WakeAngle out;
-  if (peak <= 0.0) return out;
-  std::vector<double> xs, ys;
-  for (double xi = start_lengths * length_m; xi < side; xi += step) {
-    for (int sign : {-1, 1}) {
-      double outermost = -1.0;
-      bool seen_interior = false;
-      for (double lateral = side; lateral >= 0.0; lateral -= step) {
-        const Eigen::Vector2d p = at(xi, sign * lateral);
-        if (!interior(p.x(), p.y())) continue;
-        seen_interior = true;
-        if (std::abs(wave.elevation_m(p.x(), p.y())) > threshold_fraction * peak) {
-          outermost = lateral;
-          break;
-        }
-      }
-      // Only where the pattern is inside the window on this side (not cut by the absorbing layer).
-      if (seen_interior && outermost >= 0.0 && interior(at(xi, sign * (outermost + 2 * f.spacing_m)).x(),
-                                                         at(xi, sign * (outermost + 2 * f.spacing_m)).y())) {
-        xs.push_back(xi);
-        ys.push_back(outermost);
-      }
-    }
+namespace {
+
+// The ship's frame on the grid: the window's interior (outside the absorbing layer) and the point
+// xi behind the bow, `lateral` to port.
+struct WakeFrame {
+  WakeFrame(const BowWave& wave, const ShipState& state, double length_m) : field(wave.field()) {
+    side = field.columns * field.spacing_m;
+    margin = wave.options().absorbing_fraction * side;
+    const Eigen::Vector3d forward = state.orientation * Eigen::Vector3d::UnitX();
+    ahead = Eigen::Vector2d(forward.x(), forward.y()).normalized();
+    port = Eigen::Vector2d(-ahead.y(), ahead.x());
+    bow = Eigen::Vector2d(state.position_m.x(), state.position_m.y()) + 0.5 * length_m * ahead;
   }
+  bool interior(const Eigen::Vector2d& p) const {
+    return p.x() > field.origin_x_m + margin && p.x() < field.origin_x_m + side - margin &&
+           p.y() > field.origin_y_m + margin && p.y() < field.origin_y_m + side - margin;
+  }
+  Eigen::Vector2d at(double xi, double lateral) const { return bow - xi * ahead + lateral * port; }
+
+  BowWaveField field;
+  double side = 0.0, margin = 0.0;
+  Eigen::Vector2d ahead, port, bow;
+};
+
+// Least-squares line offset = a + b xi through the stations: the half-angle atan(b), the scatter,
+// r^2, and whether that is a wedge (WakeAngle::wedge).
+WakeAngle fit_wake_line(const std::vector<double>& xs, const std::vector<double>& ys) {
+  WakeAngle out;
   if (xs.size() < 4) return out;
   const double n = static_cast<double>(xs.size());
   double mx = 0, my = 0;
@@ -211,10 +192,11 @@ WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, d
     mx += xs[k] / n;
     my += ys[k] / n;
   }
-  double sxx = 0, sxy = 0;
+  double sxx = 0, sxy = 0, syy = 0;
   for (std::size_t k = 0; k < xs.size(); ++k) {
     sxx += (xs[k] - mx) * (xs[k] - mx);
     sxy += (xs[k] - mx) * (ys[k] - my);
+    syy += (ys[k] - my) * (ys[k] - my);
   }
   if (sxx <= 0.0) return out;
   const double slope = sxy / sxx, intercept = my - slope * mx;
@@ -223,7 +205,79 @@ WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, d
   out.half_angle_deg = std::atan(slope) * 180.0 / std::numbers::pi;
   out.stations = static_cast<int>(xs.size());
   out.fit_rms_m = std::sqrt(rss / n);
+  out.r_squared = syy > 0.0 ? 1.0 - rss / syy : 0.0;
+  out.wedge = out.half_angle_deg > 1.0 && out.r_squared >= 0.6;
   return out;
+}
+
+}  // namespace
+
+WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, double length_m,
+                                  double threshold_fraction, double start_lengths) {
+  const WakeFrame frame(wave, state, length_m);
+  const double side = frame.side, spacing = frame.field.spacing_m, step = 0.5 * spacing;
+  // The largest |eta| behind start_lengths.
+  double peak = 0.0;
+  for (double xi = start_lengths * length_m; xi < side; xi += step)
+    for (double lateral = -side; lateral <= side; lateral += step) {
+      const Eigen::Vector2d p = frame.at(xi, lateral);
+      if (!frame.interior(p)) continue;
+      peak = std::max(peak, std::abs(wave.elevation_m(p.x(), p.y())));
+    }
+  if (peak <= 0.0) return {};
+  std::vector<double> xs, ys;
+  for (double xi = start_lengths * length_m; xi < side; xi += step) {
+    for (int sign : {-1, 1}) {
+      double outermost = -1.0;
+      bool seen_interior = false;
+      for (double lateral = side; lateral >= 0.0; lateral -= step) {
+        const Eigen::Vector2d p = frame.at(xi, sign * lateral);
+        if (!frame.interior(p)) continue;
+        seen_interior = true;
+        if (std::abs(wave.elevation_m(p.x(), p.y())) > threshold_fraction * peak) {
+          outermost = lateral;
+          break;
+        }
+      }
+      // Only where the pattern is inside the window on this side (not cut by the absorbing layer).
+      if (seen_interior && outermost >= 0.0 && frame.interior(frame.at(xi, sign * (outermost + 2 * spacing)))) {
+        xs.push_back(xi);
+        ys.push_back(outermost);
+      }
+    }
+  }
+  return fit_wake_line(xs, ys);
+}
+
+WakeAngle measure_wake_envelope_angle(const BowWave& wave, const ShipState& state, double length_m,
+                                      double start_lengths, double min_lateral_m) {
+  const WakeFrame frame(wave, state, length_m);
+  const double side = frame.side, spacing = frame.field.spacing_m, step = 0.5 * spacing;
+  std::vector<double> xs, ys;
+  // Stations one cell apart (closer ones are not independent: the field is bilinear between cells).
+  for (double xi = start_lengths * length_m; xi < side; xi += spacing) {
+    for (int sign : {-1, 1}) {
+      double largest = 0.0, where = -1.0;
+      bool cut = false;  // the line across reached the absorbing layer while |eta| still rose
+      for (double lateral = min_lateral_m; lateral <= side; lateral += step) {
+        const Eigen::Vector2d p = frame.at(xi, sign * lateral);
+        if (!frame.interior(p)) {
+          cut = where >= lateral - 2 * spacing;  // the maximum sits at the layer's edge
+          break;
+        }
+        const double value = std::abs(wave.elevation_m(p.x(), p.y()));
+        if (value > largest) {
+          largest = value;
+          where = lateral;
+        }
+      }
+      if (where >= 0.0 && largest > 0.0 && !cut) {
+        xs.push_back(xi);
+        ys.push_back(where);
+      }
+    }
+  }
+  return fit_wake_line(xs, ys);
 }
 
 }  // namespace nearshore::ships

@@ -3,7 +3,8 @@
 // sea, reads the picture back, and takes its lighting from nearshore_renderer_set_lighting: a UTC
 // time and a place put the sun where it stands (sunset warmer than noon), and a refused field keeps
 // the previous lighting (the next picture is unchanged). Also nearshore_sun_position against a
-// published ephemeris value. Runs under Xvfb (tests/capi/CMakeLists.txt).
+// published ephemeris value. And a fleet drawn with the sea (nearshore_renderer_set_fleet, API
+// version 3). Runs under Xvfb (tests/capi/CMakeLists.txt).
 #include "nearshore.h"
 #include "capi_test_support.hpp"
 
@@ -121,6 +122,90 @@ TEST(CApiLighting, TheRendererDrawsUnderTheSunOfAPlaceAndTimeAndKeepsItsLighting
   const Picture camera_sun = draw();
   EXPECT_NE(camera_sun.rgba, sunset.rgba);
   nearshore_renderer_destroy(renderer);
+  nearshore_sea_close(sea);
+}
+
+// A tug under way in the calm basin, drawn by the host's renderer once the fleet is bound
+// (nearshore_renderer_set_fleet, ships::FleetLayers behind it): its hull, bow wave and wake change
+// the picture; unbinding gives back the sea alone, pixel for pixel (the same snapshot drawn twice
+// is the same picture, as the lighting test above relies on); a fleet of another sea is refused.
+TEST(CApiFleetDrawing, TheRendererDrawsABoundFleetAndTheSeaAloneOnceUnbound) {
+  constexpr int kWidth = 160, kHeight = 90;
+  Window host(kWidth, kHeight);
+  ASSERT_NE(host.window, nullptr) << "no OpenGL 3.3 context (run under xvfb-run)";
+  nearshore_sea* sea = open_calm(write_sequence("render_fleet", 0.0));
+  ASSERT_NE(sea, nullptr);
+  nearshore_fleet* fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << nearshore_last_error();
+  nearshore_ship_options options;
+  nearshore_ship_options_init(&options);
+  options.name = "Tug";
+  options.x_m = 50.0;
+  options.y_m = 60.0;
+  options.heading_deg = 90.0;  // east, along the basin
+  options.order = NEARSHORE_ORDER_SPEED;
+  options.speed_m_s = 3.0;
+  options.initial_speed_m_s = 3.0;
+  options.bow_wave_cells = 64;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << nearshore_last_error();
+  for (int frame = 1; frame <= 60; ++frame) {  // 2 s under way: a bow wave and a few wake decals
+    ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
+    ASSERT_EQ(nearshore_fleet_step(fleet, 1.0 / 30.0), NEARSHORE_OK) << nearshore_last_error();
+  }
+  nearshore_ship_pose pose;
+  pose.struct_size = sizeof pose;
+  ASSERT_EQ(nearshore_fleet_ship_pose(fleet, 0, &pose), NEARSHORE_OK) << nearshore_last_error();
+
+  nearshore_renderer* renderer = nullptr;
+  ASSERT_EQ(nearshore_renderer_create(sea, NEARSHORE_GRID_QUADTREE, proc_address, &renderer), NEARSHORE_OK)
+      << nearshore_last_error();
+  nearshore_camera camera;
+  nearshore_camera_init(&camera);
+  // From 40 m up, south of the tug, looking down at it.
+  camera.eye_m[0] = pose.x_m, camera.eye_m[1] = pose.y_m - 45.0, camera.eye_m[2] = 40.0;
+  camera.target_m[0] = pose.x_m, camera.target_m[1] = pose.y_m, camera.target_m[2] = 0.0;
+  const auto draw = [&]() {
+    Picture picture;
+    picture.rgba.resize(std::size_t(kWidth) * kHeight * 4);
+    EXPECT_EQ(nearshore_renderer_draw(renderer, &camera, kWidth, kHeight), NEARSHORE_OK) << nearshore_last_error();
+    EXPECT_EQ(nearshore_renderer_read_pixels(renderer, kWidth, kHeight, picture.rgba.data()), NEARSHORE_OK)
+        << nearshore_last_error();
+    return picture;
+  };
+  const Picture sea_alone = draw();
+  ASSERT_EQ(nearshore_renderer_set_fleet(renderer, fleet), NEARSHORE_OK) << nearshore_last_error();
+  const Picture with_fleet = draw();
+  ASSERT_EQ(nearshore_renderer_set_fleet(renderer, nullptr), NEARSHORE_OK) << nearshore_last_error();
+  const Picture unbound = draw();
+
+  // Pixels that changed by more than 8/255 in a channel: the hull (24 m x 9 m seen from about
+  // 60 m fills several hundred of the 14400 pixels), its bow wave and its wake.
+  int changed = 0;
+  for (std::size_t i = 0; i < sea_alone.rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(int(with_fleet.rgba[i + c]) - int(sea_alone.rgba[i + c])) > 8) {
+        ++changed;
+        break;
+      }
+  std::printf("fleet drawn: %d of %d pixels changed; tug at (%.1f, %.1f) m, %.2f m/s\n", changed, kWidth * kHeight,
+              pose.x_m, pose.y_m, pose.speed_m_s);
+  EXPECT_GT(changed, 300);
+  EXPECT_EQ(unbound.rgba, sea_alone.rgba);
+
+  // A fleet of another sea is refused, naming the call; the binding is unchanged.
+  nearshore_sea* other_sea = open_calm(write_sequence("render_fleet_other", 0.0));
+  ASSERT_NE(other_sea, nullptr);
+  nearshore_fleet* other_fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(other_sea, &other_fleet), NEARSHORE_OK) << nearshore_last_error();
+  EXPECT_EQ(nearshore_renderer_set_fleet(renderer, other_fleet), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("nearshore_renderer_set_fleet"), std::string::npos)
+      << nearshore_last_error();
+  EXPECT_EQ(nearshore_renderer_set_fleet(nullptr, fleet), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_EQ(draw().rgba, sea_alone.rgba);
+  nearshore_fleet_destroy(other_fleet);
+  nearshore_sea_close(other_sea);
+  nearshore_renderer_destroy(renderer);
+  nearshore_fleet_destroy(fleet);
   nearshore_sea_close(sea);
 }
 

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "nearshore/bathymetry/demo_harbour.hpp"
+#include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/playback/lighting.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
@@ -258,6 +259,251 @@ TEST(LightingRender, LandIsMirroredInTheWaterBelowIt) {
     }
   EXPECT_GT(darker, 50) << "water pixels darkened by the land's reflection";
   EXPECT_EQ(changed_above, 0) << "the reflection changed pixels above the horizon";
+}
+
+}  // namespace
+}  // namespace nearshore
+
+namespace nearshore {
+namespace {
+
+// Deep water whose cascades stand at constant heights (so the drawn sea is the plane z = sum of
+// them, and every pixel's point is its ray's meeting with that plane, as on the CPU) but carry a
+// smooth periodic slope pattern as their normal maps: a test pattern for the detail normals and
+// their parallax (the heights and the slopes need not agree for that).
+std::shared_ptr<runtime::DeepWaterKeyframe> relief_pattern_keyframe(const std::vector<double>& tile_lengths_m,
+                                                                   const std::vector<double>& heights_m, int n) {
+  auto keyframe = std::make_shared<runtime::DeepWaterKeyframe>();
+  keyframe->serial = 900;
+  for (std::size_t c = 0; c < tile_lengths_m.size(); ++c) {
+    ocean::DeepWaterFrame frame;
+    frame.grid_size = n;
+    frame.tile_length_m = tile_lengths_m[c];
+    const std::size_t count = std::size_t(n) * n;
+    frame.surface_elevation_m.assign(count, float(heights_m[c]));
+    for (auto* zero : {&frame.displacement_x_m, &frame.displacement_y_m, &frame.displacement_xx, &frame.displacement_yy,
+                       &frame.displacement_xy})
+      zero->assign(count, 0.f);
+    frame.slope_x.resize(count);
+    frame.slope_y.resize(count);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        frame.slope_x[std::size_t(j) * n + i] = float(0.15 * std::sin(2 * kPi * (2 * i + j) / n + double(c)));
+        frame.slope_y[std::size_t(j) * n + i] = float(0.10 * std::cos(2 * kPi * (i - 3 * j) / n));
+      }
+    keyframe->cascades.push_back(std::move(frame));
+  }
+  return keyframe;
+}
+
+// A periodic tile read as the hardware's bilinear filter reads it (texel i at x = i L / N).
+double periodic_bilinear(const std::vector<float>& field, int n, double tile_m, double x, double y) {
+  const double u = x / tile_m * n, v = y / tile_m * n;
+  const double fu = std::floor(u), fv = std::floor(v);
+  const auto at = [&](double i, double j) {
+    const int a = int(((long long)i % n + n) % n), b = int(((long long)j % n + n) % n);
+    return double(field[std::size_t(b) * n + a]);
+  };
+  const double wu = u - fu, wv = v - fv;
+  return (1 - wv) * ((1 - wu) * at(fu, fv) + wu * at(fu + 1, fv)) + wv * ((1 - wu) * at(fu, fv + 1) + wu * at(fu + 1, fv + 1));
+}
+
+TEST(LightingRender, DetailNormalsAndTheirParallaxMatchTheCpuTwin) {
+  // Open sea only, two cascades (64 m and 16 m tiles of 64 samples: texels of 1 m and 0.25 m) at
+  // 0.3 m and 0.2 m, seen from 6 m looking north so the rays meet the water at 8-25 degrees: the
+  // near water keeps both normal maps and most of the fine cascade's relief is beyond the grid,
+  // further out the fine one fades and the coarse one's relief is drawn by the grid. Each sampled
+  // pixel is the twin's shade_water with the normal the shader reads: the cascades' slopes at the
+  // point moved by eq. (5) (parallax_offset_m) for the relief weighted by detail_normal_weight x
+  // unresolved_relief_weight, the footprint from the neighbouring pixels of its 2 x 2 quad (what
+  // dFdx / dFdy give), and the faded slopes' variance added to sigma^2.
+  playback::GlWindow window(64, 64, "test", false);
+  const int n = 64;
+  const std::vector<double> tiles = {64.0, 16.0}, heights = {0.3, 0.2};
+  runtime::SurfaceSnapshot snapshot;
+  snapshot.deep_from = snapshot.deep_to = relief_pattern_keyframe(tiles, heights, n);
+  const double plane_z = heights[0] + heights[1];
+  playback::Camera camera;
+  camera.eye_m = {3.0, 1.0, 6.0};
+  camera.target_m = {3.0, 40.0, 0.0};
+  camera.vertical_field_of_view_deg = 40.0;
+  const int width = 160, height = 100;  // even: 2 x 2 quads start at even GL rows
+  const playback::CameraView view = playback::camera_view(camera, width, height, 1.0, 1000.0);
+  std::vector<double> variance;  // per axis, as the renderer measures it on the first keyframe
+  for (const auto& frame : snapshot.deep_from->cascades) {
+    double sum = 0;
+    for (std::size_t k = 0; k < frame.slope_x.size(); ++k)
+      sum += double(frame.slope_x[k]) * frame.slope_x[k] + double(frame.slope_y[k]) * frame.slope_y[k];
+    variance.push_back(0.5 * sum / double(frame.slope_x.size()));
+  }
+  const auto water_point = [&](int x, int y) {  // the ray through pixel (x, y) meets the plane
+    const Vector3 ray = pixel_ray(view, x, y);
+    const double t = (plane_z - camera.eye_m[2]) / ray[2];
+    return std::array<double, 2>{camera.eye_m[0] + t * ray[0], camera.eye_m[1] + t * ray[1]};
+  };
+  Lighting lighting;  // the sun behind the camera: no glitter, whose peak no 8-bit comparison survives
+  lighting.sun_azimuth_deg = 170.0;
+  lighting.sun_elevation_deg = 35.0;
+  Image images[2] = {Image(width, height), Image(width, height)};
+  int compared = 0, offset_over_half_metre = 0;
+  for (double parallax : {1.0, 0.0}) {
+    lighting.detail_parallax = parallax;
+    playback::WaterRenderer renderer;
+    renderer.render(snapshot, camera, lighting, width, height);
+    const Image image = renderer.read_pixels();
+    images[parallax > 0 ? 0 : 1] = image;
+    const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+    for (int y = height - 1 - 2; y > 0; y -= 4)  // GL rows 2, 6, ...: the lower-left pixel of a quad
+      for (int x = 2; x + 1 < width; x += 4) {
+        if (pixel_ray(view, x, y - 1)[2] > -0.05) continue;  // the sea only, away from the horizon
+        const auto p = water_point(x, y), px = water_point(x + 1, y), py = water_point(x, y - 1);
+        const double footprint = std::max(std::hypot(px[0] - p[0], px[1] - p[1]), std::hypot(py[0] - p[0], py[1] - p[1]));
+        const Vector3 to_eye = normalized({camera.eye_m[0] - p[0], camera.eye_m[1] - p[1], camera.eye_m[2] - plane_z});
+        double relief = 0;
+        for (std::size_t c = 0; c < tiles.size(); ++c) {
+          const double texel = tiles[c] / n;
+          relief += playback::detail_normal_weight(texel, footprint) * playback::unresolved_relief_weight(texel, footprint) * heights[c];
+        }
+        const auto offset = playback::parallax_offset_m(to_eye, parallax * relief);
+        if (std::hypot(offset[0], offset[1]) > 0.5) ++offset_over_half_metre;
+        double slope_x = 0, slope_y = 0, extra_variance = 0;
+        for (std::size_t c = 0; c < tiles.size(); ++c) {
+          const auto& cascade = snapshot.deep_from->cascades[c];
+          const double detail = playback::detail_normal_weight(tiles[c] / n, footprint);
+          extra_variance += (1 - detail) * variance[c];
+          slope_x += detail * periodic_bilinear(cascade.slope_x, n, tiles[c], p[0] + offset[0], p[1] + offset[1]);
+          slope_y += detail * periodic_bilinear(cascade.slope_y, n, tiles[c], p[0] + offset[0], p[1] + offset[1]);
+        }
+        playback::SurfacePoint point;
+        point.normal = normalized({-slope_x, -slope_y, 1.0});
+        point.to_eye = to_eye;
+        point.water_depth_m = 20.0 + plane_z;  // the renderer's open sea without a harbour
+        point.extra_slope_variance_per_axis = extra_variance;
+        point.crest_thinness = std::clamp(plane_z / std::max(lighting.foam_onset_m, 0.1), 0.0, 1.0);
+        const auto expected = playback::to_display(frame, playback::shade_water(frame, point));
+        const auto pixel = image.get(x, y);
+        ++compared;
+        // as ShaderMatchesTheCpuTwinOverATestPattern: 8-bit output, float32 against double, and
+        // the 8-bit weights of the hardware filter (here of the slope tiles)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(pixel[std::size_t(c)], expected[std::size_t(c)], 3.0 / 255)
+              << "pixel (" << x << ", " << y << ") channel " << c << ", parallax " << parallax << ", footprint " << footprint;
+      }
+  }
+  EXPECT_GT(compared, 400);
+  EXPECT_GT(offset_over_half_metre, 50) << "the pattern exercises the parallax";
+  int changed = 0;  // and the parallax shows in the picture
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (std::abs(luminance(images[0].get(x, y)) - luminance(images[1].get(x, y))) > 4.0 / 255) ++changed;
+  EXPECT_GT(changed, width * height / 20);
+}
+
+TEST(LightingRender, DeepWaterFoamFadesByOneOverEInItsDecayTime) {
+  // Seed 000 eq. (3.46): foam from a Beaufort 8 sea's steepest crests (J < J_b) at t = 0, then the same
+  // tiles with the folds gone (displacements zero: J = 1, no new foam): after one decay time each
+  // texel holds 1/e of its foam, after three e^-3, exactly ocean::turbulent_foam's steps (the
+  // twin); a second render at the same display time changes nothing.
+  playback::GlWindow window(64, 64, "test", false);
+  const test::DeepPair deep = test::make_deep_pair(8, {64.0, 16.0}, 64, 0.0, 0.5, 20);
+  runtime::SurfaceSnapshot breaking;
+  breaking.deep_from = breaking.deep_to = deep.from;
+  auto calm_keyframe = std::make_shared<runtime::DeepWaterKeyframe>(*deep.from);
+  calm_keyframe->serial = 40;
+  for (auto& cascade : calm_keyframe->cascades)
+    for (auto* field : {&cascade.displacement_x_m, &cascade.displacement_y_m}) std::fill(field->begin(), field->end(), 0.f);
+  Lighting lighting;
+  lighting.foam_decay_time_s = 2.5;
+  // J_b raised from the Stokes limit (0.557, where this small tile's lowest J of 0.66 makes no
+  // foam) so that many texels foam: the source only has to exist; the decay law is under test.
+  lighting.jacobian_foam_onset = 0.9;
+  playback::Camera camera;
+  camera.eye_m = {0.0, -50.0, 30.0};
+  camera.target_m = {0.0, 100.0, 0.0};
+  playback::WaterRenderer renderer;
+  renderer.render(breaking, camera, lighting, 64, 48);
+  const Raster<float> first = renderer.deep_foam_map();
+  ASSERT_EQ(first.columns(), 64);
+  double total = 0, peak = 0;
+  for (float v : first.values()) total += v, peak = std::max(peak, double(v));
+  ASSERT_GT(peak, 0.2) << "the sea foams somewhere";
+  runtime::SurfaceSnapshot calm;
+  calm.deep_from = calm.deep_to = calm_keyframe;
+  Raster<float> expected = first;
+  double previous_time = 0.0;
+  for (double time : {2.5, 2.5, 7.5}) {
+    calm.display_time_s = time;
+    renderer.render(calm, camera, lighting, 64, 48);
+    const Raster<float> now = renderer.deep_foam_map();
+    double sum = 0;
+    for (std::size_t k = 0; k < now.values().size(); ++k) {
+      expected.values()[k] = float(ocean::turbulent_foam(expected.values()[k], 0.0, time - previous_time, 2.5));
+      ASSERT_NEAR(now.values()[k], expected.values()[k], 1e-5) << "texel " << k << " at " << time << " s";
+      sum += now.values()[k];
+    }
+    // 1/e per decay time (float32's exp and products: 1e-5)
+    EXPECT_NEAR(sum / total, std::exp(-time / 2.5), 1e-4) << "at " << time << " s";
+    previous_time = time;
+  }
+}
+
+}  // namespace
+}  // namespace nearshore
+
+namespace nearshore {
+namespace {
+
+TEST(LightingRender, HullsStandMirroredInTheWater) {
+  // A white box hull (40 m x 10 m, 6 m high, 3 m of it under water) in a harbour without land,
+  // seen from 2 m over the water 60 m away: with the local reflection on, the water below its
+  // waterline shows the hull's image (the only thing standing there to mirror), so those pixels
+  // change; nothing above the waterline changes (the hull and the sky are drawn as before).
+  playback::GlWindow window(64, 64, "test", false);
+  test::SiteOptions options;
+  options.land = false;
+  runtime::SurfaceSnapshot snapshot;
+  snapshot.site = test::make_site(options);
+  const std::vector<float> vertices = {-20, -5, 0, 20, -5, 0, 20, 5, 0, -20, 5, 0,   // keel
+                                       -20, -5, 6, 20, -5, 6, 20, 5, 6, -20, 5, 6};  // deck
+  const std::vector<std::uint32_t> triangles = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1,
+                                                1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0};
+  playback::SurfaceLayers layers;
+  playback::SolidMesh hull;
+  hull.id = 7;
+  hull.vertices_m = vertices.data();
+  hull.vertex_count = vertices.size() / 3;
+  hull.triangles = triangles.data();
+  hull.triangle_count = triangles.size() / 3;
+  hull.position_m = {128.0, 120.0, -3.0};
+  hull.albedo_above = hull.albedo_below = {0.9f, 0.9f, 0.9f};
+  layers.meshes.push_back(hull);
+  playback::Camera camera;
+  camera.eye_m = {128.0, 60.0, 2.0};
+  camera.target_m = {128.0, 120.0, 0.0};
+  camera.vertical_field_of_view_deg = 30.0;
+  const int width = 160, height = 120;
+  Image with(width, height), without(width, height);
+  for (bool reflections : {true, false}) {
+    playback::RendererSettings settings;
+    settings.local_reflections = reflections;
+    playback::WaterRenderer renderer(settings);
+    renderer.render(snapshot, camera, Lighting{}, width, height, {}, &layers);
+    (reflections ? with : without) = renderer.read_pixels();
+  }
+  write_png(with, std::filesystem::path(NEARSHORE_BINARY_DIR) / "playback_hull_reflection_test.png");
+  // The waterline's row at the hull's near side (y = 115 m): where z = 0 projects.
+  const playback::CameraView view = playback::camera_view(camera, width, height, 1.0, 1000.0);
+  const auto clip = playback::transform(view.view_projection, {128.0, 115.0, 0.0, 1.0});
+  const int waterline_row = int((1.0 - (clip[1] / clip[3] * 0.5 + 0.5)) * height);
+  int changed_below = 0, changed_above = 0;
+  for (int x = 0; x < width; ++x)
+    for (int y = 0; y < height; ++y) {
+      const bool changed = std::abs(luminance(with.get(x, y)) - luminance(without.get(x, y))) > 2.0 / 255;
+      if (y < waterline_row - 1 && changed) ++changed_above;
+      if (y > waterline_row + 1 && changed) ++changed_below;
+    }
+  EXPECT_GT(changed_below, 100) << "the hull's image in the water below row " << waterline_row;
+  EXPECT_EQ(changed_above, 0) << "the reflection changed pixels above the waterline";
 }
 
 }  // namespace

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "nearshore/core/error.hpp"
 
@@ -303,4 +305,93 @@ TEST(Lighting, SetSunForPlaceAndTimeUsesTheEphemeris) {
   lighting.set_sun_for(38.905, 121.695, UtcTime{2026, 6, 21, 4, 0, 0.0});  // Dalian, local noon ~12:00 CST
   EXPECT_NEAR(lighting.sun_elevation_deg, 90.0 - 38.905 + 23.44, 1.0);
   EXPECT_NEAR(lighting.sun_azimuth_deg, 180.0, 8.0);
+}
+
+// ---- display -------------------------------------------------------------------------------
+TEST(Lighting, ExposureMapsLuminanceAndKeepsChromaticity) {
+  Lighting lighting;
+  const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+  const auto linear = [](const Radiance& display) {
+    Radiance out;
+    for (std::size_t c = 0; c < 3; ++c) out[c] = std::pow(display[c], 2.2);
+    return out;
+  };
+  // A colour well inside the display: Y maps to 1 - exp(-k Y), the channels keep their ratios.
+  const Radiance teal = {0.2 / frame.exposure, 0.5 / frame.exposure, 0.6 / frame.exposure};
+  const Radiance shown = linear(playback::to_display(frame, teal));
+  EXPECT_NEAR(luminance(shown), 1.0 - std::exp(-frame.exposure * luminance(teal)), 1e-12);
+  EXPECT_NEAR(shown[0] / shown[2], teal[0] / teal[2], 1e-12);
+  EXPECT_NEAR(shown[1] / shown[2], teal[1] / teal[2], 1e-12);
+  // A bright saturated blue whose blue channel would pass 1: the blue is 1, the luminance still
+  // the curve's, and the red/green ratio (the hue) unchanged by the move towards grey.
+  const Radiance blue = {0.3 / frame.exposure, 0.6 / frame.exposure, 6.0 / frame.exposure};
+  const Radiance bright = linear(playback::to_display(frame, blue));
+  EXPECT_NEAR(bright[2], 1.0, 1e-12);
+  EXPECT_NEAR(luminance(bright), 1.0 - std::exp(-frame.exposure * luminance(blue)), 1e-12);
+  EXPECT_LT(bright[0], bright[1]);
+  EXPECT_EQ(playback::to_display(frame, {0, 0, 0}), (Radiance{0, 0, 0}));
+}
+
+TEST(Lighting, TheNoonSkyIsDisplayedBlueNotGrey) {
+  // The Preetham sky at noon (sun 74 degrees up, Dalian in June) 30 degrees above the horizon,
+  // away from the sun: its linear colour is blue (B > R); once displayed it stays as blue as it
+  // is: the displayed B / R equals the linear one to the power 1/2.2 (the hue survives the
+  // exposure), where a curve per channel (the old 1 - exp(-k L) of each) pulled it towards grey.
+  Lighting lighting;
+  lighting.sun_azimuth_deg = 180.0;
+  lighting.sun_elevation_deg = 74.0;
+  const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+  const double e = 30.0 * kPi / 180.0;
+  const Radiance sky = playback::sky_radiance(frame.sky, {0.0, std::cos(e), std::sin(e)});
+  ASSERT_GT(sky[2], 1.2 * sky[0]);
+  const Radiance shown = playback::to_display(frame, sky);
+  EXPECT_NEAR(shown[2] / shown[0], std::pow(sky[2] / sky[0], 1.0 / 2.2), 1e-9);
+  double per_channel[3];
+  for (std::size_t c = 0; c < 3; ++c) per_channel[c] = std::pow(1.0 - std::exp(-frame.exposure * sky[c]), 1.0 / 2.2);
+  EXPECT_GT(shown[2] / shown[0], per_channel[2] / per_channel[0]);
+}
+
+// ---- detail normals ------------------------------------------------------------------------
+TEST(Lighting, ParallaxOffsetIsWhereTheEyeRayMeetsTheRelief) {
+  // Seed 004 eq. (5) against geometry: an eye 10 m up at the origin; the eye ray through the
+  // drawn point B = (bx, by, 0) meets the plane z = h where the ray's parameter gives z = h, i.e.
+  // at B + (E - B) h / 10 horizontally. The offset must be exactly that while the view is steeper
+  // than the limit, and along the view but no longer than the limit's beyond it.
+  const playback::Vector3 eye = {0.0, 0.0, 10.0};
+  // straight down, 38, 15 and 2 degrees above the water (the last flatter than the limit)
+  for (const auto& [bx, by] : {std::pair{0.0, 0.0}, std::pair{5.0, 12.0}, std::pair{-30.0, 20.0}, std::pair{0.0, 290.0}}) {
+    for (double h : {0.4, -0.25}) {
+      const double length = std::sqrt(bx * bx + by * by + 100.0);
+      const playback::Vector3 to_eye = {(eye[0] - bx) / length, (eye[1] - by) / length, eye[2] / length};
+      const auto offset = playback::parallax_offset_m(to_eye, h);
+      if (to_eye[2] >= playback::kParallaxMinViewCosine) {
+        EXPECT_NEAR(offset[0], (eye[0] - bx) * h / 10.0, 1e-12) << bx << ", " << by;
+        EXPECT_NEAR(offset[1], (eye[1] - by) * h / 10.0, 1e-12) << bx << ", " << by;
+      } else {
+        EXPECT_LT(std::hypot(offset[0], offset[1]), std::abs(h) / playback::kParallaxMinViewCosine + 1e-12);
+      }
+    }
+  }
+  // Grazing (2 degrees): the lookup moves along the view by h / 0.12, not h / tan(2 degrees).
+  const double g = 2.0 * kPi / 180.0;
+  const auto grazing = playback::parallax_offset_m({0.0, -std::cos(g), std::sin(g)}, 0.3);
+  EXPECT_NEAR(grazing[1], -std::cos(g) * 0.3 / playback::kParallaxMinViewCosine, 1e-12);
+  EXPECT_EQ(grazing[0], 0.0);
+}
+
+TEST(Lighting, DetailNormalsFadeWithFootprintAndTheirReliefWhereTheGridCannotDrawIt) {
+  const double texel = 0.5;
+  EXPECT_EQ(playback::detail_normal_weight(texel, 0.4), 1.0);   // a pixel within a texel keeps it all
+  EXPECT_EQ(playback::detail_normal_weight(texel, 2.0), 0.0);   // four texels a pixel: into the variance
+  EXPECT_NEAR(playback::detail_normal_weight(texel, 1.25), 0.5, 1e-12);
+  // The grid's vertices every kMeshVertexSpacingPx pixels: at most a texel apart, the grid draws the
+  // cascade's relief (no parallax); four texels apart, none of it.
+  EXPECT_EQ(playback::unresolved_relief_weight(texel, texel / playback::kMeshVertexSpacingPx), 0.0);
+  EXPECT_EQ(playback::unresolved_relief_weight(texel, 4.0 * texel / playback::kMeshVertexSpacingPx), 1.0);
+  double previous = 0.0;
+  for (double footprint = 0.05; footprint < 3.0; footprint += 0.05) {
+    const double w = playback::unresolved_relief_weight(texel, footprint);
+    EXPECT_GE(w, previous);
+    previous = w;
+  }
 }

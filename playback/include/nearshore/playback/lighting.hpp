@@ -47,6 +47,12 @@ struct Lighting {
   double shore_wave_amplitude_m = 0.25;
   double shore_band_m = 80.0;
   double exposure_compensation = 1.0;  ///< multiplies the automatic exposure (2: one stop brighter)
+  /// Parallax of the detail normals (seed 004 section 1.3, eq. 5): 1 looks each cascade's normal
+  /// map up where the eye ray meets the relief the grid does not draw; 0 turns it off.
+  double detail_parallax = 1.0;
+  /// Seed 000 eq. (3.46): the deep water's foam fades by 1/e over this time (s) after its crest
+  /// stops breaking (whitecap foam lives a few seconds: Callaghan et al. 2012, 1-5 s).
+  double foam_decay_time_s = 3.0;
 
   /// Unit vector towards the sun in the harbour frame (x east, y north, z up).
   Vector3 sun_direction() const;
@@ -63,7 +69,8 @@ struct LightingFrame {
   double slope_variance_per_axis = 0.0;  ///< sigma^2 of eq. (3.13), each axis
   double foam_onset_m = 0.6, foam_full_m = 1.6, translucency = 1.0, jacobian_foam_onset = 0.557;
   double wind_direction_rad = 0.0, shore_wave_amplitude_m = 0.0, shore_band_m = 80.0;
-  double exposure = 1.0;        ///< 1 / (kcd/m2): display = 1 - exp(-exposure L)
+  double exposure = 1.0;        ///< 1 / (kcd/m2): displayed luminance = 1 - exp(-exposure Y)
+  double detail_parallax = 1.0, foam_decay_time_s = 3.0;
 };
 LightingFrame prepare_lighting(const Lighting& lighting);
 
@@ -87,7 +94,28 @@ struct SurfacePoint {
 Radiance shade_water(const LightingFrame& frame, const SurfacePoint& point);
 /// A Lambertian surface (land, structures, foam): albedo (E_sun max(n.s, 0) + E_sky (1 + n_z) / 2) / pi.
 Radiance shade_lambertian(const LightingFrame& frame, const Vector3& normal, const Radiance& albedo);
-/// Exposure and display gamma, 0..1 (shaders/common.glsl to_display).
+// ---- Detail normals (docs/lighting.md step 10; shaders/common.glsl, the same names) ----------
+/// The water grids put a vertex about every 4 pixels (QuadtreeSettings::screen_error_px,
+/// ProjectedGridSettings::vertex_spacing_px).
+inline constexpr double kMeshVertexSpacingPx = 4.0;
+/// The eye rays of eq. (5) are followed no flatter than this cosine (about 7 degrees above the
+/// water): flatter, a ray meets an earlier crest long before the mean plane's point (eq. 5 with a
+/// vanishing view z would send the lookup to infinity).
+inline constexpr double kParallaxMinViewCosine = 0.12;
+/// How much of a cascade's normal map a pixel keeps: 1 while the pixel covers at most one texel
+/// (`texel_m`), 0 from four on (its slopes then go into the BRDF's variance: no shimmer).
+double detail_normal_weight(double texel_m, double footprint_m);
+/// How much of a cascade's height the drawn grid does not carry: none while its vertices (every
+/// kMeshVertexSpacingPx pixels) are at most a texel apart, all of it from four texels apart.
+double unresolved_relief_weight(double texel_m, double footprint_m);
+/// Seed 004 eq. (5): where the eye ray through a point of the drawn surface meets a relief
+/// `relief_m` above it, as a horizontal offset (m) of the normal-map lookup: to_eye.xy /
+/// to_eye.z * relief (to_eye unit, towards the viewer; its z at least kParallaxMinViewCosine).
+std::array<double, 2> parallax_offset_m(const Vector3& to_eye, double relief_m);
+
+/// Exposure and display gamma, 0..1 (shaders/common.glsl to_display): the luminance Y maps to
+/// 1 - exp(-exposure Y), the chromaticity is kept (desaturated towards grey only where a channel
+/// would pass 1), then gamma 1/2.2.
 Radiance to_display(const LightingFrame& frame, const Radiance& radiance);
 
 }  // namespace nearshore::playback

@@ -137,6 +137,12 @@ class WaterRenderer {
   Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& rectangle, int columns,
                                   int rows, const SurfaceLayers* layers = nullptr);
 
+  /// The deep water's persistent foam f_t (seed 000 eq. 3.46) after the last lit render(): one
+  /// value in [0, 1] per sample of the largest cascade's tile (cell (i, j) at x = (i + 0.5) L_0 / N,
+  /// row 0 south; the tile repeats); empty without deep water or with Lighting::foam_decay_time_s
+  /// = 0. For tests and documentation (it reads the GPU back): never in the frame loop.
+  Raster<float> deep_foam_map() const;
+
   /// Copies the last render to the window's back buffer (call GlWindow::present after).
   void blit_to_window(int window_width_px, int window_height_px) const;
   /// The last render as an image (row 0 at the top).

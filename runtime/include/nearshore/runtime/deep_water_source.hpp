@@ -8,6 +8,8 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/runtime/playback_plan.hpp"
@@ -26,6 +28,52 @@ namespace nearshore::runtime {
 /// one whose N, L or T_loop disagree with the manifest.
 std::optional<ocean::RecordedDeepWater> read_recorded_deep_water(const sequence::SequenceReader& reader,
                                                                  sequence::Verify verify = sequence::Verify::kNo);
+
+/// The split of an irregular sea between the bake and the deep-water layer (issue 14 item 1;
+/// docs/runtime.md "The split"), as the manifest's wave_conditions.spectrum_split records it: the
+/// bake made the components up to its band's top, the rest were left to the FFT layer, which the
+/// runtime draws everywhere, inside the harbour rectangle too, on top of the bake's frames.
+struct SpectrumSplitRecord {
+  /// The field's waves above this frequency (Hz) are the deep-water layer's: the edge between the
+  /// bake's highest frequency cell and the lowest left one, or, when the field drove the wave
+  /// maker, the highest frequency the maker made (bake_case.cpp). Older manifests without
+  /// split_frequency_hz: bake_max_frequency_hz.
+  double split_frequency_hz = 0.0;
+  double bake_min_frequency_hz = 0.0, bake_max_frequency_hz = 0.0;  ///< the bake's components' range (Hz)
+  double bake_significant_wave_height_m = 0.0;        ///< 4 sqrt(sum a^2/2) of the bake's components
+  double deep_water_significant_wave_height_m = 0.0;  ///< the same of the components left to the layer
+  double total_significant_wave_height_m = 0.0;       ///< Hs_total^2 = Hs_bake^2 + Hs_deep^2
+  bool deep_water_layer_present = false;              ///< the bake has a [deep_water] field to draw them
+};
+
+/// The manifest's wave_conditions.spectrum_split, or nullopt when the bake split nothing. Throws
+/// nearshore::Error naming the manifest's key for a record that is not an object of numbers.
+std::optional<SpectrumSplitRecord> read_spectrum_split(const sequence::SequenceManifest& manifest,
+                                                       const std::string& manifest_name = "manifest.json");
+
+/// The deep water drawn INSIDE the harbour rectangle, on top of the bake: the field's components
+/// above the split frequency, and no other, so no variance is counted twice (the bake holds
+/// those below). The field's cascades partition it by |k| (ocean/deep_water.hpp), so most lie
+/// wholly on one side of the split: those above are drawn inside as they are (no second FFT);
+/// only the one or two that straddle it are synthesised again with their components at or below
+/// the split frequency zeroed (same tiles, amplitudes, phases, frequencies: the same waves).
+struct DeepWaterInsideLayer {
+  double split_angular_frequency_rad_s = 0.0;  ///< components with w above it (rad/s) are drawn inside
+  std::uint32_t whole_cascade_mask = 0;        ///< bit c: the field's cascade c lies wholly above
+  std::vector<int> straddling_cascades;        ///< the field's cascades that straddle the split
+  /// Those cascades with only their components above the split, in the same order (a field of
+  /// its own: ocean::DeepWaterField(straddling) synthesises them). Empty when none straddles.
+  ocean::RecordedDeepWater straddling;
+  int component_count = 0;                     ///< components drawn inside (amplitude > 0)
+  double variance_m2 = 0.0;                    ///< sum a^2/2 of them (m^2): Parseval, the layer's spatial variance
+  double significant_wave_height_m() const;    ///< 4 sqrt(variance_m2)
+  double lowest_angular_frequency_rad_s = 0.0; ///< of the components drawn inside (rad/s)
+};
+
+/// The layer of `field` above `split_angular_frequency_rad_s` (rad/s; a component is drawn when
+/// w > split (1 + 1e-9), the bake's own round-off guard). Throws nearshore::Error naming the
+/// parameter for a split that is not positive and finite.
+DeepWaterInsideLayer split_deep_water(const ocean::RecordedDeepWater& field, double split_angular_frequency_rad_s);
 
 /// A Beaufort sea for bakes without [deep_water] (ocean/sea_state_beaufort.hpp, seed 000 table 3.1).
 struct BeaufortSea {

@@ -150,6 +150,13 @@ class StreamingEngine {
   PlaybackPlan plan() const;
   /// True when the deep water is the bake's own field (coherent with the frames).
   bool deep_water_is_bakes() const;
+  /// The split (issue 14 item 1, docs/runtime.md "The split"): when the bake left part of its
+  /// spectrum to the deep-water layer (manifest wave_conditions.spectrum_split) and the engine
+  /// shows the bake's own field, the layer every deep keyframe carries for inside the harbour
+  /// rectangle (DeepWaterKeyframe::inside_cascade_mask, inside_cascades); else null.
+  std::shared_ptr<const DeepWaterInsideLayer> deep_water_inside_layer() const;
+  /// The manifest's split record (nullopt: the bake split nothing).
+  const std::optional<SpectrumSplitRecord>& spectrum_split() const;
 
  private:
   struct Impl;

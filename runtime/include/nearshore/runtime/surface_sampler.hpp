@@ -25,9 +25,14 @@
 //    subtract a multiple of L on the CPU (a per-cascade uniform) before the shader sees x.
 //    D(p) = (1 - f_d) sum_c D_from,c(p) + f_d sum_c D_to,c(p) for every channel.
 // 3. Shown at a LATTICE point p (what a vertex shader computes at its grid vertex):
-//      w = harbour_weight(site, p),  eta(p) = w H_eta(p) + (1 - w) D_eta(p)
+//      w = harbour_weight(site, p),  eta(p) = w (H_eta(p) + I_eta(p)) + (1 - w) D_eta(p)
+//    I, the split's inside layer (surface_snapshot.hpp; 0 without a split), is sampled as D is
+//    (formula 2) over the keyframes' inside cascades: the deep water's components above the
+//    bake's band, which the frames do not hold (issue 14 item 1).
 //    and the vertex moves horizontally to p + (1 - w(p)) lambda D_disp(p) (the choppy
-//    displacement of the deep water; the baked frames have none, so it fades with 1 - w).
+//    displacement of the deep water; the baked frames have none, so it fades with 1 - w). The
+//    inside layer is drawn without it: it would move the harbour's own lattice points, and so
+//    the frames under them, by up to lambda a of the split-off waves; its slopes still light it.
 // 4. Shown at a DISPLACED point q (the default: what lies over q on screen and under a hull):
 //    the lattice point p with F(p) = p + (1 - w(p)) lambda D_disp(p) - q = 0, by Newton's method
 //    from p_0 = q with the exact Jacobian of the sampled field, J = I + lambda ((1 - w) grad D -
@@ -41,11 +46,13 @@
 //    clamped) is land or h <= site.dry_depth_m. Deep water u_d = (P_d, Q_d) / (d_deep + D_eta)
 //    when the field has a finite depth (DeepWaterKeyframe::still_water_depth_m > 0; the bake's
 //    field, at the source line's depth), else 0 (the depth-averaged current of linear waves in
-//    deep water). Shown u = w u_h + (1 - w) u_d. Dry only where w > 0.
-// 6. Normal: slope = w grad H + (1 - w) grad D + (H_eta - D_eta) grad w, normal = normalize(
+//    deep water). The inside layer's u_i = (P_i, Q_i) / (d_deep + I_eta) likewise (its fluxes
+//    at the field's depth; 0 in deep water). Shown u = w (u_h + u_i) + (1 - w) u_d. Dry only
+//    where w > 0 (a dry point keeps u = 0: the layer does not wet land).
+// 6. Normal: slope = w (grad H + grad I) + (1 - w) grad D + (H_eta + I_eta - D_eta) grad w, normal = normalize(
 //    -slope_x, -slope_y, 1). grad H is the bilinear interpolation (weights of 1.) of per-texel
 //    central differences (F[i+1, j] - F[i-1, j]) / ((i+1 - (i-1)) s) with i-1, i+1 clamped to
-//    [0, C-1] (one-sided at the edge); grad D from the cascades' slope channels; grad w analytic
+//    [0, C-1] (one-sided at the edge); grad D and grad I from the cascades' slope channels; grad w analytic
 //    (harbour_weight_and_gradient). At a displaced point all of them are taken at its lattice p.
 //
 // Thread-safety: a sampler only reads its snapshot's immutable keyframes; every method is const
@@ -104,6 +111,10 @@ class SurfaceSampler {
   /// harbour), D_eta (0 without deep water) and the lattice point of a displaced query.
   double harbour_elevation_m(double x_m, double y_m) const;
   double deep_elevation_m(double x_m, double y_m) const;
+  /// I_eta at a lattice point: the split's inside layer (0 without a split or deep water).
+  double inside_elevation_m(double x_m, double y_m) const;
+  /// Whether the snapshot carries a split's inside layer.
+  bool has_inside_layer() const { return has_inside_; }
   SitePoint lattice_point(double x_m, double y_m) const;
 
   const SurfaceSnapshot& snapshot() const { return snapshot_; }
@@ -123,13 +134,19 @@ class SurfaceSampler {
   double harbour_eta(double x_m, double y_m) const;
   void deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const;
   double deep_eta(double x_m, double y_m) const;
+  // eta, slopes and (with_flux) fluxes of a list of cascades at (x, y), both keyframes blended in time.
+  struct CascadeSum {
+    double eta = 0.0, slope_x = 0.0, slope_y = 0.0, flux_x = 0.0, flux_y = 0.0;
+  };
+  double cascades_eta(const std::vector<Cascade>& cascades, double x_m, double y_m) const;
+  CascadeSum cascades_sum(const std::vector<Cascade>& cascades, double x_m, double y_m, bool with_flux) const;
   // The lattice point of a displaced query, Newton started from q + offset.
   SitePoint solve_lattice_point(double x_m, double y_m, SitePoint offset) const;
   double elevation_at_lattice(SitePoint p) const;
   static constexpr double kWarmStartDistance_m = 20.0;
 
   SurfaceSnapshot snapshot_;
-  bool has_harbour_ = false, has_deep_ = false, has_deep_flux_ = false;
+  bool has_harbour_ = false, has_deep_ = false, has_deep_flux_ = false, has_inside_ = false, has_inside_flux_ = false;
   int columns_ = 0, rows_ = 0;
   double spacing_x_m_ = 1.0, spacing_y_m_ = 1.0, inverse_spacing_x_ = 1.0, inverse_spacing_y_ = 1.0;  // dx, dy
   double harbour_fraction_ = 0.0, deep_fraction_ = 0.0, choppiness_ = 0.0;
@@ -139,6 +156,7 @@ class SurfaceSampler {
   const float* depth_ = nullptr;
   const std::uint8_t* land_ = nullptr;
   std::vector<Cascade> cascades_;
+  std::vector<Cascade> inside_;  // the split's inside layer: whole cascades of the mask, then the straddling ones
 };
 
 }  // namespace nearshore::runtime

@@ -13,7 +13,13 @@
 // The surface shown at a site point p and display time t:
 //   harbour(p)  = (1 - f_h) H_from(p) + f_h H_to(p)                 bilinear in the cell-centred rasters
 //   deep(p)     = (1 - f_d) sum_c D_from,c(p) + f_d sum_c D_to,c(p) bilinear in each periodic cascade tile
-//   shown(p)    = w(p) harbour(p) + (1 - w(p)) deep(p)               w = harbour_weight(site, p)
+//   inside(p)   = the deep water's components above the bake's band (the split, issue 14):
+//                 (1 - f_d) sum_c I_from,c(p) + f_d sum_c I_to,c(p)  over the whole cascades of
+//                 DeepWaterKeyframe::inside_cascade_mask and its inside_cascades (0 without a split)
+//   shown(p)    = w(p) (harbour(p) + inside(p)) + (1 - w(p)) deep(p)  w = harbour_weight(site, p)
+// Where w = 1 the bake's frames carry the band they resolve and the deep-water layer the rest;
+// where w = 0 the whole field is shown; deep = (what the bake holds) + inside, so the blend only
+// crossfades the bake's band and the split-off waves run through the rectangle unchanged.
 // Keyframes are immutable once published and shared (std::shared_ptr<const ...>), so a snapshot
 // stays valid on any thread for as long as it is held, whatever the engine does next.
 #include <cstdint>
@@ -47,6 +53,13 @@ struct DeepWaterKeyframe {
   /// fluxes (flux_x_m2_s, flux_y_m2_s) and the deep water's velocity is flux / (depth + eta); in
   /// deep water the depth-averaged current of linear waves is zero (surface_sampler.hpp).
   double still_water_depth_m = 0.0;
+  /// The split (issue 14 item 1; runtime/deep_water_source.hpp DeepWaterInsideLayer): the field's
+  /// components above the bake's band, drawn inside the harbour rectangle on top of the frames.
+  /// Bit c: cascades[c] lies wholly above the split and is drawn inside as it is.
+  std::uint32_t inside_cascade_mask = 0;
+  /// The cascades that straddle the split, with only their components above it (the same tiles:
+  /// inside_cascades[i] has its tile length and grid size). Empty without a split.
+  std::vector<ocean::DeepWaterFrame> inside_cascades;
 };
 
 /// Where the harbour is shown and how it fades into the deep water. Static for a sequence.

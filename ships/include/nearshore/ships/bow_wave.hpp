@@ -91,12 +91,28 @@ class BowWave {
 /// to where the absorbing layer begins, the outermost lateral offset where |eta_bow| exceeds
 /// threshold_fraction of the largest |eta_bow| outside the hull, on each side; a least-squares line
 /// through those offsets against xi gives the angle (atan of its slope, both sides averaged).
+/// The outermost disturbance is sensitive to noise (a start-up ring, the sponge); see
+/// measure_wake_envelope_angle for the robust measurement.
 struct WakeAngle {
   double half_angle_deg = 0.0;
   int stations = 0;        ///< distances xi used (both sides)
   double fit_rms_m = 0.0;  ///< scatter of the offsets about the line
+  double r_squared = 0.0;  ///< coefficient of determination of the line (1: every station on it)
+  /// A wedge was found: the offsets grow with distance (angle above 1 deg) and the line explains
+  /// most of their scatter (r_squared >= 0.6). False: the pattern does not spread, the number is noise.
+  bool wedge = false;
 };
 WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, double length_m,
                                   double threshold_fraction = 0.1, double start_lengths = 1.0);
+
+/// The half-angle of the wake's envelope (degrees): for each distance xi behind the bow from
+/// start_lengths ship lengths to the absorbing layer, the lateral offset on each side where |eta_bow|
+/// is largest (the ray of the envelope's maximum: Kelvin's cusp line at 19.47 deg in deep water,
+/// the Mach line asin(1 / Fr_d) above the critical speed in shallow water), offsets within
+/// min_lateral_m of the track left out (the hull's own trough); a least-squares line through
+/// the (xi, offset) pairs of both sides. Only the largest value per station enters, so the
+/// measurement does not depend on a threshold or on the weak start-up ring.
+WakeAngle measure_wake_envelope_angle(const BowWave& wave, const ShipState& state, double length_m,
+                                      double start_lengths = 1.0, double min_lateral_m = 0.0);
 
 }  // namespace nearshore::ships

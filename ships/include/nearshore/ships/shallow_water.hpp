@@ -37,7 +37,7 @@
 // southern faces are computed from them, and the rates are accumulated, so the whole stage keeps a
 // few rows in cache instead of writing twelve full reconstruction arrays. The loops are branch-free
 // (minmod as max/min, the positivity correction and the desingularisation as selects) so that
-// the compiler vectorises them; they are built for AVX2 and for the baseline, chosen at load time.
+// the compiler vectorises them; they are built for AVX-512, AVX2 and the baseline, chosen at load time.
 //
 // Precision. The scheme is written once for a scalar type. `ShallowWaterGrid` (double) is the
 // reference: its well-balanced states hold to 1e-15. `BowWaveGrid` (float) is what bow waves
