@@ -6,7 +6,10 @@
 //     (the difference is the surface queries' share);
 //  2. one Kurganov-Petrova step (SSP-RK2, two stages) on a --grid x --grid shallow-water grid, in
 //     float (the bow waves' precision) and in double (the reference), and one bow-wave update per 30 Hz frame (forcing, the steps the CFL limit asks for,
-//     absorbing layer, heights) of the tug at 3 m/s over 10 m of water.
+//     absorbing layer, heights) of the tug at 3 m/s over 10 m of water;
+//  3. one step of the dispersive wake layer (dispersive_wake.hpp) on --grid x --grid nodes: two
+//     forward and two inverse float FFTs, the exact rotation of every mode, the absorbing layer and
+//     the drawn heights.
 // CPU time of the calling thread, median (and fastest) of --repeats; the load average is printed with it.
 #include <time.h>
 
@@ -26,6 +29,7 @@
 #include "nearshore/runtime/deep_water_source.hpp"
 #include "nearshore/runtime/surface_sampler.hpp"
 #include "nearshore/ships/bow_wave.hpp"
+#include "nearshore/ships/dispersive_wake.hpp"
 #include "nearshore/ships/generic_hulls.hpp"
 #include "nearshore/ships/shallow_water.hpp"
 #include "nearshore/ships/ship_body.hpp"
@@ -150,6 +154,16 @@ void add_bench_ships(CLI::App& bench) {
     steps = frames = 0;
     const Timing wave_frame = time_ms(swe_repeats, move);
     const double steps_per_frame = frames > 0 ? static_cast<double>(steps) / frames : 0.0;
+    // 4. The dispersive wake layer: one step of 1/30 s over 50 m of water with a pressure patch.
+    ships::DispersiveWakeOptions dispersive_options;
+    dispersive_options.cells = o->grid;
+    ships::DispersiveWake dispersive(0.4, dispersive_options);
+    for (int j = 0; j < o->grid; ++j)
+      for (int i = 0; i < o->grid; ++i)
+        dispersive.pressure_head_m(i, j) = static_cast<float>(
+            0.5 * std::exp(-(std::pow(i - o->grid / 2.0, 2) + std::pow(j - o->grid / 2.0, 2)) / 50.0));
+    dispersive.advance(frame_s, 50.0);  // plans the rotation for this step and depth once
+    const Timing dispersive_step = time_ms(swe_repeats, [&] { dispersive.advance(frame_s, 50.0); });
     const std::string load = load_average();
 
     if (o->json) {
@@ -165,6 +179,8 @@ void add_bench_ships(CLI::App& bench) {
                           {"bow_wave_update_fastest_ms", wave_frame.fastest_ms},
                           {"bow_wave_steps_per_frame", steps_per_frame},
                           {"bow_wave_spacing_m", wave.field().spacing_m},
+                          {"dispersive_wake_step_ms", dispersive_step.median_ms},
+                          {"dispersive_wake_step_fastest_ms", dispersive_step.fastest_ms},
                           {"load_average", load}};
       std::puts(j.dump(2).c_str());
       return;
@@ -179,6 +195,9 @@ void add_bench_ships(CLI::App& bench) {
     std::printf("  bow wave of a 24 m tug at 3 m/s, %d x %d cells of %.2f m over 10 m: %.3f ms per 30 Hz frame "
                 "(fastest %.3f ms; %.2f steps per frame)\n",
                 o->grid, o->grid, wave.field().spacing_m, wave_frame.median_ms, wave_frame.fastest_ms, steps_per_frame);
+    std::printf("  dispersive wake layer, %d x %d nodes, one step (4 float FFTs, rotation, absorbing layer, heights): "
+                "%.3f ms (fastest %.3f ms)\n",
+                o->grid, o->grid, dispersive_step.median_ms, dispersive_step.fastest_ms);
     std::printf("  load average (/proc/loadavg): %s\n", load.c_str());
   });
 }

@@ -75,7 +75,11 @@ ships::WakeAngle ViewerShips::wake_angle(std::size_t i) const {
   if (!ship.bow_wave()) return {};
   // The envelope's ray (robust: the largest |eta| per distance behind the bow), the hull's own
   // trough within half a beam of the track left out.
+  // The layer the fleet shows (ship_fleet.hpp WakeLayerChoice): the dispersive wake when it is.
   const ships::ShipParticulars& p = ship.body().particulars();
+  if (ship.dispersive_wake() && ship.dispersive_weight() >= 0.5)
+    return ships::measure_wake_envelope_angle(*ship.dispersive_wake(), ship.body().state(), p.length_m, 1.0,
+                                              0.5 * p.beam_m);
   return ships::measure_wake_envelope_angle(*ship.bow_wave(), ship.body().state(), p.length_m, 1.0, 0.5 * p.beam_m);
 }
 

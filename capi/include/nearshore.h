@@ -36,8 +36,9 @@ extern "C" {
 #endif
 
 /* 2: ships (nearshore_fleet_*). 3: the renderer draws a fleet (nearshore_renderer_set_fleet).
+ * 4: a ship's dispersive wake (nearshore_ship_options.dispersive_wake, nearshore_fleet_dispersive_wake).
  * A host built against version N runs on a library of version >= N. */
-#define NEARSHORE_API_VERSION 3
+#define NEARSHORE_API_VERSION 4
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -296,6 +297,9 @@ typedef struct nearshore_ship_options {
   int hull_points;               /* pressure points sampled on the hull; 0: 2000 */
   int bow_wave;                  /* 1 (default): a bow-wave grid; 0: none */
   int bow_wave_cells;            /* N of its N x N grid; 0: 128 */
+  int dispersive_wake;           /* 1: also a dispersive linear wave layer (Kelvin's wake; docs/ships.md),
+                                    shown instead of the bow-wave grid below depth Froude number 0.7;
+                                    0 (default): the bow-wave grid alone (API version 4) */
 } nearshore_ship_options;
 
 /* Fills the defaults: a tug at draft 3 m, manual orders, bow wave on. Any thread. */
@@ -376,6 +380,14 @@ typedef struct nearshore_bow_wave_field {
 NEARSHORE_API nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* fleet, int ship,
                                                         nearshore_bow_wave_field* field, float* heights_m,
                                                         size_t capacity);
+
+/* The same for a ship's dispersive wake layer (columns = 0 when the ship has none). Each layer's
+ * heights carry the weight the fleet shows it with (the two weights sum to 1 and fade over 2 s when
+ * the depth Froude number crosses 0.7 / 0.8), so a host that draws both fields added to the sea draws
+ * what the fleet queries below return. */
+NEARSHORE_API nearshore_status nearshore_fleet_dispersive_wake(const nearshore_fleet* fleet, int ship,
+                                                               nearshore_bow_wave_field* field, float* heights_m,
+                                                               size_t capacity);
 
 /* nearshore_sea_query / nearshore_sea_query_at with the fleet's bow waves added: elevation and
  * normal include every ship's bow wave as of its last step (the velocity is the sea's). For buoys,

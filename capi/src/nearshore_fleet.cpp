@@ -7,6 +7,7 @@
 #include <deque>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -123,7 +124,34 @@ ships::ShipDefinition definition_of(const nearshore_fleet& fleet, const nearshor
   if (options.hull_points != 0) d.hull_points = options.hull_points;
   d.bow_wave = options.bow_wave != 0;
   if (options.bow_wave_cells != 0) d.bow_wave_options.cells = options.bow_wave_cells;
+  d.dispersive_wake = options.dispersive_wake != 0;
   return d;
+}
+
+// A ship's height layer (bow-wave grid or dispersive wake) into the C struct, and its heights
+// into the caller's buffer when one is given; columns = 0 when the ship has no such layer.
+void copy_height_field(const std::optional<ships::BowWaveField>& f, nearshore_bow_wave_field* field, float* heights_m,
+                       size_t capacity) {
+  require(field, "field");
+  if (field->struct_size != sizeof(nearshore_bow_wave_field))
+    fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_bow_wave_field.struct_size must be sizeof(nearshore_bow_wave_field)");
+  field->columns = field->rows = 0;
+  field->origin_x_m = field->origin_y_m = 0.0;
+  field->spacing_m = 0.0;
+  field->serial = 0;
+  if (!f) return;
+  field->columns = f->columns;
+  field->rows = f->rows;
+  field->origin_x_m = f->origin_x_m;
+  field->origin_y_m = f->origin_y_m;
+  field->spacing_m = f->spacing_m;
+  field->serial = f->serial;
+  if (!heights_m) return;
+  const std::size_t cells = static_cast<std::size_t>(f->columns) * static_cast<std::size_t>(f->rows);
+  if (capacity < cells)
+    fail(NEARSHORE_INVALID_ARGUMENT, "capacity = " + std::to_string(capacity) + " floats; the layer has " +
+                                         std::to_string(cells) + " cells (columns x rows)");
+  std::copy(f->heights_m->begin(), f->heights_m->begin() + static_cast<std::ptrdiff_t>(cells), heights_m);
 }
 
 // The fleet's bow waves added to sea samples: elevation, and the normal tilted by the bow wave's
@@ -310,27 +338,17 @@ nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* fleet, int ship
                                           float* heights_m, size_t capacity) {
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     const ships::Ship& s = ship_of(fleet, ship);
-    require(field, "field");
-    if (field->struct_size != sizeof(nearshore_bow_wave_field))
-      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_bow_wave_field.struct_size must be sizeof(nearshore_bow_wave_field)");
-    field->columns = field->rows = 0;
-    field->origin_x_m = field->origin_y_m = 0.0;
-    field->spacing_m = 0.0;
-    field->serial = 0;
-    if (!s.bow_wave()) return;
-    const ships::BowWaveField f = s.bow_wave()->field();
-    field->columns = f.columns;
-    field->rows = f.rows;
-    field->origin_x_m = f.origin_x_m;
-    field->origin_y_m = f.origin_y_m;
-    field->spacing_m = f.spacing_m;
-    field->serial = f.serial;
-    if (!heights_m) return;
-    const std::size_t cells = static_cast<std::size_t>(f.columns) * static_cast<std::size_t>(f.rows);
-    if (capacity < cells)
-      fail(NEARSHORE_INVALID_ARGUMENT, "capacity = " + std::to_string(capacity) + " floats; the bow wave has " +
-                                           std::to_string(cells) + " cells (columns x rows)");
-    std::copy(f.heights_m->begin(), f.heights_m->begin() + static_cast<std::ptrdiff_t>(cells), heights_m);
+    copy_height_field(s.bow_wave() ? std::optional<ships::BowWaveField>(s.bow_wave()->field()) : std::nullopt, field,
+                      heights_m, capacity);
+  });
+}
+
+nearshore_status nearshore_fleet_dispersive_wake(const nearshore_fleet* fleet, int ship, nearshore_bow_wave_field* field,
+                                                 float* heights_m, size_t capacity) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    const ships::Ship& s = ship_of(fleet, ship);
+    copy_height_field(s.dispersive_wake() ? std::optional<ships::BowWaveField>(s.dispersive_wake()->field()) : std::nullopt,
+                      field, heights_m, capacity);
   });
 }
 

@@ -34,49 +34,55 @@ void BowWave::set_bottom(const Seabed* seabed) {
     }
 }
 
-void BowWave::set_pressure_head(const ShipBody& body) {
-  const int n = grid_.columns();
-  std::fill(head_.begin(), head_.end(), 0.0);
+void hull_pressure_head(const ShipBody& body, long long origin_i, long long origin_j, double spacing_m, int n,
+                        int smoothing_passes, std::vector<double>& head) {
+  head.assign(static_cast<std::size_t>(n + 1) * (n + 1), 0.0);
   const HullSamples& samples = body.samples();
   const std::vector<double>& eta = body.water_elevations_m();
   const std::vector<Eigen::Vector3d> points = body.world_points_m();
   const Eigen::Matrix3d rotation = body.state().orientation.toRotationMatrix();
-  const double inv_cell_area = 1.0 / (spacing_m_ * spacing_m_);
+  const double inv_cell_area = 1.0 / (spacing_m * spacing_m);
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const double surface = k < eta.size() ? eta[k] : 0.0;
     const double immersion = surface - points[k].z();
     if (immersion <= 0.0) continue;
     // Vertical projection of the displaced volume (hull_samples.hpp displaced_volume_m3).
     const double volume = immersion * -(rotation.row(2).dot(samples.normal[k])) * samples.area_m2[k];
-    const double u = points[k].x() / spacing_m_ - static_cast<double>(origin_i_);
-    const double v = points[k].y() / spacing_m_ - static_cast<double>(origin_j_);
+    const double u = points[k].x() / spacing_m - static_cast<double>(origin_i);
+    const double v = points[k].y() / spacing_m - static_cast<double>(origin_j);
     const int i0 = static_cast<int>(std::floor(u)), j0 = static_cast<int>(std::floor(v));
     if (i0 < 0 || j0 < 0 || i0 >= n || j0 >= n) continue;
     const double a = u - i0, b = v - j0;
     const double h = volume * inv_cell_area;
-    head_[static_cast<std::size_t>(j0) * (n + 1) + i0] += (1 - a) * (1 - b) * h;
-    head_[static_cast<std::size_t>(j0) * (n + 1) + i0 + 1] += a * (1 - b) * h;
-    head_[static_cast<std::size_t>(j0 + 1) * (n + 1) + i0] += (1 - a) * b * h;
-    head_[static_cast<std::size_t>(j0 + 1) * (n + 1) + i0 + 1] += a * b * h;
+    head[static_cast<std::size_t>(j0) * (n + 1) + i0] += (1 - a) * (1 - b) * h;
+    head[static_cast<std::size_t>(j0) * (n + 1) + i0 + 1] += a * (1 - b) * h;
+    head[static_cast<std::size_t>(j0 + 1) * (n + 1) + i0] += (1 - a) * b * h;
+    head[static_cast<std::size_t>(j0 + 1) * (n + 1) + i0 + 1] += a * b * h;
   }
   // Binomial (1 2 1)/4 passes in x and y: the points are about a cell apart, so the splat alone
   // is noisy at the grid scale. The filter keeps the sum (interior) and hence the volume.
-  std::vector<double> tmp(head_.size());
+  std::vector<double> tmp(head.size());
   const std::size_t stride = static_cast<std::size_t>(n + 1);
-  for (int pass = 0; pass < options_.smoothing_passes; ++pass) {
+  for (int pass = 0; pass < smoothing_passes; ++pass) {
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
-        const double l = head_[j * stride + std::max(i - 1, 0)], c = head_[j * stride + i],
-                     r = head_[j * stride + std::min(i + 1, n)];
+        const double l = head[j * stride + std::max(i - 1, 0)], c = head[j * stride + i],
+                     r = head[j * stride + std::min(i + 1, n)];
         tmp[j * stride + i] = 0.25 * (l + 2 * c + r);
       }
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
         const double s = tmp[std::max(j - 1, 0) * stride + i], c = tmp[j * stride + i],
                      nn = tmp[std::min(j + 1, n) * stride + i];
-        head_[j * stride + i] = 0.25 * (s + 2 * c + nn);
+        head[j * stride + i] = 0.25 * (s + 2 * c + nn);
       }
   }
+}
+
+void BowWave::set_pressure_head(const ShipBody& body) {
+  const int n = grid_.columns();
+  hull_pressure_head(body, origin_i_, origin_j_, spacing_m_, n, options_.smoothing_passes, head_);
+  const std::size_t stride = static_cast<std::size_t>(n + 1);
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) grid_.set_pressure_head_corner(i, j, head_[j * stride + i]);
 }
@@ -104,7 +110,7 @@ void BowWave::refresh_heights() {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)
       heights_m_[static_cast<std::size_t>(j) * n + i] =
-          grid_.depth_m(i, j) > 1e-6 ? static_cast<float>(grid_.surface_m(i, j)) : 0.0f;
+          grid_.depth_m(i, j) > 1e-6 ? static_cast<float>(shown_weight_ * grid_.surface_m(i, j)) : 0.0f;
   ++serial_;
 }
 
@@ -134,16 +140,27 @@ void BowWave::update(const ShipBody& body, const Seabed* seabed, double dt_s) {
   refresh_heights();
 }
 
+void BowWave::set_shown_weight(double weight) {
+  weight = std::clamp(weight, 0.0, 1.0);
+  if (weight == shown_weight_) return;
+  shown_weight_ = weight;
+  if (started_) refresh_heights();
+}
+
+double field_elevation_m(const BowWaveField& f, double x_m, double y_m) {
+  if (f.heights_m == nullptr || f.columns < 2 || f.rows < 2) return 0.0;
+  const double u = (x_m - f.origin_x_m) / f.spacing_m - 0.5;
+  const double v = (y_m - f.origin_y_m) / f.spacing_m - 0.5;
+  if (!(u >= 0.0 && v >= 0.0 && u <= f.columns - 1 && v <= f.rows - 1)) return 0.0;
+  const int i0 = std::min(static_cast<int>(u), f.columns - 2), j0 = std::min(static_cast<int>(v), f.rows - 2);
+  const double a = u - i0, b = v - j0;
+  auto h = [&](int i, int j) { return static_cast<double>((*f.heights_m)[static_cast<std::size_t>(j) * f.columns + i]); };
+  return (1 - b) * ((1 - a) * h(i0, j0) + a * h(i0 + 1, j0)) + b * ((1 - a) * h(i0, j0 + 1) + a * h(i0 + 1, j0 + 1));
+}
+
 double BowWave::elevation_m(double x_m, double y_m) const {
   if (!started_) return 0.0;
-  const int n = grid_.columns();
-  const double u = x_m / spacing_m_ - static_cast<double>(origin_i_) - 0.5;
-  const double v = y_m / spacing_m_ - static_cast<double>(origin_j_) - 0.5;
-  if (!(u >= 0.0 && v >= 0.0 && u <= n - 1 && v <= n - 1)) return 0.0;
-  const int i0 = std::min(static_cast<int>(u), n - 2), j0 = std::min(static_cast<int>(v), n - 2);
-  const double a = u - i0, b = v - j0;
-  auto h = [&](int i, int j) { return static_cast<double>(heights_m_[static_cast<std::size_t>(j) * n + i]); };
-  return (1 - b) * ((1 - a) * h(i0, j0) + a * h(i0 + 1, j0)) + b * ((1 - a) * h(i0, j0 + 1) + a * h(i0 + 1, j0 + 1));
+  return field_elevation_m(field(), x_m, y_m);
 }
 
 BowWaveField BowWave::field() const {
@@ -162,9 +179,9 @@ namespace {
 // The ship's frame on the grid: the window's interior (outside the absorbing layer) and the point
 // xi behind the bow, `lateral` to port.
 struct WakeFrame {
-  WakeFrame(const BowWave& wave, const ShipState& state, double length_m) : field(wave.field()) {
+  WakeFrame(const BowWaveField& f, double absorbing_fraction, const ShipState& state, double length_m) : field(f) {
     side = field.columns * field.spacing_m;
-    margin = wave.options().absorbing_fraction * side;
+    margin = absorbing_fraction * side;
     const Eigen::Vector3d forward = state.orientation * Eigen::Vector3d::UnitX();
     ahead = Eigen::Vector2d(forward.x(), forward.y()).normalized();
     port = Eigen::Vector2d(-ahead.y(), ahead.x());
@@ -214,7 +231,13 @@ WakeAngle fit_wake_line(const std::vector<double>& xs, const std::vector<double>
 
 WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, double length_m,
                                   double threshold_fraction, double start_lengths) {
-  const WakeFrame frame(wave, state, length_m);
+  return measure_wake_half_angle(wave.field(), wave.options().absorbing_fraction, state, length_m, threshold_fraction,
+                                 start_lengths);
+}
+
+WakeAngle measure_wake_half_angle(const BowWaveField& field, double absorbing_fraction, const ShipState& state,
+                                  double length_m, double threshold_fraction, double start_lengths) {
+  const WakeFrame frame(field, absorbing_fraction, state, length_m);
   const double side = frame.side, spacing = frame.field.spacing_m, step = 0.5 * spacing;
   // The largest |eta| behind start_lengths.
   double peak = 0.0;
@@ -222,7 +245,7 @@ WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, d
     for (double lateral = -side; lateral <= side; lateral += step) {
       const Eigen::Vector2d p = frame.at(xi, lateral);
       if (!frame.interior(p)) continue;
-      peak = std::max(peak, std::abs(wave.elevation_m(p.x(), p.y())));
+      peak = std::max(peak, std::abs(field_elevation_m(frame.field, p.x(), p.y())));
     }
   if (peak <= 0.0) return {};
   std::vector<double> xs, ys;
@@ -234,7 +257,7 @@ WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, d
         const Eigen::Vector2d p = frame.at(xi, sign * lateral);
         if (!frame.interior(p)) continue;
         seen_interior = true;
-        if (std::abs(wave.elevation_m(p.x(), p.y())) > threshold_fraction * peak) {
+        if (std::abs(field_elevation_m(frame.field, p.x(), p.y())) > threshold_fraction * peak) {
           outermost = lateral;
           break;
         }
@@ -251,7 +274,13 @@ WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, d
 
 WakeAngle measure_wake_envelope_angle(const BowWave& wave, const ShipState& state, double length_m,
                                       double start_lengths, double min_lateral_m) {
-  const WakeFrame frame(wave, state, length_m);
+  return measure_wake_envelope_angle(wave.field(), wave.options().absorbing_fraction, state, length_m, start_lengths,
+                                     min_lateral_m);
+}
+
+WakeAngle measure_wake_envelope_angle(const BowWaveField& field, double absorbing_fraction, const ShipState& state,
+                                      double length_m, double start_lengths, double min_lateral_m) {
+  const WakeFrame frame(field, absorbing_fraction, state, length_m);
   const double side = frame.side, spacing = frame.field.spacing_m, step = 0.5 * spacing;
   std::vector<double> xs, ys;
   // Stations one cell apart (closer ones are not independent: the field is bilinear between cells).
@@ -265,7 +294,7 @@ WakeAngle measure_wake_envelope_angle(const BowWave& wave, const ShipState& stat
           cut = where >= lateral - 2 * spacing;  // the maximum sits at the layer's edge
           break;
         }
-        const double value = std::abs(wave.elevation_m(p.x(), p.y()));
+        const double value = std::abs(field_elevation_m(frame.field, p.x(), p.y()));
         if (value > largest) {
           largest = value;
           where = lateral;

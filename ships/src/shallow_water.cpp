@@ -5,6 +5,9 @@
 #include <numbers>
 
 #include <fmt/format.h>
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 #include "nearshore/core/error.hpp"
 
@@ -22,6 +25,28 @@
 
 namespace nearshore::ships {
 namespace {
+
+// Subnormal numbers flushed to zero while a step runs (MXCSR FTZ and DAZ), the caller's mode put
+// back after it. A wave's far field decays to values below the smallest normal float (1.2e-38;
+// squares of small velocities get there first), and every x86 operation with a subnormal operand
+// or result takes a microcode assist of about a hundred cycles: the bench's 256 x 256 step,
+// a Gaussian hump on 10 m of water, took 2.2 times as long with them (docs/ships.md, "Measured").
+// Flushing changes only values below 1.2e-38 (float) or 2.2e-308 (double), far below every
+// tolerance of the scheme; exact zeros (a lake at rest, dry cells) stay exactly zero, and a depth
+// flushed to 0 is still >= 0.
+class SubnormalsFlushedToZero {
+ public:
+#if defined(__SSE2__)
+  SubnormalsFlushedToZero() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero); }
+  ~SubnormalsFlushedToZero() { _mm_setcsr(saved_); }
+  SubnormalsFlushedToZero(const SubnormalsFlushedToZero&) = delete;
+  SubnormalsFlushedToZero& operator=(const SubnormalsFlushedToZero&) = delete;
+
+ private:
+  static constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;  // MXCSR bits 15 and 6
+  unsigned saved_;
+#endif
+};
 
 // Larger and smaller of two values as selects (std::max returns a reference, which GCC does not
 // if-convert inside a loop, so the loop would not vectorise).
@@ -50,26 +75,33 @@ inline Real desingularised_inverse_depth(Real h, Real epsilon) {
   return Real(std::numbers::sqrt2) * h / std::sqrt(h4 + larger(h4, epsilon));
 }
 
-// Step 2 along one direction for n cells of a row: the state at cell i and at i -+ `step` (1 for
-// x, a row for y), the bottom B' at the face ahead (b_ahead) and behind (b_behind). Writes the
-// face values ahead and behind, and the well-balanced source of the normal momentum,
-// -g hbar (B'_ahead - B'_behind) / dx, hbar the mean of the two face depths (KP eq. 3.11).
+// Step 2 along one direction for n cells of a row: the state at the cells (w, normal, tangential)
+// and at their neighbours behind and ahead (`*_behind_cell`, `*_ahead_cell`: the next cells in x,
+// or the rows below and above in y, which may sit in a row buffer rather than in the grid), the
+// bottom B' at the face ahead (b_ahead) and behind (b_behind). Writes the face values ahead and
+// behind, and the well-balanced source of the normal momentum, -g hbar (B'_ahead - B'_behind) / dx,
+// hbar the mean of the two face depths (KP eq. 3.11).
 template <class Real>
-NEARSHORE_VECTOR_CLONES void reconstruct_row(int n, std::ptrdiff_t step, Real theta, Real g_over_dx,
-                                             const Real* __restrict w, const Real* __restrict normal,
-                                             const Real* __restrict tangential, const Real* __restrict b_ahead,
-                                             const Real* __restrict b_behind, Real* __restrict w_ahead,
-                                             Real* __restrict w_behind, Real* __restrict normal_ahead,
-                                             Real* __restrict normal_behind, Real* __restrict tangential_ahead,
-                                             Real* __restrict tangential_behind, Real* __restrict source) {
+NEARSHORE_VECTOR_CLONES void reconstruct_row(int n, Real theta, Real g_over_dx, const Real* __restrict w_behind_cell,
+                                             const Real* __restrict w, const Real* __restrict w_ahead_cell,
+                                             const Real* __restrict normal_behind_cell, const Real* __restrict normal,
+                                             const Real* __restrict normal_ahead_cell,
+                                             const Real* __restrict tangential_behind_cell,
+                                             const Real* __restrict tangential,
+                                             const Real* __restrict tangential_ahead_cell,
+                                             const Real* __restrict b_ahead, const Real* __restrict b_behind,
+                                             Real* __restrict w_ahead, Real* __restrict w_behind,
+                                             Real* __restrict normal_ahead, Real* __restrict normal_behind,
+                                             Real* __restrict tangential_ahead, Real* __restrict tangential_behind,
+                                             Real* __restrict source) {
   const Real half(0.5);
   for (int i = 0; i < n; ++i) {
     // Half the limited slope times dx: the change from the centre to a face.
-    const Real w_back = w[i] - w[i - step], w_next = w[i + step] - w[i];
+    const Real w_back = w[i] - w_behind_cell[i], w_next = w_ahead_cell[i] - w[i];
     const Real dw = half * minmod3(theta * w_back, half * (w_back + w_next), theta * w_next);
-    const Real n_back = normal[i] - normal[i - step], n_next = normal[i + step] - normal[i];
+    const Real n_back = normal[i] - normal_behind_cell[i], n_next = normal_ahead_cell[i] - normal[i];
     const Real dn = half * minmod3(theta * n_back, half * (n_back + n_next), theta * n_next);
-    const Real t_back = tangential[i] - tangential[i - step], t_next = tangential[i + step] - tangential[i];
+    const Real t_back = tangential[i] - tangential_behind_cell[i], t_next = tangential_ahead_cell[i] - tangential[i];
     const Real dt = half * minmod3(theta * t_back, half * (t_back + t_next), theta * t_next);
     // KP section 3.1: where a face value falls below the bottom there, the slope is changed so
     // that the depth there is 0 (the cell mean, and so its mass, is kept).
@@ -119,6 +151,12 @@ NEARSHORE_VECTOR_CLONES void face_fluxes(int n, Real g, Real epsilon, const Real
     flux_tangential[i] = (a_plus * ql * vl - a_minus * qr * vr) * inverse + product * (hr * vr - hl * vl);
     speed[i] = larger(a_plus, -a_minus);
   }
+}
+
+// to = a + b for n values (w' = w + zeta of a row).
+template <class Real>
+NEARSHORE_VECTOR_CLONES void sum_row(int n, const Real* __restrict a, const Real* __restrict b, Real* __restrict to) {
+  for (int i = 0; i < n; ++i) to[i] = a[i] + b[i];
 }
 
 // The rates of n cells of a row from its x fluxes (faces 0..n) and its two sources.
@@ -205,9 +243,11 @@ BasicShallowWaterGrid<Real>::BasicShallowWaterGrid(int columns, int rows, double
   stride_ = static_cast<std::size_t>(columns + 2 * kGhost);
   const std::size_t cells = stride_ * static_cast<std::size_t>(rows + 2 * kGhost);
   const std::size_t corners = (stride_ + 1) * static_cast<std::size_t>(rows + 2 * kGhost + 1);
-  for (auto* v : {&w_, &hu_, &hv_, &b_east_, &b_north_, &b_cell_, &w1_, &hu1_, &hv1_, &rate_w_, &rate_hu_, &rate_hv_,
-                  &head_cell_, &wp_})
+  for (auto* v : {&w_, &hu_, &hv_, &b_east_, &b_north_, &b_cell_, &w1_, &hu1_, &hv1_, &rate_[0], &rate_[1], &rate_[2],
+                  &head_cell_})
     v->assign(cells, Real(0));
+  wp_rows_.assign(kWpRows * stride_, Real(0));
+  for (auto& v : rate_rows_) v.assign(2 * stride_, Real(0));
   entered_.assign(cells, 0);
   bottom_corner_.assign(corners, 0.0);
   head_corner_.assign(corners, 0.0);
@@ -215,7 +255,7 @@ BasicShallowWaterGrid<Real>::BasicShallowWaterGrid(int columns, int rows, double
     for (auto* v : {&faces->w_high, &faces->w_low, &faces->normal_high, &faces->normal_low, &faces->tangential_high,
                     &faces->tangential_low, &faces->source})
       v->assign(stride_, Real(0));
-  for (auto* v : {&flux_mass_, &flux_normal_, &flux_tangential_, &speed_}) v->assign(stride_, Real(0));
+  for (auto* v : {&flux_mass_, &flux_normal_, &flux_tangential_, &speed_, &depth_}) v->assign(stride_, Real(0));
   update_bottom();
 }
 
@@ -319,32 +359,47 @@ void BasicShallowWaterGrid<Real>::fill_ghosts(std::vector<Real>& w, std::vector<
 }
 
 template <class Real>
-double BasicShallowWaterGrid<Real>::rates(const std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv) {
+double BasicShallowWaterGrid<Real>::sweep(const std::vector<Real>& w, const std::vector<Real>& hu,
+                                          const std::vector<Real>& hv, const EulerStage* euler) {
   const Real g = static_cast<Real>(options_.gravity_m_s2), theta = static_cast<Real>(options_.limiter_theta);
   const Real inverse_dx = static_cast<Real>(1.0 / spacing_m_), g_over_dx = g * inverse_dx;
   const Real epsilon = static_cast<Real>(std::pow(options_.desingularisation_depth_m, 4));
-  // w' = w + zeta (the pressure head acts as a raised bottom).
-  {
-    const Real* __restrict from = w.data();
-    const Real* __restrict head = head_cell_.data();
-    Real* __restrict to = wp_.data();
-    for (std::size_t p = 0; p < wp_.size(); ++p) to[p] = from[p] + head[p];
-  }
-  fill_ghosts(wp_, hu, hv);
   const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(stride_);
   const int columns = columns_;
-  double max_speed = 0.0;
-  auto fastest = [&](int n) {
-    max_speed = std::max(max_speed, static_cast<double>(extreme_of<Real, true>(n, speed_.data(), Real(0))));
+  // w' = w + zeta (the pressure head acts as a raised bottom) of padded row r, made one row ahead
+  // of the sweep into a ring of kWpRows rows: the y reconstruction of row r reads rows r - 1 .. r + 1.
+  auto wp_row = [&](int r) { return wp_rows_.data() + static_cast<std::size_t>((r + kGhost) % kWpRows) * stride_; };
+  auto make_wp_row = [&](int r) {
+    const std::size_t p = padded(-kGhost, r);
+    sum_row<Real>(static_cast<int>(stride_), w.data() + p, head_cell_.data() + p, wp_row(r));
   };
+  // The rates of row r: the grid's rate arrays (no Euler stage: advance() needs the stage's local
+  // speeds before it picks the step), else a ring of two rows, used as soon as a row is complete.
+  auto rate_row = [&](int r, int k) -> Real* {
+    if (euler == nullptr) return rate_[k].data() + padded(0, r);
+    return rate_rows_[k].data() + static_cast<std::size_t>(r & 1) * stride_;
+  };
+  double max_speed = 0.0;
+  Real lowest_depth(0);
+  auto fastest = [&](int n) {  // only advance()'s first stage picks its step from the speeds
+    if (euler == nullptr)
+      max_speed = std::max(max_speed, static_cast<double>(extreme_of<Real, true>(n, speed_.data(), Real(0))));
+  };
+  make_wp_row(-kGhost);
+  make_wp_row(-1);
   // One sweep over the rows r = -1 .. R (the ghost rows give the edge faces): the y faces of row r,
   // then (inner rows) its x faces, fluxes and rates, then the fluxes across the faces between row
-  // r - 1 and row r, which close the rates of row r - 1 and add to those of row r.
+  // r - 1 and row r, which close the rates of row r - 1 and add to those of row r; row r - 1 then
+  // takes its Euler stage while its data are still in cache.
   for (int r = -1; r <= rows_; ++r) {
+    make_wp_row(r + 1);
     RowFaces& y = y_faces_[(r + 1) & 1];
     const RowFaces& y_below = y_faces_[r & 1];
     const std::size_t p0 = padded(0, r);
-    reconstruct_row<Real>(columns, row, theta, g_over_dx, wp_.data() + p0, hv.data() + p0, hu.data() + p0,
+    const Real* wp = wp_row(r) + kGhost;  // cell 0 of row r
+    const Real *wp_south = wp_row(r - 1) + kGhost, *wp_north = wp_row(r + 1) + kGhost;
+    reconstruct_row<Real>(columns, theta, g_over_dx, wp_south, wp, wp_north, hv.data() + p0 - row, hv.data() + p0,
+                          hv.data() + p0 + row, hu.data() + p0 - row, hu.data() + p0, hu.data() + p0 + row,
                           b_north_.data() + p0, b_north_.data() + p0 - row, y.w_high.data(), y.w_low.data(),
                           y.normal_high.data(), y.normal_low.data(), y.tangential_high.data(),
                           y.tangential_low.data(), y.source.data());
@@ -352,7 +407,8 @@ double BasicShallowWaterGrid<Real>::rates(const std::vector<Real>& w, std::vecto
       // Cells -1 .. C of the row; face k (0 .. C) lies between cells k - 1 and k.
       const std::size_t q0 = p0 - 1;
       RowFaces& x = x_faces_;
-      reconstruct_row<Real>(columns + 2, 1, theta, g_over_dx, wp_.data() + q0, hu.data() + q0, hv.data() + q0,
+      reconstruct_row<Real>(columns + 2, theta, g_over_dx, wp - 2, wp - 1, wp, hu.data() + q0 - 1, hu.data() + q0,
+                            hu.data() + q0 + 1, hv.data() + q0 - 1, hv.data() + q0, hv.data() + q0 + 1,
                             b_east_.data() + q0, b_east_.data() + q0 - 1, x.w_high.data(), x.w_low.data(),
                             x.normal_high.data(), x.normal_low.data(), x.tangential_high.data(),
                             x.tangential_low.data(), x.source.data());
@@ -362,8 +418,7 @@ double BasicShallowWaterGrid<Real>::rates(const std::vector<Real>& w, std::vecto
                         speed_.data());
       fastest(columns + 1);
       rates_from_x_fluxes<Real>(columns, inverse_dx, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
-                                x.source.data() + 1, y.source.data(), rate_w_.data() + p0, rate_hu_.data() + p0,
-                                rate_hv_.data() + p0);
+                                x.source.data() + 1, y.source.data(), rate_row(r, 0), rate_row(r, 1), rate_row(r, 2));
     }
     if (r >= 0) {
       face_fluxes<Real>(columns, g, epsilon, y_below.w_high.data(), y_below.normal_high.data(),
@@ -373,45 +428,59 @@ double BasicShallowWaterGrid<Real>::rates(const std::vector<Real>& w, std::vecto
       fastest(columns);
       if (r >= 1)
         add_y_fluxes<Real>(columns, -inverse_dx, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
-                           rate_w_.data() + p0 - row, rate_hu_.data() + p0 - row, rate_hv_.data() + p0 - row);
+                           rate_row(r - 1, 0), rate_row(r - 1, 1), rate_row(r - 1, 2));
       if (r < rows_)
         add_y_fluxes<Real>(columns, inverse_dx, flux_mass_.data(), flux_normal_.data(), flux_tangential_.data(),
-                           rate_w_.data() + p0, rate_hu_.data() + p0, rate_hv_.data() + p0);
+                           rate_row(r, 0), rate_row(r, 1), rate_row(r, 2));
     }
+    if (euler != nullptr && r >= 1)
+      lowest_depth = smaller(lowest_depth, euler_row(*euler, r - 1, w, hu, hv, rate_row(r - 1, 0), rate_row(r - 1, 1),
+                                                    rate_row(r - 1, 2)));
   }
+  most_negative_depth_m_ = std::min(most_negative_depth_m_, static_cast<double>(lowest_depth));
   return max_speed;
 }
 
 template <class Real>
-void BasicShallowWaterGrid<Real>::stage_update(const std::vector<Real>& from_w, const std::vector<Real>& from_hu,
-                                               const std::vector<Real>& from_hv, double dt_s, bool average,
-                                               std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv) {
-  const Real dt = static_cast<Real>(dt_s);
-  Real lowest(0);
-  for (int j = 0; j < rows_; ++j) {
-    const std::size_t p = padded(0, j);
-    const auto stage = average ? &euler_stage_row<Real, true> : &euler_stage_row<Real, false>;
-    stage(columns_, dt, from_w.data() + p, from_hu.data() + p, from_hv.data() + p, rate_w_.data() + p,
-          rate_hu_.data() + p, rate_hv_.data() + p, b_cell_.data() + p, w.data() + p, hu.data() + p, hv.data() + p,
-          speed_.data());
-    lowest = extreme_of<Real, false>(columns_, speed_.data(), lowest);
-  }
-  most_negative_depth_m_ = std::min(most_negative_depth_m_, static_cast<double>(lowest));
+Real BasicShallowWaterGrid<Real>::euler_row(const EulerStage& stage, int j, const std::vector<Real>& from_w,
+                                            const std::vector<Real>& from_hu, const std::vector<Real>& from_hv,
+                                            const Real* rate_w, const Real* rate_hu, const Real* rate_hv) {
+  const std::size_t p = padded(0, j);
+  const Real dt = static_cast<Real>(stage.dt_s);
+  const auto update = stage.average ? &euler_stage_row<Real, true> : &euler_stage_row<Real, false>;
+  update(columns_, dt, from_w.data() + p, from_hu.data() + p, from_hv.data() + p, rate_w, rate_hu, rate_hv,
+         b_cell_.data() + p, stage.w->data() + p, stage.hu->data() + p, stage.hv->data() + p, depth_.data());
+  return extreme_of<Real, false>(columns_, depth_.data(), Real(0));
+}
+
+template <class Real>
+void BasicShallowWaterGrid<Real>::stage(std::vector<Real>& from_w, std::vector<Real>& from_hu,
+                                        std::vector<Real>& from_hv, double dt_s, bool average, std::vector<Real>& w,
+                                        std::vector<Real>& hu, std::vector<Real>& hv) {
+  fill_ghosts(from_w, from_hu, from_hv);
+  const EulerStage euler{dt_s, average, &w, &hu, &hv};
+  sweep(from_w, from_hu, from_hv, &euler);
 }
 
 template <class Real>
 int BasicShallowWaterGrid<Real>::advance(double dt_s) {
+  [[maybe_unused]] const SubnormalsFlushedToZero flushed;
   int steps = 0;
   double remaining = dt_s;
   while (remaining > 1e-12 * dt_s) {
-    // Stage 1 (its local speeds give the step).
-    const double speed = rates(w_, hu_, hv_);
+    // Stage 1: its local speeds give the step, so its rates go to the rate arrays first.
+    fill_ghosts(w_, hu_, hv_);
+    const double speed = sweep(w_, hu_, hv_, nullptr);
     const double limit = speed > 0.0 ? options_.cfl * spacing_m_ / speed : remaining;
     const double dt = std::min(remaining, limit);
-    stage_update(w_, hu_, hv_, dt, false, w1_, hu1_, hv1_);
+    const EulerStage first{dt, false, &w1_, &hu1_, &hv1_};
+    Real lowest_depth(0);
+    for (int j = 0; j < rows_; ++j)
+      lowest_depth = smaller(lowest_depth, euler_row(first, j, w_, hu_, hv_, rate_[0].data() + padded(0, j),
+                                                    rate_[1].data() + padded(0, j), rate_[2].data() + padded(0, j)));
+    most_negative_depth_m_ = std::min(most_negative_depth_m_, static_cast<double>(lowest_depth));
     // Stage 2: U = (U + U1 + dt L(U1)) / 2.
-    rates(w1_, hu1_, hv1_);
-    stage_update(w1_, hu1_, hv1_, dt, true, w_, hu_, hv_);
+    stage(w1_, hu1_, hv1_, dt, true, w_, hu_, hv_);
     remaining -= dt;
     ++steps;
   }
@@ -420,10 +489,9 @@ int BasicShallowWaterGrid<Real>::advance(double dt_s) {
 
 template <class Real>
 void BasicShallowWaterGrid<Real>::step(double dt_s) {
-  rates(w_, hu_, hv_);
-  stage_update(w_, hu_, hv_, dt_s, false, w1_, hu1_, hv1_);
-  rates(w1_, hu1_, hv1_);
-  stage_update(w1_, hu1_, hv1_, dt_s, true, w_, hu_, hv_);
+  [[maybe_unused]] const SubnormalsFlushedToZero flushed;
+  stage(w_, hu_, hv_, dt_s, false, w1_, hu1_, hv1_);
+  stage(w1_, hu1_, hv1_, dt_s, true, w_, hu_, hv_);
 }
 
 template <class Real>

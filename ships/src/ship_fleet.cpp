@@ -129,9 +129,22 @@ std::size_t ShipFleet::add_ship(const ShipDefinition& d) {
 
   std::unique_ptr<BowWave> wave;
   if (d.bow_wave) wave = std::make_unique<BowWave>(particulars, d.bow_wave_options);
+  std::unique_ptr<DispersiveWake> dispersive;
+  if (d.bow_wave && d.dispersive_wake) {
+    const WakeLayerChoice& c = d.wake_layer;
+    if (!(c.dispersive_below_froude > 0.0 && c.shallow_above_froude >= c.dispersive_below_froude && c.fade_s >= 0.0))
+      throw Error(subject,
+                  fmt::format("has wake_layer thresholds dispersive_below_froude = {}, shallow_above_froude = {}, "
+                              "fade_s = {}",
+                              c.dispersive_below_froude, c.shallow_above_froude, c.fade_s),
+                  "use 0 < dispersive_below_froude <= shallow_above_froude and fade_s >= 0");
+    dispersive = std::make_unique<DispersiveWake>(particulars, d.dispersive_wake_options);
+  }
   ShipBody body(std::move(samples), std::move(particulars), state);
   auto ship = std::make_unique<Ship>(d.name, std::move(body), d.orders, std::move(wave),
                                      SternWake(d.wake_options, 0x5eed + ships_.size()));
+  ship->dispersive_wake_ = std::move(dispersive);
+  ship->wake_layer_ = d.wake_layer;
   ships_.push_back(std::move(ship));
   return ships_.size() - 1;
 }
@@ -230,7 +243,7 @@ void ShipFleet::step(const runtime::SurfaceSampler* water, double dt_s) {
     ship.body_.step(environment, ship.controls_, ship.external_, dt_s);
   }
   for (auto& s : ships_) {
-    if (s->bow_wave_) s->bow_wave_->update(s->body_, seabed(), dt_s);
+    update_bow_waves(*s, dt_s);
     s->wake_.update(s->body_, s->controls_.engine_order, dt_s);
     const BodyReport& r = s->body_.report();
     const bool aground = r.contact_points > 0;
@@ -255,10 +268,51 @@ void ShipFleet::step(const runtime::SurfaceSampler* water, double dt_s) {
   }
 }
 
+void ShipFleet::update_bow_waves(Ship& s, double dt_s) {
+  if (!s.bow_wave_) return;
+  if (!s.dispersive_wake_) {
+    s.bow_wave_->update(s.body_, seabed(), dt_s);
+    return;
+  }
+  // The layer by the depth Froude number (WakeLayerChoice), with hysteresis, and the fade.
+  const ShipState& state = s.body_.state();
+  const Eigen::Vector3d centre = s.body_.to_world(s.body_.particulars().hull_centre_m);
+  const double depth = seabed() != nullptr ? seabed()->depth_m(centre.x(), centre.y())
+                                           : s.dispersive_wake_->options().max_depth_m;
+  const double speed = std::hypot(state.velocity_m_s.x(), state.velocity_m_s.y());
+  s.depth_froude_ = depth > 0.0 ? speed / std::sqrt(options_.water.gravity_m_s2 * depth) : 1e9;
+  const WakeLayerChoice& c = s.wake_layer_;
+  if (s.depth_froude_ < c.dispersive_below_froude) s.dispersive_chosen_ = true;
+  if (s.depth_froude_ > c.shallow_above_froude) s.dispersive_chosen_ = false;
+  const double target = s.dispersive_chosen_ ? 1.0 : 0.0;
+  // The first step shows the chosen layer at once (nothing to fade from).
+  const double rate = c.fade_s > 0.0 && s.dispersive_weight_ >= 0.0 ? dt_s / c.fade_s : 1.0;
+  if (s.dispersive_weight_ < 0.0) s.dispersive_weight_ = target;
+  s.dispersive_weight_ = target > s.dispersive_weight_ ? std::min(target, s.dispersive_weight_ + rate)
+                                                       : std::max(target, s.dispersive_weight_ - rate);
+  // A layer is stepped while it is shown or chosen; once it is neither, it restarts from rest.
+  auto drive = [&](auto& layer, double weight, bool chosen) {
+    if (weight > 0.0 || chosen) {
+      layer.update(s.body_, seabed(), dt_s);
+      layer.set_shown_weight(weight);
+    } else {
+      layer.set_shown_weight(0.0);
+      layer.restart();
+    }
+  };
+  drive(*s.dispersive_wake_, s.dispersive_weight_, s.dispersive_chosen_);
+  drive(*s.bow_wave_, 1.0 - s.dispersive_weight_, !s.dispersive_chosen_);
+}
+
 double ShipFleet::bow_wave_elevation_m(double x_m, double y_m, long exclude) const {
   double eta = 0.0;
-  for (std::size_t k = 0; k < ships_.size(); ++k)
-    if (static_cast<long>(k) != exclude && ships_[k]->bow_wave_) eta += ships_[k]->bow_wave_->elevation_m(x_m, y_m);
+  for (std::size_t k = 0; k < ships_.size(); ++k) {
+    if (static_cast<long>(k) == exclude) continue;
+    const Ship& s = *ships_[k];
+    // Each layer's heights carry its shown weight (the weights sum to 1: one displacement).
+    if (s.bow_wave_ && s.bow_wave_->shown_weight() > 0.0) eta += s.bow_wave_->elevation_m(x_m, y_m);
+    if (s.dispersive_wake_ && s.dispersive_wake_->shown_weight() > 0.0) eta += s.dispersive_wake_->elevation_m(x_m, y_m);
+  }
   return eta;
 }
 
@@ -268,8 +322,10 @@ double ShipFleet::shown_elevation_m(const runtime::SurfaceSampler& water, double
 
 std::vector<BowWaveField> ShipFleet::bow_wave_fields() const {
   std::vector<BowWaveField> out;
-  for (const auto& s : ships_)
-    if (s->bow_wave_) out.push_back(s->bow_wave_->field());
+  for (const auto& s : ships_) {
+    if (s->bow_wave_ && s->bow_wave_->shown_weight() > 0.0) out.push_back(s->bow_wave_->field());
+    if (s->dispersive_wake_ && s->dispersive_wake_->shown_weight() > 0.0) out.push_back(s->dispersive_wake_->field());
+  }
   return out;
 }
 

@@ -223,6 +223,63 @@ TEST(CApiFleet, AShipUnderWayMakesABowWaveThatTheFleetQueriesAddAndAWake) {
   nearshore_sea_close(sea);
 }
 
+// A ship with a dispersive wake (API version 4) at depth Froude number 0.3 shows that layer alone:
+// the bow-wave grid's heights carry weight 0, and the fleet's query adds exactly the dispersive
+// layer's texel (the layout contract of nearshore_bow_wave_field, as above).
+TEST(CApiFleet, ADispersiveWakeIsShownBelowFroudeSevenTenthsAndQueriedLikeABowWave) {
+  nearshore_sea* sea = open_calm(write_sequence("fleet_kelvin", 0.0));
+  ASSERT_NE(sea, nullptr);
+  nearshore_fleet* fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << error();
+  nearshore_ship_options options;
+  nearshore_ship_options_init(&options);
+  EXPECT_EQ(options.dispersive_wake, 0);  // off unless asked
+  options.name = "Tug";
+  options.x_m = 30.0;
+  options.y_m = 60.0;
+  options.heading_deg = 90.0;
+  options.order = NEARSHORE_ORDER_SPEED;
+  options.speed_m_s = 3.0;
+  options.initial_speed_m_s = 3.0;
+  options.bow_wave_cells = 64;
+  options.dispersive_wake = 1;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
+  for (int frame = 1; frame <= 150; ++frame) {
+    ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
+    ASSERT_EQ(nearshore_fleet_step(fleet, 1.0 / 30.0), NEARSHORE_OK) << error();
+  }
+  nearshore_bow_wave_field grid, wake;
+  grid.struct_size = wake.struct_size = sizeof grid;
+  ASSERT_EQ(nearshore_fleet_bow_wave(fleet, 0, &grid, nullptr, 0), NEARSHORE_OK) << error();
+  ASSERT_EQ(nearshore_fleet_dispersive_wake(fleet, 0, &wake, nullptr, 0), NEARSHORE_OK) << error();
+  ASSERT_GT(wake.columns, 0);
+  std::vector<float> grid_heights(static_cast<std::size_t>(grid.columns) * grid.rows);
+  std::vector<float> wake_heights(static_cast<std::size_t>(wake.columns) * wake.rows);
+  ASSERT_EQ(nearshore_fleet_bow_wave(fleet, 0, &grid, grid_heights.data(), grid_heights.size()), NEARSHORE_OK);
+  ASSERT_EQ(nearshore_fleet_dispersive_wake(fleet, 0, &wake, wake_heights.data(), wake_heights.size()), NEARSHORE_OK);
+  for (float h : grid_heights) ASSERT_EQ(h, 0.0f);  // the grid is not shown at Fr_d 0.3
+  std::size_t crest = 0;
+  for (std::size_t k = 0; k < wake_heights.size(); ++k)
+    if (wake_heights[k] > wake_heights[crest]) crest = k;
+  ASSERT_GT(wake_heights[crest], 0.0f);
+  const int i = static_cast<int>(crest % wake.columns), j = static_cast<int>(crest / wake.columns);
+  const double xy[2] = {wake.origin_x_m + (i + 0.5) * wake.spacing_m, wake.origin_y_m + (j + 0.5) * wake.spacing_m};
+  nearshore_surface_sample sea_only, with_ships;
+  ASSERT_EQ(nearshore_sea_query(sea, xy, 1, &sea_only), NEARSHORE_OK);
+  ASSERT_EQ(nearshore_fleet_query(fleet, xy, 1, &with_ships), NEARSHORE_OK) << error();
+  EXPECT_NEAR(with_ships.elevation_m - sea_only.elevation_m, wake_heights[crest], 1e-5);
+  // A ship without one reports none.
+  options.name = "Barge";
+  options.y_m = 100.0;
+  options.dispersive_wake = 0;
+  int second = -1;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, &second), NEARSHORE_OK) << error();
+  ASSERT_EQ(nearshore_fleet_dispersive_wake(fleet, second, &wake, nullptr, 0), NEARSHORE_OK);
+  EXPECT_EQ(wake.columns, 0);
+  nearshore_fleet_destroy(fleet);
+  nearshore_sea_close(sea);
+}
+
 TEST(CApiFleet, AShipDrivenOntoLandGroundsAndSaysSo) {
   nearshore_sea* sea = open_calm(write_sequence("fleet_ground", 0.0, 8));
   ASSERT_NE(sea, nullptr);

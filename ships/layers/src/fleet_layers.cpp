@@ -26,12 +26,16 @@ const playback::SurfaceLayers& FleetLayers::update(const ShipFleet& fleet) {
   layers_.meshes.clear();
   for (std::size_t i = 0; i < fleet.size(); ++i) {
     const Ship& ship = fleet.ship(i);
-    if (ship.bow_wave() && layers_.height_patches.size() < std::size_t(playback::SurfaceLayers::kMaxHeightPatches)) {
-      const BowWaveField f = ship.bow_wave()->field();
-      if (f.heights_m && f.columns >= 2)
+    // The shown bow-wave layers: the shallow-water grid and/or the dispersive wake, each with its
+    // weight already in its heights (ship_fleet.hpp WakeLayerChoice); a layer at weight 0 is skipped.
+    auto add_patch = [&](const BowWaveField& f, double weight) {
+      if (weight > 0.0 && f.heights_m && f.columns >= 2 &&
+          layers_.height_patches.size() < std::size_t(playback::SurfaceLayers::kMaxHeightPatches))
         layers_.height_patches.push_back(
             {f.origin_x_m, f.origin_y_m, f.spacing_m, f.columns, f.rows, f.heights_m->data(), f.serial});
-    }
+    };
+    if (ship.bow_wave()) add_patch(ship.bow_wave()->field(), ship.bow_wave()->shown_weight());
+    if (ship.dispersive_wake()) add_patch(ship.dispersive_wake()->field(), ship.dispersive_wake()->shown_weight());
     for (const WakeDecal& d : ship.wake().decals())  // oldest first
       layers_.foam_decals.push_back({d.x_m, d.y_m, d.yaw_rad, d.length_m, d.width_m, d.opacity(), d.variant});
     if (i >= hulls_.size() || hulls_[i].triangles.empty()) continue;

@@ -53,6 +53,17 @@ struct BowWaveField {
   unsigned long long serial = 0;  ///< changes with every update (upload once per serial)
 };
 
+/// The hull's pressure head zeta = p / (rho g) (m) on the (n + 1) x (n + 1) corners of a window
+/// whose corner (0, 0) is site node (origin_i, origin_j) at spacing_m: the vertical projection of
+/// the displaced volume of the wet samples under the water the body saw in its last step, splatted
+/// bilinearly (so sum zeta dx^2 = the displaced volume) and smoothed by smoothing_passes binomial
+/// passes. The one forcing of both bow-wave layers (BowWave, DispersiveWake).
+void hull_pressure_head(const ShipBody& body, long long origin_i, long long origin_j, double spacing_m, int n,
+                        int smoothing_passes, std::vector<double>& head);
+
+/// A field's height (m) at site point (x, y): bilinear between cell centres, 0 outside.
+double field_elevation_m(const BowWaveField& field, double x_m, double y_m);
+
 class BowWave {
  public:
   BowWave(const ShipParticulars& particulars, BowWaveOptions options = {});
@@ -65,6 +76,11 @@ class BowWave {
   /// eta_bow (m) at site point (x, y): bilinear between cell centres, 0 outside the grid.
   double elevation_m(double x_m, double y_m) const;
   BowWaveField field() const;
+  /// The weight of the drawn heights (the fleet's blend with the dispersive layer, 0..1; 1 by default).
+  void set_shown_weight(double weight);
+  double shown_weight() const { return shown_weight_; }
+  /// Forgets the waves: the next update starts from rest.
+  void restart() { started_ = false; }
   const BowWaveGrid& grid() const { return grid_; }
   const BowWaveOptions& options() const { return options_; }
   int last_steps() const { return last_steps_; }
@@ -84,6 +100,7 @@ class BowWave {
   std::vector<float> heights_m_;
   unsigned long long serial_ = 0;
   int last_steps_ = 0;
+  double shown_weight_ = 1.0;
 };
 
 /// The half-angle of a wake pattern (degrees) measured on a bow-wave grid, for a ship moving along
@@ -104,6 +121,9 @@ struct WakeAngle {
 };
 WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, double length_m,
                                   double threshold_fraction = 0.1, double start_lengths = 1.0);
+/// The same on any field whose absorbing layers are absorbing_fraction of its side.
+WakeAngle measure_wake_half_angle(const BowWaveField& field, double absorbing_fraction, const ShipState& state,
+                                  double length_m, double threshold_fraction, double start_lengths);
 
 /// The half-angle of the wake's envelope (degrees): for each distance xi behind the bow from
 /// start_lengths ship lengths to the absorbing layer, the lateral offset on each side where |eta_bow|
@@ -114,5 +134,9 @@ WakeAngle measure_wake_half_angle(const BowWave& wave, const ShipState& state, d
 /// measurement does not depend on a threshold or on the weak start-up ring.
 WakeAngle measure_wake_envelope_angle(const BowWave& wave, const ShipState& state, double length_m,
                                       double start_lengths = 1.0, double min_lateral_m = 0.0);
+/// The same on any field whose absorbing layers are absorbing_fraction of its side (the one
+/// implementation behind both layers' measurements).
+WakeAngle measure_wake_envelope_angle(const BowWaveField& field, double absorbing_fraction, const ShipState& state,
+                                      double length_m, double start_lengths, double min_lateral_m);
 
 }  // namespace nearshore::ships

@@ -33,11 +33,15 @@
 // out (mirror with the discharge kept: zero gradient); the bow-wave grid adds absorbing layers.
 //
 // Cost (docs/ships.md, `nearshore bench ships`): one stage is a single sweep over the rows. Each
-// row is reconstructed in x and in y into row buffers, its x fluxes and the y fluxes across its
-// southern faces are computed from them, and the rates are accumulated, so the whole stage keeps a
-// few rows in cache instead of writing twelve full reconstruction arrays. The loops are branch-free
-// (minmod as max/min, the positivity correction and the desingularisation as selects) so that
-// the compiler vectorises them; they are built for AVX-512, AVX2 and the baseline, chosen at load time.
+// row is reconstructed in x and in y into row buffers (w' = w + zeta made one row ahead into a
+// ring), its x fluxes and the y fluxes across its southern faces are computed from them, the
+// rates are accumulated in two row buffers, and a row takes its Euler stage as soon as its rates
+// are complete. A stage so reads the state and the bottom once and writes the new state once,
+// with no full-grid rate or w' arrays. The loops are branch-free (minmod as max/min, the
+// positivity correction and the desingularisation as selects) so that the compiler vectorises
+// them; they are built for AVX-512, AVX2 and the baseline, chosen at load time. Subnormal numbers
+// are flushed to zero while a step runs (the caller's mode is restored): a wave's far field decays
+// into them, and each costs a microcode assist; only values below 1.2e-38 (float) change.
 //
 // Precision. The scheme is written once for a scalar type. `ShallowWaterGrid` (double) is the
 // reference: its well-balanced states hold to 1e-15. `BowWaveGrid` (float) is what bow waves
@@ -122,12 +126,25 @@ class BasicShallowWaterGrid {
     return static_cast<std::size_t>(j + kGhost) * (stride_ + 1) + static_cast<std::size_t>(i + kGhost);
   }
   void fill_ghosts(std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv) const;
-  /// dU/dt of the state (w, hu, hv) into rate_*; returns the largest local speed (m/s).
-  double rates(const std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv);
-  /// One forward-Euler stage over the interior, out = from + dt rate (average: out = (out + from +
-  /// dt rate) / 2, Heun's second stage), then the round-off clamp of negative depths.
-  void stage_update(const std::vector<Real>& from_w, const std::vector<Real>& from_hu, const std::vector<Real>& from_hv,
-                    double dt_s, bool average, std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv);
+  /// Where a forward-Euler stage writes: out = from + dt rate, or with `average` (Heun's second
+  /// stage) out = (out + from + dt rate) / 2, then the round-off clamp of negative depths.
+  struct EulerStage {
+    double dt_s;
+    bool average;
+    std::vector<Real>*w, *hu, *hv;
+  };
+  /// One sweep over the rows of the state (w, hu, hv), ghosts filled: dU/dt row by row, and each
+  /// row's Euler stage as soon as its rates are complete (euler), or (euler null) the rates into
+  /// rate_. Returns the largest local speed (m/s) when euler is null (0 otherwise: nothing needs it).
+  double sweep(const std::vector<Real>& w, const std::vector<Real>& hu, const std::vector<Real>& hv,
+               const EulerStage* euler);
+  /// The Euler stage of row j from its rates; returns the row's most negative depth before the
+  /// clamp (0 when none).
+  Real euler_row(const EulerStage& stage, int j, const std::vector<Real>& from_w, const std::vector<Real>& from_hu,
+                 const std::vector<Real>& from_hv, const Real* rate_w, const Real* rate_hu, const Real* rate_hv);
+  /// Ghosts of `from`, then one fused sweep: out = stage(from).
+  void stage(std::vector<Real>& from_w, std::vector<Real>& from_hu, std::vector<Real>& from_hv, double dt_s,
+             bool average, std::vector<Real>& w, std::vector<Real>& hu, std::vector<Real>& hv);
 
   static constexpr int kGhost = 2;
   int columns_, rows_;
@@ -139,16 +156,20 @@ class BasicShallowWaterGrid {
   std::vector<double> bottom_corner_, head_corner_;  // (stride + 1) x (rows + 2 ghosts + 1)
   std::vector<Real> b_east_, b_north_;  // B' = B + zeta at the east / north interface of each padded cell
   std::vector<Real> b_cell_, head_cell_;  // cell means of B and zeta
-  std::vector<Real> wp_;                  // w' = w + zeta (scratch)
   std::vector<unsigned char> entered_;    // cells that entered in the last shift
-  std::vector<Real> w1_, hu1_, hv1_, rate_w_, rate_hu_, rate_hv_;  // the first stage and the rates
-  // Row buffers of one stage (shallow_water.cpp rates()): the x reconstruction of the row, the y
-  // reconstructions of this row and the previous one, fluxes and local speeds.
+  std::vector<Real> w1_, hu1_, hv1_;       // the first stage
+  std::vector<Real> rate_[3];              // dU/dt of w, hu, hv (advance()'s first stage only)
+  // Row buffers of one sweep (shallow_water.cpp sweep()): w' = w + zeta of the last kWpRows rows,
+  // the rates of two rows, the x reconstruction of the row, the y reconstructions of this row and
+  // the previous one, fluxes, local speeds and depths. A stage keeps a few rows in cache instead
+  // of writing full-grid arrays: at 256 x 256 the grid's arrays no longer fit the core's L2.
+  static constexpr int kWpRows = 4;
+  std::vector<Real> wp_rows_, rate_rows_[3];
   struct RowFaces {
     std::vector<Real> w_high, w_low, normal_high, normal_low, tangential_high, tangential_low, source;
   };
   RowFaces x_faces_, y_faces_[2];
-  std::vector<Real> flux_mass_, flux_normal_, flux_tangential_, speed_;
+  std::vector<Real> flux_mass_, flux_normal_, flux_tangential_, speed_, depth_;
   double most_negative_depth_m_ = 0.0;
 };
 

@@ -22,10 +22,14 @@
 //      v_0 = 3 m/s: the barrier stops a closing speed of 7 m/s before contact), plus a damping of
 //      the closing speed, at the closest points, with their torques.
 //   3. each body steps on the sampled surface plus the OTHER ships' bow waves, over the seabed.
-//   4. each bow wave moves and steps with its hull; each wake ages and drops decals.
+//   4. each bow wave moves and steps with its hull; each wake ages and drops decals. A ship with a
+//      dispersive wake (dispersive_wake.hpp) has two bow-wave layers and shows one, chosen by its
+//      depth Froude number Fr_d = U / sqrt(g d) (WakeLayerChoice below), so that the hull's
+//      displacement is counted once: the shown weights of the two layers sum to 1.
 //   5. grounding: a ship with hull points below the seabed is aground; its engine is stopped (its
 //      orders dropped: the ship stops by the bed's friction), and an event says where, how deep and
 //      at what heel; refloating is said too.
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,6 +39,7 @@
 
 #include "nearshore/runtime/surface_sampler.hpp"
 #include "nearshore/ships/bow_wave.hpp"
+#include "nearshore/ships/dispersive_wake.hpp"
 #include "nearshore/ships/hull_mesh.hpp"
 #include "nearshore/ships/seabed.hpp"
 #include "nearshore/ships/ship_body.hpp"
@@ -50,6 +55,23 @@ struct ShipOrders {
   double waypoint_radius_lengths = 1.5;    ///< a waypoint is reached within this many ship lengths
 };
 
+/// Which bow-wave layer a ship with a dispersive wake shows. Its own transverse wave (wavelength
+/// 2 pi U^2 / g) has k d = 1 / Fr_d^2: below dispersive_below_froude (k d > 2, tanh(k d) > 0.96:
+/// deep to intermediate water) the waves are dispersive and small, which the linear layer with its
+/// exact dispersion carries and the shallow-water grid cannot (it has no subcritical waves at all);
+/// above shallow_above_froude the ship nears the critical speed, where linear theory's amplitude
+/// grows without bound and the nonlinear shallow-water grid (with its beach and wetting) is the
+/// better model. The band between is hysteresis, so a ship at a Froude number near a threshold does
+/// not flicker between layers. A switch fades over fade_s: weight w on the dispersive layer, 1 - w
+/// on the shallow-water grid; a layer whose weight reaches 0 stops and restarts from rest when
+/// it is chosen again. The depth d is the seabed's under the hull's centre (without a seabed:
+/// the dispersive layer's max_depth_m).
+struct WakeLayerChoice {
+  double dispersive_below_froude = 0.7;
+  double shallow_above_froude = 0.8;
+  double fade_s = 2.0;
+};
+
 struct ShipDefinition {
   std::string name;
   HullMesh hull;
@@ -61,6 +83,11 @@ struct ShipDefinition {
   ShipOrders orders;
   bool bow_wave = true;
   BowWaveOptions bow_wave_options;
+  /// A dispersive linear wave layer besides the shallow-water grid (Kelvin's pattern; needs
+  /// bow_wave). Off by default: the C API's nearshore_fleet_bow_wave hands out one field per ship.
+  bool dispersive_wake = false;
+  DispersiveWakeOptions dispersive_wake_options;
+  WakeLayerChoice wake_layer;
   SternWakeOptions wake_options;
 };
 
@@ -78,6 +105,12 @@ class Ship {
   const ShipBody& body() const { return body_; }
   ShipBody& body() { return body_; }
   const BowWave* bow_wave() const { return bow_wave_.get(); }
+  /// The dispersive layer (null unless ShipDefinition::dispersive_wake).
+  const DispersiveWake* dispersive_wake() const { return dispersive_wake_.get(); }
+  /// The depth Froude number of the last step (speed over ground / sqrt(g d)) and the weight of
+  /// the dispersive layer in what is shown (0: the shallow-water grid alone; WakeLayerChoice).
+  double depth_froude_number() const { return depth_froude_; }
+  double dispersive_weight() const { return std::max(dispersive_weight_, 0.0); }
   const SternWake& wake() const { return wake_; }
   const ShipStatus& status() const { return status_; }
   const ShipOrders& orders() const { return orders_; }
@@ -93,6 +126,10 @@ class Ship {
   ShipBody body_;
   ShipOrders orders_;
   std::unique_ptr<BowWave> bow_wave_;
+  std::unique_ptr<DispersiveWake> dispersive_wake_;
+  WakeLayerChoice wake_layer_;
+  double depth_froude_ = 0.0, dispersive_weight_ = -1.0;  // < 0: no step yet
+  bool dispersive_chosen_ = false;
   SternWake wake_;
   ShipStatus status_;
   ShipControls manual_, controls_;
@@ -135,6 +172,7 @@ class ShipFleet {
   /// The shown surface at (x, y) with every ship's bow wave: what a host's other buoyant objects
   /// and the renderer use.
   double shown_elevation_m(const runtime::SurfaceSampler& water, double x_m, double y_m) const;
+  /// Every shown bow-wave layer's field (a ship with a dispersive wake gives one or two, by weight).
   std::vector<BowWaveField> bow_wave_fields() const;
 
   /// Messages since the last call ("ship 'Tug 1' ran aground at (812.4, 1033.0) m ..."), oldest first.
@@ -142,6 +180,7 @@ class ShipFleet {
 
  private:
   void apply_orders(Ship& ship);
+  void update_bow_waves(Ship& ship, double dt_s);
   void repel();
 
   FleetOptions options_;
