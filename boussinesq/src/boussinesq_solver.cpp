@@ -1,6 +1,6 @@
 // BoussinesqSolver: the time step (ADI: an x sweep on transposed data and a y sweep, in alternating
 // order if asked), the moving shoreline's positivity repair, the grid-scale flux filter, sponges,
-// Kennedy et al. (2000) breaking. The state I/O is boussinesq_state.cpp, initial conditions
+// Kennedy et al. (2000) breaking (the surface roller option: surface_roller.cpp). The state I/O is boussinesq_state.cpp, initial conditions
 // initial_conditions.cpp.
 // docs/solver.md describes the scheme; boussinesq_sweep.cpp holds the discretised equations.
 #include "nearshore/boussinesq/boussinesq_solver.hpp"
@@ -334,6 +334,42 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
 
   s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
   s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
+  if (parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kRoller) {
+    // The half time of the roller's front angle (Madsen et al. 1997: t_1/2 = T/5) from the wave
+    // maker's period: the peak component's, or the mean zero-up-crossing period of a time series.
+    const BreakingParameters& b = parameters.breaking;
+    double period_s = peak_w > 0.0 ? 2.0 * std::numbers::pi / peak_w : 0.0;
+    if (period_s == 0.0 && wave_maker.kind == WaveMaker::Kind::kTimeSeries) {
+      const std::vector<double>& t = wave_maker.series_time_s;
+      const std::vector<double>& e = wave_maker.series_elevation_m;
+      double mean = 0.0;
+      for (double v : e) mean += v / static_cast<double>(e.size());
+      double first = -1.0, last = -1.0;
+      int crossings = 0;
+      for (std::size_t i = 1; i < e.size() && i < t.size(); ++i)
+        if (e[i - 1] < mean && e[i] >= mean) {
+          const double at = t[i - 1] + (t[i] - t[i - 1]) * (mean - e[i - 1]) / (e[i] - e[i - 1]);
+          if (first < 0.0) first = at;
+          last = at;
+          ++crossings;
+        }
+      if (crossings > 1) period_s = (last - first) / (crossings - 1);
+    }
+    const double half_time_s = b.roller_half_time_s > 0.0 ? b.roller_half_time_s : b.roller_half_time_periods * period_s;
+    if (!(half_time_s > 0.0))
+      throw Error(subject, "the surface roller (BreakingParameters::model = kRoller) needs the half time of its front angle, and the wave maker has no period to take it from",
+                  "set BreakingParameters::roller_half_time_s (Madsen et al. 1997: a fifth of the wave period)");
+    if (!(b.roller_final_angle_deg > 0.0) || b.roller_final_angle_deg > b.roller_onset_angle_deg || !(b.roller_onset_angle_deg < 90.0))
+      throw Error(subject, "the roller's angles are phi_B = " + std::to_string(b.roller_onset_angle_deg) + " and phi_0 = " +
+                               std::to_string(b.roller_final_angle_deg) + " degrees",
+                  "give 0 < roller_final_angle_deg <= roller_onset_angle_deg < 90 (Madsen et al. 1997: 10 and 20)");
+    const double degree = std::numbers::pi / 180.0;
+    detail::RollerConstants constants{std::tan(b.roller_onset_angle_deg * degree), std::tan(b.roller_final_angle_deg * degree),
+                                      half_time_s, b.roller_onset_angle_deg * degree, b.roller_final_angle_deg * degree,
+                                      b.roller_celerity_factor, b.roller_shape_factor, parameters.dry_depth_m};
+    s.roller = std::make_unique<detail::SurfaceRoller>(
+        detail::RollerGrid{s.nx, s.ny, s.dx, s.dy, s.frame_y.depth_m.data(), s.frame_y.porosity.data()}, constants);
+  }
   s.publish();
 }
 
@@ -377,6 +413,13 @@ void BoussinesqSolver::Implementation::step() {
   // and its rate exactly. Layouts: the x sweep works on transposed arrays (suffix _t), the y sweep
   // on the natural row-major ones (boussinesq_sweep.hpp).
   const bool x_first = !parameters.alternate_sweep_order || step_count % 2 == 0;
+  // The surface roller of the state at t^n (breaking model kRoller): its force acts on this step.
+  // eta^{n-1} in the natural layout goes to eta_next (free until the sweeps write it).
+  if (roller) {
+    detail::transpose(eta_previous_t.data(), eta_next.data(), ny, nx);
+    roller_active = roller->update(time_s, eta.data(), eta_next.data(), flux_x.data(), flux_y.data(), breaking_start_s.data(),
+                                   breaking_output.values().data());
+  }
   detail::transpose(eta.data(), eta_t.data(), nx, ny);
   if (eddy_viscosity_active) detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
@@ -481,6 +524,9 @@ void BoussinesqSolver::Implementation::step() {
       sweep_x(false, pass);
     }
   }
+
+  // The roller's momentum flux, explicit (docs/solver.md, "Breaking: the surface roller").
+  if (roller_active) add_roller_force();
 
   // 3. Moving shoreline: no cell may end with negative depth (mass-conserving flux limiting).
   repair_negative_depths();
@@ -614,9 +660,21 @@ void BoussinesqSolver::Implementation::apply_sponges() {
   damp(sponge_faces_y, [&](const SpongePoint& point) { flux_y[point.index] *= point.factor; });
 }
 
+void BoussinesqSolver::Implementation::add_roller_force() {
+  // P^{n+1} += dt F(t^n): the roller's force from the state at t^n, added to the fluxes the sweeps
+  // solved (a split step, first order in time like the closure's own time scale T/5 >> dt). The
+  // mass equation sees it from the next step on; volume stays conserved (interior faces only).
+  const std::vector<double>& force_x = roller->force_x();
+  const std::vector<double>& force_y = roller->force_y();
+  for_each_index(flux_x_new.size(), [&](std::size_t f) { flux_x_new[f] += dt * force_x[f]; });
+  for_each_index(flux_y_new.size(), [&](std::size_t f) { flux_y_new[f] += dt * force_y[f]; });
+}
+
 void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>& eta_old) {
   const BreakingParameters& b = parameters.breaking;
-  if (!b.enabled) {  // nu never changes: eddy_t, transposed this step, stays right
+  // nu never changes without breaking or with the roller (updated at the start of step()): eddy_t,
+  // transposed this step, stays right.
+  if (!b.enabled || roller) {
     eddy_viscosity_active = false;
     return;
   }
@@ -827,6 +885,7 @@ std::size_t BoussinesqSolver::memory_bytes() const {
   }
   add(s.eta_output.values());
   add(s.breaking_output.values());
+  if (s.roller) bytes += s.roller->memory_bytes();
   for (const SweepScratch& scratch : s.scratch)
     for (const auto* v : {&scratch.upper, &scratch.right, &scratch.increment, &scratch.eta_half, &scratch.flux_half,
                           &scratch.cell_term, &scratch.fixed_term, &scratch.tangential_squared, &scratch.active,

@@ -13,6 +13,7 @@
 #include "nearshore/boussinesq/boussinesq_solver.hpp"
 #include "nearshore/core/hash.hpp"
 #include "shapiro_filter.hpp"
+#include "surface_roller.hpp"
 
 namespace nearshore::boussinesq {
 
@@ -48,6 +49,11 @@ struct BoussinesqSolver::Implementation {
   // Whether eddy_viscosity may hold a non-zero value; when not, eddy_t is all zeros and the
   // transpose is skipped (most of a bake's steps break nowhere, laboratory flumes never).
   bool eddy_viscosity_active = true;
+  // BreakingParameters::Model::kRoller: the surface roller (surface_roller.hpp); its start times
+  // are breaking_start_s, its indicator breaking_output. roller_active: a roller exists at t^n,
+  // so its force acts in this step.
+  std::unique_ptr<detail::SurfaceRoller> roller;
+  bool roller_active = false;
   // Work arrays (suffix _t: x sweep layout). Shared between the sweeps where their lives do not
   // overlap: eta_base is E of whichever sweep runs (in its layout), tangential_half/_rate the other
   // flux at t^{n+1/2} in the running sweep's layout; eta_next doubles as scratch for eta^{n-1}
@@ -99,6 +105,7 @@ struct BoussinesqSolver::Implementation {
   void filter_grid_scale_fluxes();
   void apply_sponges();
   void update_breaking(const std::vector<double>& eta_old);
+  void add_roller_force();
   void publish();
 };
 

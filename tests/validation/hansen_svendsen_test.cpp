@@ -180,6 +180,9 @@ TEST(VALIDATION_SUITE(HansenSvendsen1979), WaveHeightAndSetUpOnTheSlope) {
   // the measured height in the surf zone; the numbers and the causes examined are in the docs. Until
   // that is fixed the test holds the solver where it is (regression bars, the measured score plus a
   // margin for the grid and the machine), and prints the score against the experiment's bar.
+  // The surface roller option ([solver.breaking] model = "roller", Madsen et al. 1997) scores 20.5 %
+  // and 10.9 % on this grid but is not yet stable for 061071 at full resolution (docs/validation.md),
+  // so the case keeps the default closure and these bars stay.
   for (const HansenSvendsenScore& score : {plunging, spilling}) {
     std::printf("Hansen-Svendsen: H RMSE %.1f %% of H0 (experiment's bar 10 %%: %s), set-up RMSE %.2f mm (bar 1 mm: %s)\n",
                 100 * score.height_rmse_m / score.offshore_height_m,

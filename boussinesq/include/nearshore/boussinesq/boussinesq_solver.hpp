@@ -11,6 +11,7 @@
 //   y-mom.    likewise for Q                                                             seed 003 eq. (3)
 //   Psi_x     Madsen & Sorensen (1992) dispersion with B = 1/15 and the bed-slope terms  seed 003 eq. (4)
 //   F_x, F_y  eddy-viscosity stress from wave breaking (Kennedy et al. 2000)             seed 003 eq. (6)-(7)
+//             or, as an option, the surface roller's momentum flux (Madsen et al. 1997)  BreakingParameters
 // with total depth h = d + eta. docs/solver.md gives the equations as implemented and every rule
 // (dispersion taper, breaking, wet/dry, sponges, source function) in full.
 //
@@ -41,17 +42,38 @@ struct SpongeLayer {
   double width_m = 0.0;
 };
 
-/// Kennedy et al. (2000) breaking: a cell starts breaking when d(eta)/dt exceeds
+/// The closure of wave breaking (docs/solver.md, "Breaking"). `model` chooses it:
+///
+/// kEddyViscosity, Kennedy et al. (2000): a cell starts breaking when d(eta)/dt exceeds
 /// onset_celerity_fraction * sqrt(g h); the threshold relaxes linearly to stop_celerity_fraction *
 /// sqrt(g h) over transition_time_factor * sqrt(h/g) seconds; the eddy viscosity is
 /// nu = delta^2 h * B(eta_t) * eta_t with mixing length delta = mixing_length_coefficient (so
 /// delta^2 = 1.2^2 * ... as in Kennedy's delta = 1.2).
+///
+/// kRoller, the surface roller of Schaffer, Madsen & Deigaard (1993) as used with the Madsen-Sorensen
+/// equations by Madsen, Sorensen & Schaffer (1997, Part I): where the front of a wave is steeper than
+/// tan(phi), the water above the line of slope tan(phi) tangent to the front at its toe, times the
+/// shape factor, is a roller of thickness delta carried at the celerity c = roller_celerity_factor *
+/// sqrt(g h); it adds the momentum flux delta (c - P/h)^2 / (1 - delta/h) to the momentum
+/// equations. phi = roller_onset_angle_deg when a roller forms and decays to roller_final_angle_deg
+/// with the half time roller_half_time_periods * T (T the wave maker's peak period).
 struct BreakingParameters {
+  enum class Model { kEddyViscosity, kRoller };
   bool enabled = true;
+  Model model = Model::kEddyViscosity;
   double onset_celerity_fraction = 0.65;   ///< eta_t^(I) = 0.65 sqrt(g h)
   double stop_celerity_fraction = 0.15;    ///< eta_t^(F) = 0.15 sqrt(g h)
   double transition_time_factor = 5.0;     ///< T* = 5 sqrt(h/g)
   double mixing_length_coefficient = 1.2;  ///< delta
+  // The roller (Madsen, Sorensen & Schaffer 1997, Part I, their published values).
+  double roller_onset_angle_deg = 20.0;    ///< phi_B: the front slope tan(phi_B) at which a roller forms, degrees
+  double roller_final_angle_deg = 10.0;    ///< phi_0: the slope it decays to, degrees
+  double roller_half_time_periods = 0.2;   ///< t_1/2 of the decay of phi, in wave periods (T / 5)
+  /// t_1/2 in seconds; 0 = roller_half_time_periods times the wave maker's peak period (a run with no
+  /// periodic wave maker, such as a solitary wave, must give it).
+  double roller_half_time_s = 0.0;
+  double roller_celerity_factor = 1.3;     ///< c = 1.3 sqrt(g h)
+  double roller_shape_factor = 1.5;        ///< f_delta: roller thickness over the height above the tangent line
 };
 
 /// Porous resistance of seed 003 eq. (2)-(3) in cells with porosity 0 < n < 1 (rubble mounds),
