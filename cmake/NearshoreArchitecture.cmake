@@ -9,7 +9,7 @@
 #   ships -> runtime, ocean (CPU only: hulls, rigid bodies, bow-wave grids on the runtime's queries);
 #   ships_mesh (hull files, assimp) -> ships; ships_scenario (TOML) -> ships, ships_mesh;
 #   ships_layers (a fleet as the renderer's SurfaceLayers) -> ships, playback.
-#   export (sequence -> NetCDF, GeoTIFF, EXR, VDB files) -> sequence only.
+#   export (sequence -> NetCDF, GeoTIFF, EXR, VDB files) -> sequence, plot (the GeoTIFF's Hs map).
 #   library (the sea-state library) -> bake, loops, sequence; library_mpi -> library (built only
 #   where MPI is found: a rule whose library name ends in "?" applies when that target exists).
 set(NEARSHORE_ALLOWED_ARROWS
@@ -30,7 +30,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
   "nearshore_library:nearshore_bake,nearshore_loops,nearshore_sequence,nearshore_core"
   "nearshore_library_mpi?:nearshore_library,nearshore_core"
-  "nearshore_export:nearshore_sequence,nearshore_core")
+  "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core")
 
 function(nearshore_check_architecture)
   foreach(rule IN LISTS NEARSHORE_ALLOWED_ARROWS)

@@ -56,7 +56,7 @@ void add_export_command(CLI::App& app) {
   command
       ->add_option("--to", options->format,
                    "netcdf: CF-1.8 NetCDF of every frame (QGIS, xarray, Panoply); geotiff: Hs, mean level and "
-                   "breaking fraction map; exr-displacement: per-frame RGB displacement EXRs (Blender, Houdini, "
+                   "breaking fraction GeoTIFF and an Hs map PNG; exr-displacement: per-frame RGB displacement EXRs (Blender, Houdini, "
                    "Nuke); vdb: per-frame height-field VDBs")
       ->required()
       ->check(CLI::IsMember({"netcdf", "geotiff", "exr-displacement", "vdb"}));

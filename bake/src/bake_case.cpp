@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/core.h>
 
@@ -272,6 +273,27 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
         {"split_frequency_hz", bake_case.deep_water_maker ? split.max_frequency_hz
                                                           : 0.5 * (split.max_frequency_hz + split.left_min_frequency_hz)}};
   }
+  if (bake_case.deep_water)
+    if (const auto* sum = dynamic_cast<const SpectrumSum*>(bake_case.deep_water->spectrum.get())) {
+      // The local seas of [[deep_water.local_sea]] (case_sea_state.cpp): the FFT layer's alone. Inside
+      // the harbour the runtime draws the layer above the split frequency only, so a local sea's
+      // variance below it is reported as not drawn there.
+      const double depth_m = bake_case.deep_water->still_water_depth_m;
+      const double split_hz = bake_case.wave_conditions.contains("spectrum_split")
+                                  ? bake_case.wave_conditions["spectrum_split"]["split_frequency_hz"].get<double>()
+                                  : 0.0;
+      const double split_wavenumber_rad_m =
+          split_hz > 0.0 ? wavenumber_from_frequency(2.0 * std::numbers::pi * split_hz, depth_m) : 0.0;
+      json seas = json::array();
+      for (std::size_t i = 1; i < sum->parts().size(); ++i) {
+        const WavenumberSpectrum& part = *sum->parts()[i];
+        const double below_split_m2 = split_wavenumber_rad_m > 0.0 ? part.moment_between(0.0, split_wavenumber_rad_m) : 0.0;
+        seas.push_back({{"spectrum", part.to_json()},
+                        {"significant_wave_height_m", part.significant_wave_height_m()},
+                        {"below_split_significant_wave_height_m", 4.0 * std::sqrt(below_split_m2)}});
+      }
+      bake_case.wave_conditions["local_seas"] = seas;
+    }
   bake_case.solver_record = solver_record(bake_case.solver);
   return bake_case;
 }
@@ -297,6 +319,17 @@ std::string describe_carried_band(const BakeCase& bake_case) {
                             ? ""
                             : "; the case has no [deep_water], so nothing draws them: add one (docs/commands/bake.md)");
   }
+  if (bake_case.wave_conditions.contains("local_seas"))
+    for (const json& sea : bake_case.wave_conditions["local_seas"]) {
+      if (!text.empty()) text += "\n";
+      const json& spectrum = sea["spectrum"];
+      text += fmt::format("local sea: Hs {:.2f} m ({}{}) in the deep-water layer only, none of it baked (it is not made at the "
+                          "source line); Hs {:.3f} m of it lies below the split frequency, which the runtime does not draw "
+                          "inside the harbour",
+                          sea["significant_wave_height_m"].get<double>(), spectrum.value("name", std::string("spectrum")),
+                          spectrum.contains("peak_period_s") ? fmt::format(", Tp {:.2f} s", spectrum["peak_period_s"].get<double>()) : std::string(),
+                          sea["below_split_significant_wave_height_m"].get<double>());
+    }
   return text;
 }
 

@@ -21,6 +21,19 @@
 // the wave statistics; the single 300 B figure estimated 5.46e9 B (27 % over), this one 4.70e9 B
 // (+10 %). BakeEstimate.CoversTheMeasuredPeakOfARealBake checks the narrow flume against the
 // estimate's growth per added cell (per-line buffers included).
+//
+// The FFT deep-water layer ([deep_water], issue 5) is not per cell of the harbour grid: its cost is
+// kDeepWaterBytesPerLatticeCell = 152 B per lattice cell (grid_size^2 x cascade_count), counted from
+// DeepWaterField's arrays (ocean/src/deep_water.cpp: Cascade and prepare_synthesis; the header
+// lists them). The bake builds the field (at the case's load and again to write the coefficient
+// files) before it allocates the solver and frees it after, so the true peak is the larger of the
+// two phases plus what the freed field leaves in the heap; adding the field whole is an upper
+// bound by at most its size. Measured 2026-11-24 (Release, /usr/bin/time -v peak RSS, the coarse
+// Tacoma case, 571 x 495 cells of 12 m, 6 s of sea, no checkpoints, 3 cascades; load 7.4-8.9):
+// without [deep_water] 139.5 MB; with it at N = 128, 256, 512: 141.6, 148.9, 185.7 MB, i.e.
+// +2.1, +9.4, +46.2 MB against fields of 7.5, 29.9, 119.5 MB (152 B x N^2 x 3). At N = 512 the
+// field's phase is the peak (185.7 MB = the 66 MB before the solver + 119.5 MB); below it the
+// solver's phase is, and the freed field leaves about 45 B per lattice cell resident.
 #include "nearshore/bake/bake_estimate.hpp"
 
 #include <sys/statvfs.h>
@@ -67,9 +80,11 @@ std::string format_bytes(double bytes) {
 }
 
 std::string BakeResourceEstimate::describe() const {
-  std::string text = fmt::format("{} of memory ({} cells x {:.0f} B + {} + {}), {} of disk ({:.0f} frames of {}",
+  const std::string deep_water =
+      deep_water_bytes > 0 ? fmt::format(" + {} deep water", format_bytes(deep_water_bytes)) : std::string();
+  std::string text = fmt::format("{} of memory ({} cells x {:.0f} B + {} + {}{}), {} of disk ({:.0f} frames of {}",
                                  format_bytes(memory_bytes), cells, kBakeBytesPerCell, format_bytes(line_bytes),
-                                 format_bytes(kBakeFixedBytes),
+                                 format_bytes(kBakeFixedBytes), deep_water,
                                  format_bytes(disk_bytes), frames, format_bytes(frame_bytes));
   if (checkpoint_bytes > 0) text += fmt::format(", checkpoints of {}", format_bytes(checkpoint_bytes));
   return text + ")";
@@ -112,8 +127,15 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
   // Buffers per cell of the longest side, one set per worker thread (the solver's sweep and filter).
   const double threads = std::max(1, tbb::info::default_concurrency());
   estimate.line_bytes = std::max(geometry.columns, geometry.rows) * kBakeBytesPerLinePerThread * threads;
+  // The deep-water field's arrays (kDeepWaterBytesPerLatticeCell above: an upper bound).
+  if (bake_case.deep_water) {
+    const double n = bake_case.deep_water->grid_size;
+    estimate.deep_water_bytes =
+        n * n * static_cast<double>(bake_case.deep_water->tile_lengths_m.size()) * kDeepWaterBytesPerLatticeCell;
+  }
   estimate.memory_bytes = kBakeFixedBytes + cells * (kBakeBytesPerCell + statistics_bytes_per_cell) + estimate.line_bytes +
-                          gauge_values * kGaugeValueMemoryBytes + (resume ? kStateArrays * cells * 8 : 0.0);
+                          estimate.deep_water_bytes + gauge_values * kGaugeValueMemoryBytes +
+                          (resume ? kStateArrays * cells * 8 : 0.0);
   const double harbour_grid_bytes = cells * 16 + kFrameHeaderBytes;  // depth.exr: 4 float channels, ZIP at most that
   const double gauges_csv_bytes = gauge_values * kGaugeValueTextBytes;
   // While under way, the checkpoint and gauges.csv are rewritten beside their last copies.
@@ -154,7 +176,8 @@ void check_bake_resources(const BakeCase& bake_case, const BakeResourceEstimate&
     problems.push_back(fmt::format("needs about {} of memory ({} cells x {:.0f} B per cell + {}) but this machine has {} "
                                    "available (MemAvailable, /proc/meminfo)",
                                    format_bytes(estimate.memory_bytes), estimate.cells, kBakeBytesPerCell,
-                                   format_bytes(kBakeFixedBytes + estimate.line_bytes), format_bytes(*memory)));
+                                   format_bytes(kBakeFixedBytes + estimate.line_bytes + estimate.deep_water_bytes),
+                                   format_bytes(*memory)));
   if (const auto disk = free_disk_bytes(output_folder); disk && estimate.disk_bytes > *disk + replaced_bytes) {
     std::string parts = fmt::format("{:.4g} frames of {}", estimate.frames, format_bytes(estimate.frame_bytes));
     if (estimate.checkpoint_bytes > 0) parts += fmt::format(", checkpoints of {}", format_bytes(estimate.checkpoint_bytes));

@@ -173,6 +173,27 @@ DeepWaterSpecification read_deep_water(TableReader& deep, const WaveMaker& maker
                                                           {direction_away_from(maker.facing), specification.still_water_depth_m})
                                : std::make_shared<DirectionalWavenumberSpectrum>(
                                      request.spectrum, request.spreading, specification.still_water_depth_m);
+  // [[deep_water.local_sea]]: seas the harbour's own wind raises over its fetch (issue 14: Tacoma's
+  // Hs 0.6 m, Tp 3.5 s wind sea under the swell). They do not come in through the source line, so the
+  // bake carries none of them and nothing is counted twice: they are the FFT layer's alone, added to
+  // its spectrum (independent seas: variances add). Inside the harbour the runtime draws the layer
+  // above the split frequency only (docs/runtime.md "The split"); a local sea's variance below it is
+  // not drawn there, which the bake reports (describe_carried_band).
+  std::vector<TableReader> local_seas = deep.tables("local_sea");
+  if (!local_seas.empty()) {
+    if (drive.drives_wave_maker)
+      deep.fail(deep.full("local_sea"),
+                "is given, but the field drives the wave maker, which would then make the local sea at the source "
+                "line as well",
+                "use an irregular wave maker for the swell (wave_maker.kind = \"irregular\") without "
+                "deep_water.drive_wave_maker, and keep the local sea here");
+    std::vector<std::shared_ptr<const WavenumberSpectrum>> parts{specification.spectrum};
+    for (TableReader& sea : local_seas) {
+      parts.push_back(read_wavenumber_spectrum(sea, "spectrum", {direction_away_from(maker.facing), specification.still_water_depth_m}));
+      sea.finish();
+    }
+    specification.spectrum = std::make_shared<SpectrumSum>(std::move(parts));
+  }
   try {
     if (!explicit_tiles)
       specification.tile_lengths_m = cascade_tile_lengths_for_m(

@@ -18,6 +18,9 @@ namespace {
 const char* face_depth_name(SolverParameters::FaceDepth face_depth) {
   return face_depth == SolverParameters::FaceDepth::kMeanWhereWet ? "mean_where_wet" : "larger_of_mean_and_above_bed";
 }
+const char* breaking_model_name(BreakingParameters::Model model) {
+  return model == BreakingParameters::Model::kRoller ? "roller" : "eddy_viscosity";
+}
 }  // namespace
 
 SolverParameters read_solver(TableReader& solver) {
@@ -44,10 +47,22 @@ SolverParameters read_solver(TableReader& solver) {
   p.blowup_elevation_depth_ratio = solver.positive("blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio, "|eta| / depth ratio that stops the run");
   TableReader breaking = solver.table("breaking");
   p.breaking.enabled = breaking.boolean("enabled", p.breaking.enabled);
+  // The closure (docs/solver.md "Breaking"): Kennedy et al. (2000) or the surface roller of
+  // Schaffer et al. (1993) / Madsen et al. (1997), with their published constants as defaults.
+  p.breaking.model = breaking.choice("model", breaking_model_name(p.breaking.model), {"eddy_viscosity", "roller"}) == 1
+                         ? BreakingParameters::Model::kRoller : BreakingParameters::Model::kEddyViscosity;
   p.breaking.onset_celerity_fraction = breaking.positive("onset_celerity_fraction", p.breaking.onset_celerity_fraction, "fraction of sqrt(g h)");
   p.breaking.stop_celerity_fraction = breaking.positive("stop_celerity_fraction", p.breaking.stop_celerity_fraction, "fraction of sqrt(g h)");
   p.breaking.transition_time_factor = breaking.positive("transition_time_factor", p.breaking.transition_time_factor, "T* in units of sqrt(h/g)");
   p.breaking.mixing_length_coefficient = breaking.positive("mixing_length_coefficient", p.breaking.mixing_length_coefficient, "delta");
+  p.breaking.roller_onset_angle_deg = breaking.number("roller_onset_angle_deg", p.breaking.roller_onset_angle_deg, 0.0, 90.0, false, "phi_B in degrees");
+  p.breaking.roller_final_angle_deg = breaking.number("roller_final_angle_deg", p.breaking.roller_final_angle_deg, 0.0, 90.0, false, "phi_0 in degrees");
+  p.breaking.roller_half_time_periods = breaking.positive("roller_half_time_periods", p.breaking.roller_half_time_periods, "t_1/2 in wave periods");
+  p.breaking.roller_half_time_s = breaking.non_negative("roller_half_time_s", p.breaking.roller_half_time_s, "t_1/2 in seconds (0 = from the wave maker's period)");
+  p.breaking.roller_celerity_factor = breaking.positive("roller_celerity_factor", p.breaking.roller_celerity_factor, "c / sqrt(g h)");
+  p.breaking.roller_shape_factor = breaking.positive("roller_shape_factor", p.breaking.roller_shape_factor, "f_delta");
+  if (p.breaking.roller_final_angle_deg > p.breaking.roller_onset_angle_deg)
+    breaking.fail(breaking.full("roller_final_angle_deg"), "is larger than roller_onset_angle_deg", "make the final angle at most the onset angle (10 and 20 degrees in Madsen et al. 1997)");
   if (p.breaking.stop_celerity_fraction > p.breaking.onset_celerity_fraction)
     breaking.fail(breaking.full("stop_celerity_fraction"), "is larger than onset_celerity_fraction", "make the stop threshold smaller than the onset threshold");
   breaking.finish();
@@ -62,7 +77,7 @@ SolverParameters read_solver(TableReader& solver) {
 json solver_record(const SolverParameters& p) {
   json sponges = json::array();
   for (const SpongeLayer& sponge : p.sponges) sponges.push_back({{"side", side_name(sponge.side)}, {"width_m", sponge.width_m}});
-  return {{"time_step_s", p.time_step_s},
+  json record = {{"time_step_s", p.time_step_s},
           {"dispersion_coefficient", p.dispersion_coefficient},
           {"dispersion_cutoff_depth_m", p.dispersion_cutoff_depth_m},
           {"dispersion_cutoff_kh", p.dispersion_cutoff_kh},
@@ -87,6 +102,19 @@ json solver_record(const SolverParameters& p) {
             {"turbulent_beta", p.porous.turbulent_beta},
             {"stone_diameter_m", p.porous.stone_diameter_m}}},
           {"sponges", sponges}};
+  // The roller's settings only when it is the model: the record of an eddy-viscosity bake stays
+  // what it was before the roller existed (no "model" key means "eddy_viscosity").
+  if (p.breaking.model == BreakingParameters::Model::kRoller) {
+    json& breaking = record["breaking"];
+    breaking["model"] = breaking_model_name(p.breaking.model);
+    breaking["roller_onset_angle_deg"] = p.breaking.roller_onset_angle_deg;
+    breaking["roller_final_angle_deg"] = p.breaking.roller_final_angle_deg;
+    breaking["roller_half_time_periods"] = p.breaking.roller_half_time_periods;
+    breaking["roller_half_time_s"] = p.breaking.roller_half_time_s;
+    breaking["roller_celerity_factor"] = p.breaking.roller_celerity_factor;
+    breaking["roller_shape_factor"] = p.breaking.roller_shape_factor;
+  }
+  return record;
 }
 
 

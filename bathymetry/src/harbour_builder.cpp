@@ -15,6 +15,7 @@
 #include <fmt/core.h>
 
 #include "nearshore/bathymetry/coastline_level_set.hpp"
+#include "nearshore/bathymetry/still_water_line.hpp"
 #include "nearshore/bathymetry/distance_transform.hpp"
 #include "nearshore/bathymetry/geotiff.hpp"
 #include "nearshore/bathymetry/natural_neighbour.hpp"
@@ -681,12 +682,17 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
       }
     }
   grid.coast_distance_m = signed_coast_distance(grid.land, g.spacing_m);
-  // Preview coastline: the inputs' coastlines, else the outlines of their land polygons.
+  // Preview coastline: the inputs' coastlines, else the outlines of their land polygons, else (raster
+  // or XYZ inputs alone) the gridded depth's still-water line (docs/formats/harbour-grid.md).
   for (const auto& source : sources) {
     for (const auto& line : source.coastlines) result.coastline_m.push_back(project_line(line, projection));
     if (source.coastlines.empty())
       for (const auto& polygon : source.land)
         for (const auto& ring : polygon.rings) result.coastline_m.push_back(project_line(ring, projection));
+  }
+  if (result.coastline_m.empty()) {
+    result.coastline_m = trace_still_water_line(grid);
+    result.coastline_from_depth = true;
   }
   // Summary.
   float depth_min = INFINITY, depth_max = -INFINITY;
@@ -738,32 +744,6 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   return result;
 }
 
-namespace {
-// The preview's map furniture (issue 14 item 2): ticks in the grid's CRS, and true north from the
-// projection's grid convergence at the grid's centre (the bearing of a step due north, seen in the
-// grid; UTM's convergence reaches about 2 degrees at a zone's edge at mid latitudes).
-MapAxes preview_map_axes(const GridGeometry& g) {
-  MapAxes axes;
-  axes.origin_x_m = g.origin_x_m;
-  axes.origin_y_m = g.origin_y_m;
-  axes.cell_size_x_m = g.spacing_x_m();
-  axes.cell_size_y_m = g.spacing_y_m();
-  if (g.projection.is_null() || g.projection.empty()) {
-    axes.north_label = "+y";
-    axes.x_label = "x (m)";
-    axes.y_label = "y (m)";
-    return axes;
-  }
-  const MapProjection projection = MapProjection::from_json(g.projection, "the harbour grid's projection");
-  const ProjectedPoint centre{g.origin_x_m + g.width_m() / 2, g.origin_y_m + g.height_m() / 2};
-  const LonLat place = projection.reverse(centre);
-  const ProjectedPoint north = projection.forward({place.longitude_deg, place.latitude_deg + 0.01});
-  axes.true_north_from_grid_deg = std::atan2(north.x_m - centre.x_m, north.y_m - centre.y_m) * 180.0 / M_PI;
-  axes.x_label = "easting (m), " + projection.describe();
-  return axes;
-}
-}  // namespace
-
 nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResult& result, double coastline_band_m,
                                         const std::vector<PreviewMark>& marks) {
   const HarbourGrid& grid = result.grid;
@@ -775,7 +755,7 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
   style.map = ColourMap::kBathymetry;
   style.low = 0.0;
   style.high = result.summary["water_depth_m"].value("max", 1.0);
-  style.map_axes = preview_map_axes(g);
+  style.map_axes = map_axes_of(g);
   const Rgb no_data_colour{0.78f, 0.78f, 0.78f};  // outside the chart: hatched grey (issue 14 item 3)
   style.second_mask_colour = no_data_colour;
   Image preview = render_heat_map(grid.still_water_depth_m, style, &grid.land);
@@ -797,7 +777,8 @@ nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResul
                              n <= 0.0f ? wall_colour : porous_colour);
     }
   const int legend_y = placement.legend_top_px + 14, legend_x = static_cast<int>(left);
-  draw_text(preview, legend_x, legend_y, "coastline (chart)", coast_colour, 14);
+  draw_text(preview, legend_x, legend_y, result.coastline_from_depth ? "depth 0 (grid)" : "coastline (chart)",
+            coast_colour, 14);
   draw_text(preview, legend_x + 145, legend_y, "vertical walls (n = 0)", wall_colour, 14);
   draw_text(preview, legend_x + 325, legend_y, "porous structures (0 < n < 1)", porous_colour, 14);
   draw_text(preview, legend_x + 560, legend_y, "land", style.mask_colour, 14);

@@ -34,4 +34,13 @@ void write_geotiff(const ExportInput& input, ExportSummary& summary);
 void write_exr_displacement(const ExportInput& input, ExportSummary& summary);
 void write_vdb(const ExportInput& input, ExportSummary& summary);
 
+/// The simulated times of the first and last exported frame, seconds (the bake's clock).
+struct FrameTimes {
+  double first_s = 0.0, last_s = 0.0;
+};
+/// wave_statistics_hs.png: `hs_m` (the GeoTIFF's band 1) as a map with axes (wave_height_map.cpp);
+/// the geotiff export writes it beside the GeoTIFF.
+void write_wave_height_map(const ExportInput& input, const Raster<float>& hs_m, const FrameTimes& times,
+                           ExportSummary& summary);
+
 }  // namespace nearshore::exports

@@ -1,5 +1,6 @@
 // The geotiff export: wave_statistics.tif, the wave climate of the exported frames as a three-band
-// float32 GeoTIFF (surface_statistics.hpp). The only file of the export that includes GDAL.
+// float32 GeoTIFF (surface_statistics.hpp), and its band 1 as a map to look at (wave_height_map.cpp).
+// The only file of the export that includes GDAL.
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
@@ -27,9 +28,12 @@ void write_geotiff(const ExportInput& input, ExportSummary& summary) {
   SurfaceStatistics statistics(g.columns, g.rows);
   ProgressBar progress("GeoTIFF statistics", input.frame_count(), "frames");
   sequence::Frame frame;
+  FrameTimes times;
   for (int index = input.first_frame; index < input.end_frame; ++index) {
     input.reader.read_frame_into(index, frame, sequence::ChannelSelection::display());
     statistics.add_frame(frame.surface_elevation_m, frame.breaking);
+    if (index == input.first_frame) times.first_s = frame.time_s;
+    times.last_s = frame.time_s;
     progress.update(index - input.first_frame + 1.0);
   }
   progress.finish();
@@ -89,6 +93,7 @@ void write_geotiff(const ExportInput& input, ExportSummary& summary) {
     if (written != CE_None || CPLGetLastErrorType() >= CE_Failure) throw fail("writing the statistics bands failed");
   });
   record_file(summary, path);
+  write_wave_height_map(input, bands[0], times, summary);
 }
 
 }  // namespace nearshore::exports

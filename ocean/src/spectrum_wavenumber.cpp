@@ -286,4 +286,51 @@ nlohmann::json DirectionalWavenumberSpectrum::to_json() const {
           {"still_water_depth_m", depth_m_}};
 }
 
+// ---------------------------------------------------------------------------------------------
+// Sum of independent seas
+
+SpectrumSum::SpectrumSum(std::vector<std::shared_ptr<const WavenumberSpectrum>> parts) : parts_(std::move(parts)) {
+  if (parts_.empty())
+    throw Error("spectrum sum", "has no part", "give at least one spectrum (a swell, a local wind sea)");
+  double largest_variance_m2 = -1.0;
+  for (const std::shared_ptr<const WavenumberSpectrum>& part : parts_) {
+    if (!part) throw Error("spectrum sum", "has a null part", "pass built spectra");
+    const double variance_m2 = part->zeroth_moment_m2();
+    if (variance_m2 > largest_variance_m2) {
+      largest_variance_m2 = variance_m2;
+      mean_direction_rad_ = part->mean_direction_rad();
+    }
+  }
+}
+
+double SpectrumSum::density_m4(double kx, double ky) const {
+  double density = 0.0;
+  for (const std::shared_ptr<const WavenumberSpectrum>& part : parts_) density += part->density_m4(kx, ky);
+  return density;
+}
+
+double SpectrumSum::omnidirectional_density_m3(double k) const {
+  double density = 0.0;
+  for (const std::shared_ptr<const WavenumberSpectrum>& part : parts_) density += part->omnidirectional_density_m3(k);
+  return density;
+}
+
+double SpectrumSum::peak_wavenumber_rad_m() const {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const std::shared_ptr<const WavenumberSpectrum>& part : parts_) lowest = std::min(lowest, part->peak_wavenumber_rad_m());
+  return lowest;
+}
+
+double SpectrumSum::highest_wavenumber_rad_m() const {
+  double highest = 0.0;
+  for (const std::shared_ptr<const WavenumberSpectrum>& part : parts_) highest = std::max(highest, part->highest_wavenumber_rad_m());
+  return highest;
+}
+
+nlohmann::json SpectrumSum::to_json() const {
+  nlohmann::json parts = nlohmann::json::array();
+  for (const std::shared_ptr<const WavenumberSpectrum>& part : parts_) parts.push_back(part->to_json());
+  return {{"name", name()}, {"significant_wave_height_m", significant_wave_height_m()}, {"parts", parts}};
+}
+
 }  // namespace nearshore::ocean

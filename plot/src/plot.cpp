@@ -14,6 +14,7 @@
 
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/map_projection.hpp"
 
 namespace nearshore {
 namespace {
@@ -146,6 +147,51 @@ void write_png(const Image& picture, const std::filesystem::path& path) {
       throw Error(path.string(), std::string("writing PNG failed: ") + image.message,
                   "check the folder exists and is writable, and that the disk has space");
   });
+}
+
+Image read_png(const std::filesystem::path& path) {
+  // libpng's simplified API converts any PNG to 8-bit RGB on read.
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str()))
+    throw Error(path.string(), std::string("is not a readable PNG: ") + image.message,
+                "check that the file exists and was written completely");
+  image.format = PNG_FORMAT_RGB;
+  std::vector<unsigned char> bytes(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, bytes.data(), 0, nullptr))
+    throw Error(path.string(), std::string("decoding the PNG failed: ") + image.message,
+                "check that the file was written completely");
+  Image picture(static_cast<int>(image.width), static_cast<int>(image.height));
+  for (int y = 0; y < picture.height(); ++y)
+    for (int x = 0; x < picture.width(); ++x) {
+      const std::size_t at = (static_cast<std::size_t>(y) * picture.width() + x) * 3;
+      picture.set(x, y, {bytes[at] / 255.f, bytes[at + 1] / 255.f, bytes[at + 2] / 255.f});
+    }
+  return picture;
+}
+
+// True north from the projection's grid convergence at the grid's centre (the bearing of a step
+// due north, seen in the grid; UTM's convergence reaches about 2 degrees at a zone's edge at mid
+// latitudes), issue 14 item 2.
+MapAxes map_axes_of(const GridGeometry& grid) {
+  MapAxes axes;
+  axes.origin_x_m = grid.origin_x_m;
+  axes.origin_y_m = grid.origin_y_m;
+  axes.cell_size_x_m = grid.spacing_x_m();
+  axes.cell_size_y_m = grid.spacing_y_m();
+  if (grid.projection.is_null() || grid.projection.empty()) {
+    axes.north_label = "+y";
+    axes.x_label = "x (m)";
+    axes.y_label = "y (m)";
+    return axes;
+  }
+  const MapProjection projection = MapProjection::from_json(grid.projection, "the grid's projection");
+  const ProjectedPoint centre{grid.origin_x_m + grid.width_m() / 2, grid.origin_y_m + grid.height_m() / 2};
+  const LonLat place = projection.reverse(centre);
+  const ProjectedPoint north = projection.forward({place.longitude_deg, place.latitude_deg + 0.01});
+  axes.true_north_from_grid_deg = std::atan2(north.x_m - centre.x_m, north.y_m - centre.y_m) * 180.0 / M_PI;
+  axes.x_label = "easting (m), " + projection.describe();
+  return axes;
 }
 
 namespace {

@@ -164,5 +164,39 @@ TEST(BakeEffectiveDepth, SeaTheGridCannotCarryIsRefusedWithACellSize) {
                     {"key `wave_maker.min_frequency_hz`", "is not below wave_maker.max_frequency_hz"});
 }
 
+// The case: a swell split between the bake and the FFT layer, and the bay's own wind sea
+// (Hs 0.6 m, Tp 3.5 s) given to the FFT layer alone ([[deep_water.local_sea]]). Independent seas:
+// the layer's Hs is sqrt(1.0^2 + 0.6^2) = 1.166 m (the registry's quadrature to 0.1 %), the bake's
+// components stay the swell's, and the report names the local sea.
+TEST(BakeEffectiveDepth, LocalWindSeaGoesToTheDeepWaterLayerAlone) {
+  const std::string swell =
+      "kind = \"irregular\"\nsignificant_height_m = 1.0\npeak_period_s = 8.0\nfrequency_count = 48\nseed = 3\n"
+      "spreading_s = 75.0\nloop_period_s = 240.0\n";
+  const std::string deep_water =
+      "[deep_water]\ngrid_size = 64\n"
+      "[[deep_water.local_sea]]\nspectrum = \"jonswap\"\nsignificant_height_m = 0.6\npeak_period_s = 3.5\n"
+      "mean_direction_deg = 10.0\nspreading_s = 20.0\n";
+  const BakeCase without = read_bake_case(write_text(scratch_folder() / "swell.toml", channel_case(swell) + "[deep_water]\ngrid_size = 64\n"));
+  const BakeCase c = read_bake_case(write_text(scratch_folder() / "case.toml", channel_case(swell) + deep_water));
+  ASSERT_TRUE(c.deep_water.has_value());
+  EXPECT_NEAR(c.deep_water->spectrum->significant_wave_height_m(), std::hypot(1.0, 0.6), 1e-3 * std::hypot(1.0, 0.6));
+  ASSERT_EQ(c.wave_maker.sea_state.components.size(), without.wave_maker.sea_state.components.size());
+  for (std::size_t i = 0; i < c.wave_maker.sea_state.components.size(); ++i)
+    EXPECT_EQ(c.wave_maker.sea_state.components[i].amplitude_m, without.wave_maker.sea_state.components[i].amplitude_m);
+  ASSERT_TRUE(c.wave_conditions.contains("local_seas"));
+  const auto& sea = c.wave_conditions["local_seas"][0];
+  EXPECT_NEAR(sea["significant_wave_height_m"].get<double>(), 0.6, 1e-3 * 0.6);
+  // A 3.5 s JONSWAP holds almost nothing below the swell's split frequency (about 0.1 Hz).
+  EXPECT_LT(sea["below_split_significant_wave_height_m"].get<double>(), 0.01);
+  const std::string report = describe_carried_band(c);
+  EXPECT_NE(report.find("local sea: Hs 0.60 m"), std::string::npos) << report;
+  // A field that drives the wave maker would make the local sea at the source line too: refused.
+  expect_case_error(channel_case(swell) + "[deep_water]\ngrid_size = 64\ndrive_wave_maker = true\n"
+                        "[[deep_water.local_sea]]\nspectrum = \"jonswap\"\nsignificant_height_m = 0.6\npeak_period_s = 3.5\n",
+                    {"key `deep_water.local_sea`", "drives the wave maker"});
+  // An unknown key in a local sea is named with its place.
+  expect_case_error(channel_case(swell) + deep_water + "fetch_km = 5.0\n", {"deep_water.local_sea[0].fetch_km"});
+}
+
 }  // namespace
 }  // namespace nearshore::bake

@@ -50,6 +50,37 @@ TEST(BakeEstimate, CountsFramesCheckpointsAndCells) {
   EXPECT_EQ(format_bytes(3.5 * 1024 * 1024), "3.5 MiB");
 }
 
+// [deep_water] adds its field's arrays, kDeepWaterBytesPerLatticeCell per lattice cell: the same
+// flume and irregular maker with a 64 x 64, two-cascade field needs 64^2 x 2 x 152 B = 1.19 MiB more,
+// and nothing else changes (the per-cell constant of a case without the layer stays as it was).
+TEST(BakeEstimate, ADeepWaterLayerAddsItsLatticesToTheMemory) {
+  const auto folder = scratch_folder();
+  std::string without = small_flume_case(4.0);
+  const std::string regular =
+      "kind = \"regular\"\nfacing = \"west\"\nsource_line_m = 3.0\nheight_m = 0.02\nperiod_s = 2.0\n";
+  without.replace(without.find(regular), regular.size(),
+                  "facing = \"west\"\nsource_line_m = 3.0\nkind = \"irregular\"\nsignificant_height_m = 0.02\n"
+                  "peak_period_s = 1.5\nfrequency_count = 16\nseed = 99\nloop_period_s = 32.0\nspreading_s = 10.0\n"
+                  "direction_count = 8\nmin_frequency_hz = 0.3\nmax_frequency_hz = 1.2\n");
+  const std::string with =
+      without + "[deep_water]\ngrid_size = 64\ncascade_count = 2\nshortest_wavelength_m = 0.05\n";
+  const BakeCase plain = read_bake_case(write_text(folder / "without.toml", without));
+  const BakeCase deep = read_bake_case(write_text(folder / "with.toml", with));
+  ASSERT_FALSE(plain.deep_water.has_value());
+  ASSERT_TRUE(deep.deep_water.has_value());
+  const BakeResourceEstimate plain_estimate = estimate_bake_resources(plain);
+  const BakeResourceEstimate deep_estimate = estimate_bake_resources(deep);
+  const double field_bytes = 64.0 * 64.0 * 2 * kDeepWaterBytesPerLatticeCell;
+  EXPECT_EQ(plain_estimate.deep_water_bytes, 0.0);
+  EXPECT_DOUBLE_EQ(deep_estimate.deep_water_bytes, field_bytes);
+  EXPECT_DOUBLE_EQ(deep_estimate.memory_bytes - plain_estimate.memory_bytes, field_bytes);
+  EXPECT_DOUBLE_EQ(plain_estimate.memory_bytes, kBakeFixedBytes + plain_estimate.cells * kBakeBytesPerCell +
+                                                    plain_estimate.line_bytes +
+                                                    plain_estimate.gauge_samples * (1.0 + plain.gauges.size()) * 32.0);
+  EXPECT_NE(deep_estimate.describe().find("1.2 MiB deep water"), std::string::npos) << deep_estimate.describe();
+  EXPECT_EQ(plain_estimate.describe().find("deep water"), std::string::npos) << plain_estimate.describe();
+}
+
 // A 20000 x 20000 grid (4e8 cells: about 240 GiB) is refused at once, before the solver or the
 // folder exist. The case's harbour grid is a small flume whose geometry says 20000 x 20000: the
 // check reads only the geometry, and the test stays cheap (the case readers build the full grid).

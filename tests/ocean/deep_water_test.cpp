@@ -122,6 +122,29 @@ TEST(WavenumberSpectrum, SpreadingsIntegrateToOneAndFoldingKeepsTheVariance) {
   EXPECT_GT(both.density_m4(-0.1 * std::cos(0.4), -0.1 * std::sin(0.4)), 0.0);
 }
 
+TEST(WavenumberSpectrum, SumOfIndependentSeasAddsVariances) {
+  // A swell (Hs 1 m, Tp 7 s, s = 75) and a local wind sea (Hs 0.6 m, Tp 3.5 s, s = 20), the case of
+  // issue 14: independent seas, so Psi adds and Hs^2 = 1.0^2 + 0.6^2 (1e-3: each part's quadrature,
+  // as above). The longest waves set the ranges; the most energetic part the mean direction.
+  auto swell = std::make_shared<DirectionalWavenumberSpectrum>(std::make_shared<JonswapSpectrum>(1.0, 7.0, 3.3),
+                                                               std::make_shared<CosineSquaredSpreading>(-1.2, 75.0));
+  auto wind_sea = std::make_shared<DirectionalWavenumberSpectrum>(std::make_shared<JonswapSpectrum>(0.6, 3.5, 3.3),
+                                                                  std::make_shared<CosineSquaredSpreading>(-1.0, 20.0));
+  const SpectrumSum sum({swell, wind_sea});
+  EXPECT_NEAR(sum.significant_wave_height_m(), std::hypot(1.0, 0.6), 1e-3 * std::hypot(1.0, 0.6));
+  EXPECT_EQ(sum.peak_wavenumber_rad_m(), swell->peak_wavenumber_rad_m());
+  EXPECT_EQ(sum.mean_direction_rad(), -1.2);
+  for (double k : {0.05, 0.1, 0.33, 1.0})
+    EXPECT_DOUBLE_EQ(sum.density_m4(k * std::cos(-1.1), k * std::sin(-1.1)),
+                     swell->density_m4(k * std::cos(-1.1), k * std::sin(-1.1)) + wind_sea->density_m4(k * std::cos(-1.1), k * std::sin(-1.1)));
+  EXPECT_EQ(sum.to_json()["parts"].size(), 2u);
+  // The FFT field made from the sum holds both seas (3 %, the field test below).
+  DeepWaterField field(specification_for(std::make_shared<SpectrumSum>(std::vector<std::shared_ptr<const WavenumberSpectrum>>{swell, wind_sea}), 64,
+                                         10.0 * 2.0 * kPi / sum.peak_wavenumber_rad_m()));
+  EXPECT_NEAR(field.significant_wave_height_m(), sum.significant_wave_height_m(), 0.03 * sum.significant_wave_height_m());
+  EXPECT_THROW(SpectrumSum({}), nearshore::Error);
+}
+
 TEST(DeepWaterField, HsIsTheSpectrumsAndDoesNotMoveWithNOrL) {
   // Seed 001's claim: amplitudes from the cell integrals make Hs independent of N and L. For
   // every spectrum, 4 cascades with the largest tile 10 peak wavelengths long: the field's Hs

@@ -73,7 +73,11 @@ struct Flume {
 const Flume& flume() {
   static const Flume baked = [] {
     ProgressBar::set_quiet(true);
-    const fs::path folder = fs::path(NEARSHORE_BINARY_DIR) / "tests" / "runtime" / "scratch" / "flume";
+    // One folder per test: ctest runs each test in its own process, in parallel, and every process
+    // bakes the flume afresh (a shared folder was removed under a neighbour's reader: flaky at -j2).
+    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    const fs::path folder = fs::path(NEARSHORE_BINARY_DIR) / "tests" / "runtime" / "scratch" /
+                            (std::string("flume_") + (test ? test->test_suite_name() + std::string("_") + test->name() : "shared"));
     fs::remove_all(folder);
     fs::create_directories(folder);
     std::ofstream(folder / "case.toml") << kFlumeCase;

@@ -29,6 +29,13 @@ inline constexpr double kBakeBytesPerLinePerThread = 3584.0;
 /// local-metres grids through bathymetry/, a bake process loads GDAL too, about 40 MiB at start).
 inline constexpr double kBakeFixedBytes = 16.0 * 1024 * 1024;
 
+/// Bytes of an FFT deep-water field (ocean::DeepWaterField) per lattice cell, that is per N^2 x
+/// cascade_count: the lattice (amplitude float, phase, frequency, harmonic: 28 B), FFTW's complex
+/// input and real output of its 10 channels (80 B), the mixed coefficients and their even and odd
+/// halves (16 B), the channels' multipliers on the half spectrum (20 B) and the constructor's
+/// variance table (8 B): 152 B. bake_estimate.cpp says how it was measured.
+inline constexpr double kDeepWaterBytesPerLatticeCell = 152.0;
+
 struct BakeResourceEstimate {
   long long cells = 0;
   /// Counts in double: a mistyped duration may exceed every integer type.
@@ -36,6 +43,8 @@ struct BakeResourceEstimate {
   double frames = 0;            ///< frames it writes
   double gauge_samples = 0;     ///< rows of gauges.csv (each also held in memory and in each checkpoint)
   double line_bytes = 0;        ///< the per-line buffers: longest side x kBakeBytesPerLinePerThread x threads
+  /// [deep_water]: grid_size^2 x cascade_count x kDeepWaterBytesPerLatticeCell (0 without the layer)
+  double deep_water_bytes = 0;
   double frame_bytes = 0;       ///< one frame file (as uncompressed: an upper bound for the compressed encodings)
   double checkpoint_bytes = 0;  ///< one checkpoint.bin (0 without checkpoints)
   double memory_bytes = 0;      ///< memory the bake allocates at its peak (compared with MemAvailable)

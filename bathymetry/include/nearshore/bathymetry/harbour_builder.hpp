@@ -71,6 +71,9 @@ struct BathyResult {
   HarbourGrid grid;
   nlohmann::json summary;                 ///< what summary.json holds (docs/formats/harbour-grid.md)
   std::vector<PlaneLine> coastline_m;     ///< coastline polylines in grid metres, for the preview
+  /// True when no input brought a coastline or land outline (a raster or XYZ survey): coastline_m
+  /// is then the gridded depth's still-water line (depth 0, still_water_line.hpp).
+  bool coastline_from_depth = false;
   std::vector<double> leave_one_out_error_m;  ///< estimate - charted depth per sounding (if asked)
   /// What was done to the data that the caller should know, in words naming the BathyRequest
   /// field that controls it (e.g. water cells raised to minimum_depth_m); also summary "warnings".

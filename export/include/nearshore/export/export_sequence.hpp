@@ -5,7 +5,9 @@
 //                     grid's CRS, 2-D lat/lon, surface elevation, fluxes, breaking, the still-water
 //                     depth; land is _FillValue (QGIS, xarray, Panoply, GDAL).
 //   geotiff           wave_statistics.tif: significant wave height, mean water level and breaking
-//                     fraction over the frames as a georeferenced three-band GeoTIFF, land nodata.
+//                     fraction over the frames as a georeferenced three-band GeoTIFF, land nodata;
+//                     and wave_statistics_hs.png, Hs as a map to look at (axes in the grid's CRS,
+//                     colour bar in metres, land and no data distinct, north arrow, scale bar).
 //   exr-displacement  displacement_NNNNNN.exr per frame: RGB = x, y, z displacement in metres
 //                     (x east, y north, z up), A = water; the horizontal part is the depth-averaged
 //                     excursion integrated from the fluxes (horizontal_excursion.hpp).

@@ -12,6 +12,7 @@
 // sigma); PM-ITTC, seed 001 eq. (19); frequency -> wavenumber, seed 001 eq. (17).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -152,6 +153,29 @@ class DirectionalWavenumberSpectrum : public WavenumberSpectrum {
   std::shared_ptr<const FrequencySpectrum> spectrum_;
   std::shared_ptr<const DirectionalSpreading> spreading_;
   double depth_m_;
+};
+
+/// The sum of independent seas, Psi = sum of the parts' Psi (variances add: Hs^2 = sum Hs_i^2): a
+/// swell from offshore and the local wind sea over it, as one FFT field (issue 14: a harbour's sea
+/// is rarely one spectrum). The peak wavenumber is the lowest of the parts' (the longest waves set
+/// the integration ranges and the largest tile); the mean direction is the most energetic part's.
+class SpectrumSum : public WavenumberSpectrum {
+ public:
+  /// At least one part; none null.
+  explicit SpectrumSum(std::vector<std::shared_ptr<const WavenumberSpectrum>> parts);
+  double density_m4(double kx, double ky) const override;
+  double omnidirectional_density_m3(double k_rad_m) const override;
+  double peak_wavenumber_rad_m() const override;
+  double highest_wavenumber_rad_m() const override;
+  double mean_direction_rad() const override { return mean_direction_rad_; }
+  std::string name() const override { return "sum"; }
+  /// {"name": "sum", "significant_wave_height_m": ..., "parts": [each part's to_json()]}.
+  nlohmann::json to_json() const override;
+  const std::vector<std::shared_ptr<const WavenumberSpectrum>>& parts() const { return parts_; }
+
+ private:
+  std::vector<std::shared_ptr<const WavenumberSpectrum>> parts_;
+  double mean_direction_rad_ = 0.0;
 };
 
 }  // namespace nearshore::ocean

@@ -31,6 +31,9 @@ void draw_line(Image& image, double x0, double y0, double x1, double y1, Rgb col
 void draw_text(Image& image, int x, int y, const std::string& text, Rgb colour, int size_px = 14);
 /// Writes a PNG atomically; throws nearshore::Error naming the path on failure.
 void write_png(const Image& image, const std::filesystem::path& path);
+/// Reads a PNG (any bit depth or colour type, converted to 8-bit RGB) back into an Image, e.g. to
+/// check a picture's pixels; throws nearshore::Error naming the path when it is not a readable PNG.
+Image read_png(const std::filesystem::path& path);
 
 /// The map furniture of a heat map whose field is a projected grid (issue 14 item 2: a gauge put on
 /// land must show on the preview): tick marks and labels in the grid's CRS along the bottom (x) and
@@ -46,6 +49,12 @@ struct MapAxes {
   /// "N" for true north on a chart; a laboratory frame says "+y".
   std::string north_label = "N";
 };
+
+/// The map furniture of a field on `grid`: ticks in the grid's CRS, and true north from the grid's
+/// projection (GridGeometry::projection); a grid without one (a laboratory frame) gets x/y axes and
+/// a "+y" arrow. The one place that derives a map's axes from a grid (bathymetry preview, the
+/// export's wave-height map).
+MapAxes map_axes_of(const GridGeometry& grid);
 
 /// A raster coloured by `map` between `low` and `high`, north (last row) at the top, with a
 /// colour bar and title. Cells where `mask` (if given, same size) is non-zero are drawn `mask_colour`
