@@ -4,7 +4,7 @@
 # loop tables -> a playback screenshot and a wave-height map.
 #
 #   scripts/tacoma.sh                 the full case: 4.6 m cells (1490 x 1292), 1035 s of sea.
-#                                     Hours on a 2-core machine (measured: docs/commands/bake.md) and
+#                                     1 h 39 min on this 2-core machine with neighbours (docs/commands/bake.md) and
 #                                     about 2 GiB of frames; resumable (run it again after a kill).
 #   TACOMA_SPACING=12 TACOMA_SPIN_UP_S=90 scripts/tacoma.sh
 #                                     the coarse variant docs/ shows (12 m cells, 225 s of sea)
