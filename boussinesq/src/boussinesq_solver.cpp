@@ -92,6 +92,23 @@ void append_indices_where(std::size_t count, const Hit& hit, std::vector<std::si
         if (hit(i) != 0) out.push_back(i);
 }
 
+// The mean zero-up-crossing period of a record (about its mean, crossings interpolated linearly),
+// or 0 with fewer than two crossings: the surface roller's period for a time-series wave maker.
+double mean_zero_up_crossing_period_s(const std::vector<double>& time_s, const std::vector<double>& elevation_m) {
+  double mean = 0.0;
+  for (double v : elevation_m) mean += v / static_cast<double>(elevation_m.size());
+  double first = -1.0, last = -1.0;
+  int crossings = 0;
+  for (std::size_t i = 1; i < elevation_m.size() && i < time_s.size(); ++i) {
+    if (!(elevation_m[i - 1] < mean && elevation_m[i] >= mean)) continue;
+    const double at = time_s[i - 1] + (time_s[i] - time_s[i - 1]) * (mean - elevation_m[i - 1]) / (elevation_m[i] - elevation_m[i - 1]);
+    if (first < 0.0) first = at;
+    last = at;
+    ++crossings;
+  }
+  return crossings > 1 ? (last - first) / (crossings - 1) : 0.0;
+}
+
 double smooth_step(double t) {  // cubic 0..1 on t in [0, 1]
   t = std::clamp(t, 0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
@@ -339,22 +356,8 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     // maker's period: the peak component's, or the mean zero-up-crossing period of a time series.
     const BreakingParameters& b = parameters.breaking;
     double period_s = peak_w > 0.0 ? 2.0 * std::numbers::pi / peak_w : 0.0;
-    if (period_s == 0.0 && wave_maker.kind == WaveMaker::Kind::kTimeSeries) {
-      const std::vector<double>& t = wave_maker.series_time_s;
-      const std::vector<double>& e = wave_maker.series_elevation_m;
-      double mean = 0.0;
-      for (double v : e) mean += v / static_cast<double>(e.size());
-      double first = -1.0, last = -1.0;
-      int crossings = 0;
-      for (std::size_t i = 1; i < e.size() && i < t.size(); ++i)
-        if (e[i - 1] < mean && e[i] >= mean) {
-          const double at = t[i - 1] + (t[i] - t[i - 1]) * (mean - e[i - 1]) / (e[i] - e[i - 1]);
-          if (first < 0.0) first = at;
-          last = at;
-          ++crossings;
-        }
-      if (crossings > 1) period_s = (last - first) / (crossings - 1);
-    }
+    if (period_s == 0.0 && wave_maker.kind == WaveMaker::Kind::kTimeSeries)
+      period_s = mean_zero_up_crossing_period_s(wave_maker.series_time_s, wave_maker.series_elevation_m);
     const double half_time_s = b.roller_half_time_s > 0.0 ? b.roller_half_time_s : b.roller_half_time_periods * period_s;
     if (!(half_time_s > 0.0))
       throw Error(subject, "the surface roller (BreakingParameters::model = kRoller) needs the half time of its front angle, and the wave maker has no period to take it from",
