@@ -286,7 +286,9 @@ TEST_F(LibraryRun, KillOfOneRankThenRerunFinishesWithoutBakingFinishedStatesAgai
   if (!mpi_built()) GTEST_SKIP() << "this build has no MPI (nearshore_library_mpi was not built)";
   const fs::path folder = root_ / "mpi";
   // Rank 1 dies as it takes up its second state; mpirun then ends the job (Open MPI's default).
-  const Finished killed = run(folder, 2, "kill-at-start:1:2");
+  // Rank 0's worker waits at its own second state, so rank 1 always gets a second one: without it,
+  // a rank 1 slowed by the machine could see rank 0 bake the other three states and never die.
+  const Finished killed = run(folder, 2, "kill-at-start:1:2,pause-at-start:0:2:" + (root_ / "rank0_paused").string());
   EXPECT_FALSE(exited_with(killed, 0)) << killed.log;
   const std::map<std::string, long long> before = complete_states(folder);
   EXPECT_GE(before.size(), 1u);

@@ -1,6 +1,6 @@
 // The process the library's fault tests start (library_run_test.cpp), alone or under mpirun: the
 // same library calls as `nearshore library` (serial, or MPI when a launcher started it), plus the
-// faults its environment names, struck at a state's start on one rank:
+// faults its environment names, struck at a state's start on one rank (several separated by ','):
 //   NEARSHORE_LIBRARY_FAULT=kill-at-start:RANK:N          SIGKILL itself when RANK starts its N-th state
 //   NEARSHORE_LIBRARY_FAULT=pause-at-start:RANK:N:FILE    write FILE.waiting and wait (to be killed)
 // Prints the run's summary as JSON on stdout (rank 0). Exit 0, 2 when a state failed, 1 on error.
@@ -47,16 +47,26 @@ int main(int argc, char** argv) {
   nearshore::library::LibraryOptions options;
   options.output_folder = argv[2];
   options.overwrite = argc > 3 && std::string(argv[3]) == "overwrite";
-  if (const char* fault = std::getenv("NEARSHORE_LIBRARY_FAULT")) {
-    const std::vector<std::string> parts = split(fault, ':');
-    const std::string kind = parts.at(0);
-    const int rank = std::stoi(parts.at(1)), nth = std::stoi(parts.at(2));
-    const std::string file = parts.size() > 3 ? parts[3] : "";
-    options.on_state = [kind, rank, nth, file, started = 0](const std::string&, bool finished) mutable {
-      if (finished || current_rank() != rank || ++started != nth) return;
-      if (kind == "kill-at-start") ::kill(::getpid(), SIGKILL);
-      std::ofstream(file + ".waiting") << ::getpid() << "\n";
-      while (true) ::pause();
+  if (const char* faults = std::getenv("NEARSHORE_LIBRARY_FAULT")) {
+    struct Fault {
+      std::string kind;
+      int rank, nth;
+      std::string file;
+    };
+    std::vector<Fault> list;
+    for (const std::string& fault : split(faults, ',')) {
+      const std::vector<std::string> parts = split(fault, ':');
+      list.push_back({parts.at(0), std::stoi(parts.at(1)), std::stoi(parts.at(2)), parts.size() > 3 ? parts[3] : ""});
+    }
+    options.on_state = [list, started = 0](const std::string&, bool finished) mutable {
+      if (finished) return;
+      ++started;  // states this rank has started
+      for (const Fault& fault : list) {
+        if (current_rank() != fault.rank || started != fault.nth) continue;
+        if (fault.kind == "kill-at-start") ::kill(::getpid(), SIGKILL);
+        std::ofstream(fault.file + ".waiting") << ::getpid() << "\n";
+        while (true) ::pause();
+      }
     };
   }
   try {
