@@ -26,9 +26,10 @@ struct HansenSvendsenPoint {
   double x_m = 0, wave_height_m = 0, mean_level_m = 0;  // x from the toe of the slope
 };
 
-// test_<id>.txt: '#' comment lines, then "x_m wave_height_m mean_water_level_m" (the README).
-std::vector<HansenSvendsenPoint> read_hansen_svendsen(const std::string& test_id) {
-  const fs::path path = fs::path(NEARSHORE_SOURCE_DIR) / "data" / "validation" / "hansen_svendsen_1979" / ("test_" + test_id + ".txt");
+// A table of the folder: '#' comment lines, then "x_m wave_height_m mean_water_level_m" (the README):
+// the measurements test_<id>.txt and FUNWAVE-TVD's published results funwave_tvd_<id>_<closure>.txt.
+std::vector<HansenSvendsenPoint> read_hansen_svendsen_table(const std::string& file_name) {
+  const fs::path path = fs::path(NEARSHORE_SOURCE_DIR) / "data" / "validation" / "hansen_svendsen_1979" / file_name;
   std::ifstream file(path);
   if (!file) throw std::runtime_error(path.string() + ": cannot open");
   std::vector<HansenSvendsenPoint> points;
@@ -41,6 +42,7 @@ std::vector<HansenSvendsenPoint> read_hansen_svendsen(const std::string& test_id
   }
   return points;
 }
+std::vector<HansenSvendsenPoint> read_hansen_svendsen(const std::string& test_id) { return read_hansen_svendsen_table("test_" + test_id + ".txt"); }
 
 TEST(VALIDATION_SUITE(LaboratoryData), HansenSvendsenTablesHoldTheReadmesBreakPoints) {
   const auto plunging = read_hansen_svendsen("031041"), spilling = read_hansen_svendsen("061071");
@@ -58,14 +60,90 @@ TEST(VALIDATION_SUITE(LaboratoryData), HansenSvendsenTablesHoldTheReadmesBreakPo
 
 struct HansenSvendsenScore {
   double height_rmse_m = 0, level_rmse_m = 0, offshore_height_m = 0;
+  double shoaling_height_rmse_m = 0, surf_zone_height_rmse_m = 0;  // before / after the measured break point
   double model_break_x_m = 0, data_break_x_m = 0;          // where the largest height is
   double set_down_before_break_m = 0, set_up_at_last_point_m = 0;  // model, relative to the toe
+  std::vector<double> set_up_model_m, set_up_data_m;        // at the measured points, relative to the toe
+  // The experiment's bars: FUNWAVE-TVD's published result, scored the same way (the better closure).
+  double reference_height_rmse_m = 0, reference_level_rmse_m = 0;
 };
 // Regression bars (see the test): the scores measured on 2026-11-24 plus a margin. H RMSE / H0: CI grid
 // 30.0 % (031041) and 24.1 % (061071), full grid 33.7 % and 27.4 %; set-up RMSE: CI 1.15 and 1.23 mm,
 // full 0.77 and 0.61 mm (docs/validation.md).
 constexpr double kHeightRegressionBar = 0.37;
 constexpr double kSetUpRegressionBar_m = 0.002;
+
+// Scores heights and mean levels at the measured points against the data: the whole profile, the
+// shoaling zone (before the measured break point) and the surf zone (after it), the break point, and
+// the set-up. The mean level is compared relative to its value at the toe (the first point), for the
+// model and the data alike. The flume was closed and at rest before the waves, and its level at the
+// toe is within 0.1 mm of still water. A model's reference may differ: ours is the sponge behind the
+// source, where the waves have died out: across the sponge the radiation stress S_xx of the waves
+// leaving into it falls to zero, so the whole wave region sits S_xx / (rho g d) =
+// (a^2 / 2)(2 n - 1/2) / d below it (0.8 mm for 031041, 1.9 mm for 061071; the model shows 0.6 and
+// 1.6 mm at the toe). That offset is where the level is pinned, not the slope's set-down and set-up
+// that the experiment measured.
+HansenSvendsenScore score_against_data(const std::vector<HansenSvendsenPoint>& data, const std::vector<double>& h_model,
+                                       const std::vector<double>& level_model) {
+  std::vector<double> x, h_data;
+  for (const auto& point : data) {
+    x.push_back(point.x_m);
+    h_data.push_back(point.wave_height_m);
+  }
+  const std::size_t data_break = std::max_element(h_data.begin(), h_data.end()) - h_data.begin();
+  const std::size_t model_break = std::max_element(h_model.begin(), h_model.end()) - h_model.begin();
+  auto zone_rmse = [&](std::size_t begin, std::size_t end) {
+    return root_mean_square_error(std::vector<double>(h_model.begin() + begin, h_model.begin() + end),
+                                  std::vector<double>(h_data.begin() + begin, h_data.begin() + end));
+  };
+  HansenSvendsenScore score;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    score.set_up_model_m.push_back(level_model[i] - level_model.front());
+    score.set_up_data_m.push_back(data[i].mean_level_m - data.front().mean_level_m);
+  }
+  score.height_rmse_m = root_mean_square_error(h_model, h_data);
+  score.level_rmse_m = root_mean_square_error(score.set_up_model_m, score.set_up_data_m);
+  score.offshore_height_m = h_data.front();
+  score.shoaling_height_rmse_m = zone_rmse(0, data_break);
+  score.surf_zone_height_rmse_m = zone_rmse(data_break + 1, h_data.size());
+  score.model_break_x_m = x[model_break];
+  score.data_break_x_m = x[data_break];
+  for (std::size_t i = 0; i < x.size() && x[i] < score.data_break_x_m; ++i)
+    score.set_down_before_break_m = std::min(score.set_down_before_break_m, score.set_up_model_m[i]);
+  score.set_up_at_last_point_m = score.set_up_model_m.back();
+  return score;
+}
+
+// Linear interpolation of a profile table at x (constant beyond its ends).
+double interpolate(const std::vector<HansenSvendsenPoint>& table, double x_m, double HansenSvendsenPoint::*field) {
+  if (x_m <= table.front().x_m) return table.front().*field;
+  for (std::size_t i = 1; i < table.size(); ++i)
+    if (x_m <= table[i].x_m) {
+      const double w = (x_m - table[i - 1].x_m) / (table[i].x_m - table[i - 1].x_m);
+      return (1 - w) * (table[i - 1].*field) + w * (table[i].*field);
+    }
+  return table.back().*field;
+}
+
+// The reference: FUNWAVE-TVD's own published result for this experiment (data/validation/
+// hansen_svendsen_1979/README.md), scored by the same function at the measured points. Its stations
+// are 0.1 m apart; linear interpolation between them moves H by at most (0.1 m)^2 / 8 |H''|, a few
+// hundredths of a millimetre on the shoaling slope (H'' < 0.02 1/m there).
+struct ReferenceResult {
+  std::string closure;
+  std::vector<HansenSvendsenPoint> profile;
+  HansenSvendsenScore score;
+};
+ReferenceResult score_reference(const std::vector<HansenSvendsenPoint>& data, const std::string& test_id, const std::string& closure) {
+  ReferenceResult reference{closure, read_hansen_svendsen_table("funwave_tvd_" + test_id + "_" + closure + ".txt"), {}};
+  std::vector<double> h, level;
+  for (const auto& point : data) {
+    h.push_back(interpolate(reference.profile, point.x_m, &HansenSvendsenPoint::wave_height_m));
+    level.push_back(interpolate(reference.profile, point.x_m, &HansenSvendsenPoint::mean_level_m));
+  }
+  reference.score = score_against_data(data, h, level);
+  return reference;
+}
 
 // Runs one test and scores it. The gauges sit at the measured points (toe at x = 16 m in the case
 // frame, on the flume's centre line); H is the mean crest-to-trough height and the mean level the
@@ -110,45 +188,43 @@ HansenSvendsenScore run_hansen_svendsen(const std::string& test_id, double perio
     results["points"].push_back({{"x_m", x.back()}, {"height_model_m", h_model.back()}, {"height_data_m", h_data.back()},
                                  {"mean_level_model_m", level_model.back()}, {"mean_level_data_m", level_data.back()}});
   }
-  // Where the model misses: shoaling (before the measured break point), the break point itself
-  // (largest height and where it is), the surf zone (after it).
+  HansenSvendsenScore score = score_against_data(data, h_model, level_model);
+  // The field's reference model on the same experiment (README): shock-capturing for both tests,
+  // and for 031041 also the eddy-viscosity closure, the one this solver's default follows.
+  std::vector<ReferenceResult> references{score_reference(data, test_id, "shock_capturing")};
+  if (test_id == "031041") references.push_back(score_reference(data, test_id, "eddy_viscosity"));
+  score.reference_height_rmse_m = references.front().score.height_rmse_m;
+  score.reference_level_rmse_m = references.front().score.level_rmse_m;
+  for (const ReferenceResult& reference : references) {
+    score.reference_height_rmse_m = std::min(score.reference_height_rmse_m, reference.score.height_rmse_m);
+    score.reference_level_rmse_m = std::min(score.reference_level_rmse_m, reference.score.level_rmse_m);
+  }
   const std::size_t data_break = std::max_element(h_data.begin(), h_data.end()) - h_data.begin();
   const std::size_t model_break = std::max_element(h_model.begin(), h_model.end()) - h_model.begin();
-  auto zone_rmse = [&](std::size_t begin, std::size_t end, const std::vector<double>& m, const std::vector<double>& d) {
-    return root_mean_square_error(std::vector<double>(m.begin() + begin, m.begin() + end), std::vector<double>(d.begin() + begin, d.begin() + end));
-  };
-  // The mean level is compared relative to its value at the toe (the first point), for the model and
-  // the data alike. The flume was closed and at rest before the waves, and its level at the toe is
-  // within 0.1 mm of still water. The model's reference is the sponge behind the source, where the
-  // waves have died out: across the sponge the radiation stress S_xx of the waves leaving into it
-  // falls to zero, so the whole wave region sits S_xx / (rho g d) = (a^2 / 2)(2 n - 1/2) / d below it
-  // (0.8 mm for 031041, 1.9 mm for 061071; the model shows 0.6 and 1.6 mm at the toe). That offset
-  // is where the level is pinned, not the slope's set-down and set-up that the experiment measured.
-  std::vector<double> setup_model, setup_data;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    setup_model.push_back(level_model[i] - level_model.front());
-    setup_data.push_back(level_data[i] - level_data.front());
-  }
-  HansenSvendsenScore score{root_mean_square_error(h_model, h_data), root_mean_square_error(setup_model, setup_data), h_data.front()};
-  score.model_break_x_m = x[model_break];
-  score.data_break_x_m = x[data_break];
-  for (std::size_t i = 0; i < x.size() && x[i] < score.data_break_x_m; ++i)
-    score.set_down_before_break_m = std::min(score.set_down_before_break_m, setup_model[i]);
-  score.set_up_at_last_point_m = setup_model.back();
   results["mean_level_at_toe_model_m"] = level_model.front();
   results["height_rmse_m"] = score.height_rmse_m;
   results["set_up_rmse_m"] = score.level_rmse_m;  // relative to the toe
-  results["shoaling_height_rmse_m"] = zone_rmse(0, data_break, h_model, h_data);
-  results["surf_zone_height_rmse_m"] = zone_rmse(data_break + 1, h_data.size(), h_model, h_data);
+  results["shoaling_height_rmse_m"] = score.shoaling_height_rmse_m;
+  results["surf_zone_height_rmse_m"] = score.surf_zone_height_rmse_m;
   results["break_point"] = {{"data_x_m", x[data_break]}, {"data_height_m", h_data[data_break]},
                             {"model_x_m", x[model_break]}, {"model_height_m", h_model[model_break]}};
   std::printf("Hansen-Svendsen %s (T = %.2f s, H = %.4f m): H RMSE %.4f m (%.1f %% of H0), shoaling %.4f m, surf zone %.4f m; "
               "break point model x = %.2f m H = %.4f m, data x = %.2f m H = %.4f m; set-up RMSE (from the toe) %.2f mm (set-up data %.2f mm at %.2f m, "
               "model %.2f mm); model level at the toe %+.2f mm\n",
               test_id.c_str(), period_s, height_m, score.height_rmse_m, 100 * score.height_rmse_m / score.offshore_height_m,
-              results["shoaling_height_rmse_m"].get<double>(), results["surf_zone_height_rmse_m"].get<double>(), x[model_break],
-              h_model[model_break], x[data_break], h_data[data_break], 1000 * score.level_rmse_m, 1000 * setup_data.back(), x.back(),
-              1000 * setup_model.back(), 1000 * level_model.front());
+              score.shoaling_height_rmse_m, score.surf_zone_height_rmse_m, x[model_break], h_model[model_break], x[data_break],
+              h_data[data_break], 1000 * score.level_rmse_m, 1000 * score.set_up_data_m.back(), x.back(), 1000 * score.set_up_at_last_point_m,
+              1000 * level_model.front());
+  for (const ReferenceResult& reference : references) {
+    const HansenSvendsenScore& r = reference.score;
+    std::printf("  reference FUNWAVE-TVD (%s, published): H RMSE %.4f m (%.1f %% of H0), shoaling %.4f m, surf zone %.4f m; "
+                "break point x = %.2f m; set-up RMSE %.2f mm; H at the toe %.4f m\n",
+                reference.closure.c_str(), r.height_rmse_m, 100 * r.height_rmse_m / r.offshore_height_m, r.shoaling_height_rmse_m,
+                r.surf_zone_height_rmse_m, r.model_break_x_m, 1000 * r.level_rmse_m, reference.profile.front().wave_height_m);
+    results["reference_funwave_tvd"][reference.closure] = {{"height_rmse_m", r.height_rmse_m}, {"set_up_rmse_m", r.level_rmse_m},
+                                                           {"shoaling_height_rmse_m", r.shoaling_height_rmse_m},
+                                                           {"surf_zone_height_rmse_m", r.surf_zone_height_rmse_m}};
+  }
   for (std::size_t i = 0; i < x.size(); ++i)
     std::printf("  x %.2f m: H model %.4f data %.4f m, mean level model %+.2f data %+.2f mm\n", x[i], h_model[i], h_data[i],
                 1000 * level_model[i], 1000 * level_data[i]);
@@ -157,9 +233,19 @@ HansenSvendsenScore run_hansen_svendsen(const std::string& test_id, double perio
   LinePlot height_plot{"Hansen & Svendsen (1979) " + what + ": wave height", "x from the toe of the 1:34.26 slope (m)", "H (m)", {}, 720, 400};
   height_plot.series.push_back({"model", x, h_model, kModelColour, false});
   height_plot.series.push_back({"measured", x, h_data, kDataColour, true});
+  const ReferenceResult& reference = references.front();
+  std::vector<double> reference_x, reference_h, reference_set_up;
+  for (const auto& point : reference.profile)
+    if (point.x_m <= x.back() + 0.05) {
+      reference_x.push_back(point.x_m);
+      reference_h.push_back(point.wave_height_m);
+      reference_set_up.push_back(point.mean_level_m - reference.profile.front().mean_level_m);
+    }
+  height_plot.series.push_back({"FUNWAVE-TVD (published)", reference_x, reference_h, kReferenceColour, false});
   LinePlot level_plot{what + ": mean water level, relative to the toe", "x from the toe of the 1:34.26 slope (m)", "mean eta - mean eta at x = 0 (m)", {}, 720, 400};
-  level_plot.series.push_back({"model", x, setup_model, kModelColour, false});
-  level_plot.series.push_back({"measured", x, setup_data, kDataColour, true});
+  level_plot.series.push_back({"model", x, score.set_up_model_m, kModelColour, false});
+  level_plot.series.push_back({"measured", x, score.set_up_data_m, kDataColour, true});
+  level_plot.series.push_back({"FUNWAVE-TVD (published)", reference_x, reference_set_up, kReferenceColour, false});
   plots.push_back(height_plot);
   plots.push_back(level_plot);
   return score;
@@ -172,22 +258,26 @@ TEST(VALIDATION_SUITE(HansenSvendsen1979), WaveHeightAndSetUpOnTheSlope) {
   const HansenSvendsenScore spilling = run_hansen_svendsen("061071", 1.0 / 0.6, 0.0686, plots);
   fs::create_directories(output_folder("hansen_svendsen"));
   write_png(tile_plots(plots, 2), output_folder("hansen_svendsen") / "hansen_svendsen.png");
-  // What the experiment asks (docs/validation.md, "Hansen & Svendsen"): the wave height RMSE within
-  // 10 % of the height at the toe, the bar the Mase & Kirby case holds, and the set-up within 1 mm
-  // (a quarter of the 4.6 mm measured). The solver MISSES the height bar by 2-3 times: its wave
-  // fronts do not steepen to Kennedy et al.'s (2000) onset 0.65 sqrt(g h) before the measured break
-  // point (eta_t reaches 0.37-0.52 sqrt(g d) there), so it breaks 0.5-1 m late and keeps 1.7-2 times
-  // the measured height in the surf zone; the numbers and the causes examined are in the docs. Until
-  // that is fixed the test holds the solver where it is (regression bars, the measured score plus a
-  // margin for the grid and the machine), and prints the score against the experiment's bar.
-  // The surface roller option ([solver.breaking] model = "roller", Madsen et al. 1997) scores 20.5 %
-  // and 10.9 % on this grid but is not yet stable for 061071 at full resolution (docs/validation.md),
-  // so the case keeps the default closure and these bars stay.
+  // The experiment's bars (docs/validation.md, "Hansen & Svendsen"): what the field's reference model
+  // reaches on this very experiment, scored by the same function: FUNWAVE-TVD's own published result
+  // (README; H RMSE 14.0 % of H0 for 031041 with its shock-capturing closure, 16.6 % with its eddy
+  // viscosity, 11.5 % for 061071; set-up RMSE 0.67 and 2.21 mm). That result was itself set up for
+  // this case (a wave maker 17 % below the measured toe height, a breaking onset of 1.0 sqrt(g h)
+  // instead of its default 0.65), so reaching it with published defaults is a fair bar, not a lax one.
+  // The solver's default MISSES the height bar by about 2 times: its wave fronts do not steepen to
+  // Kennedy et al.'s (2000) onset 0.65 sqrt(g h) before the measured break point (eta_t reaches
+  // 0.37-0.52 sqrt(g d) there), so it breaks 0.5-1 m late and keeps 1.7-2 times the measured height
+  // in the surf zone; the numbers and the causes examined are in the docs. Until that is fixed the
+  // test holds the solver where it is (regression bars, the measured score plus a margin for the grid
+  // and the machine), and prints the score against the experiment's bars.
+  // The surface roller option ([solver.breaking] model = "roller", Madsen et al. 1997) scores about
+  // 20 % and 11 % (docs/validation.md); it is not the default (ibid., "Why it is not the default").
   for (const HansenSvendsenScore& score : {plunging, spilling}) {
-    std::printf("Hansen-Svendsen: H RMSE %.1f %% of H0 (experiment's bar 10 %%: %s), set-up RMSE %.2f mm (bar 1 mm: %s)\n",
-                100 * score.height_rmse_m / score.offshore_height_m,
-                score.height_rmse_m <= 0.10 * score.offshore_height_m ? "met" : "MISSED", 1000 * score.level_rmse_m,
-                score.level_rmse_m <= 0.001 ? "met" : "MISSED");
+    std::printf("Hansen-Svendsen: H RMSE %.1f %% of H0 (the experiment's bar, FUNWAVE-TVD's published %.1f %%: %s), set-up RMSE "
+                "%.2f mm (FUNWAVE-TVD's %.2f mm: %s)\n",
+                100 * score.height_rmse_m / score.offshore_height_m, 100 * score.reference_height_rmse_m / score.offshore_height_m,
+                score.height_rmse_m <= score.reference_height_rmse_m ? "met" : "MISSED", 1000 * score.level_rmse_m,
+                1000 * score.reference_level_rmse_m, score.level_rmse_m <= score.reference_level_rmse_m ? "met" : "MISSED");
     EXPECT_LE(score.height_rmse_m, kHeightRegressionBar * score.offshore_height_m);
     EXPECT_LE(score.level_rmse_m, kSetUpRegressionBar_m);
     // What the model must get right whatever its breaking: the break point (the largest height) within
