@@ -131,6 +131,17 @@ void draw_text(Image& image, int x, int y, const std::string& text, Rgb colour, 
   }
 }
 
+int text_width_px(const std::string& text, int size_px) {
+  Font& f = font();
+  if (!f.face) return 0;
+  std::lock_guard lock(f.mutex);
+  FT_Set_Pixel_Sizes(f.face, 0, static_cast<FT_UInt>(size_px));
+  int width = 0;
+  for (unsigned char character : text)
+    if (FT_Load_Char(f.face, character, FT_LOAD_DEFAULT) == 0) width += static_cast<int>(f.face->glyph->advance.x >> 6);
+  return width;
+}
+
 void write_png(const Image& picture, const std::filesystem::path& path) {
   const std::vector<float>& pixels = picture.pixels();
   std::vector<unsigned char> bytes(pixels.size());
@@ -254,8 +265,8 @@ void draw_map_axes(Image& image, const HeatMapPlacement& placement, int columns,
     draw_text(image, static_cast<int>(left) - 8 - static_cast<int>(7 * label.size()), static_cast<int>(py) + 4, label,
               ink, 12);
   }
-  draw_text(image, static_cast<int>(left + placement.width_px / 2) - 40, static_cast<int>(bottom) + 37, axes.x_label,
-            ink, 13);
+  draw_text(image, static_cast<int>(left + placement.width_px / 2) - text_width_px(axes.x_label, 13) / 2,
+            static_cast<int>(bottom) + 37, axes.x_label, ink, 13);
   draw_text(image, 4, static_cast<int>(top) - 6, axes.y_label, ink, 13);
   // Scale bar, lower left inside the field on a white plate, alternating black and white halves.
   const double bar_m = scale_bar_length_m(width_m), bar_px = bar_m * px_per_m_x;
@@ -276,7 +287,7 @@ void draw_map_axes(Image& image, const HeatMapPlacement& placement, int columns,
     const double a = axes.true_north_from_grid_deg * M_PI / 180.0;
     const double dx = std::sin(a), dy = -std::cos(a);  // image y runs down
     image.fill_rectangle(static_cast<int>(cx) - 20, static_cast<int>(cy) - 36, static_cast<int>(cx) + 20,
-                         static_cast<int>(cy) + 26, white);
+                         static_cast<int>(cy) + 36, white);
     const double tip_x = cx + dx * length, tip_y = cy + dy * length, tail_x = cx - dx * length * 0.8,
                  tail_y = cy - dy * length * 0.8;
     draw_line(image, tail_x, tail_y, tip_x, tip_y, ink, 2);
@@ -284,7 +295,8 @@ void draw_map_axes(Image& image, const HeatMapPlacement& placement, int columns,
       const double bx = tip_x - dx * 9 + side * -dy * 5, by = tip_y - dy * 9 + side * dx * 5;
       draw_line(image, tip_x, tip_y, bx, by, ink, 2);
     }
-    draw_text(image, static_cast<int>(cx) - 4 - (axes.north_label.size() > 1 ? 6 : 0), static_cast<int>(cy) + 22,
+    // Centred under the arrow's tail, clear of it (a "+y" drawn across the shaft was unreadable).
+    draw_text(image, static_cast<int>(tail_x) - text_width_px(axes.north_label, 13) / 2, static_cast<int>(tail_y) + 15,
               axes.north_label, ink, 13);
   }
 }
@@ -311,7 +323,10 @@ Image render_heat_map(const Raster<float>& field, const HeatMapStyle& style,
   const int margin = kHeatMapMargin, bar_w = kHeatMapBarWidth, right = kHeatMapRight;
   const int field_left = static_cast<int>(placement.left_px);
   const int below = style.map_axes ? kMapAxesBelow : 0;
-  Image image(field_left + field_w + margin / 2 + bar_w + right, field_h + 2 * margin + below);
+  // Wide enough for the colour bar's label written under it (a long "surface elevation (m)" ran off
+  // the right edge of a narrow map).
+  const int bar_label_right = field_left + field_w + 20 + text_width_px(style.value_label) + 8;
+  Image image(std::max(field_left + field_w + margin / 2 + bar_w + right, bar_label_right), field_h + 2 * margin + below);
   const double span = style.high - style.low == 0 ? 1.0 : style.high - style.low;
   for (int py = 0; py < field_h; ++py) {
     int row = std::min(field.rows() - 1, static_cast<int>(py / scale));

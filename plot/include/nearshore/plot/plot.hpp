@@ -29,6 +29,8 @@ void draw_line(Image& image, double x0, double y0, double x1, double y1, Rgb col
 /// Text with its baseline-left at (x, y), height `size_px` pixels (DejaVu Sans; skipped when the
 /// font is missing, the picture is still written).
 void draw_text(Image& image, int x, int y, const std::string& text, Rgb colour, int size_px = 14);
+/// The width draw_text gives `text` at `size_px` (the sum of the glyphs' advances), pixels.
+int text_width_px(const std::string& text, int size_px = 14);
 /// Writes a PNG atomically; throws nearshore::Error naming the path on failure.
 void write_png(const Image& image, const std::filesystem::path& path);
 /// Reads a PNG (any bit depth or colour type, converted to 8-bit RGB) back into an Image, e.g. to
