@@ -63,6 +63,7 @@ constexpr long kMostFrames = 99'999'999;
 
 // The maps of every step after spin-up, beside the frames (docs/formats/wave-statistics.md).
 constexpr const char* kWaveStatisticsFile = "wave_statistics.tif";
+constexpr const char* kRunupLineFile = "wave_statistics_runup.geojson";  // its run-up line as lines
 
 StepPlan plan_steps(const BakeCase& bake_case) {
   const double dt = bake_case.solver.time_step_s;
@@ -204,14 +205,23 @@ class CheckpointFileBuffer : public std::streambuf {
   const std::string kept = checkpoint_time_s >= 0
                                ? fmt::format("the last good checkpoint (t = {:.3f} s) is kept in {}", checkpoint_time_s, checkpoint.string())
                                : std::string("no checkpoint had been written yet");
+  // The breaking closure's own remedy: the eddy viscosity's onset, or for the roller (which adds no
+  // dissipation) a stronger grid-scale filter against the surf zone's short waves (docs/validation.md,
+  // "The surface roller": stable at full resolution with order 4).
+  const auto& breaking = bake_case.solver.breaking;
+  const std::string breaking_remedy =
+      breaking.model == BreakingParameters::Model::kRoller
+          ? fmt::format("or filter the surf zone's short waves harder with the roller (solver.shapiro_filter_order = 4, now {})",
+                        bake_case.solver.shapiro_filter_order)
+          : fmt::format("or lower solver.breaking.onset_celerity_fraction (now {}) so waves break earlier",
+                        breaking.onset_celerity_fraction);
   throw Error(bake_case.case_file.string(),
               fmt::format("the solver became unstable at t = {:.3f} s in cell (column {}, row {}) at x = {:.2f} m, y = {:.2f} m, "
                           "still-water depth {:.3f} m: {} (value {:.4g})",
                           report.time_s, report.column, report.row, report.x_m, report.y_m, report.depth_m, report.what, report.value),
               fmt::format("reduce time.courant_number or time.time_step_s (now {:.5g} s), smooth the bathymetry near that cell "
-                          "or raise solver.dispersion_cutoff_depth_m, or lower solver.breaking.onset_celerity_fraction (now {}) so "
-                          "waves break earlier; {}",
-                          bake_case.solver.time_step_s, bake_case.solver.breaking.onset_celerity_fraction, kept));
+                          "or raise solver.dispersion_cutoff_depth_m, {}; {}",
+                          bake_case.solver.time_step_s, breaking_remedy, kept));
 }
 
 void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const BoussinesqSolver& solver,
@@ -473,13 +483,18 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     timed([&] {
       write_wave_statistics_geotiff(folder / kWaveStatisticsFile, *statistics, bake_case.harbour.geometry,
                                     description.first_frame_time_s, solver.time_s());
+      write_runup_line_geojson(folder / kRunupLineFile, *statistics, bake_case.harbour.geometry,
+                               description.first_frame_time_s, solver.time_s());
     });
-    statistics_json = {{"file", (folder / kWaveStatisticsFile).string()}, {"steps", statistics->step_count()}};
+    statistics_json = {{"file", (folder / kWaveStatisticsFile).string()},
+                       {"runup_line_file", (folder / kRunupLineFile).string()},
+                       {"steps", statistics->step_count()}};
     if (const auto runup = statistics->highest_runup())
       statistics_json["runup"] = {{"water_level_m", runup->water_level_m}, {"ground_elevation_m", runup->ground_elevation_m},
                                   {"x_m", runup->x_m}, {"y_m", runup->y_m}};
   } else {
     fs::remove(folder / kWaveStatisticsFile, ignored);  // a map of an earlier bake would describe another sea
+    fs::remove(folder / kRunupLineFile, ignored);
   }
   writer.finish(summary.frames);
   progress.finish(fmt::format("{} frames", summary.frames));

@@ -5,7 +5,8 @@
 //   frame_compression = "none" | "zip" | "zips" | "rle" | "piz" | "pxr24" | "b44" | "dwaa"
 //   frame_precision   = "half" | "float"                      (every channel)
 //                     | { surface_elevation = "float", flux = "half", breaking = "half" }
-//   wave_statistics   = true | false                          (DIR/wave_statistics.tif)
+//   wave_statistics   = true | false                          (DIR/wave_statistics.tif and
+//                                                              DIR/wave_statistics_runup.geojson)
 #include "case_reader.hpp"
 
 #include "nearshore/sequence/sequence_format.hpp"

@@ -1,6 +1,6 @@
 // DIR/wave_statistics.tif: the bake's wave statistics (wave_statistics.hpp) as a four-band float32
-// GeoTIFF that QGIS and GDAL open (docs/formats/wave-statistics.md). The only file of bake/ that
-// includes GDAL.
+// GeoTIFF that QGIS and GDAL open (docs/formats/wave-statistics.md). With
+// wave_statistics_geojson.cpp (the run-up line as lines), the only file of bake/ that includes GDAL.
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 

@@ -2,10 +2,12 @@
 // (frame codec and precision, recorded in the manifest and the estimate), and the wave statistics
 // the bake accumulates at every solver step (wave_statistics.hpp): Hs of a sinusoid, the run-up of
 // a solitary wave on a plane beach against the solver's own shoreline and Synolakis (1987), the
-// GeoTIFF read back with GDAL, the state carried through a checkpoint.
+// GeoTIFF and the run-up line's GeoJSON read back with GDAL/OGR, the state carried through a checkpoint.
 #include <gdal_priv.h>
+#include <ogrsf_frmts.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -248,6 +250,42 @@ TEST(WaveStatistics, RunupOnAPlaneBeachIsTheHighestShorelineTheSolverReached) {
   EXPECT_EQ(line_cells, g.rows);
   EXPECT_LE(line_max_m, shoreline_runup_m);
   EXPECT_NEAR(line_max_m, shoreline_runup_m, g.spacing_x_m() / kCotBeta);
+
+  // The run-up line as lines (wave_statistics_runup.geojson, read back with OGR): one open line
+  // across the flume whose vertices are the band's cells at their centres (the tif's georeference)
+  // with z = the band's level, so its highest z is the band's highest, and R at most one cell's rise
+  // (dx / cot b) above it, as for the band (at d/10 the film peaks 0.1 mm seaward of the front; at the
+  // case's d/20 the line's highest z is R itself, docs/formats/wave-statistics.md). Exact comparisons:
+  // a float written with 15 significant figures reads back as the same float.
+  ASSERT_EQ(summary.wave_statistics.value("runup_line_file", ""), (options.output_folder / "wave_statistics_runup.geojson").string());
+  GDALDatasetUniquePtr geojson(
+      GDALDataset::Open((options.output_folder / "wave_statistics_runup.geojson").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  ASSERT_NE(geojson, nullptr);
+  ASSERT_EQ(geojson->GetLayerCount(), 1);
+  OGRLayer* layer = geojson->GetLayer(0);
+  // A flume in local metres: no "crs" member (GDAL's reader then assumes WGS 84; the description says
+  // local metres).
+  EXPECT_FALSE(nlohmann::json::parse(std::ifstream(options.output_folder / "wave_statistics_runup.geojson")).contains("crs"));
+  ASSERT_EQ(layer->GetFeatureCount(), 1);
+  const OGRFeatureUniquePtr feature(layer->GetNextFeature());
+  const OGRLineString* runup_line = feature->GetGeometryRef()->toLineString();
+  ASSERT_EQ(runup_line->getNumPoints(), g.rows);
+  double vertices_max_m = -1;
+  for (const OGRPoint& vertex : *runup_line) {
+    const int column = static_cast<int>(std::floor((vertex.getX() - g.origin_x_m) / g.spacing_x_m()));
+    const int row = static_cast<int>(std::floor((vertex.getY() - g.origin_y_m) / g.spacing_y_m()));
+    ASSERT_TRUE(column >= 0 && column < g.columns && row >= 0 && row < g.rows);
+    EXPECT_NEAR(vertex.getX(), g.cell_centre_x_m(column), 1e-9);
+    EXPECT_NEAR(vertex.getY(), g.cell_centre_y_m(row), 1e-9);
+    const float band_level = line[static_cast<std::size_t>(g.rows - 1 - row) * g.columns + column];
+    ASSERT_NE(band_level, no_data) << "a vertex off the band's cells at column " << column << ", row " << row;
+    EXPECT_EQ(static_cast<float>(vertex.getZ()), band_level);
+    vertices_max_m = std::max(vertices_max_m, vertex.getZ());
+  }
+  EXPECT_EQ(static_cast<float>(vertices_max_m), static_cast<float>(line_max_m));
+  EXPECT_EQ(static_cast<float>(feature->GetFieldAsDouble("water_level_max_m")), static_cast<float>(line_max_m));
+  EXPECT_EQ(feature->GetFieldAsInteger("cells"), g.rows);  // one per row: every band cell is a vertex
+  EXPECT_NEAR(vertices_max_m, shoreline_runup_m, g.spacing_x_m() / kCotBeta);
 
   // 3. Physics.
   const double runup_ratio = shoreline_runup_m / kDepth_m;

@@ -40,7 +40,8 @@ struct BakeOutput {
   /// both, and the bake's disk estimate counts the precision.
   sequence::FrameEncoding frame_encoding;
   /// Write DIR/wave_statistics.tif (wave_statistics.hpp): the maximum-elevation envelope, Hs, the
-  /// mean level and the run-up line over every solver step after time.spin_up_s. Off unless asked
+  /// mean level and the run-up line over every solver step after time.spin_up_s, and the run-up line
+  /// as lines in DIR/wave_statistics_runup.geojson (runup_line.hpp). Off unless asked
   /// for: it holds 24 bytes per cell for the whole bake (two double sums, the float envelope, the
   /// depth), a tenth of the solver's budget of 250 B per cell (docs/solver.md "Memory", issue 15).
   bool wave_statistics = false;

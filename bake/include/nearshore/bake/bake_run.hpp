@@ -3,8 +3,9 @@
 // 3: solve, keep every frame's height and flux fields). In the output folder:
 //   the frame sequence (sequence::SequenceWriter: frames every output interval after spin-up, the
 //   manifest written LAST by finish()), gauges.csv (bake_gauges.hpp), wave_statistics.tif (the
-//   envelope, Hs, mean level and run-up line over every step after spin-up; wave_statistics.hpp),
-//   and checkpoint.bin while the run is under way (removed when it completes).
+//   envelope, Hs, mean level and run-up line over every step after spin-up; wave_statistics.hpp)
+//   with wave_statistics_runup.geojson (the run-up line as lines; runup_line.hpp), and
+//   checkpoint.bin while the run is under way (removed when it completes).
 // Checkpoints hold the solver state, the gauge records and a fingerprint of the case; a run
 // resumed from one writes byte-identical frames and gauges to an uninterrupted run.
 #include <cstdint>

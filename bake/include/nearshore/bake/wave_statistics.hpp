@@ -2,8 +2,9 @@
 // WaveStatistics: the maps coastal modellers expect from a run (issue 19), accumulated by the bake
 // at EVERY solver step after time.spin_up_s, not from the frames: an extreme (the envelope, the
 // run-up) falls between frames (a crest sampled every T/16 is read up to 1 - cos(pi/16) = 2 % low),
-// and a bake keeps far fewer frames than steps. Written as DIR/wave_statistics.tif
-// (docs/formats/wave-statistics.md); `nearshore export --to geotiff` maps the frames instead.
+// and a bake keeps far fewer frames than steps. Written as DIR/wave_statistics.tif, and the run-up
+// line also as lines in DIR/wave_statistics_runup.geojson (docs/formats/wave-statistics.md);
+// `nearshore export --to geotiff` maps the frames instead.
 //
 //   maximum surface elevation   the envelope: max over the steps of eta in each cell while it is
 //                               wet (total depth d + eta > solver.dry_depth_m), metres above still
@@ -82,9 +83,19 @@ class WaveStatistics {
 
 /// Writes `statistics` as a four-band float32 GeoTIFF (maximum_surface_elevation,
 /// significant_wave_height, mean_surface_elevation, runup_line_water_level; nodata -9999),
-/// north-up and georeferenced like the harbour grid, atomically (wave_statistics_geotiff.cpp,
-/// the only file of bake/ that includes GDAL). `first_time_s`/`last_time_s` are recorded as metadata.
+/// north-up and georeferenced like the harbour grid, atomically (wave_statistics_geotiff.cpp; it and
+/// wave_statistics_geojson.cpp are the files of bake/ that include GDAL). `first_time_s`/`last_time_s`
+/// are recorded as metadata.
 void write_wave_statistics_geotiff(const std::filesystem::path& path, const WaveStatistics& statistics,
                                    const GridGeometry& geometry, double first_time_s, double last_time_s);
+
+/// Writes the run-up line as lines (trace_runup_lines, runup_line.hpp) to a GeoJSON file through
+/// GDAL's GeoJSON driver, atomically (wave_statistics_geojson.cpp): one LineString feature per line
+/// with a 3-D vertex per front cell (x, y = the cell centre in the grid's CRS, or local metres where
+/// the grid has none; z = the highest water level there, metres above still water) and the
+/// properties water_level_max_m, water_level_min_m, cells, length_m, closed
+/// (docs/formats/wave-statistics.md). `first_time_s`/`last_time_s` go into the file's description.
+void write_runup_line_geojson(const std::filesystem::path& path, const WaveStatistics& statistics,
+                              const GridGeometry& geometry, double first_time_s, double last_time_s);
 
 }  // namespace nearshore::bake
