@@ -61,6 +61,9 @@ SolverParameters read_solver(TableReader& solver) {
   p.breaking.roller_half_time_s = breaking.non_negative("roller_half_time_s", p.breaking.roller_half_time_s, "t_1/2 in seconds (0 = from the wave maker's period)");
   p.breaking.roller_celerity_factor = breaking.positive("roller_celerity_factor", p.breaking.roller_celerity_factor, "c / sqrt(g h)");
   p.breaking.roller_shape_factor = breaking.positive("roller_shape_factor", p.breaking.roller_shape_factor, "f_delta");
+  p.breaking.roller_filter_order = breaking.integer("roller_filter_order", p.breaking.roller_filter_order, 0, 16, "order of the roller's surf-zone flux filter (even, 0 = off)");
+  if (p.breaking.roller_filter_order % 2 != 0)
+    breaking.fail(breaking.full("roller_filter_order"), "is odd", "give an even order: 4 (the default), or 0 for no surf-zone filter");
   if (p.breaking.roller_final_angle_deg > p.breaking.roller_onset_angle_deg)
     breaking.fail(breaking.full("roller_final_angle_deg"), "is larger than roller_onset_angle_deg", "make the final angle at most the onset angle (10 and 20 degrees in Madsen et al. 1997)");
   if (p.breaking.stop_celerity_fraction > p.breaking.onset_celerity_fraction)
@@ -113,6 +116,7 @@ json solver_record(const SolverParameters& p) {
     breaking["roller_half_time_s"] = p.breaking.roller_half_time_s;
     breaking["roller_celerity_factor"] = p.breaking.roller_celerity_factor;
     breaking["roller_shape_factor"] = p.breaking.roller_shape_factor;
+    breaking["roller_filter_order"] = p.breaking.roller_filter_order;
   }
   return record;
 }

@@ -372,6 +372,16 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
                                       b.roller_celerity_factor, b.roller_shape_factor, parameters.dry_depth_m};
     s.roller = std::make_unique<detail::SurfaceRoller>(
         detail::RollerGrid{s.nx, s.ny, s.dx, s.dy, s.frame_y.depth_m.data(), s.frame_y.porosity.data()}, constants);
+    if (b.roller_filter_order < 0 || b.roller_filter_order % 2 != 0 || b.roller_filter_order > 16)
+      throw Error(subject, "roller_filter_order is " + std::to_string(b.roller_filter_order) + ", not an even order from 0 to 16",
+                  "give BreakingParameters::roller_filter_order = 4 (the default) or 0 for no surf-zone filter");
+    if (b.roller_filter_order > 0) {
+      s.surf_zone_filter = detail::ShapiroFilter(b.roller_filter_order / 2);
+      s.surf_zone_cells.assign(cells, 0);
+      s.surf_zone_scratch.assign(cells, 0);
+      s.surf_zone_x.assign(faces_x, 0);
+      s.surf_zone_y.assign(faces_y, 0);
+    }
   }
   s.publish();
 }
@@ -612,7 +622,8 @@ void BoussinesqSolver::Implementation::repair_negative_depths() {
 }
 
 void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
-  if (flux_filter.half_order() <= 0) return;
+  const bool surf_zone = roller_active && surf_zone_filter.half_order() > 0;
+  if (flux_filter.half_order() <= 0 && !surf_zone) return;
   // A face may be filtered where it is open (or a grid-edge wall, which the odd ghosts describe)
   // and the cells on both sides are wet with every neighbour wet: never across a shoreline or quay.
   const unsigned char* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
@@ -639,12 +650,62 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
     for (int c = 0; c < nx; ++c)
       out[c] = (detail::face_open(inverse_porosity, index(c, k - 1, nx), index(c, k, nx)) != 0.0) & south[c] & north[c];
   });
-  // P: along x is its slow index (normal to the west and east walls), along y its fast index.
-  flux_filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
-  flux_filter.along_fast(flux_x_new.data(), filterable_x.data(), nx + 1, ny, false);
-  // Q: along y is its slow index (normal to the south and north walls), along x its fast index.
-  flux_filter.along_slow(flux_y_new.data(), filterable_y.data(), ny + 1, nx, true);
-  flux_filter.along_fast(flux_y_new.data(), filterable_y.data(), ny + 1, nx, false);
+  if (flux_filter.half_order() > 0) {
+    // P: along x is its slow index (normal to the west and east walls), along y its fast index.
+    flux_filter.along_slow(flux_x_new.data(), filterable_x.data(), nx + 1, ny, true);
+    flux_filter.along_fast(flux_x_new.data(), filterable_x.data(), nx + 1, ny, false);
+    // Q: along y is its slow index (normal to the south and north walls), along x its fast index.
+    flux_filter.along_slow(flux_y_new.data(), filterable_y.data(), ny + 1, nx, true);
+    flux_filter.along_fast(flux_y_new.data(), filterable_y.data(), ny + 1, nx, false);
+  }
+  if (surf_zone) filter_surf_zone_fluxes();
+}
+
+void BoussinesqSolver::Implementation::filter_surf_zone_fluxes() {
+  // The surf zone: cells with a roller force on one of their faces (the roller and the cell its
+  // 1-2-1 smoothing reaches), dilated by three cells along each axis so that the filter's 5-point
+  // stencil (order 4) covers the roller and the short waves just behind its front.
+  constexpr int kReach = 3;
+  const std::vector<double>& force_x = roller->force_x();
+  const std::vector<double>& force_y = roller->force_y();
+  unsigned char* zone = surf_zone_cells.data();
+  unsigned char* scratch = surf_zone_scratch.data();
+  tbb::parallel_for(0, ny, [&](int r) {
+    for (int c = 0; c < nx; ++c)
+      scratch[index(c, r, nx)] = (force_x[px(c, r)] != 0.0) | (force_x[px(c + 1, r)] != 0.0) | (force_y[qy(c, r)] != 0.0) |
+                                 (force_y[qy(c, r + 1)] != 0.0);
+  });
+  tbb::parallel_for(0, ny, [&](int r) {  // dilate along x
+    for (int c = 0; c < nx; ++c) {
+      unsigned char near = 0;
+      for (int k = std::max(0, c - kReach); k <= std::min(nx - 1, c + kReach); ++k) near |= scratch[index(k, r, nx)];
+      zone[index(c, r, nx)] = near;
+    }
+  });
+  tbb::parallel_for(0, ny, [&](int r) {  // then along y
+    for (int c = 0; c < nx; ++c) {
+      unsigned char near = 0;
+      for (int k = std::max(0, r - kReach); k <= std::min(ny - 1, r + kReach); ++k) near |= zone[index(c, k, nx)];
+      scratch[index(c, r, nx)] = near;
+    }
+  });
+  // A face is in the surf zone when a cell beside it is, and filterable as for the grid-wide filter.
+  tbb::parallel_for(0, nx + 1, [&](int f) {
+    for (int r = 0; r < ny; ++r) {
+      const unsigned char near = (f > 0 ? scratch[index(f - 1, r, nx)] : 0) | (f < nx ? scratch[index(f, r, nx)] : 0);
+      surf_zone_x[px(f, r)] = filterable_x[px(f, r)] & near;
+    }
+  });
+  tbb::parallel_for(0, ny + 1, [&](int k) {
+    for (int c = 0; c < nx; ++c) {
+      const unsigned char near = (k > 0 ? scratch[index(c, k - 1, nx)] : 0) | (k < ny ? scratch[index(c, k, nx)] : 0);
+      surf_zone_y[qy(c, k)] = filterable_y[qy(c, k)] & near;
+    }
+  });
+  surf_zone_filter.along_slow(flux_x_new.data(), surf_zone_x.data(), nx + 1, ny, true);
+  surf_zone_filter.along_fast(flux_x_new.data(), surf_zone_x.data(), nx + 1, ny, false);
+  surf_zone_filter.along_slow(flux_y_new.data(), surf_zone_y.data(), ny + 1, nx, true);
+  surf_zone_filter.along_fast(flux_y_new.data(), surf_zone_y.data(), ny + 1, nx, false);
 }
 
 void BoussinesqSolver::Implementation::apply_sponges() {
@@ -889,6 +950,7 @@ std::size_t BoussinesqSolver::memory_bytes() const {
   add(s.eta_output.values());
   add(s.breaking_output.values());
   if (s.roller) bytes += s.roller->memory_bytes();
+  for (const auto* v : {&s.surf_zone_cells, &s.surf_zone_scratch, &s.surf_zone_x, &s.surf_zone_y}) add(*v);
   for (const SweepScratch& scratch : s.scratch)
     for (const auto* v : {&scratch.upper, &scratch.right, &scratch.increment, &scratch.eta_half, &scratch.flux_half,
                           &scratch.cell_term, &scratch.fixed_term, &scratch.tangential_squared, &scratch.active,

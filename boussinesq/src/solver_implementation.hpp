@@ -67,6 +67,10 @@ struct BoussinesqSolver::Implementation {
   // scratch, and the grid-scale filter's masks of the P and Q faces.
   std::vector<unsigned char> dispersive, dispersive_t, wet_cells, filterable_x, filterable_y;
   detail::ShapiroFilter flux_filter;  // order solver.shapiro_filter_order, its stencil built once
+  // The roller's surf-zone filter (BreakingParameters::roller_filter_order) and its masks: cells near
+  // a roller (and a scratch for the dilation), P and Q faces it may change. Empty without a roller.
+  detail::ShapiroFilter surf_zone_filter{0};
+  std::vector<unsigned char> surf_zone_cells, surf_zone_scratch, surf_zone_x, surf_zone_y;
   // Sponge damping factors per step (docs/solver.md "Sponge layers"), only where they are not 1:
   // memory in proportion to the layers, not to the grid.
   struct SpongePoint {
@@ -103,6 +107,7 @@ struct BoussinesqSolver::Implementation {
   void step();
   void repair_negative_depths();
   void filter_grid_scale_fluxes();
+  void filter_surf_zone_fluxes();
   void apply_sponges();
   void update_breaking(const std::vector<double>& eta_old);
   void add_roller_force();
