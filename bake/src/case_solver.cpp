@@ -18,6 +18,9 @@ namespace {
 const char* face_depth_name(SolverParameters::FaceDepth face_depth) {
   return face_depth == SolverParameters::FaceDepth::kMeanWhereWet ? "mean_where_wet" : "larger_of_mean_and_above_bed";
 }
+const char* equations_name(Equations equations) {
+  return equations == Equations::kFullyNonlinear ? "fully_nonlinear" : "weakly_nonlinear";
+}
 const char* breaking_model_name(BreakingParameters::Model model) {
   return model == BreakingParameters::Model::kRoller ? "roller" : "eddy_viscosity";
 }
@@ -33,7 +36,10 @@ SolverParameters read_solver(TableReader& solver) {
                                                   "depth in metres the equations see at most (0 = no limit; docs/solver.md, \"Effective depth\")");
   p.dry_depth_m = solver.positive("dry_depth_m", p.dry_depth_m, "wet/dry threshold in metres");
   p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
-  // The depth of the dispersive terms and of a face (docs/solver.md "Dispersion depth", "Face depth").
+  // The nonlinear terms (docs/solver.md "Fully nonlinear dispersion"), the depth of the dispersive
+  // terms and of a face (docs/solver.md "Dispersion depth", "Face depth").
+  p.equations = solver.choice("equations", equations_name(p.equations), {"weakly_nonlinear", "fully_nonlinear"}) == 1
+                    ? Equations::kFullyNonlinear : Equations::kWeaklyNonlinear;
   p.dispersion_depth = solver.choice("dispersion_depth", "still_water", {"still_water", "total"}) == 1
                            ? DispersionDepth::kTotal : DispersionDepth::kStillWater;
   p.face_depth = solver.choice("face_depth", face_depth_name(p.face_depth), {"mean_where_wet", "larger_of_mean_and_above_bed"}) == 0
@@ -44,6 +50,9 @@ SolverParameters read_solver(TableReader& solver) {
   p.shapiro_filter_order = solver.integer("shapiro_filter_order", p.shapiro_filter_order, 0, 16, "order of the grid-scale flux filter (even, 0 = off)");
   if (p.shapiro_filter_order % 2 != 0)
     solver.fail(solver.full("shapiro_filter_order"), "is odd", "give an even order: 8 (the default), or 0 to turn the filter off");
+  if (p.equations == Equations::kFullyNonlinear && p.dispersion_depth == DispersionDepth::kTotal)
+    solver.fail(solver.full("dispersion_depth"), "is \"total\" with equations = \"fully_nonlinear\", whose dispersive terms already carry the total depth",
+                "leave dispersion_depth out (\"still_water\") with the fully nonlinear equations");
   p.blowup_elevation_depth_ratio = solver.positive("blowup_elevation_depth_ratio", p.blowup_elevation_depth_ratio, "|eta| / depth ratio that stops the run");
   TableReader breaking = solver.table("breaking");
   p.breaking.enabled = breaking.boolean("enabled", p.breaking.enabled);
@@ -105,6 +114,9 @@ json solver_record(const SolverParameters& p) {
             {"turbulent_beta", p.porous.turbulent_beta},
             {"stone_diameter_m", p.porous.stone_diameter_m}}},
           {"sponges", sponges}};
+  // The equations only when they are not the seed's: the record of a weakly nonlinear bake stays what
+  // it was before the option existed (no "equations" key means "weakly_nonlinear").
+  if (p.equations != Equations::kWeaklyNonlinear) record["equations"] = equations_name(p.equations);
   // The roller's settings only when it is the model: the record of an eddy-viscosity bake stays
   // what it was before the roller existed (no "model" key means "eddy_viscosity").
   if (p.breaking.model == BreakingParameters::Model::kRoller) {

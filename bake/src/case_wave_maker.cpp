@@ -266,6 +266,8 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
                                                         "direction of travel in degrees counter-clockwise from +x (east)");
     const double phase_rad = kDegree * maker.number("phase_deg", 0.0, -360.0, 360.0, false, "phase in degrees");
     sea = regular_wave_sea_state(height_m, period_s, direction_rad, phase_rad);
+    // Second-order generation (WaveMaker::second_order; docs/solver.md "Wave maker").
+    wave_maker.second_order = maker.boolean("second_order", wave_maker.second_order);
     sea.loop_period_s = read_loop_period_s(maker);
     if (sea.loop_period_s > 0) check_loop_period(maker, "period_s", sea.loop_period_s, period_s);
   } else if (kind == MakerKind::kIrregular) {

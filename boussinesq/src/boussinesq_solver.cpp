@@ -239,6 +239,9 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     throw Error(subject, "shapiro_filter_order is " + std::to_string(parameters.shapiro_filter_order) + ", not an even order from 0 to 16",
                 "set it to 8 (the default) or 0 to turn the filter off");
   if (parameters.adi_passes < 1) throw Error(subject, "adi_passes must be at least 1", "set it to 1 (or 2 on fine grids)");
+  if (parameters.equations == Equations::kFullyNonlinear && parameters.dispersion_depth == DispersionDepth::kTotal)
+    throw Error(subject, "SolverParameters::equations = kFullyNonlinear with dispersion_depth = kTotal: the fully nonlinear terms already carry the total depth",
+                "set dispersion_depth to kStillWater (the default) with the fully nonlinear equations");
   for (const SpongeLayer& sponge : parameters.sponges) {
     const double extent = (sponge.side == Side::kWest || sponge.side == Side::kEast) ? geometry.width_m() : geometry.height_m();
     if (!(sponge.width_m >= 0.0) || sponge.width_m > 0.5 * extent)
@@ -262,13 +265,20 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     if (s.dy != s.dx) h = hash_bytes(&s.dy, sizeof s.dy, h);  // square grids keep their fingerprint (saved states load)
     h = hash_bytes(&s.dt, sizeof s.dt, h);
     h = hash_bytes(depth_double.data(), depth_double.size() * sizeof(double), h);
+    // The fully nonlinear equations carry a history in the state (nonlinear_dispersion.hpp); the
+    // seed's equations keep their fingerprint, so their saved states load as before.
+    if (parameters.equations == Equations::kFullyNonlinear) {
+      const char tag[] = "fully nonlinear";
+      h = hash_bytes(tag, sizeof tag, h);
+    }
     s.fingerprint = h;
   }
   s.constants = {s.dt, parameters.dispersion_coefficient, parameters.dry_depth_m, parameters.chezy_coefficient,
                  parameters.nonlinear_iterations,
                  parameters.dispersion_depth == DispersionDepth::kTotal,
-                 parameters.face_depth == SolverParameters::FaceDepth::kMeanWhereWet};
-  s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters.dispersion_coefficient);
+                 parameters.face_depth == SolverParameters::FaceDepth::kMeanWhereWet,
+                 parameters.equations == Equations::kFullyNonlinear};
+  s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters);
   {
     std::vector<float> depth_t(cells), porosity_t(cells);
     detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
@@ -349,6 +359,10 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.dispersive_t.assign(cells, 0);
   s.wet_cells.assign(cells, 0);
 
+  if (parameters.equations == Equations::kFullyNonlinear)
+    s.nonlinear = std::make_unique<detail::NonlinearDispersion>(detail::NonlinearDispersionGrid{
+        s.nx, s.ny, s.dx, s.dy, s.frame_y.depth_m.data(), s.frame_y.porosity.data(), s.frame_x.face_dispersion_weight.data(),
+        s.frame_y.face_dispersion_weight.data(), parameters.dispersion_coefficient, parameters.dry_depth_m});
   s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
   s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
   if (parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kRoller) {
@@ -503,7 +517,7 @@ void BoussinesqSolver::Implementation::step() {
     sweep(frame_x,
           {eta_t.data(), eta_base.data(), partner, extrapolates, flux_x.data(),
            normal_guess(pass, flux_x, flux_x_increment, flux_x_new), tangential_half.data(), tangential_rate.data(),
-           eddy_t.data(), dispersive_t.data(), eddy_viscosity_active},
+           eddy_t.data(), dispersive_t.data(), eddy_viscosity_active, nonlinear ? nonlinear->force_x() : nullptr},
           // Its eta (eta* when it comes first, eta^{n+1} when second) straight into the natural layout.
           {first ? eta_star.data() : eta_next.data(), flux_x_new.data(), 1, static_cast<std::size_t>(nx)});
   };
@@ -524,7 +538,8 @@ void BoussinesqSolver::Implementation::step() {
     }
     sweep(frame_y,
           {eta.data(), base, partner, extrapolates, flux_y.data(), normal_guess(pass, flux_y, flux_y_increment, flux_y_new),
-           tangential_half.data(), tangential_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active},
+           tangential_half.data(), tangential_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active,
+           nonlinear ? nonlinear->force_y() : nullptr},
           {first ? eta_star.data() : eta_next.data(), flux_y_new.data(), static_cast<std::size_t>(nx), 1});
   };
 
@@ -559,6 +574,17 @@ void BoussinesqSolver::Implementation::step() {
   eta_previous_t.swap(eta_t);  // eta^n, transposed
   eta_star.swap(eta);          // eta_star now holds eta^n (natural), for the breaking model
   eta.swap(eta_next);          // eta = eta^{n+1}
+  // The fully nonlinear remainder of this step, centred at t^{n+1/2}, for the next (before the
+  // sponges, which damp the state after the step). Its scratch: work arrays free until the next
+  // step (eta_next holds eta*, eta_base and eta_t spent values, the tangential arrays the last
+  // sweep's, flux_x_new a copy of flux_x).
+  if (nonlinear) {
+    double* const scratch[6] = {eta_next.data(), eta_base.data(), eta_t.data(), tangential_half.data(), tangential_rate.data(),
+                                flux_x_new.data()};
+    nonlinear->update({eta_star.data(), eta.data(), flux_x.data(), flux_x_increment.data(), flux_y.data(),
+                       flux_y_increment.data(), dispersive.data(), dt},
+                      scratch);
+  }
   apply_sponges();
   update_breaking(eta_star);
   time_s += dt;
@@ -796,6 +822,7 @@ void BoussinesqSolver::set_surface_elevation(const std::function<double(double, 
     }
   detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
   for (auto* v : {&s.flux_x, &s.flux_y, &s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
+  if (s.nonlinear) s.nonlinear->reset();
   s.publish();
 }
 
@@ -821,6 +848,7 @@ void BoussinesqSolver::set_initial_condition(const std::function<double(double, 
         s.flux_y[s.qy(c, k)] = flux_y_m2_s(g.cell_centre_x_m(c), g.origin_y_m + k * s.dy);
   detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
   for (auto* v : {&s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
+  if (s.nonlinear) s.nonlinear->reset();
   s.publish();
 }
 
@@ -949,6 +977,7 @@ std::size_t BoussinesqSolver::memory_bytes() const {
   }
   add(s.eta_output.values());
   add(s.breaking_output.values());
+  if (s.nonlinear) bytes += s.nonlinear->memory_bytes();
   if (s.roller) bytes += s.roller->memory_bytes();
   for (const auto* v : {&s.surf_zone_cells, &s.surf_zone_scratch, &s.surf_zone_x, &s.surf_zone_y}) add(*v);
   for (const SweepScratch& scratch : s.scratch)

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "nearshore/boussinesq/model_nonlinear.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::boussinesq::detail {
@@ -60,7 +61,8 @@ std::vector<WaveComponent> components_from_series(const WaveMaker& maker, double
 }  // namespace
 
 SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geometry, const std::vector<float>& depth,
-                               double B) {
+                               const SolverParameters& parameters) {
+  const double B = parameters.dispersion_coefficient;
   if (maker.kind != WaveMaker::Kind::kComponents && maker.kind != WaveMaker::Kind::kTimeSeries) return;
   cols_ = geometry.columns;
   rows_ = geometry.rows;
@@ -140,6 +142,38 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
     const double phase = wave.phase_rad + k_normal * line_m;
     // The strength D needs the time step, which the solver passes to add(): computed there.
     components_.push_back({wave.amplitude_m, w, k_tangential, phase});
+  }
+  // Nonlinear generation (WaveMaker::second_order): the regular wave's bound harmonics,
+  // eta_n = a_n cos n(k.x - w t + phi), each radiated as a free wave at n w with its phase at the
+  // line, cancel the free waves of the opposite sign that the first harmonic alone sheds where it
+  // sets in. a_n from the steady wave of the equations the solver integrates, at the line's depth,
+  // with the first harmonic chosen so that its crest-to-trough height is the requested 2 a.
+  if (maker.second_order && maker.kind == WaveMaker::Kind::kComponents && components_.size() == 1) {
+    Component& primary = components_.front();
+    const double w = primary.angular_frequency_rad_s, k = boussinesq_wavenumber(w, d, B);
+    const double height_m = 2.0 * primary.amplitude_m;
+    auto steady = [&](double a) {
+      return boussinesq_steady_wave(a, k, d, B, parameters.dispersion_depth, 8, parameters.equations).harmonics_m;
+    };
+    auto crest_to_trough = [](const std::vector<double>& harmonics) {  // eta(0) - eta(pi)
+      double h = 0.0;
+      for (std::size_t n = 0; n < harmonics.size(); n += 2) h += 2.0 * harmonics[n];
+      return h;
+    };
+    try {
+      double a = primary.amplitude_m;
+      for (int iteration = 0; iteration < 6; ++iteration) a *= height_m / crest_to_trough(steady(a));
+      const std::vector<double> harmonics = steady(a);
+      primary.amplitude_m = a;
+      // The second harmonic only: second-order theory says the spurious free wave is minus the bound
+      // one; at third order the free second harmonic interacts with the first too, and radiating
+      // the bound third harmonic the same way doubled the flat-flume beat instead of removing it.
+      // A harmonic beyond the equations' range (k d > 3) is not carried.
+      if (boussinesq_wavenumber(2.0 * w, d, B) * d <= 3.0 && harmonics[1] > 0.0)
+        components_.push_back({harmonics[1], 2.0 * w, 2.0 * primary.tangential_wavenumber_rad_m, 2.0 * primary.phase_rad});
+    } catch (const Error&) {
+      // Steeper than the equations' steady waves reach: the first harmonic alone, as requested.
+    }
   }
   line_.assign(static_cast<std::size_t>(tangential_count), 0.0);
   // The source acts on water only: cells of the strip on land get none (no water made on land).

@@ -14,8 +14,10 @@ namespace nearshore::boussinesq::detail {
 class SourceFunction {
  public:
   /// depth_m: cell depths (cols x rows, row-major), the master orientation of the solver.
+  /// `parameters`: the equations whose waves the line makes (B, and for second-order generation
+  /// which nonlinear terms).
   SourceFunction(const WaveMaker& wave_maker, const GridGeometry& geometry, const std::vector<float>& depth_m,
-                 double dispersion_coefficient);
+                 const SolverParameters& parameters);
   bool empty() const { return components_.empty(); }
   /// eta_base[cell] += dt * S(x, y, time_s) for every cell of the source strip; cell (column c,
   /// row r) is eta_base[c * x_stride + r * y_stride].

@@ -14,10 +14,13 @@ namespace nearshore::boussinesq {
 namespace {
 
 constexpr std::uint64_t kStateMagic = 0x31535342454E534EULL;  // "NSNEBSS1"
+// Version 4: the fully nonlinear remainder's history (its evaluation count after the step count, its
+// force and last value after the nine arrays), written only by a solver with the fully nonlinear
+// terms; the seed's equations still write version 3, byte for byte as before.
 // Version 3: the eddy viscosity and the breaking strength are stored as float (the solver holds
 // them in float, docs/solver.md "Memory"). Version 2 (all arrays double) is still read.
 // Version 2: the checksum and the fingerprint are XXH64 (version 1 used FNV-1a).
-constexpr std::uint32_t kStateVersion = 3;
+constexpr std::uint32_t kStateVersion = 4;
 constexpr std::uint32_t kOldestReadableVersion = 2;
 
 template <class T>
@@ -44,26 +47,39 @@ StoredArray stored(Raster<float>& raster) {
   return {reinterpret_cast<std::byte*>(raster.values().data()), raster.values().size(), sizeof(float)};
 }
 
-// The nine arrays of the state, in file order (a template: the solver's Implementation is private).
+// The arrays of the state, in file order (a template: the solver's Implementation is private): nine,
+// and in version 4 (the fully nonlinear equations) the four arrays of their history.
 template <class Implementation>
-std::vector<StoredArray> state_arrays(Implementation& s) {
-  return {stored(s.eta), stored(s.eta_previous_t), stored(s.flux_x), stored(s.flux_y), stored(s.flux_x_increment),
-          stored(s.flux_y_increment), stored(s.eddy_viscosity), stored(s.breaking_start_s), stored(s.breaking_output)};
+std::vector<StoredArray> state_arrays(Implementation& s, std::uint32_t version) {
+  std::vector<StoredArray> arrays = {stored(s.eta), stored(s.eta_previous_t), stored(s.flux_x), stored(s.flux_y),
+                                     stored(s.flux_x_increment), stored(s.flux_y_increment), stored(s.eddy_viscosity),
+                                     stored(s.breaking_start_s), stored(s.breaking_output)};
+  if (version >= 4 && s.nonlinear)
+    for (auto* history : {&s.nonlinear->force_x_storage(), &s.nonlinear->force_y_storage(), &s.nonlinear->last_x_storage(),
+                          &s.nonlinear->last_y_storage()})
+      arrays.push_back(stored(*history));
+  return arrays;
 }
 
 }  // namespace
 
 void BoussinesqSolver::save_state(std::ostream& out) const {
   // The arrays are only read; state_arrays takes them through the one list of the file order.
-  const std::vector<StoredArray> arrays = state_arrays(const_cast<Implementation&>(*implementation_));
   const Implementation& s = *implementation_;
+  const std::uint32_t version = s.nonlinear ? kStateVersion : 3;
+  const std::vector<StoredArray> arrays = state_arrays(const_cast<Implementation&>(*implementation_), version);
   write_pod(out, kStateMagic);
-  write_pod(out, kStateVersion);
+  write_pod(out, version);
   write_pod(out, s.fingerprint);
   write_pod(out, s.time_s);
   write_pod(out, s.step_count);
   std::uint64_t checksum = hash_bytes(&s.time_s, sizeof s.time_s);
   checksum = hash_bytes(&s.step_count, sizeof s.step_count, checksum);
+  if (version >= 4) {
+    const std::int32_t evaluations = s.nonlinear->evaluations();
+    write_pod(out, evaluations);
+    checksum = hash_bytes(&evaluations, sizeof evaluations, checksum);
+  }
   // The solver writes a stream and knows no file: the caller that opened it names the file and the
   // reason (bake_run.cpp's checkpoint does); this says how far the state got.
   const auto stop_if_failed = [&](std::size_t arrays_written) {
@@ -101,15 +117,21 @@ void BoussinesqSolver::load_state(std::istream& in) {
                 "resume with the nearshore build that wrote it, or start the bake again");
   read_pod(in, fingerprint);
   if (fingerprint != s.fingerprint)
-    throw Error(subject, "was written for a different grid, bathymetry or time step",
+    throw Error(subject, "was written for a different grid, bathymetry, time step or equations (SolverParameters::equations)",
                 "resume with the same case file and harbour grid, or start the bake again");
   double time = 0.0;
   long steps = 0;
   read_pod(in, time);
   read_pod(in, steps);
+  std::int32_t evaluations = 0;
+  if (version >= 4) read_pod(in, evaluations);
   std::uint64_t checksum = hash_bytes(&time, sizeof time);
   checksum = hash_bytes(&steps, sizeof steps, checksum);
-  const std::vector<StoredArray> arrays = state_arrays(s);
+  if (version >= 4) checksum = hash_bytes(&evaluations, sizeof evaluations, checksum);
+  if (!in || evaluations < 0 || evaluations > 2)
+    throw Error(subject, "is truncated or corrupt (the nonlinear history count is " + std::to_string(evaluations) + ")",
+                "start the bake again from the last good checkpoint");
+  const std::vector<StoredArray> arrays = state_arrays(s, version);
   // Everything is read and checked before anything is replaced: a damaged file leaves the solver as it was.
   std::vector<std::vector<std::byte>> loaded(arrays.size());
   for (std::size_t a = 0; a < arrays.size(); ++a) {
@@ -141,6 +163,10 @@ void BoussinesqSolver::load_state(std::istream& in) {
   }
   s.time_s = time;
   s.step_count = steps;
+  if (s.nonlinear) {
+    if (version < 4) s.nonlinear->reset();  // no history stored: the next step starts it again
+    else s.nonlinear->evaluations() = evaluations;
+  }
   s.eddy_viscosity_active = true;  // the loaded nu is transposed on the next step
   s.publish();
 }

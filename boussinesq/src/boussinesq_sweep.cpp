@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "nearshore/ocean/wave_component.hpp"
+#include "nonlinear_dispersion.hpp"
 
 namespace nearshore::boussinesq::detail {
 
@@ -59,6 +60,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   const double B = k.dispersion_coefficient, B3 = B + 1.0 / 3.0;
   const double dry = k.dry_depth_m;
   const bool total_depth_dispersion = k.dispersion_on_total_depth;
+  const bool fully_nonlinear_along = k.fully_nonlinear;  // along-line and across rate terms (nonlinear_dispersion.hpp)
   // mean_face_depth_where_wet: a face takes the mean depth when both cells are deeper than this, i.e.
   // wet (dry_depth_m), or never (infinity). A threshold rather than a flag ANDed in the loop: GCC
   // cannot vectorise a select on a loop-invariant bool.
@@ -195,7 +197,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     }
   });
 
-  auto fixed_face = [&](auto extrapolates, auto total_depth, int f, int j, int l, int ln, int ls, double north,
+  auto fixed_face = [&](auto extrapolates, auto total_depth, auto fully_nonlinear, int f, int j, int l, int ln, int ls, double north,
                         double south) __attribute__((always_inline)) {
     const int L = f - 1, R = f;
     const std::size_t face = f * stride + l;
@@ -241,6 +243,31 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
                        D * slope_along * (flux_yt_face / 6.0 + nBgd * eta_yy_face) -
                        D * slope_across * (flux_xt / 6.0 + nBgd * eta_xy);
     term -= w * psi;
+    // Equations::kFullyNonlinear: the fully nonlinear terms in the rate of the flux ACROSS the lines
+    // (nonlinear_dispersion.hpp), with the across estimates the seed's -(B+1/3) d^2 Q_xyt uses: the
+    // Serre term -(1/3) d/dx (h^3 d/dy (Q_t / h)) and the enhancement -B h^2 Q_xyt, less their
+    // linearisation (h -> d).
+    if constexpr (decltype(fully_nonlinear)::value) {
+      const double e_L = eta_across(extrapolates, cL), e_R = eta_across(extrapolates, cR);
+      const double h_face = std::max(d + 0.5 * (e_L + e_R), dry);
+      const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * (kOpenWater ? 1.0 : clamped((n_f - 0.999) * 1000.0, 0.0, 1.0));
+      const double h_L = std::max(static_cast<double>(depth[cL]) + e_L, dry), h_R = std::max(static_cast<double>(depth[cR]) + e_R, dry);
+      const double dL = depth[cL], dR = depth[cR], dL3 = dL * dL * dL, dR3 = dR * dR * dR;
+      const double rate_LN = tangential_rate[t_at(L, l + 1)], rate_LS = tangential_rate[t_at(L, l)];
+      const double rate_RN = tangential_rate[t_at(R, l + 1)], rate_RS = tangential_rate[t_at(R, l)];
+      // Total and still-water depths of the across faces north and south of L and R.
+      const double h_LN = 0.5 * h_pair_north[L * W + j], h_LS = 0.5 * h_pair_south[L * W + j];
+      const double h_RN = 0.5 * h_pair_north[R * W + j], h_RS = 0.5 * h_pair_south[R * W + j];
+      const double d_LN = 0.5 * (dL + depth[c_at(L, ln)]), d_LS = 0.5 * (dL + depth[c_at(L, ls)]);
+      const double d_RN = 0.5 * (dR + depth[c_at(R, ln)]), d_RS = 0.5 * (dR + depth[c_at(R, ls)]);
+      const double serre =
+          -(inv_dx * inv_dy / 3.0) *
+          (h_R * h_R * h_R * (rate_RN / h_RN - rate_RS / h_RS) - h_L * h_L * h_L * (rate_LN / h_LN - rate_LS / h_LS) -
+           dR3 * (rate_RN * linear_inverse_depth(d_RN, dry) - rate_RS * linear_inverse_depth(d_RS, dry)) +
+           dL3 * (rate_LN * linear_inverse_depth(d_LN, dry) - rate_LS * linear_inverse_depth(d_LS, dry)));
+      const double enhancement = -B * (h_face * h_face - d * d) * (rate_RN - rate_RS - rate_LN + rate_LS) * inv_dx * inv_dy;
+      term -= weight * (serre + enhancement);
+    }
 
     // F_x of seed 003 eq. (6), cross part: -(d/dy) nu (P_y + Q_x), divided by n. P_y + Q_x is
     // (dP dx/dy + dQ) / dx, so square cells (dx/dy = 1 exactly) keep the square scheme's bits.
@@ -258,23 +285,32 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     tangential_squared[f * W + j] = flux_t * flux_t;
   };
   // eta^{n+1/2} enters the fixed terms only through the total depth: one instance without it.
-  auto fixed_faces = [&](auto extrapolates, auto total_depth) __attribute__((always_inline)) {
+  auto fixed_faces = [&](auto extrapolates, auto total_depth, auto fn) __attribute__((always_inline)) {
     for (int f = 1; f < cols; ++f) {
       #pragma GCC ivdep
       for (int j = j_first; j < j_last; ++j)
-        fixed_face(extrapolates, total_depth, f, j, lb + j, lb + j + 1, lb + j - 1, 1.0, 1.0);
-      if (j_first == 1) fixed_face(extrapolates, total_depth, f, 0, 0, std::min(1, rows - 1), 0, rows > 1 ? 1.0 : 0.0, 0.0);
+        fixed_face(extrapolates, total_depth, fn, f, j, lb + j, lb + j + 1, lb + j - 1, 1.0, 1.0);
+      if (j_first == 1) fixed_face(extrapolates, total_depth, fn, f, 0, 0, std::min(1, rows - 1), 0, rows > 1 ? 1.0 : 0.0, 0.0);
       if (j_last == n - 1 && !(j_first == 1 && n == 1))
-        fixed_face(extrapolates, total_depth, f, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0), 0.0,
+        fixed_face(extrapolates, total_depth, fn, f, n - 1, rows - 1, rows - 1, std::max(rows - 2, 0), 0.0,
                    rows > 1 ? 1.0 : 0.0);
     }
   };
   if (total_depth_dispersion)
     with_constant(eta_extrapolates, [&](auto extrapolates) __attribute__((always_inline)) {
-      fixed_faces(extrapolates, std::true_type{});
+      fixed_faces(extrapolates, std::true_type{}, std::false_type{});
+    });
+  else if (fully_nonlinear_along)
+    with_constant(eta_extrapolates, [&](auto extrapolates) __attribute__((always_inline)) {
+      fixed_faces(extrapolates, std::false_type{}, std::true_type{});
     });
   else
-    fixed_faces(std::false_type{}, std::false_type{});
+    fixed_faces(std::false_type{}, std::false_type{}, std::false_type{});
+  // The fully nonlinear remainder (explicit, on the left side like Psi: subtracted).
+  if (const float* __restrict force = in.explicit_force)
+    for (int f = 1; f < cols; ++f)
+      #pragma GCC ivdep
+      for (int j = 0; j < n; ++j) fixed_term[f * W + j] -= static_cast<double>(force[f * stride + lb + j]);
 
   // 3. Iterate the time-centred terms that depend on the lines' own unknowns.
   // seed 003 eq. (1): n (eta - E)/dt = -(1/2) d(increment)/dx  (the Crank-Nicolson half of the new flux)
@@ -334,6 +370,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       upper[j] = 0.0;
       right[j] = -normal_old[lb + j];
     }
+    with_constant(fully_nonlinear_along, [&](auto fully_nonlinear) __attribute__((always_inline)) {
     with_constant(total_depth_dispersion, [&](auto total_depth) __attribute__((always_inline)) {
       for (int f = 1; f < cols; ++f) {
         const int L = f - 1, R = f;
@@ -369,6 +406,27 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
           // Implicit parts of Psi_x: -(B+1/3) D^2 P_xxt - (1/3) D d_x P_xt
           const double D2 = w * B3 * D * D * inv_dx2;
           const double S1 = w * D * slope_along * inv_dx / 6.0;
+          // Equations::kFullyNonlinear: the along-line flux-rate part of the fully nonlinear terms,
+          // implicit (nonlinear_dispersion.hpp): the Serre term -(1/3) d/dx (h^3 d/dx (P_t / h)) and
+          // the enhancement -B h^2 P_xxt, minus the same with h -> d (the seed's terms above hold the
+          // linear part). Cells L, R and faces f-1, f, f+1 at t^{n+1/2}, from this iterate.
+          double fn_lower = 0.0, fn_diagonal = 0.0, fn_upper = 0.0;
+          if constexpr (decltype(fully_nonlinear)::value) {
+            const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) *
+                                  (kOpenWater ? 1.0 : clamped((n_f - 0.999) * 1000.0, 0.0, 1.0));
+            const double d_before = depth_at_face(f - 1, face - stride), d_after = depth_at_face(f + 1, face + stride);
+            const double h_L = std::max(static_cast<double>(depth_L) + e_L, dry), h_R = std::max(static_cast<double>(depth_R) + e_R, dry);
+            const double h_before = std::max(d_before + 0.5 * (e_m2 + e_L), dry), h_here = std::max(h_mean, dry),
+                         h_after = std::max(d_after + 0.5 * (e_R + e_p1), dry);
+            const double dL3 = static_cast<double>(depth_L) * depth_L * depth_L, dR3 = static_cast<double>(depth_R) * depth_R * depth_R;
+            const double third = inv_dx2 / 3.0, enhancement = B * (h_here * h_here - d * d) * inv_dx2;
+            // A wall face (the grid edge) carries no flux: nothing couples to it.
+            const double inside_before = f > 1 ? 1.0 : 0.0, inside_after = f + 1 < cols ? 1.0 : 0.0;
+            fn_lower = inside_before * weight * (-third * (h_L * h_L * h_L / h_before - dL3 * linear_inverse_depth(d_before, dry)) - enhancement);
+            fn_upper = inside_after * weight * (-third * (h_R * h_R * h_R / h_after - dR3 * linear_inverse_depth(d_after, dry)) - enhancement);
+            fn_diagonal = weight * (third * ((h_L * h_L * h_L + h_R * h_R * h_R) / h_here - (dL3 + dR3) * linear_inverse_depth(d, dry)) +
+                                    2.0 * enhancement);
+          }
 
           // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
           // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
@@ -396,8 +454,8 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
           // Inactive faces get the identity row (flux to 0), selected arithmetically so the loop
           // has no branch and vectorises.
           const double on = active[f * W + j];  // 1 or 0: blended arithmetically, no branch
-          const double lower_f = -D2 + S1 - G * inv_n[cL] - V_L, upper_f = -D2 - S1 - G * inv_n[cR] - V_R;
-          const double diagonal_f = 1.0 + 2.0 * D2 + G * (inv_n[cL] + inv_n[cR]) + V_L + V_R + resistance * dt;
+          const double lower_f = -D2 + S1 - G * inv_n[cL] - V_L + fn_lower, upper_f = -D2 - S1 - G * inv_n[cR] - V_R + fn_upper;
+          const double diagonal_f = 1.0 + 2.0 * D2 + G * (inv_n[cL] + inv_n[cR]) + V_L + V_R + resistance * dt + fn_diagonal;
           const double right_f = gravity + dt * (fixed_term[f * W + j] + along) - resistance * dt * old_f + eddy_old;
           const double row_lower = on * lower_f, row_upper = on * upper_f;
           const double row_diagonal = on * diagonal_f + (1.0 - on), row_right = on * right_f - (1.0 - on) * old_f;
@@ -408,6 +466,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
           right[f * W + j] = (row_right - row_lower * right[(f - 1) * W + j]) * inverse_pivot;
         }
       }
+    });
     });
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) {  // row `cols`, the east grid edge: identity, flux 0

@@ -107,6 +107,9 @@ struct SweepInput {
   const EddyViscosity* eddy_viscosity;  ///< nu of eq. (6)-(7), m^2/s, cells
   const unsigned char* dispersive;  ///< 1 where the cell and its 4 neighbours are wet, else 0
   bool viscous = true;            ///< false: eddy_viscosity is 0 everywhere (no cell breaks)
+  /// The fully nonlinear dispersive terms' explicit remainder at the normal faces, m^2/s^2, on the
+  /// momentum equation's left side like Psi (nonlinear_dispersion.hpp), or nullptr for none.
+  const float* explicit_force = nullptr;
 };
 
 struct SweepOutput {
@@ -130,6 +133,10 @@ struct SweepConstants {
   /// (SolverParameters::face_depth = kMeanWhereWet); otherwise the larger of the mean and the water
   /// above the higher bed.
   bool mean_face_depth_where_wet = false;
+  /// Equations::kFullyNonlinear: the along-line flux-rate part of the fully nonlinear dispersive
+  /// terms is added to the tridiagonal system (the rest is SweepInput::explicit_force;
+  /// nonlinear_dispersion.hpp).
+  bool fully_nonlinear = false;
 };
 
 /// Per-thread scratch of one block (allocated once per thread, reused every step).

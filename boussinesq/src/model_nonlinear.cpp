@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
@@ -22,7 +23,76 @@ double linear_phase_speed_squared(double k, double d, double B) {
   return g * d * (1.0 + B * kd2) / (1.0 + (B + 1.0 / 3.0) * kd2);
 }
 
+// d^order/dtheta^order of a 2 pi-periodic function given by its samples at theta_j = 2 pi j / M, by
+// the discrete Fourier series (exact for trigonometric polynomials of degree < M/2; the quadrature
+// of boussinesq_steady_wave has 8 points per retained harmonic, so the products stay resolved).
+std::vector<double> periodic_derivative(const std::vector<double>& samples, int order) {
+  const int M = static_cast<int>(samples.size());
+  std::vector<double> out(M, 0.0);
+  for (int m = 1; m < M / 2; ++m) {
+    double a = 0.0, b = 0.0;  // samples ~ a cos(m theta) + b sin(m theta)
+    for (int j = 0; j < M; ++j) {
+      const double theta = 2.0 * std::numbers::pi * j / M;
+      a += 2.0 / M * samples[j] * std::cos(m * theta);
+      b += 2.0 / M * samples[j] * std::sin(m * theta);
+    }
+    // d/dtheta maps (a, b) -> m (b, -a); `order` times.
+    for (int o = 0; o < order; ++o) {
+      const double a_next = m * b, b_next = -m * a;
+      a = a_next;
+      b = b_next;
+    }
+    for (int j = 0; j < M; ++j) {
+      const double theta = 2.0 * std::numbers::pi * j / M;
+      out[j] += a * std::cos(m * theta) + b * std::sin(m * theta);
+    }
+  }
+  return out;
+}
+
+// The momentum residual of Equations::kFullyNonlinear for a steady wave eta(theta), P = c eta,
+// theta = k x - w t (so d/dx = k d/dtheta, d/dt = -c k d/dtheta), at the M quadrature points.
+std::vector<double> fully_nonlinear_residual(const std::vector<double>& eta, double c, double k, double d, double B) {
+  const std::size_t M = eta.size();
+  auto dx = [&](const std::vector<double>& f) {
+    std::vector<double> out = periodic_derivative(f, 1);
+    for (double& v : out) v *= k;
+    return out;
+  };
+  auto dt = [&](const std::vector<double>& f) {
+    std::vector<double> out = dx(f);
+    for (double& v : out) v *= -c;
+    return out;
+  };
+  std::vector<double> h(M), P(M), u(M), flux(M), h3_gamma(M);
+  for (std::size_t j = 0; j < M; ++j) {
+    h[j] = d + eta[j];
+    P[j] = c * eta[j];
+    u[j] = P[j] / h[j];
+    flux[j] = P[j] * P[j] / h[j];
+  }
+  const std::vector<double> P_t = dt(P), flux_x = dx(flux), eta_x = dx(eta), u_x = dx(u), u_xx = dx(u_x),
+                            u_xt = dx(dt(u));
+  std::vector<double> S(M);  // the shallow-water momentum residual
+  for (std::size_t j = 0; j < M; ++j) {
+    S[j] = P_t[j] + flux_x[j] + g * h[j] * eta_x[j];
+    h3_gamma[j] = h[j] * h[j] * h[j] * (u_xt[j] + u[j] * u_xx[j] - u_x[j] * u_x[j]);
+  }
+  const std::vector<double> serre = dx(h3_gamma), S_xx = dx(dx(S));
+  std::vector<double> r(M);
+  for (std::size_t j = 0; j < M; ++j) r[j] = S[j] - serre[j] / 3.0 - B * h[j] * h[j] * S_xx[j];
+  return r;
+}
+
 }  // namespace
+
+double fully_nonlinear_second_harmonic_m(double a, double k, double d, double B) {
+  // Second-order expansion of the residual above on sin(2 theta), with c0 eliminated by the linear
+  // dispersion relation (derived symbolically; checked against the exact steady waves in
+  // tests/boussinesq/boussinesq_nonlinear_test.cpp).
+  const double x2 = k * d * k * d;
+  return a * a * (9.0 + (45.0 * B + 3.0) * x2 + (36.0 * B * B + 8.0 * B) * x2 * x2) / (12.0 * k * k * d * d * d);
+}
 
 double stokes_second_harmonic_m(double a, double k, double d) {
   const double kd = k * d;
@@ -48,7 +118,7 @@ double stokes_frequency_increase(double a, double k, double d) {
 }
 
 SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, DispersionDepth depth_kind,
-                                  int harmonic_count) {
+                                  int harmonic_count, Equations equations) {
   const int N = std::max(2, harmonic_count), M = 8 * N;  // quadrature points: products de-aliased
   const double B3 = B + 1.0 / 3.0;
   // Unknowns x = (c, a_2 .. a_N); residual R_m = projection of r(theta) on sin(m theta), m = 1..N
@@ -56,6 +126,15 @@ SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, Disper
   auto residual = [&](const Eigen::VectorXd& x, double a1) {
     const double c = x[0], c2 = c * c;
     Eigen::VectorXd R = Eigen::VectorXd::Zero(N);
+    if (equations == Equations::kFullyNonlinear) {
+      std::vector<double> eta(M, 0.0);
+      for (int j = 0; j < M; ++j)
+        for (int n = 1; n <= N; ++n) eta[j] += (n == 1 ? a1 : x[n - 1]) * std::cos(n * 2.0 * std::numbers::pi * j / M);
+      const std::vector<double> r = fully_nonlinear_residual(eta, c, k, d, B);
+      for (int j = 0; j < M; ++j)
+        for (int m = 1; m <= N; ++m) R[m - 1] += 2.0 / M * r[j] * std::sin(m * 2.0 * std::numbers::pi * j / M) / k;
+      return R;
+    }
     for (int j = 0; j < M; ++j) {
       const double theta = 2.0 * std::numbers::pi * j / M;
       double eta = 0, eta_1 = 0, eta_3 = 0;

@@ -12,6 +12,7 @@
 #include "boussinesq_sweep.hpp"
 #include "nearshore/boussinesq/boussinesq_solver.hpp"
 #include "nearshore/core/hash.hpp"
+#include "nonlinear_dispersion.hpp"
 #include "shapiro_filter.hpp"
 #include "surface_roller.hpp"
 
@@ -54,6 +55,9 @@ struct BoussinesqSolver::Implementation {
   // so its force acts in this step.
   std::unique_ptr<detail::SurfaceRoller> roller;
   bool roller_active = false;
+  // Equations::kFullyNonlinear: the explicit remainder of the fully nonlinear dispersive terms and
+  // its history (nonlinear_dispersion.hpp); null for the seed's equations.
+  std::unique_ptr<detail::NonlinearDispersion> nonlinear;
   // Work arrays (suffix _t: x sweep layout). Shared between the sweeps where their lives do not
   // overlap: eta_base is E of whichever sweep runs (in its layout), tangential_half/_rate the other
   // flux at t^{n+1/2} in the running sweep's layout; eta_next doubles as scratch for eta^{n-1}

@@ -1,6 +1,7 @@
 #include "validation_bake.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/core/atomic_file.hpp"
@@ -19,6 +20,19 @@ bake::BakeSummary bake_case(const std::string& name, const std::string& run_name
   ProgressBar::set_quiet(!kFull);
   json document = bake::read_case_document(case_file(name));
   adjust(document);
+  // A solver variant for every case at once, to compare it with the defaults on the same road
+  // (docs/validation.md, "What to change when a number moves"): a JSON object merged into [solver],
+  // e.g. NEARSHORE_VALIDATION_SOLVER='{"equations": "fully_nonlinear"}'. Unset in CI.
+  if (const char* variant = std::getenv("NEARSHORE_VALIDATION_SOLVER"); variant != nullptr && *variant != '\0') {
+    document["solver"].merge_patch(json::parse(variant));
+    std::printf("%s: solver variant %s\n", run_name.c_str(), variant);
+  }
+  // Likewise for the regular wave maker's keys (only where the case's wave maker is regular).
+  if (const char* variant = std::getenv("NEARSHORE_VALIDATION_REGULAR_WAVE_MAKER"); variant != nullptr && *variant != '\0' &&
+      document.contains("wave_maker") && document["wave_maker"].value("kind", "") == "regular") {
+    document["wave_maker"].merge_patch(json::parse(variant));
+    std::printf("%s: wave maker variant %s\n", run_name.c_str(), variant);
+  }
   const bake::BakeCase c = bake::parse_bake_case(document, case_file(name));
   bake::BakeOptions options;
   options.output_folder = output_folder(run_name);

@@ -102,6 +102,14 @@ struct WaveMaker {
                                       ///< (x for kWest/kEast, y for kSouth/kNorth), metres, grid frame
   Side facing = Side::kSouth;         ///< waves are generated travelling AWAY from this side
   double ramp_time_s = 0.0;           ///< smooth (tanh-like) start over this time, seconds
+  /// Second-order generation of a regular wave (kComponents with one component): the line also
+  /// radiates, as a free wave at 2w, the bound second harmonic of the equations' own steady wave
+  /// (model_nonlinear.hpp) in phase with it at the line. A source of the first harmonic alone sheds
+  /// a free second harmonic of the opposite sign, which beats with the bound one along the flume
+  /// (H +-10 % over tens of metres for Hansen & Svendsen's 031041); this one cancels it
+  /// (docs/solver.md, "Wave maker"). Ignored for several components (their sum and difference
+  /// interactions are not generated).
+  bool second_order = false;
   std::vector<double> series_time_s, series_elevation_m;  ///< kTimeSeries: eta(t) at the source line
 };
 
@@ -114,6 +122,12 @@ struct SolverParameters {
   double time_step_s = 0.0;           ///< 0 = from courant_number
   double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
   double dispersion_coefficient = 1.0 / 15.0;  ///< B, Madsen & Sorensen (1992)
+  /// The nonlinear terms of the momentum equations (model_nonlinear.hpp, docs/solver.md "Fully
+  /// nonlinear dispersion"): kWeaklyNonlinear is seed 003 eq. (1)-(7) as written (nonlinear only in
+  /// the shallow-water terms); kFullyNonlinear adds the Serre-Green-Naghdi dispersive terms with the
+  /// enhancement on the total depth, whose bound harmonics and amplitude dispersion follow Stokes
+  /// to k d ~ 1-2 (docs/validation.md "Nonlinear checks"). Not with dispersion_depth = kTotal.
+  Equations equations = Equations::kWeaklyNonlinear;
   /// The depth in the dispersive terms: still-water d (seed 003 eq. 4-5, default) or total h = d + eta
   /// (an option, docs/solver.md "Dispersion depth"; its nonlinear properties: model_nonlinear.hpp).
   DispersionDepth dispersion_depth = DispersionDepth::kStillWater;

@@ -10,9 +10,24 @@
 // with D = d (seed 003 and Madsen & Sorensen 1992: the dispersive terms use the still-water depth)
 // or D = h (DispersionDepth::kTotal: the dispersive terms on the total depth, the usual first step
 // toward full nonlinearity).
+//
+// Equations::kFullyNonlinear (docs/solver.md, "Fully nonlinear dispersion"): the same linear terms,
+// with the dispersive terms of the Serre-Green-Naghdi equations (fully nonlinear at O(mu^2)) and the
+// Madsen & Sorensen (1992) enhancement applied to the whole shallow-water momentum residual S on the
+// local total depth:
+//   P_t + (P^2/h)_x + g h eta_x - (1/3) [h^3 (u_xt + u u_xx - u_x^2)]_x - B h^2 S_xx = 0,
+//   u = P/h,  S = P_t + (P^2/h)_x + g h eta_x.
+// Linearised it is the seed's equation; its bound second harmonic equals Stokes' to O((kd)^2) for
+// B = 1/15 (fully_nonlinear_second_harmonic_m).
 #include <vector>
 
 namespace nearshore::boussinesq {
+
+/// Which nonlinear terms the momentum equations carry (SolverParameters::equations).
+enum class Equations {
+  kWeaklyNonlinear,  ///< seed 003 eq. (1)-(7): nonlinear only in the shallow-water terms (Madsen & Sorensen 1992)
+  kFullyNonlinear,   ///< the Serre-Green-Naghdi dispersive terms plus the enhancement on h (above)
+};
 
 /// Which depth multiplies the dispersive terms of eq. (4)-(5) (SolverParameters::dispersion_depth).
 enum class DispersionDepth {
@@ -33,6 +48,14 @@ double stokes_second_harmonic_m(double amplitude_m, double wavenumber_rad_m, dou
 /// k d -> 0.
 double boussinesq_second_harmonic_m(double amplitude_m, double wavenumber_rad_m, double depth_m,
                                     double dispersion_coefficient, DispersionDepth depth_kind);
+
+/// The bound second harmonic of the fully nonlinear equations (Equations::kFullyNonlinear), from the
+/// second-order expansion of the equations above (docs/validation.md "Nonlinear checks"), x = k d:
+///   a2 = a^2 (9 + (45 B + 3) x^2 + (36 B^2 + 8 B) x^4) / (12 k^2 d^3)
+/// = Stokes' 3 a^2 / (4 k^2 d^3) (1 + (5 B + 1/3) x^2 + ...): for B = 1/15 the O(x^2) term is Stokes'
+/// 2/3 exactly.
+double fully_nonlinear_second_harmonic_m(double amplitude_m, double wavenumber_rad_m, double depth_m,
+                                         double dispersion_coefficient);
 
 /// Relative frequency (= phase speed) increase w/w0 - 1 of a regular wave of first-harmonic
 /// amplitude a by Stokes' third-order theory, with the mean water level at rest and NO MEAN MASS
@@ -55,6 +78,7 @@ struct SteadyWave {
 /// for the discrete solver's amplitude dispersion and bound harmonics at every order the equations
 /// carry. Throws nearshore::Error when Newton does not converge (a wave beyond the equations' reach).
 SteadyWave boussinesq_steady_wave(double amplitude_m, double wavenumber_rad_m, double depth_m,
-                                  double dispersion_coefficient, DispersionDepth depth_kind, int harmonic_count = 8);
+                                  double dispersion_coefficient, DispersionDepth depth_kind, int harmonic_count = 8,
+                                  Equations equations = Equations::kWeaklyNonlinear);
 
 }  // namespace nearshore::boussinesq

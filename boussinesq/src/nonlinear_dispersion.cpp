@@ -1,0 +1,227 @@
+// The explicit remainder of the fully nonlinear dispersive terms (nonlinear_dispersion.hpp; docs/solver.md
+// "Fully nonlinear dispersion"). Four passes over the grid, each element-wise (the result does not
+// depend on the thread count): kinematics per cell, Gamma per cell, the shallow-water residual's
+// divergence per cell, the remainder per face with its extrapolation to the next step.
+//
+// Each cell quantity comes twice: "for x" leaves out what the x sweep holds implicitly (the rate of
+// the x-face fluxes P_t), "for y" what the y sweep holds (Q_t); the x faces take the first, the y
+// faces the second.
+#include "nonlinear_dispersion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include <tbb/parallel_for.h>
+
+#include "nearshore/ocean/wave_component.hpp"
+
+namespace nearshore::boussinesq::detail {
+
+NonlinearDispersion::NonlinearDispersion(const NonlinearDispersionGrid& grid) : grid_(grid) {
+  const std::size_t faces_x = static_cast<std::size_t>(grid.nx + 1) * grid.ny;
+  const std::size_t faces_y = static_cast<std::size_t>(grid.nx) * (grid.ny + 1);
+  force_x_.assign(faces_x, 0.0f);
+  last_x_.assign(faces_x, 0.0f);
+  force_y_.assign(faces_y, 0.0f);
+  last_y_.assign(faces_y, 0.0f);
+}
+
+void NonlinearDispersion::reset() {
+  for (auto* v : {&force_x_, &force_y_, &last_x_, &last_y_}) std::fill(v->begin(), v->end(), 0.0f);
+  evaluations_ = 0;
+}
+
+std::size_t NonlinearDispersion::memory_bytes() const {
+  return (force_x_.capacity() + force_y_.capacity() + last_x_.capacity() + last_y_.capacity()) * sizeof(float);
+}
+
+namespace {
+
+// A face at t^{n+1/2}: u = P/h and the part of u_t = (P_t - u h_t)/h without the flux rate, -u h_t/h.
+struct FaceMotion {
+  double velocity = 0.0, velocity_rate_without_flux_rate = 0.0;
+};
+
+}  // namespace
+
+void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
+  const int nx = grid_.nx, ny = grid_.ny;
+  const double dx = grid_.dx, dy = grid_.dy, dt = s.time_step_s, g = ocean::kGravity_m_s2;
+  const double inv_dx = 1.0 / dx, inv_dy = 1.0 / dy, inv_dt = 1.0 / dt;
+  const double B = grid_.dispersion_coefficient, dry = grid_.dry_depth_m;
+  const float* depth = grid_.depth_m;
+  double *divergence = scratch[0], *gamma = scratch[1], *div_S = scratch[2], *div_S_linear = scratch[3];
+  auto cell = [nx](int c, int r) { return static_cast<std::size_t>(r) * nx + c; };
+  auto face_x = [ny](int f, int r) { return static_cast<std::size_t>(f) * ny + r; };
+  auto face_y = [nx](int c, int k) { return static_cast<std::size_t>(k) * nx + c; };
+  auto eta_mid = [&](std::size_t i) { return 0.5 * (s.eta_old[i] + s.eta_new[i]); };
+  auto eta_rate = [&](std::size_t i) { return (s.eta_new[i] - s.eta_old[i]) * inv_dt; };
+  auto total_depth = [&](std::size_t i) { return std::max(static_cast<double>(depth[i]) + eta_mid(i), dry); };
+  auto flux_x = [&](int f, int r) { const std::size_t i = face_x(f, r); return s.flux_x_new[i] - 0.5 * s.flux_x_change[i]; };
+  auto flux_y = [&](int c, int k) { const std::size_t i = face_y(c, k); return s.flux_y_new[i] - 0.5 * s.flux_y_change[i]; };
+  // The still-water and total depth of the face between cells a and b (the sweep's definitions).
+  auto face_still = [&](std::size_t a, std::size_t b) { return 0.5 * (static_cast<double>(depth[a]) + static_cast<double>(depth[b])); };
+  auto face_total = [&](std::size_t a, std::size_t b) { return std::max(face_still(a, b) + 0.5 * (eta_mid(a) + eta_mid(b)), dry); };
+  auto motion = [&](std::size_t a, std::size_t b, double flux) {
+    FaceMotion m;
+    const double inv_h = 1.0 / face_total(a, b);
+    m.velocity = flux * inv_h;
+    m.velocity_rate_without_flux_rate = -m.velocity * 0.5 * (eta_rate(a) + eta_rate(b)) * inv_h;
+    return m;
+  };
+  // Walls (the grid edges) carry nothing.
+  auto motion_x = [&](int f, int r) { return f == 0 || f == nx ? FaceMotion{} : motion(cell(f - 1, r), cell(f, r), flux_x(f, r)); };
+  auto motion_y = [&](int c, int k) { return k == 0 || k == ny ? FaceMotion{} : motion(cell(c, k - 1), cell(c, k), flux_y(c, k)); };
+  // Rows go in chunks, each with its own row buffers (face values computed once per row, not once
+  // per cell side).
+  auto for_rows = [&](const auto& body) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, ny, 8), [&](const tbb::blocked_range<int>& rows) {
+      std::vector<FaceMotion> row_x(nx + 1), south_y(nx), north_y(nx);
+      std::vector<double> buffers[7];
+      for (auto& buffer : buffers) buffer.resize(nx + 1);
+      for (int r = rows.begin(); r < rows.end(); ++r) body(r, row_x, south_y, north_y, buffers);
+    });
+  };
+
+  // 1. Per cell: div u, and the part of div u_t - (div u)^2 without the flux rates (the sweeps
+  // hold those: along their lines implicitly, across them with the seed's across estimates).
+  for_rows([&](int r, std::vector<FaceMotion>& row_x, std::vector<FaceMotion>& south_y, std::vector<FaceMotion>& north_y,
+               std::vector<double>*) {
+    for (int f = 0; f <= nx; ++f) row_x[f] = motion_x(f, r);
+    for (int c = 0; c < nx; ++c) {
+      south_y[c] = motion_y(c, r);
+      north_y[c] = motion_y(c, r + 1);
+    }
+    for (int c = 0; c < nx; ++c) {
+      const FaceMotion &west = row_x[c], &east = row_x[c + 1], &south = south_y[c], &north = north_y[c];
+      const double div = (east.velocity - west.velocity) * inv_dx + (north.velocity - south.velocity) * inv_dy;
+      const std::size_t i = cell(c, r);
+      divergence[i] = div;
+      gamma[i] = (east.velocity_rate_without_flux_rate - west.velocity_rate_without_flux_rate) * inv_dx +
+                 (north.velocity_rate_without_flux_rate - south.velocity_rate_without_flux_rate) * inv_dy - div * div;
+    }
+  });
+  // 2. Per cell: h^3 Gamma, Gamma = (div u_t without the rates) + u . grad(div u) - (div u)^2 (the
+  // gradient central; beyond a grid edge, a wall, the cell mirrors itself). Linearised it is 0.
+  auto velocity = [&](std::size_t a, std::size_t b, double flux) { return flux / face_total(a, b); };
+  for_rows([&](int r, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<double>* b) {
+    const int south = std::max(r - 1, 0), north = std::min(r + 1, ny - 1);
+    std::vector<double>& u_faces = b[0];
+    u_faces[0] = u_faces[nx] = 0.0;
+    for (int f = 1; f < nx; ++f) u_faces[f] = velocity(cell(f - 1, r), cell(f, r), flux_x(f, r));
+    for (int c = 0; c < nx; ++c) {
+      const int west = std::max(c - 1, 0), east = std::min(c + 1, nx - 1);
+      const std::size_t i = cell(c, r);
+      const double u = 0.5 * (u_faces[c] + u_faces[c + 1]);
+      const double v = 0.5 * ((r > 0 ? velocity(cell(c, r - 1), i, flux_y(c, r)) : 0.0) +
+                              (r + 1 < ny ? velocity(i, cell(c, r + 1), flux_y(c, r + 1)) : 0.0));
+      const double advection = u * (divergence[cell(east, r)] - divergence[cell(west, r)]) * (0.5 * inv_dx) +
+                               v * (divergence[cell(c, north)] - divergence[cell(c, south)]) * (0.5 * inv_dy);
+      const double h = total_depth(i);
+      gamma[i] = h * h * h * (gamma[i] + advection);
+    }
+  });
+  // 3. Per cell: div S and its linearisation without the rates, S = div((P, Q)(P, Q)/h) + g h grad(eta)
+  // at the faces (S_linear = g d grad(eta)). The momentum fluxes as the sweep's central scheme
+  // builds them: P^2/h at the cell centres, PQ/h at the corners (zero on a wall).
+  auto along_x = [&](int c, int r) {  // P^2/h at cell (c, r)
+    const double P = 0.5 * (flux_x(c, r) + flux_x(c + 1, r));
+    return P * P / total_depth(cell(c, r));
+  };
+  auto along_y = [&](int c, int r) {  // Q^2/h
+    const double Q = 0.5 * (flux_y(c, r) + flux_y(c, r + 1));
+    return Q * Q / total_depth(cell(c, r));
+  };
+  auto corner = [&](int f, int k) {  // PQ/h at the corner between cells (f-1..f, k-1..k)
+    if (f == 0 || f == nx || k == 0 || k == ny) return 0.0;
+    const double P = 0.5 * (flux_x(f, k - 1) + flux_x(f, k)), Q = 0.5 * (flux_y(f - 1, k) + flux_y(f, k));
+    const double h = 0.25 * (total_depth(cell(f - 1, k - 1)) + total_depth(cell(f, k - 1)) + total_depth(cell(f - 1, k)) +
+                             total_depth(cell(f, k)));
+    return P * Q / h;
+  };
+  for_rows([&](int r, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<double>* b) {
+    // Row buffers: P^2/h of this row's cells, Q^2/h of the rows below, here and above, the corners
+    // south (k = r) and north (k = r + 1) of the row, S and S_linear on the row's x faces.
+    std::vector<double>&along = b[0], &along_south = b[1], &along_here = b[2], &along_north = b[3], &corner_south = b[4],
+                        &corner_north = b[5], &residual = b[6];
+    for (int c = 0; c < nx; ++c) {
+      along[c] = along_x(c, r);
+      along_here[c] = along_y(c, r);
+      along_south[c] = r > 0 ? along_y(c, r - 1) : 0.0;
+      along_north[c] = r + 1 < ny ? along_y(c, r + 1) : 0.0;
+    }
+    for (int f = 0; f <= nx; ++f) {
+      corner_south[f] = corner(f, r);
+      corner_north[f] = corner(f, r + 1);
+    }
+    residual[0] = residual[nx] = 0.0;  // the walls: nothing
+    for (int f = 1; f < nx; ++f) {
+      const std::size_t L = cell(f - 1, r), R = cell(f, r);
+      residual[f] = (along[f] - along[f - 1]) * inv_dx + (corner_north[f] - corner_south[f]) * inv_dy +
+                    g * face_total(L, R) * (eta_mid(R) - eta_mid(L)) * inv_dx;
+    }
+    for (int c = 0; c < nx; ++c) {
+      const std::size_t i = cell(c, r);
+      // S on the y faces south (k = r) and north (k = r + 1) of the cell, and the linear gravity terms.
+      double south = 0.0, north = 0.0, south_linear = 0.0, north_linear = 0.0, west_linear = 0.0, east_linear = 0.0;
+      if (r > 0) {
+        const std::size_t below = cell(c, r - 1);
+        const double slope = (eta_mid(i) - eta_mid(below)) * inv_dy;
+        south = (corner_south[c + 1] - corner_south[c]) * inv_dx + (along_here[c] - along_south[c]) * inv_dy + g * face_total(below, i) * slope;
+        south_linear = g * face_still(below, i) * slope;
+      }
+      if (r + 1 < ny) {
+        const std::size_t above = cell(c, r + 1);
+        const double slope = (eta_mid(above) - eta_mid(i)) * inv_dy;
+        north = (corner_north[c + 1] - corner_north[c]) * inv_dx + (along_north[c] - along_here[c]) * inv_dy + g * face_total(i, above) * slope;
+        north_linear = g * face_still(i, above) * slope;
+      }
+      if (c > 0) west_linear = g * face_still(cell(c - 1, r), i) * (eta_mid(i) - eta_mid(cell(c - 1, r))) * inv_dx;
+      if (c + 1 < nx) east_linear = g * face_still(i, cell(c + 1, r)) * (eta_mid(cell(c + 1, r)) - eta_mid(i)) * inv_dx;
+      div_S[i] = (residual[c + 1] - residual[c]) * inv_dx + (north - south) * inv_dy;
+      div_S_linear[i] = (east_linear - west_linear) * inv_dx + (north_linear - south_linear) * inv_dy;
+    }
+  });
+  // 4. Per face: R = w [-(1/3) d(h^3 Gamma) - B (h^2 d(div S) - d^2 d(div S_linear))], w = the taper
+  // times fully_nonlinear_weight where the whole stencil (two cells on each side) is wet and open
+  // (0 elsewhere); then the force of the next step, extrapolated to its t^{n+3/2}.
+  auto wide_mask = [&](int c, int r) {
+    const unsigned char* m = s.dispersive;
+    return m[cell(c, r)] & m[cell(std::max(c - 1, 0), r)] & m[cell(std::min(c + 1, nx - 1), r)] &
+           m[cell(c, std::max(r - 1, 0))] & m[cell(c, std::min(r + 1, ny - 1))];
+  };
+  auto open_water = [&](std::size_t i) { return grid_.porosity[i] == 1.0f; };
+  auto remainder = [&](std::size_t L, std::size_t R, double inv_spacing, double taper, bool whole_stencil) {
+    if (!whole_stencil || !open_water(L) || !open_water(R) || taper == 0.0) return 0.0;
+    const double d = face_still(L, R), elevation = 0.5 * (eta_mid(L) + eta_mid(R)), h = std::max(d + elevation, dry);
+    const double weight = taper * fully_nonlinear_weight(elevation, d, dry);
+    const double serre = -(gamma[R] - gamma[L]) * inv_spacing / 3.0;
+    const double enhancement = -B * (h * h * (div_S[R] - div_S[L]) - d * d * (div_S_linear[R] - div_S_linear[L])) * inv_spacing;
+    return weight * (serre + enhancement);
+  };
+  const bool first = evaluations_ == 0;
+  auto advance = [&](std::size_t i, double now, std::vector<float>& force, std::vector<float>& last) {
+    force[i] = static_cast<float>(first ? now : 2.0 * now - static_cast<double>(last[i]));
+    last[i] = static_cast<float>(now);
+  };
+  tbb::parallel_for(0, ny, [&](int r) {
+    for (int f = 0; f <= nx; ++f) {
+      double now = 0.0;
+      if (f > 0 && f < nx)
+        now = remainder(cell(f - 1, r), cell(f, r), inv_dx, grid_.face_weight_x[face_x(f, r)], wide_mask(f - 1, r) & wide_mask(f, r));
+      advance(face_x(f, r), now, force_x_, last_x_);
+    }
+  });
+  tbb::parallel_for(0, ny + 1, [&](int k) {
+    for (int c = 0; c < nx; ++c) {
+      double now = 0.0;
+      if (k > 0 && k < ny)
+        now = remainder(cell(c, k - 1), cell(c, k), inv_dy, grid_.face_weight_y[face_y(c, k)], wide_mask(c, k - 1) & wide_mask(c, k));
+      advance(face_y(c, k), now, force_y_, last_y_);
+    }
+  });
+  evaluations_ = std::min(evaluations_ + 1, 2);
+}
+
+}  // namespace nearshore::boussinesq::detail

@@ -1,0 +1,109 @@
+#pragma once
+// The fully nonlinear dispersive terms (Equations::kFullyNonlinear, docs/solver.md "Fully nonlinear
+// dispersion"): what the Serre-Green-Naghdi dispersive terms with the Madsen & Sorensen (1992)
+// enhancement on the total depth add to the seed's linear ones,
+//
+//   Psi_full = -(1/3) grad(h^3 Gamma) - B h^2 grad(div S)
+//   Gamma    = div u_t + u . grad(div u) - (div u)^2,   u = (P, Q) / h
+//   S        = (P, Q)_t + div((P, Q) (P, Q) / h) + g h grad(eta)      (the shallow-water residual)
+//
+// minus the same operator linearised about rest (h -> d), so that at small amplitude the equations
+// are exactly seed 003 eq. (1)-(5), bed-slope terms included. The difference is O(eta/d). Its part
+// in the flux rate along a sweep's own lines (P_t in the x sweep: the Serre term's
+// -(1/3) d/dx (h^3 d/dx (P_t/h)) and the enhancement's -B h^2 P_xxt, less their linearisation) is
+// tridiagonal and implicit in the sweep, time-centred with everything else there; the rest (the
+// velocities and their products, h_t, the rate across the lines, gravity and convection in S) is
+// the explicit remainder here: evaluated time-centred at t^{n+1/2} from the step just finished (eta^n,
+// eta^{n+1}, P^n, P^{n+1}; centred differences in time) and extrapolated linearly to the next
+// step's t^{n+3/2} (second order in dt).
+// Private to boussinesq/.
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace nearshore::boussinesq::detail {
+
+/// The weight of the fully nonlinear terms at a face from its elevation and still-water depth d (at
+/// t^{n+1/2}): 1 where |eta| <= 0.6 d, 0 where |eta| >= 0.8 d, a cubic smooth step between (d below
+/// the dry depth counts as the dry depth). FUNWAVE-TVD switches its Boussinesq terms off where
+/// |eta| / d > 0.8 (its SWE_ETA_DEP, default 0.8; Shi et al. 2012): the run-up tongue, thin
+/// backwash and bores, where the seed's equations hold the flow (their dispersion, on d, vanishes
+/// at the still-water line). The ramp below 0.8 keeps the switch from making noise. Used alike by
+/// the sweep and the remainder.
+inline double fully_nonlinear_weight(double elevation_m, double still_water_depth_m, double dry_depth_m) {
+  // Written with fabs and fmax/fmin: GCC 12 stops with an internal error vectorising the same
+  // selects written with ?: inside the sweep's loops.
+  const double ratio = std::fabs(elevation_m) / std::fmax(still_water_depth_m, dry_depth_m);
+  const double s = std::fmin(std::fmax((0.8 - ratio) * 5.0, 0.0), 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+/// 1/d of the linearised velocity rate P_t/d at a face of still-water depth d, never above 1/dry (a
+/// face at or above the still-water line is wet only in the swash, where fully_nonlinear_weight is
+/// 0): one rule for the sweep and the remainder, and no select (GCC 12 vectorises it in the sweep).
+inline double linear_inverse_depth(double still_water_depth_m, double dry_depth_m) {
+  return 1.0 / std::fmax(still_water_depth_m, dry_depth_m);
+}
+
+/// The grid the terms see, in the solver's natural layouts (cells r * nx + c, x faces f * ny + r,
+/// y faces k * nx + c; boussinesq_solver.cpp).
+struct NonlinearDispersionGrid {
+  int nx = 0, ny = 0;
+  double dx = 1.0, dy = 1.0;
+  const float* depth_m = nullptr;            ///< d per cell (land negative)
+  const float* porosity = nullptr;           ///< n per cell: the terms act only in open water (n = 1)
+  const float* face_weight_x = nullptr;      ///< the dispersion taper of the x faces (x-face layout)
+  const float* face_weight_y = nullptr;      ///< the dispersion taper of the y faces (y-face layout)
+  double dispersion_coefficient = 1.0 / 15.0;  ///< B
+  double dry_depth_m = 0.01;
+};
+
+/// The state of one step, all in the natural layouts.
+struct StepPair {
+  const double* eta_old;         ///< eta^n, cells
+  const double* eta_new;         ///< eta^{n+1}, cells
+  const double* flux_x_new;      ///< P^{n+1}, x faces
+  const double* flux_x_change;   ///< P^{n+1} - P^n, x faces
+  const double* flux_y_new;      ///< Q^{n+1}, y faces
+  const double* flux_y_change;   ///< Q^{n+1} - Q^n, y faces
+  const unsigned char* dispersive;  ///< the solver's dispersion mask of eta^n (cell and 4 neighbours wet)
+  double time_step_s;
+};
+
+class NonlinearDispersion {
+ public:
+  NonlinearDispersion() = default;
+  explicit NonlinearDispersion(const NonlinearDispersionGrid& grid);
+
+  /// Evaluates the remainder at t^{n+1/2} of the step `pair` and updates the force for the next
+  /// step: 2 R^{n+1/2} - R^{n-1/2} (R^{n+1/2} alone after the first step since a start).
+  /// `scratch` holds six arrays of at least nx * ny values: the caller's work arrays that are free
+  /// at the end of a step, overwritten.
+  void update(const StepPair& pair, double* const scratch[6]);
+
+  /// The force of the next step on the x faces and the y faces (m^2/s^2, added to the momentum
+  /// equation's left side like Psi), or nullptr while there is none.
+  const float* force_x() const { return evaluations_ > 0 ? force_x_.data() : nullptr; }
+  const float* force_y() const { return evaluations_ > 0 ? force_y_.data() : nullptr; }
+
+  /// Forgets the history (a new initial condition): the next step runs without the force.
+  void reset();
+
+  /// The history a saved state must carry to continue bit-identically: the force, the last
+  /// remainder (x then y faces) and the number of evaluations so far (0, 1 or 2 = "two or more").
+  std::vector<float>& force_x_storage() { return force_x_; }
+  std::vector<float>& force_y_storage() { return force_y_; }
+  std::vector<float>& last_x_storage() { return last_x_; }
+  std::vector<float>& last_y_storage() { return last_y_; }
+  int& evaluations() { return evaluations_; }
+  std::size_t memory_bytes() const;
+
+ private:
+  NonlinearDispersionGrid grid_;
+  // Float: a correction of a few per cent of the dispersive terms, which are themselves O(mu^2);
+  // its rounding (6e-8) is far below the extrapolation's O(dt^2). 16 bytes per cell in all.
+  std::vector<float> force_x_, force_y_, last_x_, last_y_;
+  int evaluations_ = 0;
+};
+
+}  // namespace nearshore::boussinesq::detail
