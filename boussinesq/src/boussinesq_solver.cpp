@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <atomic>
 #include <cstring>
+#include <cstdlib>
 #include <istream>
 #include <limits>
 #include <numbers>
@@ -772,11 +773,37 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
   // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
   // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
   // (The sweeps cap nu at 0.2 dx^2/dt in the explicit cross terms of eq. (6)-(7) only.)
+  // The event belongs to the wave front, not to the cell (Kennedy et al.'s "age of the breaking
+  // event"; FUNWAVE-TVD's breaker carries it from cell to cell likewise): a cell the front reaches
+  // with eta_t above the final threshold joins the event of its upwind neighbour (the side the
+  // front comes from, -grad eta pointing the way it travels) and takes its start time, so the age
+  // travels with the front. Without it every cell of the inner surf zone needed the onset
+  // steepness anew, and a bore that had fallen below it crossed the surf zone without dissipation
+  // (Hansen & Svendsen's surf zones kept 1.5-2 times the measured height; docs/solver.md).
   const float* depth = frame_y.depth_m.data();
   float* breaking_strength = breaking_output.values().data();
   const double g = kGravity_m_s2, delta2 = b.mixing_length_coefficient * b.mixing_length_coefficient;
   const double now = time_s + dt;
   std::atomic<bool> any_viscosity{false};
+  // The start times before this update (every cell reads its neighbours' as they were): eta_base is
+  // free at the end of a step.
+  double* const started = eta_base.data();
+  std::copy(breaking_start_s.begin(), breaking_start_s.end(), started);
+  auto joined_event = [&](std::size_t i) {
+    const int c = static_cast<int>(i % nx), r = static_cast<int>(i / nx);
+    const double slope_x = eta[index(std::min(c + 1, nx - 1), r, nx)] - eta[index(std::max(c - 1, 0), r, nx)];
+    const double slope_y = eta[index(c, std::min(r + 1, ny - 1), nx)] - eta[index(c, std::max(r - 1, 0), nx)];
+    double joined = -1.0;
+    auto consider = [&](int cc, int rr) {
+      if (cc < 0 || cc >= nx || rr < 0 || rr >= ny) return;
+      const double start = started[index(cc, rr, nx)];
+      if (start >= 0.0 && (joined < 0.0 || start < joined)) joined = start;  // the older event
+    };
+    // Upwind: the front travels along -grad eta, so it comes from the +grad eta side.
+    if (slope_x != 0.0) consider(slope_x > 0.0 ? c + 1 : c - 1, r);
+    if (slope_y != 0.0) consider(c, slope_y > 0.0 ? r + 1 : r - 1);
+    return joined;
+  };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, eta.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
     bool block_viscosity = false;
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
@@ -787,6 +814,7 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
       }
       const double eta_t = (eta[i] - eta_old[i]) / dt, celerity = std::sqrt(g * h);
       if (breaking_start_s[i] < 0.0 && eta_t > b.onset_celerity_fraction * celerity) breaking_start_s[i] = now;
+      if (breaking_start_s[i] < 0.0 && eta_t > b.stop_celerity_fraction * celerity) breaking_start_s[i] = joined_event(i);
       double strength = 0.0;
       if (breaking_start_s[i] >= 0.0) {
         const double transition = b.transition_time_factor * std::sqrt(h / g);

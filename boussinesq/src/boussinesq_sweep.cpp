@@ -99,6 +99,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     else
       return 0.5 * (here + partner);
   };
+  // The fully nonlinear terms act in open water (n = 1): 1 there, 0 at a porous face, by arithmetic
+  // (a select here stops GCC 12 with an internal error, nonlinear_dispersion.hpp).
+  auto open_face = [&](double n_f) __attribute__((always_inline)) { return clamped((n_f - 0.999) * 1000.0, 0.0, 1.0); };
   auto normal_across = [&](std::size_t face) __attribute__((always_inline)) {
     return normal_old[face] + 0.5 * normal_guess[face];
   };
@@ -250,7 +253,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     if constexpr (decltype(fully_nonlinear)::value) {
       const double e_L = eta_across(extrapolates, cL), e_R = eta_across(extrapolates, cR);
       const double h_face = std::max(d + 0.5 * (e_L + e_R), dry);
-      const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * (kOpenWater ? 1.0 : clamped((n_f - 0.999) * 1000.0, 0.0, 1.0));
+      const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * (kOpenWater ? 1.0 : open_face(n_f));
       const double h_L = std::max(static_cast<double>(depth[cL]) + e_L, dry), h_R = std::max(static_cast<double>(depth[cR]) + e_R, dry);
       const double dL = depth[cL], dR = depth[cR], dL3 = dL * dL * dL, dR3 = dR * dR * dR;
       const double rate_LN = tangential_rate[t_at(L, l + 1)], rate_LS = tangential_rate[t_at(L, l)];
@@ -374,6 +377,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     with_constant(total_depth_dispersion, [&](auto total_depth) __attribute__((always_inline)) {
       for (int f = 1; f < cols; ++f) {
         const int L = f - 1, R = f;
+        const int cell_before = std::max(f - 2, 0), cell_after = std::min(f + 1, cols - 1);  // fully nonlinear terms
         #pragma GCC ivdep
         for (int j = 0; j < n; ++j) {
           const std::size_t face = f * stride + lb + j, cL = L * stride + lb + j, cR = R * stride + lb + j;
@@ -412,9 +416,12 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
           // linear part). Cells L, R and faces f-1, f, f+1 at t^{n+1/2}, from this iterate.
           double fn_lower = 0.0, fn_diagonal = 0.0, fn_upper = 0.0;
           if constexpr (decltype(fully_nonlinear)::value) {
-            const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) *
-                                  (kOpenWater ? 1.0 : clamped((n_f - 0.999) * 1000.0, 0.0, 1.0));
-            const double d_before = depth_at_face(f - 1, face - stride), d_after = depth_at_face(f + 1, face + stride);
+            const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * (kOpenWater ? 1.0 : open_face(n_f));
+            // The faces f-1 and f+1 from their cells; at a wall (f-1 = 0, f+1 = cols) the coefficient
+            // is 0 below, and the clamped cell index only keeps the load inside the array (the
+            // index depends on f alone, so the loop over the lines stays free of conditions).
+            const double d_before = 0.5 * (static_cast<double>(depth[static_cast<std::size_t>(cell_before) * stride + lb + j]) + depth_L);
+            const double d_after = 0.5 * (static_cast<double>(depth[static_cast<std::size_t>(cell_after) * stride + lb + j]) + depth_R);
             const double h_L = std::max(static_cast<double>(depth_L) + e_L, dry), h_R = std::max(static_cast<double>(depth_R) + e_R, dry);
             const double h_before = std::max(d_before + 0.5 * (e_m2 + e_L), dry), h_here = std::max(h_mean, dry),
                          h_after = std::max(d_after + 0.5 * (e_R + e_p1), dry);

@@ -36,90 +36,78 @@ std::size_t NonlinearDispersion::memory_bytes() const {
   return (force_x_.capacity() + force_y_.capacity() + last_x_.capacity() + last_y_.capacity()) * sizeof(float);
 }
 
-namespace {
-
-// A face at t^{n+1/2}: u = P/h and the part of u_t = (P_t - u h_t)/h without the flux rate, -u h_t/h.
-struct FaceMotion {
-  double velocity = 0.0, velocity_rate_without_flux_rate = 0.0;
-};
-
-}  // namespace
-
 void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   const int nx = grid_.nx, ny = grid_.ny;
   const double dx = grid_.dx, dy = grid_.dy, dt = s.time_step_s, g = ocean::kGravity_m_s2;
   const double inv_dx = 1.0 / dx, inv_dy = 1.0 / dy, inv_dt = 1.0 / dt;
   const double B = grid_.dispersion_coefficient, dry = grid_.dry_depth_m;
   const float* depth = grid_.depth_m;
-  double *divergence = scratch[0], *gamma = scratch[1], *div_S = scratch[2], *div_S_linear = scratch[3];
+  // Cell arrays (the caller's scratch): eta and h = d + eta (at least dry) at t^{n+1/2}, the cell
+  // velocities, div u, Gamma; then div S and div S_linear reuse div u's and u's storage.
+  double *divergence = scratch[0], *gamma = scratch[1], *eta = scratch[2], *h = scratch[3], *u_cell = scratch[4],
+         *v_cell = scratch[5];
+  double *div_S = divergence, *div_S_linear = u_cell;
   auto cell = [nx](int c, int r) { return static_cast<std::size_t>(r) * nx + c; };
   auto face_x = [ny](int f, int r) { return static_cast<std::size_t>(f) * ny + r; };
   auto face_y = [nx](int c, int k) { return static_cast<std::size_t>(k) * nx + c; };
-  auto eta_mid = [&](std::size_t i) { return 0.5 * (s.eta_old[i] + s.eta_new[i]); };
-  auto eta_rate = [&](std::size_t i) { return (s.eta_new[i] - s.eta_old[i]) * inv_dt; };
-  auto total_depth = [&](std::size_t i) { return std::max(static_cast<double>(depth[i]) + eta_mid(i), dry); };
   auto flux_x = [&](int f, int r) { const std::size_t i = face_x(f, r); return s.flux_x_new[i] - 0.5 * s.flux_x_change[i]; };
   auto flux_y = [&](int c, int k) { const std::size_t i = face_y(c, k); return s.flux_y_new[i] - 0.5 * s.flux_y_change[i]; };
+  auto eta_rate = [&](std::size_t i) { return (s.eta_new[i] - s.eta_old[i]) * inv_dt; };
   // The still-water and total depth of the face between cells a and b (the sweep's definitions).
   auto face_still = [&](std::size_t a, std::size_t b) { return 0.5 * (static_cast<double>(depth[a]) + static_cast<double>(depth[b])); };
-  auto face_total = [&](std::size_t a, std::size_t b) { return std::max(face_still(a, b) + 0.5 * (eta_mid(a) + eta_mid(b)), dry); };
-  auto motion = [&](std::size_t a, std::size_t b, double flux) {
-    FaceMotion m;
-    const double inv_h = 1.0 / face_total(a, b);
-    m.velocity = flux * inv_h;
-    m.velocity_rate_without_flux_rate = -m.velocity * 0.5 * (eta_rate(a) + eta_rate(b)) * inv_h;
-    return m;
-  };
-  // Walls (the grid edges) carry nothing.
-  auto motion_x = [&](int f, int r) { return f == 0 || f == nx ? FaceMotion{} : motion(cell(f - 1, r), cell(f, r), flux_x(f, r)); };
-  auto motion_y = [&](int c, int k) { return k == 0 || k == ny ? FaceMotion{} : motion(cell(c, k - 1), cell(c, k), flux_y(c, k)); };
-  // Rows go in chunks, each with its own row buffers (face values computed once per row, not once
-  // per cell side).
+  auto face_total = [&](std::size_t a, std::size_t b) { return std::max(face_still(a, b) + 0.5 * (eta[a] + eta[b]), dry); };
+  // Rows go in chunks with their own row buffers (face values computed once per row).
   auto for_rows = [&](const auto& body) {
     tbb::parallel_for(tbb::blocked_range<int>(0, ny, 8), [&](const tbb::blocked_range<int>& rows) {
-      std::vector<FaceMotion> row_x(nx + 1), south_y(nx), north_y(nx);
-      std::vector<double> buffers[7];
+      std::vector<double> buffers[8];
       for (auto& buffer : buffers) buffer.resize(nx + 1);
-      for (int r = rows.begin(); r < rows.end(); ++r) body(r, row_x, south_y, north_y, buffers);
+      for (int r = rows.begin(); r < rows.end(); ++r) body(r, buffers);
     });
   };
 
-  // 1. Per cell: div u, and the part of div u_t - (div u)^2 without the flux rates (the sweeps
-  // hold those: along their lines implicitly, across them with the seed's across estimates).
-  for_rows([&](int r, std::vector<FaceMotion>& row_x, std::vector<FaceMotion>& south_y, std::vector<FaceMotion>& north_y,
-               std::vector<double>*) {
-    for (int f = 0; f <= nx; ++f) row_x[f] = motion_x(f, r);
+  // 0. Per cell: eta and the total depth at t^{n+1/2}.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, static_cast<std::size_t>(nx) * ny, 16384), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      eta[i] = 0.5 * (s.eta_old[i] + s.eta_new[i]);
+      h[i] = std::max(static_cast<double>(depth[i]) + eta[i], dry);
+    }
+  });
+  // 1. Per cell: div u, the cell velocities, and the part of div u_t - (div u)^2 without the flux
+  // rates (the sweeps hold those: along their lines implicitly, across them with the seed's across
+  // estimates): u_t = (P_t - u h_t)/h leaves -u h_t / h. Walls (the grid edges) carry nothing.
+  for_rows([&](int r, std::vector<double>* b) {
+    std::vector<double>&u = b[0], &u_rate = b[1], &v_south = b[2], &v_rate_south = b[3], &v_north = b[4], &v_rate_north = b[5];
+    auto face = [&](std::size_t a, std::size_t c, double flux, double& velocity, double& rate) {
+      const double inv_h = 1.0 / face_total(a, c);
+      velocity = flux * inv_h;
+      rate = -velocity * 0.5 * (eta_rate(a) + eta_rate(c)) * inv_h;
+    };
+    u[0] = u_rate[0] = u[nx] = u_rate[nx] = 0.0;
+    for (int f = 1; f < nx; ++f) face(cell(f - 1, r), cell(f, r), flux_x(f, r), u[f], u_rate[f]);
     for (int c = 0; c < nx; ++c) {
-      south_y[c] = motion_y(c, r);
-      north_y[c] = motion_y(c, r + 1);
+      v_south[c] = v_rate_south[c] = v_north[c] = v_rate_north[c] = 0.0;
+      if (r > 0) face(cell(c, r - 1), cell(c, r), flux_y(c, r), v_south[c], v_rate_south[c]);
+      if (r + 1 < ny) face(cell(c, r), cell(c, r + 1), flux_y(c, r + 1), v_north[c], v_rate_north[c]);
     }
     for (int c = 0; c < nx; ++c) {
-      const FaceMotion &west = row_x[c], &east = row_x[c + 1], &south = south_y[c], &north = north_y[c];
-      const double div = (east.velocity - west.velocity) * inv_dx + (north.velocity - south.velocity) * inv_dy;
+      const double div = (u[c + 1] - u[c]) * inv_dx + (v_north[c] - v_south[c]) * inv_dy;
       const std::size_t i = cell(c, r);
       divergence[i] = div;
-      gamma[i] = (east.velocity_rate_without_flux_rate - west.velocity_rate_without_flux_rate) * inv_dx +
-                 (north.velocity_rate_without_flux_rate - south.velocity_rate_without_flux_rate) * inv_dy - div * div;
+      gamma[i] = (u_rate[c + 1] - u_rate[c]) * inv_dx + (v_rate_north[c] - v_rate_south[c]) * inv_dy - div * div;
+      u_cell[i] = 0.5 * (u[c] + u[c + 1]);
+      v_cell[i] = 0.5 * (v_south[c] + v_north[c]);
     }
   });
   // 2. Per cell: h^3 Gamma, Gamma = (div u_t without the rates) + u . grad(div u) - (div u)^2 (the
   // gradient central; beyond a grid edge, a wall, the cell mirrors itself). Linearised it is 0.
-  auto velocity = [&](std::size_t a, std::size_t b, double flux) { return flux / face_total(a, b); };
-  for_rows([&](int r, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<double>* b) {
+  tbb::parallel_for(0, ny, [&](int r) {
     const int south = std::max(r - 1, 0), north = std::min(r + 1, ny - 1);
-    std::vector<double>& u_faces = b[0];
-    u_faces[0] = u_faces[nx] = 0.0;
-    for (int f = 1; f < nx; ++f) u_faces[f] = velocity(cell(f - 1, r), cell(f, r), flux_x(f, r));
     for (int c = 0; c < nx; ++c) {
       const int west = std::max(c - 1, 0), east = std::min(c + 1, nx - 1);
       const std::size_t i = cell(c, r);
-      const double u = 0.5 * (u_faces[c] + u_faces[c + 1]);
-      const double v = 0.5 * ((r > 0 ? velocity(cell(c, r - 1), i, flux_y(c, r)) : 0.0) +
-                              (r + 1 < ny ? velocity(i, cell(c, r + 1), flux_y(c, r + 1)) : 0.0));
-      const double advection = u * (divergence[cell(east, r)] - divergence[cell(west, r)]) * (0.5 * inv_dx) +
-                               v * (divergence[cell(c, north)] - divergence[cell(c, south)]) * (0.5 * inv_dy);
-      const double h = total_depth(i);
-      gamma[i] = h * h * h * (gamma[i] + advection);
+      const double advection = u_cell[i] * (divergence[cell(east, r)] - divergence[cell(west, r)]) * (0.5 * inv_dx) +
+                               v_cell[i] * (divergence[cell(c, north)] - divergence[cell(c, south)]) * (0.5 * inv_dy);
+      gamma[i] = h[i] * h[i] * h[i] * (gamma[i] + advection);
     }
   });
   // 3. Per cell: div S and its linearisation without the rates, S = div((P, Q)(P, Q)/h) + g h grad(eta)
@@ -127,60 +115,57 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   // builds them: P^2/h at the cell centres, PQ/h at the corners (zero on a wall).
   auto along_x = [&](int c, int r) {  // P^2/h at cell (c, r)
     const double P = 0.5 * (flux_x(c, r) + flux_x(c + 1, r));
-    return P * P / total_depth(cell(c, r));
+    return P * P / h[cell(c, r)];
   };
   auto along_y = [&](int c, int r) {  // Q^2/h
     const double Q = 0.5 * (flux_y(c, r) + flux_y(c, r + 1));
-    return Q * Q / total_depth(cell(c, r));
+    return Q * Q / h[cell(c, r)];
   };
-  auto corner = [&](int f, int k) {  // PQ/h at the corner between cells (f-1..f, k-1..k)
-    if (f == 0 || f == nx || k == 0 || k == ny) return 0.0;
+  auto corner = [&](int f, int k) {  // PQ/h at the corner between cells (f-1..f, k-1..k), inside the grid
     const double P = 0.5 * (flux_x(f, k - 1) + flux_x(f, k)), Q = 0.5 * (flux_y(f - 1, k) + flux_y(f, k));
-    const double h = 0.25 * (total_depth(cell(f - 1, k - 1)) + total_depth(cell(f, k - 1)) + total_depth(cell(f - 1, k)) +
-                             total_depth(cell(f, k)));
-    return P * Q / h;
+    return 4.0 * P * Q / (h[cell(f - 1, k - 1)] + h[cell(f, k - 1)] + h[cell(f - 1, k)] + h[cell(f, k)]);
   };
-  for_rows([&](int r, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<FaceMotion>&, std::vector<double>* b) {
+  for_rows([&](int r, std::vector<double>* b) {
     // Row buffers: P^2/h of this row's cells, Q^2/h of the rows below, here and above, the corners
     // south (k = r) and north (k = r + 1) of the row, S and S_linear on the row's x faces.
     std::vector<double>&along = b[0], &along_south = b[1], &along_here = b[2], &along_north = b[3], &corner_south = b[4],
-                        &corner_north = b[5], &residual = b[6];
+                        &corner_north = b[5], &residual = b[6], &residual_linear = b[7];
     for (int c = 0; c < nx; ++c) {
       along[c] = along_x(c, r);
       along_here[c] = along_y(c, r);
       along_south[c] = r > 0 ? along_y(c, r - 1) : 0.0;
       along_north[c] = r + 1 < ny ? along_y(c, r + 1) : 0.0;
     }
-    for (int f = 0; f <= nx; ++f) {
-      corner_south[f] = corner(f, r);
-      corner_north[f] = corner(f, r + 1);
+    for (int f = 0; f <= nx; ++f) corner_south[f] = corner_north[f] = 0.0;
+    for (int f = 1; f < nx; ++f) {
+      if (r > 0) corner_south[f] = corner(f, r);
+      if (r + 1 < ny) corner_north[f] = corner(f, r + 1);
     }
-    residual[0] = residual[nx] = 0.0;  // the walls: nothing
+    residual[0] = residual[nx] = residual_linear[0] = residual_linear[nx] = 0.0;  // the walls: nothing
     for (int f = 1; f < nx; ++f) {
       const std::size_t L = cell(f - 1, r), R = cell(f, r);
-      residual[f] = (along[f] - along[f - 1]) * inv_dx + (corner_north[f] - corner_south[f]) * inv_dy +
-                    g * face_total(L, R) * (eta_mid(R) - eta_mid(L)) * inv_dx;
+      const double slope = (eta[R] - eta[L]) * inv_dx;
+      residual[f] = (along[f] - along[f - 1]) * inv_dx + (corner_north[f] - corner_south[f]) * inv_dy + g * face_total(L, R) * slope;
+      residual_linear[f] = g * face_still(L, R) * slope;
     }
     for (int c = 0; c < nx; ++c) {
       const std::size_t i = cell(c, r);
-      // S on the y faces south (k = r) and north (k = r + 1) of the cell, and the linear gravity terms.
-      double south = 0.0, north = 0.0, south_linear = 0.0, north_linear = 0.0, west_linear = 0.0, east_linear = 0.0;
+      // S on the y faces south (k = r) and north (k = r + 1) of the cell; a wall carries nothing.
+      double south = 0.0, north = 0.0, south_linear = 0.0, north_linear = 0.0;
       if (r > 0) {
         const std::size_t below = cell(c, r - 1);
-        const double slope = (eta_mid(i) - eta_mid(below)) * inv_dy;
+        const double slope = (eta[i] - eta[below]) * inv_dy;
         south = (corner_south[c + 1] - corner_south[c]) * inv_dx + (along_here[c] - along_south[c]) * inv_dy + g * face_total(below, i) * slope;
         south_linear = g * face_still(below, i) * slope;
       }
       if (r + 1 < ny) {
         const std::size_t above = cell(c, r + 1);
-        const double slope = (eta_mid(above) - eta_mid(i)) * inv_dy;
+        const double slope = (eta[above] - eta[i]) * inv_dy;
         north = (corner_north[c + 1] - corner_north[c]) * inv_dx + (along_north[c] - along_here[c]) * inv_dy + g * face_total(i, above) * slope;
         north_linear = g * face_still(i, above) * slope;
       }
-      if (c > 0) west_linear = g * face_still(cell(c - 1, r), i) * (eta_mid(i) - eta_mid(cell(c - 1, r))) * inv_dx;
-      if (c + 1 < nx) east_linear = g * face_still(i, cell(c + 1, r)) * (eta_mid(cell(c + 1, r)) - eta_mid(i)) * inv_dx;
       div_S[i] = (residual[c + 1] - residual[c]) * inv_dx + (north - south) * inv_dy;
-      div_S_linear[i] = (east_linear - west_linear) * inv_dx + (north_linear - south_linear) * inv_dy;
+      div_S_linear[i] = (residual_linear[c + 1] - residual_linear[c]) * inv_dx + (north_linear - south_linear) * inv_dy;
     }
   });
   // 4. Per face: R = w [-(1/3) d(h^3 Gamma) - B (h^2 d(div S) - d^2 d(div S_linear))], w = the taper
@@ -194,10 +179,11 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   auto open_water = [&](std::size_t i) { return grid_.porosity[i] == 1.0f; };
   auto remainder = [&](std::size_t L, std::size_t R, double inv_spacing, double taper, bool whole_stencil) {
     if (!whole_stencil || !open_water(L) || !open_water(R) || taper == 0.0) return 0.0;
-    const double d = face_still(L, R), elevation = 0.5 * (eta_mid(L) + eta_mid(R)), h = std::max(d + elevation, dry);
+    const double d = face_still(L, R), elevation = 0.5 * (eta[L] + eta[R]), h_face = std::max(d + elevation, dry);
     const double weight = taper * fully_nonlinear_weight(elevation, d, dry);
+    if (weight == 0.0) return 0.0;
     const double serre = -(gamma[R] - gamma[L]) * inv_spacing / 3.0;
-    const double enhancement = -B * (h * h * (div_S[R] - div_S[L]) - d * d * (div_S_linear[R] - div_S_linear[L])) * inv_spacing;
+    const double enhancement = -B * (h_face * h_face * (div_S[R] - div_S[L]) - d * d * (div_S_linear[R] - div_S_linear[L])) * inv_spacing;
     return weight * (serre + enhancement);
   };
   const bool first = evaluations_ == 0;

@@ -17,6 +17,7 @@
 // eta^{n+1}, P^n, P^{n+1}; centred differences in time) and extrapolated linearly to the next
 // step's t^{n+3/2} (second order in dt).
 // Private to boussinesq/.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -31,10 +32,10 @@ namespace nearshore::boussinesq::detail {
 /// at the still-water line). The ramp below 0.8 keeps the switch from making noise. Used alike by
 /// the sweep and the remainder.
 inline double fully_nonlinear_weight(double elevation_m, double still_water_depth_m, double dry_depth_m) {
-  // Written with fabs and fmax/fmin: GCC 12 stops with an internal error vectorising the same
-  // selects written with ?: inside the sweep's loops.
-  const double ratio = std::fabs(elevation_m) / std::fmax(still_water_depth_m, dry_depth_m);
-  const double s = std::fmin(std::fmax((0.8 - ratio) * 5.0, 0.0), 1.0);
+  // std::abs and std::min/max of values (not ?:, with which GCC 12 stops with an internal error
+  // vectorising the sweep's loops; not fmax, a library call that keeps them scalar).
+  const double ratio = std::abs(elevation_m) / std::max(still_water_depth_m, dry_depth_m);
+  const double s = std::min(std::max((0.8 - ratio) * 5.0, 0.0), 1.0);
   return s * s * (3.0 - 2.0 * s);
 }
 
@@ -42,7 +43,7 @@ inline double fully_nonlinear_weight(double elevation_m, double still_water_dept
 /// face at or above the still-water line is wet only in the swash, where fully_nonlinear_weight is
 /// 0): one rule for the sweep and the remainder, and no select (GCC 12 vectorises it in the sweep).
 inline double linear_inverse_depth(double still_water_depth_m, double dry_depth_m) {
-  return 1.0 / std::fmax(still_water_depth_m, dry_depth_m);
+  return 1.0 / std::max(still_water_depth_m, dry_depth_m);
 }
 
 /// The grid the terms see, in the solver's natural layouts (cells r * nx + c, x faces f * ny + r,
