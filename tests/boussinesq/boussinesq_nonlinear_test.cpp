@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
 #include <numbers>
 #include <vector>
 
@@ -255,38 +256,54 @@ double equations_amplitude_dispersion(double kd, DispersionDepth depth_kind) {
   return (c / c0 - 1.0) / (0.02 * 0.02);
 }
 
-// The curves of docs/validation.md "Nonlinear checks" (copied to docs/images by the command there).
-void plot_nonlinear_checks(const std::vector<NonlinearPoint>& scheme, const std::vector<NonlinearPoint>& old_face_depth) {
+// Amplitude dispersion of the fully nonlinear equations, likewise.
+double fully_nonlinear_amplitude_dispersion(double kd) {
+  const double B = 1.0 / 15.0, k = kd / kDepth_m, a = 0.02 / k;
+  const double c = boussinesq_steady_wave(a, k, kDepth_m, B, DispersionDepth::kStillWater, 8, Equations::kFullyNonlinear).phase_speed_m_s;
+  const double c0 =
+      boussinesq_steady_wave(1e-7 * a, k, kDepth_m, B, DispersionDepth::kStillWater, 8, Equations::kFullyNonlinear).phase_speed_m_s;
+  return (c / c0 - 1.0) / (0.02 * 0.02);
+}
+
+// The curves of docs/validation.md "Nonlinear checks" (copied to docs/images by the command there):
+// Stokes, the three sets of equations, and the scheme's measured points (`scheme`, with its
+// `scheme_label`; `second_scheme` optional, dispersion only). `suffix` names the files.
+void plot_nonlinear_checks(const std::vector<NonlinearPoint>& scheme, const std::string& scheme_label,
+                           const std::vector<NonlinearPoint>& second_scheme, const std::string& second_label,
+                           const std::string& suffix) {
   const double B = 1.0 / 15.0;
   const Rgb grey{0.3f, 0.3f, 0.3f}, blue{0.12f, 0.47f, 0.71f}, orange{1.0f, 0.5f, 0.05f}, red{0.84f, 0.15f, 0.16f},
-      purple{0.58f, 0.40f, 0.74f};
+      purple{0.58f, 0.40f, 0.74f}, green{0.17f, 0.63f, 0.17f};
   LinePlot transfer;
   transfer.title = "Bound second harmonic / Stokes second order, constant depth";
   transfer.x_label = "k d";
   transfer.y_label = "a2 / a2_Stokes";
-  PlotSeries stokes{"Stokes (1847)", {}, {}, grey, false}, still{"equations, D = d (default)", {}, {}, blue, false},
-      total{"equations, D = h", {}, {}, orange, false}, measured{"scheme, 32 cells/L", {}, {}, red, true};
+  PlotSeries stokes{"Stokes (1847)", {}, {}, grey, false}, full{"fully nonlinear equations (default)", {}, {}, green, false},
+      still{"seed's equations, D = d", {}, {}, blue, false}, total{"seed's equations, D = h", {}, {}, orange, false},
+      measured{scheme_label, {}, {}, red, true};
   for (double kd = 0.1; kd <= 3.0001; kd += 0.05) {
     const double k = kd / kDepth_m, a = 1e-4, reference = stokes_second_harmonic_m(a, k, kDepth_m);
     stokes.x.push_back(kd), stokes.y.push_back(1.0);
+    full.x.push_back(kd), full.y.push_back(fully_nonlinear_second_harmonic_m(a, k, kDepth_m, B) / reference);
     still.x.push_back(kd), still.y.push_back(boussinesq_second_harmonic_m(a, k, kDepth_m, B, DispersionDepth::kStillWater) / reference);
     total.x.push_back(kd), total.y.push_back(boussinesq_second_harmonic_m(a, k, kDepth_m, B, DispersionDepth::kTotal) / reference);
   }
   for (const NonlinearPoint& p : scheme) measured.x.push_back(p.kd), measured.y.push_back(p.scheme_a2 / p.stokes_a2);
-  transfer.series = {stokes, still, total, measured};
-  write_png(render_line_plot(transfer), testing::plot_folder() / "nonlinear_second_harmonic.png");
+  transfer.series = {stokes, full, still, total, measured};
+  write_png(render_line_plot(transfer), testing::plot_folder() / ("nonlinear_second_harmonic" + suffix + ".png"));
 
   LinePlot dispersion;
   dispersion.title = "Amplitude dispersion / Stokes third order (w/w0 - 1, no mean mass flux)";
   dispersion.x_label = "k d";
   dispersion.y_label = "(w/w0 - 1) / Stokes";
-  PlotSeries stokes_dw{"Stokes third order", {}, {}, grey, false}, still_dw{"equations, D = d (default)", {}, {}, blue, false},
-      total_dw{"equations, D = h", {}, {}, orange, false}, scheme_dw{"scheme, mean_where_wet", {}, {}, red, true},
-      old_dw{"scheme, larger_of_mean..", {}, {}, purple, true};
+  PlotSeries stokes_dw{"Stokes third order", {}, {}, grey, false}, full_dw{"fully nonlinear equations (default)", {}, {}, green, false},
+      still_dw{"seed's equations, D = d", {}, {}, blue, false}, total_dw{"seed's equations, D = h", {}, {}, orange, false},
+      scheme_dw{scheme_label, {}, {}, red, true}, second_dw{second_label, {}, {}, purple, true};
   for (double kd = 0.5; kd <= 3.0001; kd += 0.05) {
     const double k = kd / kDepth_m;
     const double stokes = stokes_frequency_increase(1.0 / k, k, kDepth_m);  // per (k a)^2
     stokes_dw.x.push_back(kd), stokes_dw.y.push_back(1.0);
+    full_dw.x.push_back(kd), full_dw.y.push_back(fully_nonlinear_amplitude_dispersion(kd) / stokes);
     still_dw.x.push_back(kd), still_dw.y.push_back(equations_amplitude_dispersion(kd, DispersionDepth::kStillWater) / stokes);
     total_dw.x.push_back(kd), total_dw.y.push_back(equations_amplitude_dispersion(kd, DispersionDepth::kTotal) / stokes);
   }
@@ -297,9 +314,10 @@ void plot_nonlinear_checks(const std::vector<NonlinearPoint>& scheme, const std:
       }
   };
   add(scheme_dw, scheme);
-  add(old_dw, old_face_depth);
-  dispersion.series = {stokes_dw, still_dw, total_dw, scheme_dw, old_dw};
-  write_png(render_line_plot(dispersion), testing::plot_folder() / "nonlinear_amplitude_dispersion.png");
+  add(second_dw, second_scheme);
+  dispersion.series = {stokes_dw, full_dw, still_dw, total_dw, scheme_dw};
+  if (!second_scheme.empty()) dispersion.series.push_back(second_dw);
+  write_png(render_line_plot(dispersion), testing::plot_folder() / ("nonlinear_amplitude_dispersion" + suffix + ".png"));
 }
 
 // The scheme against the continuous equations (both with the dispersive terms on d). Tolerances:
@@ -326,7 +344,7 @@ TEST(BoussinesqNonlinear, SchemeFollowsTheEquationsBoundHarmonicAndAmplitudeDisp
     std::printf("face depth larger of mean and above bed, k d = %.2f: a2 scheme %.3e, dw scheme %+.3e\n", kd,
                 old_points.back().scheme_a2, old_points.back().scheme_dw);
   }
-  plot_nonlinear_checks(points, old_points);
+  plot_nonlinear_checks(points, "seed's scheme, mean_where_wet", old_points, "seed's scheme, larger_of_mean..", "_seed");
   for (const NonlinearPoint& p : points) {
     EXPECT_NEAR(p.scheme_a2 / p.steady_a2, 1.0, 0.10) << "k d = " << p.kd;
     EXPECT_LT(std::abs(p.scheme_dw - p.equations_dw), std::max(0.1 * p.stokes_dw, 0.12 * std::abs(p.equations_dw)))
@@ -339,8 +357,10 @@ TEST(BoussinesqNonlinear, SchemeFollowsTheEquationsBoundHarmonicAndAmplitudeDisp
 // depth is the mean (mean_where_wet), whose scheme adds no first-order amplitude dispersion of its own.
 TEST(BoussinesqNonlinear, FullyNonlinearSchemeFollowsItsEquations) {
   std::printf("  k d     a (m)   a2 Stokes  a2 FN eq.  a2 steady a2 expected a2 scheme  free a2   dw Stokes  dw eq.   dw scheme\n");
+  std::vector<NonlinearPoint> points;
   for (double kd : {0.25, 0.5, 1.0, 1.5, 2.0, 3.0}) {
     const NonlinearPoint p = measure(kd, DispersionDepth::kStillWater, SolverParameters::FaceDepth::kMeanWhereWet, Equations::kFullyNonlinear);
+    points.push_back(p);
     std::printf("%5.2f %9.5f %10.3e %10.3e %10.3e %10.3e %10.3e %9.2e %+9.3e %+9.3e %+9.3e\n", p.kd, p.amplitude_m, p.stokes_a2,
                 p.fully_nonlinear_a2, p.steady_a2, p.expected_scheme_a2, p.scheme_a2, p.scheme_free_a2, p.stokes_dw, p.equations_dw,
                 p.scheme_dw);
@@ -348,6 +368,7 @@ TEST(BoussinesqNonlinear, FullyNonlinearSchemeFollowsItsEquations) {
     EXPECT_LT(std::abs(p.scheme_dw - p.equations_dw), std::max(0.1 * p.stokes_dw, 0.12 * std::abs(p.equations_dw)))
         << "k d = " << p.kd;
   }
+  plot_nonlinear_checks(points, "scheme (default), 32 cells/L", {}, "", "");
 }
 
 }  // namespace

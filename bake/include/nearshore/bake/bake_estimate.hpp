@@ -18,6 +18,10 @@ namespace nearshore::bake {
 /// estimate_bake_resources adds), 228 B on 1000 x 1000, rounded up. Buffers that grow with the
 /// longest grid side rather than with the cells are kBakeBytesPerLinePerThread.
 inline constexpr double kBakeBytesPerCell = 250.0;
+/// What the fully nonlinear equations (solver.equations, the default since issue 19) add per cell,
+/// bytes: the history of their explicit remainder, the force and the last value on the x and y
+/// faces as float (docs/solver.md "Memory"); kBakeBytesPerCell was measured with the seed's.
+inline constexpr double kFullyNonlinearBytesPerCell = 16.0;
 /// Per cell of the grid's longest side and per worker thread, bytes: the sweep's scratch (19 arrays
 /// of 16 lanes of doubles, 2432 B) and the grid-scale filter's block of 128 lines (1024 B), rounded
 /// up. On a narrow grid they weigh 50-70 B per cell (the 1000 x 100 flume on two threads).

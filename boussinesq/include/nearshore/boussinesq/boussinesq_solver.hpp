@@ -109,7 +109,7 @@ struct WaveMaker {
   /// (H +-10 % over tens of metres for Hansen & Svendsen's 031041); this one cancels it
   /// (docs/solver.md, "Wave maker"). Ignored for several components (their sum and difference
   /// interactions are not generated).
-  bool second_order = false;
+  bool second_order = true;
   std::vector<double> series_time_s, series_elevation_m;  ///< kTimeSeries: eta(t) at the source line
 };
 
@@ -123,21 +123,23 @@ struct SolverParameters {
   double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
   double dispersion_coefficient = 1.0 / 15.0;  ///< B, Madsen & Sorensen (1992)
   /// The nonlinear terms of the momentum equations (model_nonlinear.hpp, docs/solver.md "Fully
-  /// nonlinear dispersion"): kWeaklyNonlinear is seed 003 eq. (1)-(7) as written (nonlinear only in
-  /// the shallow-water terms); kFullyNonlinear adds the Serre-Green-Naghdi dispersive terms with the
-  /// enhancement on the total depth, whose bound harmonics and amplitude dispersion follow Stokes
-  /// to k d ~ 1-2 (docs/validation.md "Nonlinear checks"). Not with dispersion_depth = kTotal.
-  Equations equations = Equations::kWeaklyNonlinear;
+  /// nonlinear dispersion"): kFullyNonlinear (default since issue 19) adds to seed 003 eq. (1)-(7)
+  /// the Serre-Green-Naghdi dispersive terms with the enhancement on the total depth, whose bound
+  /// harmonics and amplitude dispersion follow Stokes to k d ~ 1-2 (docs/validation.md "Nonlinear
+  /// checks"); kWeaklyNonlinear is the seed's equations as written (nonlinear only in the
+  /// shallow-water terms), half the cost of a step. Not with dispersion_depth = kTotal.
+  Equations equations = Equations::kFullyNonlinear;
   /// The depth in the dispersive terms: still-water d (seed 003 eq. 4-5, default) or total h = d + eta
   /// (an option, docs/solver.md "Dispersion depth"; its nonlinear properties: model_nonlinear.hpp).
   DispersionDepth dispersion_depth = DispersionDepth::kStillWater;
   /// Total depth h of a face in the gravity term n g h eta_x and the resistance (docs/solver.md,
-  /// "Face depth"). kMeanWhereWet: the mean of the two cells where both are wet, the water above the
-  /// higher bed only next to a dry cell (flooding). kLargerOfMeanAndAboveBed: the larger of the two
-  /// everywhere (the solver before issue 19): on a flat bed that is d + max(eta_L, eta_R), a
-  /// first-order error g |eta_x| eta_x dx / 2 that acts as a spurious amplitude dispersion.
+  /// "Face depth"). kMeanWhereWet (default since issue 19): the mean of the two cells where both are
+  /// wet, the water above the higher bed only next to a dry cell (flooding). kLargerOfMeanAndAboveBed:
+  /// the larger of the two everywhere (the solver before issue 19): on a flat bed that is
+  /// d + max(eta_L, eta_R), a first-order error g |eta_x| eta_x dx / 2 that acts as a spurious
+  /// amplitude dispersion (it stood in for the physical one the seed's equations lack).
   enum class FaceDepth { kMeanWhereWet, kLargerOfMeanAndAboveBed };
-  FaceDepth face_depth = FaceDepth::kLargerOfMeanAndAboveBed;
+  FaceDepth face_depth = FaceDepth::kMeanWhereWet;
   /// Dispersion taper: the dispersive terms are multiplied by a weight that is 1 where the still-water
   /// depth d >= 2 * dispersion_cutoff_depth_m, 0 where d <= dispersion_cutoff_depth_m and a smooth
   /// (cubic) ramp between; likewise for the local k h of the peak wave when dispersion_cutoff_kh > 0
