@@ -448,6 +448,8 @@ void BoussinesqSolver::Implementation::step() {
     roller_active = roller->update(time_s, eta.data(), eta_next.data(), flux_x.data(), flux_y.data(), breaking_start_s.data(),
                                    breaking_output.values().data());
   }
+  // The fully nonlinear terms' subcritical factors of this step, from the state at t^n (eta_next as scratch).
+  if (nonlinear) nonlinear->update_subcritical(eta.data(), flux_x.data(), flux_y.data(), eta_next.data());
   detail::transpose(eta.data(), eta_t.data(), nx, ny);
   if (eddy_viscosity_active) detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
@@ -518,7 +520,8 @@ void BoussinesqSolver::Implementation::step() {
     sweep(frame_x,
           {eta_t.data(), eta_base.data(), partner, extrapolates, flux_x.data(),
            normal_guess(pass, flux_x, flux_x_increment, flux_x_new), tangential_half.data(), tangential_rate.data(),
-           eddy_t.data(), dispersive_t.data(), eddy_viscosity_active, nonlinear ? nonlinear->force_x() : nullptr},
+           eddy_t.data(), dispersive_t.data(), eddy_viscosity_active, nonlinear ? nonlinear->force_x() : nullptr,
+           nonlinear ? nonlinear->subcritical_x() : nullptr},
           // Its eta (eta* when it comes first, eta^{n+1} when second) straight into the natural layout.
           {first ? eta_star.data() : eta_next.data(), flux_x_new.data(), 1, static_cast<std::size_t>(nx)});
   };
@@ -540,7 +543,7 @@ void BoussinesqSolver::Implementation::step() {
     sweep(frame_y,
           {eta.data(), base, partner, extrapolates, flux_y.data(), normal_guess(pass, flux_y, flux_y_increment, flux_y_new),
            tangential_half.data(), tangential_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active,
-           nonlinear ? nonlinear->force_y() : nullptr},
+           nonlinear ? nonlinear->force_y() : nullptr, nonlinear ? nonlinear->subcritical_y() : nullptr},
           {first ? eta_star.data() : eta_next.data(), flux_y_new.data(), static_cast<std::size_t>(nx), 1});
   };
 

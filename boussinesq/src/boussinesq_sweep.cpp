@@ -83,6 +83,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   const unsigned char* __restrict dispersive = in.dispersive;
   const float* __restrict face_weight = frame.face_dispersion_weight.data();
   const double* __restrict normal_guess = in.normal_guess;
+  // The fully nonlinear terms' subcritical factor per face of this step, 0 at porous faces (the
+  // terms act in open water, n = 1; nonlinear_dispersion.hpp).
+  const float* __restrict subcritical = in.fully_nonlinear_subcritical;
   // Porous resistance (Van Gent 1995) of a face from its porosity, as build_frame describes it.
   const double laminar_factor = frame.porous_laminar_factor, turbulent_factor = frame.porous_turbulent_factor;
   const double stone_diameter = frame.porous_stone_diameter_m;
@@ -99,9 +102,6 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     else
       return 0.5 * (here + partner);
   };
-  // The fully nonlinear terms act in open water (n = 1): 1 there, 0 at a porous face, by arithmetic
-  // (a select here stops GCC 12 with an internal error, nonlinear_dispersion.hpp).
-  auto open_face = [&](double n_f) __attribute__((always_inline)) { return clamped((n_f - 0.999) * 1000.0, 0.0, 1.0); };
   auto normal_across = [&](std::size_t face) __attribute__((always_inline)) {
     return normal_old[face] + 0.5 * normal_guess[face];
   };
@@ -253,7 +253,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     if constexpr (decltype(fully_nonlinear)::value) {
       const double e_L = eta_across(extrapolates, cL), e_R = eta_across(extrapolates, cR);
       const double h_face = std::max(d + 0.5 * (e_L + e_R), dry);
-      const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * (kOpenWater ? 1.0 : open_face(n_f));
+      const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * subcritical[face];
       const double h_L = std::max(static_cast<double>(depth[cL]) + e_L, dry), h_R = std::max(static_cast<double>(depth[cR]) + e_R, dry);
       const double dL = depth[cL], dR = depth[cR], dL3 = dL * dL * dL, dR3 = dR * dR * dR;
       const double rate_LN = tangential_rate[t_at(L, l + 1)], rate_LS = tangential_rate[t_at(L, l)];
@@ -416,7 +416,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
           // linear part). Cells L, R and faces f-1, f, f+1 at t^{n+1/2}, from this iterate.
           double fn_lower = 0.0, fn_diagonal = 0.0, fn_upper = 0.0;
           if constexpr (decltype(fully_nonlinear)::value) {
-            const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * (kOpenWater ? 1.0 : open_face(n_f));
+            const double weight = w * fully_nonlinear_weight(0.5 * (e_L + e_R), d, dry) * subcritical[face];
             // The faces f-1 and f+1 from their cells; at a wall (f-1 = 0, f+1 = cols) the coefficient
             // is 0 below, and the clamped cell index only keeps the load inside the array (the
             // index depends on f alone, so the loop over the lines stays free of conditions).

@@ -110,6 +110,9 @@ struct SweepInput {
   /// The fully nonlinear dispersive terms' explicit remainder at the normal faces, m^2/s^2, on the
   /// momentum equation's left side like Psi (nonlinear_dispersion.hpp), or nullptr for none.
   const float* explicit_force = nullptr;
+  /// The fully nonlinear terms' subcritical factor at the normal faces for this step (0 to 1, 0 at
+  /// porous faces; NonlinearDispersion::update_subcritical), or nullptr with the seed's equations.
+  const float* fully_nonlinear_subcritical = nullptr;
 };
 
 struct SweepOutput {

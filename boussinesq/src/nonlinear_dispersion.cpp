@@ -25,6 +25,8 @@ NonlinearDispersion::NonlinearDispersion(const NonlinearDispersionGrid& grid) : 
   last_x_.assign(faces_x, 0.0f);
   force_y_.assign(faces_y, 0.0f);
   last_y_.assign(faces_y, 0.0f);
+  subcritical_x_.assign(faces_x, 0.0f);
+  subcritical_y_.assign(faces_y, 0.0f);
 }
 
 void NonlinearDispersion::reset() {
@@ -33,7 +35,43 @@ void NonlinearDispersion::reset() {
 }
 
 std::size_t NonlinearDispersion::memory_bytes() const {
-  return (force_x_.capacity() + force_y_.capacity() + last_x_.capacity() + last_y_.capacity()) * sizeof(float);
+  return (force_x_.capacity() + force_y_.capacity() + last_x_.capacity() + last_y_.capacity() + subcritical_x_.capacity() +
+          subcritical_y_.capacity()) *
+         sizeof(float);
+}
+
+void NonlinearDispersion::update_subcritical(const double* eta, const double* flux_x, const double* flux_y, double* scratch) {
+  const int nx = grid_.nx, ny = grid_.ny;
+  const double dry = grid_.dry_depth_m;
+  auto cell = [nx](int c, int r) { return static_cast<std::size_t>(r) * nx + c; };
+  // Each cell's own factor, from its speed (the mean of its faces' velocities).
+  tbb::parallel_for(0, ny, [&](int r) {
+    for (int c = 0; c < nx; ++c) {
+      const std::size_t i = cell(c, r);
+      const double d = grid_.depth_m[i], h = d + eta[i];
+      double weight = 0.0;
+      if (grid_.porosity[i] == 1.0f && h > dry) {
+        const double u = 0.5 * (flux_x[static_cast<std::size_t>(c) * ny + r] + flux_x[static_cast<std::size_t>(c + 1) * ny + r]) / h;
+        const double v = 0.5 * (flux_y[cell(c, r)] + flux_y[cell(c, r + 1)]) / h;
+        weight = subcritical_weight(std::sqrt(u * u + v * v), h, dry);
+      }
+      scratch[i] = weight;
+    }
+  });
+  // A face: the least over its two cells and their neighbours (beyond the grid edge, the edge cell).
+  auto around = [&](int c, int r) {
+    return std::min({scratch[cell(c, r)], scratch[cell(std::max(c - 1, 0), r)], scratch[cell(std::min(c + 1, nx - 1), r)],
+                     scratch[cell(c, std::max(r - 1, 0))], scratch[cell(c, std::min(r + 1, ny - 1))]});
+  };
+  tbb::parallel_for(0, ny, [&](int r) {
+    for (int f = 0; f <= nx; ++f)
+      subcritical_x_[static_cast<std::size_t>(f) * ny + r] =
+          f == 0 || f == nx ? 0.0f : static_cast<float>(std::min(around(f - 1, r), around(f, r)));
+  });
+  tbb::parallel_for(0, ny + 1, [&](int k) {
+    for (int c = 0; c < nx; ++c)
+      subcritical_y_[cell(c, k)] = k == 0 || k == ny ? 0.0f : static_cast<float>(std::min(around(c, k - 1), around(c, k)));
+  });
 }
 
 void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
@@ -169,7 +207,7 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     }
   });
   // 4. Per face: R = w [-(1/3) d(h^3 Gamma) - B (h^2 d(div S) - d^2 d(div S_linear))], w = the taper
-  // times fully_nonlinear_weight where the whole stencil (two cells on each side) is wet and open
+  // times fully_nonlinear_weight and the face's subcritical factor of this step (update_subcritical) where the whole stencil (two cells on each side) is wet and open
   // (0 elsewhere); then the force of the next step, extrapolated to its t^{n+3/2}.
   auto wide_mask = [&](int c, int r) {
     const unsigned char* m = s.dispersive;
@@ -177,10 +215,10 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
            m[cell(c, std::max(r - 1, 0))] & m[cell(c, std::min(r + 1, ny - 1))];
   };
   auto open_water = [&](std::size_t i) { return grid_.porosity[i] == 1.0f; };
-  auto remainder = [&](std::size_t L, std::size_t R, double inv_spacing, double taper, bool whole_stencil) {
+  auto remainder = [&](std::size_t L, std::size_t R, double inv_spacing, double taper, bool whole_stencil, float subcritical) {
     if (!whole_stencil || !open_water(L) || !open_water(R) || taper == 0.0) return 0.0;
     const double d = face_still(L, R), elevation = 0.5 * (eta[L] + eta[R]), h_face = std::max(d + elevation, dry);
-    const double weight = taper * fully_nonlinear_weight(elevation, d, dry);
+    const double weight = taper * fully_nonlinear_weight(elevation, d, dry) * subcritical;
     if (weight == 0.0) return 0.0;
     const double serre = -(gamma[R] - gamma[L]) * inv_spacing / 3.0;
     const double enhancement = -B * (h_face * h_face * (div_S[R] - div_S[L]) - d * d * (div_S_linear[R] - div_S_linear[L])) * inv_spacing;
@@ -195,7 +233,8 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     for (int f = 0; f <= nx; ++f) {
       double now = 0.0;
       if (f > 0 && f < nx)
-        now = remainder(cell(f - 1, r), cell(f, r), inv_dx, grid_.face_weight_x[face_x(f, r)], wide_mask(f - 1, r) & wide_mask(f, r));
+        now = remainder(cell(f - 1, r), cell(f, r), inv_dx, grid_.face_weight_x[face_x(f, r)], wide_mask(f - 1, r) & wide_mask(f, r),
+                        subcritical_x_[face_x(f, r)]);
       advance(face_x(f, r), now, force_x_, last_x_);
     }
   });
@@ -203,7 +242,8 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     for (int c = 0; c < nx; ++c) {
       double now = 0.0;
       if (k > 0 && k < ny)
-        now = remainder(cell(c, k - 1), cell(c, k), inv_dy, grid_.face_weight_y[face_y(c, k)], wide_mask(c, k - 1) & wide_mask(c, k));
+        now = remainder(cell(c, k - 1), cell(c, k), inv_dy, grid_.face_weight_y[face_y(c, k)], wide_mask(c, k - 1) & wide_mask(c, k),
+                        subcritical_y_[face_y(c, k)]);
       advance(face_y(c, k), now, force_y_, last_y_);
     }
   });

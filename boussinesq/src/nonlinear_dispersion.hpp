@@ -22,6 +22,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "nearshore/ocean/linear_waves.hpp"
+
 namespace nearshore::boussinesq::detail {
 
 /// The weight of the fully nonlinear terms at a face from its elevation and still-water depth d (at
@@ -30,7 +32,7 @@ namespace nearshore::boussinesq::detail {
 /// |eta| / d > 0.8 (its SWE_ETA_DEP, default 0.8; Shi et al. 2012): the run-up tongue, thin
 /// backwash and bores, where the seed's equations hold the flow (their dispersion, on d, vanishes
 /// at the still-water line). The ramp below 0.8 keeps the switch from making noise. Used alike by
-/// the sweep and the remainder.
+/// the sweep and the remainder, times the face's subcritical weight (below).
 inline double fully_nonlinear_weight(double elevation_m, double still_water_depth_m, double dry_depth_m) {
   // std::abs and std::min/max of values (not ?:, with which GCC 12 stops with an internal error
   // vectorising the sweep's loops; not fmax, a library call that keeps them scalar).
@@ -39,9 +41,23 @@ inline double fully_nonlinear_weight(double elevation_m, double still_water_dept
   return s * s * (3.0 - 2.0 * s);
 }
 
+/// The second factor of the weight, in a cell of speed |u| and total depth h: 1 / (1 + (Fr / 0.9)^16),
+/// Fr = |u| / sqrt(g h) the Froude number (0.998 at Fr 0.6, 0.87 at 0.8, 0.16 at 1, 0.003 at 1.3).
+/// Supercritical flow is a backwash sheet or the hydraulic jump where it meets standing water, not
+/// a wave (a wave's particles move slower than its crest: Fr = 0.23 at the crest of a solitary wave
+/// of H/d = 0.3, 0.4-0.5 at Hansen & Svendsen's break points). A jump that stands still escapes the
+/// breaking model's onset (its eta_t is small), and there the terms' velocity products, (div u)^2
+/// and u . grad(div u) across the jump, grew without bound: the Synolakis breaking case at d/40
+/// stopped at t = 8.6-9.2 s in the backwash. A face takes the least factor of the cells its terms
+/// read (NonlinearDispersion::update_subcritical).
+inline double subcritical_weight(double speed_m_s, double total_depth_m, double dry_depth_m) {
+  const double p = speed_m_s * speed_m_s / (0.81 * ocean::kGravity_m_s2 * std::max(total_depth_m, dry_depth_m));
+  const double p2 = p * p, p4 = p2 * p2;
+  return 1.0 / (1.0 + p4 * p4);
+}
+
 /// 1/d of the linearised velocity rate P_t/d at a face of still-water depth d, never above 1/dry (a
-/// face at or above the still-water line is wet only in the swash, where fully_nonlinear_weight is
-/// 0): one rule for the sweep and the remainder, and no select (GCC 12 vectorises it in the sweep).
+/// face at or above the still-water line is wet only in the swash, where the terms' weight is 0): one rule for the sweep and the remainder, and no select (GCC 12 vectorises it in the sweep).
 inline double linear_inverse_depth(double still_water_depth_m, double dry_depth_m) {
   return 1.0 / std::max(still_water_depth_m, dry_depth_m);
 }
@@ -76,6 +92,16 @@ class NonlinearDispersion {
   NonlinearDispersion() = default;
   explicit NonlinearDispersion(const NonlinearDispersionGrid& grid);
 
+  /// The subcritical factor of the terms' weight at the faces for the coming step, from eta^n and
+  /// the fluxes at t^n (natural layouts): subcritical_weight of each open-water cell (0 where porous
+  /// or dry), then for a face the least over its two cells and their four neighbours each, the cells
+  /// its terms read. Not per face alone: in a backwash sheet the Froude number alternates cell by
+  /// cell, and a face weight that flips with it switches the terms on amid cells where they are off,
+  /// with differences taken across the switch. `scratch`: nx * ny values.
+  void update_subcritical(const double* eta, const double* flux_x, const double* flux_y, double* scratch);
+  const float* subcritical_x() const { return subcritical_x_.data(); }
+  const float* subcritical_y() const { return subcritical_y_.data(); }
+
   /// Evaluates the remainder at t^{n+1/2} of the step `pair` and updates the force for the next
   /// step: 2 R^{n+1/2} - R^{n-1/2} (R^{n+1/2} alone after the first step since a start).
   /// `scratch` holds six arrays of at least nx * ny values: the caller's work arrays that are free
@@ -102,8 +128,10 @@ class NonlinearDispersion {
  private:
   NonlinearDispersionGrid grid_;
   // Float: a correction of a few per cent of the dispersive terms, which are themselves O(mu^2);
-  // its rounding (6e-8) is far below the extrapolation's O(dt^2). 16 bytes per cell in all.
+  // its rounding (6e-8) is far below the extrapolation's O(dt^2). 16 bytes per cell in all, and 8
+  // for the faces' subcritical factors (recomputed from the state each step: not part of the saved state).
   std::vector<float> force_x_, force_y_, last_x_, last_y_;
+  std::vector<float> subcritical_x_, subcritical_y_;
   int evaluations_ = 0;
 };
 

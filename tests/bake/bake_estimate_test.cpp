@@ -74,7 +74,10 @@ TEST(BakeEstimate, ADeepWaterLayerAddsItsLatticesToTheMemory) {
   EXPECT_EQ(plain_estimate.deep_water_bytes, 0.0);
   EXPECT_DOUBLE_EQ(deep_estimate.deep_water_bytes, field_bytes);
   EXPECT_DOUBLE_EQ(deep_estimate.memory_bytes - plain_estimate.memory_bytes, field_bytes);
-  EXPECT_DOUBLE_EQ(plain_estimate.memory_bytes, kBakeFixedBytes + plain_estimate.cells * kBakeBytesPerCell +
+  // The default equations are the fully nonlinear ones: their remainder's arrays are counted per cell.
+  ASSERT_EQ(plain.solver.equations, boussinesq::Equations::kFullyNonlinear);
+  EXPECT_DOUBLE_EQ(plain_estimate.memory_bytes, kBakeFixedBytes +
+                                                    plain_estimate.cells * (kBakeBytesPerCell + kFullyNonlinearBytesPerCell) +
                                                     plain_estimate.line_bytes +
                                                     plain_estimate.gauge_samples * (1.0 + plain.gauges.size()) * 32.0);
   EXPECT_NE(deep_estimate.describe().find("1.2 MiB deep water"), std::string::npos) << deep_estimate.describe();

@@ -31,16 +31,6 @@ SolverParameters fully_nonlinear() {
   return parameters;
 }
 
-std::vector<float> snapshot(const BoussinesqSolver& solver) {
-  Raster<float> flux_x, flux_y;
-  solver.cell_centred_fluxes(flux_x, flux_y);
-  std::vector<float> all = solver.surface_elevation_m().values();
-  all.insert(all.end(), flux_x.values().begin(), flux_x.values().end());
-  all.insert(all.end(), flux_y.values().begin(), flux_y.values().end());
-  all.insert(all.end(), solver.breaking_indicator().values().begin(), solver.breaking_indicator().values().end());
-  return all;
-}
-
 WaveMaker oblique_regular_waves() {
   WaveMaker maker;
   maker.kind = WaveMaker::Kind::kComponents;
@@ -108,7 +98,7 @@ TEST(FullyNonlinear, OneAndTwoThreadsGiveBitIdenticalResults) {
     parameters.sponges = {{Side::kWest, 6.0}, {Side::kEast, 6.0}};
     BoussinesqSolver solver(harbour, parameters, oblique_regular_waves());
     for (int i = 0; i < 150; ++i) solver.step();
-    return snapshot(solver);
+    return testing::solver_snapshot(solver);
   };
   const std::vector<float> one = run(1), two = run(2);
   ASSERT_EQ(one.size(), two.size());
@@ -133,7 +123,7 @@ TEST(FullyNonlinear, SavedStateResumesBitIdenticallyAndIsRefusedByTheSeedsEquati
   BoussinesqSolver resumed(harbour, parameters, oblique_regular_waves());
   resumed.load_state(state);
   for (int i = 0; i < 60; ++i) resumed.step();
-  const std::vector<float> a = snapshot(uninterrupted), b = snapshot(resumed);
+  const std::vector<float> a = testing::solver_snapshot(uninterrupted), b = testing::solver_snapshot(resumed);
   ASSERT_EQ(a.size(), b.size());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
   // The same grid with the seed's equations: refused, naming the equations as a possible cause.

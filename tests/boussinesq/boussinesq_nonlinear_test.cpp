@@ -278,8 +278,8 @@ void plot_nonlinear_checks(const std::vector<NonlinearPoint>& scheme, const std:
   transfer.title = "Bound second harmonic / Stokes second order, constant depth";
   transfer.x_label = "k d";
   transfer.y_label = "a2 / a2_Stokes";
-  PlotSeries stokes{"Stokes (1847)", {}, {}, grey, false}, full{"fully nonlinear equations (default)", {}, {}, green, false},
-      still{"seed's equations, D = d", {}, {}, blue, false}, total{"seed's equations, D = h", {}, {}, orange, false},
+  PlotSeries stokes{"Stokes (1847)", {}, {}, grey, false}, full{"fully nonlinear (default)", {}, {}, green, false},
+      still{"seed's, D = d", {}, {}, blue, false}, total{"seed's, D = h", {}, {}, orange, false},
       measured{scheme_label, {}, {}, red, true};
   for (double kd = 0.1; kd <= 3.0001; kd += 0.05) {
     const double k = kd / kDepth_m, a = 1e-4, reference = stokes_second_harmonic_m(a, k, kDepth_m);
@@ -296,8 +296,8 @@ void plot_nonlinear_checks(const std::vector<NonlinearPoint>& scheme, const std:
   dispersion.title = "Amplitude dispersion / Stokes third order (w/w0 - 1, no mean mass flux)";
   dispersion.x_label = "k d";
   dispersion.y_label = "(w/w0 - 1) / Stokes";
-  PlotSeries stokes_dw{"Stokes third order", {}, {}, grey, false}, full_dw{"fully nonlinear equations (default)", {}, {}, green, false},
-      still_dw{"seed's equations, D = d", {}, {}, blue, false}, total_dw{"seed's equations, D = h", {}, {}, orange, false},
+  PlotSeries stokes_dw{"Stokes third order", {}, {}, grey, false}, full_dw{"fully nonlinear (default)", {}, {}, green, false},
+      still_dw{"seed's, D = d", {}, {}, blue, false}, total_dw{"seed's, D = h", {}, {}, orange, false},
       scheme_dw{scheme_label, {}, {}, red, true}, second_dw{second_label, {}, {}, purple, true};
   for (double kd = 0.5; kd <= 3.0001; kd += 0.05) {
     const double k = kd / kDepth_m;
@@ -368,7 +368,7 @@ TEST(BoussinesqNonlinear, FullyNonlinearSchemeFollowsItsEquations) {
     EXPECT_LT(std::abs(p.scheme_dw - p.equations_dw), std::max(0.1 * p.stokes_dw, 0.12 * std::abs(p.equations_dw)))
         << "k d = " << p.kd;
   }
-  plot_nonlinear_checks(points, "scheme (default), 32 cells/L", {}, "", "");
+  plot_nonlinear_checks(points, "scheme, 32 cells/L", {}, "", "");
 }
 
 }  // namespace

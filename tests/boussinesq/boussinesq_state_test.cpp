@@ -32,16 +32,6 @@ SolverParameters all_on() {
   return parameters;
 }
 
-std::vector<float> snapshot(const BoussinesqSolver& solver) {
-  Raster<float> flux_x, flux_y;
-  solver.cell_centred_fluxes(flux_x, flux_y);
-  std::vector<float> all = solver.surface_elevation_m().values();
-  all.insert(all.end(), flux_x.values().begin(), flux_x.values().end());
-  all.insert(all.end(), flux_y.values().begin(), flux_y.values().end());
-  all.insert(all.end(), solver.breaking_indicator().values().begin(), solver.breaking_indicator().values().end());
-  return all;
-}
-
 TEST(BoussinesqState, SaveAndLoadContinueBitIdentically) {
   const HarbourGrid harbour = testing::rough_basin();
   BoussinesqSolver uninterrupted(harbour, all_on(), regular_waves());
@@ -58,7 +48,7 @@ TEST(BoussinesqState, SaveAndLoadContinueBitIdentically) {
   EXPECT_EQ(resumed.step_count(), 60);
   for (int i = 0; i < 60; ++i) resumed.step();
   EXPECT_EQ(resumed.time_s(), uninterrupted.time_s());
-  const std::vector<float> a = snapshot(uninterrupted), b = snapshot(resumed);
+  const std::vector<float> a = testing::solver_snapshot(uninterrupted), b = testing::solver_snapshot(resumed);
   ASSERT_EQ(a.size(), b.size());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
 }
@@ -80,7 +70,7 @@ TEST(BoussinesqState, AlternatingSweepOrderResumesInOrder) {
   BoussinesqSolver resumed(harbour, parameters, regular_waves());
   resumed.load_state(state);
   for (int i = 0; i < 45; ++i) resumed.step();
-  const std::vector<float> a = snapshot(uninterrupted), b = snapshot(resumed);
+  const std::vector<float> a = testing::solver_snapshot(uninterrupted), b = testing::solver_snapshot(resumed);
   ASSERT_EQ(a.size(), b.size());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
 }

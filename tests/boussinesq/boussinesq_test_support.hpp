@@ -53,6 +53,18 @@ inline std::filesystem::path plot_folder() {
 
 namespace nearshore::boussinesq::testing {
 
+/// Everything a run leaves in float, for bit-for-bit comparisons of two runs: eta, the cell-centred
+/// fluxes and the breaking indicator, one after the other.
+inline std::vector<float> solver_snapshot(const BoussinesqSolver& solver) {
+  Raster<float> flux_x, flux_y;
+  solver.cell_centred_fluxes(flux_x, flux_y);
+  std::vector<float> all = solver.surface_elevation_m().values();
+  all.insert(all.end(), flux_x.values().begin(), flux_x.values().end());
+  all.insert(all.end(), flux_y.values().begin(), flux_y.values().end());
+  all.insert(all.end(), solver.breaking_indicator().values().begin(), solver.breaking_indicator().values().end());
+  return all;
+}
+
 /// A closed 60 x 40 basin (1 m cells) over rough bathymetry: a smooth 2-5 m bed with 0.6 m
 /// deterministic roughness, a beached island rising to 2 m above still water, a porous
 /// breakwater (n = 0.45) and a solid quay wall (n = 0). Land carries minus its elevation.

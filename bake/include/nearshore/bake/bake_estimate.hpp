@@ -20,8 +20,9 @@ namespace nearshore::bake {
 inline constexpr double kBakeBytesPerCell = 250.0;
 /// What the fully nonlinear equations (solver.equations, the default since issue 19) add per cell,
 /// bytes: the history of their explicit remainder, the force and the last value on the x and y
-/// faces as float (docs/solver.md "Memory"); kBakeBytesPerCell was measured with the seed's.
-inline constexpr double kFullyNonlinearBytesPerCell = 16.0;
+/// faces, and the faces' subcritical factors, all float (docs/solver.md "Memory");
+/// kBakeBytesPerCell was measured with the seed's.
+inline constexpr double kFullyNonlinearBytesPerCell = 24.0;
 /// Per cell of the grid's longest side and per worker thread, bytes: the sweep's scratch (19 arrays
 /// of 16 lanes of doubles, 2432 B) and the grid-scale filter's block of 128 lines (1024 B), rounded
 /// up. On a narrow grid they weigh 50-70 B per cell (the 1000 x 100 flume on two threads).
