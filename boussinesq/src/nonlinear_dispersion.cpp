@@ -207,8 +207,9 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     }
   });
   // 4. Per face: R = w [-(1/3) d(h^3 Gamma) - B (h^2 d(div S) - d^2 d(div S_linear))], w = the taper
-  // times fully_nonlinear_weight and the face's subcritical factor of this step (update_subcritical) where the whole stencil (two cells on each side) is wet and open
-  // (0 elsewhere); then the force of the next step, extrapolated to its t^{n+3/2}.
+  // times fully_nonlinear_weight times the face's subcritical factor of this step (update_subcritical)
+  // where the whole stencil (two cells on each side) is wet and open (0 elsewhere); then the force of
+  // the next step, extrapolated to its t^{n+3/2}.
   auto wide_mask = [&](int c, int r) {
     const unsigned char* m = s.dispersive;
     return m[cell(c, r)] & m[cell(std::max(c - 1, 0), r)] & m[cell(std::min(c + 1, nx - 1), r)] &
