@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <atomic>
 #include <cstring>
-#include <cstdlib>
 #include <istream>
 #include <limits>
 #include <numbers>

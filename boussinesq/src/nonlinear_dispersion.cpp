@@ -208,16 +208,15 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   });
   // 4. Per face: R = w [-(1/3) d(h^3 Gamma) - B (h^2 d(div S) - d^2 d(div S_linear))], w = the taper
   // times fully_nonlinear_weight times the face's subcritical factor of this step (update_subcritical)
-  // where the whole stencil (two cells on each side) is wet and open (0 elsewhere); then the force of
-  // the next step, extrapolated to its t^{n+3/2}.
+  // where the whole stencil (two cells on each side) is wet (0 elsewhere; the subcritical factor is 0
+  // next to porous cells); then the force of the next step, extrapolated to its t^{n+3/2}.
   auto wide_mask = [&](int c, int r) {
     const unsigned char* m = s.dispersive;
     return m[cell(c, r)] & m[cell(std::max(c - 1, 0), r)] & m[cell(std::min(c + 1, nx - 1), r)] &
            m[cell(c, std::max(r - 1, 0))] & m[cell(c, std::min(r + 1, ny - 1))];
   };
-  auto open_water = [&](std::size_t i) { return grid_.porosity[i] == 1.0f; };
   auto remainder = [&](std::size_t L, std::size_t R, double inv_spacing, double taper, bool whole_stencil, float subcritical) {
-    if (!whole_stencil || !open_water(L) || !open_water(R) || taper == 0.0) return 0.0;
+    if (!whole_stencil || taper == 0.0 || subcritical == 0.0f) return 0.0;
     const double d = face_still(L, R), elevation = 0.5 * (eta[L] + eta[R]), h_face = std::max(d + elevation, dry);
     const double weight = taper * fully_nonlinear_weight(elevation, d, dry) * subcritical;
     if (weight == 0.0) return 0.0;

@@ -22,7 +22,7 @@ bake::BakeSummary bake_case(const std::string& name, const std::string& run_name
   adjust(document);
   // A solver variant for every case at once, to compare it with the defaults on the same road
   // (docs/validation.md, "What to change when a number moves"): a JSON object merged into [solver],
-  // e.g. NEARSHORE_VALIDATION_SOLVER='{"equations": "fully_nonlinear"}'. Unset in CI.
+  // e.g. NEARSHORE_VALIDATION_SOLVER='{"equations": "weakly_nonlinear"}'. Unset in CI.
   if (const char* variant = std::getenv("NEARSHORE_VALIDATION_SOLVER"); variant != nullptr && *variant != '\0') {
     document["solver"].merge_patch(json::parse(variant));
     std::printf("%s: solver variant %s\n", run_name.c_str(), variant);
