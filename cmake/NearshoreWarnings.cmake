@@ -15,6 +15,10 @@ function(nearshore_add_test name)
   cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   nearshore_target_defaults(${name})
+  # Unity batches of four test files: each parses GoogleTest and its libraries' headers once per
+  # batch instead of once per file (the CI machine has 2 cores). Helpers in a test file's anonymous
+  # namespace must therefore have names no other file of the suite uses.
+  set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 4)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
     NEARSHORE_SHARED_DIR="${NEARSHORE_SHARED_DIR}"

@@ -20,10 +20,6 @@
 namespace nearshore::tools {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // Chart-like soundings: jittered points over the square with a smooth harbour-like relief.
 std::vector<bathymetry::ScatteredDepth> synthetic_soundings(std::size_t count, double size_m) {
   std::mt19937 random(2026);

@@ -22,13 +22,6 @@
 #include "nearshore/core/progress.hpp"
 
 namespace nearshore::tools {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 void add_bench_deepwater(CLI::App& bench) {
   struct Options {

@@ -2,6 +2,7 @@
 // What every subcommand of `nearshore` shares: its registration function, the plain "not built
 // yet" answer for a subcommand whose issue is still open, the range every number on the command
 // line is checked against, and the translation of library errors into the command's own flags.
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -44,6 +45,11 @@ struct ExitStatus {
 /// prints results it did not compute.
 CLI::App* add_unbuilt_command(CLI::App& app, const std::string& name, const std::string& description,
                               const std::string& example, const std::string& tracking_issue);
+
+/// Wall seconds from `start` to now (the benchmarks' timer).
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// The example line shown at the end of a subcommand's --help.
 void set_example(CLI::App& command, const std::string& example);

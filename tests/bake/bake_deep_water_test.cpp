@@ -31,7 +31,6 @@ using testing::expect_case_error;
 using testing::scratch_folder;
 using testing::small_flume_case;
 using testing::write_text;
-constexpr double kPi = std::numbers::pi;
 
 // The small flume (12 m x 0.6 m, 0.5 m deep, waves from the west) with its regular wave maker
 // replaced by `maker` (the keys after facing and source_line_m) and `deep` appended.
@@ -64,14 +63,14 @@ double elevation_from_coefficient_files(const fs::path& folder, const sequence::
   for (const sequence::DeepWaterCascadeRecord& cascade : deep_water.cascades) {
     const sequence::DeepWaterCoefficients c = sequence::read_deep_water_coefficients(folder / cascade.coefficients->file);
     const int n = c.grid_size;
-    const double dk = 2 * kPi / c.tile_length_m;
+    const double dk = 2 * std::numbers::pi / c.tile_length_m;
     for (int row = 0; row < n; ++row)
       for (int column = 0; column < n; ++column) {
         const std::size_t i = static_cast<std::size_t>(row) * n + column;
         const double kx = (column <= n / 2 ? column : column - n) * dk,
                      ky = (row <= n / 2 ? row : row - n) * dk;
         const double w =
-            c.loop_period_s > 0 ? c.harmonic[i] * 2 * kPi / c.loop_period_s : c.angular_frequency_rad_s[i];
+            c.loop_period_s > 0 ? c.harmonic[i] * 2 * std::numbers::pi / c.loop_period_s : c.angular_frequency_rad_s[i];
         eta += c.amplitude_m[i] * std::cos(kx * x_m + ky * y_m - w * t_s + c.phase_rad[i]);
       }
   }
@@ -286,14 +285,14 @@ TEST_F(BakeDeepWater, MakerWavesAreTheFieldsOnTheSourceLineOfAUtmGrid) {
         const double field_phase = wave.wavenumber_x_rad_m * (line_x_m - geometry.origin_x_m) +
                                    wave.wavenumber_y_rad_m * y_local_m -
                                    wave.wave.angular_frequency_rad_s * t_s + wave.wave.phase_rad;
-        EXPECT_NEAR(std::remainder(made_phase - field_phase, 2 * kPi), 0.0, 1e-6)
+        EXPECT_NEAR(std::remainder(made_phase - field_phase, 2 * std::numbers::pi), 0.0, 1e-6)
             << "component " << i << " at y = " << y_local_m;
       }
   }
   EXPECT_GT(oblique, 0.0);  // the test does exercise oblique waves
   // The turn that keeps the tangential wavenumber with the model's |k| (Snell): measured 2.8 degrees
   // at most here (the loop's quantised frequencies and B = 1/15 both change |k| by up to 2 %).
-  EXPECT_LT(largest_turn_rad, 5.0 * kPi / 180.0);
+  EXPECT_LT(largest_turn_rad, 5.0 * std::numbers::pi / 180.0);
 }
 
 // drive_wave_maker with the irregular maker: the same conversion, inside the maker's own band.
@@ -314,8 +313,8 @@ TEST_F(BakeDeepWater, IrregularMakerDrivenByTheFieldMakesTheFieldsWaves) {
   for (std::size_t i = 0; i < made.size(); ++i) {
     const WaveComponent& field = c.deep_water_maker->carried[i].wave;
     EXPECT_GT(std::cos(made[i].direction_rad), 0.2);  // eastward, away from the west source line
-    EXPECT_GE(made[i].angular_frequency_rad_s, 2 * kPi * 0.3 * 0.999);
-    EXPECT_LE(made[i].angular_frequency_rad_s, 2 * kPi * 1.2 * 1.001);
+    EXPECT_GE(made[i].angular_frequency_rad_s, 2 * std::numbers::pi * 0.3 * 0.999);
+    EXPECT_LE(made[i].angular_frequency_rad_s, 2 * std::numbers::pi * 1.2 * 1.001);
     EXPECT_EQ(made[i].amplitude_m, field.amplitude_m);
     EXPECT_EQ(made[i].angular_frequency_rad_s, field.angular_frequency_rad_s);
     // Turned (Snell) to keep the lattice's wavenumber along the line with the model's |k| at 0.5 m:

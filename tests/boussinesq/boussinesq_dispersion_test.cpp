@@ -17,7 +17,6 @@ namespace nearshore::boussinesq {
 using namespace nearshore::ocean;
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // Madsen & Sorensen (1992) phase speed of the continuous equations with coefficient B.
 double continuous_phase_speed(double kh, double depth_m, double B) {
@@ -33,7 +32,7 @@ struct DispersionPoint {
 // Phase speed of the scheme for a wave of k h at `points_per_wavelength` cells per wavelength and
 // Courant number `courant` (sqrt(g d) dt / dx), from the zero crossings of the wall cell.
 DispersionPoint measure(double kh, int points_per_wavelength, double courant) {
-  const double wavelength_m = 10.0, k = 2.0 * kPi / wavelength_m, depth_m = kh / k;
+  const double wavelength_m = 10.0, k = 2.0 * std::numbers::pi / wavelength_m, depth_m = kh / k;
   const HarbourGrid harbour = testing::flume(2 * points_per_wavelength, 1, wavelength_m / points_per_wavelength, depth_m);
   BoussinesqSolver solver(harbour, testing::inviscid_parameters(courant), WaveMaker{});
   const double amplitude_m = 1e-5 * depth_m;  // linear: nonlinearity a/d = 1e-5
@@ -42,7 +41,7 @@ DispersionPoint measure(double kh, int points_per_wavelength, double courant) {
   DispersionPoint point;
   point.kh = kh;
   point.airy_m_s = phase_speed_m_s(k, depth_m);
-  point.scheme_m_s = 2.0 * kPi / period_s / k;
+  point.scheme_m_s = 2.0 * std::numbers::pi / period_s / k;
   point.continuous_m_s = continuous_phase_speed(kh, depth_m, 1.0 / 15.0);
   return point;
 }
@@ -85,16 +84,16 @@ TEST(BoussinesqDispersion, PhaseSpeedAgainstAiryAt20PointsPerWavelength) {
 // (Q_xyt, eta_xyy) and the ADI splitting, which a 1-D wave never sees.
 TEST(BoussinesqDispersion, ObliqueStandingWaveAgainstAiry) {
   for (double kh : {0.5, 1.5, 2.5}) {
-    const double wavelength_m = 10.0, k = 2.0 * kPi / wavelength_m, depth_m = kh / k;
+    const double wavelength_m = 10.0, k = 2.0 * std::numbers::pi / wavelength_m, depth_m = kh / k;
     const double k_axis = k / std::sqrt(2.0);
     const int cells = 28;  // per axis wavelength 2 pi / k_axis = sqrt(2) L: 19.8 cells per wavelength
-    const double spacing_m = 2.0 * kPi / k_axis / cells;
+    const double spacing_m = 2.0 * std::numbers::pi / k_axis / cells;
     const HarbourGrid harbour = testing::flume(cells, cells, spacing_m, depth_m);
     BoussinesqSolver solver(harbour, testing::inviscid_parameters(0.5), WaveMaker{});
     const double amplitude_m = 1e-5 * depth_m;
     solver.set_surface_elevation([&](double x, double y) { return amplitude_m * std::cos(k_axis * x) * std::cos(k_axis * y); });
     const double period_s = testing::standing_mode_period_s(solver);
-    const double error = 2.0 * kPi / period_s / k / phase_speed_m_s(k, depth_m) - 1.0;
+    const double error = 2.0 * std::numbers::pi / period_s / k / phase_speed_m_s(k, depth_m) - 1.0;
     std::printf("45 deg, kh = %.1f: c/c_Airy - 1 = %+.3f %%\n", kh, 100 * error);
     EXPECT_LT(std::abs(error), 0.02) << "kh = " << kh;  // the bound, as along an axis
   }

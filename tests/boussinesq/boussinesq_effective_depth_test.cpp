@@ -19,8 +19,7 @@ namespace nearshore::boussinesq {
 using namespace nearshore::ocean;
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kPeriod_s = 8.0, kAngularFrequency = 2 * kPi / kPeriod_s, kChannel_m = 74.0, kHeight_m = 0.1;
+constexpr double kPeriod_s = 8.0, kAngularFrequency = 2 * std::numbers::pi / kPeriod_s, kChannel_m = 74.0, kHeight_m = 0.1;
 
 // The complex amplitude of eta at angular frequency w in every cell, over the last `window_s` of a
 // run of `duration_s` (a whole number of periods): A = (2/N) sum eta(t) exp(i w t), so that
@@ -49,7 +48,7 @@ double fitted_wavenumber(const std::vector<std::complex<double>>& amplitude, con
   for (int c = first; c < last; ++c) {
     if (c > first) {
       double step = std::arg(amplitude[static_cast<std::size_t>(c)]) - std::arg(amplitude[static_cast<std::size_t>(c - 1)]);
-      step -= 2 * kPi * std::round(step / (2 * kPi));
+      step -= 2 * std::numbers::pi * std::round(step / (2 * std::numbers::pi));
       unwrapped += step;
     }
     x.push_back(g.cell_centre_x_m(c));
@@ -102,7 +101,7 @@ TEST(BoussinesqEffectiveDepth, ToleranceIsTheErrorOfTheEquationsAtKdThree) {
 // The band rule: without a limit a 74 m channel carries waves only up to k d = 3 there (10 s);
 // with one, a band starting at 10 s reaches further, and its longest wave stays within tolerance.
 TEST(BoussinesqEffectiveDepth, BandOverADeepChannelReachesShorterWaves) {
-  const double B = 1.0 / 15.0, lowest = 2 * kPi / 10.0;
+  const double B = 1.0 / 15.0, lowest = 2 * std::numbers::pi / 10.0;
   const double without = frequency_from_wavenumber(kLargestCarriedKd / kChannel_m, kChannel_m);
   const double highest = highest_frequency_over_effective_depth_rad_s(lowest, kChannel_m, B);
   EXPECT_GT(highest, without * 1.1);
@@ -112,8 +111,8 @@ TEST(BoussinesqEffectiveDepth, BandOverADeepChannelReachesShorterWaves) {
   EXPECT_LE(phase_speed_error(highest, limit_m, limit_m, B), tolerance + 1e-9);
   // Never less than without a limit, also where the longest wave feels the bottom (10 m).
   EXPECT_GE(highest_frequency_over_effective_depth_rad_s(lowest, 10.0, B), frequency_from_wavenumber(0.3, 10.0));
-  std::printf("band from 10 s over 74 m: up to %.2f s (%.2f s without the limit), limit %.1f m\n", 2 * kPi / highest,
-              2 * kPi / without, limit_m);
+  std::printf("band from 10 s over 74 m: up to %.2f s (%.2f s without the limit), limit %.1f m\n", 2 * std::numbers::pi / highest,
+              2 * std::numbers::pi / without, limit_m);
 }
 
 // An 8 s wave over a flat 74 m channel, 5 m cells (20 per wavelength), sponges at both ends: phase
@@ -176,7 +175,7 @@ TEST(BoussinesqEffectiveDepth, EightSecondSwellOverA74To8mSlope) {
   for (int c = 130; c < 620; c += 10) {
     const double x = g.cell_centre_x_m(c), d = depth_at(x);
     // Mean over one local wavelength of cells, so partial reflection does not alias in.
-    const int half = static_cast<int>(0.5 * 2 * kPi / wavenumber_from_frequency(kAngularFrequency, d) / spacing_m);
+    const int half = static_cast<int>(0.5 * 2 * std::numbers::pi / wavenumber_from_frequency(kAngularFrequency, d) / spacing_m);
     const double ratio = mean_height_m(amplitude, c - half, c + half + 1) / generated_m;
     const double expected = std::sqrt(cg(deep_m) / cg(d));
     std::printf("%7.1f  %5.1f   %6.3f     %6.3f\n", x, d, ratio, expected);

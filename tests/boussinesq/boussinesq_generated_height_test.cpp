@@ -21,7 +21,6 @@ namespace nearshore::boussinesq {
 using ocean::kGravity_m_s2;
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 namespace separation = nearshore::testing;  // tests/support/incident_reflected.hpp
 
 struct GeneratedWave {
@@ -42,7 +41,7 @@ GeneratedWave generate_regular_wave(double kh, int cells_per_wavelength) {
   // and the separation both use the model's k, so the test checks the amplitude, not the dispersion.
   const double w = std::sqrt(kGravity_m_s2 * depth_m * k * k * (1 + B * kh * kh) / (1 + (B + 1.0 / 3.0) * kh * kh));
   EXPECT_NEAR(boussinesq_wavenumber(w, depth_m, B), k, 1e-9 * k);
-  const double L = 2 * kPi / k, period_s = 2 * kPi / w, dx = L / cells_per_wavelength;
+  const double L = 2 * std::numbers::pi / k, period_s = 2 * std::numbers::pi / w, dx = L / cells_per_wavelength;
   const int columns = static_cast<int>(std::lround(7.5 * cells_per_wavelength));
   const HarbourGrid harbour = testing::flume(columns, 1, dx, depth_m);
   SolverParameters parameters = testing::inviscid_parameters();
@@ -92,9 +91,9 @@ GeneratedWave generate_regular_wave(double kh, int cells_per_wavelength) {
 TEST(SeparationOfIncidentAndReflectedWaves, RecoversASyntheticPartialStandingWave) {
   // The analysis alone: a known incident (1 cm) and reflected (3 mm, another phase) wave, sampled
   // at 20 per period over 5 periods at three Mansard-Funke gauges; recovered to round-off.
-  const double k = 2.0, w = 3.0, dt = 2 * kPi / w / 20;
+  const double k = 2.0, w = 3.0, dt = 2 * std::numbers::pi / w / 20;
   const std::complex<double> incident = std::polar(0.01, 0.4), reflected = std::polar(0.003, -1.1);
-  std::vector<double> positions = {1.0, 1.0 + 0.1 * 2 * kPi / k, 1.0 + 0.27 * 2 * kPi / k};
+  std::vector<double> positions = {1.0, 1.0 + 0.1 * 2 * std::numbers::pi / k, 1.0 + 0.27 * 2 * std::numbers::pi / k};
   std::vector<std::complex<double>> amplitudes;
   for (double x : positions) {
     std::vector<double> record;
@@ -109,7 +108,7 @@ TEST(SeparationOfIncidentAndReflectedWaves, RecoversASyntheticPartialStandingWav
   EXPECT_NEAR(std::abs(waves.reflected - reflected), 0.0, 1e-12);
   EXPECT_NEAR(waves.reflection_coefficient(), 0.3, 1e-10);
   // Gauges half a wavelength apart cannot separate the two waves: refused, not a silent answer.
-  EXPECT_THROW(separation::separate_incident_reflected({0.0, kPi / k}, {amplitudes[0], amplitudes[1]}, k), std::invalid_argument);
+  EXPECT_THROW(separation::separate_incident_reflected({0.0, std::numbers::pi / k}, {amplitudes[0], amplitudes[1]}, k), std::invalid_argument);
 }
 
 TEST(BoussinesqWaveMaker, GeneratedHeightWithinTwoPerCentOverKhFromPointThreeToTwoPointFive) {

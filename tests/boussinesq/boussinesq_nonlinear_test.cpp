@@ -31,7 +31,6 @@
 namespace nearshore::boussinesq {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kDepth_m = 1.0;
 // 32 cells per wavelength, and at most d/2: where dx approaches d the staggered differences add a
 // numerical dispersion (k dx)^2/24 comparable to the physical (k d)^2/6 of long waves (their ratio
@@ -72,7 +71,7 @@ struct Record {
 // from its ends (travelling at most at sqrt(g d)) reaches the gauge before the window closes.
 Record run_flume(double k, double k_grid, const std::vector<double>& harmonics_m, double phase_speed_m_s, double start_s,
                  double window_s, const SolverParameters& parameters) {
-  const double wavelength_m = 2.0 * kPi / k, dx = wavelength_m / cells_per_wavelength(k_grid);
+  const double wavelength_m = 2.0 * std::numbers::pi / k, dx = wavelength_m / cells_per_wavelength(k_grid);
   const double sponge_m = 2.0 * wavelength_m;
   const double half_m = std::sqrt(ocean::kGravity_m_s2 * kDepth_m) * (start_s + window_s) + sponge_m + wavelength_m;
   const int columns = 2 * static_cast<int>(std::ceil(half_m / dx));
@@ -144,15 +143,15 @@ NonlinearPoint measure(double kd, DispersionDepth depth_kind, SolverParameters::
   const SteadyWave linear = boussinesq_steady_wave(1e-7 * a, k, kDepth_m, B, depth_kind, 8, equations);
   const double w0 = linear.phase_speed_m_s * k,
                w_free_continuous = boussinesq_steady_wave(1e-7 * a, 2 * k, kDepth_m, B, depth_kind, 8, equations).phase_speed_m_s * 2 * k;
-  const double period_s = 2 * kPi / w0;
-  const double beat_s = 2 * kPi / std::abs(w_free_continuous - 2 * w0);
+  const double period_s = 2 * std::numbers::pi / w0;
+  const double beat_s = 2 * std::numbers::pi / std::abs(w_free_continuous - 2 * w0);
   const double window_s = std::max(10 * period_s, 1.2 * beat_s), start_s = 2 * period_s;
   // The scheme's own linear frequencies at k and 2k (tiny waves): the baseline of the amplitude
   // dispersion and the frequency of a free second harmonic.
   auto linear_frequency = [&](double wavenumber, double w_guess) {
     const std::vector<double> tiny = {1e-6 * kDepth_m};
     const double c = w_guess / wavenumber;
-    const Record r = run_flume(wavenumber, k, tiny, c, start_s, std::max(10 * 2 * kPi / w_guess, 4 * period_s), parameters);
+    const Record r = run_flume(wavenumber, k, tiny, c, start_s, std::max(10 * 2 * std::numbers::pi / w_guess, 4 * period_s), parameters);
     return fit_frequency(r, w_guess, [](double w) { return std::vector<double>{w}; });
   };
   const double w_scheme = linear_frequency(k, w0), w_free = linear_frequency(2 * k, w_free_continuous);

@@ -33,7 +33,6 @@ namespace nearshore::boussinesq {
 using namespace nearshore::ocean;
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kB = 1.0 / 15.0;
 
 // Madsen & Sorensen (1992) angular frequency of the continuous equations for wavenumber k.
@@ -67,7 +66,7 @@ PhaseSpeed phase_speed(int columns, int rows, double dx, double dy, double depth
   const double k_grid = std::hypot(grid_wavenumber(mode.kx, dx), grid_wavenumber(mode.ky, dy));
   PhaseSpeed c;
   c.time_step_s = dt;
-  c.measured = 2.0 * kPi / period_s / k;
+  c.measured = 2.0 * std::numbers::pi / period_s / k;
   c.predicted = 2.0 / dt * std::atan(0.5 * dt * model_frequency(k_grid, depth_m)) / k;
   c.continuous = model_frequency(k, depth_m) / k;
   const double w = model_frequency(k, depth_m);
@@ -81,7 +80,7 @@ PhaseSpeed phase_speed(int columns, int rows, double dx, double dy, double depth
 constexpr double kDx = 0.5, kDy = 1.0, kWavelength_m = 10.0;
 
 TEST(BoussinesqRectangularCells, PlaneWaveAlongXHasThePhaseSpeedOfItsSpacing) {
-  const double k = 2.0 * kPi / kWavelength_m, depth_m = 1.0 / k;
+  const double k = 2.0 * std::numbers::pi / kWavelength_m, depth_m = 1.0 / k;
   const PhaseSpeed c = phase_speed(40, 3, kDx, kDy, depth_m, {k, 0.0});
   std::printf("along x (dx = %.2f m): c/c_grid - 1 = %+.4f %%, c/c_MS - 1 = %+.3f %% (bound %.3f %%)\n", kDx,
               100 * (c.measured / c.predicted - 1), 100 * (c.measured / c.continuous - 1), 100 * c.truncation_bound);
@@ -90,7 +89,7 @@ TEST(BoussinesqRectangularCells, PlaneWaveAlongXHasThePhaseSpeedOfItsSpacing) {
 }
 
 TEST(BoussinesqRectangularCells, PlaneWaveAlongYHasThePhaseSpeedOfItsSpacing) {
-  const double k = 2.0 * kPi / kWavelength_m, depth_m = 1.0 / k;
+  const double k = 2.0 * std::numbers::pi / kWavelength_m, depth_m = 1.0 / k;
   const PhaseSpeed c = phase_speed(3, 20, kDx, kDy, depth_m, {0.0, k});
   std::printf("along y (dy = %.2f m): c/c_grid - 1 = %+.4f %%, c/c_MS - 1 = %+.3f %% (bound %.3f %%)\n", kDy,
               100 * (c.measured / c.predicted - 1), 100 * (c.measured / c.continuous - 1), 100 * c.truncation_bound);
@@ -118,7 +117,7 @@ TEST(BoussinesqRectangularCells, ObliqueStandingWaveUsesBothSpacings) {
     double ratio[2] = {0.0, 0.0};
     for (int mirror = 0; mirror < 2; ++mirror) {
       const double dy = mirror ? 0.5 * kDx : kDy;  // dy = 2 dx, then its mirror image dy = dx / 2
-      const double kx = 2.0 * kPi / (20 * kDx), ky = 2.0 * kPi / (20 * dy), k = std::hypot(kx, ky), depth_m = kd / k;
+      const double kx = 2.0 * std::numbers::pi / (20 * kDx), ky = 2.0 * std::numbers::pi / (20 * dy), k = std::hypot(kx, ky), depth_m = kd / k;
       const PhaseSpeed c = phase_speed(40, 40, kDx, dy, depth_m, {kx, ky});
       const double w_dt = model_frequency(k, depth_m) * c.time_step_s, sin_2theta = 2.0 * kx * ky / (k * k);
       const double splitting_bound = w_dt * w_dt * sin_2theta * sin_2theta / 8.0;

@@ -18,7 +18,6 @@ namespace nearshore::boussinesq {
 using namespace nearshore::ocean;
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // Wave height (max - min) per cell over the last `window_s` seconds of a run of `duration_s`.
 std::vector<double> wave_heights(BoussinesqSolver& solver, double duration_s, double window_s) {
@@ -56,7 +55,7 @@ TEST(BoussinesqWaveMaker, RegularWaveHasTheRequestedHeight) {
   WaveMaker maker;
   maker.kind = WaveMaker::Kind::kComponents;
   const double amplitude_m = 0.0116;  // Berkhoff et al. (1982): H = 0.0232 m, T = 1 s, d = 0.45 m
-  maker.sea_state.components = {{amplitude_m, 2.0 * kPi / 1.0, 0.0, 0.0}};
+  maker.sea_state.components = {{amplitude_m, 2.0 * std::numbers::pi / 1.0, 0.0, 0.0}};
   maker.source_line_m = 3.0;
   maker.facing = Side::kWest;
   maker.ramp_time_s = 3.0;
@@ -74,7 +73,7 @@ TEST(BoussinesqWaveMaker, TimeSeriesIsReproducedAtTheSourceLine) {
   for (int i = 0; i <= 800; ++i) {  // 10 periods sampled at 64 per period; repeats with its length
     const double t = i * period_s / 80.0;
     maker.series_time_s.push_back(t);
-    maker.series_elevation_m.push_back(amplitude_m * std::sin(2 * kPi * t / period_s));
+    maker.series_elevation_m.push_back(amplitude_m * std::sin(2 * std::numbers::pi * t / period_s));
   }
   maker.series_time_s.pop_back();
   maker.series_elevation_m.pop_back();
@@ -89,7 +88,7 @@ TEST(BoussinesqWaveMaker, TimeSeriesIsReproducedAtTheSourceLine) {
 TEST(BoussinesqWaveMaker, RejectsASourceLineOutsideTheGrid) {
   WaveMaker maker;
   maker.kind = WaveMaker::Kind::kComponents;
-  maker.sea_state.components = {{0.01, 2.0 * kPi, 0.0, 0.0}};
+  maker.sea_state.components = {{0.01, 2.0 * std::numbers::pi, 0.0, 0.0}};
   maker.source_line_m = 40.0;
   maker.facing = Side::kWest;
   EXPECT_THROW(BoussinesqSolver(testing::flume(100, 1, 0.05, 0.45), testing::inviscid_parameters(), maker), Error);
@@ -108,7 +107,7 @@ TEST(BoussinesqShoaling, MildSlopeFollowsLinearShoaling) {
   parameters.sponges = {{Side::kWest, 2.0}, {Side::kEast, 3.0}};
   WaveMaker maker;
   maker.kind = WaveMaker::Kind::kComponents;
-  const double period_s = 2.0, w = 2 * kPi / period_s, H0 = 0.004;
+  const double period_s = 2.0, w = 2 * std::numbers::pi / period_s, H0 = 0.004;
   maker.sea_state.components = {{H0 / 2, w, 0.0, 0.0}};
   maker.source_line_m = 3.0;
   maker.facing = Side::kWest;
@@ -125,7 +124,7 @@ TEST(BoussinesqShoaling, MildSlopeFollowsLinearShoaling) {
   for (int c = 120; c < 460; c += 10) {  // from the flat part before the slope to the shallow flat
     const double x = harbour.geometry.cell_centre_x_m(c), d = depth_at(x);
     // Mean over one local wavelength of cells, so partial reflection does not alias in.
-    const int half = static_cast<int>(0.5 * 2 * kPi / wavenumber_from_frequency(w, d) / spacing_m);
+    const int half = static_cast<int>(0.5 * 2 * std::numbers::pi / wavenumber_from_frequency(w, d) / spacing_m);
     double sum = 0.0;
     for (int i = c - half; i <= c + half; ++i) sum += height[static_cast<std::size_t>(std::clamp(i, 0, 519))];
     const double ratio = sum / (2 * half + 1) / H0;

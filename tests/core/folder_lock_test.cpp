@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_folder(const std::string& name) {
+fs::path fresh_lock_folder(const std::string& name) {
   fs::path folder = fs::temp_directory_path() / ("nearshore_core_lock_" + name);
   fs::remove_all(folder);
   fs::create_directories(folder);
@@ -38,7 +38,7 @@ std::string refusal(const fs::path& folder) {
 }  // namespace
 
 TEST(FolderLock, ASecondWriterIsRefusedNamingTheFolderAndTheHolder) {
-  const fs::path folder = fresh_folder("second");
+  const fs::path folder = fresh_lock_folder("second");
   {
     const nearshore::FolderLock lock(folder, "baking harbour.toml");
     const std::string message = refusal(folder);
@@ -56,7 +56,7 @@ TEST(FolderLock, ASecondWriterIsRefusedNamingTheFolderAndTheHolder) {
 }
 
 TEST(FolderLock, MovedLockStaysHeldUntilItsLastOwnerGoes) {
-  const fs::path folder = fresh_folder("moved");
+  const fs::path folder = fresh_lock_folder("moved");
   std::optional<nearshore::FolderLock> outer;
   {
     nearshore::FolderLock lock(folder, "moving");
@@ -68,7 +68,7 @@ TEST(FolderLock, MovedLockStaysHeldUntilItsLastOwnerGoes) {
 }
 
 TEST(FolderLock, AKilledHolderLeavesTheFolderFree) {
-  const fs::path folder = fresh_folder("killed");
+  const fs::path folder = fresh_lock_folder("killed");
   int ready[2];
   ASSERT_EQ(pipe(ready), 0);
   const pid_t child = fork();
@@ -92,7 +92,7 @@ TEST(FolderLock, AKilledHolderLeavesTheFolderFree) {
 }
 
 TEST(FolderLock, AFolderThatCannotHoldTheLockFileSaysWhy) {
-  const fs::path folder = fresh_folder("missing") / "not_there";
+  const fs::path folder = fresh_lock_folder("missing") / "not_there";
   const std::string message = refusal(folder);
   EXPECT_NE(message.find("cannot create its lock file"), std::string::npos) << message;
 }

@@ -42,7 +42,7 @@ std::string file_bytes(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-fs::path write_text(const fs::path& file, const std::string& text) {
+fs::path write_text_file(const fs::path& file, const std::string& text) {
   std::ofstream(file) << text;
   return file;
 }
@@ -126,8 +126,8 @@ class LibraryRun : public ::testing::Test {
     request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson, chart.coastline_geojson};
     request.spacing_m = 16.0;
     bathymetry::write_bathymetry_outputs(root_ / "harbour", bathymetry::build_harbour_grid(request));
-    write_text(root_ / "base.toml", kBaseCase);
-    library_ = write_text(root_ / "library.toml",
+    write_text_file(root_ / "base.toml", kBaseCase);
+    library_ = write_text_file(root_ / "library.toml",
                           "title = \"library test\"\nbase_case = \"base.toml\"\n[sweep]\n"
                           "direction_deg = [80.0, 100.0]\ntide_m = [0.0, 1.0]\n");
   }
@@ -324,7 +324,7 @@ TEST_F(LibraryRun, KillOfTheWholeJobThenRerunFinishesWithoutBakingFinishedStates
 
 TEST_F(LibraryRun, ABadStateIsRecordedInTheIndexWithItsErrorAndTheOthersBake) {
   // 0.05 s waves: shorter than any the case reader accepts (0.1 s: surface tension governs).
-  const fs::path library = write_text(root_ / "bad.toml", "base_case = \"base.toml\"\n[sweep]\nperiod_s = [16.0, 0.05]\n");
+  const fs::path library = write_text_file(root_ / "bad.toml", "base_case = \"base.toml\"\n[sweep]\nperiod_s = [16.0, 0.05]\n");
   const fs::path folder = root_ / "bad";
   const Finished bad = wait_for(start(library, folder, 0), folder);
   EXPECT_TRUE(exited_with(bad, 2)) << bad.log;
@@ -344,7 +344,7 @@ TEST_F(LibraryRun, AChangedBaseCaseIsRefusedUntouchedUnlessOverwrite) {
   const std::map<std::string, long long> before = complete_states(folder);
   std::string changed = kBaseCase;
   changed.replace(changed.find("height_m = 0.5"), 14, "height_m = 0.6");
-  write_text(root_ / "base.toml", changed);
+  write_text_file(root_ / "base.toml", changed);
   const Finished refused = run(folder, 0);
   EXPECT_TRUE(exited_with(refused, 1)) << refused.log;
   EXPECT_NE(refused.log.find("LibraryOptions::overwrite"), std::string::npos) << refused.log;

@@ -29,7 +29,6 @@ using namespace nearshore;
 using namespace nearshore::ocean;
 using namespace nearshore::bake;
 using namespace nearshore::boussinesq;
-constexpr double kPi = std::numbers::pi;
 
 namespace {
 
@@ -60,7 +59,7 @@ TEST(Coherence, BoussinesqWaveMakerReproducesTheDeepWaterField) {
   // due north (kx = 0, which the 40 m basin with side walls can carry) and that the grid resolves
   // (>= 12 cells per wavelength); the basin's frame is the field's (origin 0).
   auto jonswap = std::make_shared<JonswapSpectrum>(0.3, 7.0, 3.3);
-  auto spreading = std::make_shared<CosineSquaredSpreading>(kPi / 2.0, 1000.0);
+  auto spreading = std::make_shared<CosineSquaredSpreading>(std::numbers::pi / 2.0, 1000.0);
   DeepWaterSpecification spec;
   spec.spectrum = std::make_shared<DirectionalWavenumberSpectrum>(jonswap, spreading, kDepth_m);
   spec.tile_lengths_m = {240.0};
@@ -75,7 +74,7 @@ TEST(Coherence, BoussinesqWaveMakerReproducesTheDeepWaterField) {
   for (const LatticeWave& lattice : field.lattice_waves()) {
     const double k = std::hypot(lattice.wavenumber_x_rad_m, lattice.wavenumber_y_rad_m);
     if (lattice.wavenumber_x_rad_m == 0.0 && lattice.wavenumber_y_rad_m > 0.0 &&
-        k * kSpacing_m <= 2.0 * kPi / 12.0) {
+        k * kSpacing_m <= 2.0 * std::numbers::pi / 12.0) {
       north.push_back(lattice);
       north_sea.components.push_back(lattice.wave);
       kept_variance += 0.5 * lattice.wave.amplitude_m * lattice.wave.amplitude_m;

@@ -21,7 +21,6 @@
 using namespace nearshore;
 using namespace nearshore::ocean;
 using namespace nearshore::bake;
-constexpr double kPi = std::numbers::pi;
 
 namespace {
 
@@ -140,7 +139,7 @@ TEST(WavenumberSpectrum, SumOfIndependentSeasAddsVariances) {
   EXPECT_EQ(sum.to_json()["parts"].size(), 2u);
   // The FFT field made from the sum holds both seas (3 %, the field test below).
   DeepWaterField field(specification_for(std::make_shared<SpectrumSum>(std::vector<std::shared_ptr<const WavenumberSpectrum>>{swell, wind_sea}), 64,
-                                         10.0 * 2.0 * kPi / sum.peak_wavenumber_rad_m()));
+                                         10.0 * 2.0 * std::numbers::pi / sum.peak_wavenumber_rad_m()));
   EXPECT_NEAR(field.significant_wave_height_m(), sum.significant_wave_height_m(), 0.03 * sum.significant_wave_height_m());
   EXPECT_THROW(SpectrumSum({}), nearshore::Error);
 }
@@ -153,7 +152,7 @@ TEST(DeepWaterField, HsIsTheSpectrumsAndDoesNotMoveWithNOrL) {
   // first cell (exp(-100)-small) and above the last Nyquist (< 0.5 % of m0 here).
   for (const auto& spectrum : every_spectrum()) {
     const double spectrum_hs = spectrum->significant_wave_height_m();
-    const double peak_wavelength_m = 2.0 * kPi / spectrum->peak_wavenumber_rad_m();
+    const double peak_wavelength_m = 2.0 * std::numbers::pi / spectrum->peak_wavenumber_rad_m();
     for (auto [grid_size, largest_tile_m] : {std::pair{64, 10.0 * peak_wavelength_m}, std::pair{128, 10.0 * peak_wavelength_m},
                                             std::pair{64, 5.0 * peak_wavelength_m}}) {
       DeepWaterField field(specification_for(spectrum, grid_size, largest_tile_m));
@@ -172,7 +171,7 @@ TEST(DeepWaterField, CascadesPartitionTheBandWithoutDoubleCounting) {
   // spectrum's variance over the union of the bands (0.5 %: the band edge clipped on 8 x 8
   // sub-cells of the coarse lattice).
   auto spectrum = std::make_shared<UnifiedSpectrum>(12.8, 1.0, 0.0);
-  const double peak_wavelength_m = 2.0 * kPi / spectrum->peak_wavenumber_rad_m();
+  const double peak_wavelength_m = 2.0 * std::numbers::pi / spectrum->peak_wavenumber_rad_m();
   DeepWaterField field(specification_for(spectrum, 64, 10.0 * peak_wavelength_m));
   double cascades_variance = 0.0;
   for (int c = 0; c < field.cascade_count(); ++c) {
@@ -267,7 +266,7 @@ TEST(DeepWaterField, EveryComponentFollowsTheDispersionRelation) {
       DeepWaterField field(spec);
       const SeaState sea = field.wave_components();
       ASSERT_GT(sea.components.size(), 40u);
-      const double step = 2.0 * kPi / 300.0;
+      const double step = 2.0 * std::numbers::pi / 300.0;
       for (const WaveComponent& component : sea.components) {
         const double k = wavenumber_from_frequency(component.angular_frequency_rad_s, depth_m);
         const double n = k * std::cos(component.direction_rad) / step, m = k * std::sin(component.direction_rad) / step;
@@ -279,8 +278,8 @@ TEST(DeepWaterField, EveryComponentFollowsTheDispersionRelation) {
                       1e-9 * phase_speed_m_s(lattice_k, depth_m));
         } else {
           EXPECT_LE(std::abs(component.angular_frequency_rad_s - frequency_from_wavenumber(lattice_k, depth_m)),
-                    kPi / loop_s + 1e-12);
-          const double harmonics = component.angular_frequency_rad_s * loop_s / (2.0 * kPi);
+                    std::numbers::pi / loop_s + 1e-12);
+          const double harmonics = component.angular_frequency_rad_s * loop_s / (2.0 * std::numbers::pi);
           EXPECT_NEAR(harmonics, std::round(harmonics), 1e-9);
         }
       }

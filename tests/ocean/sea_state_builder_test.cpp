@@ -9,7 +9,6 @@
 #include "nearshore/core/error.hpp"
 
 using namespace nearshore::ocean;
-constexpr double kPi = std::numbers::pi;
 
 namespace {
 
@@ -63,7 +62,7 @@ TEST(SeaStateBuilder, LoopingSeaHasWholeHarmonicsAndRepeats) {
   const SeaState sea = build_sea_state(spec);
   EXPECT_EQ(sea.loop_period_s, 600.0);
   for (const WaveComponent& c : sea.components) {
-    const double cycles = c.angular_frequency_rad_s * spec.loop_period_s / (2.0 * kPi);
+    const double cycles = c.angular_frequency_rad_s * spec.loop_period_s / (2.0 * std::numbers::pi);
     EXPECT_NEAR(cycles, std::round(cycles), 1e-9);
   }
   EXPECT_NEAR(significant_wave_height_m(sea), 2.0, 0.06);
@@ -88,7 +87,7 @@ TEST(SeaStateBuilder, PhasesComeFromTheSeed) {
   for (std::size_t i = 0; i < a.components.size(); ++i) {
     EXPECT_EQ(a.components[i].phase_rad, b.components[i].phase_rad);
     EXPECT_GE(a.components[i].phase_rad, 0.0);
-    EXPECT_LT(a.components[i].phase_rad, 2.0 * kPi);
+    EXPECT_LT(a.components[i].phase_rad, 2.0 * std::numbers::pi);
     differing += a.components[i].phase_rad != c.components[i].phase_rad;
   }
   EXPECT_EQ(differing, static_cast<int>(a.components.size()));
@@ -110,14 +109,14 @@ TEST(SeaStateBuilder, EnergyIsCentredOnTheMeanDirectionAndPeak) {
     }
   }
   EXPECT_NEAR(std::atan2(sum_sin, sum_cos), 0.5, 1e-3);
-  EXPECT_NEAR(w_of_largest, 2.0 * kPi / 8.0, 0.05);
+  EXPECT_NEAR(w_of_largest, 2.0 * std::numbers::pi / 8.0, 0.05);
 }
 
 TEST(SeaStateBuilder, RegularWave) {
-  const SeaState sea = regular_wave_sea_state(1.5, 6.0, kPi / 2);
+  const SeaState sea = regular_wave_sea_state(1.5, 6.0, std::numbers::pi / 2);
   ASSERT_EQ(sea.components.size(), 1u);
   EXPECT_DOUBLE_EQ(sea.components[0].amplitude_m, 0.75);
-  EXPECT_DOUBLE_EQ(sea.components[0].angular_frequency_rad_s, 2.0 * kPi / 6.0);
+  EXPECT_DOUBLE_EQ(sea.components[0].angular_frequency_rad_s, 2.0 * std::numbers::pi / 6.0);
   EXPECT_DOUBLE_EQ(sea.loop_period_s, 6.0);
   EXPECT_THROW(regular_wave_sea_state(1.0, 0.0, 0.0), nearshore::Error);
 }

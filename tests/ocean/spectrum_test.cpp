@@ -11,14 +11,13 @@
 #include "nearshore/core/error.hpp"
 
 using namespace nearshore::ocean;
-constexpr double kPi = std::numbers::pi;
 
 TEST(Spectrum, PiersonMoskowitzFromHsTpIntegratesToHs) {
   // m0 = alpha g^2 / (5 wp^4) is exact for the PM shape; the quadrature over [0.05, 200] wp
   // misses ~5/(4 200^4) of it, so 1e-6 relative is a fair bound.
   const PiersonMoskowitzSpectrum pm(2.5, 9.0);
   EXPECT_NEAR(pm.significant_wave_height_m(), 2.5, 2.5e-6);
-  EXPECT_NEAR(pm.peak_angular_frequency_rad_s(), 2.0 * kPi / 9.0, 1e-12);
+  EXPECT_NEAR(pm.peak_angular_frequency_rad_s(), 2.0 * std::numbers::pi / 9.0, 1e-12);
 }
 
 TEST(Spectrum, PiersonMoskowitzFromWindMatchesClosedFormHs) {
@@ -45,7 +44,7 @@ TEST(Spectrum, JonswapIsNormalisedToHsAndPeaksAtWp) {
   for (double w : {0.5, 0.785, 1.0, 2.0})
     EXPECT_NEAR(flat.density_m2_s_rad(w), pm.density_m2_s_rad(w), 1e-6 * pm.density_m2_s_rad(0.785));
   // A higher gamma concentrates the same variance: a higher peak.
-  EXPECT_GT(JonswapSpectrum(2.0, 8.0, 3.3).density_m2_s_rad(2 * kPi / 8), pm.density_m2_s_rad(2 * kPi / 8));
+  EXPECT_GT(JonswapSpectrum(2.0, 8.0, 3.3).density_m2_s_rad(2 * std::numbers::pi / 8), pm.density_m2_s_rad(2 * std::numbers::pi / 8));
 }
 
 TEST(Spectrum, JonswapFromWindAndFetchFollowsEquation23) {
@@ -75,11 +74,11 @@ TEST(Spectrum, CosineSquaredSpreadingIsNormalised) {
   for (double s : {1.0, 10.0, 75.0}) {
     const CosineSquaredSpreading spreading(0.7, s);
     const double total = integrate_gauss_legendre(
-        [&](double theta) { return spreading.density_per_rad(theta, 1.0); }, 0.7 - kPi, 0.7 + kPi, 256);
+        [&](double theta) { return spreading.density_per_rad(theta, 1.0); }, 0.7 - std::numbers::pi, 0.7 + std::numbers::pi, 256);
     EXPECT_NEAR(total, 1.0, 1e-10) << "s = " << s;
     EXPECT_GT(spreading.density_per_rad(0.7, 1.0), spreading.density_per_rad(0.9, 1.0));
     // Narrower for larger s.
-    EXPECT_LT(spreading.half_width_holding_rad(0.9, 1.0), kPi);
+    EXPECT_LT(spreading.half_width_holding_rad(0.9, 1.0), std::numbers::pi);
   }
   EXPECT_GT(CosineSquaredSpreading(0.0, 5.0).half_width_holding_rad(0.9, 1.0),
             CosineSquaredSpreading(0.0, 50.0).half_width_holding_rad(0.9, 1.0));

@@ -21,7 +21,6 @@ using playback::Camera;
 using playback::Lighting;
 using playback::Vector3;
 
-constexpr double kPi = std::numbers::pi;
 
 Vector3 normalized(const Vector3& v) {
   const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -133,7 +132,7 @@ runtime::SurfaceSnapshot demo_scene() {
 Camera looking_towards(double azimuth_deg) {
   Camera camera;
   camera.eye_m = {800.0, 200.0, 20.0};
-  const double a = azimuth_deg * kPi / 180.0;
+  const double a = azimuth_deg * std::numbers::pi / 180.0;
   camera.target_m = {800.0 + 2000.0 * std::sin(a), 200.0 + 2000.0 * std::cos(a), -120.0};
   camera.vertical_field_of_view_deg = 50.0;
   return camera;
@@ -187,7 +186,7 @@ TEST(LightingRender, SunsetAtTheDemoHarbourIsWarmerThanNoonAndItsGlitterLiesTowa
   EXPECT_EQ(at_sunset.dark_pixels, 0);
   // The column the sun's azimuth projects to (its direction at the horizon): the glitter path.
   const playback::CameraView view = playback::camera_view(camera, width, height, 1.0, 5000.0);
-  const double a = sunset.sun_azimuth_deg * kPi / 180.0;
+  const double a = sunset.sun_azimuth_deg * std::numbers::pi / 180.0;
   const auto clip = playback::transform(view.view_projection, {camera.eye_m[0] + 1000.0 * std::sin(a),
                                                                camera.eye_m[1] + 1000.0 * std::cos(a), camera.eye_m[2], 1.0});
   const double sun_column = (clip[0] / clip[3] * 0.5 + 0.5) * width;
@@ -288,8 +287,8 @@ std::shared_ptr<runtime::DeepWaterKeyframe> relief_pattern_keyframe(const std::v
     frame.slope_y.resize(count);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        frame.slope_x[std::size_t(j) * n + i] = float(0.15 * std::sin(2 * kPi * (2 * i + j) / n + double(c)));
-        frame.slope_y[std::size_t(j) * n + i] = float(0.10 * std::cos(2 * kPi * (i - 3 * j) / n));
+        frame.slope_x[std::size_t(j) * n + i] = float(0.15 * std::sin(2 * std::numbers::pi * (2 * i + j) / n + double(c)));
+        frame.slope_y[std::size_t(j) * n + i] = float(0.10 * std::cos(2 * std::numbers::pi * (i - 3 * j) / n));
       }
     keyframe->cascades.push_back(std::move(frame));
   }

@@ -17,7 +17,6 @@ using playback::Radiance;
 using playback::UtcTime;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 double luminance(const Radiance& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 }  // namespace
 
@@ -73,9 +72,9 @@ TEST(SunPosition, ParsesIsoUtcAndRejectsNonsense) {
 TEST(SkyModel, ZenithLuminanceAndChromaticityAreSeed001Formulas) {
   for (double turbidity : {2.0, 3.0, 6.0})
     for (double elevation : {5.0, 30.0, 60.0}) {
-      const double theta_s = (90.0 - elevation) * kPi / 180.0;
+      const double theta_s = (90.0 - elevation) * std::numbers::pi / 180.0;
       // seed 001 eq. (3), written out here again
-      const double chi = (4.0 / 9.0 - turbidity / 120.0) * (kPi - 2.0 * theta_s);
+      const double chi = (4.0 / 9.0 - turbidity / 120.0) * (std::numbers::pi - 2.0 * theta_s);
       const double y_zenith = (4.0453 * turbidity - 4.9710) * std::tan(chi) - 0.2155 * turbidity + 2.4192;
       const auto sky = playback::make_sky(180.0, elevation, turbidity);
       EXPECT_NEAR(sky.zenith_luminance_kcd_m2, y_zenith, 1e-9);
@@ -107,7 +106,7 @@ TEST(SkyModel, DaylightIlluminanceIsOfTheMeasuredOrder) {
   // bounds are wide: 50-150 klx, diffuse 5-40 %.
   const auto sky = playback::make_sky(180.0, 60.0, 2.5);
   const double diffuse = luminance(playback::sky_illuminance_klx(sky));
-  const double direct = luminance(sky.sun_illuminance_klx) * std::sin(60.0 * kPi / 180.0);
+  const double direct = luminance(sky.sun_illuminance_klx) * std::sin(60.0 * std::numbers::pi / 180.0);
   EXPECT_GT(direct + diffuse, 50.0);
   EXPECT_LT(direct + diffuse, 150.0);
   EXPECT_GT(diffuse / (direct + diffuse), 0.05);
@@ -160,9 +159,9 @@ TEST(OceanBrdf, DirectionalAlbedoIsAtMostOne) {
   const double n[3] = {0, 0, 1};
   for (double variance : {0.003, 0.02, 0.1})
     for (double view_deg : {0.0, 30.0, 60.0, 80.0, 88.0}) {
-      const double v[3] = {std::sin(view_deg * kPi / 180), 0.0, std::cos(view_deg * kPi / 180)};
+      const double v[3] = {std::sin(view_deg * std::numbers::pi / 180), 0.0, std::cos(view_deg * std::numbers::pi / 180)};
       constexpr int kTheta = 450, kPhi = 900;
-      const double d_theta = 0.5 * kPi / kTheta, d_phi = 2 * kPi / kPhi;
+      const double d_theta = 0.5 * std::numbers::pi / kTheta, d_phi = 2 * std::numbers::pi / kPhi;
       double albedo = 0.0;
       for (int i = 0; i < kTheta; ++i) {
         const double theta = (i + 0.5) * d_theta;
@@ -240,8 +239,8 @@ TEST(WaterOptics, PhaseFunctionsIntegrateToOneAndParticlesScatterForward) {
     constexpr int kSteps = 20000;
     for (int i = 0; i < kSteps; ++i) {
       const double mu = -1.0 + (i + 0.5) * 2.0 / kSteps;
-      total_p += playback::particle_phase_function(mu, g) * 2 * kPi * 2.0 / kSteps;
-      total_w += playback::water_phase_function(mu) * 2 * kPi * 2.0 / kSteps;
+      total_p += playback::particle_phase_function(mu, g) * 2 * std::numbers::pi * 2.0 / kSteps;
+      total_w += playback::water_phase_function(mu) * 2 * std::numbers::pi * 2.0 / kSteps;
     }
     EXPECT_NEAR(total_w, 1.0, 1e-6);
     // Cornette-Shanks is normalised to 1 only approximately for g > 0 (it is a fit): 3 %.
@@ -274,7 +273,7 @@ TEST(Lighting, GlitterPeaksWhereTheSunIsMirrored) {
   lighting.sun_elevation_deg = 20.0;
   lighting.sub_grid_slope_variance = 0.01;
   const auto frame = playback::prepare_lighting(lighting);
-  const double e = 20.0 * kPi / 180.0;
+  const double e = 20.0 * std::numbers::pi / 180.0;
   playback::SurfacePoint towards_sun, away;
   towards_sun.to_eye = {0.0, std::cos(e), std::sin(e)};  // eye to the north, looking south
   away.to_eye = {0.0, -std::cos(e), std::sin(e)};
@@ -341,7 +340,7 @@ TEST(Lighting, TheNoonSkyIsDisplayedBlueNotGrey) {
   lighting.sun_azimuth_deg = 180.0;
   lighting.sun_elevation_deg = 74.0;
   const playback::LightingFrame frame = playback::prepare_lighting(lighting);
-  const double e = 30.0 * kPi / 180.0;
+  const double e = 30.0 * std::numbers::pi / 180.0;
   const Radiance sky = playback::sky_radiance(frame.sky, {0.0, std::cos(e), std::sin(e)});
   ASSERT_GT(sky[2], 1.2 * sky[0]);
   const Radiance shown = playback::to_display(frame, sky);
@@ -373,7 +372,7 @@ TEST(Lighting, ParallaxOffsetIsWhereTheEyeRayMeetsTheRelief) {
     }
   }
   // Grazing (2 degrees): the lookup moves along the view by h / 0.12, not h / tan(2 degrees).
-  const double g = 2.0 * kPi / 180.0;
+  const double g = 2.0 * std::numbers::pi / 180.0;
   const auto grazing = playback::parallax_offset_m({0.0, -std::cos(g), std::sin(g)}, 0.3);
   EXPECT_NEAR(grazing[1], -std::cos(g) * 0.3 / playback::kParallaxMinViewCosine, 1e-12);
   EXPECT_EQ(grazing[0], 0.0);

@@ -109,7 +109,7 @@ std::string sample_text() {
   return loops_file_to_json(sample_tables()).dump(1);
 }
 
-fs::path fresh_folder(const std::string& name) {
+fs::path fresh_loops_folder(const std::string& name) {
   const fs::path folder = fs::current_path() / ("loops_file_test_" + name);
   fs::remove_all(folder);
   fs::create_directories(folder);
@@ -135,7 +135,7 @@ std::string error_parsing(const json& tables) {
 }
 
 TEST(LoopsFile, RoundTripKeepsEveryFieldAndTheBytes) {
-  const fs::path folder = fresh_folder("round_trip");
+  const fs::path folder = fresh_loops_folder("round_trip");
   const LoopsFile written = sample_tables();
   write_loops_file(folder, written);
   const LoopsFile read = read_loops_file(folder);
@@ -162,7 +162,7 @@ TEST(LoopsFile, NoPlansAndNoTransitionsRoundTrip) {
 }
 
 TEST(LoopsFile, ANewerVersionIsRefusedNamingTheFile) {
-  const fs::path folder = fresh_folder("newer");
+  const fs::path folder = fresh_loops_folder("newer");
   json tables = loops_file_to_json(sample_tables());
   tables["version"] = kLoopsFileVersion + 1;
   write_text_atomically(folder / kLoopsFileName, tables.dump(1));
@@ -190,7 +190,7 @@ TEST(LoopsFile, AnUnknownVersionOrAnotherFormatIsRefused) {
 }
 
 TEST(LoopsFile, AMissingFileIsNamed) {
-  const fs::path folder = fresh_folder("missing");
+  const fs::path folder = fresh_loops_folder("missing");
   const std::string message = error_of([&] { read_loops_file(folder); });
   EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
   EXPECT_NE(message.find("nearshore loops"), std::string::npos) << message;

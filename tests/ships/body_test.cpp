@@ -12,8 +12,8 @@
 namespace nearshore::ships {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kRho = 1025.0, kG = 9.81;
+constexpr double kRho = 1025.0;
+using testing::kG;
 // The test barge: 20 m x 8 m x 4 m, floating at 1.5 m.
 constexpr double kL = 20.0, kB = 8.0, kD = 4.0, kDraft = 1.5;
 
@@ -82,13 +82,13 @@ TEST(ShipBody, HeaveAndRollPeriodsFollowFromTheWaterplaneAndTheMetacentricHeight
     t.push_back((k + 1) * frame);
     z.push_back(heave.body.state().position_m.z());
   }
-  const double heave_period = 2 * kPi * std::sqrt((p.mass_kg + p.added_mass_kg.z()) / (kRho * kG * kL * kB));
+  const double heave_period = 2 * std::numbers::pi * std::sqrt((p.mass_kg + p.added_mass_kg.z()) / (kRho * kG * kL * kB));
   const double measured_heave = mean_period_s(t, z);
   EXPECT_NEAR(measured_heave, heave_period, 0.05 * heave_period);
 
   Box roll = floating_box(false, 4000);
   s = roll.body.state();
-  s.orientation = orientation_from_euler(0.0, 0.0, 3.0 * kPi / 180.0);
+  s.orientation = orientation_from_euler(0.0, 0.0, 3.0 * std::numbers::pi / 180.0);
   roll.body.set_state(s);
   std::vector<double> t2, phi;
   for (int k = 0; k < 30 * 60; ++k) {
@@ -99,7 +99,7 @@ TEST(ShipBody, HeaveAndRollPeriodsFollowFromTheWaterplaneAndTheMetacentricHeight
   const double gm = kDraft / 2 + kB * kB / (12 * kDraft) - kD / 2;
   const double ixx = p.mass_kg * (kB * kB + kD * kD) / 12.0;
   EXPECT_NEAR(p.inertia_kg_m2(0, 0), ixx, 1e-6 * ixx);
-  const double roll_period = 2 * kPi * std::sqrt((ixx + p.added_inertia_kg_m2.x()) / (p.mass_kg * kG * gm));
+  const double roll_period = 2 * std::numbers::pi * std::sqrt((ixx + p.added_inertia_kg_m2.x()) / (p.mass_kg * kG * gm));
   const double measured_roll = mean_period_s(t2, phi);
   EXPECT_NEAR(measured_roll, roll_period, 0.05 * roll_period);
   std::printf("heave period %.4f s (analytic %.4f s), roll period %.4f s (analytic %.4f s, GM %.3f m)\n",
@@ -129,7 +129,7 @@ TEST(ShipBody, AFloatingHullDoesNotDriftInStillWater) {
     const double moved = (later.position_m - settled.position_m).head<2>().norm();
     const double turned = std::abs(later.yaw_rad() - settled.yaw_rad());
     std::printf("%s: still water, 60 s after settling: moved %.3g m, turned %.3g rad, trim %.3f deg\n",
-                hull.name.c_str(), moved, turned, later.pitch_rad() * 180 / kPi);
+                hull.name.c_str(), moved, turned, later.pitch_rad() * 180 / std::numbers::pi);
     // Any residual horizontal pressure force of the point sampling would show as a steady drift;
     // 1 mm in a minute is far below what a viewer sees.
     EXPECT_LT(moved, 1e-3);
@@ -145,7 +145,7 @@ double heave_response(double wavelength_m, double amplitude_m, ShipParticulars* 
   Box box = floating_box(true);
   if (used) *used = box.particulars;
   const double frame = 1.0 / 30.0;
-  const double period = 2 * kPi / wave.angular_frequency_rad_s();
+  const double period = 2 * std::numbers::pi / wave.angular_frequency_rad_s();
   const double end = 90.0;
   double low = 1e9, high = -1e9;
   for (int k = 0; k < static_cast<int>(end / frame); ++k) {
@@ -172,7 +172,7 @@ TEST(ShipBody, HeaveFollowsLongWavesAndFiltersShortOnes) {
   const double measured_long = heave_response(long_wave, 0.5, &p);
   const double measured_short = heave_response(short_wave, 0.1);
   auto analytic = [&](double wavelength) {
-    const double k = 2 * kPi / wavelength, omega2 = kG * k;
+    const double k = 2 * std::numbers::pi / wavelength, omega2 = kG * k;
     const double omega_n2 = kRho * kG * kL * kB / (p.mass_kg + p.added_mass_kg.z());
     const double r = std::sqrt(omega2 / omega_n2);
     const double sinc = std::sin(k * kL / 2) / (k * kL / 2);

@@ -15,13 +15,13 @@
 #include "nearshore/ships/dispersive_wake.hpp"
 #include "nearshore/ships/generic_hulls.hpp"
 #include "nearshore/ships/ship_fleet.hpp"
+#include "ships_test_support.hpp"
 
 namespace nearshore::ships {
 namespace {
 
-constexpr double kG = 9.81;
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = 180.0 / kPi;
+using testing::kG;
+constexpr double kDeg = 180.0 / std::numbers::pi;
 
 TEST(DispersiveWake, FreeWavesKeepTheirAmplitudeAndTravelAtTheLinearPhaseSpeed) {
   // eta = a cos(k.x - w t), phi = (g a / w) sin(k.x - w t), w^2 = g k tanh(k d): a free progressive
@@ -35,7 +35,7 @@ TEST(DispersiveWake, FreeWavesKeepTheirAmplitudeAndTravelAtTheLinearPhaseSpeed) 
   for (const double kd : {0.3, 1.0, 3.0, 10.0}) {
     for (const auto& [mx, my] : {std::pair{4, 0}, std::pair{3, -5}}) {
       DispersiveWake wake(spacing, o);
-      const double kx = 2 * kPi * mx / side, ky = 2 * kPi * my / side, k = std::hypot(kx, ky);
+      const double kx = 2 * std::numbers::pi * mx / side, ky = 2 * std::numbers::pi * my / side, k = std::hypot(kx, ky);
       const double depth = kd / k, omega = std::sqrt(kG * k * std::tanh(kd));
       for (int j = 0; j < o.cells; ++j)
         for (int i = 0; i < o.cells; ++i) {
@@ -97,7 +97,7 @@ ShipState run_pressure_patch(DispersiveWake& wake, double speed_m_s, double dept
 // n = 1/2, tan(alpha) = 1 / sqrt(8), 19.47 deg). Solved here by bisection and a scan over theta.
 double havelock_cusp_angle_deg(double froude) {
   double best = 0.0;
-  for (double theta = 0.0; theta < 0.5 * kPi - 1e-3; theta += 1e-4) {
+  for (double theta = 0.0; theta < 0.5 * std::numbers::pi - 1e-3; theta += 1e-4) {
     const double f2 = std::pow(froude * std::cos(theta), 2);  // tanh(kd) / kd = F^2 cos^2(theta)
     double lo = 1e-9, hi = 200.0;
     for (int it = 0; it < 200; ++it) {

@@ -16,7 +16,6 @@
 namespace nearshore::ships {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using testing::scratch_folder;
 using testing::error_of;
 
@@ -69,7 +68,7 @@ TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {
   const Ship& ship = fleet.ship(0);
   const ShipState& s = ship.body().state();
   const double speed = s.velocity_m_s.head<2>().norm();
-  const double heel_deg = s.roll_rad() * 180 / kPi, trim_deg = s.pitch_rad() * 180 / kPi;
+  const double heel_deg = s.roll_rad() * 180 / std::numbers::pi, trim_deg = s.pitch_rad() * 180 / std::numbers::pi;
   std::printf("aground after %.1f s at (%.1f, %.1f) m; 30 s later: speed %.3f m/s, heel %.2f deg, trim %.2f deg\n%s\n",
               aground_at, ship.status().contact_position_m.x(), ship.status().contact_position_m.y(), speed, heel_deg,
               trim_deg, events.empty() ? "(no event)" : events.front().c_str());

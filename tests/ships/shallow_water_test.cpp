@@ -14,11 +14,12 @@
 #include "nearshore/ships/generic_hulls.hpp"
 #include "nearshore/plot/plot.hpp"
 #include "nearshore/ships/shallow_water.hpp"
+#include "ships_test_support.hpp"
 
 namespace nearshore::ships {
 namespace {
 
-constexpr double kG = 9.81;
+using testing::kG;
 
 // The scheme runs in double (the reference) and in float (the bow waves, shallow_water.hpp
 // "Precision"); every exact property is checked on both, to the round-off of each type.

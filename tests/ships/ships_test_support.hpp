@@ -19,6 +19,9 @@ namespace nearshore::ships::testing {
 
 namespace fs = std::filesystem;
 
+/// Gravity as the ships library's parameters default it (ShallowWaterOptions, WaterProperties).
+inline constexpr double kG = 9.81;
+
 /// The message of the nearshore::Error `f` throws ("" when it throws none).
 inline std::string error_of(const std::function<void()>& f) {
   try {
