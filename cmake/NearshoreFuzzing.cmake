@@ -60,3 +60,13 @@ function(nearshore_add_libfuzzer)
     VERBATIM)
   add_custom_target(${ARG_NAME} DEPENDS "${ARG_OUTPUT}")
 endfunction()
+
+# What a fuzzer of one of the sequence folder's JSON files (loops.json, library.json) links beside
+# its parser, and how it compiles and links: checksums and the core's files, errors and hashes.
+set(NEARSHORE_FUZZ_SEQUENCE_JSON_SUPPORT
+  "${CMAKE_SOURCE_DIR}/sequence/src/checksum.cpp"
+  "${CMAKE_SOURCE_DIR}/core/src/atomic_file.cpp"
+  "${CMAKE_SOURCE_DIR}/core/src/error.cpp"
+  "${CMAKE_SOURCE_DIR}/core/src/hash.cpp")
+set(NEARSHORE_FUZZ_SEQUENCE_JSON_FLAGS -I${CMAKE_SOURCE_DIR}/core/include -I${CMAKE_SOURCE_DIR}/sequence/include)
+set(NEARSHORE_FUZZ_SEQUENCE_JSON_LIBS -lfmt -lxxhash)
