@@ -9,9 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "core_test_folders.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace fs = std::filesystem;
+using nearshore::core_testing::fresh_core_folder;
 
 namespace {
 std::string read_all(const fs::path& path) {
@@ -20,16 +22,10 @@ std::string read_all(const fs::path& path) {
   s << in.rdbuf();
   return s.str();
 }
-fs::path fresh_folder(const std::string& name) {
-  fs::path folder = fs::temp_directory_path() / ("nearshore_core_" + name);
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
 }  // namespace
 
 TEST(AtomicFile, WritesAndReplaces) {
-  const fs::path folder = fresh_folder("replace");
+  const fs::path folder = fresh_core_folder("replace");
   nearshore::write_text_atomically(folder / "a.txt", "first");
   nearshore::write_text_atomically(folder / "a.txt", "second");
   EXPECT_EQ(read_all(folder / "a.txt"), "second");
@@ -37,7 +33,7 @@ TEST(AtomicFile, WritesAndReplaces) {
 }
 
 TEST(AtomicFile, FailedWriterLeavesOldContentAndNoTemporary) {
-  const fs::path folder = fresh_folder("fail");
+  const fs::path folder = fresh_core_folder("fail");
   nearshore::write_text_atomically(folder / "a.txt", "kept");
   EXPECT_THROW(nearshore::write_file_atomically(folder / "a.txt",
                                                 [](const fs::path& temporary) {
@@ -52,7 +48,7 @@ TEST(AtomicFile, FailedWriterLeavesOldContentAndNoTemporary) {
 TEST(AtomicFile, FullDiskIsAClearErrorAndReplacesNothing) {
   // /dev/full answers every write with ENOSPC: the same path a full disk takes.
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "/dev/full not available";
-  const fs::path folder = fresh_folder("full");
+  const fs::path folder = fresh_core_folder("full");
   nearshore::write_text_atomically(folder / "a.txt", "kept");
   try {
     nearshore::write_file_atomically(folder / "a.txt", [](const fs::path&) {
@@ -91,7 +87,7 @@ TEST(RequireReadableFile, MissingFileMessageNamesFileAndFix) {
 // A writer killed between its temporary file and the rename leaves NAME.tmp-PID; the next writer
 // of the folder removes exactly those (issue 13), nothing that merely looks similar.
 TEST(AtomicFile, RemovesOnlyStaleTemporaryFiles) {
-  const fs::path folder = fresh_folder("stale");
+  const fs::path folder = fresh_core_folder("stale");
   for (const char* name : {"frame_000003.exr.tmp-4711", "checkpoint.bin.tmp-12", "notes.tmp-draft", ".tmp-5", "frame.exr",
                            "a.tmp-", "b.tmp-12345678901"})
     std::ofstream(folder / name) << "x";

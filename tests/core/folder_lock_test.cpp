@@ -12,18 +12,14 @@
 
 #include <gtest/gtest.h>
 
+#include "core_test_folders.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_lock_folder(const std::string& name) {
-  fs::path folder = fs::temp_directory_path() / ("nearshore_core_lock_" + name);
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
+fs::path fresh_lock_folder(const std::string& name) { return nearshore::core_testing::fresh_core_folder("lock_" + name); }
 
 // The message of the Error that locking `folder` throws, or "" when it does not.
 std::string refusal(const fs::path& folder) {

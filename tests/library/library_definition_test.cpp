@@ -9,9 +9,11 @@
 #include "nearshore/core/error.hpp"
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/library/library_definition.hpp"
+#include "library_test_files.hpp"
 
 namespace nearshore::library {
 namespace {
+using testing::write_text_file;
 namespace fs = std::filesystem;
 
 fs::path scratch() {
@@ -20,11 +22,6 @@ fs::path scratch() {
   fs::remove_all(folder);
   fs::create_directories(folder);
   return folder;
-}
-
-fs::path write_text(const fs::path& file, const std::string& text) {
-  std::ofstream(file) << text;
-  return file;
 }
 
 const char* const kIrregularCase = R"(title = "irregular"
@@ -46,9 +43,9 @@ peak_period_s = 10.0
 
 TEST(LibraryDefinition, TheSweepIsEveryCombinationInTheFixedAxisOrder) {
   const fs::path folder = scratch();
-  write_text(folder / "base.toml", kIrregularCase);
+  write_text_file(folder / "base.toml", kIrregularCase);
   // Written in another order than the axes': the order is fixed (direction, height, ..., tide).
-  const fs::path library = write_text(folder / "library.toml",
+  const fs::path library = write_text_file(folder / "library.toml",
                                       "title = \"t\"\nbase_case = \"base.toml\"\n[sweep]\ntide_m = [-0.5, 1.5]\n"
                                       "spectrum = [\"jonswap\", \"pierson_moskowitz\"]\ndirection_deg = [90, 105.5]\n");
   const LibraryDefinition definition = read_library_definition(library);
@@ -76,8 +73,8 @@ TEST(LibraryDefinition, TheSweepIsEveryCombinationInTheFixedAxisOrder) {
 
 TEST(LibraryDefinition, NothingSweptIsOneStateTheBaseCase) {
   const fs::path folder = scratch();
-  write_text(folder / "base.toml", kIrregularCase);
-  const LibraryDefinition definition = read_library_definition(write_text(folder / "l.toml", "base_case = \"base.toml\"\n"));
+  write_text_file(folder / "base.toml", kIrregularCase);
+  const LibraryDefinition definition = read_library_definition(write_text_file(folder / "l.toml", "base_case = \"base.toml\"\n"));
   const std::vector<LibraryStateCase> states = expand_library_states(definition);
   ASSERT_EQ(states.size(), 1u);
   EXPECT_EQ(states[0].id, "base");
@@ -86,8 +83,8 @@ TEST(LibraryDefinition, NothingSweptIsOneStateTheBaseCase) {
 // `library` must be refused with one Error naming the library file and `expected`.
 void expect_refused(const std::string& library, const std::string& expected, const std::string& base = kIrregularCase) {
   const fs::path folder = scratch();
-  write_text(folder / "base.toml", base);
-  const fs::path file = write_text(folder / "library.toml", library);
+  write_text_file(folder / "base.toml", base);
+  const fs::path file = write_text_file(folder / "library.toml", library);
   try {
     expand_library_states(read_library_definition(file));
     ADD_FAILURE() << "accepted a library expected to fail with: " << expected;
@@ -118,8 +115,8 @@ TEST(LibraryDefinition, EachMakerSetsItsOwnKeys) {
   const fs::path folder = scratch();
   std::string regular = kIrregularCase;
   regular.replace(regular.find("kind = \"irregular\""), 18, "kind = \"regular\"");
-  write_text(folder / "base.toml", regular);
-  const std::vector<LibraryStateCase> states = expand_library_states(read_library_definition(write_text(
+  write_text_file(folder / "base.toml", regular);
+  const std::vector<LibraryStateCase> states = expand_library_states(read_library_definition(write_text_file(
       folder / "l.toml", "base_case = \"base.toml\"\n[sweep]\ndirection_deg = [80]\nheight_m = [0.5]\nperiod_s = [12]\n")));
   ASSERT_EQ(states.size(), 1u);
   EXPECT_EQ(states[0].id, "dir80_h0.5_t12");
@@ -130,8 +127,8 @@ TEST(LibraryDefinition, EachMakerSetsItsOwnKeys) {
   const std::string deep_water = std::string(kIrregularCase).replace(std::string(kIrregularCase).find("kind = \"irregular\""), 18,
                                                                      "kind = \"deep_water\"") +
                                  "[deep_water]\nspectrum = \"unified\"\nwind_speed_10_m_s = 10.0\n";
-  write_text(folder / "base.toml", deep_water);
-  const std::vector<LibraryStateCase> wind = expand_library_states(read_library_definition(write_text(
+  write_text_file(folder / "base.toml", deep_water);
+  const std::vector<LibraryStateCase> wind = expand_library_states(read_library_definition(write_text_file(
       folder / "w.toml", "base_case = \"base.toml\"\n[sweep]\nwind_speed_m_s = [10, 20]\nwind_direction_deg = [80]\n")));
   ASSERT_EQ(wind.size(), 2u);
   EXPECT_EQ(wind[1].id, "wind20_winddir80");
@@ -159,7 +156,7 @@ TEST(LibraryTide, TheStillWaterLevelRaisesEveryDepthAndMovesTheWetDryLine) {
   const auto read = [&](const std::string& level) {
     std::string text = flume;
     text.replace(text.find("LEVEL"), 5, level);
-    return bake::read_bake_case(write_text(folder / "case.toml", text)).harbour;
+    return bake::read_bake_case(write_text_file(folder / "case.toml", text)).harbour;
   };
   const HarbourGrid datum = read(""), raised = read("still_water_level_m = 0.25");
   int flooded = 0;

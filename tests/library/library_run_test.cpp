@@ -30,21 +30,18 @@
 #include "nearshore/core/progress.hpp"
 #include "nearshore/sequence/library_index.hpp"
 #include "nearshore/sequence/loops_file.hpp"
+#include "library_test_files.hpp"
 
 namespace nearshore::library {
 namespace {
 namespace fs = std::filesystem;
+using testing::write_text_file;
 using sequence::LibraryIndex;
 using sequence::LibraryStateStatus;
 
 std::string file_bytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-fs::path write_text_file(const fs::path& file, const std::string& text) {
-  std::ofstream(file) << text;
-  return file;
 }
 
 bool mpi_built() { return std::string(MPIEXEC_PATH).size() > 0; }

@@ -15,11 +15,13 @@
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/sequence/checksum.hpp"
+#include "test_sequence.hpp"
 
 namespace nearshore::sequence {
 namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using testing::error_message_of;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -116,22 +118,8 @@ fs::path fresh_loops_folder(const std::string& name) {
   return folder;
 }
 
-// The message of the nearshore::Error `parse` throws; fails the test on no error or another type.
-std::string error_of(const std::function<void()>& parse) {
-  try {
-    parse();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not a nearshore::Error: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "no error";
-  return {};
-}
-
 std::string error_parsing(const json& tables) {
-  return error_of([&] { parse_loops_file(tables.dump(), "bake/loops.json"); });
+  return error_message_of([&] { parse_loops_file(tables.dump(), "bake/loops.json"); });
 }
 
 TEST(LoopsFile, RoundTripKeepsEveryFieldAndTheBytes) {
@@ -166,7 +154,7 @@ TEST(LoopsFile, ANewerVersionIsRefusedNamingTheFile) {
   json tables = loops_file_to_json(sample_tables());
   tables["version"] = kLoopsFileVersion + 1;
   write_text_atomically(folder / kLoopsFileName, tables.dump(1));
-  const std::string message = error_of([&] { read_loops_file(folder); });
+  const std::string message = error_message_of([&] { read_loops_file(folder); });
   EXPECT_NE(message.find((folder / kLoopsFileName).string()), std::string::npos) << message;
   EXPECT_NE(message.find("version 2"), std::string::npos) << message;
   EXPECT_NE(message.find("newer"), std::string::npos) << message;
@@ -191,11 +179,11 @@ TEST(LoopsFile, AnUnknownVersionOrAnotherFormatIsRefused) {
 
 TEST(LoopsFile, AMissingFileIsNamed) {
   const fs::path folder = fresh_loops_folder("missing");
-  const std::string message = error_of([&] { read_loops_file(folder); });
+  const std::string message = error_message_of([&] { read_loops_file(folder); });
   EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
   EXPECT_NE(message.find("nearshore loops"), std::string::npos) << message;
   fs::create_directories(folder / kLoopsFileName);  // a folder where the file belongs
-  EXPECT_NE(error_of([&] { read_loops_file(folder); }).find("not a regular file"), std::string::npos);
+  EXPECT_NE(error_message_of([&] { read_loops_file(folder); }).find("not a regular file"), std::string::npos);
 }
 
 TEST(LoopsFile, EveryTruncationIsAnError) {
@@ -207,10 +195,10 @@ TEST(LoopsFile, EveryTruncationIsAnError) {
     } catch (const Error&) {
     }
   }
-  EXPECT_NE(error_of([&] { parse_loops_file(text.substr(0, 100), "loops.json"); }).find("not valid JSON"),
+  EXPECT_NE(error_message_of([&] { parse_loops_file(text.substr(0, 100), "loops.json"); }).find("not valid JSON"),
             std::string::npos);
   for (const char* text_of_other_kind : {"", "[]", "null", "17", "\"loops\"", "{}", "{\"format\": 3}"})
-    error_of([&] { parse_loops_file(text_of_other_kind, "loops.json"); });
+    error_message_of([&] { parse_loops_file(text_of_other_kind, "loops.json"); });
 }
 
 // Every key at every depth is required and typed: dropping it, or giving a value of the wrong

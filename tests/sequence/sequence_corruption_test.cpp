@@ -20,15 +20,6 @@ void overwrite(const fs::path& path, const std::string& bytes) {
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-std::string error_message_or_empty(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return {};
-}
-
 TEST(SequenceCorruption, TruncatedFrameIsRejectedWithAndWithoutVerification) {
   const auto folder = fresh_folder("truncated");
   write_test_sequence(folder, 3);
@@ -36,12 +27,12 @@ TEST(SequenceCorruption, TruncatedFrameIsRejectedWithAndWithoutVerification) {
   std::string bytes = read_file_bytes(path);
   overwrite(path, bytes.substr(0, bytes.size() / 2));
   const SequenceReader reader(folder);
-  const std::string verified = error_message_or_empty([&] { reader.read_frame(1, ChannelSelection::all(), Verify::kYes); });
+  const std::string verified = error_message_of([&] { reader.read_frame(1, ChannelSelection::all(), Verify::kYes); });
   EXPECT_NE(verified.find("frame_000001.exr"), std::string::npos) << verified;
   EXPECT_NE(verified.find("truncated"), std::string::npos) << verified;
-  const std::string unverified = error_message_or_empty([&] { reader.read_frame(1); });
+  const std::string unverified = error_message_of([&] { reader.read_frame(1); });
   EXPECT_NE(unverified.find("frame_000001.exr: cannot be decoded"), std::string::npos) << unverified;
-  EXPECT_NE(error_message_or_empty([&] { reader.verify_checksums(); }).find("frame_000001.exr"), std::string::npos);
+  EXPECT_NE(error_message_of([&] { reader.verify_checksums(); }).find("frame_000001.exr"), std::string::npos);
   EXPECT_NO_THROW(reader.read_frame(2, ChannelSelection::all(), Verify::kYes));  // the others are fine
 }
 
@@ -56,7 +47,7 @@ TEST(SequenceCorruption, EveryFlippedByteIsCaughtByTheChecksum) {
     std::string bytes = original;
     bytes[position] = static_cast<char>(bytes[position] ^ 0x10);
     overwrite(path, bytes);
-    const std::string message = error_message_or_empty([&] { reader.read_frame(0, ChannelSelection::all(), Verify::kYes); });
+    const std::string message = error_message_of([&] { reader.read_frame(0, ChannelSelection::all(), Verify::kYes); });
     EXPECT_NE(message.find("does not match the manifest"), std::string::npos) << position << ": " << message;
   }
   overwrite(path, original);
@@ -69,7 +60,7 @@ TEST(SequenceCorruption, SwappedFramesAreDetectedEvenWithoutChecksums) {
   fs::rename(folder / "frame_000000.exr", folder / "tmp.exr");
   fs::rename(folder / "frame_000001.exr", folder / "frame_000000.exr");
   fs::rename(folder / "tmp.exr", folder / "frame_000001.exr");
-  const std::string message = error_message_or_empty([&] { SequenceReader(folder).read_frame(0); });
+  const std::string message = error_message_of([&] { SequenceReader(folder).read_frame(0); });
   EXPECT_NE(message.find("holds frame 1 but the manifest puts frame 0 here"), std::string::npos) << message;
 }
 
@@ -79,19 +70,19 @@ TEST(SequenceCorruption, ManifestProblemsNameTheKey) {
   const fs::path path = folder / "manifest.json";
   const std::string original = read_file_bytes(path);
   overwrite(path, original.substr(0, original.size() - 20));
-  EXPECT_NE(error_message_or_empty([&] { SequenceReader{folder}; }).find("is not valid JSON"), std::string::npos);
+  EXPECT_NE(error_message_of([&] { SequenceReader{folder}; }).find("is not valid JSON"), std::string::npos);
   nlohmann::json json = nlohmann::json::parse(original);
   json["version"] = 7;
   overwrite(path, json.dump());
-  EXPECT_NE(error_message_or_empty([&] { SequenceReader{folder}; }).find("format version 7"), std::string::npos);
+  EXPECT_NE(error_message_of([&] { SequenceReader{folder}; }).find("format version 7"), std::string::npos);
   json = nlohmann::json::parse(original);
   json["frames"][1]["file"] = "../../etc/passwd";
   overwrite(path, json.dump());
-  EXPECT_NE(error_message_or_empty([&] { SequenceReader{folder}; }).find("not a plain file name"), std::string::npos);
+  EXPECT_NE(error_message_of([&] { SequenceReader{folder}; }).find("not a plain file name"), std::string::npos);
   json = nlohmann::json::parse(original);
   json.erase("frame_interval_s");
   overwrite(path, json.dump());
-  EXPECT_NE(error_message_or_empty([&] { SequenceReader{folder}; }).find("has no \"frame_interval_s\""), std::string::npos);
+  EXPECT_NE(error_message_of([&] { SequenceReader{folder}; }).find("has no \"frame_interval_s\""), std::string::npos);
 }
 
 // Found by the libFuzzer target: OpenEXR 3.1 allocates an attribute's buffer from the size the
@@ -109,7 +100,7 @@ TEST(SequenceCorruption, HeaderAttributeClaimingMoreThanTheFileIsRejectedBeforeA
   const std::uint32_t huge = 0x73000000u;  // 1.9 GB
   std::memcpy(bytes.data() + type_end + 1, &huge, sizeof huge);  // little-endian, as EXR is
   Frame frame;
-  const std::string message = error_message_or_empty([&] {
+  const std::string message = error_message_of([&] {
     decode_frame(std::as_bytes(std::span(bytes.data(), bytes.size())), "frame_000000.exr", manifest, 0,
                  ChannelSelection::all(), frame);
   });
@@ -118,7 +109,7 @@ TEST(SequenceCorruption, HeaderAttributeClaimingMoreThanTheFileIsRejectedBeforeA
   // The same through the file reader (row stripes), without checksum verification.
   overwrite(folder / "frame_000000.exr", bytes);
   const SequenceReader reader(folder);
-  const std::string rows_message = error_message_or_empty([&] { reader.read_frame_rows(0, 0, 3, frame, ChannelSelection::all()); });
+  const std::string rows_message = error_message_of([&] { reader.read_frame_rows(0, 0, 3, frame, ChannelSelection::all()); });
   EXPECT_NE(rows_message.find("claims"), std::string::npos) << rows_message;
 }
 
@@ -137,7 +128,7 @@ TEST(SequenceCorruption, DataWindowLargerThanTheGridIsRejectedBeforeAllocation) 
   const std::int32_t huge_column = 1 << 24;  // max.x: lines of 16.8 million pixels, 200 MB each
   std::memcpy(bytes.data() + at + attribute.size() + 4 + 8, &huge_column, sizeof huge_column);
   Frame frame;
-  const std::string message = error_message_or_empty([&] {
+  const std::string message = error_message_of([&] {
     decode_frame(std::as_bytes(std::span(bytes.data(), bytes.size())), "frame_000000.exr", manifest, 0,
                  ChannelSelection::all(), frame);
   });
@@ -145,7 +136,7 @@ TEST(SequenceCorruption, DataWindowLargerThanTheGridIsRejectedBeforeAllocation) 
       << message;
   overwrite(folder / "frame_000000.exr", bytes);
   const SequenceReader reader(folder);
-  const std::string rows_message = error_message_or_empty([&] { reader.read_frame_rows(0, 0, 3, frame, ChannelSelection::all()); });
+  const std::string rows_message = error_message_of([&] { reader.read_frame_rows(0, 0, 3, frame, ChannelSelection::all()); });
   EXPECT_NE(rows_message.find("header data window"), std::string::npos) << rows_message;
 }
 
@@ -170,7 +161,7 @@ TEST_P(NonFiniteFrame, IsRejectedNamingTheFrameChannelAndCell) {
     writer.finish(3);
   }
   const SequenceReader reader(folder);
-  const std::string message = error_message_or_empty([&] { reader.read_frame(1); });
+  const std::string message = error_message_of([&] { reader.read_frame(1); });
   EXPECT_NE(message.find("frame_000001.exr"), std::string::npos) << message;
   EXPECT_NE(message.find("channel 'surface_elevation' holds inf at cell (column 5, row 3; x 500022.0 m, y 4300014.0 m)"),
             std::string::npos)
@@ -181,7 +172,7 @@ TEST_P(NonFiniteFrame, IsRejectedNamingTheFrameChannelAndCell) {
   EXPECT_NO_THROW(reader.read_frame(2));
   // The row-stripe reader (OpenEXR's decoder whatever the compression) names the cell in grid rows.
   Frame stripe;
-  const std::string rows_message = error_message_or_empty([&] { reader.read_frame_rows(1, 2, 4, stripe, ChannelSelection::all()); });
+  const std::string rows_message = error_message_of([&] { reader.read_frame_rows(1, 2, 4, stripe, ChannelSelection::all()); });
   EXPECT_NE(rows_message.find("frame_000001.exr"), std::string::npos) << rows_message;
   EXPECT_NE(rows_message.find("(column 5, row 3;"), std::string::npos) << rows_message;
   EXPECT_NO_THROW(reader.read_frame_rows(1, 4, 7, stripe, ChannelSelection::all()));
@@ -198,10 +189,10 @@ TEST_P(NonFiniteFrame, IsRejectedNamingTheFrameChannelAndCell) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(bytes.data() + at, &nan, sizeof nan);
   overwrite(path, bytes);
-  const std::string nan_message = error_message_or_empty([&] { reader.read_frame(2); });
+  const std::string nan_message = error_message_of([&] { reader.read_frame(2); });
   EXPECT_NE(nan_message.find("frame_000002.exr: channel 'flux_x' holds nan at cell (column 11, row 7;"), std::string::npos)
       << nan_message;
-  const std::string nan_rows_message = error_message_or_empty([&] { reader.read_frame_rows(2, 0, 11, stripe, ChannelSelection::all()); });
+  const std::string nan_rows_message = error_message_of([&] { reader.read_frame_rows(2, 0, 11, stripe, ChannelSelection::all()); });
   EXPECT_NE(nan_rows_message.find("channel 'flux_x' holds nan at cell (column 11, row 7;"), std::string::npos)
       << nan_rows_message;
 }

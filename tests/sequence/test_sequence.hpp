@@ -2,11 +2,14 @@
 // A small analytic sequence for the format tests: a progressive wave over a sloping harbour with a
 // land strip, fields chosen so every channel differs and north/south or east/west swaps show.
 #include <cmath>
+#include <exception>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "nearshore/core/error.hpp"
 #include "nearshore/sequence/sequence_writer.hpp"
 
 namespace nearshore::sequence::testing {
@@ -76,6 +79,21 @@ inline std::filesystem::path fresh_folder(const std::string& name) {
   const std::filesystem::path folder = std::filesystem::current_path() / ("sequence_test_" + name);
   std::filesystem::remove_all(folder);
   return folder;
+}
+
+/// The message of the nearshore::Error `action` throws. No error, or an exception of another type,
+/// fails the test, and the text returned says which (so a caller's find() fails with it).
+inline std::string error_message_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not a nearshore::Error: " << e.what();
+    return std::string("not a nearshore::Error: ") + e.what();
+  }
+  ADD_FAILURE() << "no error";
+  return "(no error)";
 }
 
 }  // namespace nearshore::sequence::testing
