@@ -60,9 +60,9 @@ SolverParameters read_solver(TableReader& solver) {
   // Schaffer et al. (1993) / Madsen et al. (1997), with their published constants as defaults.
   p.breaking.model = breaking.choice("model", breaking_model_name(p.breaking.model), {"eddy_viscosity", "roller"}) == 1
                          ? BreakingParameters::Model::kRoller : BreakingParameters::Model::kEddyViscosity;
-  p.breaking.onset_celerity_fraction = breaking.positive("onset_celerity_fraction", p.breaking.onset_celerity_fraction, "fraction of sqrt(g h)");
-  p.breaking.stop_celerity_fraction = breaking.positive("stop_celerity_fraction", p.breaking.stop_celerity_fraction, "fraction of sqrt(g h)");
-  p.breaking.transition_time_factor = breaking.positive("transition_time_factor", p.breaking.transition_time_factor, "T* in units of sqrt(h/g)");
+  p.breaking.onset_celerity_fraction = breaking.positive("onset_celerity_fraction", p.breaking.onset_celerity_fraction, "fraction of sqrt(g d), d the still-water depth");
+  p.breaking.stop_celerity_fraction = breaking.positive("stop_celerity_fraction", p.breaking.stop_celerity_fraction, "fraction of sqrt(g d)");
+  p.breaking.transition_time_factor = breaking.positive("transition_time_factor", p.breaking.transition_time_factor, "T* in units of sqrt(d/g)");
   p.breaking.mixing_length_coefficient = breaking.positive("mixing_length_coefficient", p.breaking.mixing_length_coefficient, "delta");
   p.breaking.roller_onset_angle_deg = breaking.number("roller_onset_angle_deg", p.breaking.roller_onset_angle_deg, 0.0, 90.0, false, "phi_B in degrees");
   p.breaking.roller_final_angle_deg = breaking.number("roller_final_angle_deg", p.breaking.roller_final_angle_deg, 0.0, 90.0, false, "phi_0 in degrees");

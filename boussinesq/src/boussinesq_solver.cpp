@@ -772,8 +772,12 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
     return;
   }
   // Kennedy et al. (2000): a cell breaks while eta_t > eta_t*, the threshold falling linearly from
-  // onset * sqrt(g h) at the start of the event to stop * sqrt(g h) after T* = factor sqrt(h/g);
-  // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 h eta_t (eq. 6-7).
+  // onset * sqrt(g d) at the start of the event to stop * sqrt(g d) after T* = factor sqrt(d/g);
+  // strength B = clamp(eta_t / eta_t* - 1, 0, 1); eddy viscosity nu = B delta^2 (d + eta) eta_t
+  // (eq. 6-7). The thresholds and T* are on the still-water depth d, the viscosity on the total
+  // depth, as the paper writes them (sqrt(g h) and (h + eta) with h the still-water depth; FUNWAVE-TVD's
+  // documentation likewise). On the total depth the threshold rose with the crest it was judging:
+  // Hansen & Svendsen's spilling waves broke 0.3 m late (docs/validation.md).
   // (The sweeps cap nu at 0.2 dx^2/dt in the explicit cross terms of eq. (6)-(7) only.)
   // The event belongs to the wave front, not to the cell (Kennedy et al.'s "age of the breaking
   // event"; FUNWAVE-TVD's breaker carries it from cell to cell likewise): a cell the front reaches
@@ -814,12 +818,13 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
         eddy_viscosity[i] = 0.0f; breaking_strength[i] = 0.0f; breaking_start_s[i] = -1.0;
         continue;
       }
-      const double eta_t = (eta[i] - eta_old[i]) / dt, celerity = std::sqrt(g * h);
+      const double still_depth = std::max(static_cast<double>(depth[i]), parameters.dry_depth_m);
+      const double eta_t = (eta[i] - eta_old[i]) / dt, celerity = std::sqrt(g * still_depth);
       if (breaking_start_s[i] < 0.0 && eta_t > b.onset_celerity_fraction * celerity) breaking_start_s[i] = now;
       if (breaking_start_s[i] < 0.0 && eta_t > b.stop_celerity_fraction * celerity) breaking_start_s[i] = joined_event(i);
       double strength = 0.0;
       if (breaking_start_s[i] >= 0.0) {
-        const double transition = b.transition_time_factor * std::sqrt(h / g);
+        const double transition = b.transition_time_factor * std::sqrt(still_depth / g);
         const double age = std::clamp((now - breaking_start_s[i]) / transition, 0.0, 1.0);
         const double threshold = celerity * (b.onset_celerity_fraction + age * (b.stop_celerity_fraction - b.onset_celerity_fraction));
         strength = std::clamp(eta_t / threshold - 1.0, 0.0, 1.0);

@@ -167,9 +167,12 @@ TEST(BoussinesqRectangularCells, ClosedBasinKeepsItsWaterToRoundOff) {
 // filter with -ffp-contract=off, so every instruction-set clone gives these bits). Re-recorded once
 // since, for issue 19's discrete source transfer (boussinesq_source.cpp): the scenario's wave maker
 // sends a slightly different strength, so every bit moves; with the source of before that change the
-// solver of that day still gave 0xea7615439be2747b (checked 2026-11-24).
+// solver of that day still gave 0xea7615439be2747b (checked 2026-11-24). Re-recorded again for
+// Kennedy et al.'s breaking thresholds on the still-water depth (issue 19): the hump breaks on the
+// island within the 120 steps; with the thresholds on the total depth the solver of 2026-11-27 gives
+// the hash before, 0x10f8ad8cc6d9365e.
 TEST(BoussinesqRectangularCells, SquareCellsAreBitIdenticalToTheSquareScheme) {
-  constexpr std::uint64_t kStateHashBeforeRectangularCells = 0x10f8ad8cc6d9365eull;
+  constexpr std::uint64_t kStateHashBeforeRectangularCells = 0xc03b0e721e2203a1ull;
   EXPECT_EQ(testing::square_regression_state_hash(), kStateHashBeforeRectangularCells)
       << std::hex << "state hash 0x" << testing::square_regression_state_hash();
 }

@@ -22,7 +22,8 @@ inline std::uint64_t square_regression_state_hash() {
   // The seed's scheme as it was before issue 19 changed the defaults (fully nonlinear terms, mean
   // face depth, second-order generation: their invariants are boussinesq_fully_nonlinear_test.cpp's),
   // so the hash keeps guarding every bit of it. (Issue 19's breaking event that travels with the
-  // front does not act in these 120 steps: the hash is the one recorded before it.)
+  // front does not act in these 120 steps: the hash is the one recorded before it. Its thresholds on
+  // the still-water depth do: boussinesq_rectangular_test.cpp.)
   parameters.equations = Equations::kWeaklyNonlinear;
   parameters.face_depth = SolverParameters::FaceDepth::kLargerOfMeanAndAboveBed;
   parameters.dispersion_cutoff_depth_m = 0.3;

@@ -69,12 +69,13 @@ struct HansenSvendsenScore {
   double reference_height_rmse_m = 0, reference_level_rmse_m = 0;
   double eddy_viscosity_height_rmse_m = 0, eddy_viscosity_level_rmse_m = 0;
 };
-// Regression bars (see the test): the scores measured on 2026-11-27 with issue 19's defaults plus a
-// margin. H RMSE / H0: CI grid 14.6 % (031041) and 19.9 % (061071), full grid 11.2 % and 14.8 %;
-// set-up RMSE: CI 0.65 and 0.60 mm, full 0.76 and 0.41 mm (docs/validation.md). (Before issue 19's
-// changes: 30.0 % and 24.1 %, 33.7 % and 27.4 %; 1.15 and 1.23 mm, 0.77 and 0.61 mm.)
-constexpr double kHeightRegressionBar = 0.23;
-constexpr double kSetUpRegressionBar_m = 0.001;
+// Regression bars of the CI grid (see the test), the scores measured on 2026-11-27 with the breaking
+// thresholds on the still-water depth, plus a margin: H RMSE / H0 11.2 % (031041) and 11.4 % (061071),
+// set-up RMSE 0.70 and 0.84 mm (full grid: 12.5 % and 10.4 %, 0.76 and 1.05 mm; docs/validation.md).
+// (Before: with the thresholds on the total depth 14.6 % and 19.9 %; before issue 19's other changes
+// 30.0 % and 24.1 %.)
+constexpr double kHeightRegressionBar = 0.13;
+constexpr double kSetUpRegressionBar_m = 0.0013;
 
 // Scores heights and mean levels at the measured points against the data: the whole profile, the
 // shoaling zone (before the measured break point) and the surf zone (after it), the break point, and
@@ -272,12 +273,14 @@ TEST(VALIDATION_SUITE(HansenSvendsen1979), WaveHeightAndSetUpOnTheSlope) {
   // was itself set up for this case (a wave maker 17 % below the measured toe height, a breaking onset
   // of 1.0 sqrt(g h) instead of its default 0.65), so reaching it with published defaults is a fair
   // bar, not a lax one. With issue 19's defaults (fully nonlinear equations, second-order generation,
-  // the breaking event travelling with the front) the plunging test 031041 meets the bar of the
-  // closure it shares with FUNWAVE-TVD (eddy viscosity) on both grids, and on the full grid its
-  // shock-capturing bar too; the spilling test 061071 meets the set-up bar and misses the height bar
-  // (14.8 % on the full grid): it breaks 0.3 m late and its surf zone keeps too much height (docs). The test
-  // asserts what is met and holds the rest where it is (regression bars: the measured scores plus a
-  // margin for the grid), and prints every score against the best published bar.
+  // the breaking event travelling with the front, Kennedy et al.'s thresholds on the still-water
+  // depth) both tests meet the height bars on both grids (full: 12.5 % and 10.4 %; CI: 11.2 % and
+  // 11.4 %, the latter 0.1 points inside its bar) and 061071 its set-up bar; 031041's set-up RMSE
+  // (0.76 mm full, 0.70 CI) meets the bar of the closure it shares with FUNWAVE-TVD (eddy viscosity,
+  // 0.77 mm) and not the shock-capturing one (0.67 mm). The full grid, the case file as written,
+  // asserts the experiment's height bars; the CI grid holds its scores with a regression bar (a
+  // margin of 0.1 points would make any change of the last digit a failure). Every score is printed
+  // against the best published bar.
   // 031041 against FUNWAVE-TVD's eddy-viscosity result: the bar of the same closure.
   EXPECT_LE(plunging.height_rmse_m, plunging.eddy_viscosity_height_rmse_m);
   for (const HansenSvendsenScore& score : {plunging, spilling}) {
@@ -286,7 +289,10 @@ TEST(VALIDATION_SUITE(HansenSvendsen1979), WaveHeightAndSetUpOnTheSlope) {
                 100 * score.height_rmse_m / score.offshore_height_m, 100 * score.reference_height_rmse_m / score.offshore_height_m,
                 score.height_rmse_m <= score.reference_height_rmse_m ? "met" : "MISSED", 1000 * score.level_rmse_m,
                 1000 * score.reference_level_rmse_m, score.level_rmse_m <= score.reference_level_rmse_m ? "met" : "MISSED");
-    EXPECT_LE(score.height_rmse_m, kHeightRegressionBar * score.offshore_height_m);
+    if (kFull)
+      EXPECT_LE(score.height_rmse_m, score.reference_height_rmse_m);
+    else
+      EXPECT_LE(score.height_rmse_m, kHeightRegressionBar * score.offshore_height_m);
     EXPECT_LE(score.level_rmse_m, kSetUpRegressionBar_m);
     EXPECT_LE(score.level_rmse_m, score.eddy_viscosity_level_rmse_m > 0 ? score.eddy_viscosity_level_rmse_m : score.reference_level_rmse_m);
     // What the model must get right whatever its breaking: the break point (the largest height) within

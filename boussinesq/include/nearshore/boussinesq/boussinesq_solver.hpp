@@ -45,10 +45,10 @@ struct SpongeLayer {
 /// The closure of wave breaking (docs/solver.md, "Breaking"). `model` chooses it:
 ///
 /// kEddyViscosity, Kennedy et al. (2000): a cell starts breaking when d(eta)/dt exceeds
-/// onset_celerity_fraction * sqrt(g h); the threshold relaxes linearly to stop_celerity_fraction *
-/// sqrt(g h) over transition_time_factor * sqrt(h/g) seconds; the eddy viscosity is
-/// nu = delta^2 h * B(eta_t) * eta_t with mixing length delta = mixing_length_coefficient (so
-/// delta^2 = 1.2^2 * ... as in Kennedy's delta = 1.2).
+/// onset_celerity_fraction * sqrt(g d), d the still-water depth; the threshold relaxes linearly to
+/// stop_celerity_fraction * sqrt(g d) over transition_time_factor * sqrt(d/g) seconds; the eddy
+/// viscosity is nu = delta^2 (d + eta) * B(eta_t) * eta_t with mixing length delta =
+/// mixing_length_coefficient (Kennedy's delta = 1.2).
 ///
 /// kRoller, the surface roller of Schaffer, Madsen & Deigaard (1993) as used with the Madsen-Sorensen
 /// equations by Madsen, Sorensen & Schaffer (1997, Part I): where the front of a wave is steeper than
@@ -61,9 +61,9 @@ struct BreakingParameters {
   enum class Model { kEddyViscosity, kRoller };
   bool enabled = true;
   Model model = Model::kEddyViscosity;
-  double onset_celerity_fraction = 0.65;   ///< eta_t^(I) = 0.65 sqrt(g h)
-  double stop_celerity_fraction = 0.15;    ///< eta_t^(F) = 0.15 sqrt(g h)
-  double transition_time_factor = 5.0;     ///< T* = 5 sqrt(h/g)
+  double onset_celerity_fraction = 0.65;   ///< eta_t^(I) = 0.65 sqrt(g d), d the still-water depth
+  double stop_celerity_fraction = 0.15;    ///< eta_t^(F) = 0.15 sqrt(g d)
+  double transition_time_factor = 5.0;     ///< T* = 5 sqrt(d/g)
   double mixing_length_coefficient = 1.2;  ///< delta
   // The roller (Madsen, Sorensen & Schaffer 1997, Part I, their published values).
   double roller_onset_angle_deg = 20.0;    ///< phi_B: the front slope tan(phi_B) at which a roller forms, degrees
