@@ -107,7 +107,7 @@ Bandwidth measure_triad(int threads, int repeats) {
       const double* __restrict y = c.get();
       for (std::size_t i = begin; i < end; ++i) out[i] = x[i] + 3.0 * y[i];
     });
-    best_s = std::min(best_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    best_s = std::min(best_s, seconds_since(start));
   }
   if (a[n / 2] != 7.0) throw Error("nearshore bench bake", "the STREAM triad computed a wrong value", "report this as a bug");
   return {threads, 24.0 * static_cast<double>(n) / best_s};
@@ -215,7 +215,7 @@ Measurement measure(const BenchCase& bench, int threads, const fs::path& output)
   const double cpu_start = cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   const bake::BakeSummary summary = bake::run_bake(bake_case, options);
-  m.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m.wall_s = seconds_since(start);
   m.cpu_s = cpu_seconds() - cpu_start;
   m.load_after = load_average_1min();
   m.peak_resident_bytes = peak_reset ? status_bytes("VmHWM") : summary.peak_resident_bytes;

@@ -170,7 +170,7 @@ void bench_play(const Options& o) {
         renderer.render(engine.snapshot(), camera, {}, width, height);
         (void)renderer.read_pixels();  // waits for the GPU (llvmpipe renders on read)
       }
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double wall = seconds_since(t0);
       report["grids"].push_back({{"grid", std::string(playback::grid_kind_name(kind))},
                                  {"size", fmt::format("{}x{}", width, height)},
                                  {"vertices_drawn", renderer.last_frame().vertices_drawn},
@@ -198,7 +198,7 @@ void bench_play(const Options& o) {
         renderer.render(engine.snapshot(), camera, {}, width, height, options);
         (void)renderer.read_pixels();
       }
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double wall = seconds_since(t0);
       report["lighting"].push_back({{"lighting", lit ? "full" : "off"}, {"size", fmt::format("{}x{}", width, height)},
                                     {"frames_per_s", draws / wall}});
     }

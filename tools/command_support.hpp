@@ -46,7 +46,7 @@ struct ExitStatus {
 CLI::App* add_unbuilt_command(CLI::App& app, const std::string& name, const std::string& description,
                               const std::string& example, const std::string& tracking_issue);
 
-/// Wall seconds from `start` to now (the benchmarks' timer).
+/// Wall seconds from `start` to now (the timer of the benchmarks and the commands that report their time).
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -50,7 +50,7 @@ void run_stage(const std::string& name, const std::function<std::string()>& run)
   std::fprintf(stderr, "== demo stage: %s\n", name.c_str());
   const auto start = std::chrono::steady_clock::now();
   const std::string outputs = run();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   std::printf("%-9s %10s  %s\n", name.c_str(), format_duration(seconds).c_str(), outputs.c_str());
   std::fflush(stdout);
 }

@@ -417,7 +417,7 @@ std::string play(const PlayOptions& o) {
     renderer.render(sea.snapshot(), control.camera, lighting, window.framebuffer_width_px(),
                     window.framebuffer_height_px(), draw_options, ships ? &ships->layers() : nullptr);
     renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
-    const double main_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - main_start).count();
+    const double main_ms = 1e3 * seconds_since(main_start);
     main_ms_sum += main_ms;
     if (panel) {
       const runtime::StreamingStats s = sea.engine().stats();
