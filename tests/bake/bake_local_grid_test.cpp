@@ -77,8 +77,6 @@ class LocalGridCase : public ::testing::Test {
   void SetUp() override { ProgressBar::set_quiet(true); }
 };
 
-}  // namespace
-
 TEST_F(LocalGridCase, AnAsciiGridBakesTheSameFlumeAsItsProfile) {
   const auto folder = scratch_folder();
   write_ascii_flume(folder);
@@ -161,4 +159,5 @@ TEST_F(LocalGridCase, BadTablesNameTheKeyAndTheFix) {
                     {"bathymetry.file", "does not exist"});
 }
 
+}  // namespace
 }  // namespace nearshore::bake::testing
