@@ -35,7 +35,9 @@ SolverParameters read_solver(TableReader& solver) {
   p.effective_depth_limit_m = solver.non_negative("effective_depth_limit_m", 0.0,
                                                   "depth in metres the equations see at most (0 = no limit; docs/solver.md, \"Effective depth\")");
   p.dry_depth_m = solver.positive("dry_depth_m", p.dry_depth_m, "wet/dry threshold in metres");
-  p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no friction)");
+  p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no turbulent friction)");
+  p.kinematic_viscosity_m2_s = solver.non_negative("kinematic_viscosity_m2_s", p.kinematic_viscosity_m2_s,
+                                                   "kinematic viscosity of the water in m^2/s, for the laminar film's bed stress (0 = none)");
   // The nonlinear terms (docs/solver.md "Fully nonlinear dispersion"), the depth of the dispersive
   // terms and of a face (docs/solver.md "Dispersion depth", "Face depth").
   p.equations = solver.choice("equations", equations_name(p.equations), {"weakly_nonlinear", "fully_nonlinear"}) == 1
@@ -96,6 +98,7 @@ json solver_record(const SolverParameters& p) {
           {"effective_depth_limit_m", p.effective_depth_limit_m},
           {"dry_depth_m", p.dry_depth_m},
           {"chezy_coefficient", p.chezy_coefficient},
+          {"kinematic_viscosity_m2_s", p.kinematic_viscosity_m2_s},
           {"dispersion_depth", p.dispersion_depth == DispersionDepth::kTotal ? "total" : "still_water"},
           {"face_depth", face_depth_name(p.face_depth)},
           {"nonlinear_iterations", p.nonlinear_iterations},

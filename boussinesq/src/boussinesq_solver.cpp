@@ -145,9 +145,9 @@ StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, i
         frame.porosity[i] >= detail::kWallPorosity ? static_cast<float>(1.0 / std::min(static_cast<double>(frame.porosity[i]), 1.0)) : 0.0f;
   // Porous resistance coefficients of seed 003 eq. (2) in the Van Gent (1995) form; the sweep
   // evaluates them from each face's porosity (a stone diameter of 0 means no porous resistance).
-  constexpr double kWaterKinematicViscosity_m2_s = 1.0e-6;
+  // The laminar (Darcy) part takes the water's viscosity, the one of the laminar film's bed stress.
   if (p.porous.stone_diameter_m > 0.0) {
-    frame.porous_laminar_factor = p.porous.laminar_alpha * kWaterKinematicViscosity_m2_s;
+    frame.porous_laminar_factor = p.porous.laminar_alpha * p.kinematic_viscosity_m2_s;
     frame.porous_turbulent_factor = p.porous.turbulent_beta;
     frame.porous_stone_diameter_m = p.porous.stone_diameter_m;
   } else {
@@ -274,6 +274,7 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     s.fingerprint = h;
   }
   s.constants = {s.dt, parameters.dispersion_coefficient, parameters.dry_depth_m, parameters.chezy_coefficient,
+                 parameters.kinematic_viscosity_m2_s,
                  parameters.nonlinear_iterations,
                  parameters.dispersion_depth == DispersionDepth::kTotal,
                  parameters.face_depth == SolverParameters::FaceDepth::kMeanWhereWet,

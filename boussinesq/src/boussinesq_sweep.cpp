@@ -68,6 +68,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   // The explicit cross stress d/dy (nu P_y) is stable for nu dt / dy^2 <= 0.2 (docs/solver.md).
   const double nu_explicit_max = 0.2 * dy * dy / dt;
   const double inverse_chezy2 = k.chezy_coefficient > 0.0 ? 1.0 / (k.chezy_coefficient * k.chezy_coefficient) : 0.0;
+  const double laminar_film_factor = 3.0 * k.kinematic_viscosity_m2_s;  // 3 nu of tau_b = 3 rho nu u / h
 
   const float* __restrict depth = frame.depth_m.data();
   const float* __restrict porosity = frame.porosity.data();
@@ -435,11 +436,14 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
                                     2.0 * enhancement);
           }
 
-          // Chezy friction g P |(P,Q)| / (h^2 C^2) and porous resistance n P (alpha + beta |(P,Q)|/h)
-          // of eq. (2), divided by n, implicit (backward Euler) so any resistance stays stable.
+          // Bed friction: the larger of the Chezy stress g P |(P,Q)| / (h^2 C^2) and the laminar
+          // film's Poiseuille stress 3 nu P / h^2 (docs/solver.md, "Bed friction"), and the porous
+          // resistance n P (alpha + beta |(P,Q)|/h) of eq. (2), divided by n, implicit (backward
+          // Euler) so any resistance stays stable.
           const double flux_f = flux_half[f * W + j];  // |(P, Q)|; sqrt vectorises (-fno-math-errno)
           const double flux_magnitude = std::sqrt(flux_f * flux_f + tangential_squared[f * W + j]);
-          const double friction = g * flux_magnitude * inverse_chezy2 * inv_n_f * inv_h_f * inv_h_f;
+          const double friction =
+              std::max(g * flux_magnitude * inverse_chezy2, laminar_film_factor) * inv_n_f * inv_h_f * inv_h_f;
           double resistance = friction;
           if (!kOpenWater) {
             const double n3 = n_f * n_f * n_f;  // laminar alpha (1/s) and turbulent beta (1/m) of eq. (2)

@@ -128,6 +128,7 @@ struct SweepConstants {
   double dispersion_coefficient = 1.0 / 15.0;
   double dry_depth_m = 0.01;
   double chezy_coefficient = 0.0;
+  double kinematic_viscosity_m2_s = 0.0;
   int iterations = 2;
   /// The dispersive terms on the total depth h = d + eta at t^{n+1/2} instead of d
   /// (SolverParameters::dispersion_depth = kTotal).

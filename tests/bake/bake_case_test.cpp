@@ -48,6 +48,9 @@ TEST(BakeCase, ReadsTheSmallFlume) {
   ASSERT_EQ(c.gauges.size(), 2u);
   EXPECT_EQ(c.gauges[1].name, "g2");
   EXPECT_EQ(c.wave_conditions["case"]["kind"], "regular");
+  // The water's viscosity (docs/solver.md, "Bed friction"): fresh water at 20 C unless the case says.
+  EXPECT_DOUBLE_EQ(c.solver.kinematic_viscosity_m2_s, 1.0e-6);
+  EXPECT_DOUBLE_EQ(c.solver_record["kinematic_viscosity_m2_s"].get<double>(), 1.0e-6);
 }
 
 // Issue 15: spacing_m = [dx, dy] gives rectangular cells; the time step follows the smaller size.
@@ -120,6 +123,8 @@ TEST(BakeCase, BadValuesAreErrors) {
   expect_case_error(small_flume_case() + "[solver.breaking]\nonset_celerity_fraction = 0.1\nstop_celerity_fraction = 0.2\n",
                     {"key `solver.breaking.stop_celerity_fraction`", "larger than onset"});
   expect_case_error(small_flume_case() + "[solver]\nnonlinear_iterations = 1.5\n", {"key `solver.nonlinear_iterations`", "whole number"});
+  expect_case_error(small_flume_case() + "[solver]\nkinematic_viscosity_m2_s = -1e-6\n",
+                    {"key `solver.kinematic_viscosity_m2_s`", "out of range", "kinematic viscosity"});
   expect_case_error(small_flume_case() + "[[porous_blocks]]\nx_range_m = [100.0, 101.0]\ny_range_m = [0.0, 1.0]\nporosity = 0.4\n",
                     {"key `porous_blocks[0].x_range_m`", "no cell centre"});
   expect_case_error(small_flume_case() + "[[porous_blocks]]\nx_range_m = [1.0, 2.0]\ny_range_m = [0.0, 1.0]\nporosity = 1.4\n",

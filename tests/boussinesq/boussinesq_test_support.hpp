@@ -23,6 +23,7 @@ inline SolverParameters inviscid_parameters(double courant_number = 0.5) {
   SolverParameters parameters;
   parameters.courant_number = courant_number;
   parameters.chezy_coefficient = 0.0;
+  parameters.kinematic_viscosity_m2_s = 0.0;
   parameters.breaking.enabled = false;
   return parameters;
 }

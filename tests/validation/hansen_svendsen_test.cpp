@@ -270,8 +270,9 @@ TEST(VALIDATION_SUITE(HansenSvendsen1979), WaveHeightAndSetUpOnTheSlope) {
   // reaches on this very experiment, scored by the same function: FUNWAVE-TVD's own published result
   // (README; H RMSE 14.0 % of H0 for 031041 with its shock-capturing closure, 16.6 % with its eddy
   // viscosity, 11.5 % for 061071; set-up RMSE 0.67 (0.77 eddy viscosity) and 2.21 mm). That result
-  // was itself set up for this case (a wave maker 17 % below the measured toe height, a breaking onset
-  // of 1.0 sqrt(g h) instead of its default 0.65), so reaching it with published defaults is a fair
+  // was itself set up for this case (a wave maker requested 17 % below the measured toe height, 0.034
+  // against 0.0411 m, whose wave reaches the toe 9 % low, and a breaking onset of 1.0 sqrt(g h)
+  // instead of its default 0.65), so reaching it with published defaults is a fair
   // bar, not a lax one. With issue 19's defaults (fully nonlinear equations, second-order generation,
   // the breaking event travelling with the front, Kennedy et al.'s thresholds on the still-water
   // depth) both tests meet the height bars on both grids (full: 12.5 % and 10.4 %; CI: 11.2 % and

@@ -86,6 +86,7 @@ struct BreakingParameters {
 /// Porous resistance of seed 003 eq. (2)-(3) in cells with porosity 0 < n < 1 (rubble mounds),
 /// Van Gent (1995) / Madsen (1974) form:
 ///   a_l = laminar_alpha * nu_w (1 - n)^2 / (n^3 D^2),  a_t = turbulent_beta (1 - n) / (n^3 D)
+/// (nu_w = SolverParameters::kinematic_viscosity_m2_s)
 /// the resistance acceleration being n (a_l u + a_t u |u|) with u the seepage velocity.
 struct PorousResistance {
   double laminar_alpha = 1000.0;   ///< alpha, dimensionless
@@ -153,7 +154,16 @@ struct SolverParameters {
   /// (docs/solver.md, "Effective depth"; effective_depth_limit_m() in model_dispersion.hpp).
   double effective_depth_limit_m = 0.0;
   double dry_depth_m = 0.01;          ///< wet/dry threshold of the moving shoreline, metres
-  double chezy_coefficient = 60.0;    ///< C, m^0.5/s (0 = no friction)
+  double chezy_coefficient = 60.0;    ///< C, m^0.5/s (0 = no turbulent friction)
+  /// Kinematic viscosity of the water, m^2/s, for the bed stress of a laminar film: a sheet of
+  /// water thin and slow enough to stay laminar (the run-up tongue of a laboratory wave, a few
+  /// millimetres thick) carries the Poiseuille stress tau_b = 3 rho nu u / h, which grows as 1/h^2
+  /// in the momentum of the flux form. The bed stress is the larger of this and the Chezy stress
+  /// (the flow's regime: they cross at the film Reynolds number u h / nu = 3 C^2 / g, 1100 at
+  /// C = 60, inside the laminar-turbulent transition of a sheet flow; docs/solver.md, "Bed
+  /// friction"). The laminar part of the porous resistance (PorousResistance::laminar_alpha) takes
+  /// it too. 1.0e-6 is fresh water at 20 C (sea water at 15 C: 1.19e-6); 0 = no laminar stress.
+  double kinematic_viscosity_m2_s = 1.0e-6;
   BreakingParameters breaking;
   PorousResistance porous;
   std::vector<SpongeLayer> sponges;
