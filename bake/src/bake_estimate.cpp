@@ -114,10 +114,10 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
   if (timing.checkpoint_interval_s > 0) {
     double names = 8;
     for (const GaugeSpec& gauge : bake_case.gauges) names += 8 + static_cast<double>(gauge.name.size());
-    // bake_run.cpp (magic, fingerprint, gauges), boussinesq_state.cpp (header, 9 sized arrays, checksum;
+    // bake_run.cpp (magic, fingerprint, physics revision, gauges), boussinesq_state.cpp (header, 9 sized arrays, checksum;
     // counted as doubles, an upper bound: state version 3 stores two of them as float; version 4, the
     // fully nonlinear equations', adds a count and four float arrays of faces).
-    estimate.checkpoint_bytes = 16 + 8 + names + 8 + gauge_values * 8 + 36 + kStateArrays * (8 + cells * 8) + 8;
+    estimate.checkpoint_bytes = 16 + 8 + 4 + names + 8 + gauge_values * 8 + 36 + kStateArrays * (8 + cells * 8) + 8;
     if (bake_case.solver.equations == boussinesq::Equations::kFullyNonlinear) estimate.checkpoint_bytes += 4 + 4 * (8 + cells * 4.1);
     // The wave statistics' state (header, then their sums and envelope; wave_statistics.cpp).
     if (bake_case.output.wave_statistics) estimate.checkpoint_bytes += 24 + cells * WaveStatistics::kBytesPerCell;

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -38,7 +39,9 @@ namespace {
 // Version 2: the case fingerprint and the solver state's checksums are XXH64 (were FNV-1a).
 // Version 3: the wave statistics (wave_statistics.hpp) follow the solver state, so a resumed bake
 // maps the whole run.
-constexpr char kCheckpointMagic[16] = "nearshore-ckpt3";
+// Version 4: the solver's physics revision (kSolverPhysicsRevision) follows the fingerprint, so a bake
+// is only resumed by a solver that computes what its first part was computed with.
+constexpr char kCheckpointMagic[16] = "nearshore-ckpt4";
 // The stability guard looks at the whole field after every step: a scan costs a few per cent of a
 // step, and a blow-up caught in its first step names the cell where it starts, before the implicit
 // sweeps have carried NaN along the whole row.
@@ -235,6 +238,8 @@ void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const Bou
     try {
       out.write(kCheckpointMagic, sizeof kCheckpointMagic);
       out.write(reinterpret_cast<const char*>(&fingerprint), sizeof fingerprint);
+      const std::int32_t physics_revision = kSolverPhysicsRevision;
+      out.write(reinterpret_cast<const char*>(&physics_revision), sizeof physics_revision);
       gauges.save(out);
       solver.save_state(out);  // throws when the stream failed: the buffer knows why
       if (statistics) statistics->save(out);
@@ -249,7 +254,8 @@ void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const Bou
   });
 }
 
-// The checkpoint opened and its header checked (magic, case fingerprint): positioned at the gauges.
+// The checkpoint opened and its header checked (magic, case fingerprint, the solver's physics
+// revision): positioned at the gauges.
 std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
   const std::string subject = file.string();
   if (!fs::exists(file))
@@ -269,11 +275,28 @@ std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
   if (magic_read && std::string(magic) == "nearshore-ckpt2")
     throw Error(subject, "is a checkpoint of an older nearshore (version 2, without the wave statistics)",
                 "bake again from the start (BakeOptions::resume = false)");
+  if (magic_read && std::string(magic) == "nearshore-ckpt3")
+    throw Error(subject,
+                "is a checkpoint of an older nearshore (version 3, before checkpoints recorded the solver's physics revision): "
+                "its solver may have computed other physics than this one, and a bake continued from it would change "
+                "physics part-way through its sequence",
+                "bake again from the start (BakeOptions::resume = false), or resume with the nearshore build that wrote it");
   if (!magic_read || std::string(magic, sizeof magic) != std::string(kCheckpointMagic, sizeof magic))
     throw Error(subject, "is not a nearshore bake checkpoint", "delete it and bake again from the start (BakeOptions::resume = false)");
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != fingerprint)
     throw Error(subject, "was written for a different case file or time step",
                 "bake again from the start, BakeOptions::resume = false (a checkpoint only continues the exact case that wrote it)");
+  std::int32_t physics_revision = 0;
+  if (!in.read(reinterpret_cast<char*>(&physics_revision), sizeof physics_revision))
+    throw Error(subject, "is truncated (it ends before the solver's physics revision)",
+                "bake again from the start (BakeOptions::resume = false)");
+  if (physics_revision != kSolverPhysicsRevision)
+    throw Error(subject,
+                fmt::format("was written by a solver of physics revision {}, and this nearshore's solver is revision {} "
+                            "(docs/solver.md, \"Physics revision\"): a bake continued from it would change physics part-way "
+                            "through its sequence",
+                            physics_revision, kSolverPhysicsRevision),
+                "bake again from the start (BakeOptions::resume = false), or resume with the nearshore build that wrote it");
   return in;
 }
 

@@ -91,7 +91,8 @@ SolverParameters read_solver(TableReader& solver) {
 json solver_record(const SolverParameters& p) {
   json sponges = json::array();
   for (const SpongeLayer& sponge : p.sponges) sponges.push_back({{"side", side_name(sponge.side)}, {"width_m", sponge.width_m}});
-  json record = {{"time_step_s", p.time_step_s},
+  json record = {{"physics_revision", kSolverPhysicsRevision},  // docs/solver.md, "Physics revision"
+          {"time_step_s", p.time_step_s},
           {"dispersion_coefficient", p.dispersion_coefficient},
           {"dispersion_cutoff_depth_m", p.dispersion_cutoff_depth_m},
           {"dispersion_cutoff_kh", p.dispersion_cutoff_kh},

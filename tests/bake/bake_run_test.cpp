@@ -12,7 +12,9 @@
 #include <iterator>
 #include <thread>
 
+#include <fmt/core.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "bake_test_support.hpp"
 #include "nearshore/bake/bake_case.hpp"
@@ -191,6 +193,42 @@ TEST_F(BakeRun, ResumeRefusesAnotherCaseOrAMissingCheckpoint) {
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("different case"), std::string::npos) << error.what();
   }
+  // A checkpoint of the same case written by a solver of another physics revision, or by a nearshore
+  // from before checkpoints recorded it, is refused too: resumed, one sequence would hold two physics.
+  // The checkpoint stays as it was (another build may resume it).
+  const fs::path checkpoint = checkpoint_path(first.output_folder);
+  const auto with_header = [&](const std::string& magic, std::int32_t revision) {
+    std::fstream file(checkpoint, std::ios::in | std::ios::out | std::ios::binary);
+    file.write(magic.c_str(), static_cast<std::streamsize>(magic.size() + 1));
+    file.seekp(16 + 8);  // magic, case fingerprint (bake_run.cpp)
+    file.write(reinterpret_cast<const char*>(&revision), sizeof revision);
+  };
+  const auto refusal = [&]() -> std::string {
+    try {
+      run_bake(c, options);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "resumed";
+  };
+  with_header("nearshore-ckpt4", boussinesq::kSolverPhysicsRevision + 1);
+  const auto size_before = fs::file_size(checkpoint);
+  std::string message = refusal();
+  EXPECT_NE(message.find(fmt::format("physics revision {}, and this nearshore's solver is revision {}",
+                                     boussinesq::kSolverPhysicsRevision + 1, boussinesq::kSolverPhysicsRevision)),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("resume = false"), std::string::npos) << message;
+  EXPECT_EQ(fs::file_size(checkpoint), size_before);
+  with_header("nearshore-ckpt3", boussinesq::kSolverPhysicsRevision);
+  message = refusal();
+  EXPECT_NE(message.find("older nearshore (version 3"), std::string::npos) << message;
+  // Its own revision again: the same checkpoint resumes and the bake completes.
+  with_header("nearshore-ckpt4", boussinesq::kSolverPhysicsRevision);
+  EXPECT_NO_THROW(run_bake(c, options));
+  // The manifest's solver record says which physics baked the sequence.
+  const auto manifest = nlohmann::json::parse(std::ifstream(first.output_folder / "manifest.json"));
+  EXPECT_EQ(manifest["solver"]["physics_revision"].get<int>(), boussinesq::kSolverPhysicsRevision) << manifest["solver"].dump();
 }
 
 TEST_F(BakeRun, StabilityGuardNamesTimeCellDepthAndTheFix) {

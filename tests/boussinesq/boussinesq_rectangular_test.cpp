@@ -174,10 +174,17 @@ TEST(BoussinesqRectangularCells, ClosedBasinKeepsItsWaterToRoundOff) {
 // docs/solver.md "Bed friction"): the bed stress is now the larger of the Chezy and the Poiseuille
 // stress, and the Poiseuille one wins wherever |(P, Q)| < 3 nu C^2 / g = 1.1e-3 m^2/s, the calm
 // cells of the basin, so every bit moves; before it the hash was 0xc03b0e721e2203a1.
+// The hash is recorded at a physics revision (docs/solver.md, "Physics revision"): a change that
+// moves it on purpose re-records it AND raises kSolverPhysicsRevision, so that no bake resumes a
+// checkpoint of the other physics.
 TEST(BoussinesqRectangularCells, SquareCellsAreBitIdenticalToTheSquareScheme) {
   constexpr std::uint64_t kStateHashBeforeRectangularCells = 0x45355de31ccf514bull;
+  constexpr int kRecordedAtPhysicsRevision = 1;
   EXPECT_EQ(testing::square_regression_state_hash(), kStateHashBeforeRectangularCells)
-      << std::hex << "state hash 0x" << testing::square_regression_state_hash();
+      << std::hex << "state hash 0x" << testing::square_regression_state_hash()
+      << ": if the physics changed on purpose, re-record the hash and raise kSolverPhysicsRevision with it";
+  EXPECT_EQ(kSolverPhysicsRevision, kRecordedAtPhysicsRevision)
+      << "the revision moved: re-record the hash above at the new revision (and say why in the comment)";
 }
 
 }  // namespace

@@ -119,6 +119,14 @@ struct WaveMaker {
 /// checks the same limit first, so that its message names the case file's key.
 inline constexpr double kMaxCourantNumber = 2.0;
 
+/// The revision of what the solver computes: raised whenever a change makes the same parameters give
+/// other results on purpose (a closure, a default inside the scheme, a discretisation; not a speed-up
+/// that keeps the bits). A bake checkpoint records it, and a bake is only resumed by a solver of the
+/// same revision, so one sequence never holds two physics; the manifest's solver record carries it.
+/// The list of revisions is docs/solver.md, "Physics revision". 1: the solver of 2026-11-28 (issue 19's
+/// defaults, Kennedy et al.'s thresholds on the still-water depth, the laminar film's bed stress).
+inline constexpr int kSolverPhysicsRevision = 1;
+
 struct SolverParameters {
   double time_step_s = 0.0;           ///< 0 = from courant_number
   double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
