@@ -378,7 +378,7 @@ std::string play(const PlayOptions& o) {
       break;
     if (headless) {
       display_time_s = o.time_s + frames_drawn / 30.0;
-      sea.engine().wait_until_ready(display_time_s, std::chrono::seconds(30));  // exact pictures, not real time
+      sea.wait_until_ready(display_time_s, std::chrono::seconds(30));  // exact pictures, not real time
     } else if (!model.paused) {
       display_time_s += dt_s * model.time_scale;
     }
@@ -386,7 +386,7 @@ std::string play(const PlayOptions& o) {
     while (next_switch < switches.size() && display_time_s >= switches[next_switch].first) {
       const std::string& id = sea.library()->request(switches[next_switch++].second, o.crossfade_s);
       if (!o.quiet) std::fprintf(stderr, "t = %.2f s: crossfading to sea state %s over %.1f s\n", display_time_s, id.c_str(), o.crossfade_s);
-      if (headless) sea.engine().wait_until_ready(display_time_s, std::chrono::seconds(30));
+      if (headless) sea.wait_until_ready(display_time_s, std::chrono::seconds(30));
     }
     sea.advance_to(display_time_s);
     renderer.stage_upcoming(sea.engine());

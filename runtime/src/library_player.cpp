@@ -175,6 +175,15 @@ void LibraryPlayer::advance_to(double display_time_s) {
   std::swap(m.current, next);
 }
 
+bool LibraryPlayer::wait_until_ready(double display_time_s, std::chrono::milliseconds timeout) {
+  Impl& m = *impl_;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  if (!m.shown->wait_until_ready(display_time_s, timeout)) return false;
+  if (!m.fading_out) return true;
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+  return m.fading_out->wait_until_ready(display_time_s, std::max(left, std::chrono::milliseconds(0)));
+}
+
 SurfaceSnapshot LibraryPlayer::snapshot() const {
   const std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);
   return impl_->current;

@@ -15,6 +15,7 @@
 // smoothstep keeps that dip short. The harbour site (depth, land) is the new state's from the
 // first frame of the fade: states of one library share the grid, and a tide state differs only
 // by its still-water level, which the fade then shows as a change of depth at once.
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -45,6 +46,11 @@ class LibraryPlayer {
   void advance_to(double display_time_s);
   /// The snapshot of the last advance_to: one state's, or the crossfade's blend. Any thread.
   SurfaceSnapshot snapshot() const;
+  /// As StreamingEngine::wait_until_ready, for every state that `display_time_s` shows: the one on
+  /// screen and, during a crossfade, the one fading out (whose frames may lag the new one's
+  /// otherwise, and the blend then holds its latest frame). For a host's start-up, a recording that
+  /// must be frame-exact, and tests; never for the render loop. Render thread.
+  bool wait_until_ready(double display_time_s, std::chrono::milliseconds timeout);
 
   /// The engine of the state on screen (the new one during a crossfade).
   StreamingEngine& engine();
@@ -75,6 +81,10 @@ class PlayedSea {
     library_ ? library_->advance_to(display_time_s) : single_->advance_to(display_time_s);
   }
   SurfaceSnapshot snapshot() const { return library_ ? library_->snapshot() : single_->snapshot(); }
+  /// Every state on screen ready for `display_time_s` (LibraryPlayer::wait_until_ready).
+  bool wait_until_ready(double display_time_s, std::chrono::milliseconds timeout) {
+    return library_ ? library_->wait_until_ready(display_time_s, timeout) : single_->wait_until_ready(display_time_s, timeout);
+  }
 
  private:
   std::unique_ptr<StreamingEngine> single_;
