@@ -102,13 +102,20 @@ void check_time_step(TableReader& time, const TimeRequest& request, const BakeCa
 // laboratory flume of a few decimetres the same centimetre holds the run-up tongue back: Synolakis'
 // (1987) solitary waves on 0.30 m of water run up 17 % short with it, and within 0.3 % of the
 // converged run-up at 1/300 of the depth (docs/validation.md, "The wet/dry threshold"). So a case
-// that leaves the key out and whose deepest water is under a metre (the default above 1/100 of it)
-// is told, with the value to give.
+// that leaves the key out, whose deepest water is under a metre (the default above 1/100 of it) and
+// that has a shore for the water to run up (ground above still water that is not a wall) is told,
+// with the value to give. A basin without a shore (Berkhoff's) has no front for the threshold to hold.
 void warn_of_a_harbour_dry_depth_in_a_flume(const TableReader& solver, BakeCase& bake_case) {
   if (solver.has("dry_depth_m")) return;
-  const double deepest_m = deepest_still_water_m(bake_case.harbour);
+  const HarbourGrid& harbour = bake_case.harbour;
+  const double deepest_m = deepest_still_water_m(harbour);
   const double dry_depth_m = bake_case.solver.dry_depth_m;
   if (!(deepest_m > 0.0) || dry_depth_m <= deepest_m / 100.0) return;
+  const auto& depth = harbour.still_water_depth_m.values();
+  const auto& porosity = harbour.porosity.values();
+  bool has_shore = false;
+  for (std::size_t cell = 0; cell < depth.size() && !has_shore; ++cell) has_shore = depth[cell] <= 0.0f && porosity[cell] > 0.0f;
+  if (!has_shore) return;
   bake_case.warnings.push_back(fmt::format(
       "{}: key `{}` is left at its default, {} m, a harbour's wet/dry threshold, which is {:.1f} % of this case's deepest "
       "water ({:.3g} m): a run-up tongue thinner than it cannot advance, so run-up on a laboratory beach comes out short "

@@ -226,11 +226,14 @@ TEST(BakeCase, IrregularSeaFromTheSpectrumBuilder) {
 }
 
 
-// The default wet/dry threshold is a harbour's (1 cm): a case in a flume of a few decimetres that
-// leaves it out is told, with the key and a value to give; one that gives it, or a harbour, is not.
+// The default wet/dry threshold is a harbour's (1 cm): a case in a flume of a few decimetres with a
+// beach that leaves it out is told, with the key and a value to give; one that gives it, a harbour,
+// or a flume without a shore (nothing runs up) is not.
 TEST(BakeCase, AHarbourDryDepthInAFlumeWarns) {
   const auto folder = scratch_folder();
-  const BakeCase flume = read_bake_case(write_text(folder / "case.toml", small_flume_case()));
+  const std::string flat = "profile = [[0.0, 0.5], [12.0, 0.5]]";
+  const std::string beach = "profile = [[0.0, 0.5], [9.0, 0.5], [12.0, -0.1]]";
+  const BakeCase flume = read_bake_case(write_text(folder / "case.toml", edited(flat, beach)));
   ASSERT_EQ(flume.warnings.size(), 1u);
   const std::string& warning = flume.warnings.front();
   RecordProperty("warning", warning);
@@ -239,13 +242,15 @@ TEST(BakeCase, AHarbourDryDepthInAFlumeWarns) {
   EXPECT_NE(warning.find("2.0 % of this case's deepest water (0.5 m)"), std::string::npos) << warning;
   EXPECT_NE(warning.find("give solver.dry_depth_m = 0.002"), std::string::npos) << warning;
   EXPECT_DOUBLE_EQ(flume.solver.dry_depth_m, 0.01);  // a warning, not a change: the default stays
-  const BakeCase given = read_bake_case(
-      write_text(folder / "given.toml", small_flume_case() + "[solver]\ndry_depth_m = 0.002\n"));
+  const BakeCase given = read_bake_case(write_text(folder / "given.toml", edited(flat, beach) + "[solver]\ndry_depth_m = 0.002\n"));
   EXPECT_TRUE(given.warnings.empty()) << given.warnings.front();
   // Two metres of water: the centimetre is half a per cent of it, and the harbour default stands.
-  const BakeCase deeper = read_bake_case(write_text(
-      folder / "deeper.toml", edited("profile = [[0.0, 0.5], [12.0, 0.5]]", "profile = [[0.0, 2.0], [12.0, 2.0]]")));
+  const BakeCase deeper = read_bake_case(
+      write_text(folder / "deeper.toml", edited(flat, "profile = [[0.0, 2.0], [9.0, 2.0], [12.0, -0.1]]")));
   EXPECT_TRUE(deeper.warnings.empty()) << deeper.warnings.front();
+  // No shore: the flat flume ends in a wall, and no front moves.
+  const BakeCase walled = read_bake_case(write_text(folder / "walled.toml", small_flume_case()));
+  EXPECT_TRUE(walled.warnings.empty()) << walled.warnings.front();
 }
 }  // namespace
 }  // namespace nearshore::bake
