@@ -225,7 +225,6 @@ TEST(BakeCase, IrregularSeaFromTheSpectrumBuilder) {
   EXPECT_EQ(c.wave_conditions["seed"], 42);
 }
 
-
 // The default wet/dry threshold is a harbour's (1 cm): a case in a flume of a few decimetres with a
 // beach that leaves it out is told, with the key and a value to give; one that gives it, a harbour,
 // or a flume without a shore (nothing runs up) is not.
