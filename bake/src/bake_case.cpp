@@ -114,7 +114,7 @@ void warn_of_a_harbour_dry_depth_in_a_flume(const TableReader& solver, BakeCase&
   const auto& depth = harbour.still_water_depth_m.values();
   const auto& porosity = harbour.porosity.values();
   bool has_shore = false;
-  for (std::size_t cell = 0; cell < depth.size() && !has_shore; ++cell) has_shore = depth[cell] <= 0.0f && porosity[cell] > 0.0f;
+  for (std::size_t cell = 0; cell < depth.size() && !has_shore; ++cell) has_shore = depth[cell] <= 0.0f && porosity[cell] >= kWallPorosity;
   if (!has_shore) return;
   bake_case.warnings.push_back(fmt::format(
       "{}: key `{}` is left at its default, {} m, a harbour's wet/dry threshold, which is {:.1f} % of this case's deepest "

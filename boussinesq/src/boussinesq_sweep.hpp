@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "nearshore/boussinesq/boussinesq_solver.hpp"
+
 namespace nearshore::boussinesq::detail {
 
 /// Everything about one orientation that does not change during a run. Only what cannot be
@@ -49,8 +51,8 @@ struct StaticFrame {
 /// (docs/solver.md, "Memory").
 using EddyViscosity = float;
 
-/// Porosity below which a cell is a solid wall (no flux through its faces).
-inline constexpr double kWallPorosity = 0.05;
+/// Porosity below which a cell is a solid wall (no flux through its faces): the public one.
+using nearshore::boussinesq::kWallPorosity;
 /// The bed-slope terms of Madsen & Sorensen (1992) assume mild slopes; steeper slopes are clamped
 /// to this value inside the dispersive terms only, so charts with quays and dredged channels stay stable.
 inline constexpr double kMaxDispersiveSlope = 0.5;

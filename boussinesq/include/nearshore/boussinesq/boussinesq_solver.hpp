@@ -127,6 +127,9 @@ inline constexpr double kMaxCourantNumber = 2.0;
 /// defaults, Kennedy et al.'s thresholds on the still-water depth, the laminar film's bed stress).
 inline constexpr int kSolverPhysicsRevision = 1;
 
+/// Porosity below which a cell is a solid wall (a quay): no flux through its faces, no shoreline on it.
+inline constexpr double kWallPorosity = 0.05;
+
 struct SolverParameters {
   double time_step_s = 0.0;           ///< 0 = from courant_number
   double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
