@@ -98,30 +98,21 @@ void check_time_step(TableReader& time, const TimeRequest& request, const BakeCa
             "shorten time.duration_s, or give the bathymetry a coarser spacing_m");
 }
 
-// The default wet/dry threshold (1 cm) is a harbour's: a thousandth of its 10 m of water. In a
-// laboratory flume of a few decimetres the same centimetre holds the run-up tongue back: Synolakis'
-// (1987) solitary waves on 0.30 m of water run up 17 % short with it, and within 0.3 % of the
-// converged run-up at 1/300 of the depth (docs/validation.md, "The wet/dry threshold"). So a case
-// that leaves the key out, whose deepest water is under a metre (the default above 1/100 of it) and
-// that has a shore for the water to run up (ground above still water that is not a wall) is told,
-// with the value to give. A basin without a shore (Berkhoff's) has no front for the threshold to hold.
-void warn_of_a_harbour_dry_depth_in_a_flume(const TableReader& solver, BakeCase& bake_case) {
-  if (solver.has("dry_depth_m")) return;
-  const HarbourGrid& harbour = bake_case.harbour;
+// The wet/dry threshold where [solver] leaves it out: the solver's default, a centimetre (a harbour's:
+// a thousandth of its 10 m of water), or a 300th of the deepest water, the smaller. The threshold is a
+// film thickness the scheme treats as no water, so its scale is the water's: in a laboratory flume of
+// a few decimetres the centimetre holds the run-up tongue back (Synolakis' (1987) solitary wave on
+// 0.30 m runs up 17 % short with it), and from a 300th of the depth the run-up is within 0.3 % of R
+// of its converged value, while cases scored at gauges in the water do not move (docs/validation.md,
+// "The wet/dry threshold"). Any grid 3 m deep or deeper keeps the centimetre. A grid with no water
+// keeps it too (there is no depth to scale by).
+constexpr double kDepthsPerDryDepth = 300.0;
+
+double default_dry_depth_m(const HarbourGrid& harbour) {
+  const double harbour_dry_depth_m = boussinesq::SolverParameters{}.dry_depth_m;
   const double deepest_m = deepest_still_water_m(harbour);
-  const double dry_depth_m = bake_case.solver.dry_depth_m;
-  if (!(deepest_m > 0.0) || dry_depth_m <= deepest_m / 100.0) return;
-  const auto& depth = harbour.still_water_depth_m.values();
-  const auto& porosity = harbour.porosity.values();
-  bool has_shore = false;
-  for (std::size_t cell = 0; cell < depth.size() && !has_shore; ++cell) has_shore = depth[cell] <= 0.0f && porosity[cell] >= kWallPorosity;
-  if (!has_shore) return;
-  bake_case.warnings.push_back(fmt::format(
-      "{}: key `{}` is left at its default, {} m, a harbour's wet/dry threshold, which is {:.1f} % of this case's deepest "
-      "water ({:.3g} m): a run-up tongue thinner than it cannot advance, so run-up on a laboratory beach comes out short "
-      "(17 % for Synolakis' solitary wave on 0.30 m, docs/validation.md); give {} = {:.1g} (a 300th of the deepest water)",
-      solver.subject(), solver.full("dry_depth_m"), dry_depth_m, 100.0 * dry_depth_m / deepest_m, deepest_m,
-      solver.full("dry_depth_m"), deepest_m / 300.0));
+  if (!(deepest_m > 0.0)) return harbour_dry_depth_m;
+  return std::min(harbour_dry_depth_m, deepest_m / kDepthsPerDryDepth);
 }
 
 }  // namespace
@@ -173,7 +164,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   dispersion_bound.dispersion_coefficient = bake_case.solver.dispersion_coefficient;
   dispersion_bound.effective_depth_limit_given = solver.has("effective_depth_limit_m");
   dispersion_bound.effective_depth_limit_m = bake_case.solver.effective_depth_limit_m;
-  warn_of_a_harbour_dry_depth_in_a_flume(solver, bake_case);
+  if (!solver.has("dry_depth_m")) bake_case.solver.dry_depth_m = default_dry_depth_m(bake_case.harbour);
   solver.finish();
   for (TableReader& entry : root.tables("sponges")) {
     SpongeLayer sponge;

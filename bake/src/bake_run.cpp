@@ -47,10 +47,15 @@ constexpr char kCheckpointMagic[16] = "nearshore-ckpt4";
 // sweeps have carried NaN along the whole row.
 constexpr long kStabilityCheckSteps = 1;
 
-// XXH64 (core/hash.hpp) of the canonical dump of the case document: a checkpoint only resumes the
-// case it was written for (the solver itself also checks grid, dt and its parameters on load).
+// XXH64 (core/hash.hpp) of the canonical dump of the case document, the time step and the solver's
+// parameters as the case reader resolved them: a checkpoint only resumes the case it was written
+// for, with the same parameters, those the reader derives from the grid where the file leaves them
+// out included (the wet/dry threshold, the effective-depth limit), so a build that derives one
+// otherwise does not continue another build's bake. (The solver itself also checks grid, dt and
+// equations on load.)
 std::uint64_t case_fingerprint(const BakeCase& bake_case) {
-  return xxh64(bake_case.source.dump() + fmt::format("|dt={:.17g}", bake_case.solver.time_step_s));
+  return xxh64(bake_case.source.dump() + fmt::format("|dt={:.17g}|", bake_case.solver.time_step_s) +
+               bake_case.solver_record.dump());
 }
 
 struct StepPlan {
@@ -284,7 +289,7 @@ std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
   if (!magic_read || std::string(magic, sizeof magic) != std::string(kCheckpointMagic, sizeof magic))
     throw Error(subject, "is not a nearshore bake checkpoint", "delete it and bake again from the start (BakeOptions::resume = false)");
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != fingerprint)
-    throw Error(subject, "was written for a different case file or time step",
+    throw Error(subject, "was written for a different case file, time step or solver parameters (those derived from the grid included)",
                 "bake again from the start, BakeOptions::resume = false (a checkpoint only continues the exact case that wrote it)");
   std::int32_t physics_revision = 0;
   if (!in.read(reinterpret_cast<char*>(&physics_revision), sizeof physics_revision))

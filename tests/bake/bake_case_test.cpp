@@ -225,31 +225,24 @@ TEST(BakeCase, IrregularSeaFromTheSpectrumBuilder) {
   EXPECT_EQ(c.wave_conditions["seed"], 42);
 }
 
-// The default wet/dry threshold is a harbour's (1 cm): a case in a flume of a few decimetres with a
-// beach that leaves it out is told, with the key and a value to give; one that gives it, a harbour,
-// or a flume without a shore (nothing runs up) is not.
-TEST(BakeCase, AHarbourDryDepthInAFlumeWarns) {
+// Left out, the wet/dry threshold is a 300th of the deepest water, at most the solver's centimetre
+// (docs/solver.md, "Wet and dry"): a flume of a few decimetres gets a millimetre-scale film, a harbour
+// keeps the centimetre, a given value is kept as given, and the manifest's solver record says which.
+TEST(BakeCase, TheDryDepthIsAThreeHundredthOfTheDeepestWaterUpToACentimetre) {
   const auto folder = scratch_folder();
   const std::string flat = "profile = [[0.0, 0.5], [12.0, 0.5]]";
   const std::string beach = "profile = [[0.0, 0.5], [9.0, 0.5], [12.0, -0.1]]";
   const BakeCase flume = read_bake_case(write_text(folder / "case.toml", edited(flat, beach)));
-  ASSERT_EQ(flume.warnings.size(), 1u);
-  const std::string& warning = flume.warnings.front();
-  RecordProperty("warning", warning);
-  EXPECT_NE(warning.find((folder / "case.toml").string()), std::string::npos) << warning;
-  EXPECT_NE(warning.find("`solver.dry_depth_m`"), std::string::npos) << warning;
-  EXPECT_NE(warning.find("2.0 % of this case's deepest water (0.5 m)"), std::string::npos) << warning;
-  EXPECT_NE(warning.find("give solver.dry_depth_m = 0.002"), std::string::npos) << warning;
-  EXPECT_DOUBLE_EQ(flume.solver.dry_depth_m, 0.01);  // a warning, not a change: the default stays
+  EXPECT_DOUBLE_EQ(flume.solver.dry_depth_m, 0.5 / 300.0);
+  EXPECT_DOUBLE_EQ(flume.solver_record["dry_depth_m"].get<double>(), 0.5 / 300.0);
+  EXPECT_TRUE(flume.warnings.empty()) << flume.warnings.front();
   const BakeCase given = read_bake_case(write_text(folder / "given.toml", edited(flat, beach) + "[solver]\ndry_depth_m = 0.002\n"));
-  EXPECT_TRUE(given.warnings.empty()) << given.warnings.front();
-  // Two metres of water: the centimetre is half a per cent of it, and the harbour default stands.
-  const BakeCase deeper = read_bake_case(
-      write_text(folder / "deeper.toml", edited(flat, "profile = [[0.0, 2.0], [9.0, 2.0], [12.0, -0.1]]")));
-  EXPECT_TRUE(deeper.warnings.empty()) << deeper.warnings.front();
-  // No shore: the flat flume ends in a wall, and no front moves.
-  const BakeCase walled = read_bake_case(write_text(folder / "walled.toml", small_flume_case()));
-  EXPECT_TRUE(walled.warnings.empty()) << walled.warnings.front();
+  EXPECT_DOUBLE_EQ(given.solver.dry_depth_m, 0.002);
+  // Three metres and deeper: a 300th is a centimetre or more, and the harbour's centimetre stands.
+  const BakeCase harbour = read_bake_case(
+      write_text(folder / "harbour.toml", edited(flat, "profile = [[0.0, 4.0], [9.0, 4.0], [12.0, -0.1]]")));
+  EXPECT_DOUBLE_EQ(harbour.solver.dry_depth_m, boussinesq::SolverParameters{}.dry_depth_m);
+  EXPECT_DOUBLE_EQ(harbour.solver.dry_depth_m, 0.01);
 }
 }  // namespace
 }  // namespace nearshore::bake

@@ -202,7 +202,6 @@ struct RunupResult {
 // the initial shoreline, over all frames.
 RunupResult run_synolakis(double height_ratio, const std::string& run_name, const std::vector<int>& profile_times) {
   constexpr double kDepth_m = 0.30, kCotBeta = 19.85, kShorelineX_m = 21.0;  // data/cases/synolakis.toml
-  double dry_depth_m = 0;
   bake_case("synolakis", run_name, [&](json& document) {
     // The crest starts at X1 = X0 + L offshore, X0 = 19.85 d the toe and L = arccosh(sqrt(20)) / gamma
     // the crest-to-5 % half-length (OAR PMEL-135, BP4; the case file explains the README's L/2).
@@ -216,9 +215,10 @@ RunupResult run_synolakis(double height_ratio, const std::string& run_name, cons
       // grew before the Shapiro filter.
       document["bathymetry"]["spacing_m"] = 0.0075;
     }
-    dry_depth_m = document["solver"]["dry_depth_m"].get<double>();
   });
   const sequence::SequenceReader reader(output_folder(run_name));
+  // The threshold the bake ran with (the case reader's default: a 300th of the 0.30 m), as it defines wet.
+  const double dry_depth_m = reader.manifest().solver.at("dry_depth_m").get<double>();
   const HarbourGrid grid = reader.read_harbour_grid();
   const int row = grid.geometry.rows / 2;
   RunupResult result;
