@@ -63,6 +63,9 @@ struct HansenSvendsenScore {
   double shoaling_height_rmse_m = 0, surf_zone_height_rmse_m = 0;  // before / after the measured break point
   double model_break_x_m = 0, data_break_x_m = 0;          // where the largest height is
   double set_down_before_break_m = 0, set_up_at_last_point_m = 0;  // model, relative to the toe
+  // The set-up RMSE up to and including the measured break point, and after it: where the wave
+  // closure's set-down is judged, and where the surf zone's (the roller's delay, docs/validation.md).
+  double set_up_rmse_to_break_m = 0, set_up_rmse_after_break_m = 0;
   std::vector<double> set_up_model_m, set_up_data_m;        // at the measured points, relative to the toe
   // The experiment's bars: FUNWAVE-TVD's published result, scored the same way (the better closure),
   // and its eddy-viscosity closure's alone (the closure this solver's default follows; 031041 only).
@@ -110,6 +113,12 @@ HansenSvendsenScore score_against_data(const std::vector<HansenSvendsenPoint>& d
   score.offshore_height_m = h_data.front();
   score.shoaling_height_rmse_m = zone_rmse(0, data_break);
   score.surf_zone_height_rmse_m = zone_rmse(data_break + 1, h_data.size());
+  auto set_up_zone_rmse = [&](std::size_t begin, std::size_t end) {
+    return root_mean_square_error(std::vector<double>(score.set_up_model_m.begin() + begin, score.set_up_model_m.begin() + end),
+                                  std::vector<double>(score.set_up_data_m.begin() + begin, score.set_up_data_m.begin() + end));
+  };
+  score.set_up_rmse_to_break_m = set_up_zone_rmse(0, data_break + 1);
+  score.set_up_rmse_after_break_m = set_up_zone_rmse(data_break + 1, x.size());
   score.model_break_x_m = x[model_break];
   score.data_break_x_m = x[data_break];
   for (std::size_t i = 0; i < x.size() && x[i] < score.data_break_x_m; ++i)
@@ -214,24 +223,30 @@ HansenSvendsenScore run_hansen_svendsen(const std::string& test_id, double perio
   results["set_up_rmse_m"] = score.level_rmse_m;  // relative to the toe
   results["shoaling_height_rmse_m"] = score.shoaling_height_rmse_m;
   results["surf_zone_height_rmse_m"] = score.surf_zone_height_rmse_m;
+  results["set_up_rmse_to_break_m"] = score.set_up_rmse_to_break_m;
+  results["set_up_rmse_after_break_m"] = score.set_up_rmse_after_break_m;
   results["break_point"] = {{"data_x_m", x[data_break]}, {"data_height_m", h_data[data_break]},
                             {"model_x_m", x[model_break]}, {"model_height_m", h_model[model_break]}};
   std::printf("Hansen-Svendsen %s (T = %.2f s, H = %.4f m): H RMSE %.4f m (%.1f %% of H0), shoaling %.4f m, surf zone %.4f m; "
-              "break point model x = %.2f m H = %.4f m, data x = %.2f m H = %.4f m; set-up RMSE (from the toe) %.2f mm (set-up data %.2f mm at %.2f m, "
-              "model %.2f mm); model level at the toe %+.2f mm\n",
+              "break point model x = %.2f m H = %.4f m, data x = %.2f m H = %.4f m; set-up RMSE (from the toe) %.2f mm (to the measured break "
+              "point %.2f mm, after it %.2f mm; set-up data %.2f mm at %.2f m, model %.2f mm); model level at the toe %+.2f mm\n",
               test_id.c_str(), period_s, height_m, score.height_rmse_m, 100 * score.height_rmse_m / score.offshore_height_m,
               score.shoaling_height_rmse_m, score.surf_zone_height_rmse_m, x[model_break], h_model[model_break], x[data_break],
-              h_data[data_break], 1000 * score.level_rmse_m, 1000 * score.set_up_data_m.back(), x.back(), 1000 * score.set_up_at_last_point_m,
+              h_data[data_break], 1000 * score.level_rmse_m, 1000 * score.set_up_rmse_to_break_m, 1000 * score.set_up_rmse_after_break_m,
+              1000 * score.set_up_data_m.back(), x.back(), 1000 * score.set_up_at_last_point_m,
               1000 * level_model.front());
   for (const ReferenceResult& reference : references) {
     const HansenSvendsenScore& r = reference.score;
     std::printf("  reference FUNWAVE-TVD (%s, published): H RMSE %.4f m (%.1f %% of H0), shoaling %.4f m, surf zone %.4f m; "
-                "break point x = %.2f m; set-up RMSE %.2f mm; H at the toe %.4f m\n",
+                "break point x = %.2f m; set-up RMSE %.2f mm (to the measured break point %.2f mm, after it %.2f mm); H at the toe %.4f m\n",
                 reference.closure.c_str(), r.height_rmse_m, 100 * r.height_rmse_m / r.offshore_height_m, r.shoaling_height_rmse_m,
-                r.surf_zone_height_rmse_m, r.model_break_x_m, 1000 * r.level_rmse_m, reference.profile.front().wave_height_m);
+                r.surf_zone_height_rmse_m, r.model_break_x_m, 1000 * r.level_rmse_m, 1000 * r.set_up_rmse_to_break_m,
+                1000 * r.set_up_rmse_after_break_m, reference.profile.front().wave_height_m);
     results["reference_funwave_tvd"][reference.closure] = {{"height_rmse_m", r.height_rmse_m}, {"set_up_rmse_m", r.level_rmse_m},
                                                            {"shoaling_height_rmse_m", r.shoaling_height_rmse_m},
-                                                           {"surf_zone_height_rmse_m", r.surf_zone_height_rmse_m}};
+                                                           {"surf_zone_height_rmse_m", r.surf_zone_height_rmse_m},
+                                                           {"set_up_rmse_to_break_m", r.set_up_rmse_to_break_m},
+                                                           {"set_up_rmse_after_break_m", r.set_up_rmse_after_break_m}};
   }
   for (std::size_t i = 0; i < x.size(); ++i)
     std::printf("  x %.2f m: H model %.4f data %.4f m, mean level model %+.2f data %+.2f mm\n", x[i], h_model[i], h_data[i],
