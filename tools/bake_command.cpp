@@ -53,6 +53,8 @@ void add_bake_command(CLI::App& app) {
                    fmt::format("estimate: {}", bake::estimate_bake_resources(bake_case, options->resume).describe()).c_str());
     if (const std::string band = bake::describe_carried_band(bake_case); !options->json && !band.empty())
       std::fprintf(stderr, "%s\n", band.c_str());
+    if (const std::string derived = bake::describe_derived_solver_settings(bake_case); !options->json && !derived.empty())
+      std::fprintf(stderr, "%s\n", derived.c_str());
     // Positions on land or outside the chart (issue 14 item 2): on stderr, also under --json.
     for (const std::string& warning : bake_case.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     const bake::BakeSummary summary = bake::run_bake(bake_case, bake_options);

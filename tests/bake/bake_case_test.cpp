@@ -236,13 +236,19 @@ TEST(BakeCase, TheDryDepthIsAThreeHundredthOfTheDeepestWaterUpToACentimetre) {
   EXPECT_DOUBLE_EQ(flume.solver.dry_depth_m, 0.5 / 300.0);
   EXPECT_DOUBLE_EQ(flume.solver_record["dry_depth_m"].get<double>(), 0.5 / 300.0);
   EXPECT_TRUE(flume.warnings.empty()) << flume.warnings.front();
+  const std::string report = describe_derived_solver_settings(flume);
+  RecordProperty("report", report);
+  EXPECT_NE(report.find("wet/dry threshold: 1.7 mm, a 300th of the 0.5 m deepest water (solver.dry_depth_m left out"),
+            std::string::npos) << report;
   const BakeCase given = read_bake_case(write_text(folder / "given.toml", edited(flat, beach) + "[solver]\ndry_depth_m = 0.002\n"));
   EXPECT_DOUBLE_EQ(given.solver.dry_depth_m, 0.002);
+  EXPECT_EQ(describe_derived_solver_settings(given), "");  // given, not derived
   // Three metres and deeper: a 300th is a centimetre or more, and the harbour's centimetre stands.
   const BakeCase harbour = read_bake_case(
       write_text(folder / "harbour.toml", edited(flat, "profile = [[0.0, 4.0], [9.0, 4.0], [12.0, -0.1]]")));
   EXPECT_DOUBLE_EQ(harbour.solver.dry_depth_m, boussinesq::SolverParameters{}.dry_depth_m);
   EXPECT_DOUBLE_EQ(harbour.solver.dry_depth_m, 0.01);
+  EXPECT_EQ(describe_derived_solver_settings(harbour), "");  // the solver's own default
 }
 }  // namespace
 }  // namespace nearshore::bake
