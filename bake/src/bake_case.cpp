@@ -317,13 +317,14 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
 }
 
 std::string describe_derived_solver_settings(const BakeCase& bake_case) {
-  const json& solver = bake_case.source.contains("solver") ? bake_case.source["solver"] : json::object();
+  const auto solver = bake_case.source.find("solver");
+  const bool given = solver != bake_case.source.end() && solver->is_object() && solver->contains("dry_depth_m");
   const double solver_default_m = SolverParameters{}.dry_depth_m;
-  if ((solver.is_object() && solver.contains("dry_depth_m")) || !(bake_case.solver.dry_depth_m < solver_default_m)) return "";
+  if (given || !(bake_case.solver.dry_depth_m < solver_default_m)) return "";
   return fmt::format("wet/dry threshold: {:.2g} mm, a {:.0f}th of the {:.3g} m deepest water (solver.dry_depth_m left out; "
-                     "a harbour 3 m deep or deeper gets {:.0f} cm; docs/solver.md, \"Wet and dry\")",
+                     "a harbour {:.3g} m deep or deeper gets {:.0f} cm; docs/solver.md, \"Wet and dry\")",
                      1000.0 * bake_case.solver.dry_depth_m, kDepthsPerDryDepth, deepest_still_water_m(bake_case.harbour),
-                     100.0 * solver_default_m);
+                     kDepthsPerDryDepth * solver_default_m, 100.0 * solver_default_m);
 }
 
 std::string describe_carried_band(const BakeCase& bake_case) {
