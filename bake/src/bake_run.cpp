@@ -223,13 +223,23 @@ class CheckpointFileBuffer : public std::streambuf {
                         bake_case.solver.shapiro_filter_order)
           : fmt::format("or lower solver.breaking.onset_celerity_fraction (now {}) so waves break earlier",
                         breaking.onset_celerity_fraction);
+  // A filtered run on cells finer than a quarter of the depth can go unstable next to a staircase
+  // wall (a pier, an island of square cells): the grid-scale filter's known limit (docs/solver.md).
+  const double finest_spacing_m = std::min(bake_case.harbour.geometry.spacing_x_m(), bake_case.harbour.geometry.spacing_y_m());
+  const std::string filter_remedy =
+      bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= 0.25 * report.depth_m
+          ? fmt::format("; if the cell is near a wall or shore drawn in square cells, set solver.shapiro_filter_order = 0 (now {}): "
+                        "on cells finer than a quarter of the depth the grid-scale filter can destabilise a staircase wall "
+                        "(docs/solver.md, \"Grid-scale filter\")",
+                        bake_case.solver.shapiro_filter_order)
+          : std::string();
   throw Error(bake_case.case_file.string(),
               fmt::format("the solver became unstable at t = {:.3f} s in cell (column {}, row {}) at x = {:.2f} m, y = {:.2f} m, "
                           "still-water depth {:.3f} m: {} (value {:.4g})",
                           report.time_s, report.column, report.row, report.x_m, report.y_m, report.depth_m, report.what, report.value),
               fmt::format("reduce time.courant_number or time.time_step_s (now {:.5g} s), smooth the bathymetry near that cell "
-                          "or raise solver.dispersion_cutoff_depth_m, {}; {}",
-                          bake_case.solver.time_step_s, breaking_remedy, kept));
+                          "or raise solver.dispersion_cutoff_depth_m, {}{}; {}",
+                          bake_case.solver.time_step_s, breaking_remedy, filter_remedy, kept));
 }
 
 void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const BoussinesqSolver& solver,
