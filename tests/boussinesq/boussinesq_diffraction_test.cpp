@@ -175,8 +175,10 @@ TEST(BoussinesqDiffraction, MacCamyFuchsSeriesMeetsItsClosedFormOnTheWall) {
 
 // Grid: 0.1 m, a = 6.5 cells, 40 cells per wavelength, d / dx = 5. Every cylinder cell is a square,
 // so the wall is a staircase whose faces lie up to dx/2 (0.08 a) off the circle; at 13 cells per
-// radius (0.05 m) the same comparison falls within 3 % everywhere (docs/validation.md), the
-// staircase's first-order error halving with the cell. The bars: 10 % at any point on the wall and 5 %
+// radius (0.05 m, run with shapiro_filter_order = 0: the default filter is unstable there, see the
+// disabled test below) the same comparison falls within 3 % everywhere (docs/validation.md), the
+// staircase's first-order error halving with the cell. The record ends at 20 s, before the north
+// wall's echo and well before this basin's own filter instability (t = 32 s). The bars: 10 % at any point on the wall and 5 %
 // root mean square round it, 5 % along the lee and the front; land and wall cells are the same
 // boundary to the solver's fluxes, so they agree within 0.5 %.
 TEST(BoussinesqDiffraction, VerticalCylinderFollowsMacCamyFuchs) {
