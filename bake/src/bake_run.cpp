@@ -223,15 +223,17 @@ class CheckpointFileBuffer : public std::streambuf {
                         bake_case.solver.shapiro_filter_order)
           : fmt::format("or lower solver.breaking.onset_celerity_fraction (now {}) so waves break earlier",
                         breaking.onset_celerity_fraction);
-  // A filtered run on cells finer than a quarter of the depth can go unstable next to a staircase
-  // wall (a pier, an island of square cells): the grid-scale filter's known limit (docs/solver.md).
+  // A filtered run on cells of a fifth of the depth or finer went unstable next to a staircase wall
+  // (a cylinder of square cells; docs/validation.md): the grid-scale filter's known limit. The
+  // advice starts a little coarser, at a quarter.
+  constexpr double kStaircaseSpacingPerDepth = 0.25;
   const double finest_spacing_m = std::min(bake_case.harbour.geometry.spacing_x_m(), bake_case.harbour.geometry.spacing_y_m());
   const std::string filter_remedy =
-      bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= 0.25 * report.depth_m
+      bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= kStaircaseSpacingPerDepth * report.depth_m
           ? fmt::format("; if the cell is near a wall or shore drawn in square cells, set solver.shapiro_filter_order = 0 (now {}): "
-                        "on cells finer than a quarter of the depth the grid-scale filter can destabilise a staircase wall "
+                        "on cells finer than {:.2g} of the depth the grid-scale filter can destabilise a staircase wall "
                         "(docs/solver.md, \"Grid-scale filter\")",
-                        bake_case.solver.shapiro_filter_order)
+                        bake_case.solver.shapiro_filter_order, kStaircaseSpacingPerDepth)
           : std::string();
   throw Error(bake_case.case_file.string(),
               fmt::format("the solver became unstable at t = {:.3f} s in cell (column {}, row {}) at x = {:.2f} m, y = {:.2f} m, "
