@@ -914,8 +914,22 @@ double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
   const int c0 = std::min(static_cast<int>(u), s.nx - 1), r0 = std::min(static_cast<int>(v), s.ny - 1);
   const int c1 = std::min(c0 + 1, s.nx - 1), r1 = std::min(r0 + 1, s.ny - 1);
   const double a = u - c0, b = v - r0;
-  auto e = [&](int c, int r) { return s.eta[index(c, r, s.nx)]; };
-  return (1 - a) * (1 - b) * e(c0, r0) + a * (1 - b) * e(c1, r0) + (1 - a) * b * e(c0, r1) + a * b * e(c1, r1);
+  // Only cells that hold water now: a dry cell's eta is its ground (h = 0) and a wall's is 0, and
+  // neither is the water surface a gauge beside a quay or in the swash should read (its mean level
+  // would take the ground's height with the cell's weight). The wet cells' weights are renormalised;
+  // where none of the four is wet the gauge reads the nearest cell: the ground it stands on.
+  const int columns[4] = {c0, c1, c0, c1}, rows[4] = {r0, r0, r1, r1};
+  const double weights[4] = {(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
+  double weighted = 0.0, wet_weight = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const std::size_t i = index(columns[k], rows[k], s.nx);
+    if (s.frame_y.inverse_porosity[i] > 0.0f && s.frame_y.depth_m[i] + s.eta[i] > s.parameters.dry_depth_m) {
+      weighted += weights[k] * s.eta[i];
+      wet_weight += weights[k];
+    }
+  }
+  if (wet_weight > 0.0) return weighted / wet_weight;
+  return s.eta[index(a < 0.5 ? c0 : c1, b < 0.5 ? r0 : r1, s.nx)];
 }
 
 std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {

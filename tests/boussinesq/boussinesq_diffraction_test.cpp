@@ -69,7 +69,7 @@ std::vector<double> first_harmonic_amplitudes(BoussinesqSolver& solver, const st
     return amplitude;
   }
   // The record's mean comes off first: the time step is no whole fraction of the period, so a mean
-  // would leak into the amplitude (a gauge beside a land cell reads its ground, 1 m, in the mean).
+  // would leak into the amplitude (the waves' second-order set-down, for one).
   for (std::size_t p = 0; p < points.size(); ++p) {
     std::vector<double>& record = records[p];
     const double mean = std::accumulate(record.begin(), record.end(), 0.0) / static_cast<double>(record.size());
@@ -133,8 +133,8 @@ CylinderRun run_cylinder(Cylinder kind, double spacing_m, int shapiro_filter_ord
       }
     }
   // Round the wall one cell out every 15 degrees, the lee out to 6 a and the front's standing wave
-  // out to 3 a. A bilinear gauge one cell out can still take a corner of its four cells from the
-  // cylinder (at 45 degrees about 5 % of its weight, a cell that holds no wave); the bars allow it.
+  // out to 3 a. A gauge one cell out can have a corner of its four cells in the cylinder (at 45
+  // degrees); the gauge then interpolates over the three water cells (surface_elevation_at).
   const double wall = 1.0 + spacing_m / radius_m;
   for (int degrees = 0; degrees <= 180; degrees += 15) run.probes.push_back({wall, static_cast<double>(degrees)});
   for (double r : {1.5, 2.0, 3.0, 4.0, 6.0}) run.probes.push_back({r, 0.0});

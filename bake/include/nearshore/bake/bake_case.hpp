@@ -26,7 +26,7 @@
 namespace nearshore::bake {
 
 /// A named point where the surface elevation is recorded every gauge interval (gauges.csv): bilinear
-/// between the four cell centres around it (BoussinesqSolver::surface_elevation_at).
+/// between those of the four cell centres around it that hold water (BoussinesqSolver::surface_elevation_at).
 struct GaugeSpec {
   std::string name;
   double x_m = 0.0;  ///< grid frame (GridGeometry origin included), metres; the case file gives it from the SW corner

@@ -181,7 +181,9 @@ struct SolverParameters {
   int nonlinear_iterations = 2;       ///< passes of the time-centred (Crank-Nicolson) iteration per half step
   int adi_passes = 1;                 ///< x + y sweep pairs per step; 2 re-solves with this step's across terms (fine grids)
   /// Sweep order x-y on even steps, y-x on odd steps, so the lag of the across terms in the first
-  /// sweep falls on each direction in turn (docs/solver.md, "Sweep order").
+  /// sweep falls on each direction in turn: it removes about half of the fixed order's splitting
+  /// bias where waves focus, but lets the fine-grid across mode grow even with the grid-scale filter
+  /// (docs/solver.md, "Sweep order"); adi_passes = 2 removes the bias instead.
   bool alternate_sweep_order = false;
   /// Order 2p of the Shapiro (1970) filter applied to P and Q every step (even, 0 = off): it removes
   /// the grid-scale two-dimensional mode of fine grids and leaves resolved waves alone (response
@@ -234,7 +236,11 @@ class BoussinesqSolver {
   /// P and Q averaged from the faces to the cell centres, m^2/s (resized as needed).
   void cell_centred_fluxes(Raster<float>& flux_x_m2_s, Raster<float>& flux_y_m2_s) const;
   const Raster<float>& breaking_indicator() const;                  ///< 0..1 per cell
-  double surface_elevation_at(double x_m, double y_m) const;        ///< bilinear between cell centres, for gauges
+  /// Surface elevation at a point, metres, for gauges: bilinear between the four cell centres around
+  /// it, over those that hold water now (wet, porosity > 0; their weights renormalised), so a gauge
+  /// beside a quay, a wall or a dry beach reads the water and not the ground; where none of the four
+  /// holds water, the nearest cell's eta (on dry land: the ground's height).
+  double surface_elevation_at(double x_m, double y_m) const;
   std::optional<InstabilityReport> check_stability() const;         ///< NaN or |eta| too large
   double water_volume_m3() const;            ///< sum of n * h * area over wet cells (for mass tests)
   /// Bytes of every grid-sized array the solver holds (state, work, static coefficients, sponge
