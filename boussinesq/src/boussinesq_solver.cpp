@@ -32,6 +32,12 @@ namespace {
 
 std::size_t index(int c, int r, int cols) { return static_cast<std::size_t>(r) * cols + c; }
 
+// A cell holds water: open (porosity > 0) and its water depth d + eta above the wet/dry threshold.
+// `&`, not `&&`, so the loops that call it vectorise.
+inline bool holds_water(float inverse_porosity, float still_water_depth_m, double eta_m, double dry_depth_m) {
+  return (inverse_porosity > 0.0f) & (still_water_depth_m + eta_m > dry_depth_m);
+}
+
 // body(i) for i in [0, count), in parallel chunks: element-wise work, so the result does not
 // depend on the thread count.
 template <class Body>
@@ -413,7 +419,7 @@ void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame,
   tbb::parallel_for(0, cols, [&](int c) {
     const std::size_t line = static_cast<std::size_t>(c) * rows;
     for (int l = 0; l < rows; ++l)
-      wet[line + l] = (frame.inverse_porosity[line + l] > 0.0f) & (frame.depth_m[line + l] + eta_frame[line + l] > dry);
+      wet[line + l] = holds_water(frame.inverse_porosity[line + l], frame.depth_m[line + l], eta_frame[line + l], dry);
   });
   tbb::parallel_for(0, cols, [&](int c) {
     const unsigned char* here = wet + static_cast<std::size_t>(c) * rows;
@@ -923,7 +929,7 @@ double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
   double weighted = 0.0, wet_weight = 0.0;
   for (int k = 0; k < 4; ++k) {
     const std::size_t i = index(columns[k], rows[k], s.nx);
-    if (s.frame_y.inverse_porosity[i] > 0.0f && s.frame_y.depth_m[i] + s.eta[i] > s.parameters.dry_depth_m) {
+    if (holds_water(s.frame_y.inverse_porosity[i], s.frame_y.depth_m[i], s.eta[i], s.parameters.dry_depth_m)) {
       weighted += weights[k] * s.eta[i];
       wet_weight += weights[k];
     }
