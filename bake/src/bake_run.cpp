@@ -223,15 +223,16 @@ class CheckpointFileBuffer : public std::streambuf {
                         bake_case.solver.shapiro_filter_order)
           : fmt::format("or lower solver.breaking.onset_celerity_fraction (now {}) so waves break earlier",
                         breaking.onset_celerity_fraction);
-  // A filtered run on cells of a fifth of the depth or finer went unstable next to a staircase wall
-  // (a cylinder of square cells; docs/validation.md): the grid-scale filter's known limit. The
-  // advice starts a little coarser, at a quarter.
-  constexpr double kStaircaseSpacingPerDepth = 0.25;
+  // The grid-scale filter's known limit at walls (docs/solver.md, "Grid-scale filter"): from still
+  // water with noise, a square pier's corners grew a mode along its faces on cells of 0.7 and 0.5 of
+  // the depth (a cylinder of square cells on a fifth of it blew up within 8 s with waves), and the
+  // noise decayed on cells as long as the depth. The advice starts at 0.7.
+  constexpr double kStaircaseSpacingPerDepth = 0.7;
   const double finest_spacing_m = std::min(bake_case.harbour.geometry.spacing_x_m(), bake_case.harbour.geometry.spacing_y_m());
   const std::string filter_remedy =
       bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= kStaircaseSpacingPerDepth * report.depth_m
           ? fmt::format("; if the cell is near a wall or shore drawn in square cells, set solver.shapiro_filter_order = 0 (now {}): "
-                        "on cells finer than {:.2g} of the depth the grid-scale filter can destabilise a staircase wall "
+                        "on cells finer than {:.2g} of the depth the grid-scale filter can destabilise the water beside a wall "
                         "(docs/solver.md, \"Grid-scale filter\")",
                         bake_case.solver.shapiro_filter_order, kStaircaseSpacingPerDepth)
           : std::string();
