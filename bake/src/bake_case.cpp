@@ -115,6 +115,24 @@ double default_dry_depth_m(const HarbourGrid& harbour) {
   return std::min(harbour_dry_depth_m, deepest_m / kDepthsPerDryDepth);
 }
 
+// The grid-scale filter where [solver] leaves it out (docs/solver.md, "Grid-scale filter"): the
+// solver's order 8 on grids finer than a quarter of the deepest water, off on coarser ones. The
+// filter is there for a mode of fine grids: unfiltered, a narrow flume's across mode blows up within
+// 200 s at d/dx = 12 and grows with an e-folding time of 160-300 s at d/dx = 3-6 and 800 s at 2. Its
+// cost is at walls: the edge of its mask beside a quay or pier tips a mode along the wall over, which
+// grows with an e-folding time of 13-20 s at d/dx = 1.4-2 (and decays at 1); a harbour bake on cells
+// of half the depth showed it as two-cell stripes in Hs along its breakwaters. So a harbour grid
+// (cells of a third of the depth or coarser) runs without it and a laboratory grid with it; all
+// figures measured 2026-11-28 from still water with noise.
+constexpr double kFilteredDepthsPerCell = 4.0;
+
+int default_shapiro_filter_order(const HarbourGrid& harbour) {
+  const int solver_order = boussinesq::SolverParameters{}.shapiro_filter_order;
+  const double deepest_m = deepest_still_water_m(harbour);
+  const double spacing_m = harbour.geometry.smaller_spacing_m();
+  return deepest_m > kFilteredDepthsPerCell * spacing_m ? solver_order : 0;
+}
+
 }  // namespace
 
 long whole_steps(double interval_s, double step_s) {
@@ -165,6 +183,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   dispersion_bound.effective_depth_limit_given = solver.has("effective_depth_limit_m");
   dispersion_bound.effective_depth_limit_m = bake_case.solver.effective_depth_limit_m;
   if (!solver.has("dry_depth_m")) bake_case.solver.dry_depth_m = default_dry_depth_m(bake_case.harbour);
+  if (!solver.has("shapiro_filter_order")) bake_case.solver.shapiro_filter_order = default_shapiro_filter_order(bake_case.harbour);
   solver.finish();
   for (TableReader& entry : root.tables("sponges")) {
     SpongeLayer sponge;
@@ -318,13 +337,20 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
 
 std::string describe_derived_solver_settings(const BakeCase& bake_case) {
   const auto solver = bake_case.source.find("solver");
-  const bool given = solver != bake_case.source.end() && solver->is_object() && solver->contains("dry_depth_m");
+  auto given = [&](const char* key) { return solver != bake_case.source.end() && solver->is_object() && solver->contains(key); };
+  std::string text;
   const double solver_default_m = SolverParameters{}.dry_depth_m;
-  if (given || !(bake_case.solver.dry_depth_m < solver_default_m)) return "";
-  return fmt::format("wet/dry threshold: {:.2g} mm, a {:.0f}th of the {:.3g} m deepest water (solver.dry_depth_m left out; "
-                     "a harbour {:.3g} m deep or deeper gets {:.0f} cm; docs/solver.md, \"Wet and dry\")",
-                     1000.0 * bake_case.solver.dry_depth_m, kDepthsPerDryDepth, deepest_still_water_m(bake_case.harbour),
-                     kDepthsPerDryDepth * solver_default_m, 100.0 * solver_default_m);
+  if (!given("dry_depth_m") && bake_case.solver.dry_depth_m < solver_default_m)
+    text = fmt::format("wet/dry threshold: {:.2g} mm, a {:.0f}th of the {:.3g} m deepest water (solver.dry_depth_m left out; "
+                       "a harbour {:.3g} m deep or deeper gets {:.0f} cm; docs/solver.md, \"Wet and dry\")",
+                       1000.0 * bake_case.solver.dry_depth_m, kDepthsPerDryDepth, deepest_still_water_m(bake_case.harbour),
+                       kDepthsPerDryDepth * solver_default_m, 100.0 * solver_default_m);
+  if (!given("shapiro_filter_order") && bake_case.solver.shapiro_filter_order != SolverParameters{}.shapiro_filter_order)
+    text += fmt::format("{}grid-scale filter: off, the {:.3g} m cells are not finer than 1/{:.0f} of the {:.3g} m deepest water "
+                        "(solver.shapiro_filter_order left out; finer grids get order {}; docs/solver.md, \"Grid-scale filter\")",
+                        text.empty() ? "" : "\n", bake_case.harbour.geometry.smaller_spacing_m(), kFilteredDepthsPerCell,
+                        deepest_still_water_m(bake_case.harbour), SolverParameters{}.shapiro_filter_order);
+  return text;
 }
 
 std::string describe_carried_band(const BakeCase& bake_case) {

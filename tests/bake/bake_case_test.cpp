@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <regex>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -249,6 +250,34 @@ TEST(BakeCase, TheDryDepthIsAThreeHundredthOfTheDeepestWaterUpToACentimetre) {
   EXPECT_DOUBLE_EQ(harbour.solver.dry_depth_m, boussinesq::SolverParameters{}.dry_depth_m);
   EXPECT_DOUBLE_EQ(harbour.solver.dry_depth_m, 0.01);
   EXPECT_EQ(describe_derived_solver_settings(harbour), "");  // the solver's own default
+}
+
+// Left out, the grid-scale filter follows the grid (docs/solver.md, "Grid-scale filter"): the
+// solver's order 8 on cells finer than a quarter of the deepest water (a laboratory grid, where the
+// fine-grid mode it removes arises), off on coarser ones (a harbour grid, where its mask's edge
+// beside a quay grows a mode of its own); a given order is kept, and the solver record says which.
+TEST(BakeCase, TheGridScaleFilterIsOnForGridsFinerThanAQuarterOfTheDepth) {
+  const auto folder = scratch_folder();
+  const std::string flat = "profile = [[0.0, 0.5], [12.0, 0.5]]";
+  const BakeCase fine = read_bake_case(write_text(folder / "fine.toml", edited(flat, flat)));
+  const double spacing_m = fine.harbour.geometry.smaller_spacing_m();
+  ASSERT_LT(spacing_m, 0.5 / 4.0);
+  EXPECT_EQ(fine.solver.shapiro_filter_order, boussinesq::SolverParameters{}.shapiro_filter_order);
+  EXPECT_EQ(fine.solver.shapiro_filter_order, 8);
+  // The same cells under water 3 cells deep: a harbour's proportions.
+  const std::string depth = std::to_string(3.0 * spacing_m);
+  const std::string shallow = "profile = [[0.0, " + depth + "], [12.0, " + depth + "]]";
+  const BakeCase coarse = read_bake_case(write_text(folder / "coarse.toml", edited(flat, shallow)));
+  EXPECT_EQ(coarse.solver.shapiro_filter_order, 0);
+  EXPECT_EQ(coarse.solver_record["shapiro_filter_order"].get<int>(), 0);
+  const std::string report = describe_derived_solver_settings(coarse);
+  RecordProperty("report", report);
+  EXPECT_NE(report.find("grid-scale filter: off"), std::string::npos) << report;
+  EXPECT_NE(report.find("solver.shapiro_filter_order left out"), std::string::npos) << report;
+  const BakeCase given =
+      read_bake_case(write_text(folder / "given.toml", edited(flat, shallow) + "[solver]\nshapiro_filter_order = 8\n"));
+  EXPECT_EQ(given.solver.shapiro_filter_order, 8);
+  EXPECT_EQ(describe_derived_solver_settings(given).find("grid-scale filter"), std::string::npos);
 }
 }  // namespace
 }  // namespace nearshore::bake

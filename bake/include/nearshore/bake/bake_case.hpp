@@ -121,9 +121,10 @@ double resolve_time_step(double requested_time_step_s, double courant_number, co
 std::string describe_carried_band(const BakeCase& bake_case);
 
 /// The solver settings the case reader derived from the grid because the case file left them out
-/// and that differ from the solver's own defaults, in words for the bake's report: today the wet/dry
-/// threshold of a grid shallower than 3 m (a 300th of its deepest water; docs/solver.md, "Wet and
-/// dry"). Empty when there is none.
+/// and that differ from the solver's own defaults, in words for the bake's report, one per line: the
+/// wet/dry threshold of a grid shallower than 3 m (a 300th of its deepest water; docs/solver.md, "Wet
+/// and dry") and the grid-scale filter turned off on a grid whose cells are not finer than a quarter
+/// of its deepest water (docs/solver.md, "Grid-scale filter"). Empty when there is none.
 std::string describe_derived_solver_settings(const BakeCase& bake_case);
 
 /// The number of steps of `step_s` in `interval_s`, if it is a whole number (to 1e-9 relative), else -1.
