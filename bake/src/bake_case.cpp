@@ -122,8 +122,8 @@ double default_dry_depth_m(const HarbourGrid& harbour) {
 // cost is at walls: the edge of its mask beside a quay or pier tips a mode along the wall over, which
 // grows with an e-folding time of 13-20 s at d/dx = 1.4-2 (and decays at 1); a harbour bake on cells
 // of half the depth showed it as two-cell stripes in Hs along its breakwaters. So a harbour grid
-// (cells of a third of the depth or coarser) runs without it and a laboratory grid with it; all
-// figures measured 2026-11-28 from still water with noise.
+// (cells a quarter of the deepest water long or longer) runs without it and a laboratory grid with
+// it; the growth figures were measured 2026-11-28 from still water with noise.
 constexpr double kFilteredDepthsPerCell = 4.0;
 
 int default_shapiro_filter_order(const HarbourGrid& harbour) {

@@ -227,14 +227,14 @@ class CheckpointFileBuffer : public std::streambuf {
   // water with noise, a square pier's corners grew a mode along its faces on cells of 0.7 and 0.5 of
   // the depth (a cylinder of square cells on a fifth of it blew up within 8 s with waves), and the
   // noise decayed on cells as long as the depth. The advice starts at 0.7.
-  constexpr double kStaircaseSpacingPerDepth = 0.7;
+  constexpr double kWallModeSpacingPerDepth = 0.7;
   const double finest_spacing_m = std::min(bake_case.harbour.geometry.spacing_x_m(), bake_case.harbour.geometry.spacing_y_m());
   const std::string filter_remedy =
-      bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= kStaircaseSpacingPerDepth * report.depth_m
+      bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= kWallModeSpacingPerDepth * report.depth_m
           ? fmt::format("; if the cell is near a wall or shore drawn in square cells, set solver.shapiro_filter_order = 0 (now {}): "
                         "on cells finer than {:.2g} of the depth the grid-scale filter can destabilise the water beside a wall "
                         "(docs/solver.md, \"Grid-scale filter\")",
-                        bake_case.solver.shapiro_filter_order, kStaircaseSpacingPerDepth)
+                        bake_case.solver.shapiro_filter_order, kWallModeSpacingPerDepth)
           : std::string();
   throw Error(bake_case.case_file.string(),
               fmt::format("the solver became unstable at t = {:.3f} s in cell (column {}, row {}) at x = {:.2f} m, y = {:.2f} m, "
