@@ -228,7 +228,7 @@ class CheckpointFileBuffer : public std::streambuf {
   // the depth (a cylinder of square cells on a fifth of it blew up within 8 s with waves), and the
   // noise decayed on cells as long as the depth. The advice starts at 0.7.
   constexpr double kWallModeSpacingPerDepth = 0.7;
-  const double finest_spacing_m = std::min(bake_case.harbour.geometry.spacing_x_m(), bake_case.harbour.geometry.spacing_y_m());
+  const double finest_spacing_m = bake_case.harbour.geometry.smaller_spacing_m();
   const std::string filter_remedy =
       bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= kWallModeSpacingPerDepth * report.depth_m
           ? fmt::format("; if the cell is near a wall or shore drawn in square cells, set solver.shapiro_filter_order = 0 (now {}): "

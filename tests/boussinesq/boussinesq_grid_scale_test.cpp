@@ -37,11 +37,8 @@ FlumeRun run_narrow_flume(int shapiro_filter_order) {
   maker.ramp_time_s = 3.0;
   maker.sea_state.components = {{0.015, 2.0 * std::numbers::pi / 1.2, 0.0, 0.0}};
   BoussinesqSolver solver(harbour, parameters, maker);
-  unsigned state = 12345u;  // a linear congruential sequence: the same noise on every platform
-  solver.set_surface_elevation([&](double, double) {
-    state = state * 1103515245u + 12345u;
-    return 1e-4 * (static_cast<double>((state >> 16) % 1000u) / 999.0 - 0.5);
-  });
+  testing::UniformNoise noise(1e-4);
+  solver.set_surface_elevation([&](double, double) { return noise(); });
   FlumeRun run;
   Raster<float> flux_x, flux_y;
   std::vector<double> low(500, 1e9), high(500, -1e9);

@@ -28,6 +28,21 @@ inline SolverParameters inviscid_parameters(double courant_number = 0.5) {
   return parameters;
 }
 
+/// Deterministic noise to seed every grid mode of a state: a linear congruential sequence, the same
+/// on every platform, each call uniform in [-amplitude/2, +amplitude/2] in 1000 levels.
+class UniformNoise {
+ public:
+  explicit UniformNoise(double amplitude) : amplitude_(amplitude) {}
+  double operator()() {
+    state_ = state_ * 1103515245u + 12345u;
+    return amplitude_ * (static_cast<double>((state_ >> 16) % 1000u) / 999.0 - 0.5);
+  }
+
+ private:
+  double amplitude_;
+  unsigned state_ = 12345u;
+};
+
 /// Where tests write plots: <build>/validation/boussinesq/.
 // Period of a standing mode (a closed basin's eigenmode set by set_surface_elevation) from the
 // zero crossings of the corner cell (0, 0), each interpolated linearly within its time step:
