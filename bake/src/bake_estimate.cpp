@@ -15,7 +15,8 @@
 //
 // Since 2026-11-24 (issue 15, scale) the estimate splits the two: kBakeBytesPerCell = 250 B per
 // cell and kBakeBytesPerLinePerThread = 3.5 kB per cell of the longest side per thread (the
-// sweep's 19 scratch arrays of 16 lanes and the filter's 128-line block). Measured on 4000 x 4000
+// sweep's 19 scratch arrays of 16 lanes and the filter's 128-line block; 4 kB since the sweep's four
+// wall arrays of 2026-11-28). Measured on 4000 x 4000
 // (the Berkhoff basin at 7.5 x 5 mm, 5 steps, two frames, a checkpoint, two threads; docs/solver.md
 // "Scale"): peak 4.29e9 B, 262 B per cell above the 73 MB of code and libraries, of which 41 B are
 // the wave statistics; the single 300 B figure estimated 5.46e9 B (27 % over), this one 4.70e9 B

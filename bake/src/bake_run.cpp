@@ -233,7 +233,8 @@ class CheckpointFileBuffer : public std::streambuf {
       bake_case.solver.shapiro_filter_order > 0 && finest_spacing_m <= kWallModeSpacingPerDepth * report.depth_m
           ? fmt::format("; if the cell is near a wall or shore drawn in square cells, set solver.shapiro_filter_order = 0 (now {}): "
                         "on cells finer than {:.2g} of the depth the grid-scale filter can destabilise the water beside a wall "
-                        "(docs/solver.md, \"Grid-scale filter\")",
+                        "(docs/solver.md, \"Grid-scale filter\"), or, beside walls along the grid's lines, "
+                        "solver.wall_dispersion = \"mirror_at_walls\" (docs/solver.md, \"Walls and the dispersive terms\")",
                         bake_case.solver.shapiro_filter_order, kWallModeSpacingPerDepth)
           : std::string();
   throw Error(bake_case.case_file.string(),

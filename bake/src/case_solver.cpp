@@ -15,6 +15,9 @@ using namespace nearshore::ocean;       // spectra, sea states, the deep-water f
 using namespace nearshore::boussinesq;  // the solver and its parameters
 
 namespace {
+const char* wall_dispersion_name(SolverParameters::WallDispersion wall_dispersion) {
+  return wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls ? "mirror_at_walls" : "end_before_walls";
+}
 const char* face_depth_name(SolverParameters::FaceDepth face_depth) {
   return face_depth == SolverParameters::FaceDepth::kMeanWhereWet ? "mean_where_wet" : "larger_of_mean_and_above_bed";
 }
@@ -46,6 +49,8 @@ SolverParameters read_solver(TableReader& solver) {
                            ? DispersionDepth::kTotal : DispersionDepth::kStillWater;
   p.face_depth = solver.choice("face_depth", face_depth_name(p.face_depth), {"mean_where_wet", "larger_of_mean_and_above_bed"}) == 0
                      ? SolverParameters::FaceDepth::kMeanWhereWet : SolverParameters::FaceDepth::kLargerOfMeanAndAboveBed;
+  p.wall_dispersion = solver.choice("wall_dispersion", wall_dispersion_name(p.wall_dispersion), {"end_before_walls", "mirror_at_walls"}) == 1
+                          ? SolverParameters::WallDispersion::kMirrorAtWalls : SolverParameters::WallDispersion::kEndBeforeWalls;
   p.nonlinear_iterations = solver.integer("nonlinear_iterations", p.nonlinear_iterations, 1, 20, "iterations per half step");
   p.adi_passes = solver.integer("adi_passes", p.adi_passes, 1, 4, "x + y sweep pairs per step");
   p.alternate_sweep_order = solver.boolean("alternate_sweep_order", p.alternate_sweep_order);
@@ -102,6 +107,7 @@ json solver_record(const SolverParameters& p) {
           {"kinematic_viscosity_m2_s", p.kinematic_viscosity_m2_s},
           {"dispersion_depth", p.dispersion_depth == DispersionDepth::kTotal ? "total" : "still_water"},
           {"face_depth", face_depth_name(p.face_depth)},
+          {"wall_dispersion", wall_dispersion_name(p.wall_dispersion)},
           {"nonlinear_iterations", p.nonlinear_iterations},
           {"adi_passes", p.adi_passes},
           {"shapiro_filter_order", p.shapiro_filter_order},

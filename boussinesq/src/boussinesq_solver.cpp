@@ -284,7 +284,8 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
                  parameters.nonlinear_iterations,
                  parameters.dispersion_depth == DispersionDepth::kTotal,
                  parameters.face_depth == SolverParameters::FaceDepth::kMeanWhereWet,
-                 parameters.equations == Equations::kFullyNonlinear};
+                 parameters.equations == Equations::kFullyNonlinear,
+                 parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls};
   s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters);
   {
     std::vector<float> depth_t(cells), porosity_t(cells);
@@ -369,7 +370,8 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   if (parameters.equations == Equations::kFullyNonlinear)
     s.nonlinear = std::make_unique<detail::NonlinearDispersion>(detail::NonlinearDispersionGrid{
         s.nx, s.ny, s.dx, s.dy, s.frame_y.depth_m.data(), s.frame_y.porosity.data(), s.frame_x.face_dispersion_weight.data(),
-        s.frame_y.face_dispersion_weight.data(), parameters.dispersion_coefficient, parameters.dry_depth_m});
+        s.frame_y.face_dispersion_weight.data(), parameters.dispersion_coefficient, parameters.dry_depth_m,
+        parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls});
   s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
   s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
   if (parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kRoller) {
@@ -411,24 +413,65 @@ BoussinesqSolver::~BoussinesqSolver() = default;
 
 void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame, const double* eta_frame, unsigned char* mask) {
   // The dispersive terms apply where the cell and its 4 neighbours are wet (docs/solver.md); beyond
-  // the grid edges the neighbour is the edge cell itself. Two passes (wet cells, then the 5-point
-  // product) so both loops run over contiguous lanes and vectorise.
+  // the grid edges the neighbour is the edge cell itself (the mirror of a wall). With
+  // WallDispersion::kMirrorAtWalls a dry neighbour behind a wall counts as that mirror too
+  // (detail::kMirror*, boussinesq_sweep.hpp): a cell of porosity 0, or a bed higher than this
+  // cell's by a cell's length or more (a step steeper than 1:1: a quay, a pier, a breakwater's
+  // face). So the water beside a wall has the dispersive terms as the water beside the grid's edges
+  // has them, with the wall's cell read as the mirror of this one, per direction (docs/solver.md,
+  // "Walls and the dispersive terms"). A beach's dry cell (a gentler step) is no wall: the mask
+  // ends one cell before the shoreline. Two passes: wet cells, then the 5-point product.
   const int cols = frame.cols, rows = frame.rows;
   const double dry = parameters.dry_depth_m;
+  const float along_m = static_cast<float>(frame.spacing_along_m), across_m = static_cast<float>(frame.spacing_across_m);
+  const float* depth = frame.depth_m.data();
+  const float* inverse_porosity = frame.inverse_porosity.data();
   unsigned char* wet = wet_cells.data();
   tbb::parallel_for(0, cols, [&](int c) {
     const std::size_t line = static_cast<std::size_t>(c) * rows;
     for (int l = 0; l < rows; ++l)
-      wet[line + l] = holds_water(frame.inverse_porosity[line + l], frame.depth_m[line + l], eta_frame[line + l], dry);
+      wet[line + l] = holds_water(inverse_porosity[line + l], depth[line + l], eta_frame[line + l], dry);
   });
+  if (parameters.wall_dispersion == SolverParameters::WallDispersion::kEndBeforeWalls) {
+    // The cell and its 4 neighbours wet: a product over contiguous lanes, which vectorises.
+    tbb::parallel_for(0, cols, [&](int c) {
+      const unsigned char* here = wet + static_cast<std::size_t>(c) * rows;
+      const unsigned char* before = wet + static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
+      const unsigned char* after = wet + static_cast<std::size_t>(std::min(c + 1, cols - 1)) * rows;
+      unsigned char* out = mask + static_cast<std::size_t>(c) * rows;
+      for (int l = 1; l + 1 < rows; ++l) out[l] = here[l] & before[l] & after[l] & here[l - 1] & here[l + 1];
+      out[0] = here[0] & before[0] & after[0] & here[std::min(1, rows - 1)];
+      if (rows > 1) out[rows - 1] = here[rows - 1] & before[rows - 1] & after[rows - 1] & here[rows - 2];
+    });
+    return;
+  }
+  // kMirrorAtWalls: a neighbour is a mirrored wall when it is dry and of porosity 0 or its bed at
+  // least a cell's length above this cell's (not a shoreline). Beyond the grid's edges the neighbour
+  // is the cell itself, which is never a wall of a wet cell. Written as byte arithmetic over the
+  // lines (no branch), so the loop over the interior lines vectorises.
   tbb::parallel_for(0, cols, [&](int c) {
-    const unsigned char* here = wet + static_cast<std::size_t>(c) * rows;
-    const unsigned char* before = wet + static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
-    const unsigned char* after = wet + static_cast<std::size_t>(std::min(c + 1, cols - 1)) * rows;
-    unsigned char* out = mask + static_cast<std::size_t>(c) * rows;
-    for (int l = 1; l + 1 < rows; ++l) out[l] = here[l] & before[l] & after[l] & here[l - 1] & here[l + 1];
-    out[0] = here[0] & before[0] & after[0] & here[std::min(1, rows - 1)];
-    if (rows > 1) out[rows - 1] = here[rows - 1] & before[rows - 1] & after[rows - 1] & here[rows - 2];
+    const std::size_t line = static_cast<std::size_t>(c) * rows;
+    const std::size_t line_before = static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
+    const std::size_t line_after = static_cast<std::size_t>(std::min(c + 1, cols - 1)) * rows;
+    const unsigned char *here = wet + line, *before = wet + line_before, *after = wet + line_after;
+    const float *depth_here = depth + line, *depth_before = depth + line_before, *depth_after = depth + line_after;
+    const float *open_here = inverse_porosity + line, *open_before = inverse_porosity + line_before,
+                *open_after = inverse_porosity + line_after;
+    unsigned char* out = mask + line;
+    auto cell = [&](int l, int south, int north) __attribute__((always_inline)) {
+      const float d = depth_here[l];
+      const unsigned char wall_before = static_cast<unsigned char>((1 - before[l]) & ((open_before[l] == 0.0f) | (d - depth_before[l] >= along_m)));
+      const unsigned char wall_after = static_cast<unsigned char>((1 - after[l]) & ((open_after[l] == 0.0f) | (d - depth_after[l] >= along_m)));
+      const unsigned char wall_south = static_cast<unsigned char>((1 - here[south]) & ((open_here[south] == 0.0f) | (d - depth_here[south] >= across_m)));
+      const unsigned char wall_north = static_cast<unsigned char>((1 - here[north]) & ((open_here[north] == 0.0f) | (d - depth_here[north] >= across_m)));
+      const unsigned char dispersive = here[l] & (before[l] | wall_before) & (after[l] | wall_after) & (here[south] | wall_south) &
+                                       (here[north] | wall_north);
+      out[l] = static_cast<unsigned char>(dispersive * (detail::kDispersive + detail::kMirrorBefore * wall_before + detail::kMirrorAfter * wall_after +
+                                                        detail::kMirrorSouth * wall_south + detail::kMirrorNorth * wall_north));
+    };
+    for (int l = 1; l + 1 < rows; ++l) cell(l, l - 1, l + 1);
+    cell(0, 0, std::min(1, rows - 1));
+    if (rows > 1) cell(rows - 1, rows - 2, rows - 1);
   });
 }
 
@@ -454,12 +497,13 @@ void BoussinesqSolver::Implementation::step() {
     roller_active = roller->update(time_s, eta.data(), eta_next.data(), flux_x.data(), flux_y.data(), breaking_start_s.data(),
                                    breaking_output.values().data());
   }
-  // The fully nonlinear terms' subcritical factors of this step, from the state at t^n (eta_next as scratch).
-  if (nonlinear) nonlinear->update_subcritical(eta.data(), flux_x.data(), flux_y.data(), eta_next.data());
   detail::transpose(eta.data(), eta_t.data(), nx, ny);
   if (eddy_viscosity_active) detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
   mark_dispersive(frame_y, eta.data(), dispersive.data());
+  // The fully nonlinear terms' subcritical factors of this step, from the state at t^n (eta_next as scratch)
+  // and the masks of this step.
+  if (nonlinear) nonlinear->update_subcritical(eta.data(), flux_x.data(), flux_y.data(), dispersive.data(), eta_next.data());
 
   // The normal flux's first guess: last step's increment on pass 0 (the state array itself), this
   // step's previous pass afterwards. The sweep takes the flux at t^{n+1/2} as old + guess / 2.
@@ -673,7 +717,7 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
     const float* inverse_porosity = frame_x.inverse_porosity.data();
     const unsigned char *west = wet_x + px(f - 1, 0), *east = wet_x + px(f, 0);
     for (int r = 0; r < ny; ++r)
-      out[r] = (detail::face_open(inverse_porosity, px(f - 1, r), px(f, r)) != 0.0) & west[r] & east[r];  // & not &&: vectorises
+      out[r] = (detail::face_open(inverse_porosity, px(f - 1, r), px(f, r)) != 0.0) & (west[r] == detail::kDispersive) & (east[r] == detail::kDispersive);  // & not &&: vectorises
   });
   tbb::parallel_for(0, ny + 1, [&](int k) {
     unsigned char* out = filterable_y.data() + qy(0, k);
@@ -684,7 +728,7 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
     const float* inverse_porosity = frame_y.inverse_porosity.data();
     const unsigned char *south = wet_y + index(0, k - 1, nx), *north = wet_y + index(0, k, nx);
     for (int c = 0; c < nx; ++c)
-      out[c] = (detail::face_open(inverse_porosity, index(c, k - 1, nx), index(c, k, nx)) != 0.0) & south[c] & north[c];
+      out[c] = (detail::face_open(inverse_porosity, index(c, k - 1, nx), index(c, k, nx)) != 0.0) & (south[c] == detail::kDispersive) & (north[c] == detail::kDispersive);
   });
   if (flux_filter.half_order() > 0) {
     // P: along x is its slow index (normal to the west and east walls), along y its fast index.

@@ -58,6 +58,12 @@ using nearshore::boussinesq::kWallPorosity;
 inline constexpr double kMaxDispersiveSlope = 0.5;
 /// Largest Froude number |P| / (h sqrt(g h)) of a face flux (thin-film guard of the shoreline).
 inline constexpr double kMaxFroude = 3.0;
+/// The dispersion mask of a cell (SweepInput::dispersive, mark_dispersive): bit 0 set where the
+/// dispersive terms apply (the cell wet, each of its 4 neighbours wet or a wall); the other bits say
+/// which neighbours are dry walls, read as the mirror of the cell (its level and depth) by the
+/// stencils that reach them, as the grid's edges are: before / after it along the frame's lines,
+/// south / north of it across them (lines l - 1 and l + 1).
+inline constexpr unsigned char kDispersive = 1, kMirrorBefore = 2, kMirrorAfter = 4, kMirrorSouth = 8, kMirrorNorth = 16;
 /// Lines solved together in one block.
 inline constexpr int kBlockLines = 16;
 
@@ -107,7 +113,7 @@ struct SweepInput {
   const double* tangential_half;  ///< tangential flux at t^{n+1/2}, tangential faces
   const double* tangential_rate;  ///< its time derivative at t^{n+1/2}, (m^2/s)/s
   const EddyViscosity* eddy_viscosity;  ///< nu of eq. (6)-(7), m^2/s, cells
-  const unsigned char* dispersive;  ///< 1 where the cell and its 4 neighbours are wet, else 0
+  const unsigned char* dispersive;  ///< the dispersion mask and its walls (kDispersive, kMirror*)
   bool viscous = true;            ///< false: eddy_viscosity is 0 everywhere (no cell breaks)
   /// The fully nonlinear dispersive terms' explicit remainder at the normal faces, m^2/s^2, on the
   /// momentum equation's left side like Psi (nonlinear_dispersion.hpp), or nullptr for none.
@@ -143,13 +149,17 @@ struct SweepConstants {
   /// terms is added to the tridiagonal system (the rest is SweepInput::explicit_force;
   /// nonlinear_dispersion.hpp).
   bool fully_nonlinear = false;
+  /// SolverParameters::WallDispersion::kMirrorAtWalls: the stencils read the walls the mask marks
+  /// (kMirror*) as mirrors; otherwise the mask has no such bits and the reads are left as they are.
+  bool mirror_walls = false;
 };
 
 /// Per-thread scratch of one block (allocated once per thread, reused every step).
 struct SweepScratch {
   std::vector<double> upper, right, increment, eta_half, flux_half, cell_term, fixed_term,
       tangential_squared, active, face_velocity, h_pair_north, h_pair_south, cell_eta_yy, cell_eta_y, cell_flux_yt,
-      cell_slope_across, nu_pair_north, nu_pair_south, dispersion_weight;
+      cell_slope_across, nu_pair_north, nu_pair_south, dispersion_weight, mirror_before, mirror_after, mirror_south,
+      mirror_north;
   void resize(int cols);
 };
 

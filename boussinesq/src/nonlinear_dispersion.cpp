@@ -8,6 +8,8 @@
 // faces the second.
 #include "nonlinear_dispersion.hpp"
 
+#include "boussinesq_sweep.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -40,7 +42,32 @@ std::size_t NonlinearDispersion::memory_bytes() const {
          sizeof(float);
 }
 
-void NonlinearDispersion::update_subcritical(const double* eta, const double* flux_x, const double* flux_y, double* scratch) {
+namespace {
+
+// The four neighbours of cell (c, r) the terms read, the cell itself beyond the grid's edges and
+// where the neighbour is a wall (the solver's mask in the natural layout, the y sweep's frame:
+// its lines are the columns, so kMirrorSouth / kMirrorNorth are the cells west / east of it and
+// kMirrorBefore / kMirrorAfter the ones south / north; boussinesq_sweep.hpp).
+struct Neighbours {
+  int west, east, south, north;
+};
+// `mirror_walls` false (the default's mask has no wall bits): the mask is not read.
+__attribute__((always_inline)) inline Neighbours neighbours(bool mirror_walls, const unsigned char* dispersive, int nx, int ny, int c,
+                                                            int r) {
+  Neighbours n{std::max(c - 1, 0), std::min(c + 1, nx - 1), std::max(r - 1, 0), std::min(r + 1, ny - 1)};
+  if (!mirror_walls) return n;
+  const unsigned flags = dispersive[static_cast<std::size_t>(r) * nx + c];
+  if (flags & kMirrorSouth) n.west = c;
+  if (flags & kMirrorNorth) n.east = c;
+  if (flags & kMirrorBefore) n.south = r;
+  if (flags & kMirrorAfter) n.north = r;
+  return n;
+}
+
+}  // namespace
+
+void NonlinearDispersion::update_subcritical(const double* eta, const double* flux_x, const double* flux_y,
+                                             const unsigned char* dispersive, double* scratch) {
   const int nx = grid_.nx, ny = grid_.ny;
   const double dry = grid_.dry_depth_m;
   auto cell = [nx](int c, int r) { return static_cast<std::size_t>(r) * nx + c; };
@@ -58,10 +85,12 @@ void NonlinearDispersion::update_subcritical(const double* eta, const double* fl
       scratch[i] = weight;
     }
   });
-  // A face: the least over its two cells and their neighbours (beyond the grid edge, the edge cell).
+  // A face: the least over its two cells and their neighbours (beyond the grid edge or a wall, the
+  // cell itself).
   auto around = [&](int c, int r) {
-    return std::min({scratch[cell(c, r)], scratch[cell(std::max(c - 1, 0), r)], scratch[cell(std::min(c + 1, nx - 1), r)],
-                     scratch[cell(c, std::max(r - 1, 0))], scratch[cell(c, std::min(r + 1, ny - 1))]});
+    const Neighbours n = neighbours(grid_.mirror_walls, dispersive, nx, ny, c, r);
+    return std::min({scratch[cell(c, r)], scratch[cell(n.west, r)], scratch[cell(n.east, r)], scratch[cell(c, n.south)],
+                     scratch[cell(c, n.north)]});
   };
   tbb::parallel_for(0, ny, [&](int r) {
     for (int f = 0; f <= nx; ++f)
@@ -139,9 +168,8 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   // 2. Per cell: h^3 Gamma, Gamma = (div u_t without the rates) + u . grad(div u) - (div u)^2 (the
   // gradient central; beyond a grid edge, a wall, the cell mirrors itself). Linearised it is 0.
   tbb::parallel_for(0, ny, [&](int r) {
-    const int south = std::max(r - 1, 0), north = std::min(r + 1, ny - 1);
     for (int c = 0; c < nx; ++c) {
-      const int west = std::max(c - 1, 0), east = std::min(c + 1, nx - 1);
+      const auto [west, east, south, north] = neighbours(grid_.mirror_walls, s.dispersive, nx, ny, c, r);
       const std::size_t i = cell(c, r);
       const double advection = u_cell[i] * (divergence[cell(east, r)] - divergence[cell(west, r)]) * (0.5 * inv_dx) +
                                v_cell[i] * (divergence[cell(c, north)] - divergence[cell(c, south)]) * (0.5 * inv_dy);
@@ -180,8 +208,14 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
       if (r + 1 < ny) corner_north[f] = corner(f, r + 1);
     }
     residual[0] = residual[nx] = residual_linear[0] = residual_linear[nx] = 0.0;  // the walls: nothing
+    const unsigned char* mask = s.dispersive;
+    const bool mirror_walls = grid_.mirror_walls;
     for (int f = 1; f < nx; ++f) {
       const std::size_t L = cell(f - 1, r), R = cell(f, r);
+      if (mirror_walls && ((mask[L] & kMirrorNorth) | (mask[R] & kMirrorSouth))) {  // a wall inside the grid: nothing either
+        residual[f] = residual_linear[f] = 0.0;
+        continue;
+      }
       const double slope = (eta[R] - eta[L]) * inv_dx;
       residual[f] = (along[f] - along[f - 1]) * inv_dx + (corner_north[f] - corner_south[f]) * inv_dy + g * face_total(L, R) * slope;
       residual_linear[f] = g * face_still(L, R) * slope;
@@ -190,13 +224,13 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
       const std::size_t i = cell(c, r);
       // S on the y faces south (k = r) and north (k = r + 1) of the cell; a wall carries nothing.
       double south = 0.0, north = 0.0, south_linear = 0.0, north_linear = 0.0;
-      if (r > 0) {
+      if (r > 0 && !(mirror_walls && ((mask[i] & kMirrorBefore) | (mask[cell(c, r - 1)] & kMirrorAfter)))) {
         const std::size_t below = cell(c, r - 1);
         const double slope = (eta[i] - eta[below]) * inv_dy;
         south = (corner_south[c + 1] - corner_south[c]) * inv_dx + (along_here[c] - along_south[c]) * inv_dy + g * face_total(below, i) * slope;
         south_linear = g * face_still(below, i) * slope;
       }
-      if (r + 1 < ny) {
+      if (r + 1 < ny && !(mirror_walls && ((mask[i] & kMirrorAfter) | (mask[cell(c, r + 1)] & kMirrorBefore)))) {
         const std::size_t above = cell(c, r + 1);
         const double slope = (eta[above] - eta[i]) * inv_dy;
         north = (corner_north[c + 1] - corner_north[c]) * inv_dx + (along_north[c] - along_here[c]) * inv_dy + g * face_total(i, above) * slope;
@@ -210,10 +244,11 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   // times fully_nonlinear_weight times the face's subcritical factor of this step (update_subcritical)
   // where the whole stencil (two cells on each side) is wet (0 elsewhere; the subcritical factor is 0
   // next to porous cells); then the force of the next step, extrapolated to its t^{n+3/2}.
+  // (A wall beside a cell is read as the cell itself, as the grid's edges are: neighbours().)
   auto wide_mask = [&](int c, int r) {
     const unsigned char* m = s.dispersive;
-    return m[cell(c, r)] & m[cell(std::max(c - 1, 0), r)] & m[cell(std::min(c + 1, nx - 1), r)] &
-           m[cell(c, std::max(r - 1, 0))] & m[cell(c, std::min(r + 1, ny - 1))];
+    const Neighbours n = neighbours(grid_.mirror_walls, m, nx, ny, c, r);
+    return m[cell(c, r)] & m[cell(n.west, r)] & m[cell(n.east, r)] & m[cell(c, n.south)] & m[cell(c, n.north)] & kDispersive;
   };
   auto remainder = [&](std::size_t L, std::size_t R, double inv_spacing, double taper, bool whole_stencil, float subcritical) {
     if (!whole_stencil || taper == 0.0 || subcritical == 0.0f) return 0.0;

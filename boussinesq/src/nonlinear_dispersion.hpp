@@ -73,6 +73,8 @@ struct NonlinearDispersionGrid {
   const float* face_weight_y = nullptr;      ///< the dispersion taper of the y faces (y-face layout)
   double dispersion_coefficient = 1.0 / 15.0;  ///< B
   double dry_depth_m = 0.01;
+  /// SolverParameters::WallDispersion::kMirrorAtWalls: the walls the mask marks are read as mirrors.
+  bool mirror_walls = false;
 };
 
 /// The state of one step, all in the natural layouts.
@@ -83,7 +85,7 @@ struct StepPair {
   const double* flux_x_change;   ///< P^{n+1} - P^n, x faces
   const double* flux_y_new;      ///< Q^{n+1}, y faces
   const double* flux_y_change;   ///< Q^{n+1} - Q^n, y faces
-  const unsigned char* dispersive;  ///< the solver's dispersion mask of eta^n (cell and 4 neighbours wet)
+  const unsigned char* dispersive;  ///< the solver's dispersion mask of eta^n (boussinesq_sweep.hpp, kDispersive, kMirror*)
   double time_step_s;
 };
 
@@ -97,8 +99,11 @@ class NonlinearDispersion {
   /// or dry), then for a face the least over its two cells and their four neighbours each, the cells
   /// its terms read. Not per face alone: in a backwash sheet the Froude number alternates cell by
   /// cell, and a face weight that flips with it switches the terms on amid cells where they are off,
-  /// with differences taken across the switch. `scratch`: nx * ny values.
-  void update_subcritical(const double* eta, const double* flux_x, const double* flux_y, double* scratch);
+  /// with differences taken across the switch. A wall beside a cell (`dispersive`, the solver's mask
+  /// of this step: boussinesq_sweep.hpp, kMirror*) is read as the cell itself, as the grid's edges
+  /// are. `scratch`: nx * ny values.
+  void update_subcritical(const double* eta, const double* flux_x, const double* flux_y, const unsigned char* dispersive,
+                          double* scratch);
   const float* subcritical_x() const { return subcritical_x_.data(); }
   const float* subcritical_y() const { return subcritical_y_.data(); }
 

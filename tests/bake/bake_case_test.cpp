@@ -279,5 +279,21 @@ TEST(BakeCase, TheGridScaleFilterIsOnForGridsFinerThanAQuarterOfTheDepth) {
   EXPECT_EQ(given.solver.shapiro_filter_order, 8);
   EXPECT_EQ(describe_derived_solver_settings(given).find("grid-scale filter"), std::string::npos);
 }
+// solver.wall_dispersion (docs/solver.md, "Walls and the dispersive terms"): the solver's default
+// when left out, the option when given, both in the solver record; any other value is refused with
+// the key and the choices named.
+TEST(BakeCase, TheWallDispersionIsReadAndRecorded) {
+  const auto folder = scratch_folder();
+  const std::string flat = "profile = [[0.0, 0.5], [12.0, 0.5]]";
+  const BakeCase left_out = read_bake_case(write_text(folder / "default.toml", edited(flat, flat)));
+  EXPECT_EQ(left_out.solver.wall_dispersion, boussinesq::SolverParameters::WallDispersion::kEndBeforeWalls);
+  EXPECT_EQ(left_out.solver_record["wall_dispersion"].get<std::string>(), "end_before_walls");
+  const BakeCase mirrored =
+      read_bake_case(write_text(folder / "mirror.toml", edited(flat, flat) + "[solver]\nwall_dispersion = \"mirror_at_walls\"\n"));
+  EXPECT_EQ(mirrored.solver.wall_dispersion, boussinesq::SolverParameters::WallDispersion::kMirrorAtWalls);
+  EXPECT_EQ(mirrored.solver_record["wall_dispersion"].get<std::string>(), "mirror_at_walls");
+  expect_case_error(edited(flat, flat) + "[solver]\nwall_dispersion = \"mirror\"\n",
+                    {"key `solver.wall_dispersion`", "mirror_at_walls"});
+}
 }  // namespace
 }  // namespace nearshore::bake

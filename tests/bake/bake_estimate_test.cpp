@@ -5,11 +5,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <tbb/info.h>
 
 #include "bake_test_support.hpp"
 #include "nearshore/bake/bake_estimate.hpp"
@@ -43,7 +45,10 @@ TEST(BakeEstimate, CountsFramesCheckpointsAndCells) {
   EXPECT_LT(estimate.frame_bytes, 720 * 8 + 2048);
   EXPECT_GT(estimate.checkpoint_bytes, 9 * 720 * 8);
   EXPECT_GT(estimate.disk_bytes, 13 * estimate.frame_bytes + 2 * estimate.checkpoint_bytes);
-  EXPECT_NEAR(estimate.memory_bytes, kBakeFixedBytes + 720 * kBakeBytesPerCell, 1e6);
+  // The per-line buffers (one set per worker thread, so the figure depends on the machine) are
+  // their own term; the rest is per cell, the fully nonlinear equations' included, and the gauges.
+  EXPECT_DOUBLE_EQ(estimate.line_bytes, 120 * kBakeBytesPerLinePerThread * std::max(1, tbb::info::default_concurrency()));
+  EXPECT_NEAR(estimate.memory_bytes, kBakeFixedBytes + 720 * (kBakeBytesPerCell + kFullyNonlinearBytesPerCell) + estimate.line_bytes, 1e5);
   EXPECT_GT(estimate_bake_resources(c, true).memory_bytes, estimate.memory_bytes);  // reading a checkpoint
   EXPECT_NE(estimate.describe().find("13 frames of"), std::string::npos) << estimate.describe();
   EXPECT_EQ(format_bytes(512), "512 B");

@@ -228,45 +228,12 @@ TEST(BoussinesqDiffraction, VerticalCylinderFollowsMacCamyFuchs) {
 // with the default grid-scale filter (shapiro_filter_order = 8); without the filter it stays stable
 // (and at 0.05 m cells, 13 per radius, it fails at t = 8 s with the filter and stays within 3 % of
 // the theory without it). A square block aligned with the grid ran stable with these waves, but not
-// from still water with noise (the test below). What grows sits between the first row of cells
+// from still water with noise (boussinesq_wall_test.cpp). What grows sits between the first row of cells
 // beside the wall (neither dispersion nor filter) and the filtered rows behind it; docs/solver.md,
 // "Grid-scale filter", lists what was tried.
 TEST(BoussinesqDiffraction, DISABLED_StaircaseCylinderStaysStableWithTheGridScaleFilter) {
   const CylinderRun run = run_cylinder(Cylinder::kLand, 0.1, SolverParameters{}.shapiro_filter_order, 60.0);
   EXPECT_TRUE(std::all_of(run.model.begin(), run.model.end(), [](double amplitude) { return std::isfinite(amplitude); }));
-}
-
-// KNOWN INSTABILITY at harbour resolution, kept as a reproduction (--gtest_also_run_disabled_tests;
-// 2 s): a square pier aligned with the grid, cells of half the depth (a harbour bake's spacing),
-// still water with 5 micrometres of noise and no waves. With the default filter a mode two cells
-// long along the pier's faces, in the first row of cells beside them, grows from the corners:
-// to about 0.2 m (two fifths of the 0.5 m depth) by 100-150 s, where it saturates, so
-// the solver's blow-up guard never sees it; with shapiro_filter_order = 0 the noise decays, as it
-// does with the filter on cells as long as the depth (docs/solver.md, "Grid-scale filter").
-TEST(BoussinesqDiffraction, DISABLED_SquarePierStaysQuietWithTheGridScaleFilter) {
-  const double depth_m = 0.5, spacing_m = 0.25, half_side_m = 0.646, centre_x_m = 7.5, centre_y_m = 7.0, noise_m = 5e-6;
-  SolverParameters parameters = testing::inviscid_parameters(0.5);
-  parameters.sponges = {{Side::kWest, 2.0}, {Side::kEast, 4.0}};
-  const int columns = static_cast<int>(std::lround(21.0 / spacing_m)), rows = static_cast<int>(std::lround(14.0 / spacing_m));
-  HarbourGrid harbour = testing::flume(columns, rows, spacing_m, depth_m);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < columns; ++c)
-      if (std::abs((c + 0.5) * spacing_m - centre_x_m) < half_side_m && std::abs((r + 0.5) * spacing_m - centre_y_m) < half_side_m) {
-        harbour.still_water_depth_m(c, r) = -1.0f;
-        harbour.land(c, r) = kLandCell;
-      }
-  BoussinesqSolver solver(harbour, parameters, WaveMaker{});
-  testing::UniformNoise noise(2.0 * noise_m);
-  solver.set_surface_elevation([&](double x_m, double y_m) {
-    const double value = noise();  // drawn for every cell, so the sequence does not depend on the disc
-    return std::hypot(x_m - centre_x_m, y_m - centre_y_m) < 3.0 ? value : 0.0;
-  });
-  while (solver.time_s() < 150.0) solver.step();
-  double largest_m = 0.0;
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < columns; ++c)
-      if (harbour.still_water_depth_m(c, r) > 0.0f) largest_m = std::max(largest_m, std::abs(double{solver.surface_elevation_m()(c, r)}));
-  EXPECT_LT(largest_m, noise_m) << "the noise grew to " << largest_m << " m beside the pier";
 }
 
 }  // namespace

@@ -23,10 +23,11 @@ inline constexpr double kBakeBytesPerCell = 250.0;
 /// faces, and the faces' subcritical factors, all float (docs/solver.md "Memory");
 /// kBakeBytesPerCell was measured with the seed's.
 inline constexpr double kFullyNonlinearBytesPerCell = 24.0;
-/// Per cell of the grid's longest side and per worker thread, bytes: the sweep's scratch (19 arrays
-/// of 16 lanes of doubles, 2432 B) and the grid-scale filter's block of 128 lines (1024 B), rounded
-/// up. On a narrow grid they weigh 50-70 B per cell (the 1000 x 100 flume on two threads).
-inline constexpr double kBakeBytesPerLinePerThread = 3584.0;
+/// Per cell of the grid's longest side and per worker thread, bytes: the sweep's scratch (23 arrays
+/// of 16 lanes of doubles, 2944 B, four of them the walls' mirror flags since 2026-11-28) and the
+/// grid-scale filter's block of 128 lines (1024 B), rounded up. On a narrow grid they weigh 50-70 B
+/// per cell (the 1000 x 100 flume on two threads).
+inline constexpr double kBakeBytesPerLinePerThread = 4096.0;
 /// What a bake allocates whatever its grid: worker threads and their stacks, the case, buffers,
 /// bytes (bake_runner peaked 9 MiB above its own start-up on a tiny grid on 2 cores; more cores,
 /// more stacks). The code and libraries of the process are not counted: they are resident before

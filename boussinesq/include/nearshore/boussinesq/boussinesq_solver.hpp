@@ -152,6 +152,18 @@ struct SolverParameters {
   /// amplitude dispersion (it stood in for the physical one the seed's equations lack).
   enum class FaceDepth { kMeanWhereWet, kLargerOfMeanAndAboveBed };
   FaceDepth face_depth = FaceDepth::kMeanWhereWet;
+  /// The dispersive terms beside a wall (docs/solver.md, "Walls and the dispersive terms"). A wall
+  /// is a dry neighbour of porosity below kWallPorosity or whose bed stands at least a cell's length
+  /// above this cell's (a step steeper than 1:1: a quay, a pier, a breakwater's face; a beach's dry
+  /// cell is none). kEndBeforeWalls (default): the terms need the cell and its four neighbours wet,
+  /// so the first row of cells beside a wall has none. kMirrorAtWalls: that row has them, reading the
+  /// wall's cell as the mirror of its own, per direction, as the grid's edges do (an interior wall
+  /// then reflects exactly as the grid's edge does); it keeps the water beside grid-aligned walls
+  /// quiet with the grid-scale filter, where the default grows a mode two cells long along them,
+  /// but puts a staircase circle's wall amplitudes further from MacCamy & Fuchs (5.6 against 3.2 %
+  /// RMS at 6.5 cells per radius), so it is not the default.
+  enum class WallDispersion { kEndBeforeWalls, kMirrorAtWalls };
+  WallDispersion wall_dispersion = WallDispersion::kEndBeforeWalls;
   /// Dispersion taper: the dispersive terms are multiplied by a weight that is 1 where the still-water
   /// depth d >= 2 * dispersion_cutoff_depth_m, 0 where d <= dispersion_cutoff_depth_m and a smooth
   /// (cubic) ramp between; likewise for the local k h of the peak wave when dispersion_cutoff_kh > 0
