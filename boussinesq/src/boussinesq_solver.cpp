@@ -447,8 +447,9 @@ void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame,
   }
   // kMirrorAtWalls: a neighbour is a mirrored wall when it is dry and of porosity 0 or its bed at
   // least a cell's length above this cell's (not a shoreline). Beyond the grid's edges the neighbour
-  // is the cell itself, which is never a wall of a wet cell. Written as byte arithmetic over the
-  // lines (no branch), so the loop over the interior lines vectorises.
+  // is the cell itself, which is never a wall of a wet cell. Byte arithmetic over the lines, no
+  // branch (whether GCC vectorises it was not checked: with the option this loop was 4 % of the demo
+  // harbour's bake, the default's 5-point product 2 %).
   tbb::parallel_for(0, cols, [&](int c) {
     const std::size_t line = static_cast<std::size_t>(c) * rows;
     const std::size_t line_before = static_cast<std::size_t>(std::max(c - 1, 0)) * rows;
