@@ -1081,13 +1081,7 @@ std::size_t BoussinesqSolver::memory_bytes() const {
   if (s.nonlinear) bytes += s.nonlinear->memory_bytes();
   if (s.roller) bytes += s.roller->memory_bytes();
   for (const auto* v : {&s.surf_zone_cells, &s.surf_zone_scratch, &s.surf_zone_x, &s.surf_zone_y}) add(*v);
-  for (const SweepScratch& scratch : s.scratch)
-    for (const auto* v : {&scratch.upper, &scratch.right, &scratch.increment, &scratch.eta_half, &scratch.flux_half,
-                          &scratch.cell_term, &scratch.fixed_term, &scratch.tangential_squared, &scratch.active,
-                          &scratch.face_velocity, &scratch.h_pair_north, &scratch.h_pair_south, &scratch.cell_eta_yy,
-                          &scratch.cell_eta_y, &scratch.cell_flux_yt, &scratch.cell_slope_across, &scratch.nu_pair_north,
-                          &scratch.nu_pair_south, &scratch.dispersion_weight})
-      add(*v);
+  for (const SweepScratch& scratch : s.scratch) bytes += scratch.memory_bytes();
   return bytes;
 }
 

@@ -18,13 +18,29 @@ namespace nearshore::boussinesq::detail {
 
 using namespace nearshore::ocean;  // wave components, sea states, linear waves
 
+namespace {
+
+// Every array of a SweepScratch, one list for sizing and for counting them.
+template <class Scratch, class Visit>
+void for_each_array(Scratch& s, const Visit& visit) {
+  for (auto* v : {&s.upper, &s.right, &s.increment, &s.eta_half, &s.flux_half, &s.cell_term, &s.fixed_term,
+                  &s.tangential_squared, &s.active, &s.face_velocity, &s.h_pair_north, &s.h_pair_south, &s.cell_eta_yy,
+                  &s.cell_eta_y, &s.cell_flux_yt, &s.cell_slope_across, &s.nu_pair_north, &s.nu_pair_south,
+                  &s.dispersion_weight, &s.mirror_before, &s.mirror_after, &s.mirror_south, &s.mirror_north})
+    visit(*v);
+}
+
+}  // namespace
+
 void SweepScratch::resize(int cols) {
   const std::size_t size = static_cast<std::size_t>(cols + 5) * kBlockLines;
-  for (auto* v : {&upper, &right, &increment, &eta_half, &flux_half, &cell_term, &fixed_term,
-                  &tangential_squared, &active, &face_velocity, &h_pair_north, &h_pair_south, &cell_eta_yy,
-                  &cell_eta_y, &cell_flux_yt, &cell_slope_across, &nu_pair_north, &nu_pair_south, &dispersion_weight,
-                  &mirror_before, &mirror_after, &mirror_south, &mirror_north})
-    v->assign(size, 0.0);
+  for_each_array(*this, [size](std::vector<double>& v) { v.assign(size, 0.0); });
+}
+
+std::size_t SweepScratch::memory_bytes() const {
+  std::size_t bytes = 0;
+  for_each_array(*this, [&bytes](const std::vector<double>& v) { bytes += v.capacity() * sizeof(double); });
+  return bytes;
 }
 
 namespace {

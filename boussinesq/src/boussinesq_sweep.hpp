@@ -161,6 +161,8 @@ struct SweepScratch {
       cell_slope_across, nu_pair_north, nu_pair_south, dispersion_weight, mirror_before, mirror_after, mirror_south,
       mirror_north;
   void resize(int cols);
+  /// The bytes its arrays hold (the solver's memory_bytes).
+  std::size_t memory_bytes() const;
 };
 
 /// Solves lines [line_begin, line_end) (at most kBlockLines) of the frame: the tridiagonal system

@@ -279,6 +279,7 @@ TEST(BakeCase, TheGridScaleFilterIsOnForGridsFinerThanAQuarterOfTheDepth) {
   EXPECT_EQ(given.solver.shapiro_filter_order, 8);
   EXPECT_EQ(describe_derived_solver_settings(given).find("grid-scale filter"), std::string::npos);
 }
+
 // solver.wall_dispersion (docs/solver.md, "Walls and the dispersive terms"): the solver's default
 // when left out, the option when given, both in the solver record; any other value is refused with
 // the key and the choices named.
