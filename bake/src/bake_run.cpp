@@ -237,13 +237,25 @@ class CheckpointFileBuffer : public std::streambuf {
                         "solver.wall_dispersion = \"mirror_at_walls\" (docs/solver.md, \"Walls and the dispersive terms\")",
                         bake_case.solver.shapiro_filter_order, kWallModeSpacingPerDepth)
           : std::string();
+  // A narrow flume's own mode (docs/solver.md, "Modes across a narrow flume"): a flux mode across a
+  // flume a few cells wide grew under steep shoaling waves on cells of a tenth of the depth, at a
+  // rate that halves with the time step; a flume one cell across has no such mode and gives a 1-D
+  // experiment the same waves (Hansen & Svendsen, three cells and one: the same figures).
+  constexpr int kNarrowFlumeCells = 8;
+  const int cells_across = std::min(bake_case.harbour.geometry.columns, bake_case.harbour.geometry.rows);
+  const std::string flume_remedy =
+      cells_across > 1 && cells_across <= kNarrowFlumeCells
+          ? fmt::format("; the grid is {} cells across: a 1-D flume needs one (a profile's bathymetry.width_m = its spacing), "
+                        "across which no mode can grow (docs/solver.md, \"Modes across a narrow flume\")",
+                        cells_across)
+          : std::string();
   throw Error(bake_case.case_file.string(),
               fmt::format("the solver became unstable at t = {:.3f} s in cell (column {}, row {}) at x = {:.2f} m, y = {:.2f} m, "
                           "still-water depth {:.3f} m: {} (value {:.4g})",
                           report.time_s, report.column, report.row, report.x_m, report.y_m, report.depth_m, report.what, report.value),
               fmt::format("reduce time.courant_number or time.time_step_s (now {:.5g} s), smooth the bathymetry near that cell "
-                          "or raise solver.dispersion_cutoff_depth_m, {}{}; {}",
-                          bake_case.solver.time_step_s, breaking_remedy, filter_remedy, kept));
+                          "or raise solver.dispersion_cutoff_depth_m, {}{}{}; {}",
+                          bake_case.solver.time_step_s, breaking_remedy, filter_remedy, flume_remedy, kept));
 }
 
 void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const BoussinesqSolver& solver,
