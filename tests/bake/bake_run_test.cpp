@@ -231,12 +231,11 @@ TEST_F(BakeRun, ResumeRefusesAnotherCaseOrAMissingCheckpoint) {
   EXPECT_EQ(manifest["solver"]["physics_revision"].get<int>(), boussinesq::kSolverPhysicsRevision) << manifest["solver"].dump();
 }
 
-TEST_F(BakeRun, StabilityGuardNamesTimeCellDepthAndTheFix) {
-  const auto folder = scratch_folder();
-  // A threshold of |eta| > 0.001 x max(d, 1 m) = 1 mm is crossed by the 2 cm waves: the guard's
-  // whole path (detection, message, kept checkpoint) runs on an otherwise healthy bake.
-  const BakeCase c = read_bake_case(write_text(
-      folder / "case.toml", small_flume_case(8.0, 0.5) + "[solver]\nblowup_elevation_depth_ratio = 0.001\n"));
+// The guard's message for a case: run until it stops the run, return what it said (the whole path:
+// detection, message, kept checkpoint, no manifest).
+std::string stability_guard_message(const std::string& case_text, const fs::path& folder) {
+  fs::create_directories(folder);
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", case_text));
   BakeOptions options;
   options.output_folder = folder / "out";
   try {
@@ -244,18 +243,35 @@ TEST_F(BakeRun, StabilityGuardNamesTimeCellDepthAndTheFix) {
     ADD_FAILURE() << "the guard did not stop the run";
   } catch (const Error& error) {
     const std::string message = error.what();
-    for (const char* fragment : {"unstable at t = ", "cell (column ", "x = ", "still-water depth 0.500 m", "time.courant_number",
-                                 "breaking.onset_celerity_fraction", "case.toml",
-                                 // 0.1 m cells in 0.5 m of water: the grid-scale filter's known limit is named
-                                 "solver.shapiro_filter_order = 0",
-                                 // six cells across: the narrow flume's own remedy is named
-                                 "the grid is 6 cells across", "bathymetry.width_m"})
-      EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " missing in: " << message;
     if (message.find("is kept in") != std::string::npos) {
       EXPECT_TRUE(fs::exists(checkpoint_path(options.output_folder)));
     }
     EXPECT_FALSE(fs::exists(options.output_folder / "manifest.json"));
+    return message;
   }
+  return {};
+}
+
+TEST_F(BakeRun, StabilityGuardNamesTimeCellDepthAndTheFix) {
+  // A threshold of |eta| > 0.001 x max(d, 1 m) = 1 mm is crossed by the 2 cm waves: the guard's
+  // whole path runs on an otherwise healthy bake.
+  const std::string low_guard = "[solver]\nblowup_elevation_depth_ratio = 0.001\n";
+  std::string flume = small_flume_case(8.0, 0.5);
+  const std::string message = stability_guard_message(flume + low_guard, scratch_folder());
+  for (const char* fragment : {"unstable at t = ", "cell (column ", "x = ", "still-water depth 0.500 m", "time.courant_number",
+                               "breaking.onset_celerity_fraction", "case.toml",
+                               // six cells across: the narrow flume's own remedy is named ...
+                               "the grid is 6 cells across", "bathymetry.width_m"})
+    EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " missing in: " << message;
+  // ... and not the wall advice, which in a narrow flume made Hansen & Svendsen blow up sooner.
+  EXPECT_EQ(message.find("solver.shapiro_filter_order = 0"), std::string::npos) << message;
+
+  // The same flume 1.2 m wide (12 cells): 0.1 m cells in 0.5 m of water, the grid-scale filter's
+  // known limit beside walls is named, and no flume remedy.
+  flume.replace(flume.find("width_m = 0.6"), 13, "width_m = 1.2");
+  const std::string wide = stability_guard_message(flume + low_guard, scratch_folder() / "wide");
+  EXPECT_NE(wide.find("solver.shapiro_filter_order = 0"), std::string::npos) << wide;
+  EXPECT_EQ(wide.find("cells across"), std::string::npos) << wide;
 }
 
 }  // namespace
