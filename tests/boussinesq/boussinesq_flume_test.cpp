@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "boussinesq_test_support.hpp"
 
@@ -31,13 +30,7 @@ FlumeWaves run_flume(int rows, double spacing_m, double columns_length_m, double
   const HarbourGrid harbour = testing::flume(columns, rows, spacing_m, 0.2);
   SolverParameters parameters = testing::inviscid_parameters();
   parameters.sponges = {{Side::kWest, 1.0}, {Side::kEast, 2.0}};
-  WaveMaker maker;
-  maker.kind = WaveMaker::Kind::kComponents;
-  maker.facing = Side::kWest;
-  maker.source_line_m = 1.5;
-  maker.ramp_time_s = 2.4;
-  maker.sea_state.components = {{0.03, 2.0 * std::numbers::pi / 1.2, 0.0, 0.0}};
-  BoussinesqSolver solver(harbour, parameters, maker);
+  BoussinesqSolver solver(harbour, parameters, testing::regular_waves_from_west(1.5, 2.4, 0.03, 1.2));
   testing::UniformNoise noise(1e-6);
   solver.set_surface_elevation([&](double, double) { return noise(); });
   FlumeWaves run;

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "boussinesq_test_support.hpp"
 
@@ -30,13 +29,7 @@ FlumeRun run_narrow_flume(int shapiro_filter_order) {
   SolverParameters parameters = testing::inviscid_parameters();
   parameters.shapiro_filter_order = shapiro_filter_order;
   parameters.sponges = {{Side::kWest, 2.0}, {Side::kEast, 4.0}};
-  WaveMaker maker;
-  maker.kind = WaveMaker::Kind::kComponents;
-  maker.facing = Side::kWest;
-  maker.source_line_m = 3.0;
-  maker.ramp_time_s = 3.0;
-  maker.sea_state.components = {{0.015, 2.0 * std::numbers::pi / 1.2, 0.0, 0.0}};
-  BoussinesqSolver solver(harbour, parameters, maker);
+  BoussinesqSolver solver(harbour, parameters, testing::regular_waves_from_west(3.0, 3.0, 0.015, 1.2));
   testing::UniformNoise noise(1e-4);
   solver.set_surface_elevation([&](double, double) { return noise(); });
   FlumeRun run;

@@ -2,6 +2,7 @@
 // Shared set-up of the Boussinesq solver tests: quiet parameters and simple grids.
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,17 @@ inline SolverParameters inviscid_parameters(double courant_number = 0.5) {
   parameters.kinematic_viscosity_m2_s = 0.0;
   parameters.breaking.enabled = false;
   return parameters;
+}
+
+/// Regular waves of one component (amplitude, period) from a source line facing west, ramped in.
+inline WaveMaker regular_waves_from_west(double source_line_m, double ramp_time_s, double amplitude_m, double period_s) {
+  WaveMaker maker;
+  maker.kind = WaveMaker::Kind::kComponents;
+  maker.facing = Side::kWest;
+  maker.source_line_m = source_line_m;
+  maker.ramp_time_s = ramp_time_s;
+  maker.sea_state.components = {{amplitude_m, 2.0 * std::numbers::pi / period_s, 0.0, 0.0}};
+  return maker;
 }
 
 /// Deterministic noise to seed every grid mode of a state: a linear congruential sequence, the same
