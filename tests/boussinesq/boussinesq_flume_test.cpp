@@ -21,12 +21,12 @@ struct FlumeWaves {
   std::vector<double> across_spread_each_second_m;  ///< the spread at t = 1, 2, ... s
 };
 
-// Steep regular waves (3 cm amplitude requested in 0.2 m of water, T = 1.2 s, k d = 0.77) from a
+// Steep regular waves (3 cm amplitude requested in 0.2 m of water, T = 1.2 s, k d = 0.82) from a
 // source line at 1.5 m down a flat flume with sponges at both ends; breaking and friction off, the
 // scheme alone.
 // The initial surface carries 1 um of deterministic noise, so every mode across is seeded.
-FlumeWaves run_flume(int rows, double spacing_m, double columns_length_m, double duration_s) {
-  const int columns = static_cast<int>(std::lround(columns_length_m / spacing_m));
+FlumeWaves run_flume(int rows, double spacing_m, double length_m, double duration_s) {
+  const int columns = static_cast<int>(std::lround(length_m / spacing_m));
   const HarbourGrid harbour = testing::flume(columns, rows, spacing_m, 0.2);
   SolverParameters parameters = testing::inviscid_parameters();
   parameters.sponges = {{Side::kWest, 1.0}, {Side::kEast, 2.0}};
