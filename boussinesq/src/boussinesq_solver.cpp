@@ -461,10 +461,14 @@ void BoussinesqSolver::Implementation::mark_dispersive(const StaticFrame& frame,
     unsigned char* out = mask + line;
     auto cell = [&](int l, int south, int north) __attribute__((always_inline)) {
       const float d = depth_here[l];
-      const unsigned char wall_before = static_cast<unsigned char>((1 - before[l]) & ((open_before[l] == 0.0f) | (d - depth_before[l] >= along_m)));
-      const unsigned char wall_after = static_cast<unsigned char>((1 - after[l]) & ((open_after[l] == 0.0f) | (d - depth_after[l] >= along_m)));
-      const unsigned char wall_south = static_cast<unsigned char>((1 - here[south]) & ((open_here[south] == 0.0f) | (d - depth_here[south] >= across_m)));
-      const unsigned char wall_north = static_cast<unsigned char>((1 - here[north]) & ((open_here[north] == 0.0f) | (d - depth_here[north] >= across_m)));
+      // A neighbour is a wall: dry, and closed (porosity 0) or a step up of at least `step_m`.
+      auto wall = [d](unsigned char wet_neighbour, float open_neighbour, float depth_neighbour, float step_m) {
+        return static_cast<unsigned char>((1 - wet_neighbour) & ((open_neighbour == 0.0f) | (d - depth_neighbour >= step_m)));
+      };
+      const unsigned char wall_before = wall(before[l], open_before[l], depth_before[l], along_m);
+      const unsigned char wall_after = wall(after[l], open_after[l], depth_after[l], along_m);
+      const unsigned char wall_south = wall(here[south], open_here[south], depth_here[south], across_m);
+      const unsigned char wall_north = wall(here[north], open_here[north], depth_here[north], across_m);
       const unsigned char dispersive = here[l] & (before[l] | wall_before) & (after[l] | wall_after) & (here[south] | wall_south) &
                                        (here[north] | wall_north);
       out[l] = static_cast<unsigned char>(dispersive * (detail::kDispersive + detail::kMirrorBefore * wall_before + detail::kMirrorAfter * wall_after +

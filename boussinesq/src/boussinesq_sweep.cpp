@@ -569,10 +569,6 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     for (int j = 0; j < n; ++j) normal_new[f * stride + lb + j] = normal_old[f * stride + lb + j] + increment[f * W + j];
 }
 
-}  // namespace
-
-namespace {
-
 // One sweep_block per kind of block, the walls' reading fixed (kMirrorWalls). Each kind of wall
 // reading has its own function, compiled per instruction set like the sweep (GCC function
 // multi-versioning, below): with both inlined into one function GCC 12 stops with an internal error.
