@@ -244,7 +244,7 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   if (parameters.shapiro_filter_order < 0 || parameters.shapiro_filter_order % 2 != 0 || parameters.shapiro_filter_order > 16)
     throw Error(subject, "shapiro_filter_order is " + std::to_string(parameters.shapiro_filter_order) + ", not an even order from 0 to 16",
                 "set it to 8 (the default) or 0 to turn the filter off");
-  if (parameters.adi_passes < 1) throw Error(subject, "adi_passes must be at least 1", "set it to 1 (or 2 on fine grids)");
+  if (parameters.adi_passes < 1) throw Error(subject, "adi_passes must be at least 1", "set it to 2 (the default; 1 is the faster, less accurate option)");
   if (parameters.equations == Equations::kFullyNonlinear && parameters.dispersion_depth == DispersionDepth::kTotal)
     throw Error(subject, "SolverParameters::equations = kFullyNonlinear with dispersion_depth = kTotal: the fully nonlinear terms already carry the total depth",
                 "set dispersion_depth to kStillWater (the default) with the fully nonlinear equations");
