@@ -137,7 +137,8 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
         n * n * static_cast<double>(bake_case.deep_water->tile_lengths_m.size()) * kDeepWaterBytesPerLatticeCell;
   }
   const double equations_bytes_per_cell =
-      bake_case.solver.equations == boussinesq::Equations::kFullyNonlinear ? kFullyNonlinearBytesPerCell : 0.0;
+      (bake_case.solver.equations == boussinesq::Equations::kFullyNonlinear ? kFullyNonlinearBytesPerCell : 0.0) +
+      (bake_case.solver.adi_passes > 1 ? kAdiPassesBytesPerCell : 0.0);
   estimate.memory_bytes = kBakeFixedBytes + cells * (kBakeBytesPerCell + statistics_bytes_per_cell + equations_bytes_per_cell) +
                           estimate.line_bytes +
                           estimate.deep_water_bytes + gauge_values * kGaugeValueMemoryBytes +

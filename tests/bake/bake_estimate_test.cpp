@@ -46,9 +46,10 @@ TEST(BakeEstimate, CountsFramesCheckpointsAndCells) {
   EXPECT_GT(estimate.checkpoint_bytes, 9 * 720 * 8);
   EXPECT_GT(estimate.disk_bytes, 13 * estimate.frame_bytes + 2 * estimate.checkpoint_bytes);
   // The per-line buffers (one set per worker thread, so the figure depends on the machine) are
-  // their own term; the rest is per cell, the fully nonlinear equations' included, and the gauges.
+  // their own term; the rest is per cell, the fully nonlinear equations' and the second ADI pass's
+  // arrays included, and the gauges.
   EXPECT_DOUBLE_EQ(estimate.line_bytes, 120 * kBakeBytesPerLinePerThread * std::max(1, tbb::info::default_concurrency()));
-  EXPECT_NEAR(estimate.memory_bytes, kBakeFixedBytes + 720 * (kBakeBytesPerCell + kFullyNonlinearBytesPerCell) + estimate.line_bytes, 1e5);
+  EXPECT_NEAR(estimate.memory_bytes, kBakeFixedBytes + 720 * (kBakeBytesPerCell + kFullyNonlinearBytesPerCell + kAdiPassesBytesPerCell) + estimate.line_bytes, 1e5);
   EXPECT_GT(estimate_bake_resources(c, true).memory_bytes, estimate.memory_bytes);  // reading a checkpoint
   EXPECT_NE(estimate.describe().find("13 frames of"), std::string::npos) << estimate.describe();
   EXPECT_EQ(format_bytes(512), "512 B");
@@ -82,7 +83,7 @@ TEST(BakeEstimate, ADeepWaterLayerAddsItsLatticesToTheMemory) {
   // The default equations are the fully nonlinear ones: their remainder's arrays are counted per cell.
   ASSERT_EQ(plain.solver.equations, boussinesq::Equations::kFullyNonlinear);
   EXPECT_DOUBLE_EQ(plain_estimate.memory_bytes, kBakeFixedBytes +
-                                                    plain_estimate.cells * (kBakeBytesPerCell + kFullyNonlinearBytesPerCell) +
+                                                    plain_estimate.cells * (kBakeBytesPerCell + kFullyNonlinearBytesPerCell + kAdiPassesBytesPerCell) +
                                                     plain_estimate.line_bytes +
                                                     plain_estimate.gauge_samples * (1.0 + plain.gauges.size()) * 32.0);
   EXPECT_NE(deep_estimate.describe().find("1.2 MiB deep water"), std::string::npos) << deep_estimate.describe();

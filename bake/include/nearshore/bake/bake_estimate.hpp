@@ -23,6 +23,10 @@ inline constexpr double kBakeBytesPerCell = 250.0;
 /// faces, and the faces' subcritical factors, all float (docs/solver.md "Memory");
 /// kBakeBytesPerCell was measured with the seed's.
 inline constexpr double kFullyNonlinearBytesPerCell = 24.0;
+/// What a second ADI pass (solver.adi_passes > 1, the default two since 2026-11-28) adds per cell,
+/// bytes: the previous pass's flux increment and surface, double (docs/solver.md "Memory");
+/// kBakeBytesPerCell was measured with one pass.
+inline constexpr double kAdiPassesBytesPerCell = 16.0;
 /// Per cell of the grid's longest side and per worker thread, bytes: the sweep's scratch (23 arrays
 /// of 16 lanes of doubles, 2944 B, four of them the walls' mirror flags since 2026-11-28) and the
 /// grid-scale filter's block of 128 lines (1024 B), rounded up. On a narrow grid they weigh 50-70 B
