@@ -171,7 +171,6 @@ TEST(BoussinesqSweepOrder, DiagonalSymmetryOfAHumpHoldsToTheSplittingError) {
   EXPECT_LT(alternating_full, 2.5e-2);
 }
 
-
 // Crossing waves and the number of ADI passes (docs/solver.md, "ADI passes"). The standing mode
 // cos(k_x x) cos(k_y y) at 45 degrees in a closed flat basin is two wave trains crossing at right
 // angles; Crank-Nicolson keeps a linear mode's energy, so any loss is the splitting. The first sweep
@@ -183,9 +182,9 @@ TEST(BoussinesqSweepOrder, DiagonalSymmetryOfAHumpHoldsToTheSplittingError) {
 // times that factor to the power p - 1 (at 45 degrees: 0.028 at k d = 1, 0.20 at k d = 2).
 // Measured 2026-11-28 (Courant 0.5, 20 cells per wavelength along each axis): one pass loses 4.1 %
 // and 7.0 % of the amplitude per period at k d = 1 and 2; two passes 0.116 % and 1.19 % (predicted
-// 0.115 % and 1.39 %); three 0.005 % and 0.23 % (predicted 0.003 % and 0.27 %). The test holds one pass to a loss of
-// at least 2 % (the lag it measures is there), each further pass to 1.5 times the prediction plus
-// 2e-4 (the amplitude's reading from sampled peaks), and the default to two passes.
+// 0.115 % and 1.39 %); three 0.005 % and 0.23 % (predicted 0.003 % and 0.27 %). The test holds one
+// pass to a loss of at least 2 % (the lag it measures is there), each further pass to 1.5 times the
+// prediction plus 2e-4 (the amplitude's reading from sampled peaks), and the default to two passes.
 
 // Loss of amplitude per period of the 45-degree standing mode at k d, with `passes` sweep pairs.
 double oblique_mode_loss_per_period(double kd, int passes) {
@@ -197,19 +196,24 @@ double oblique_mode_loss_per_period(double kd, int passes) {
   parameters.adi_passes = passes;
   BoussinesqSolver solver(harbour, parameters, WaveMaker{});
   const double amplitude_m = 1e-5 * depth_m;  // linear
-  auto shape = [&](int column, int row) { return std::cos(k_axis * (column + 0.5) * kDx) * std::cos(k_axis * (row + 0.5) * kDx); };
   solver.set_surface_elevation([&](double x, double y) { return amplitude_m * std::cos(k_axis * x) * std::cos(k_axis * y); });
+  // The mode's shape at the cell centres, and its norm, once.
+  std::vector<double> shape(kCells * kCells);
+  double norm = 0.0;
+  for (int row = 0; row < kCells; ++row)
+    for (int column = 0; column < kCells; ++column) {
+      const double value = std::cos(k_axis * (column + 0.5) * kDx) * std::cos(k_axis * (row + 0.5) * kDx);
+      shape[row * kCells + column] = value;
+      norm += value * value;
+    }
   // The mode's amplitude: the projection of eta on its shape, every step; its extremes located by
   // a parabola through the three samples around each, so the reading does not depend on where the
   // steps fall in the period.
   auto projection = [&] {
     const Raster<float>& eta = solver.surface_elevation_m();
-    double along = 0.0, norm = 0.0;
+    double along = 0.0;
     for (int row = 0; row < kCells; ++row)
-      for (int column = 0; column < kCells; ++column) {
-        along += eta(column, row) * shape(column, row);
-        norm += shape(column, row) * shape(column, row);
-      }
+      for (int column = 0; column < kCells; ++column) along += eta(column, row) * shape[row * kCells + column];
     return along / norm;
   };
   std::vector<double> samples{projection()}, extremes;
@@ -230,9 +234,9 @@ double oblique_mode_loss_per_period(double kd, int passes) {
 
 TEST(BoussinesqAdiPasses, CrossingWavesLoseOnlyTheSplittingLagOfTheLastPass) {
   EXPECT_EQ(SolverParameters{}.adi_passes, 2);
-  constexpr double kB = 1.0 / 15.0;
+  const double dispersion_coefficient = SolverParameters{}.dispersion_coefficient;  // B, the one the runs use
   for (double kd : {1.0, 2.0}) {
-    const double a2 = (kB + 1.0 / 3.0) * 0.5 * kd * kd;  // (k_x c)^2 = (k_y c)^2 at 45 degrees
+    const double a2 = (dispersion_coefficient + 1.0 / 3.0) * 0.5 * kd * kd;  // (k_x c)^2 = (k_y c)^2 at 45 degrees
     const double factor = a2 * a2 / ((1.0 + a2) * (1.0 + a2));
     const double one_pass = oblique_mode_loss_per_period(kd, 1);
     std::printf("k d = %.1f: amplitude lost per period: 1 pass %.4f %%", kd, 100 * one_pass);
