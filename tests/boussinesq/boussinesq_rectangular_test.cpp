@@ -33,12 +33,12 @@ namespace nearshore::boussinesq {
 using namespace nearshore::ocean;
 namespace {
 
-constexpr double kB = 1.0 / 15.0;
-
-// Madsen & Sorensen (1992) angular frequency of the continuous equations for wavenumber k.
+// Madsen & Sorensen (1992) angular frequency of the continuous equations for wavenumber k, with the
+// B the solver runs with.
 double model_frequency(double k, double depth_m) {
+  const double b = SolverParameters{}.dispersion_coefficient;
   const double kd2 = k * k * depth_m * depth_m;
-  return k * std::sqrt(kGravity_m_s2 * depth_m * (1.0 + kB * kd2) / (1.0 + (kB + 1.0 / 3.0) * kd2));
+  return k * std::sqrt(kGravity_m_s2 * depth_m * (1.0 + b * kd2) / (1.0 + (b + 1.0 / 3.0) * kd2));
 }
 // The staggered grid's wavenumber for k on spacing D (header comment).
 double grid_wavenumber(double k, double spacing_m) { return 2.0 / spacing_m * std::sin(0.5 * k * spacing_m); }
