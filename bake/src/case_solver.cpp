@@ -71,6 +71,7 @@ SolverParameters read_solver(TableReader& solver) {
   p.breaking.stop_celerity_fraction = breaking.positive("stop_celerity_fraction", p.breaking.stop_celerity_fraction, "fraction of sqrt(g d)");
   p.breaking.transition_time_factor = breaking.positive("transition_time_factor", p.breaking.transition_time_factor, "T* in units of sqrt(d/g)");
   p.breaking.mixing_length_coefficient = breaking.positive("mixing_length_coefficient", p.breaking.mixing_length_coefficient, "delta");
+  p.breaking.fade_fully_nonlinear_terms = breaking.boolean("fade_fully_nonlinear_terms", p.breaking.fade_fully_nonlinear_terms);
   p.breaking.roller_onset_angle_deg = breaking.number("roller_onset_angle_deg", p.breaking.roller_onset_angle_deg, 0.0, 90.0, false, "phi_B in degrees");
   p.breaking.roller_final_angle_deg = breaking.number("roller_final_angle_deg", p.breaking.roller_final_angle_deg, 0.0, 90.0, false, "phi_0 in degrees");
   p.breaking.roller_half_time_periods = breaking.positive("roller_half_time_periods", p.breaking.roller_half_time_periods, "t_1/2 in wave periods");
@@ -126,7 +127,11 @@ json solver_record(const SolverParameters& p) {
           {"sponges", sponges}};
   // The equations only when they are not the seed's: the record of a weakly nonlinear bake stays what
   // it was before the option existed (no "equations" key means "weakly_nonlinear").
-  if (p.equations != Equations::kWeaklyNonlinear) record["equations"] = equations_name(p.equations);
+  if (p.equations != Equations::kWeaklyNonlinear) {
+    record["equations"] = equations_name(p.equations);
+    // Only where it acts (the fully nonlinear terms): a weakly nonlinear record stays as it was.
+    record["breaking"]["fade_fully_nonlinear_terms"] = p.breaking.fade_fully_nonlinear_terms;
+  }
   // The roller's settings only when it is the model: the record of an eddy-viscosity bake stays
   // what it was before the roller existed (no "model" key means "eddy_viscosity").
   if (p.breaking.model == BreakingParameters::Model::kRoller) {

@@ -367,6 +367,11 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.dispersive_t.assign(cells, 0);
   s.wet_cells.assign(cells, 0);
 
+  if (parameters.equations == Equations::kFullyNonlinear) {
+    s.breaking_strength_t.assign(cells, 0.0f);
+    s.fade_nonlinear = parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kEddyViscosity &&
+                       parameters.breaking.fade_fully_nonlinear_terms;
+  }
   if (parameters.equations == Equations::kFullyNonlinear)
     s.nonlinear = std::make_unique<detail::NonlinearDispersion>(detail::NonlinearDispersionGrid{
         s.nx, s.ny, s.dx, s.dy, s.frame_y.depth_m.data(), s.frame_y.porosity.data(), s.frame_x.face_dispersion_weight.data(),
@@ -504,6 +509,10 @@ void BoussinesqSolver::Implementation::step() {
   }
   detail::transpose(eta.data(), eta_t.data(), nx, ny);
   if (eddy_viscosity_active) detail::transpose(eddy_viscosity.data(), eddy_t.data(), nx, ny);
+  if (eddy_viscosity_active && fade_nonlinear) detail::transpose(breaking_output.values().data(), breaking_strength_t.data(), nx, ny);
+  // B by which the fully nonlinear terms fade, per layout: zeros (breaking_strength_t) when they do not.
+  const float* fade_x = nonlinear ? breaking_strength_t.data() : nullptr;
+  const float* fade_natural = nonlinear ? (fade_nonlinear ? breaking_output.values().data() : breaking_strength_t.data()) : nullptr;
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
   mark_dispersive(frame_y, eta.data(), dispersive.data());
   // The fully nonlinear terms' subcritical factors of this step, from the state at t^n (eta_next as scratch)
@@ -576,7 +585,7 @@ void BoussinesqSolver::Implementation::step() {
           {eta_t.data(), eta_base.data(), partner, extrapolates, flux_x.data(),
            normal_guess(pass, flux_x, flux_x_increment, flux_x_new), tangential_half.data(), tangential_rate.data(),
            eddy_t.data(), dispersive_t.data(), eddy_viscosity_active, nonlinear ? nonlinear->force_x() : nullptr,
-           nonlinear ? nonlinear->subcritical_x() : nullptr},
+           nonlinear ? nonlinear->subcritical_x() : nullptr, fade_x},
           // Its eta (eta* when it comes first, eta^{n+1} when second) straight into the natural layout.
           {first ? eta_star.data() : eta_next.data(), flux_x_new.data(), 1, static_cast<std::size_t>(nx)});
   };
@@ -598,7 +607,7 @@ void BoussinesqSolver::Implementation::step() {
     sweep(frame_y,
           {eta.data(), base, partner, extrapolates, flux_y.data(), normal_guess(pass, flux_y, flux_y_increment, flux_y_new),
            tangential_half.data(), tangential_rate.data(), eddy_viscosity.data(), dispersive.data(), eddy_viscosity_active,
-           nonlinear ? nonlinear->force_y() : nullptr, nonlinear ? nonlinear->subcritical_y() : nullptr},
+           nonlinear ? nonlinear->force_y() : nullptr, nonlinear ? nonlinear->subcritical_y() : nullptr, fade_natural},
           {first ? eta_star.data() : eta_next.data(), flux_y_new.data(), static_cast<std::size_t>(nx), 1});
   };
 
@@ -641,7 +650,7 @@ void BoussinesqSolver::Implementation::step() {
     double* const scratch[6] = {eta_next.data(), eta_base.data(), eta_t.data(), tangential_half.data(), tangential_rate.data(),
                                 flux_x_new.data()};
     nonlinear->update({eta_star.data(), eta.data(), flux_x.data(), flux_x_increment.data(), flux_y.data(),
-                       flux_y_increment.data(), dispersive.data(), dt},
+                       flux_y_increment.data(), dispersive.data(), dt, fade_nonlinear ? fade_natural : nullptr},
                       scratch);
   }
   apply_sponges();
@@ -893,7 +902,10 @@ void BoussinesqSolver::Implementation::update_breaking(const std::vector<double>
     if (block_viscosity) any_viscosity.store(true, std::memory_order_relaxed);
   });
   // When the last breaking cell stops, eddy_t is cleared once; afterwards the transpose is skipped.
-  if (eddy_viscosity_active && !any_viscosity.load()) std::fill(eddy_t.begin(), eddy_t.end(), detail::EddyViscosity{0});
+  if (eddy_viscosity_active && !any_viscosity.load()) {
+    std::fill(eddy_t.begin(), eddy_t.end(), detail::EddyViscosity{0});
+    std::fill(breaking_strength_t.begin(), breaking_strength_t.end(), 0.0f);  // B is 0 wherever nu is
+  }
   eddy_viscosity_active = any_viscosity.load();
 }
 
@@ -1071,6 +1083,7 @@ std::size_t BoussinesqSolver::memory_bytes() const {
     add(*v);
   add(s.eddy_viscosity);
   add(s.eddy_t);
+  add(s.breaking_strength_t);
   for (const auto* v : {&s.dispersive, &s.dispersive_t, &s.wet_cells, &s.filterable_x, &s.filterable_y}) add(*v);
   for (const auto* v : {&s.sponge_cells, &s.sponge_faces_x, &s.sponge_faces_y}) add(*v);
   for (const StaticFrame* frame : {&s.frame_x, &s.frame_y}) {

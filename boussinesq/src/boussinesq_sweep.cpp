@@ -107,6 +107,8 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   // The fully nonlinear terms' subcritical factor per face of this step, 0 at porous faces (the
   // terms act in open water, n = 1; nonlinear_dispersion.hpp).
   const float* __restrict subcritical = in.fully_nonlinear_subcritical;
+  // The breaking strength by which the fully nonlinear terms fade, per cell (zeros when they do not).
+  const float* __restrict breaking = in.fully_nonlinear_breaking;
   // Porous resistance (Van Gent 1995) of a face from its porosity, as build_frame describes it.
   const double laminar_factor = frame.porous_laminar_factor, turbulent_factor = frame.porous_turbulent_factor;
   const double stone_diameter = frame.porous_stone_diameter_m;
@@ -314,12 +316,17 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
       const double h_RN = 0.5 * h_pair_north[R * W + j], h_RS = 0.5 * h_pair_south[R * W + j];
       const double d_LN = 0.5 * (dL + depth[c_at(L, ln)]), d_LS = 0.5 * (dL + depth[c_at(L, ls)]);
       const double d_RN = 0.5 * (dR + depth[c_at(R, ln)]), d_RS = 0.5 * (dR + depth[c_at(R, ls)]);
+      // Where waves break each cell's share fades by 1 - B inside the derivative along the line
+      // (conservation form; BreakingParameters::fade_fully_nonlinear_terms), the enhancement by the
+      // face's mean.
+      const double keep_L = 1.0 - breaking[cL], keep_R = 1.0 - breaking[cR];
+      // (Written so that keep = 1 gives the unfaded expression bit for bit.)
       const double serre =
           -(inv_dx * inv_dy / 3.0) *
-          (h_R * h_R * h_R * (rate_RN / h_RN - rate_RS / h_RS) - h_L * h_L * h_L * (rate_LN / h_LN - rate_LS / h_LS) -
-           dR3 * (rate_RN * linear_inverse_depth(d_RN, dry) - rate_RS * linear_inverse_depth(d_RS, dry)) +
-           dL3 * (rate_LN * linear_inverse_depth(d_LN, dry) - rate_LS * linear_inverse_depth(d_LS, dry)));
-      const double enhancement = -B * (h_face * h_face - d * d) * (rate_RN - rate_RS - rate_LN + rate_LS) * inv_dx * inv_dy;
+          (keep_R * h_R * h_R * h_R * (rate_RN / h_RN - rate_RS / h_RS) - keep_L * h_L * h_L * h_L * (rate_LN / h_LN - rate_LS / h_LS) -
+           keep_R * dR3 * (rate_RN * linear_inverse_depth(d_RN, dry) - rate_RS * linear_inverse_depth(d_RS, dry)) +
+           keep_L * dL3 * (rate_LN * linear_inverse_depth(d_LN, dry) - rate_LS * linear_inverse_depth(d_LS, dry)));
+      const double enhancement = -0.5 * (keep_L + keep_R) * B * (h_face * h_face - d * d) * (rate_RN - rate_RS - rate_LN + rate_LS) * inv_dx * inv_dy;
       term -= weight * (serre + enhancement);
     }
 
@@ -486,10 +493,17 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
             const double third = inv_dx2 / 3.0, enhancement = B * (h_here * h_here - d * d) * inv_dx2;
             // A wall face (the grid edge) carries no flux: nothing couples to it.
             const double inside_before = f > 1 ? 1.0 : 0.0, inside_after = f + 1 < cols ? 1.0 : 0.0;
-            fn_lower = inside_before * weight * (-third * (h_L * h_L * h_L / h_before - dL3 * linear_inverse_depth(d_before, dry)) - enhancement);
-            fn_upper = inside_after * weight * (-third * (h_R * h_R * h_R / h_after - dR3 * linear_inverse_depth(d_after, dry)) - enhancement);
-            fn_diagonal = weight * (third * ((h_L * h_L * h_L + h_R * h_R * h_R) / h_here - (dL3 + dR3) * linear_inverse_depth(d, dry)) +
-                                    2.0 * enhancement);
+            // Where waves break, cell L's and R's shares of h^3 d/dx(P_t/h) fade by 1 - B inside the
+            // outer derivative (conservation form), the enhancement by the face's mean.
+            const double keep_L = 1.0 - breaking[cL], keep_R = 1.0 - breaking[cR], keep_face = 0.5 * (keep_L + keep_R);
+            fn_lower = inside_before * weight * (-third * keep_L * (h_L * h_L * h_L / h_before - dL3 * linear_inverse_depth(d_before, dry)) -
+                                                 keep_face * enhancement);
+            fn_upper = inside_after * weight * (-third * keep_R * (h_R * h_R * h_R / h_after - dR3 * linear_inverse_depth(d_after, dry)) -
+                                                keep_face * enhancement);
+            // (Written so that keep = 1 gives the unfaded expression bit for bit.)
+            fn_diagonal = weight * (third * ((keep_L * h_L * h_L * h_L + keep_R * h_R * h_R * h_R) / h_here -
+                                             (keep_L * dL3 + keep_R * dR3) * linear_inverse_depth(d, dry)) +
+                                    2.0 * keep_face * enhancement);
           }
 
           // Bed friction: the larger of the Chezy stress g P |(P,Q)| / (h^2 C^2) and the laminar

@@ -121,6 +121,10 @@ struct SweepInput {
   /// The fully nonlinear terms' subcritical factor at the normal faces for this step (0 to 1, 0 at
   /// porous faces; NonlinearDispersion::update_subcritical), or nullptr with the seed's equations.
   const float* fully_nonlinear_subcritical = nullptr;
+  /// The breaking strength B per cell (0 to 1, the sweep's layout) by which the fully nonlinear
+  /// terms fade (BreakingParameters::fade_fully_nonlinear_terms): each cell's share of them is
+  /// weighted by 1 - B. All zeros when they do not fade; nullptr with the seed's equations.
+  const float* fully_nonlinear_breaking = nullptr;
 };
 
 struct SweepOutput {

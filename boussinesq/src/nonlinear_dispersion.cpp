@@ -173,7 +173,10 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
       const std::size_t i = cell(c, r);
       const double advection = u_cell[i] * (divergence[cell(east, r)] - divergence[cell(west, r)]) * (0.5 * inv_dx) +
                                v_cell[i] * (divergence[cell(c, north)] - divergence[cell(c, south)]) * (0.5 * inv_dy);
-      gamma[i] = h[i] * h[i] * h[i] * (gamma[i] + advection);
+      // Where waves break the cell's share fades by 1 - B, inside the derivative of step 4
+      // (conservation form: the fade adds no force of its own).
+      const double keep = s.breaking_strength ? 1.0 - static_cast<double>(s.breaking_strength[i]) : 1.0;
+      gamma[i] = keep * h[i] * h[i] * h[i] * (gamma[i] + advection);
     }
   });
   // 3. Per cell: div S and its linearisation without the rates, S = div((P, Q)(P, Q)/h) + g h grad(eta)
@@ -240,7 +243,8 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
       div_S_linear[i] = (residual_linear[c + 1] - residual_linear[c]) * inv_dx + (north_linear - south_linear) * inv_dy;
     }
   });
-  // 4. Per face: R = w [-(1/3) d(h^3 Gamma) - B (h^2 d(div S) - d^2 d(div S_linear))], w = the taper
+  // 4. Per face: R = w [-(1/3) d(k h^3 Gamma) - k_face B (h^2 d(div S) - d^2 d(div S_linear))], k = 1 minus
+  // the cell's breaking strength (1 without the fade), k_face the mean of the face's two, w = the taper
   // times fully_nonlinear_weight times the face's subcritical factor of this step (update_subcritical)
   // where the whole stencil (two cells on each side) is wet (0 elsewhere; the subcritical factor is 0
   // next to porous cells); then the force of the next step, extrapolated to its t^{n+3/2}.
@@ -257,7 +261,8 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     if (weight == 0.0) return 0.0;
     const double serre = -(gamma[R] - gamma[L]) * inv_spacing / 3.0;
     const double enhancement = -B * (h_face * h_face * (div_S[R] - div_S[L]) - d * d * (div_S_linear[R] - div_S_linear[L])) * inv_spacing;
-    return weight * (serre + enhancement);
+    const double keep_face = s.breaking_strength ? 1.0 - 0.5 * (static_cast<double>(s.breaking_strength[L]) + s.breaking_strength[R]) : 1.0;
+    return weight * (serre + keep_face * enhancement);
   };
   const bool first = evaluations_ == 0;
   auto advance = [&](std::size_t i, double now, std::vector<float>& force, std::vector<float>& last) {

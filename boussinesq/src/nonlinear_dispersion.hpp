@@ -87,6 +87,9 @@ struct StepPair {
   const double* flux_y_change;   ///< Q^{n+1} - Q^n, y faces
   const unsigned char* dispersive;  ///< the solver's dispersion mask of eta^n (boussinesq_sweep.hpp, kDispersive, kMirror*)
   double time_step_s;
+  /// The breaking strength B of the step per cell (0 to 1), by which each cell's share of the terms
+  /// fades (BreakingParameters::fade_fully_nonlinear_terms), or nullptr: no fade.
+  const float* breaking_strength = nullptr;
 };
 
 class NonlinearDispersion {

@@ -67,6 +67,12 @@ struct BoussinesqSolver::Implementation {
   // Only when adi_passes > 1: the previous pass's flux increment and its eta^{n+1} transposed.
   std::vector<double> flux_guess, eta_pass_t;
   std::vector<detail::EddyViscosity> eddy_t;
+  // Equations::kFullyNonlinear: the breaking strength B in the x sweep's layout, by which the fully
+  // nonlinear terms fade where waves break (BreakingParameters::fade_fully_nonlinear_terms; the y
+  // sweep and the remainder read breaking_output). Transposed like eddy_t while cells break, all
+  // zeros otherwise, and all zeros for good when the terms do not fade (fade_nonlinear false).
+  std::vector<float> breaking_strength_t;
+  bool fade_nonlinear = false;
   // Masks, 0 or 1: the dispersion mask of eta^n per layout (mark_dispersive), its wet-cell
   // scratch, and the grid-scale filter's masks of the P and Q faces.
   std::vector<unsigned char> dispersive, dispersive_t, wet_cells, filterable_x, filterable_y;

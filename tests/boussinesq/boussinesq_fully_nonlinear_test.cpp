@@ -4,7 +4,8 @@
 // up a beach; one and two threads give the same bits; a saved state resumes bit-identically (the
 // remainder's history is part of it); a wave along y is the wave along x transposed. And the
 // second-order generation of a regular wave (WaveMaker::second_order) takes the free-harmonic beat
-// out of a flat flume. Their nonlinear accuracy: boussinesq_nonlinear_test.cpp.
+// out of a flat flume. Where cells break the terms fade (BreakingParameters::fade_fully_nonlinear_terms),
+// through the breaking strength alone. Their nonlinear accuracy: boussinesq_nonlinear_test.cpp.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -137,6 +138,109 @@ TEST(FullyNonlinear, SavedStateResumesBitIdenticallyAndIsRefusedByTheSeedsEquati
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("equations"), std::string::npos) << e.what();
   }
+}
+
+// BreakingParameters::fade_fully_nonlinear_terms: a hump of a third of the depth runs up a 1:10
+// beach in a flume one cell across and breaks (the eddy viscosity's strength B reaches 1). The fade
+// acts only through B: until a cell first breaks the faded and unfaded runs are the same bits, and
+// after it they part; with the seed's equations the flag does nothing; the water is kept to
+// round-off; and a state saved while cells break resumes bit for bit (the x sweep's copy of B is
+// rebuilt from the saved strength). Its effect on the surf zone's mean level is measured on Hansen &
+// Svendsen (docs/solver.md, "The fully nonlinear terms where waves break").
+HarbourGrid breaking_beach() {
+  HarbourGrid harbour = testing::flume(320, 1, 0.025, 0.36);
+  for (int c = 0; c < 320; ++c) {
+    const double x = (c + 0.5) * 0.025;
+    harbour.still_water_depth_m(c, 0) = static_cast<float>(std::min(0.36, 0.36 - (x - 3.0) / 10.0));
+  }
+  return harbour;
+}
+
+SolverParameters beach_parameters(bool fade) {
+  SolverParameters parameters = fully_nonlinear();  // closed: a sponge would take water
+  parameters.breaking.fade_fully_nonlinear_terms = fade;
+  return parameters;
+}
+
+void add_beach_hump(BoussinesqSolver& solver) {
+  solver.set_surface_elevation([](double x, double) { return 0.12 * std::exp(-(x - 2.0) * (x - 2.0) / 0.08); });
+}
+
+float largest_breaking_strength(const BoussinesqSolver& solver) {
+  const std::vector<float>& strength = solver.breaking_indicator().values();
+  return *std::max_element(strength.begin(), strength.end());
+}
+
+TEST(FullyNonlinearFade, ActsOnlyWhereCellsBreakAndKeepsTheWater) {
+  const HarbourGrid harbour = breaking_beach();
+  BoussinesqSolver faded(harbour, beach_parameters(true), WaveMaker{}), kept(harbour, beach_parameters(false), WaveMaker{});
+  add_beach_hump(faded);
+  add_beach_hump(kept);
+  const double initial_m3 = faded.water_volume_m3();
+  int first_break = -1, identical_steps = 0;
+  float strongest = 0.0f;
+  double parted_m = 0.0;
+  for (int i = 0; i < 1200; ++i) {
+    const bool breaks = largest_breaking_strength(faded) > 0.0f;  // B of the state this step starts from
+    if (breaks && first_break < 0) first_break = i;
+    faded.step();
+    kept.step();
+    strongest = std::max(strongest, largest_breaking_strength(faded));
+    const std::vector<float> a = testing::solver_snapshot(faded), b = testing::solver_snapshot(kept);
+    const bool same = std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+    if (first_break < 0) {
+      ASSERT_TRUE(same) << "the runs parted at step " << i << " before any cell broke";
+      ++identical_steps;
+    }
+    const std::vector<float>&eta_a = faded.surface_elevation_m().values(), &eta_b = kept.surface_elevation_m().values();
+    for (std::size_t k = 0; k < eta_a.size(); ++k) parted_m = std::max(parted_m, std::abs(double(eta_a[k]) - double(eta_b[k])));
+  }
+  ASSERT_FALSE(faded.check_stability().has_value()) << faded.check_stability()->what;
+  std::printf("first break at step %d (identical before it: %d steps), strongest B %.2f, largest difference of the surface %.3g m\n",
+              first_break, identical_steps, strongest, parted_m);
+  ASSERT_GT(first_break, 10);   // the hump needs to run up the beach first
+  EXPECT_EQ(strongest, 1.0f);   // it breaks in full
+  EXPECT_GT(parted_m, 1e-4);    // and the fade acts where it does (0.1 mm)
+  EXPECT_LT(std::abs(faded.water_volume_m3() / initial_m3 - 1.0), 1e-12);
+}
+
+TEST(FullyNonlinearFade, DoesNothingWithTheSeedsEquationsAndResumesFromASavedState) {
+  const HarbourGrid harbour = breaking_beach();
+  // The seed's equations have no fully nonlinear terms to fade.
+  std::string states[2];
+  for (int k = 0; k < 2; ++k) {
+    SolverParameters parameters = beach_parameters(k == 0);
+    parameters.equations = Equations::kWeaklyNonlinear;
+    BoussinesqSolver solver(harbour, parameters, WaveMaker{});
+    add_beach_hump(solver);
+    for (int i = 0; i < 700; ++i) solver.step();
+    std::ostringstream out;
+    solver.save_state(out);
+    states[k] = out.str();
+  }
+  EXPECT_EQ(states[0], states[1]);
+  // Saved while cells break, loaded into a new solver: the same bits as the run that went on.
+  BoussinesqSolver uninterrupted(harbour, beach_parameters(true), WaveMaker{});
+  add_beach_hump(uninterrupted);
+  int i = 0;
+  while (largest_breaking_strength(uninterrupted) == 0.0f && i < 1200) {
+    uninterrupted.step();
+    ++i;
+  }
+  ASSERT_LT(i, 1200) << "nothing broke";
+  for (int k = 0; k < 20; ++k) uninterrupted.step();  // well inside the event
+  ASSERT_GT(largest_breaking_strength(uninterrupted), 0.0f);
+  std::stringstream saved;
+  uninterrupted.save_state(saved);
+  BoussinesqSolver resumed(harbour, beach_parameters(true), WaveMaker{});
+  resumed.load_state(saved);
+  for (int k = 0; k < 60; ++k) {
+    uninterrupted.step();
+    resumed.step();
+  }
+  const std::vector<float> a = testing::solver_snapshot(uninterrupted), b = testing::solver_snapshot(resumed);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
 }
 
 // The code of the y direction against the x direction's: a regular wave along a flume laid along

@@ -28,13 +28,13 @@ TEST(BoussinesqMemory, ArraysPerCellStayWithinTheBudget) {
   const double cells = 600.0 * 500.0;
   const double bytes_per_cell = static_cast<double>(solver.memory_bytes()) / cells;
   RecordProperty("solver_bytes_per_cell", std::to_string(bytes_per_cell));
-  // docs/solver.md "Memory": 173 B per cell of arrays, 24 B of the fully nonlinear remainder's
-  // history and subcritical factors (the default equations) and 16 B of the second ADI pass's
+  // docs/solver.md "Memory": 173 B per cell of arrays, 28 B of the fully nonlinear remainder's
+  // history, subcritical factors and the breaking strength they fade by (the default equations) and 16 B of the second ADI pass's
   // previous increment and surface (the default two passes), plus 48 B per cell of sponge (12 % of
   // this grid: ~6 B) and the per-line scratch (~2.9 kB per column of the longest line per thread:
-  // ~6 B per cell on 1-2 threads here); measured 230 B. The bound is the table's sum with a margin of about 5 %.
-  EXPECT_LE(bytes_per_cell, 236.0) << "an array was added to the solver: update docs/solver.md \"Memory\"";
-  EXPECT_GE(bytes_per_cell, 213.0) << "memory_bytes() no longer counts every array";
+  // ~6 B per cell on 1-2 threads here); measured 234 B. The bound is the table's sum with a margin of about 5 %.
+  EXPECT_LE(bytes_per_cell, 240.0) << "an array was added to the solver: update docs/solver.md \"Memory\"";
+  EXPECT_GE(bytes_per_cell, 217.0) << "memory_bytes() no longer counts every array";
   // A 4000 x 4000 grid's solver arrays fit well inside 24 GB.
   EXPECT_LT(bytes_per_cell * 4000.0 * 4000.0, 4e9);
 }

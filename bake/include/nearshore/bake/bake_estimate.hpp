@@ -20,9 +20,10 @@ namespace nearshore::bake {
 inline constexpr double kBakeBytesPerCell = 250.0;
 /// What the fully nonlinear equations (solver.equations, the default since issue 19) add per cell,
 /// bytes: the history of their explicit remainder, the force and the last value on the x and y
-/// faces, and the faces' subcritical factors, all float (docs/solver.md "Memory");
-/// kBakeBytesPerCell was measured with the seed's.
-inline constexpr double kFullyNonlinearBytesPerCell = 24.0;
+/// faces, the faces' subcritical factors, and the breaking strength in the x sweep's layout by which
+/// they fade where waves break, all float (docs/solver.md "Memory"); kBakeBytesPerCell was measured
+/// with the seed's.
+inline constexpr double kFullyNonlinearBytesPerCell = 28.0;
 /// What a second ADI pass (solver.adi_passes > 1, the default two since 2026-11-28) adds per cell,
 /// bytes: the previous pass's flux increment and surface, double (docs/solver.md "Memory");
 /// kBakeBytesPerCell was measured with one pass.

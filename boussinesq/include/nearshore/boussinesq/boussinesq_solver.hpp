@@ -65,6 +65,14 @@ struct BreakingParameters {
   double stop_celerity_fraction = 0.15;    ///< eta_t^(F) = 0.15 sqrt(g d)
   double transition_time_factor = 5.0;     ///< T* = 5 sqrt(d/g)
   double mixing_length_coefficient = 1.2;  ///< delta
+  /// Equations::kFullyNonlinear with the eddy viscosity: where a cell breaks, its share of the fully
+  /// nonlinear dispersive terms (what they add to the seed's) is weighted by 1 - B, B its breaking
+  /// strength, inside the derivative of the non-hydrostatic momentum flux (conservation form), so
+  /// the fade adds no force of its own. The Serre-type terms at a broken front are outside the range
+  /// they were derived for, and their mean there raised Hansen & Svendsen's inner set-up by half
+  /// its error; FUNWAVE-TVD drops its dispersive terms in breaking cells likewise (docs/solver.md,
+  /// "The fully nonlinear terms where waves break"). The seed's dispersive terms stay.
+  bool fade_fully_nonlinear_terms = true;
   // The roller (Madsen, Sorensen & Schaffer 1997, Part I, their published values).
   double roller_onset_angle_deg = 20.0;    ///< phi_B: the front slope tan(phi_B) at which a roller forms, degrees
   double roller_final_angle_deg = 10.0;    ///< phi_0: the slope it decays to, degrees
@@ -125,7 +133,8 @@ inline constexpr double kMaxCourantNumber = 2.0;
 /// same revision, so one sequence never holds two physics; the manifest's solver record carries it.
 /// The list of revisions is docs/solver.md, "Physics revision". 1: the solver of 2026-11-28 (issue 19's
 /// defaults, Kennedy et al.'s thresholds on the still-water depth, the laminar film's bed stress).
-inline constexpr int kSolverPhysicsRevision = 1;
+/// 2: the fully nonlinear terms fade where waves break (BreakingParameters::fade_fully_nonlinear_terms).
+inline constexpr int kSolverPhysicsRevision = 2;
 
 /// Porosity below which a cell is a solid wall (a quay): no flux through its faces, no shoreline on it.
 inline constexpr double kWallPorosity = 0.05;
