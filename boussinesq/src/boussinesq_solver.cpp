@@ -368,15 +368,14 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.wet_cells.assign(cells, 0);
 
   if (parameters.equations == Equations::kFullyNonlinear) {
-    s.breaking_strength_t.assign(cells, 0.0f);
-    s.fade_nonlinear = parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kEddyViscosity &&
-                       parameters.breaking.fade_fully_nonlinear_terms;
-  }
-  if (parameters.equations == Equations::kFullyNonlinear)
     s.nonlinear = std::make_unique<detail::NonlinearDispersion>(detail::NonlinearDispersionGrid{
         s.nx, s.ny, s.dx, s.dy, s.frame_y.depth_m.data(), s.frame_y.porosity.data(), s.frame_x.face_dispersion_weight.data(),
         s.frame_y.face_dispersion_weight.data(), parameters.dispersion_coefficient, parameters.dry_depth_m,
         parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls});
+    s.breaking_strength_t.assign(cells, 0.0f);
+    s.fade_nonlinear = parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kEddyViscosity &&
+                       parameters.breaking.fade_fully_nonlinear_terms;
+  }
   s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
   s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
   if (parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kRoller) {
