@@ -55,12 +55,15 @@ void add_bake_command(CLI::App& app) {
       std::fprintf(stderr, "%s\n", band.c_str());
     if (const std::string derived = bake::describe_derived_solver_settings(bake_case); !options->json && !derived.empty())
       std::fprintf(stderr, "%s\n", derived.c_str());
+    if (const std::string structures = bake::describe_structure_layers(bake_case.structure_layers); !options->json && !structures.empty())
+      std::fprintf(stderr, "%s\n", structures.c_str());
     // Positions on land or outside the chart (issue 14 item 2): on stderr, also under --json.
     for (const std::string& warning : bake_case.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     const bake::BakeSummary summary = bake::run_bake(bake_case, bake_options);
     if (options->json) {
       nlohmann::json printed = summary.to_json();
       printed["warnings"] = bake_case.warnings;
+      if (!bake_case.structure_layers.empty()) printed["structure_layers"] = bake::structure_layers_record(bake_case.structure_layers);
       std::printf("%s\n", printed.dump(2).c_str());
       return;
     }

@@ -135,7 +135,7 @@ bake::BakeCase shortened(bake::BakeCase bake_case, int steps) {
 std::function<bake::BakeCase()> demo_harbour_case(const fs::path& case_file, const fs::path& scratch) {
   const bathymetry::DemoHarbourFiles chart = bathymetry::write_demo_harbour(scratch / "demo-chart");
   bathymetry::BathyRequest request;
-  request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson, chart.coastline_geojson};
+  request.inputs = {chart.depth_geotiff, chart.structures_geojson, chart.land_geojson, chart.coastline_geojson};
   request.spacing_m = 8.0;
   bathymetry::write_bathymetry_outputs(scratch / "demo-harbour", bathymetry::build_harbour_grid(request));
   const std::string grid = fs::absolute(scratch / "demo-harbour" / "depth.exr").string();

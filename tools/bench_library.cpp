@@ -105,7 +105,7 @@ void add_bench_library(CLI::App& bench) {
     fs::create_directories(work);
     const bathymetry::DemoHarbourFiles chart = bathymetry::write_demo_harbour(work / "chart");
     bathymetry::BathyRequest request;
-    request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson, chart.coastline_geojson};
+    request.inputs = {chart.depth_geotiff, chart.structures_geojson, chart.land_geojson, chart.coastline_geojson};
     request.spacing_m = options->spacing_m;
     const bathymetry::BathyResult harbour = bathymetry::build_harbour_grid(request);
     bathymetry::write_bathymetry_outputs(work / "harbour", harbour);

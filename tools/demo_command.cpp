@@ -74,6 +74,10 @@ fs::path write_demo_case(const fs::path& folder, const fs::path& harbour_exr, co
 
 bake::BakeSummary bake_demo_case(const fs::path& case_file, const fs::path& bake_folder) {
   const bake::BakeCase bake_case = bake::read_bake_case(case_file);
+  // What the harbour's structures became (their reflection, fitted in the model's flume).
+  if (const std::string structures = bake::describe_structure_layers(bake_case.structure_layers); !structures.empty())
+    std::fprintf(stderr, "%s\n", structures.c_str());
+  for (const std::string& warning : bake_case.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   bake::BakeOptions bake_options;
   bake_options.output_folder = bake_folder;
   bake_options.resume = fs::exists(bake::checkpoint_path(bake_folder));  // an interrupted demo continues
@@ -97,12 +101,12 @@ void run_demo(const DemoOptions& options) {
   bathymetry::DemoHarbourFiles chart;
   run_stage("chart", [&] {
     chart = bathymetry::write_demo_harbour(chart_folder);
-    return fmt::format("{}/ (depth.tif, coastline, land, breakwaters .geojson)", chart_folder.string());
+    return fmt::format("{}/ (depth.tif, coastline, land, structures .geojson)", chart_folder.string());
   });
 
   run_stage("bathy", [&] {
     bathymetry::BathyRequest request;
-    request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson,
+    request.inputs = {chart.depth_geotiff, chart.structures_geojson, chart.land_geojson,
                       chart.coastline_geojson};
     request.spacing_m = options.spacing_m;
     const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);

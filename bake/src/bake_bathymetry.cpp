@@ -164,6 +164,9 @@ HarbourGrid resample_harbour_grid(const HarbourGrid& grid, CellSize spacing) {
       out.porosity(column, row) = grid.porosity(ni, nj);
     }
   }
+  // The structures' geometry is in metres: the bake lays their footprints again at these cells
+  // (structure_layers.hpp), so walls stay closed whatever the new cell size.
+  out.structures = grid.structures;
   return out;
 }
 

@@ -168,7 +168,6 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   if (!root.has("bathymetry")) root.fail("bathymetry", "is missing", "add a [bathymetry] table (docs/commands/bake.md)");
   bake_case.harbour = read_bathymetry(bathymetry, base, options);
   bathymetry.finish();
-  apply_porous_blocks(root.tables("porous_blocks"), bake_case.harbour);
   const GridGeometry& geometry = bake_case.harbour.geometry;
 
   if (!root.has("time")) root.fail("time", "is missing", "add a [time] table with duration_s and output_interval_s");
@@ -257,6 +256,12 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
                   "or use a larger deep_water tile (finer lattice cells)");
     }
   }
+  // The harbour's structures laid at this grid's cells, their porous faces fitted to the sea the
+  // wave maker now makes (structure_layers.hpp); then the case's own porous blocks over them.
+  if (!bake_case.harbour.structures.empty())
+    bake_case.structure_layers =
+        lay_structures(bake_case.harbour, bake_case.solver, structure_sea_state(bake_case.wave_maker), bake_case.warnings);
+  apply_porous_blocks(root.tables("porous_blocks"), bake_case.harbour);
   const double loop_period_s = bake_case.wave_maker.sea_state.loop_period_s;
   if (loop_period_s > 0 && whole_steps(loop_period_s, bake_case.timing.output_interval_s) < 1)
     time.fail(time.full("output_interval_s"), fmt::format("= {} s does not divide wave_maker.loop_period_s = {} s",
@@ -332,6 +337,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
       bake_case.wave_conditions["local_seas"] = seas;
     }
   bake_case.solver_record = solver_record(bake_case.solver);
+  if (!bake_case.structure_layers.empty()) bake_case.solver_record["structure_layers"] = structure_layers_record(bake_case.structure_layers);
   return bake_case;
 }
 

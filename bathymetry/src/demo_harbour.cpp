@@ -32,7 +32,17 @@ double shoreline_y_m(double x_m) {
 }
 // Breakwater arms (rubble mound): from the shore south to y = 640 m, then towards the entrance.
 constexpr double kArmY_m = 640.0, kWestArmX_m = 420.0, kEastArmX_m = 1180.0;
-constexpr double kGapWest_m = 730.0, kGapEast_m = 870.0;  // the 140 m harbour entrance
+// The harbour entrance: 140 m between the mounds' toes on the 8 m bed (x = 730-870 m); the crest
+// heads stand 21.5 m further out, the toe of a 10 m crest at 1:1.5 from +3 m down to -8 m.
+constexpr double kEntranceWest_m = 730.0, kEntranceEast_m = 870.0;
+constexpr double kCrestWidth_m = 10.0, kCrestElevation_m = 3.0, kArmourSlope = 1.5, kBasinDepth_m = 8.0;
+constexpr double kHeadToToe_m = 0.5 * kCrestWidth_m + kArmourSlope * (kCrestElevation_m + kBasinDepth_m);
+constexpr double kGapWest_m = kEntranceWest_m - kHeadToToe_m, kGapEast_m = kEntranceEast_m + kHeadToToe_m;
+// A detached breakwater across the approach, 160 m south of the entrance (its toe 110 m from the
+// arms' toes): no wave from the south sees the entrance directly, every one must bend round one of
+// its heads and again into the gap, as harbours facing their waves are built (a straight run from
+// the sea to a vertical quay makes a standing wave in the basin whatever the structures reflect).
+constexpr double kDetachedY_m = 480.0, kDetachedWest_m = 640.0, kDetachedEast_m = 960.0;
 
 struct LocalPoint {
   double x_m, y_m;
@@ -90,7 +100,8 @@ void write_survey_geotiff(const fs::path& path, const DemoHarbourOptions& o, con
 struct Feature {
   std::unique_ptr<OGRGeometry> geometry;
   std::string category;
-  double crest_width_m = 0, porosity = 0;
+  double crest_width_m = 0, crest_elevation_m = 0;
+  std::string name;
 };
 
 void write_geojson(const fs::path& path, const std::string& layer_name, OGRwkbGeometryType type,
@@ -108,16 +119,19 @@ void write_geojson(const fs::path& path, const std::string& layer_name, OGRwkbGe
     require_gdal_ok(layer != nullptr, path, "cannot create layer " + layer_name);
     OGRFieldDefn category("category", OFTString);
     OGRFieldDefn crest("crest_width_m", OFTReal);
-    OGRFieldDefn porosity("porosity", OFTReal);
+    OGRFieldDefn crest_elevation("crest_elevation_m", OFTReal);
+    OGRFieldDefn name("name", OFTString);
     layer->CreateField(&category);
     layer->CreateField(&crest);
-    layer->CreateField(&porosity);
+    layer->CreateField(&crest_elevation);
+    layer->CreateField(&name);
     bool ok = true;
     for (auto& f : features) {
       OGRFeature* feature = OGRFeature::CreateFeature(layer->GetLayerDefn());
       feature->SetField("category", f.category.c_str());
       if (f.crest_width_m > 0) feature->SetField("crest_width_m", f.crest_width_m);
-      if (f.porosity > 0) feature->SetField("porosity", f.porosity);
+      if (f.crest_elevation_m > 0) feature->SetField("crest_elevation_m", f.crest_elevation_m);
+      if (!f.name.empty()) feature->SetField("name", f.name.c_str());
       feature->SetGeometry(f.geometry.get());
       ok = ok && layer->CreateFeature(feature) == OGRERR_NONE;
       OGRFeature::DestroyFeature(feature);
@@ -187,12 +201,12 @@ DemoHarbourFiles write_demo_harbour(const fs::path& folder, const DemoHarbourOpt
   GDALAllRegister();
   const SiteFrame frame(o);
   DemoHarbourFiles files{folder / "depth.tif", folder / "coastline.geojson", folder / "land.geojson",
-                         folder / "breakwaters.geojson"};
+                         folder / "structures.geojson"};
   write_survey_geotiff(files.depth_geotiff, o, frame);
 
   const std::vector<LocalPoint> shore = shoreline_points(o);
   std::vector<Feature> coastline;
-  coastline.push_back({line_string(frame, shore), "coastline"});
+  coastline.push_back({line_string(frame, shore), "coastline", 0.0, 0.0, ""});
   write_geojson(files.coastline_geojson, "coastline", wkbLineString, std::move(coastline));
 
   // Land: the shoreline closed along the northern edge of the grid.
@@ -208,13 +222,24 @@ DemoHarbourFiles write_demo_harbour(const fs::path& folder, const DemoHarbourOpt
   auto polygon = std::make_unique<OGRPolygon>();
   polygon->addRingDirectly(ring.release());
   std::vector<Feature> land;
-  land.push_back({std::move(polygon), "land"});
+  land.push_back({std::move(polygon), "land", 0.0, 0.0, ""});
   write_geojson(files.land_geojson, "land", wkbPolygon, std::move(land));
 
-  std::vector<Feature> breakwaters;
-  for (const auto& arm : breakwater_arms())
-    breakwaters.push_back({line_string(frame, arm), "rubble_mound_breakwater", 20.0, 0.45});
-  write_geojson(files.breakwaters_geojson, "breakwaters", wkbLineString, std::move(breakwaters));
+  // Structures: the two rubble-mound arms (their reflection from the sea state, Zanuttigh & van der
+  // Meer 2008; an impermeable core) and the vertical quay front with its two returns to the shore
+  // (Kr 0.95): kinds and defaults in bathymetry's style table (harbour_builder.cpp).
+  std::vector<Feature> structures;
+  const char* arm_names[] = {"west breakwater", "east breakwater"};
+  for (std::size_t i = 0; i < breakwater_arms().size(); ++i)
+    structures.push_back({line_string(frame, breakwater_arms()[i]), "rubble_mound_breakwater", kCrestWidth_m, kCrestElevation_m, arm_names[i]});
+  structures.push_back({line_string(frame, {{kDetachedWest_m, kDetachedY_m}, {kDetachedEast_m, kDetachedY_m}}), "rubble_mound_breakwater",
+                        kCrestWidth_m, kCrestElevation_m, "detached breakwater"});
+  const std::vector<LocalPoint> quay_front = {{kQuayWest_m, natural_shoreline_y_m(kQuayWest_m)},
+                                              {kQuayWest_m, kQuayY_m},
+                                              {kQuayEast_m, kQuayY_m},
+                                              {kQuayEast_m, natural_shoreline_y_m(kQuayEast_m)}};
+  structures.push_back({line_string(frame, quay_front), "vertical_quay", 0.0, 0.0, "quay"});
+  write_geojson(files.structures_geojson, "structures", wkbLineString, std::move(structures));
   return files;
 }
 

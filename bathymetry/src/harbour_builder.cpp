@@ -11,11 +11,13 @@
 #include <memory>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <fmt/core.h>
 
 #include "nearshore/bathymetry/coastline_level_set.hpp"
 #include "nearshore/bathymetry/still_water_line.hpp"
+#include "nearshore/bathymetry/structure_footprint.hpp"
 #include "nearshore/bathymetry/distance_transform.hpp"
 #include "nearshore/bathymetry/geotiff.hpp"
 #include "nearshore/bathymetry/natural_neighbour.hpp"
@@ -357,12 +359,33 @@ std::string minimum_depth_warning(std::size_t raised_cells, std::size_t water_ce
 }  // namespace
 
 std::map<std::string, StructureStyle> default_structure_styles() {
-  // Porosity n of seed 003 eq. (2)-(3). Rubble mounds: n ~ 0.4-0.5 (armour layer voids); vertical
-  // walls reflect fully (n = 0); piers on piles pass most of the wave (n = 0.9).
-  return {{"breakwater", {20.0, 0.45}}, {"rubble_mound_breakwater", {20.0, 0.45}}, {"groyne", {8.0, 0.45}},
-          {"mole", {15.0, 0.0}},         {"pier", {6.0, 0.9}},                       {"quay", {10.0, 0.0}},
-          {"vertical_quay", {10.0, 0.0}}, {"training_wall", {5.0, 0.45}},           {"riprap", {5.0, 0.5}},
-          {"revetment", {5.0, 0.5}},     {"sea_wall", {5.0, 0.0}}};
+  // Cross-sections: conventional rubble mounds have 1:1.5 - 1:2 armour slopes and crests 2-4 m
+  // above high water (CEM, USACE 2002, Part VI-2); quays stand ~2.5 m above mean water.
+  // Reflection: sloping rock faces by Zanuttigh & van der Meer (2008), Kr = tanh(a xi^b) with
+  // gamma_f 0.40 on a permeable core (breakwaters, groynes, training walls) and 0.55 on an
+  // impermeable one (revetments, riprap) (reflection_coefficient < 0: computed by the bake from the
+  // sea state it makes); vertical walls 0.9-1.0 (Goda 2000, Table 6.1; CEM II-7: 0.7-1.0), 0.95
+  // taken; perforated (wave-absorbing) caissons 0.3-0.6 (Tanimoto et al. 1982), 0.5 taken.
+  // Transmission: conventional emerged mounds and walls 0 (d'Angremond et al. 1996 give Kt at its
+  // lower bound 0.075 for crests well above the waves: overtopping, which a porous layer cannot
+  // make); a pier on piles passes most of a wave: Kt 0.9 (Hayashi et al. 1966 for piles three
+  // diameters apart), its reflection what a layer of that transmission gives.
+  StructureStyle rubble_mound{20.0, 3.0, 1.5, -1.0, 0.40, 0.0, 0.45};
+  StructureStyle groyne{8.0, 1.5, 1.5, -1.0, 0.40, 0.0, 0.45};
+  StructureStyle training_wall{5.0, 1.5, 1.5, -1.0, 0.40, 0.0, 0.45};
+  StructureStyle revetment{5.0, 2.0, 2.0, -1.0, 0.55, 0.0, 0.5};
+  // The nominal porosity (last) is what the preview shows until the bake fits the faces: for
+  // vertical kinds the faces are the numerical layer in front of the wall, mostly open water.
+  StructureStyle vertical{10.0, 2.5, 0.0, 0.95, 1.0, 0.0, 0.9};
+  StructureStyle absorbing_quay{10.0, 2.5, 0.0, 0.5, 1.0, 0.0, 0.7};
+  StructureStyle pier{6.0, 2.5, 0.0, 0.1, 1.0, 0.9, 0.9};
+  return {{"breakwater", rubble_mound},     {"rubble_mound_breakwater", rubble_mound},
+          {"groyne", groyne},               {"training_wall", training_wall},
+          {"riprap", revetment},            {"revetment", revetment},
+          {"mole", {15.0, 3.0, 0.0, 0.95, 1.0, 0.0, 0.9}},
+          {"quay", vertical},               {"vertical_quay", vertical},
+          {"sea_wall", {5.0, 3.0, 0.0, 0.95, 1.0, 0.0, 0.9}},
+          {"wave_absorbing_quay", absorbing_quay}, {"pier", pier}};
 }
 
 double estimated_peak_bytes(double cells, std::size_t input_count) {
@@ -655,7 +678,9 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
         if (depth(c, r) != before(c, r)) smoothed.record(c, r, depth(c, r) - before(c, r));
   }
   grid.still_water_depth_m = std::move(depth);
-  // Porosity: each structure burnt in with its category's (or its own) width and porosity.
+  const Raster<float>& depth_of_structures = grid.still_water_depth_m;
+  // Structures: each as the harbour grid carries it (core/coastal_structure.hpp), its footprint
+  // burnt into the porosity with the nominal porosity of its kind (the bake fits it).
   grid.porosity = Raster<float>(columns, rows, 1.0f);
   std::map<std::string, std::size_t> structure_cells;
   for (const auto& source : sources)
@@ -666,20 +691,51 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
                     "give the feature crest_width_m and porosity properties, or add '" + structure.category +
                         "' with a crest width and porosity to BathyRequest::structure_styles");
       StructureStyle style = style_it != request.structure_styles.end() ? style_it->second : StructureStyle{};
-      if (structure.crest_width_m > 0) style.crest_width_m = structure.crest_width_m;
-      if (structure.porosity >= 0) style.porosity = structure.porosity;
-      if (style.porosity >= 1.0) continue;
-      const float n = static_cast<float>(std::clamp(style.porosity, 0.0, 1.0));
-      auto burn = [&](int c, int r) {
-        if (grid.porosity(c, r) > n) grid.porosity(c, r) = n;
-        ++structure_cells[structure.category];
+      auto in_unit_range = [&](const char* key, double value) {
+        if (!(value >= 0.0 && value <= 1.0))
+          throw Error(source.path.string(), fmt::format("structure '{}' ({}): {} = {} is outside 0 .. 1", structure.name,
+                                                        structure.category, key, value),
+                      fmt::format("give {} as a fraction of the incident wave height, 0 .. 1", key));
       };
-      for (const auto& line : structure.lines) for_each_cell_near_line(g, project_line(line, projection), 0.5 * style.crest_width_m, burn);
-      for (const auto& polygon : structure.polygons) {
-        const auto rings = project_polygon(polygon, projection);
-        for_each_cell_in_polygon(g, rings, burn);
-        for (const auto& ring : rings) for_each_cell_near_line(g, ring, 0.0, burn);  // thin piers still count
+      if (structure.crest_width_m > 0) style.crest_width_m = structure.crest_width_m;
+      if (std::isfinite(structure.crest_elevation_m)) style.crest_elevation_m = structure.crest_elevation_m;
+      if (structure.reflection_coefficient >= 0) in_unit_range("reflection_coefficient", style.reflection_coefficient = structure.reflection_coefficient);
+      if (structure.transmission_coefficient >= 0) in_unit_range("transmission_coefficient", style.transmission_coefficient = structure.transmission_coefficient);
+      if (structure.porosity >= 0) in_unit_range("porosity", structure.porosity);
+      if (structure.porosity >= 1.0 || (structure.porosity < 0 && style.porosity >= 1.0 && style.transmission_coefficient >= 1.0)) continue;
+      CoastalStructure laid;
+      laid.name = structure.name.empty() ? fmt::format("{} {}", structure.category, grid.structures.size() + 1) : structure.name;
+      laid.kind = structure.category;
+      for (const auto& line : structure.lines) {
+        StructureLine plane;
+        for (const ProjectedPoint& p : project_line(line, projection)) plane.push_back({p.x_m, p.y_m});
+        laid.lines.push_back(std::move(plane));
       }
+      for (const auto& polygon : structure.polygons) {
+        std::vector<StructureLine> rings;
+        for (const PlaneLine& ring : project_polygon(polygon, projection)) {
+          StructureLine plane;
+          for (const ProjectedPoint& p : ring) plane.push_back({p.x_m, p.y_m});
+          rings.push_back(std::move(plane));
+        }
+        laid.polygons.push_back(std::move(rings));
+      }
+      laid.crest_width_m = style.crest_width_m;
+      laid.crest_elevation_m = style.crest_elevation_m;
+      laid.side_slope = style.side_slope;
+      laid.reflection_coefficient = style.reflection_coefficient;
+      laid.roughness_factor = style.roughness_factor;
+      laid.transmission_coefficient = style.transmission_coefficient;
+      laid.porosity = structure.porosity;
+      const float face_porosity = static_cast<float>(std::clamp(structure.porosity >= 0 ? structure.porosity : style.porosity, 0.0, 1.0));
+      std::unordered_set<std::size_t> footprint;
+      for_each_footprint_cell(g, depth_of_structures, laid, kMinimumStructureFaceCells, [&](int c, int r, FootprintPart part) {
+        const float n = part == FootprintPart::kCore ? 0.0f : face_porosity;
+        if (grid.porosity(c, r) > n) grid.porosity(c, r) = n;
+        footprint.insert(static_cast<std::size_t>(r) * columns + c);
+      });
+      structure_cells[structure.category] += footprint.size();
+      grid.structures.push_back(std::move(laid));
     }
   grid.coast_distance_m = signed_coast_distance(grid.land, g.spacing_m);
   // Preview coastline: the inputs' coastlines, else the outlines of their land polygons, else (raster

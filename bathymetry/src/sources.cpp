@@ -222,7 +222,10 @@ void read_s57(GDALDataset& dataset, SourceData& out) {
     Pieces pieces;
     collect(f.GetGeometryRef(), pieces);
     if (pieces.lines.empty() && pieces.polygons.empty()) return;
-    out.structures.push_back({category, std::move(pieces.lines), std::move(pieces.polygons)});
+    ShoreStructure structure{category, std::move(pieces.lines), std::move(pieces.polygons)};
+    const int name_index = f.GetFieldIndex("OBJNAM");
+    if (name_index >= 0 && f.IsFieldSetAndNotNull(name_index)) structure.name = f.GetFieldAsString(name_index);
+    out.structures.push_back(std::move(structure));
   });
   layer_features("M_COVR", [&](OGRFeature& f) {
     const int index = f.GetFieldIndex("CATCOV");
@@ -269,6 +272,13 @@ void read_vector(GDALDataset& dataset, const ReadOptions& options, SourceData& o
       const double crest = field_or_nan(*feature, "crest_width_m"), porosity = field_or_nan(*feature, "porosity");
       if (std::isfinite(crest)) structure.crest_width_m = crest;
       if (std::isfinite(porosity)) structure.porosity = porosity;
+      structure.crest_elevation_m = field_or_nan(*feature, "crest_elevation_m");
+      const double reflection = field_or_nan(*feature, "reflection_coefficient");
+      const double transmission = field_or_nan(*feature, "transmission_coefficient");
+      if (std::isfinite(reflection)) structure.reflection_coefficient = reflection;
+      if (std::isfinite(transmission)) structure.transmission_coefficient = transmission;
+      const int name_index = feature->GetFieldIndex("name");
+      if (name_index >= 0 && feature->IsFieldSetAndNotNull(name_index)) structure.name = feature->GetFieldAsString(name_index);
       if (!structure.lines.empty() || !structure.polygons.empty()) out.structures.push_back(std::move(structure));
     }
   }

@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kGeometryAttribute = "nearshore_geometry";
+constexpr const char* kStructuresAttribute = "nearshore_structures";
 constexpr const char* kFormatAttribute = "nearshore_format";
 constexpr const char* kFormatName = "nearshore harbour grid 1";
 
@@ -72,6 +73,8 @@ void write_harbour_grid(const fs::path& depth_exr, const HarbourGrid& grid) {
       header.compression() = Imf::ZIP_COMPRESSION;
       header.insert(kFormatAttribute, Imf::StringAttribute(kFormatName));
       header.insert(kGeometryAttribute, Imf::StringAttribute(nlohmann::json(grid.geometry).dump()));
+      if (!grid.structures.empty())
+        header.insert(kStructuresAttribute, Imf::StringAttribute(nlohmann::json(grid.structures).dump()));
       Imf::FrameBuffer frame_buffer;
       for (std::size_t c = 0; c < std::size(channels); ++c) {
         header.channels().insert(channels[c].first, Imf::Channel(Imf::FLOAT));
@@ -100,6 +103,8 @@ HarbourGrid read_harbour_grid(const fs::path& depth_exr) {
       throw Error(depth_exr.string(), "is an EXR file but not a nearshore harbour grid (no georeference)",
                   "make it with `nearshore bathy ... -o DIR` and pass DIR/depth.exr");
     grid.geometry = nlohmann::json::parse(geometry->value()).get<GridGeometry>();
+    if (const auto* structures = header.findTypedAttribute<Imf::StringAttribute>(kStructuresAttribute))
+      grid.structures = nlohmann::json::parse(structures->value()).get<std::vector<CoastalStructure>>();
     const Imath::Box2i window = header.dataWindow();
     const int columns = window.max.x - window.min.x + 1, rows = window.max.y - window.min.y + 1;
     if (columns != grid.geometry.columns || rows != grid.geometry.rows)

@@ -55,7 +55,7 @@ TEST(DemoHarbour, GeoJsonLayersAreWgs84AroundTheSiteWithStructureProperties) {
   const nb::DemoHarbourOptions options;
   const nb::DemoHarbourFiles files = nb::write_demo_harbour(folder, options);
   GDALAllRegister();
-  for (const auto& path : {files.coastline_geojson, files.land_geojson, files.breakwaters_geojson}) {
+  for (const auto& path : {files.coastline_geojson, files.land_geojson, files.structures_geojson}) {
     Dataset vector(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
     ASSERT_TRUE(vector) << path;
     OGRLayer* layer = vector->GetLayer(0);
@@ -69,12 +69,20 @@ TEST(DemoHarbour, GeoJsonLayersAreWgs84AroundTheSiteWithStructureProperties) {
     EXPECT_GT(extent.MinY, options.centre_latitude_deg - 0.006);
     EXPECT_LT(extent.MaxY, options.centre_latitude_deg + 0.006);
   }
-  Dataset breakwaters(GDALDataset::Open(files.breakwaters_geojson.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  OGRLayer* layer = breakwaters->GetLayer(0);
-  EXPECT_EQ(layer->GetFeatureCount(), 2);
+  Dataset structures(GDALDataset::Open(files.structures_geojson.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  OGRLayer* layer = structures->GetLayer(0);
+  EXPECT_EQ(layer->GetFeatureCount(), 4);  // two breakwater arms, the detached breakwater, the quay front
+  int arms = 0;
   for (auto& feature : *layer) {
-    EXPECT_STREQ(feature->GetFieldAsString("category"), "rubble_mound_breakwater");
-    EXPECT_DOUBLE_EQ(feature->GetFieldAsDouble("crest_width_m"), 20.0);
-    EXPECT_DOUBLE_EQ(feature->GetFieldAsDouble("porosity"), 0.45);
+    const std::string category = feature->GetFieldAsString("category");
+    if (category == "rubble_mound_breakwater") {
+      ++arms;
+      EXPECT_DOUBLE_EQ(feature->GetFieldAsDouble("crest_width_m"), 10.0);
+      EXPECT_DOUBLE_EQ(feature->GetFieldAsDouble("crest_elevation_m"), 3.0);
+    } else {
+      EXPECT_EQ(category, "vertical_quay");
+      EXPECT_STREQ(feature->GetFieldAsString("name"), "quay");
+    }
   }
+  EXPECT_EQ(arms, 3);
 }

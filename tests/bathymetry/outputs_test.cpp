@@ -36,7 +36,7 @@ DemoRun run_demo(const std::filesystem::path& folder) {
   DemoRun run;
   const auto files = nb::write_demo_harbour(folder / "demo", run.site);
   nb::BathyRequest request;
-  request.inputs = {files.depth_geotiff, files.coastline_geojson, files.land_geojson, files.breakwaters_geojson};
+  request.inputs = {files.depth_geotiff, files.coastline_geojson, files.land_geojson, files.structures_geojson};
   request.spacing_m = 20.0;
   run.result = nb::build_harbour_grid(request);
   run.out = folder / "out";
@@ -85,13 +85,23 @@ TEST(BathyOutputs, DemoGridMatchesTheSiteAndReadsBackEverywhere) {
   EXPECT_LE(land_disagreements, g.columns);
   EXPECT_GT(water_cells, 2000);
 
-  // Breakwater (rubble mound, n = 0.45) on the west arm at x = 420 m, y = 700 m.
+  // The west arm (rubble mound) at x = 420 m, y = 700 m: its impermeable core (porosity 0) where
+  // the centre line runs, porous faces (the nominal 0.45 of a rubble mound until the bake fits them)
+  // on either side; the grid carries the arm as a structure for the bake.
   const auto centre = nearshore::MapProjection::utm(51, true).forward({run.site.centre_longitude_deg, run.site.centre_latitude_deg});
   const int arm_column = static_cast<int>((centre.x_m - 800.0 + 420.0 - g.origin_x_m) / g.spacing_m);
   const int arm_row = static_cast<int>((centre.y_m - 600.0 + 700.0 - g.origin_y_m) / g.spacing_m);
-  // The arm lies on the boundary between columns arm_column - 1 and arm_column, and its 20 m crest
-  // reaches exactly to both centres; GeoJSON's 1e-9 degree rounding (0.1 mm) decides which one.
-  EXPECT_FLOAT_EQ(std::min(grid.porosity(arm_column, arm_row), grid.porosity(arm_column - 1, arm_row)), 0.45f);
+  // The arm lies on the boundary between columns arm_column - 1 and arm_column: both are core.
+  EXPECT_FLOAT_EQ(std::max(grid.porosity(arm_column, arm_row), grid.porosity(arm_column - 1, arm_row)), 0.0f);
+  EXPECT_FLOAT_EQ(grid.porosity(arm_column + 1, arm_row), 0.45f);
+  EXPECT_FLOAT_EQ(grid.porosity(arm_column - 2, arm_row), 0.45f);
+  ASSERT_EQ(grid.structures.size(), 4u);
+  EXPECT_EQ(grid.structures[0].name, "west breakwater");
+  EXPECT_EQ(grid.structures[0].kind, "rubble_mound_breakwater");
+  EXPECT_LT(grid.structures[0].reflection_coefficient, 0.0);  // from the sea state, in the bake
+  EXPECT_EQ(grid.structures[2].name, "detached breakwater");
+  EXPECT_EQ(grid.structures[3].kind, "vertical_quay");
+  EXPECT_DOUBLE_EQ(grid.structures[3].reflection_coefficient, 0.95);
   EXPECT_FLOAT_EQ(grid.porosity(5, 5), 1.0f);  // open sea in the south-west
 
   // depth.tif: same place (geotransform, EPSG:32651) and same values, read by GDAL.
@@ -116,6 +126,7 @@ TEST(BathyOutputs, DemoGridMatchesTheSiteAndReadsBackEverywhere) {
   EXPECT_EQ(again.still_water_depth_m.values(), grid.still_water_depth_m.values());
   EXPECT_EQ(again.land.values(), grid.land.values());
   EXPECT_EQ(again.porosity.values(), grid.porosity.values());
+  EXPECT_EQ(nlohmann::json(again.structures), nlohmann::json(grid.structures));
 
   // coastline.vdb: a level set whose voxel holds the coast distance of its cell.
   int coast_column = -1, coast_row = -1;

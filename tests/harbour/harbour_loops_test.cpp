@@ -31,7 +31,7 @@ class DemoHarbourLoops : public ::testing::Test {
     fs::remove_all(root_);
     const bathymetry::DemoHarbourFiles chart = bathymetry::write_demo_harbour(root_ / "demo-out" / "chart");
     bathymetry::BathyRequest request;
-    request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson,
+    request.inputs = {chart.depth_geotiff, chart.structures_geojson, chart.land_geojson,
                       chart.coastline_geojson};
     request.spacing_m = 8.0;
     bathymetry::write_bathymetry_outputs(root_ / "demo-out" / "harbour",

@@ -120,7 +120,7 @@ class LibraryRun : public ::testing::Test {
     // The demo harbour gridded at 16 m: 100 x 75 cells.
     const bathymetry::DemoHarbourFiles chart = bathymetry::write_demo_harbour(root_ / "chart");
     bathymetry::BathyRequest request;
-    request.inputs = {chart.depth_geotiff, chart.breakwaters_geojson, chart.land_geojson, chart.coastline_geojson};
+    request.inputs = {chart.depth_geotiff, chart.structures_geojson, chart.land_geojson, chart.coastline_geojson};
     request.spacing_m = 16.0;
     bathymetry::write_bathymetry_outputs(root_ / "harbour", bathymetry::build_harbour_grid(request));
     write_text_file(root_ / "base.toml", kBaseCase);

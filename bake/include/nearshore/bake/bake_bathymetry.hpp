@@ -49,7 +49,8 @@ HarbourGrid berkhoff_shoal_grid(double length_m, double width_m, CellSize spacin
 
 /// The grid resampled to cells of `spacing` (square or rectangular, from square or rectangular
 /// cells) over the same extent (bilinear depth and coast distance, on each axis' own spacing;
-/// nearest-cell land and porosity so walls stay walls). Returns the input unchanged when both
+/// nearest-cell land and porosity so walls stay walls; the coastal structures carried along, for the
+/// bake to lay at the new cells). Returns the input unchanged when both
 /// spacings already match to 1e-9 relative.
 HarbourGrid resample_harbour_grid(const HarbourGrid& grid, CellSize spacing);
 

@@ -20,6 +20,7 @@
 #include "nearshore/boussinesq/initial_conditions.hpp"
 #include "nearshore/ocean/deep_water.hpp"
 #include "nearshore/bake/deep_water_coupling.hpp"
+#include "nearshore/bake/structure_layers.hpp"
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/sequence/sequence_format.hpp"
 
@@ -85,6 +86,9 @@ struct BakeCase {
   /// over one loop into DIR/deep_water_tiles/ (a sequence, for engines that cannot run an FFT).
   double deep_water_tile_set_frame_interval_s = 0.0;
   int deep_water_tile_set_cascade = 0;
+  /// The harbour grid's coastal structures as laid at its cells, with the porosity fitted to each
+  /// one's reflection or transmission (structure_layers.hpp); recorded in solver_record["structure_layers"].
+  std::vector<StructureLayer> structure_layers;
 };
 
 /// What reading a case may be told by its caller.

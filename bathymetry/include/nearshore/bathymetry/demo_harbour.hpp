@@ -5,11 +5,15 @@
 //                    in the UTM zone of the site (EPSG:326xx), nodata -9999;
 //   coastline.geojson  the shoreline as LineStrings, WGS84 lon/lat (RFC 7946);
 //   land.geojson       land as Polygons, WGS84;
-//   breakwaters.geojson two rubble-mound breakwater arms as LineStrings with a 140 m gap between
-//                    them (properties: category, crest_width_m, porosity), WGS84.
+//   structures.geojson two rubble-mound breakwater arms (10 m crest 3 m above the water, 1:1.5
+//                    slopes) with a 140 m entrance between their toes, a detached rubble-mound
+//                    breakwater 320 m long across the approach 160 m south of the entrance, and the
+//                    vertical quay front, as LineStrings (properties: name, category, crest_width_m,
+//                    crest_elevation_m), WGS84.
 // The site: an open coast facing south with a 15 m deep approach, an elliptic shoal east of the
-// entrance (refraction), a dredged 8 m basin behind the breakwaters (diffraction through the gap)
-// and vertical quays on its north side (reflection).
+// entrance (refraction), a dredged 8 m basin behind the breakwaters, reached only by waves bent
+// round the detached breakwater's heads and through the gap (diffraction), and vertical quays on
+// its north side (reflection).
 #include <filesystem>
 
 namespace nearshore::bathymetry {
@@ -26,7 +30,7 @@ struct DemoHarbourFiles {
   std::filesystem::path depth_geotiff;
   std::filesystem::path coastline_geojson;
   std::filesystem::path land_geojson;
-  std::filesystem::path breakwaters_geojson;
+  std::filesystem::path structures_geojson;
 };
 
 /// Analytic still-water depth of the demo site at local (x, y) metres from the south-west corner

@@ -32,14 +32,30 @@
 
 namespace nearshore::bathymetry {
 
-/// How a shoreline structure is burnt into the porosity map (seed 003 eq. (2)-(3)).
+/// A kind of shoreline structure as engineers describe it: its cross-section and how it treats
+/// waves. Becomes a CoastalStructure in the harbour grid (core/coastal_structure.hpp), whose
+/// footprint (structure_footprint.hpp) the bake fills with porous layers fitted to the coefficients.
 struct StructureStyle {
-  double crest_width_m = 10.0;  ///< width of the rasterised band for line features, metres
-  double porosity = 1.0;        ///< n: 1 transparent (ignored), 0.3-0.5 rubble mound, 0 vertical wall
+  double crest_width_m = 10.0;      ///< crest width of line features, metres
+  double crest_elevation_m = 2.5;   ///< crest above still water, metres
+  double side_slope = 0.0;          ///< horizontal run per unit rise of the faces (0: vertical)
+  /// Kr, 0 .. 1; negative: from the bake's sea state by Zanuttigh & van der Meer (2008) with
+  /// `roughness_factor` (sloping rubble faces, whose reflection depends on the Iribarren number).
+  double reflection_coefficient = 1.0;
+  double roughness_factor = 1.0;    ///< gamma_f (EurOtop): 0.40 rock on a permeable core, 0.55 impermeable
+  double transmission_coefficient = 0.0;  ///< Kt, 0 .. 1 (0: an impermeable core)
+  /// n shown in the harbour grid's preview porosity until the bake fits the faces; 0 .. 1.
+  double porosity = 1.0;
 };
 
-/// The defaults per category (S-57 SLCONS CATSLC mapped to names in sources.cpp; GeoJSON `category`).
+/// The defaults per category (S-57 SLCONS CATSLC mapped to names in sources.cpp; GeoJSON
+/// `category`), with the literature each number is from in harbour_builder.cpp.
 std::map<std::string, StructureStyle> default_structure_styles();
+
+/// Depth of a structure's porous faces beyond its core, at least, in cells (structure_footprint.hpp):
+/// two cells are the thinnest layer whose porosity can be fitted to a reflection coefficient (one
+/// cell has no inside to dissipate in: it acts as a partial wall).
+inline constexpr int kMinimumStructureFaceCells = 2;
 
 /// Bound of |BathyRequest::water_level_m|: still water more than 30 m above or below the sounding
 /// datum is no tide or surge on Earth (the largest tidal range, the Bay of Fundy's, is 16 m).

@@ -10,6 +10,7 @@
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,12 +57,17 @@ struct DepthArea {
 };
 
 /// A breakwater, quay, pier... as lines (rasterised with a crest width) or polygons (filled).
+/// Each number left negative (or NaN) takes the category's default (harbour_builder.hpp, StructureStyle).
 struct ShoreStructure {
   std::string category;  ///< breakwater, groyne, mole, pier, quay, sea_wall, riprap, revetment, ...
   std::vector<GeoLine> lines;
   std::vector<GeoPolygon> polygons;
   double crest_width_m = 0.0;  ///< from the feature (GeoJSON crest_width_m); 0 = use the category default
-  double porosity = -1.0;      ///< from the feature; negative = use the category default
+  double porosity = -1.0;      ///< from the feature; negative = fit the porosity to the coefficients
+  std::string name;            ///< GeoJSON `name`, S-57 OBJNAM; empty = "<category> <index>"
+  double crest_elevation_m = std::numeric_limits<double>::quiet_NaN();  ///< GeoJSON crest_elevation_m
+  double reflection_coefficient = -1.0;    ///< GeoJSON reflection_coefficient (Kr, 0 .. 1)
+  double transmission_coefficient = -1.0;  ///< GeoJSON transmission_coefficient (Kt, 0 .. 1)
 };
 
 /// A north-up raster in its own CRS (GDAL geotransform, no rotation), values as depth positive down.

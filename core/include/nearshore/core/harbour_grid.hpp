@@ -8,12 +8,17 @@
 //   porosity         n of seed 003 eq. (2)-(3): 1 open water, 0 < n < 1 porous structure
 //                    (rubble-mound breakwater), 0 a solid vertical wall (quay)
 //   coast_distance   signed distance to the coastline, metres, negative on land
-// and the grid geometry (GridGeometry as JSON) in the header attribute "nearshore_geometry".
+// and the grid geometry (GridGeometry as JSON) in the header attribute "nearshore_geometry", the
+// coastal structures (CoastalStructure as a JSON array, coastal_structure.hpp) in
+// "nearshore_structures" (absent in grids written before it: no structures, porosity as stored).
 // EXR line 0 is the NORTHERN row (so image viewers show north up); Raster row 0 is the southern
 // row; the reader and writer here are the one place that flips.
 #include <cstdint>
 #include <filesystem>
 
+#include <vector>
+
+#include "nearshore/core/coastal_structure.hpp"
 #include "nearshore/core/raster.hpp"
 
 namespace nearshore {
@@ -27,6 +32,9 @@ struct HarbourGrid {
   Raster<std::uint8_t> land;          ///< kLandCell 1, kWaterCell 0, kOutsideChartCell 2 (no data)
   Raster<float> porosity;             ///< 1 open water .. 0 solid wall
   Raster<float> coast_distance_m;     ///< signed, negative on land
+  /// The structures whose footprints the porosity channel holds, as the chart describes them; the
+  /// bake re-lays their porous layers at its own cells and wave period (bake/structure_layers.hpp).
+  std::vector<CoastalStructure> structures;
 
   /// An open-water grid of the given geometry: depth `depth_m` everywhere, porosity 1,
   /// no land, coast distance +infinity. Laboratory cases start from this.
