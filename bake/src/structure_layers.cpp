@@ -85,6 +85,22 @@ StructureSeaState structure_sea_state(const boussinesq::WaveMaker& maker) {
       sea.spectral_period_s = m_minus_1 / m0;
       sea.longest_period_s = 2.0 * std::numbers::pi / lowest_rad_s;
       sea.shortest_period_s = 2.0 * std::numbers::pi / highest_rad_s;
+      constexpr int kFlumeWaves = 5;
+      if (variance_at.size() <= static_cast<std::size_t>(kFlumeWaves)) {
+        for (const auto& [w, variance_m2] : variance_at) sea.waves.push_back({2.0 * std::numbers::pi / w, 2.0 * std::sqrt(2.0 * variance_m2)});
+      } else {
+        // Equal shares of the variance, each at the frequency where the cumulative variance reaches
+        // the middle of its share (quantiles 0.1, 0.3, ... 0.9).
+        double cumulative_m2 = 0.0;
+        int next = 0;
+        for (const auto& [w, variance_m2] : variance_at) {
+          cumulative_m2 += variance_m2;
+          while (next < kFlumeWaves && cumulative_m2 >= (next + 0.5) / kFlumeWaves * m0) {
+            sea.waves.push_back({2.0 * std::numbers::pi / w, 2.0 * std::sqrt(2.0 * m0 / kFlumeWaves)});
+            ++next;
+          }
+        }
+      }
     }
   } else if (maker.kind == boussinesq::WaveMaker::Kind::kTimeSeries && maker.series_elevation_m.size() > 2) {
     // A measured record: Hs = 4 sigma, and the mean zero up-crossing period for every period.
@@ -103,6 +119,7 @@ StructureSeaState structure_sea_state(const boussinesq::WaveMaker& maker) {
       sea.significant_wave_height_m = 4.0 * std::sqrt(variance);
       sea.peak_period_s = sea.spectral_period_s = sea.longest_period_s = sea.shortest_period_s =
           (crossings_s.back() - crossings_s.front()) / static_cast<double>(crossings_s.size() - 1);
+      sea.waves = {{sea.peak_period_s, sea.significant_wave_height_m / std::sqrt(2.0)}};
     }
   }
   return sea;
@@ -187,10 +204,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       layer.face_width_m = impermeable ? outline_m : narrowest_m + 2.0 * outline_m;
     }
     layer.wave_period_s = sea.peak_period_s;
-    // The energy-equivalent regular wave: H_rms = Hs / sqrt(2) for a Rayleigh sea, kept below
-    // breaking in the depth in front of the structure (0.5 d; the flume turns breaking off).
-    layer.wave_height_m = std::min(sea.significant_wave_height_m / std::sqrt(2.0), 0.5 * layer.depth_m);
-    layer.fitted = structure.porosity < 0.0 && can_fit && !face_depths.empty() && layer.face_cells > 0 && layer.wave_height_m > 0.0;
+    layer.fitted = structure.porosity < 0.0 && can_fit && !face_depths.empty() && layer.face_cells > 0 && !sea.waves.empty();
     layer.face_porosity = structure.porosity >= 0.0 ? structure.porosity : fallback_porosity;
     if (structure.porosity < 0.0 && !can_fit && layer.face_cells > 0)
       warnings.push_back(fmt::format("structure '{}' ({}): the wave maker gives no sea state (height and peak period) to fit its "
@@ -216,8 +230,13 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     const FitRequest& request = work[i]->first;
     PorousLayerFlume flume;
     flume.still_water_depth_m = request.depth_m;
-    flume.wave_period_s = sea.peak_period_s;
-    flume.wave_height_m = std::min(sea.significant_wave_height_m / std::sqrt(2.0), 0.5 * request.depth_m);
+    // The sea's waves, lowered together where the water in front of the structure is too shallow
+    // to carry them unbroken (their heights summed below 0.8 d; the flume turns breaking off).
+    flume.waves = sea.waves;
+    double height_sum_m = 0.0;
+    for (const auto& wave : flume.waves) height_sum_m += wave.height_m;
+    const double lowered = std::min(1.0, 0.75 * request.depth_m / height_sum_m);
+    for (auto& wave : flume.waves) wave.height_m *= lowered;
     flume.spacing_m = cell_m;
     flume.layer_width_m = request.layer_cells * cell_m;
     flume.wall_behind = request.wall_behind;
@@ -239,12 +258,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     } else {
       result.fit = boussinesq::fit_porosity_to_transmission(flume, request.target, kStructureFitTolerance);
     }
-    for (double period_s : {sea.longest_period_s, sea.shortest_period_s}) {
-      if (!(period_s > 0.0)) continue;
-      PorousLayerFlume at = flume;
-      at.wave_period_s = period_s;
-      result.across_band.push_back(boussinesq::measure_porous_layer(at, result.fit.response.porosity));
-    }
+    result.across_band = result.fit.response.per_wave;
   });
 
   // Step 2's cells get their porosity: faces first, then cores (a core always wins).
@@ -253,7 +267,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     if (layer.fitted) {
       const FitResult& result = fits.at(request_of[s]);
       layer.face_porosity = result.fit.response.porosity;
-      layer.at_peak = result.fit.response;
+      layer.in_the_sea = result.fit.response;
       layer.across_band = result.across_band;
       layer.reached = result.fit.reached;
       layer.flume_runs = result.fit.flume_runs;
@@ -268,10 +282,10 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
         const bool wall = bathymetry::has_impermeable_core(grid.structures[s]);
         warnings.push_back(fmt::format(
             "structure '{}' ({}): its {:.0f} m of porous faces at {:.1f} m depth (widened by {:.0f} m, as far as it goes) {} {} {:.2f} "
-            "at the {:.1f} s peak; the closest is {:.2f} (porosity {:.2f})",
+            "in the sea of {:.1f} s peak period; the closest is {:.2f} (porosity {:.2f})",
             layer.name, layer.kind, layer.face_width_m, layer.depth_m, layer.widening_m, wall ? "cannot reflect as little as" : "cannot transmit",
             wall ? "Kr" : "Kt", wall ? layer.reflection_requested : layer.transmission_requested, layer.wave_period_s,
-            wall ? layer.at_peak.reflection_coefficient : layer.at_peak.transmission_coefficient, layer.face_porosity));
+            wall ? layer.in_the_sea.reflection_coefficient : layer.in_the_sea.transmission_coefficient, layer.face_porosity));
       }
     }
     const float n = static_cast<float>(layer.face_porosity);
@@ -288,6 +302,7 @@ nlohmann::json structure_layers_record(const std::vector<StructureLayer>& layers
                           {"reflection_coefficient", r.reflection_coefficient},
                           {"transmission_coefficient", r.transmission_coefficient},
                           {"kh", r.relative_depth_kh},
+                          {"period_s", r.period_s},
                           {"layer_width_wavelengths", r.layer_width_wavelengths}};
   };
   nlohmann::json out = nlohmann::json::array();
@@ -306,9 +321,8 @@ nlohmann::json structure_layers_record(const std::vector<StructureLayer>& layers
                          {"core_cells", layer.core_cells},
                          {"face_cells", layer.face_cells}};
     if (layer.fitted) {
-      entry["wave_height_m"] = layer.wave_height_m;
-      entry["wave_period_s"] = layer.wave_period_s;
-      entry["at_peak"] = response(layer.at_peak);
+      entry["peak_period_s"] = layer.wave_period_s;
+      entry["in_the_sea"] = response(layer.in_the_sea);
       entry["across_band"] = nlohmann::json::array();
       for (const LayerResponse& r : layer.across_band) entry["across_band"].push_back(response(r));
     }
@@ -329,11 +343,12 @@ std::string describe_structure_layers(const std::vector<StructureLayer>& layers)
     }
     const double asked = wall ? layer.reflection_requested : layer.transmission_requested;
     auto value = [wall](const LayerResponse& r) { return wall ? r.reflection_coefficient : r.transmission_coefficient; };
-    text += fmt::format("{} {:.2f} asked ({}), {:.2f} at the {:.1f} s peak (k h {:.2f})", wall ? "Kr" : "Kt", asked, layer.reflection_from,
-                        value(layer.at_peak), layer.wave_period_s, layer.at_peak.relative_depth_kh);
-    if (layer.across_band.size() == 2)
-      text += fmt::format(", {:.2f} - {:.2f} over the band (k h {:.2f} - {:.2f})", value(layer.across_band[0]), value(layer.across_band[1]),
-                          layer.across_band[0].relative_depth_kh, layer.across_band[1].relative_depth_kh);
+    text += fmt::format("{} {:.2f} asked ({}), {:.2f} made in the sea's flume", wall ? "Kr" : "Kt", asked, layer.reflection_from,
+                        value(layer.in_the_sea));
+    if (!layer.across_band.empty()) {
+      text += ", by period:";
+      for (const LayerResponse& r : layer.across_band) text += fmt::format(" {:.1f} s {:.2f}", r.period_s, value(r));
+    }
     text += fmt::format("; {:.0f} m of faces{} at porosity {:.2f} in {:.1f} m of water, {} wall cells", layer.face_width_m,
                         layer.widening_m > 0 ? fmt::format(" (widened by {:.0f} m to absorb enough)", layer.widening_m) : std::string(),
                         layer.face_porosity, layer.depth_m, layer.core_cells);

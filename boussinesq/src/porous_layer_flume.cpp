@@ -25,12 +25,15 @@ void check(const char* field, double value, double lowest, double highest, const
                 fmt::format("give PorousLayerFlume::{} inside that range", field));
 }
 
-// Gauge cells from `start_m`, spanning 0.4 L at about 0.1 L apart on whole cells (Mansard & Funke:
-// no spacing a multiple of L/2); at least three distinct cells.
-std::vector<int> gauge_cells(double start_m, double wavelength_m, double spacing_m) {
+// Gauge cells from `start_m` about 0.1 of the shortest wavelength apart on whole cells, spanning 0.4
+// of the longest (Mansard & Funke: no spacing a multiple of any wave's L/2 for all pairs); at least
+// three distinct cells, at most sixteen.
+std::vector<int> gauge_cells(double start_m, double shortest_wavelength_m, double longest_wavelength_m, double spacing_m) {
+  const double span_m = 0.4 * longest_wavelength_m;
+  const double apart_m = std::max(0.1 * shortest_wavelength_m, span_m / 15.0);
   std::vector<int> cells;
-  for (int j = 0; j <= 4; ++j) {
-    const int cell = static_cast<int>(std::floor((start_m + 0.1 * j * wavelength_m) / spacing_m));
+  for (double offset_m = 0.0; offset_m <= span_m + 1e-9; offset_m += apart_m) {
+    const int cell = static_cast<int>(std::floor((start_m + offset_m) / spacing_m));
     if (cells.empty() || cell != cells.back()) cells.push_back(cell);
   }
   while (cells.size() < 3) cells.push_back(cells.back() + 1);
@@ -41,8 +44,16 @@ std::vector<int> gauge_cells(double start_m, double wavelength_m, double spacing
 
 LayerResponse measure_porous_layer(const PorousLayerFlume& flume, double porosity) {
   check("still_water_depth_m", flume.still_water_depth_m, 0.05, 500.0, "water a porous layer stands in");
-  check("wave_period_s", flume.wave_period_s, 0.2, 60.0, "wind waves and swell");
-  check("wave_height_m", flume.wave_height_m, 1e-4, 0.6 * flume.still_water_depth_m, "below breaking, 0.6 d");
+  if (flume.waves.empty() || flume.waves.size() > 16)
+    throw Error(kSubject, fmt::format("PorousLayerFlume::waves holds {} waves", flume.waves.size()), "give 1 to 16 waves");
+  double height_sum_m = 0.0, longest_period_s = 0.0;
+  for (const FlumeWave& wave : flume.waves) {
+    check("waves[].period_s", wave.period_s, 0.2, 60.0, "wind waves and swell");
+    check("waves[].height_m", wave.height_m, 1e-4, 0.6 * flume.still_water_depth_m, "below breaking, 0.6 d");
+    height_sum_m += wave.height_m;
+    longest_period_s = std::max(longest_period_s, wave.period_s);
+  }
+  check("sum of waves[].height_m", height_sum_m, 0.0, 0.8 * flume.still_water_depth_m, "their crests together below 0.8 d");
   check("spacing_m", flume.spacing_m, 1e-3, 1000.0, "a cell size");
   check("layer_width_m", flume.layer_width_m, 0.5 * flume.spacing_m, 5000.0, "at least one cell");
   if (!(porosity > kWallPorosity && porosity <= 1.0))
@@ -50,24 +61,49 @@ LayerResponse measure_porous_layer(const PorousLayerFlume& flume, double porosit
                 "a porosity at or below kWallPorosity is a wall, not a layer");
   const double depth_m = flume.solver.effective_depth_limit_m > 0.0 ? std::min(flume.still_water_depth_m, flume.solver.effective_depth_limit_m)
                                                                      : flume.still_water_depth_m;
-  const double w = 2.0 * kPi / flume.wave_period_s;
-  const double k = boussinesq_wavenumber(w, depth_m, flume.solver.dispersion_coefficient);
-  const double L = 2.0 * kPi / k, dx = flume.spacing_m;
+  // The common record: one wave's period for a regular wave, else four of the longest periods;
+  // each frequency moved to a whole number of cycles in it (and kept distinct).
+  const double record_s = flume.waves.size() == 1 ? flume.waves.front().period_s : 4.0 * longest_period_s;
+  std::vector<double> w;
+  for (const FlumeWave& wave : flume.waves) {
+    double cycles = std::max(1.0, std::round(record_s / wave.period_s));
+    while (std::find(w.begin(), w.end(), 2.0 * kPi * cycles / record_s) != w.end()) cycles += 1.0;
+    w.push_back(2.0 * kPi * cycles / record_s);
+  }
+  std::vector<double> k;
+  for (double omega : w) k.push_back(boussinesq_wavenumber(omega, depth_m, flume.solver.dispersion_coefficient));
+  // The wavenumber the discrete scheme carries, for the separation (whose error grows with
+  // (k_true - k_used) times the gauges' span): centred differences see 2 sin(k dx / 2) / dx where the
+  // equations have k, and Crank-Nicolson 2 tan(w dt / 2) / dt where they have w, so the scheme's
+  // wave solves the model's dispersion relation with those in place of k and w (second order: at 8
+  // cells per wavelength k is 2.6 % shorter than the model's).
+  const auto scheme_wavenumber = [&](double omega, double dt) {
+    const double omega_scheme = 2.0 / dt * std::tan(0.5 * omega * dt);
+    const double k_model = boussinesq_wavenumber(omega_scheme, depth_m, flume.solver.dispersion_coefficient);
+    const double half = 0.5 * k_model * flume.spacing_m;
+    return half < 1.0 ? 2.0 / flume.spacing_m * std::asin(half) : k_model;
+  };
+  const double longest_wavelength_m = 2.0 * kPi / *std::min_element(k.begin(), k.end());
+  const double L = longest_wavelength_m, dx = flume.spacing_m;
   const int layer_cells = std::max(1, static_cast<int>(std::lround(flume.layer_width_m / dx)));
 
-  // Layout (header): lengths in metres, rounded to whole cells.
+  // Layout (header): lengths in metres, rounded to whole cells; the gauges span 0.4 of the longest
+  // wave, which keeps every wave's spacings off multiples of its half wavelength.
   auto cells_of = [dx](double length_m) { return static_cast<int>(std::ceil(length_m / dx)); };
   const double west_sponge_m = std::max(1.5 * L, 8.0 * dx);
   const double source_m = west_sponge_m + std::max(L, 6.0 * dx);
   const double gauges_m = source_m + std::max(0.8 * L, 4.0 * dx);
-  const std::vector<int> front_gauges = gauge_cells(gauges_m, L, dx);
-  const int layer_first = front_gauges.back() + 1 + cells_of(std::max(0.6 * L, 3.0 * dx));
+  const double shortest_wavelength_m = 2.0 * kPi / *std::max_element(k.begin(), k.end());
+  const std::vector<int> front_gauges = gauge_cells(gauges_m, shortest_wavelength_m, L, dx);
+  // The gauges close to the layer (0.3 L): what the scheme damps on the way (the grid-scale filter
+  // on coarse cells) then takes little off the reflected wave before it is measured.
+  const int layer_first = front_gauges.back() + 1 + cells_of(std::max(0.3 * L, 3.0 * dx));
   const int layer_last = layer_first + layer_cells - 1;
   std::vector<int> back_gauges;
   int columns = layer_last + 1;
   double east_sponge_m = 0.0;
   if (!flume.wall_behind) {
-    back_gauges = gauge_cells((layer_last + 1) * dx + std::max(0.8 * L, 4.0 * dx), L, dx);
+    back_gauges = gauge_cells((layer_last + 1) * dx + std::max(0.8 * L, 4.0 * dx), shortest_wavelength_m, L, dx);
     east_sponge_m = std::max(2.0 * L, 8.0 * dx);
     columns = back_gauges.back() + 1 + cells_of(std::max(0.6 * L, 3.0 * dx)) + cells_of(east_sponge_m);
   }
@@ -86,27 +122,33 @@ LayerResponse measure_porous_layer(const PorousLayerFlume& flume, double porosit
   parameters.breaking.enabled = false;
   parameters.sponges = {{Side::kWest, west_sponge_m}};
   if (!flume.wall_behind) parameters.sponges.push_back({Side::kEast, east_sponge_m});
-  // A whole number of steps per period (Courant <= 0.5): the harmonic analysis is then exact.
+  // A whole number of steps per record (Courant <= 0.5): the harmonic analysis is then exact.
   const double courant_dt = 0.5 * dx / std::sqrt(ocean::kGravity_m_s2 * flume.still_water_depth_m);
-  const int steps_per_period = std::max(8, static_cast<int>(std::ceil(flume.wave_period_s / courant_dt)));
-  parameters.time_step_s = flume.wave_period_s / steps_per_period;
+  const int steps_per_record = std::max(8, static_cast<int>(std::ceil(record_s / courant_dt)));
+  parameters.time_step_s = record_s / steps_per_record;
+  std::vector<double> k_scheme;
+  for (double omega : w) k_scheme.push_back(scheme_wavenumber(omega, parameters.time_step_s));
   WaveMaker maker;
   maker.kind = WaveMaker::Kind::kComponents;
-  maker.sea_state.components = {{0.5 * flume.wave_height_m, w, 0.0, 0.0}};
+  // Phases spread by the golden angle, so several waves never all crest together.
+  for (std::size_t i = 0; i < flume.waves.size(); ++i)
+    maker.sea_state.components.push_back({0.5 * flume.waves[i].height_m, w[i], 0.0, 2.399963 * static_cast<double>(i)});
   maker.source_line_m = source_m;
   maker.facing = Side::kWest;
-  maker.ramp_time_s = 2.0 * flume.wave_period_s;
+  maker.ramp_time_s = 2.0 * longest_period_s;
   BoussinesqSolver solver(harbour, parameters, maker);
 
-  // Steady once the front (group speed) has gone source -> east end -> back past the front gauges
-  // (two crossings; the source line lets the reflected wave through to the west sponge, so nothing
-  // comes back a second time but the sponge's per cent), with half a crossing and the ramp to spare.
-  const double group_speed_m_s = ocean::group_speed_m_s(k, depth_m);
-  const double crossing_s = (columns * dx - source_m) / group_speed_m_s;
-  const int spin_up_periods = static_cast<int>(std::ceil((3.0 * flume.wave_period_s + 2.5 * crossing_s) / flume.wave_period_s));
-  const int record_periods = 4;
-  const long first_step = static_cast<long>(spin_up_periods) * steps_per_period;
-  const long last_step = first_step + static_cast<long>(record_periods) * steps_per_period;
+  // Steady once the front (group speed of the slowest wave) has gone source -> east end -> back
+  // past the front gauges (two crossings; the source line lets the reflected wave through to the
+  // west sponge, so nothing comes back a second time but the sponge's per cent), with half a
+  // crossing and the ramp to spare.
+  double slowest_m_s = INFINITY;
+  for (double wavenumber : k) slowest_m_s = std::min(slowest_m_s, ocean::group_speed_m_s(wavenumber, depth_m));
+  const double crossing_s = (columns * dx - source_m) / slowest_m_s;
+  const int spin_up_records = static_cast<int>(std::ceil((3.0 * longest_period_s + 2.5 * crossing_s) / record_s));
+  const int record_count = flume.waves.size() == 1 ? 4 : 1;
+  const long first_step = static_cast<long>(spin_up_records) * steps_per_record;
+  const long last_step = first_step + static_cast<long>(record_count) * steps_per_record;
   std::vector<int> all_gauges = front_gauges;
   all_gauges.insert(all_gauges.end(), back_gauges.begin(), back_gauges.end());
   std::vector<std::vector<double>> records(all_gauges.size());
@@ -120,25 +162,42 @@ LayerResponse measure_porous_layer(const PorousLayerFlume& flume, double porosit
     if (step <= first_step) continue;
     for (std::size_t g = 0; g < all_gauges.size(); ++g) records[g].push_back(eta[static_cast<std::size_t>(all_gauges[g])]);
   }
-  auto separate = [&](std::size_t first, std::size_t count) {
+  auto separate = [&](std::size_t first, std::size_t count, std::size_t wave) {
     std::vector<double> positions;
     std::vector<std::complex<double>> amplitudes;
     for (std::size_t g = first; g < first + count; ++g) {
       positions.push_back(geometry.cell_centre_x_m(all_gauges[g]));
-      amplitudes.push_back(harmonic_amplitude(records[g], (first_step + 1) * parameters.time_step_s, parameters.time_step_s, w));
+      amplitudes.push_back(harmonic_amplitude(records[g], (first_step + 1) * parameters.time_step_s, parameters.time_step_s, w[wave]));
     }
-    return separate_incident_reflected(positions, amplitudes, k);
+    return separate_incident_reflected(positions, amplitudes, k_scheme[wave]);
   };
-  const IncidentReflected front = separate(0, front_gauges.size());
   LayerResponse response;
   response.porosity = porosity;
-  response.reflection_coefficient = front.reflection_coefficient();
-  response.relative_depth_kh = k * depth_m;
-  response.layer_width_wavelengths = layer_cells * dx / L;
-  if (!flume.wall_behind) {
-    const IncidentReflected back = separate(front_gauges.size(), back_gauges.size());
-    response.transmission_coefficient = std::abs(back.incident) / std::abs(front.incident);
+  double incident_m2 = 0.0, reflected_m2 = 0.0, transmitted_m2 = 0.0;
+  for (std::size_t i = 0; i < flume.waves.size(); ++i) {
+    const IncidentReflected front = separate(0, front_gauges.size(), i);
+    LayerResponse own;
+    own.porosity = porosity;
+    own.reflection_coefficient = front.reflection_coefficient();
+    own.relative_depth_kh = k[i] * depth_m;
+    own.layer_width_wavelengths = layer_cells * dx * k[i] / (2.0 * kPi);
+    own.period_s = 2.0 * kPi / w[i];
+    incident_m2 += std::norm(front.incident);
+    reflected_m2 += std::norm(front.reflected);
+    if (!flume.wall_behind) {
+      const IncidentReflected back = separate(front_gauges.size(), back_gauges.size(), i);
+      own.transmission_coefficient = std::abs(back.incident) / std::abs(front.incident);
+      transmitted_m2 += std::norm(back.incident);
+    }
+    response.per_wave.push_back(own);
   }
+  const LayerResponse& middle = response.per_wave[response.per_wave.size() / 2];
+  response.reflection_coefficient = std::sqrt(reflected_m2 / incident_m2);
+  response.transmission_coefficient = std::sqrt(transmitted_m2 / incident_m2);
+  response.relative_depth_kh = middle.relative_depth_kh;
+  response.layer_width_wavelengths = middle.layer_width_wavelengths;
+  response.period_s = middle.period_s;
+  if (flume.waves.size() == 1) response.per_wave.clear();
   return response;
 }
 

@@ -43,6 +43,24 @@ TEST(StructureSeaState, IsTheMakersSpectrum) {
   EXPECT_NEAR(sea.spectral_period_s, (0.02 * 12.0 + 0.005 * 8.0) / m0, 1e-12);
   EXPECT_NEAR(sea.longest_period_s, 12.0, 1e-12);
   EXPECT_NEAR(sea.shortest_period_s, 8.0, 1e-12);
+  // Two frequencies: the flume runs them as they are, each with its own variance (H = 2 sqrt(2 var)).
+  ASSERT_EQ(sea.waves.size(), 2u);
+  EXPECT_NEAR(sea.waves[0].period_s, 12.0, 1e-12);
+  EXPECT_NEAR(sea.waves[0].height_m, 0.4, 1e-12);
+  // A spectrum of many components: five waves of equal shares whose heights make its Hs.
+  boussinesq::WaveMaker jonswap;
+  jonswap.kind = boussinesq::WaveMaker::Kind::kComponents;
+  for (int i = 0; i < 40; ++i) {
+    const double f_hz = 0.05 + 0.0025 * i, peak_hz = 1.0 / 12.0;
+    const double shape = std::pow(f_hz / peak_hz, -5.0) * std::exp(-1.25 * std::pow(peak_hz / f_hz, 4.0));
+    jonswap.sea_state.components.push_back({0.1 * std::sqrt(shape), 2 * std::numbers::pi * f_hz, 0.0, 0.0});
+  }
+  const StructureSeaState spread = structure_sea_state(jonswap);
+  ASSERT_EQ(spread.waves.size(), 5u);
+  double variance_m2 = 0.0;
+  for (const auto& wave : spread.waves) variance_m2 += wave.height_m * wave.height_m / 8.0;
+  EXPECT_NEAR(4.0 * std::sqrt(variance_m2), spread.significant_wave_height_m, 1e-9);
+  for (std::size_t i = 1; i < 5; ++i) EXPECT_LT(spread.waves[i].period_s, spread.waves[i - 1].period_s);  // longest first
   EXPECT_EQ(structure_sea_state(boussinesq::WaveMaker{}).significant_wave_height_m, 0.0);
 }
 
@@ -73,6 +91,8 @@ TEST(StructureLayers, LayACoreAndFacesFittedToTheRequestedReflection) {
   sea.peak_period_s = sea.spectral_period_s = 12.0;
   sea.longest_period_s = 16.0;
   sea.shortest_period_s = 8.0;
+  // The demo's 1.5 m JONSWAP swell as five waves of equal energy (StructureSeaState::waves).
+  for (double period_s : {16.0, 13.4, 12.0, 10.6, 8.5}) sea.waves.push_back({period_s, 2.0 * std::sqrt(2.0 * 0.140625 / 5.0)});
   std::vector<std::string> warnings;
   const std::vector<StructureLayer> layers = lay_structures(grid, solver, sea, warnings);
   ASSERT_EQ(layers.size(), 1u);
@@ -80,7 +100,7 @@ TEST(StructureLayers, LayACoreAndFacesFittedToTheRequestedReflection) {
   EXPECT_TRUE(warnings.empty()) << warnings.front();
   ASSERT_TRUE(layer.fitted);
   EXPECT_TRUE(layer.reached);
-  EXPECT_NEAR(layer.at_peak.reflection_coefficient, 0.5, kStructureFitTolerance);
+  EXPECT_NEAR(layer.in_the_sea.reflection_coefficient, 0.5, kStructureFitTolerance);
   EXPECT_NEAR(layer.depth_m, 8.0, 1e-6);
   // Footprint half-width 5 + 1.5 (3 + 8) = 21.5 m: the core where the line runs (column 37, whose
   // centre is x = 300 m), faces out to 21.5 m from it: columns 36 and 38 (8 m), 35 and 39 (16 m),
@@ -99,10 +119,10 @@ TEST(StructureLayers, LayACoreAndFacesFittedToTheRequestedReflection) {
   EXPECT_EQ(layer.core_cells, 25u);
   EXPECT_EQ(layer.face_cells, static_cast<std::size_t>(2 * per_side * 25));
   // The response over the band is measured at the fitted porosity and recorded.
-  ASSERT_EQ(layer.across_band.size(), 2u);
+  ASSERT_EQ(layer.across_band.size(), 5u);
   const nlohmann::json record = structure_layers_record(layers);
   EXPECT_EQ(record[0]["name"], "test mound");
-  EXPECT_EQ(record[0]["across_band"].size(), 2u);
+  EXPECT_EQ(record[0]["across_band"].size(), 5u);
   const std::string described = describe_structure_layers(layers);
   std::printf("%s\n", described.c_str());
   EXPECT_NE(described.find("test mound"), std::string::npos);

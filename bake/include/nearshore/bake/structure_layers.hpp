@@ -12,14 +12,16 @@
 //   2. its footprint at the grid's cells (bathymetry/structure_footprint.hpp): core cells are
 //      walls (porosity 0), face cells porous;
 //   3. the flume: the still-water depth in front of it (the median depth of its wet face cells),
-//      the faces' depth across (footprint half-width less the core), the energy-equivalent regular
-//      wave of the sea state (height Hs / sqrt(2) = H_rms of a Rayleigh sea, period Tp), wall behind
-//      for an impermeable structure (fit Kr), open water behind otherwise (fit Kt);
+//      the faces' depth across (footprint half-width less the core), the sea state as up to five
+//      waves of equal energy spread over its spectrum (StructureSeaState::waves), run together,
+//      wall behind for an impermeable structure (fit Kr), open water behind otherwise (fit Kt); the
+//      fitted coefficient is the sea's, sqrt(reflected energy / incident energy), the reflected Hs
+//      over the incident Hs as Zanuttigh & van der Meer define theirs;
 //      where even the least reflecting porosity reflects more than asked (a layer too thin against a
 //      long wave), the faces are widened by whole cells into the water in front, up to four cells
 //      or half a wavelength of layer;
-//   4. the response over the sea's band (its lowest and highest frequency) is measured and
-//      recorded, so a user sees how the layer's reflection moves with k h.
+//   4. each wave's own response is recorded, so a user sees how the layer's reflection moves with
+//      k h across the sea's band (frequency dependence is physics: a real mound's does too).
 // Structures that give their porosity keep it (no fit); they are recorded likewise.
 #include <string>
 #include <vector>
@@ -38,6 +40,11 @@ struct StructureSeaState {
   double peak_period_s = 0.0;              ///< Tp
   double spectral_period_s = 0.0;          ///< T_m-1,0 = m_-1 / m0 (Zanuttigh & van der Meer's period)
   double shortest_period_s = 0.0, longest_period_s = 0.0;  ///< the band the bake makes
+  /// The waves that stand for it in the flume: up to five, each carrying an equal share of the
+  /// variance at the median period of its share of the spectrum (so their heights together make
+  /// the sea's Hs and the layer's turbulent resistance feels the sea's velocities); one regular wave
+  /// for a regular maker; H = Hs / sqrt 2 at the mean zero-crossing period for a time series.
+  std::vector<boussinesq::FlumeWave> waves;
 };
 
 /// The sea a wave maker makes: from its components (m0, m_-1 and the peak of their variance), or
@@ -60,13 +67,14 @@ struct StructureLayer {
   bool fitted = false;                  ///< false: the source gave its porosity
   bool reached = true;                  ///< the fit reached the request within its tolerance
   double face_porosity = 1.0;
-  double depth_m = 0.0, face_width_m = 0.0, wave_height_m = 0.0, wave_period_s = 0.0;
+  double depth_m = 0.0, face_width_m = 0.0;
+  double wave_period_s = 0.0;  ///< the sea's peak period
   /// How far the faces reach beyond the footprint: a layer too thin against the wave to absorb
   /// what the structure does not reflect is widened a cell at a time (up to four cells or half a
   /// wavelength of layer) until its chart reaches the request.
   double widening_m = 0.0;
-  boussinesq::LayerResponse at_peak;
-  std::vector<boussinesq::LayerResponse> across_band;  ///< at the band's longest and shortest period
+  boussinesq::LayerResponse in_the_sea;  ///< the fitted layer in the flume's sea (its waves together)
+  std::vector<boussinesq::LayerResponse> across_band;  ///< each flume wave's own response, longest period first
   std::size_t core_cells = 0, face_cells = 0;
   int flume_runs = 0;
 };

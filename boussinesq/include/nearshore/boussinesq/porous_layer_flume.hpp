@@ -10,26 +10,37 @@
 //
 // The flume, along x, one cell across (the solver's 1-D road: docs/solver.md "Modes across a
 // narrow flume"), flat bed at `still_water_depth_m`, cells of `spacing_m`:
-//   west sponge (1.5 L) | source line (Wei et al. 1999) | 5 gauges over 0.4 L | the layer, `layer_width_m`
+//   west sponge (1.5 L) | source line (Wei et al. 1999) | gauges over 0.4 L | 0.3 L | the layer, `layer_width_m`
 //   | wall_behind: the flume's east end, a wall        else: open water, 5 gauges, east sponge (2 L)
-// L the model's wavelength (model_dispersion.hpp). Regular waves of `wave_height_m` ramp up over
-// two periods; the record is the six periods after the waves reflected from the far end have
-// passed the gauges twice over (group speed). A whole number of steps per period makes the
-// harmonic analysis exact. Breaking is off (the layer's own resistance is what is measured).
+// L the model's wavelength (model_dispersion.hpp) of the longest wave. The waves ramp up over two
+// of their longest periods; the record is one common period of them all (four longest periods)
+// after the waves reflected from the far end have passed the gauges (group speed of the slowest).
+// A whole number of steps per record makes the harmonic analysis exact. Breaking is off (the
+// layer's own resistance is what is measured).
 //
 // Frequency dependence is physics: a layer of fixed width and porosity reflects less as it grows
 // longer against the wave (W / L), and the turbulent resistance makes it depend on the height too;
 // the bake fits at its sea state's peak and reports the response over its band (bake/structure_layers.hpp).
 #include <string>
+#include <vector>
 
 #include "nearshore/boussinesq/boussinesq_solver.hpp"
 
 namespace nearshore::boussinesq {
 
+/// One wave the flume's source line makes.
+struct FlumeWave {
+  double period_s = 10.0;
+  double height_m = 1.0;  ///< incident height (twice the amplitude)
+};
+
 struct PorousLayerFlume {
   double still_water_depth_m = 10.0;
-  double wave_period_s = 10.0;
-  double wave_height_m = 1.0;     ///< the incident regular wave's height
+  /// The incident waves: one regular wave, or several that stand for a sea state (they run together,
+  /// so the turbulent resistance feels their combined velocity as it does the sea's). Periods are
+  /// moved to the nearest whole number of cycles in the common record (four times the longest
+  /// period), so the harmonic analysis separates them exactly.
+  std::vector<FlumeWave> waves = {FlumeWave{}};
   double spacing_m = 10.0;        ///< cell size along the flume (the bake's, so the layer is resolved as there)
   double layer_width_m = 20.0;    ///< the layer's extent along the flume (at least one cell)
   bool wall_behind = true;        ///< true: an impermeable wall right behind the layer; false: open water
@@ -40,10 +51,14 @@ struct PorousLayerFlume {
 
 struct LayerResponse {
   double porosity = 1.0;
-  double reflection_coefficient = 0.0;    ///< reflected / incident height in front of the layer
-  double transmission_coefficient = 0.0;  ///< transmitted / incident height (0 with a wall behind)
-  double relative_depth_kh = 0.0;         ///< k h of the wave (the model's k)
-  double layer_width_wavelengths = 0.0;   ///< layer_width_m / L
+  /// Reflected / incident height in front of the layer; for several waves the energy ratio's root,
+  /// sqrt(sum |Z_R|^2 / sum |Z_I|^2): the reflected Hs over the incident Hs of the sea they stand for.
+  double reflection_coefficient = 0.0;
+  double transmission_coefficient = 0.0;  ///< transmitted / incident height likewise (0 with a wall behind)
+  double relative_depth_kh = 0.0;         ///< k h of the wave (the model's k); of the middle wave for several
+  double layer_width_wavelengths = 0.0;   ///< layer_width_m / L, likewise
+  double period_s = 0.0;                  ///< the (moved) period; of the middle wave for several
+  std::vector<LayerResponse> per_wave;    ///< each wave's own response, when there are several
 };
 
 /// Runs the flume with the layer's cells at `porosity` (kWallPorosity < n <= 1). Throws
