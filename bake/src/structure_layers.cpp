@@ -89,17 +89,26 @@ StructureSeaState structure_sea_state(const boussinesq::WaveMaker& maker) {
       if (variance_at.size() <= static_cast<std::size_t>(kFlumeWaves)) {
         for (const auto& [w, variance_m2] : variance_at) sea.waves.push_back({2.0 * std::numbers::pi / w, 2.0 * std::sqrt(2.0 * variance_m2)});
       } else {
-        // Equal shares of the variance, each at the frequency where the cumulative variance reaches
-        // the middle of its share (quantiles 0.1, 0.3, ... 0.9).
+        // Equal shares of the variance, at the quantiles 0.2, 0.35, 0.5, 0.65, 0.8 of the cumulative
+        // variance: the spectrum's body, held within a factor 1.9 in frequency, so that no sum,
+        // difference or second harmonic of two flume waves (their bound waves: the layer's
+        // resistance and the shallow water make them) falls on another's frequency and corrupts
+        // its separation (a 13.6 s wave's second harmonic is a 6.8 s wave).
+        constexpr double kQuantiles[kFlumeWaves] = {0.2, 0.35, 0.5, 0.65, 0.8};
+        constexpr double kWidestRatio = 1.9;
         double cumulative_m2 = 0.0;
         int next = 0;
+        std::vector<double> quantile_w;
         for (const auto& [w, variance_m2] : variance_at) {
           cumulative_m2 += variance_m2;
-          while (next < kFlumeWaves && cumulative_m2 >= (next + 0.5) / kFlumeWaves * m0) {
-            sea.waves.push_back({2.0 * std::numbers::pi / w, 2.0 * std::sqrt(2.0 * m0 / kFlumeWaves)});
-            ++next;
-          }
+          while (next < kFlumeWaves && cumulative_m2 >= kQuantiles[next] * m0) quantile_w.push_back(w), ++next;
         }
+        while (static_cast<int>(quantile_w.size()) < kFlumeWaves) quantile_w.push_back(variance_at.rbegin()->first);
+        const double middle_w = quantile_w[kFlumeWaves / 2];
+        const double ratio = quantile_w.back() / quantile_w.front();
+        const double squeeze = ratio > kWidestRatio ? std::log(kWidestRatio) / std::log(ratio) : 1.0;
+        for (double w : quantile_w)
+          sea.waves.push_back({2.0 * std::numbers::pi / (middle_w * std::pow(w / middle_w, squeeze)), 2.0 * std::sqrt(2.0 * m0 / kFlumeWaves)});
       }
     }
   } else if (maker.kind == boussinesq::WaveMaker::Kind::kTimeSeries && maker.series_elevation_m.size() > 2) {

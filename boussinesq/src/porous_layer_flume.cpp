@@ -61,9 +61,10 @@ LayerResponse measure_porous_layer(const PorousLayerFlume& flume, double porosit
                 "a porosity at or below kWallPorosity is a wall, not a layer");
   const double depth_m = flume.solver.effective_depth_limit_m > 0.0 ? std::min(flume.still_water_depth_m, flume.solver.effective_depth_limit_m)
                                                                      : flume.still_water_depth_m;
-  // The common record: one wave's period for a regular wave, else four of the longest periods;
-  // each frequency moved to a whole number of cycles in it (and kept distinct).
-  const double record_s = flume.waves.size() == 1 ? flume.waves.front().period_s : 4.0 * longest_period_s;
+  // The common record: one wave's period for a regular wave, else eight of the longest periods;
+  // each frequency moved to a whole number of cycles in it (by at most 1/16 of a cycle per period
+  // of the longest: 6 %), kept distinct.
+  const double record_s = flume.waves.size() == 1 ? flume.waves.front().period_s : 8.0 * longest_period_s;
   std::vector<double> w;
   for (const FlumeWave& wave : flume.waves) {
     double cycles = std::max(1.0, std::round(record_s / wave.period_s));
@@ -246,10 +247,12 @@ PorosityFit fit_porosity_to_reflection(const PorousLayerFlume& flume, double ref
     throw Error(kSubject, "a reflection is fitted for a layer in front of a wall (PorousLayerFlume::wall_behind = false)",
                 "fit the transmission of a free-standing layer instead");
   check("reflection coefficient", reflection_coefficient, 0.0, 1.0, "a fraction of the incident height");
-  // The chart of Kr against n, walked from nearly open (Kr -> 1, the wall alone) towards nearly
+  // The chart of Kr against n, walked from open (Kr -> 1, the wall alone) towards nearly
   // closed (Kr -> 1 again, the layer itself a wall) until it brackets the request or turns up past
   // its minimum; the branch above the minimum is the one fitted.
-  const double chart_porosity[] = {0.98, 0.8, 0.6, 0.42, 0.28, 0.17, kLowestFittedPorosity};
+  // n = 1 first: the faces open, the wall alone (its own reflection, less than 1 by the bed friction
+  // and the scheme on the way).
+  const double chart_porosity[] = {1.0, 0.9, 0.75, 0.6, 0.42, 0.28, 0.17, kLowestFittedPorosity};
   std::vector<LayerResponse> chart;
   auto kr = [](const LayerResponse& r) { return r.reflection_coefficient; };
   for (double n : chart_porosity) {

@@ -41,8 +41,9 @@ struct StructureSeaState {
   double spectral_period_s = 0.0;          ///< T_m-1,0 = m_-1 / m0 (Zanuttigh & van der Meer's period)
   double shortest_period_s = 0.0, longest_period_s = 0.0;  ///< the band the bake makes
   /// The waves that stand for it in the flume: up to five, each carrying an equal share of the
-  /// variance at the median period of its share of the spectrum (so their heights together make
-  /// the sea's Hs and the layer's turbulent resistance feels the sea's velocities); one regular wave
+  /// variance, at the quantiles 0.2 - 0.8 of the spectrum's cumulative variance held within a factor
+  /// 1.9 in frequency (so their heights together make the sea's Hs, the layer's turbulent resistance
+  /// feels the sea's velocities, and no two waves' bound waves fall on a third); one regular wave
   /// for a regular maker; H = Hs / sqrt 2 at the mean zero-crossing period for a time series.
   std::vector<boussinesq::FlumeWave> waves;
 };

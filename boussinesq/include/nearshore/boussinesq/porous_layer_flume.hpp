@@ -13,7 +13,7 @@
 //   west sponge (1.5 L) | source line (Wei et al. 1999) | gauges over 0.4 L | 0.3 L | the layer, `layer_width_m`
 //   | wall_behind: the flume's east end, a wall        else: open water, 5 gauges, east sponge (2 L)
 // L the model's wavelength (model_dispersion.hpp) of the longest wave. The waves ramp up over two
-// of their longest periods; the record is one common period of them all (four longest periods)
+// of their longest periods; the record is one common period of them all (eight longest periods)
 // after the waves reflected from the far end have passed the gauges (group speed of the slowest).
 // A whole number of steps per record makes the harmonic analysis exact. Breaking is off (the
 // layer's own resistance is what is measured).
@@ -38,7 +38,7 @@ struct PorousLayerFlume {
   double still_water_depth_m = 10.0;
   /// The incident waves: one regular wave, or several that stand for a sea state (they run together,
   /// so the turbulent resistance feels their combined velocity as it does the sea's). Periods are
-  /// moved to the nearest whole number of cycles in the common record (four times the longest
+  /// moved to the nearest whole number of cycles in the common record (eight times the longest
   /// period), so the harmonic analysis separates them exactly.
   std::vector<FlumeWave> waves = {FlumeWave{}};
   double spacing_m = 10.0;        ///< cell size along the flume (the bake's, so the layer is resolved as there)
@@ -66,7 +66,7 @@ struct LayerResponse {
 LayerResponse measure_porous_layer(const PorousLayerFlume& flume, double porosity);
 
 /// The porosity whose layer reflects (wall_behind) or transmits (open water behind) a requested
-/// fraction of the incident height, within `tolerance` (absolute): the chart walked from n = 0.98
+/// fraction of the incident height, within `tolerance` (absolute): the chart walked from n = 1
 /// down until it brackets the request, then regula falsi (Illinois) on the flume.
 /// Where no porosity reaches the request (a layer too thin against the wave cannot absorb enough:
 /// its reflection has a minimum over n), `reached` is false and `response` is the closest one.
