@@ -103,7 +103,8 @@ FlagTable bathy_flags() {
           {"BathyRequest::land_elevation_m", "--land-elevation"},
           {"BathyRequest::fill_uncovered_from_nearest", "--fill-uncovered"},
           {"BathyRequest::coastline_band_m", "--coastline-band"},
-          {"BathyRequest::leave_one_out", "--leave-one-out"}};
+          {"BathyRequest::leave_one_out", "--leave-one-out"},
+          {"write_bathymetry_outputs(folder)", "-o"}};
 }
 
 }  // namespace

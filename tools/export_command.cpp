@@ -70,6 +70,7 @@ void add_export_command(CLI::App& app) {
   const FlagTable flags = {{"ExportRequest::frames", "--frames"},
                            {"ExportRequest::format", "--to"},
                            {"ExportRequest::output_folder", "-o"},
+                           {"ExportRequest::sequence_folder", "SEQ"},
                            {"BakeOptions::output_folder", "nearshore bake -o"},
                            {"BakeOptions::resume", "nearshore bake --resume"}};
   command->callback(naming_flags_in_errors(flags, [options]() {

@@ -167,6 +167,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   TableReader bathymetry = root.table("bathymetry");
   if (!root.has("bathymetry")) root.fail("bathymetry", "is missing", "add a [bathymetry] table (docs/commands/bake.md)");
   bake_case.harbour = read_bathymetry(bathymetry, base, options);
+  if (bathymetry.has("file")) bake_case.input_files.push_back(bathymetry.path("file", base));
   bathymetry.finish();
   const GridGeometry& geometry = bake_case.harbour.geometry;
 
@@ -182,6 +183,20 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   dispersion_bound.effective_depth_limit_given = solver.has("effective_depth_limit_m");
   dispersion_bound.effective_depth_limit_m = bake_case.solver.effective_depth_limit_m;
   if (!solver.has("dry_depth_m")) bake_case.solver.dry_depth_m = default_dry_depth_m(bake_case.harbour);
+  // A cell with less water than dry_depth_m is dry. A threshold of a tenth of the deepest water
+  // dries the sea under the troughs of its own waves; the default is a 300th (at most 1 cm), and
+  // the centimetre already held Synolakis' run-up 17 % short on 0.30 m of water (the comment on
+  // kDepthsPerDryDepth). A larger one stopped the solver with a message that blamed the time step
+  // (issue 44).
+  if (const double deepest_m = deepest_still_water_m(bake_case.harbour);
+      deepest_m > 0 && bake_case.solver.dry_depth_m > 0.1 * deepest_m)
+    solver.fail(solver.full("dry_depth_m"),
+                fmt::format("= {} m is more than a tenth of the deepest still water ({:.3g} m): cells with less water than "
+                            "this count as dry, so the sea would dry out under the troughs of its own waves",
+                            bake_case.solver.dry_depth_m, deepest_m),
+                fmt::format("give solver.dry_depth_m <= {:.3g} m (a film of water: millimetres; left out, the bake "
+                            "takes a 300th of the deepest water, at most 1 cm)",
+                            0.1 * deepest_m));
   if (!solver.has("shapiro_filter_order")) bake_case.solver.shapiro_filter_order = default_shapiro_filter_order(bake_case.harbour);
   solver.finish();
   for (TableReader& entry : root.tables("sponges")) {

@@ -25,7 +25,7 @@ template <class T>
 T get(std::istream& in, const std::string& subject) {
   T value{};
   if (!in.read(reinterpret_cast<char*>(&value), sizeof(T)))
-    throw Error(subject, "ends inside the gauge records (truncated checkpoint)", "delete it and bake again from the start (BakeOptions::resume = false)");
+    throw Error(subject, "ends inside the gauge records (truncated checkpoint)", "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume");
   return value;
 }
 
@@ -82,22 +82,22 @@ void GaugeRecorder::load(std::istream& in, const std::string& subject) {
   std::vector<std::string> names;
   for (std::uint64_t i = 0; i < count && i < 1000000; ++i) {
     const auto length = get<std::uint64_t>(in, subject);
-    if (length > 4096) throw Error(subject, "holds a corrupt gauge name", "delete it and bake again from the start (BakeOptions::resume = false)");
+    if (length > 4096) throw Error(subject, "holds a corrupt gauge name", "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume");
     std::string name(length, '\0');
     if (!in.read(name.data(), static_cast<std::streamsize>(length)))
-      throw Error(subject, "ends inside the gauge names (truncated checkpoint)", "delete it and bake again from the start (BakeOptions::resume = false)");
+      throw Error(subject, "ends inside the gauge names (truncated checkpoint)", "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume");
     names.push_back(std::move(name));
   }
   if (names != table_.names)
     throw Error(subject, "was written for other gauges than the case now lists",
-                "bake again from the start, BakeOptions::resume = false (the case file changed since the checkpoint)");
+                "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume (the case file changed since the checkpoint)");
   const auto samples = get<std::uint64_t>(in, subject);
-  if (samples > (1ull << 32)) throw Error(subject, "holds a corrupt sample count", "delete it and bake again from the start (BakeOptions::resume = false)");
+  if (samples > (1ull << 32)) throw Error(subject, "holds a corrupt sample count", "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume");
   table_.time_s.resize(samples);
   const auto read_doubles = [&](std::vector<double>& values) {
     values.resize(samples);
     if (!in.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(samples * sizeof(double))))
-      throw Error(subject, "ends inside the gauge samples (truncated checkpoint)", "delete it and bake again from the start (BakeOptions::resume = false)");
+      throw Error(subject, "ends inside the gauge samples (truncated checkpoint)", "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume");
   };
   read_doubles(table_.time_s);
   for (auto& column : table_.elevation_m) read_doubles(column);

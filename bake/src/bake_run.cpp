@@ -23,6 +23,8 @@
 #include "nearshore/boussinesq/initial_conditions.hpp"
 #include "nearshore/bake/deep_water_tiles.hpp"
 #include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/atomic_stream.hpp"
+#include "nearshore/core/output_folder.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/folder_lock.hpp"
 #include "nearshore/core/hash.hpp"
@@ -92,6 +94,21 @@ StepPlan plan_steps(const BakeCase& bake_case) {
   plan.per_gauge = timing.gauge_interval_s > 0 ? std::max(1L, steps_in(timing.gauge_interval_s, "gauge_interval_s")) : 1;
   plan.per_checkpoint =
       timing.checkpoint_interval_s > 0 ? std::max(1L, steps_in(timing.checkpoint_interval_s, "checkpoint_interval_s")) : 0;
+  // A checkpoint writes and flushes the whole solver state: by estimate about one step's time (the
+  // solver updates ~1e7 cells a second, docs/solver.md; the state is ~100 B a cell, written at
+  // ~1 GB/s), plus an fsync. One every step (accepted silently before, issue 44) doubles the bake
+  // and wears the disk; every kFewestStepsPerCheckpoint steps costs a tenth at most, and a resume
+  // still loses less than a second of simulated time.
+  constexpr long kFewestStepsPerCheckpoint = 10;
+  if (plan.per_checkpoint > 0 && plan.per_checkpoint < kFewestStepsPerCheckpoint)
+    throw Error(subject,
+                fmt::format("key `time.checkpoint_interval_s` = {:g} s is {} time step{} of {:.5g} s: a checkpoint writes the "
+                            "whole solver state, about a step's time, so checkpoints fewer than {} steps apart would make "
+                            "the bake mostly writing",
+                            timing.checkpoint_interval_s, plan.per_checkpoint, plan.per_checkpoint == 1 ? "" : "s", dt,
+                            kFewestStepsPerCheckpoint),
+                fmt::format("give time.checkpoint_interval_s >= {:.3g} s (seconds to minutes are typical), or 0 for none",
+                            kFewestStepsPerCheckpoint * dt));
   plan.frames = plan.total >= plan.first_frame ? (plan.total - plan.first_frame) / plan.per_frame + 1 : 0;
   if (plan.frames < 1)
     throw Error(subject, fmt::format("the bake would write no frame: frames start at time.spin_up_s = {:g} s, after "
@@ -108,7 +125,15 @@ StepPlan plan_steps(const BakeCase& bake_case) {
 
 // What the output folder holds that a bake must not destroy unasked (issue 13: forgetting resume
 // silently deleted a checkpoint and its frames; a failing bake emptied a good sequence first).
-void refuse_to_destroy(const fs::path& folder, const BakeOptions& options) {
+void refuse_to_destroy(const fs::path& folder, const BakeCase& bake_case, const BakeOptions& options) {
+  // Never into the folder of a grid the case reads (overwrite or not: the bake's resampled
+  // depth.exr would replace it, and later cases would silently read the coarser grid, issue 44);
+  // another command's outputs (a harbour grid, a library) only with overwrite.
+  std::vector<InputFolder> inputs;
+  for (const fs::path& file : bake_case.input_files)
+    inputs.push_back({file.parent_path(), "the grid " + file.filename().string() + " that the case reads"});
+  check_output_folder(folder, OutputKind::kSequence, options.overwrite, inputs, "BakeOptions::output_folder",
+                      "BakeOptions::overwrite");
   if (options.overwrite) return;
   std::error_code ec;
   if (!options.resume && fs::exists(checkpoint_path(folder), ec))
@@ -139,74 +164,6 @@ double replaced_bytes(const fs::path& folder) {
   }
   return bytes;
 }
-
-// A stream buffer over a POSIX file that keeps the errno of a failed write, so a checkpoint that
-// meets a full disk says so (std::ofstream only sets badbit, and the state writer that sees it
-// knows no file).
-class CheckpointFileBuffer : public std::streambuf {
- public:
-  explicit CheckpointFileBuffer(const fs::path& file)
-      : descriptor_(::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)) {
-    if (descriptor_ < 0) error_ = errno;
-    setp(buffer_, buffer_ + sizeof buffer_);
-  }
-  ~CheckpointFileBuffer() override {
-    if (descriptor_ >= 0) ::close(descriptor_);
-  }
-  CheckpointFileBuffer(const CheckpointFileBuffer&) = delete;
-  CheckpointFileBuffer& operator=(const CheckpointFileBuffer&) = delete;
-
-  /// Writes what is buffered and closes the file; false (see error()) when anything failed.
-  bool close() {
-    sync();
-    if (descriptor_ >= 0 && ::close(descriptor_) != 0 && error_ == 0) error_ = errno;
-    descriptor_ = -1;
-    return error_ == 0;
-  }
-  int error() const { return error_; }  ///< errno of the first failure, 0 if none
-  std::uintmax_t bytes_written() const { return written_; }
-
- protected:
-  int_type overflow(int_type character) override {
-    if (!flush_buffer()) return traits_type::eof();
-    if (!traits_type::eq_int_type(character, traits_type::eof())) {
-      *pptr() = traits_type::to_char_type(character);
-      pbump(1);
-    }
-    return traits_type::not_eof(character);
-  }
-  std::streamsize xsputn(const char* data, std::streamsize size) override {
-    // The state's arrays are megabytes: past the buffer, straight to the file.
-    if (size < static_cast<std::streamsize>(sizeof buffer_)) return std::streambuf::xsputn(data, size);
-    if (!flush_buffer() || !write_all(data, static_cast<std::size_t>(size))) return 0;
-    return size;
-  }
-  int sync() override { return flush_buffer() ? 0 : -1; }
-
- private:
-  bool flush_buffer() {
-    const std::size_t size = static_cast<std::size_t>(pptr() - pbase());
-    setp(buffer_, buffer_ + sizeof buffer_);
-    return write_all(buffer_, size);
-  }
-  bool write_all(const char* data, std::size_t size) {
-    if (error_ != 0) return false;
-    while (size > 0) {
-      const ssize_t n = ::write(descriptor_, data, size);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        error_ = n == 0 ? ENOSPC : errno;  // a write that makes no progress: the device is full
-        return false;
-      }
-      data += n, size -= static_cast<std::size_t>(n), written_ += static_cast<std::uintmax_t>(n);
-    }
-    return true;
-  }
-  int descriptor_ = -1;
-  int error_ = 0;
-  std::uintmax_t written_ = 0;
-  char buffer_[1 << 16];
-};
 
 [[noreturn]] void report_instability(const BakeCase& bake_case, const InstabilityReport& report, const fs::path& checkpoint,
                                      double checkpoint_time_s) {
@@ -262,74 +219,72 @@ class CheckpointFileBuffer : public std::streambuf {
 
 void write_checkpoint(const fs::path& file, std::uint64_t fingerprint, const BoussinesqSolver& solver,
                       const GaugeRecorder& gauges, const WaveStatistics* statistics) {
-  write_file_atomically(file, [&](const fs::path& temporary) {
-    CheckpointFileBuffer buffer(temporary);
-    if (buffer.error() != 0)
-      throw Error(file.string(), fmt::format("cannot be created ({}): {}", temporary.filename().string(), std::strerror(buffer.error())),
-                  "make BakeOptions::output_folder writable, or write into another folder");
-    std::ostream out(&buffer);
-    try {
-      out.write(kCheckpointMagic, sizeof kCheckpointMagic);
-      out.write(reinterpret_cast<const char*>(&fingerprint), sizeof fingerprint);
-      const std::int32_t physics_revision = kSolverPhysicsRevision;
-      out.write(reinterpret_cast<const char*>(&physics_revision), sizeof physics_revision);
-      gauges.save(out);
-      solver.save_state(out);  // throws when the stream failed: the buffer knows why
-      if (statistics) statistics->save(out);
-    } catch (const Error&) {
-      if (buffer.error() == 0) throw;
-    }
-    if (!buffer.close() || !out)
-      throw Error(file.string(),
-                  fmt::format("writing the checkpoint failed after {} bytes: {} (errno {})", buffer.bytes_written(),
-                              write_failure_reason(buffer.error()), buffer.error()),
-                  "free disk space, or write into another folder; the checkpoint written before this one, if any, is kept");
-  });
+  // The core's stream keeps the errno of a failed write, so a checkpoint that meets a full disk
+  // says so (the state writer that sees the failed stream knows no file); the checkpoint written
+  // before this one, if any, is kept.
+  write_stream_atomically(
+      file,
+      [&](std::ostream& out) {
+        out.write(kCheckpointMagic, sizeof kCheckpointMagic);
+        out.write(reinterpret_cast<const char*>(&fingerprint), sizeof fingerprint);
+        const std::int32_t physics_revision = kSolverPhysicsRevision;
+        out.write(reinterpret_cast<const char*>(&physics_revision), sizeof physics_revision);
+        gauges.save(out);
+        solver.save_state(out);  // throws when the stream failed: the stream knows why
+        if (statistics) statistics->save(out);
+      },
+      "the checkpoint");
 }
 
 // The checkpoint opened and its header checked (magic, case fingerprint, the solver's physics
 // revision): positioned at the gauges.
 std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
   const std::string subject = file.string();
+  // Starting again is what BakeOptions::overwrite does: without it, a bake refuses the folder that
+  // holds this checkpoint (refuse_to_destroy), so "resume = false" alone was a fix that was then
+  // refused (issue 44).
+  const std::string start_again =
+      "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume (it replaces this checkpoint "
+      "and the frames written so far)";
   if (!fs::exists(file))
     throw Error(subject, "does not exist, so there is nothing to resume", "bake again from the start (BakeOptions::resume = false)");
   std::ifstream in(file, std::ios::binary);
   if (!in) {
     const int error = errno;
     throw Error(subject, fmt::format("cannot be opened: {} (errno {})", std::strerror(error), error),
-                "make the checkpoint readable, or bake again from the start (BakeOptions::resume = false)");
+                "make the checkpoint readable, or " + start_again);
   }
   char magic[sizeof kCheckpointMagic] = {};
   std::uint64_t stored = 0;
   const bool magic_read = static_cast<bool>(in.read(magic, sizeof magic));
   if (magic_read && std::string(magic) == "nearshore-ckpt1")
     throw Error(subject, "is a checkpoint of an older nearshore (version 1, FNV-1a fingerprints)",
-                "bake again from the start (BakeOptions::resume = false)");
+                start_again);
   if (magic_read && std::string(magic) == "nearshore-ckpt2")
     throw Error(subject, "is a checkpoint of an older nearshore (version 2, without the wave statistics)",
-                "bake again from the start (BakeOptions::resume = false)");
+                start_again);
   if (magic_read && std::string(magic) == "nearshore-ckpt3")
     throw Error(subject,
                 "is a checkpoint of an older nearshore (version 3, before checkpoints recorded the solver's physics revision): "
                 "its solver may have computed other physics than this one, and a bake continued from it would change "
                 "physics part-way through its sequence",
-                "bake again from the start (BakeOptions::resume = false), or resume with the nearshore build that wrote it");
+                start_again + ", or resume with the nearshore build that wrote it");
   if (!magic_read || std::string(magic, sizeof magic) != std::string(kCheckpointMagic, sizeof magic))
-    throw Error(subject, "is not a nearshore bake checkpoint", "delete it and bake again from the start (BakeOptions::resume = false)");
+    throw Error(subject, "is not a nearshore bake checkpoint", start_again);
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != fingerprint)
     throw Error(subject, "was written for a different case file, time step or solver parameters (those derived from the grid included)",
-                "bake again from the start, BakeOptions::resume = false (a checkpoint only continues the exact case that wrote it)");
+                start_again + " (a checkpoint only continues the exact case that wrote it)");
   std::int32_t physics_revision = 0;
   if (!in.read(reinterpret_cast<char*>(&physics_revision), sizeof physics_revision))
     throw Error(subject, "is truncated (it ends before the solver's physics revision)",
-                "bake again from the start (BakeOptions::resume = false)");
+                start_again);
   if (physics_revision != kSolverPhysicsRevision)
     throw Error(subject,
                 fmt::format("was written by a solver of physics revision {}, and this nearshore's solver is revision {} "
                             "(docs/solver.md, \"Physics revision\"): a bake continued from it would change physics part-way "
                             "through its sequence",
                             physics_revision, kSolverPhysicsRevision),
-                "bake again from the start (BakeOptions::resume = false), or resume with the nearshore build that wrote it");
+                start_again + ", or resume with the nearshore build that wrote it");
   return in;
 }
 
@@ -425,7 +380,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   //    the kernel when the process is killed).
   create_output_folder(folder);
   const FolderLock lock(folder, "baking " + bake_case.case_file.string());
-  refuse_to_destroy(folder, options);
+  refuse_to_destroy(folder, bake_case, options);
   if (options.resume) open_checkpoint(checkpoint, fingerprint);  // one that cannot resume stops here, nothing removed
   // 3. Writers killed in this folder left their temporary files; nobody else writes here now.
   remove_stale_temporary_files(folder);

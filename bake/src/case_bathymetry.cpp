@@ -47,6 +47,33 @@ void check_plausible_depths(TableReader& bathymetry, const std::string& key, con
     }
 }
 
+// The bake's memory estimate (bake_estimate.hpp) for `grid` resampled to dx x dy, before the
+// resampled grid is allocated: `spacing_m = 0.001` on a harbour grid ended in std::bad_alloc
+// (issue 44); such a grid is now refused in a moment with the cells and the memory it needs, as a
+// generated flume's is. The same limit of 20000 cells along a side holds for both.
+void check_resampled_grid_fits(TableReader& bathymetry, const GridGeometry& source, double dx, double dy,
+                               const CaseReadOptions& options) {
+  const double columns = std::ceil(source.width_m() / dx), rows = std::ceil(source.height_m() / dy);
+  const std::string key = bathymetry.full("spacing_m");
+  if (columns > 20000 || rows > 20000)
+    bathymetry.fail(key,
+                    fmt::format("= {:.3g} x {:.3g} m resamples the {:.4g} x {:.4g} m grid to {:.3g} x {:.3g} cells, more than "
+                                "20000 along a side",
+                                dx, dy, source.width_m(), source.height_m(), columns, rows),
+                    fmt::format("use a larger spacing_m (the grid's own cells are {:.3g} x {:.3g} m)", source.spacing_x_m(),
+                                source.spacing_y_m()));
+  const double cells = columns * rows;
+  const double needed_bytes = cells * kBakeBytesPerCell + kBakeFixedBytes;
+  const std::optional<double> available_bytes = available_memory_bytes();
+  if (!options.allow_over_budget && available_bytes && needed_bytes > *available_bytes)
+    bathymetry.fail(key,
+                    fmt::format("resamples the grid to {:.0f} cells, whose bake needs about {} of memory ({:.0f} B per cell), "
+                                "but the machine has {} available",
+                                cells, format_bytes(needed_bytes), kBakeBytesPerCell, format_bytes(*available_bytes)),
+                    "use a larger spacing_m; or, if the estimate is too pessimistic, set "
+                    "CaseReadOptions::allow_over_budget and BakeOptions::allow_over_budget");
+}
+
 }  // namespace
 
 // The grid the case names, with depths as its source gives them (below the datum).
@@ -68,7 +95,7 @@ HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const
 // kind = "local_grid": a raster or "x y depth" text in local metres with no CRS, a laboratory flume
 // or basin (issue 19), read by bathymetry/local_grid.hpp with no projection invented for it. The
 // sign is required: a wrong guess turns a whole basin into land, or land into water.
-static HarbourGrid read_local_grid(TableReader& bathymetry, const fs::path& base) {
+static HarbourGrid read_local_grid(TableReader& bathymetry, const fs::path& base, const CaseReadOptions& options) {
   nearshore::bathymetry::LocalGridRequest request;
   request.file = bathymetry.path("file", base);
   request.sign = bathymetry.choice("depth_sign", std::nullopt, {"positive_down", "positive_up"}) == 0
@@ -112,14 +139,17 @@ static HarbourGrid read_local_grid(TableReader& bathymetry, const fs::path& base
                     in_case_keys(error.fix()));
   }
   check_plausible_depths(bathymetry, "file", grid);
-  if (spacing && !soundings) grid = resample_harbour_grid(grid, *spacing);
+  if (spacing && !soundings) {
+    check_resampled_grid_fits(bathymetry, grid.geometry, spacing->x_m, spacing->y_m, options);
+    grid = resample_harbour_grid(grid, *spacing);
+  }
   return grid;
 }
 
 static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind, const fs::path& base,
                                       const CaseReadOptions& options) {
   HarbourGrid grid;
-  if (kind == 3) return read_local_grid(bathymetry, base);
+  if (kind == 3) return read_local_grid(bathymetry, base, options);
   if (kind == 0) {
     const fs::path file = bathymetry.path("file", base);
     grid = bathymetry.reading_file("file", [&] { return read_harbour_grid(file); });
@@ -140,6 +170,7 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
     check_plausible_depths(bathymetry, "file", grid);
     if (bathymetry.has("spacing_m")) {
       const auto [dx, dy] = bathymetry.cell_size("spacing_m");
+      check_resampled_grid_fits(bathymetry, grid.geometry, dx, dy, options);
       grid = resample_harbour_grid(grid, CellSize(dx, dy));
     }
   } else {
@@ -206,7 +237,16 @@ ProjectedPoint read_case_position(TableReader& table, const HarbourGrid& grid, c
     }
   const nearshore::bathymetry::GeoPosition position =
       nearshore::bathymetry::geo_position_from_keys(keys, table.subject(), entry);
-  const ProjectedPoint point = nearshore::bathymetry::place_in_grid(position, grid.geometry, table.subject(), entry);
+  ProjectedPoint point;
+  try {
+    point = nearshore::bathymetry::place_in_grid(position, grid.geometry, table.subject(), entry);
+  } catch (const Error& error) {
+    if (error.subject() == table.subject()) throw;  // already names the case file and the entry
+    // The projection's own failure (lat 0, lon 0 for a grid in zone 10N): named by its entry.
+    throw Error(table.subject(),
+                fmt::format("{} lies where the grid's projection cannot reach: {} ({})", entry, error.problem(), error.subject()),
+                "give a position inside the grid, which covers " + nearshore::bathymetry::describe_grid_extent(grid.geometry));
+  }
   if (auto warning = nearshore::bathymetry::land_warning(grid, point, table.subject(), entry)) warnings.push_back(*warning);
   return point;
 }

@@ -1,4 +1,5 @@
 // The case file's text: TOML or JSON -> one JSON document; the grid-side names every section uses.
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -33,12 +34,99 @@ json to_json_value(const toml::node& node) {
   return json();  // dates and times: no key takes one, so the key reader will reject the type
 }
 
+std::string shortened_numbers(const std::string& text) {
+  constexpr std::size_t kLongest = 24, kKept = 12;
+  std::string out;
+  for (std::size_t at = 0; at < text.size();) {
+    std::size_t end = at;
+    while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+    if (end == at) {
+      out += text[at++];
+      continue;
+    }
+    if (end - at > kLongest)
+      out += text.substr(at, kKept) + fmt::format("... ({} digits)", end - at);
+    else
+      out += text.substr(at, end - at);
+    at = end;
+  }
+  return out;
+}
+
+std::string shown(const json& value) {
+  std::string text = shortened_numbers(value.dump());
+  if (text.size() > 80) text = text.substr(0, 77) + "...";
+  return text;
+}
+
+// ---- JSON, depth-limited and without duplicate keys ---------------------------------------------
+// nlohmann's parser is iterative, but what the document meets next (copies, the readers) recurses
+// once per level: 150 000 nested arrays overflowed the stack (issue 44). A case is 4 levels deep at
+// most (a gauge's position: [[gauges]] -> table -> [x, y]); a library's sweep a few more. Anything
+// deeper than kMaxCaseDepth is no case file, and is refused while it is read, before a deep
+// document exists. TOML refuses a key given twice; JSON's grammar allows it and nlohmann keeps the
+// last, silently: one of two values the author wrote would be ignored, so it is refused as in TOML.
+constexpr int kMaxCaseDepth = 64;
+
+class CaseJsonChecks {
+ public:
+  explicit CaseJsonChecks(const std::string& source) : source_(source) {}
+  bool operator()(int depth, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        if (depth >= kMaxCaseDepth)
+          throw Error(source_,
+                      fmt::format("nests objects and arrays more than {} levels deep (at {}): no case or library file is deeper "
+                                  "than a few levels, and a deeper document is refused before it is built",
+                                  kMaxCaseDepth, place()),
+                      "fix the file's brackets; it is not a case file as written");
+        scopes_.push_back({event == json::parse_event_t::object_start, {}, {}});
+        break;
+      case json::parse_event_t::key:
+        if (!scopes_.empty()) {
+          Scope& scope = scopes_.back();
+          scope.current_key = parsed.get<std::string>();
+          if (!scope.keys.insert(scope.current_key).second)
+            throw Error(source_, fmt::format("the key `{}` is given twice", place()),
+                        "keep one of the two values (JSON allows a repeated key but would silently keep the last; TOML "
+                        "refuses it too)");
+        }
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!scopes_.empty()) scopes_.pop_back();
+        break;
+      case json::parse_event_t::value:
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Scope {
+    bool object;
+    std::set<std::string> keys;
+    std::string current_key;
+  };
+  // "wave_maker.height_m": the keys of the objects around the current place.
+  std::string place() const {
+    std::string path;
+    for (const Scope& scope : scopes_)
+      if (scope.object && !scope.current_key.empty()) path += (path.empty() ? "" : ".") + scope.current_key;
+    return path.empty() ? std::string("the top level") : path;
+  }
+  std::string source_;
+  std::vector<Scope> scopes_;
+};
+
 json parse_case_text(const std::string& text, CaseSyntax syntax, const std::string& source) {
   if (syntax == CaseSyntax::kJson) {
     try {
-      return json::parse(text);
+      return json::parse(text, CaseJsonChecks(source));
     } catch (const json::exception& error) {  // parse_error, and out_of_range for a number such as 1e400
-      throw Error(source, fmt::format("is not valid JSON ({})", error.what()), "fix the syntax at the byte offset given");
+      throw Error(source, fmt::format("is not valid JSON ({})", shortened_numbers(error.what())),
+                  "fix the syntax at the byte offset given");
     }
   }
   try {
@@ -46,7 +134,7 @@ json parse_case_text(const std::string& text, CaseSyntax syntax, const std::stri
   } catch (const toml::parse_error& error) {
     throw Error(source,
                 fmt::format("is not valid TOML at line {}, column {}: {}", error.source().begin.line,
-                            error.source().begin.column, error.description()),
+                            error.source().begin.column, shortened_numbers(std::string(error.description()))),
                 "fix the syntax there");
   }
 }

@@ -52,6 +52,13 @@ json parse_case_document(const fs::path& case_file);
 enum class CaseSyntax { kToml, kJson };
 json parse_case_text(const std::string& text, CaseSyntax syntax, const std::string& source);
 
+/// `text` with every run of more than 24 digits cut to its first 12 and a count ("123456789012...
+/// (309 digits)"): a parser's message or a value echoed back must not reprint a 309-digit number
+/// (issue 44); the count says what was wrong with it.
+std::string shortened_numbers(const std::string& text);
+/// A value as the messages show it: its JSON text, numbers shortened, at most 80 characters.
+std::string shown(const json& value);
+
 // ---- TableReader ---------------------------------------------------------------------------------
 class TableReader {
  public:
@@ -75,7 +82,7 @@ class TableReader {
       fail(full(key), "is missing", "add " + full(key) + " = <" + meaning + ">");
     }
     if (!value->is_number())
-      fail(full(key), fmt::format("is {} but must be a number", value->dump()), "write " + meaning + " as a number");
+      fail(full(key), fmt::format("is {} but must be a number", shown(*value)), "write " + meaning + " as a number");
     const double x = value->get<double>();
     const bool below = exclusive_minimum ? !(x > minimum) : !(x >= minimum);
     if (!std::isfinite(x) || below || x > maximum)
@@ -97,7 +104,7 @@ class TableReader {
       fail(full(key), "is missing", "add " + full(key) + " = <" + meaning + ">");
     }
     if (!value->is_number_integer())
-      fail(full(key), fmt::format("is {} but must be a whole number", value->dump()), "write " + meaning + " as an integer");
+      fail(full(key), fmt::format("is {} but must be a whole number", shown(*value)), "write " + meaning + " as an integer");
     const auto x = value->get<long long>();
     if (x < minimum || x > maximum)
       fail(full(key), fmt::format("= {} is out of range", x), fmt::format("give {} from {} to {}", meaning, minimum, maximum));
@@ -107,13 +114,13 @@ class TableReader {
     const json* value = find(key);
     if (!value) return fallback;
     if (!value->is_number_integer() || value->get<long long>() < 0)
-      fail(full(key), fmt::format("is {} but must be a whole number >= 0", value->dump()), "write " + meaning + " as an integer");
+      fail(full(key), fmt::format("is {} but must be a whole number >= 0", shown(*value)), "write " + meaning + " as an integer");
     return value->get<std::uint64_t>();
   }
   bool boolean(const std::string& key, bool fallback) {
     const json* value = find(key);
     if (!value) return fallback;
-    if (!value->is_boolean()) fail(full(key), fmt::format("is {} but must be true or false", value->dump()), "write true or false");
+    if (!value->is_boolean()) fail(full(key), fmt::format("is {} but must be true or false", shown(*value)), "write true or false");
     return value->get<bool>();
   }
   std::string string(const std::string& key, std::optional<std::string> fallback, const std::string& meaning) {
@@ -122,7 +129,7 @@ class TableReader {
       if (fallback) return *fallback;
       fail(full(key), "is missing", "add " + full(key) + " = \"<" + meaning + ">\"");
     }
-    if (!value->is_string()) fail(full(key), fmt::format("is {} but must be a string", value->dump()), "write it in quotes");
+    if (!value->is_string()) fail(full(key), fmt::format("is {} but must be a string", shown(*value)), "write it in quotes");
     return value->get<std::string>();
   }
   /// One of `choices`, returned as its index.
@@ -151,11 +158,11 @@ class TableReader {
     const json* value = find(key);
     if (!value) fail(full(key), "is missing", "add " + full(key) + " = " + meaning);
     if (!value->is_array() || (count && value->size() != count) || value->empty())
-      fail(full(key), fmt::format("is {} but must be {}", value->dump().substr(0, 80), meaning), "write it as " + meaning);
+      fail(full(key), fmt::format("is {} but must be {}", shown(*value), meaning), "write it as " + meaning);
     std::vector<double> out;
     for (const json& item : *value) {
       if (!item.is_number() || !std::isfinite(item.get<double>()))
-        fail(full(key), fmt::format("holds {}, not a number", item.dump()), "write it as " + meaning);
+        fail(full(key), fmt::format("holds {}, not a number", shown(item)), "write it as " + meaning);
       out.push_back(item.get<double>());
     }
     return out;
@@ -168,7 +175,7 @@ class TableReader {
     if (!value->is_array() || value->empty()) fail(full(key), "is not a list of pairs", "write it as " + meaning);
     for (const json& item : *value) {
       if (!item.is_array() || item.size() != 2 || !item[0].is_number() || !item[1].is_number())
-        fail(full(key), fmt::format("holds {}, not a pair of numbers", item.dump()), "write it as " + meaning);
+        fail(full(key), fmt::format("holds {}, not a pair of numbers", shown(item)), "write it as " + meaning);
       out.emplace_back(item[0].get<double>(), item[1].get<double>());
     }
     return out;

@@ -39,8 +39,15 @@ SolverParameters read_solver(TableReader& solver) {
                                                   "depth in metres the equations see at most (0 = no limit; docs/solver.md, \"Effective depth\")");
   p.dry_depth_m = solver.positive("dry_depth_m", p.dry_depth_m, "wet/dry threshold in metres");
   p.chezy_coefficient = solver.non_negative("chezy_coefficient", p.chezy_coefficient, "Chezy C in m^0.5/s (0 = no turbulent friction)");
-  p.kinematic_viscosity_m2_s = solver.non_negative("kinematic_viscosity_m2_s", p.kinematic_viscosity_m2_s,
-                                                   "kinematic viscosity of the water in m^2/s, for the laminar film's bed stress (0 = none)");
+  // Water's kinematic viscosity is 1.0e-6 m^2/s at 20 degC and 1.8e-6 m^2/s at 0 degC (sea water
+  // 1.83e-6, ITTC 2011 fresh and sea water properties); a hundred times that is no water. Without
+  // the bound, 1 m^2/s made the laminar bed stress 3 nu u / h outgrow the flow and the blow-up
+  // message blamed the time step (issue 44).
+  constexpr double kMostKinematicViscosity_m2_s = 1e-4;
+  p.kinematic_viscosity_m2_s = solver.number("kinematic_viscosity_m2_s", p.kinematic_viscosity_m2_s, 0.0,
+                                             kMostKinematicViscosity_m2_s, false,
+                                             "kinematic viscosity of the water in m^2/s (1.0e-6 at 20 degC, 1.8e-6 at 0 degC; a "
+                                             "hundred times that is no water), for the laminar film's bed stress (0 = none)");
   // The nonlinear terms (docs/solver.md "Fully nonlinear dispersion"), the depth of the dispersive
   // terms and of a face (docs/solver.md "Dispersion depth", "Face depth").
   p.equations = solver.choice("equations", equations_name(p.equations), {"weakly_nonlinear", "fully_nonlinear"}) == 1

@@ -40,6 +40,34 @@ double read_wave_period_s(TableReader& reader, const std::string& key, std::opti
   return period_s;
 }
 
+// No wave on record is higher than about 30 m (the Draupner wave 25.6 m, 1995; the highest
+// significant wave height measured is 19 m, North Atlantic 2013, whose highest single waves are
+// about 1.9 Hs): a height above 40 m is a wrong unit or a typing error, and the solver then blew up
+// with a message that blamed the time step (issue 44).
+constexpr double kHighestWaveHeight_m = 40.0;
+constexpr const char* kHeightBoundReason =
+    "no wave on record is higher than about 30 m (Draupner 25.6 m; the highest significant wave height measured is 19 m)";
+
+double read_wave_height_m(TableReader& reader, const std::string& key, const std::string& meaning, double factor = 1.0) {
+  const double value = reader.positive(key, std::nullopt, meaning);
+  if (value * factor > kHighestWaveHeight_m)
+    reader.fail(reader.full(key), fmt::format("= {} m is above {:.0f} m ({})", value, kHighestWaveHeight_m / factor, kHeightBoundReason),
+                "give the " + meaning);
+  return value;
+}
+
+// A ramp longer than a day never lets the waves reach their height in any bake (1e308 s was taken
+// silently, issue 44); the bake's own duration bounds it further (bake_case.cpp).
+double read_ramp_time_s(TableReader& reader) {
+  const double ramp_s = reader.non_negative("ramp_time_s", 0.0, "smooth start in seconds");
+  if (ramp_s > kLongestPeriod_s)
+    reader.fail(reader.full("ramp_time_s"),
+                fmt::format("= {} s is above {:.0f} s (a day: the waves would not reach their height in any bake)", ramp_s,
+                            kLongestPeriod_s),
+                "give the smooth start in seconds: a few wave periods");
+  return ramp_s;
+}
+
 double read_loop_period_s(TableReader& reader) {
   const double loop_s = reader.non_negative("loop_period_s", 0.0, "loop period in seconds (0 = not periodic)");
   if (loop_s > kLongestPeriod_s)
@@ -193,8 +221,11 @@ SpectrumSplit split_carried(TableReader& maker, SeaState& sea, const HarbourGrid
 WaveComponent component_from(TableReader& reader, const std::string& amplitude_key, double amplitude_factor,
                              double default_direction_rad) {
   WaveComponent component;
-  component.amplitude_m = amplitude_factor * reader.positive(amplitude_key, std::nullopt,
-                                                             amplitude_key == "height_m" ? "wave height in metres" : "amplitude in metres");
+  // An amplitude is half a height: both are bounded as heights.
+  component.amplitude_m =
+      amplitude_factor * read_wave_height_m(reader, amplitude_key,
+                                            amplitude_key == "height_m" ? "wave height in metres" : "amplitude in metres",
+                                            amplitude_key == "height_m" ? 1.0 : 2.0);
   component.angular_frequency_rad_s = 2.0 * std::numbers::pi / read_wave_period_s(reader, "period_s", std::nullopt);
   component.direction_rad = reader.number("direction_deg", default_direction_rad / kDegree, -360.0, 360.0, false,
                                           "direction of travel in degrees counter-clockwise from +x (east)") * kDegree;
@@ -255,12 +286,12 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
           maker.subject(), maker.full(maker.has("source_line") ? "source_line" : where), along_x ? "x" : "y", position_m - origin_m,
           dry, count, 100.0 * dry / count, -highest_m, count - dry));
   }
-  wave_maker.ramp_time_s = maker.non_negative("ramp_time_s", 0.0, "smooth start in seconds");
+  wave_maker.ramp_time_s = read_ramp_time_s(maker);
   const double default_direction_rad = direction_away_from(wave_maker.facing);
   SeaState& sea = wave_maker.sea_state;
   if (kind == MakerKind::kRegular) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
-    const double height_m = maker.positive("height_m", std::nullopt, "wave height (crest to trough) in metres");
+    const double height_m = read_wave_height_m(maker, "height_m", "wave height (crest to trough) in metres");
     const double period_s = read_wave_period_s(maker, "period_s", std::nullopt);
     const double direction_rad = kDegree * maker.number("direction_deg", default_direction_rad / kDegree, -360.0, 360.0, false,
                                                         "direction of travel in degrees counter-clockwise from +x (east)");
@@ -383,7 +414,7 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     wave_maker.series_elevation_m = std::move(series.elevation_m);
   } else if (kind == MakerKind::kSolitary) {
     // Not a maker along a line: the solver starts from the wave (boussinesq/initial_conditions.hpp).
-    request.solitary_wave = SolitaryWave{maker.positive("height_m", std::nullopt, "solitary wave height above still water, metres"),
+    request.solitary_wave = SolitaryWave{read_wave_height_m(maker, "height_m", "solitary wave height above still water, metres"),
                                          position_m, wave_maker.facing};
   }
   if (kind != MakerKind::kIrregular && kind != MakerKind::kDeepWater)

@@ -133,7 +133,7 @@ void WaveStatistics::load(std::istream& in, const std::string& source) {
   std::int64_t steps = 0;
   const auto broken = [&](const std::string& problem) {
     return Error(source, "holds no usable wave statistics: " + problem,
-                 "bake again from the start (BakeOptions::resume = false)");
+                 "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume");
   };
   if (!in.read(magic, sizeof magic) || std::memcmp(magic, kStateMagic, sizeof magic) != 0)
     throw broken("their header is missing");

@@ -1,6 +1,7 @@
 // The only translation unit that includes OpenVDB (see coastline_level_set.hpp).
 #include "nearshore/bathymetry/coastline_level_set.hpp"
 
+#include <openvdb/io/Archive.h>
 #include <openvdb/openvdb.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/atomic_stream.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bathymetry {
@@ -18,6 +20,18 @@ void initialise_openvdb() {
   static std::once_flag once;
   std::call_once(once, [] { openvdb::initialize(); });
 }
+
+
+// OpenVDB's io::File::write writes through a std::ofstream whose state it never checks, so a full
+// disk left a truncated .vdb that was then renamed into place (issue 44). The same archive (header,
+// metadata, grids with their offsets: what io::File writes and reads) goes to the core's checked
+// stream instead (write_stream_atomically), which refuses to rename a file whose write failed.
+class CheckedVdbArchive : public openvdb::io::Archive {
+ public:
+  void write_to(std::ostream& out, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& metadata) const {
+    Archive::write(out, grids, /*seekable=*/true, metadata);
+  }
+};
 
 }  // namespace
 
@@ -42,16 +56,17 @@ std::size_t write_coastline_level_set(const std::filesystem::path& vdb_path, con
     }
   grid->pruneGrid();
   const std::size_t active = grid->activeVoxelCount();
-  write_file_atomically(vdb_path, [&](const std::filesystem::path& temporary) {
-    try {
-      openvdb::io::File file(temporary.string());
-      file.write({grid});
-      file.close();
-    } catch (const openvdb::Exception& e) {
-      throw Error(vdb_path.string(), std::string("writing the OpenVDB level set failed: ") + e.what(),
-                  "check the folder is writable and has space");
-    }
-  });
+  write_stream_atomically(
+      vdb_path,
+      [&](std::ostream& out) {
+        try {
+          CheckedVdbArchive().write_to(out, openvdb::GridPtrVec{grid}, openvdb::MetaMap());
+        } catch (const openvdb::Exception& e) {
+          throw Error(vdb_path.string(), std::string("writing the OpenVDB level set failed: ") + e.what(),
+                      "check the folder is writable and has space");
+        }
+      },
+      "the OpenVDB level set");
   return active;
 }
 

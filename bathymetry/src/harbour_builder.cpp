@@ -22,6 +22,7 @@
 #include "nearshore/bathymetry/geotiff.hpp"
 #include "nearshore/bathymetry/natural_neighbour.hpp"
 #include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/output_folder.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/plot/plot.hpp"
@@ -802,6 +803,15 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
 
 nlohmann::json write_bathymetry_outputs(const fs::path& folder, const BathyResult& result, double coastline_band_m,
                                         const std::vector<PreviewMark>& marks) {
+  // The output folder rules (core/output_folder.hpp): not the folder of an input (a harbour grid's
+  // depth.tif read again would be replaced), nor a sequence or a library (`bathy -o SEQ` replaced
+  // the sequence's depth.exr, which its frames and checksums were baked on).
+  std::vector<InputFolder> input_folders;
+  for (const nlohmann::json& input : result.summary.value("inputs", nlohmann::json::array()))
+    if (input.contains("path"))
+      input_folders.push_back({fs::absolute(fs::path(input.at("path").get<std::string>())).parent_path(),
+                               "the input " + input.at("path").get<std::string>()});
+  check_output_folder(folder, OutputKind::kHarbourGrid, false, input_folders, "write_bathymetry_outputs(folder)", "");
   const HarbourGrid& grid = result.grid;
   const GridGeometry& g = grid.geometry;
   // Everything that can fail on content is computed before the first file is written.

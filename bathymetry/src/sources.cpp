@@ -359,10 +359,34 @@ constexpr const char* kLocalGridFix =
     "for a laboratory or survey grid in local metres, name it in a case file's [bathymetry] with "
     "kind = \"local_grid\" (docs/commands/bake.md), which needs no CRS";
 
+// GDAL opens a file cut short after its header (a 300-byte GeoTIFF) and reports what the missing
+// tags would have held as missing ("no georeference", issue 44): read the first and the last row,
+// whose blocks a cut file lacks, before the georeference is judged. Rows only: cheap for any size.
+void require_complete_raster(GDALDataset& dataset, const std::filesystem::path& path) {
+  if (dataset.GetRasterCount() < 1 || dataset.GetRasterXSize() < 1 || dataset.GetRasterYSize() < 1)
+    throw Error(path.string(), "holds no raster band (the file is empty, truncated or not a raster)",
+                "give a GeoTIFF, an ESRI ASCII grid (.asc) or 'x y depth' text (.xyz, .csv, .txt)");
+  GDALRasterBand* band = dataset.GetRasterBand(1);
+  std::vector<double> row(static_cast<std::size_t>(dataset.GetRasterXSize()));
+  for (const int line : {0, dataset.GetRasterYSize() - 1}) {
+    CPLErrorReset();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    const CPLErr read = band->RasterIO(GF_Read, 0, line, dataset.GetRasterXSize(), 1, row.data(),
+                                       dataset.GetRasterXSize(), 1, GDT_Float64, 0, 0);
+    CPLPopErrorHandler();
+    if (read != CE_None || CPLGetLastErrorType() >= CE_Failure)
+      throw Error(path.string(),
+                  fmt::format("is truncated or corrupt: row {} of its {} x {} pixels cannot be read ({})", line,
+                              dataset.GetRasterXSize(), dataset.GetRasterYSize(), CPLGetLastErrorMsg()),
+                  "copy or download the file again, or regenerate it");
+  }
+}
+
 void read_raster(GDALDataset& dataset, const ReadOptions& options, SourceData& out) {
   GeoRaster raster;
   raster.columns = dataset.GetRasterXSize();
   raster.rows = dataset.GetRasterYSize();
+  require_complete_raster(dataset, out.path);
   if (dataset.GetGeoTransform(raster.geotransform.data()) != CE_None)
     throw Error(out.path.string(), "the raster has no georeference (geotransform)",
                 std::string("georeference it first, e.g. gdal_translate -a_srs EPSG:32610 -a_ullr ...; ") + kLocalGridFix);

@@ -1,5 +1,8 @@
 #include "nearshore/core/harbour_grid.hpp"
 
+#include <fstream>
+#include <string_view>
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -94,6 +97,29 @@ void write_harbour_grid(const fs::path& depth_exr, const HarbourGrid& grid) {
 
 HarbourGrid read_harbour_grid(const fs::path& depth_exr) {
   require_readable_file(depth_exr, "a harbour grid written by `nearshore bathy` (depth.exr)");
+  // What the file is when it is no EXR (its first bytes), so that a valid GeoTIFF or a picture is
+  // not called "truncated or corrupt" (issue 44): it is simply not the file a bake reads.
+  {
+    char magic[8] = {};
+    std::ifstream in(depth_exr, std::ios::binary);
+    in.read(magic, sizeof magic);
+    const std::string_view head(magic, static_cast<std::size_t>(in.gcount()));
+    const char* kind = nullptr;
+    if (head.starts_with(std::string_view("II*\0", 4)) || head.starts_with(std::string_view("MM\0*", 4)) ||
+        head.starts_with(std::string_view("II+\0", 4)) || head.starts_with(std::string_view("MM\0+", 4)))
+      kind = "a TIFF (a GeoTIFF such as depth.tif)";
+    else if (head.starts_with("\x89PNG"))
+      kind = "a PNG picture";
+    else if (head.starts_with("\x89HDF") || head.starts_with("CDF"))
+      kind = "a NetCDF or HDF5 file";
+    if (kind)
+      throw Error(depth_exr.string(),
+                  fmt::format("is {}, not a harbour grid: a bake reads the OpenEXR depth.exr that `nearshore bathy` writes "
+                              "(depth, land, porosity, coastline distance and the georeference)",
+                              kind),
+                  "pass the depth.exr beside it, or make one from this raster with `nearshore bathy FILE -o DIR` and pass "
+                  "DIR/depth.exr");
+  }
   HarbourGrid grid;
   try {
     Imf::InputFile file(depth_exr.c_str());
@@ -135,7 +161,7 @@ HarbourGrid read_harbour_grid(const fs::path& depth_exr) {
     throw;
   } catch (const std::exception& e) {
     throw Error(depth_exr.string(), std::string("cannot be read as a harbour grid: ") + e.what(),
-                "the file is truncated or corrupt; regenerate it with `nearshore bathy`");
+                "if it is the depth.exr of `nearshore bathy`, it is truncated or corrupt: regenerate it with `nearshore bathy`");
   }
   for (int row = 0; row < grid.geometry.rows; ++row)
     for (int column = 0; column < grid.geometry.columns; ++column)

@@ -71,7 +71,19 @@ ProjectedPoint MapProjection::forward(LonLat p) const {
     // Forced zone (setzone = zone_) so points just across a zone border stay in this frame.
     int zone = 0;
     bool north = true;
-    GeographicLib::UTMUPS::Forward(p.latitude_deg, p.longitude_deg, zone, north, out.x_m, out.y_m, zone_);
+    try {
+      GeographicLib::UTMUPS::Forward(p.latitude_deg, p.longitude_deg, zone, north, out.x_m, out.y_m, zone_);
+    } catch (const GeographicLib::GeographicErr& error) {
+      // A point far from the zone (lat 0, lon 0 for a grid in zone 10N): GeographicLib's own
+      // message names neither the point's role nor a fix; callers add the entry (a gauge).
+      throw Error(describe(),
+                  fmt::format("cannot place lat {}, lon {}: it is {:.0f} degrees of longitude from the zone's central "
+                              "meridian ({}), beyond what the projection covers ({})",
+                              p.latitude_deg, p.longitude_deg,
+                              std::abs(std::remainder(p.longitude_deg - (-183.0 + 6.0 * zone_), 360.0)), -183.0 + 6.0 * zone_,
+                              error.what()),
+                  "check the latitude and longitude (degrees, WGS 84; lat first) against the grid's area");
+    }
     // Forward reports the hemisphere of the point; a grid straddling the equator keeps ours.
     if (north != north_) out.y_m += north_ ? -GeographicLib::UTMUPS::UTMShift() : GeographicLib::UTMUPS::UTMShift();
   } else {

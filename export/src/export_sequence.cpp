@@ -8,6 +8,7 @@
 #include "export_input.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/output_folder.hpp"
 #include "nearshore/core/folder_lock.hpp"
 
 namespace nearshore::exports {
@@ -93,6 +94,11 @@ ExportSummary export_sequence(const ExportRequest& request) {
                 fmt::format("choose 0 <= first < end <= {}", frame_count));
   const HarbourGrid harbour = reader.read_harbour_grid();
 
+  // Never into the sequence itself (the GeoTIFF would replace the bake's own wave_statistics.tif,
+  // statistics of every solver step that no frame can rebuild), nor into another command's outputs.
+  check_output_folder(request.output_folder, OutputKind::kNone, false,
+                      {{request.sequence_folder, "the sequence being exported (ExportRequest::sequence_folder)"}},
+                      "ExportRequest::output_folder", "");
   create_output_folder(request.output_folder);
   const FolderLock lock(request.output_folder, "exporting " + request.sequence_folder.string());
   remove_stale_temporary_files(request.output_folder);

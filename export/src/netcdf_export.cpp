@@ -1,6 +1,9 @@
 // The netcdf export: one CF-1.8 NetCDF-4 file (CF conventions 1.8, sections 4 (coordinates), 5.6
 // (grid mappings, auxiliary lat/lon) and 2.5.1 (_FillValue)). The only file that includes netcdf.h.
 #include <netcdf.h>
+#include <sys/statvfs.h>
+
+#include <cerrno>
 
 #include <array>
 #include <vector>
@@ -25,17 +28,31 @@ class NetcdfFile {
   NetcdfFile(const std::filesystem::path& temporary, const std::filesystem::path& final_path) : path_(final_path) {
     check(nc_create(temporary.c_str(), NC_NETCDF4 | NC_CLOBBER, &id_), "creating the file");
   }
+  // A file not closed cleanly (a write failed, e.g. on a full disk) is aborted, not closed: nc_close
+  // would flush again into the full disk, and a failed nc_close leaves the file open in netCDF's and
+  // HDF5's lists, which HDF5 then flushed once more at exit and segfaulted (issue 44). nc_abort
+  // releases it without writing and always drops netCDF's handle.
   ~NetcdfFile() {
-    if (id_ >= 0) nc_close(id_);
+    if (id_ >= 0) nc_abort(id_);
   }
   NetcdfFile(const NetcdfFile&) = delete;
   NetcdfFile& operator=(const NetcdfFile&) = delete;
 
   int id() const { return id_; }
   void check(int status, const std::string& what) const {
-    if (status != NC_NOERR)
-      throw Error(path_.string(), fmt::format("{} failed: {}", what, nc_strerror(status)),
-                  "check that the output folder is writable and has space");
+    if (status == NC_NOERR) return;
+    // netCDF says only "HDF error" when HDF5's write failed; the errno of that write, or the free
+    // space left, says whether the disk is full.
+    const int error_number = errno;
+    std::string reason = nc_strerror(status);
+    struct statvfs disk {};
+    if (error_number == ENOSPC || error_number == EDQUOT)
+      reason += ": " + write_failure_reason(error_number);
+    else if (::statvfs(path_.parent_path().c_str(), &disk) == 0 &&
+             static_cast<double>(disk.f_bavail) * static_cast<double>(disk.f_frsize) < 65536.0)
+      reason += ": " + write_failure_reason(ENOSPC);
+    throw Error(path_.string(), fmt::format("{} failed: {}", what, reason),
+                "check that the output folder is writable and has space; nothing was replaced");
   }
   int dimension(const char* name, std::size_t length) {
     int dimension_id = -1;
@@ -57,7 +74,7 @@ class NetcdfFile {
   }
   void close() {
     const int status = nc_close(id_);
-    id_ = -1;
+    if (status == NC_NOERR) id_ = -1;  // else the destructor aborts it
     check(status, "closing the file");
   }
 

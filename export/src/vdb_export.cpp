@@ -1,7 +1,7 @@
 // The vdb export: per frame one .vdb holding height-field grids, the frames side by side in time
 // (surface_NNNNNN.vdb), never stacked as a third axis. The only file of the export that includes
 // OpenVDB (about 45 s to compile, toolchain.md).
-#include <openvdb/io/File.h>
+#include <openvdb/io/Archive.h>
 #include <openvdb/openvdb.h>
 
 #include <vector>
@@ -10,11 +10,23 @@
 
 #include "export_input.hpp"
 #include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/atomic_stream.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
 
 namespace nearshore::exports {
 namespace {
+
+// OpenVDB's io::File::write writes through a std::ofstream whose state it never checks, so a full
+// disk left a truncated .vdb that was then renamed into place (issue 44). The same archive (header,
+// metadata, grids with their offsets: what io::File writes and reads) goes to the core's checked
+// stream instead (write_stream_atomically), which refuses to rename a file whose write failed.
+class CheckedVdbArchive : public openvdb::io::Archive {
+ public:
+  void write_to(std::ostream& out, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& metadata) const {
+    Archive::write(out, grids, /*seekable=*/true, metadata);
+  }
+};
 
 // Voxel (i, j, 0) is cell (column i, row j) with its centre at x = (i + 0.5) dx, y = (j + 0.5) dy:
 // metres east and north of the grid's south-west corner, not UTM, which 32-bit floats would round
@@ -66,16 +78,17 @@ void write_vdb(const ExportInput& input, ExportSummary& summary) {
                                                 "= metres east, north of the grid's south-west corner; values: "
                                                 "surface_elevation in metres (z up), breaking 0..1; land inactive"));
     const std::filesystem::path path = input.frame_file("surface", index, "vdb");
-    write_file_atomically(path, [&](const std::filesystem::path& temporary) {
-      try {
-        openvdb::io::File file(temporary.string());
-        file.write(grids, metadata);
-        file.close();
-      } catch (const openvdb::Exception& e) {
-        throw Error(path.string(), std::string("writing the VDB failed: ") + e.what(),
-                    "check that the output folder is writable and has space");
-      }
-    });
+    write_stream_atomically(
+        path,
+        [&](std::ostream& out) {
+          try {
+            CheckedVdbArchive().write_to(out, grids, metadata);
+          } catch (const openvdb::Exception& e) {
+            throw Error(path.string(), std::string("writing the VDB failed: ") + e.what(),
+                        "check that the output folder is writable and has space");
+          }
+        },
+        "the VDB frame");
     record_file(summary, path);
     progress.update(index - input.first_frame + 1.0);
   }

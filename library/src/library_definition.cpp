@@ -18,6 +18,8 @@ using json = nlohmann::json;
 using sequence::LibraryIndex;
 using sequence::SeaQuantity;
 
+/// At most this many states in one library (see the check in read_library_definition).
+constexpr double kMaxLibraryStates = 10000;
 constexpr const char* kSweepFix = "give each quantity of [sweep] a list of values (docs/library.md)";
 
 // Spectra whose waves the wind makes (ocean/spectrum_registry.hpp): their direction is the wind's.
@@ -158,6 +160,24 @@ LibraryDefinition read_library_definition(const fs::path& library_file) {
       throw Error(subject, fmt::format("key `{}` {}", key, problem), "give each value once");
     definition.axes.push_back(std::move(axis));
   }
+  // The count before anything is expanded or planned (issue 44: a sweep of 300 000 states planned
+  // silently for over an hour at ~15 ms a state). Each state is a whole bake with its loop tables,
+  // minutes to hours of one machine: kMaxLibraryStates bakes of even a minute are a week, and
+  // reading their cases alone takes minutes. More is a sweep list mistyped or multiplied by mistake.
+  double states = 1.0;
+  std::string sizes;
+  for (const LibraryIndex::Axis& axis : definition.axes) {
+    states *= static_cast<double>(axis.size());
+    sizes += fmt::format("{}{} {}", sizes.empty() ? "" : " x ", axis.size(), sequence::sea_quantity_name(axis.quantity));
+  }
+  if (states > kMaxLibraryStates)
+    throw Error(subject,
+                fmt::format("[sweep] makes {:.0f} states ({}), more than a library takes ({:.0f}): each state is a whole "
+                            "bake with its loop tables (minutes to hours each), so {:.0f} bakes of even a minute are a week "
+                            "of one machine, and planning them reads every case (~15 ms each)",
+                            states, sizes, kMaxLibraryStates, kMaxLibraryStates),
+                "sweep fewer values per quantity (the player crossfades between neighbouring states, docs/library.md), "
+                "or split the sweep into several libraries");
   return definition;
 }
 

@@ -14,6 +14,7 @@
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/bake/bake_run.hpp"
 #include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/output_folder.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/inspector.hpp"
@@ -132,6 +133,11 @@ LibraryStateOutcome LibraryStateOutcome::from_json(const json& value, const std:
 FolderLock lock_library_folder(const fs::path& library_file, const LibraryOptions& options) {
   if (options.output_folder.empty())
     throw Error("LibraryOptions::output_folder", "is empty", "name the folder the library is written into");
+  // The output folder rules (core/output_folder.hpp): not where the library file is read from (its
+  // cases and index would sit among the inputs), nor a sequence or a harbour grid unless allowed.
+  check_output_folder(options.output_folder, OutputKind::kLibrary, options.overwrite,
+                      {{fs::absolute(library_file).parent_path(), "the library file " + library_file.filename().string()}},
+                      "LibraryOptions::output_folder", "LibraryOptions::overwrite");
   create_output_folder(options.output_folder);
   return FolderLock(options.output_folder, "building the sea-state library " + library_file.string());
 }
@@ -193,7 +199,24 @@ LibraryPlan plan_library(const LibraryDefinition& definition, const LibraryOptio
   index.library_file = definition.library_file.string();
   index.base_case = definition.base_case_as_written;
   index.axes = definition.axes;
+  // Reading every case prices it (~15 ms a state, issue 44): for a large sweep, say how long that
+  // takes before it starts, from the first state's pace, and how far it has come every few seconds.
+  const auto planning_start = std::chrono::steady_clock::now();
+  auto last_report = planning_start;
   for (std::size_t s = 0; s < states.size(); ++s) {
+    if (options.progress && s > 0) {
+      const auto now = std::chrono::steady_clock::now();
+      const double elapsed_s = std::chrono::duration<double>(now - planning_start).count();
+      const double eta_s = elapsed_s / static_cast<double>(s) * static_cast<double>(states.size() - s);
+      if (s == 1 && eta_s > 2.0) {
+        std::fprintf(stderr, "library: planning %zu states: reading each case, about %s (%.0f ms a state)\n",
+                     states.size(), format_duration(eta_s + elapsed_s).c_str(), 1e3 * elapsed_s);
+        last_report = now;
+      } else if (std::chrono::duration<double>(now - last_report).count() >= 5.0) {
+        std::fprintf(stderr, "library: planned %zu/%zu states, ETA %s\n", s, states.size(), format_duration(eta_s).c_str());
+        last_report = now;
+      }
+    }
     LibraryIndex::State state;
     state.id = states[s].id;
     state.conditions = states[s].conditions;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/folder_lock.hpp"
 #include "nearshore/core/statistics.hpp"
@@ -235,6 +236,10 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
   if (fs::is_directory(sequence_folder, not_a_folder) &&
       (options.write_tables || ::access(sequence_folder.c_str(), W_OK) == 0))
     lock.emplace(sequence_folder, "analysing its loops");
+  // A loops run killed while writing its tables left loops_gram.bin.tmp-PID (12 MB, issue 44) that
+  // its rerun kept: under the lock no other writer of this folder is alive, so any temporary file
+  // here is a dead writer's.
+  if (lock) remove_stale_temporary_files(sequence_folder);
   const sequence::SequenceReader reader(sequence_folder);
   if (options.verify) reader.verify_checksums();
   LoopsReport report;
@@ -264,6 +269,10 @@ LoopsReport analyse_loops(const fs::path& sequence_folder, const LoopsOptions& o
       report.gram_reused = true;
     }
   }
+  // Stored Gram matrices vouch for the frames as they were: a frame deleted or damaged since would
+  // go unseen (the run exited 0 on a sequence missing a frame, issue 44), so reusing them costs one
+  // checksum pass over the frames (hashing, far cheaper than the decoding it saves).
+  if (report.gram_reused && !options.verify) reader.verify_checksums();
   if (!report.gram_reused) report.gram = compute_gram_matrices(reader, options.gram);
   report.distance_seconds = seconds_since(start);
 

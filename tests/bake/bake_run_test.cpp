@@ -192,6 +192,10 @@ TEST_F(BakeRun, ResumeRefusesAnotherCaseOrAMissingCheckpoint) {
     ADD_FAILURE() << "resumed another case";
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("different case"), std::string::npos) << error.what();
+    // The fix it gives is one that works: without resume the folder is refused (it holds the
+    // checkpoint), so it names overwrite (issue 44).
+    EXPECT_NE(std::string(error.what()).find("BakeOptions::overwrite instead of BakeOptions::resume"), std::string::npos)
+        << error.what();
   }
   // A checkpoint of the same case written by a solver of another physics revision, or by a nearshore
   // from before checkpoints recorded it, is refused too: resumed, one sequence would hold two physics.
@@ -218,7 +222,7 @@ TEST_F(BakeRun, ResumeRefusesAnotherCaseOrAMissingCheckpoint) {
                                      boussinesq::kSolverPhysicsRevision + 1, boussinesq::kSolverPhysicsRevision)),
             std::string::npos)
       << message;
-  EXPECT_NE(message.find("resume = false"), std::string::npos) << message;
+  EXPECT_NE(message.find("BakeOptions::overwrite instead of BakeOptions::resume"), std::string::npos) << message;
   EXPECT_EQ(fs::file_size(checkpoint), size_before);
   with_header("nearshore-ckpt3", boussinesq::kSolverPhysicsRevision);
   message = refusal();

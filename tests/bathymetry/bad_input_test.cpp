@@ -7,7 +7,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "nearshore/bathymetry/demo_harbour.hpp"
@@ -172,4 +174,52 @@ TEST(BathyBadInput, ImplausibleLevelsNameTheField) {
   request.land_elevation_m = std::numeric_limits<double>::quiet_NaN();
   message = bathy_error(request, folder / "out");
   EXPECT_NE(message.find("BathyRequest::land_elevation_m = nan m"), std::string::npos) << message;
+}
+
+// A GeoTIFF cut short after its header (300 bytes of it): GDAL opens it and finds no georeference
+// in what is left, which the message used to say (issue 44); it is a truncated file.
+TEST(BathyBadInput, ATruncatedGeoTiffIsCalledTruncated) {
+  const auto folder = fresh_test_folder("");
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  {
+    std::ifstream in(files.depth_geotiff, std::ios::binary);
+    std::string head(300, '\0');
+    in.read(head.data(), 300);
+    std::ofstream(folder / "cut.tif", std::ios::binary) << head;
+  }
+  const std::string message = bathy_error(request_for({folder / "cut.tif"}), folder / "out");
+  EXPECT_NE(message.find("cut.tif"), std::string::npos) << message;
+  EXPECT_NE(message.find("truncated or corrupt"), std::string::npos) << message;
+  EXPECT_EQ(message.find("no georeference"), std::string::npos) << message;
+}
+
+// The output folder rules (core/output_folder.hpp, issue 44): `bathy ... -o SEQ` replaced the
+// sequence's depth.exr, on which its frames were baked; a harbour grid written into the folder of
+// one of its inputs would replace that input (depth.tif read again at another spacing).
+TEST(BathyBadInput, NeverWritesIntoASequenceNorIntoTheFolderOfAnInput) {
+  nearshore::ProgressBar::set_quiet(true);
+  const auto folder = fresh_test_folder("");
+  const auto files = nb::write_demo_harbour(folder / "demo");
+  const nb::BathyResult result = nb::build_harbour_grid(request_for({files.depth_geotiff}, 40.0));
+  const fs::path sequence = folder / "sequence";
+  fs::create_directories(sequence);
+  std::ofstream(sequence / "manifest.json") << "{}";
+  std::ofstream(sequence / "depth.exr") << "the grid the frames were baked on";
+  const auto message_of = [&](const fs::path& out) {
+    try {
+      nb::write_bathymetry_outputs(out, result);
+    } catch (const nearshore::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("written");
+  };
+  std::string message = message_of(sequence);
+  EXPECT_NE(message.find("holds a baked sequence (written by nearshore bake) (manifest.json)"), std::string::npos) << message;
+  std::ifstream kept(sequence / "depth.exr");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "the grid the frames were baked on");
+  EXPECT_FALSE(fs::exists(sequence / "depth.tif"));
+  message = message_of(folder / "demo");
+  EXPECT_NE(message.find("is the folder the input"), std::string::npos) << message;
+  EXPECT_NE(message.find("write_bathymetry_outputs(folder)"), std::string::npos) << message;
+  EXPECT_EQ(message_of(folder / "harbour"), "written");
 }

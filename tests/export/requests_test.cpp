@@ -1,4 +1,6 @@
 // What the export refuses, with messages that name the object and the fix, and what it leaves.
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -50,6 +52,28 @@ TEST(ExportRequests, AnUnfinishedSequenceIsRefused) {
   fs::remove(folder / "sequence" / "manifest.json");
   const std::string message = message_of({folder / "sequence", folder / "out", ExportFormat::kNetcdf, {}});
   EXPECT_NE(message.find("manifest.json"), std::string::npos) << message;
+}
+
+// The export never writes into the sequence it reads (issue 44: `export SEQ --to geotiff -o SEQ`
+// replaced the bake's own wave_statistics.tif, statistics of every solver step that no frame can
+// rebuild), nor into another command's outputs (a harbour grid, a library, another sequence).
+TEST(ExportRequests, NeverWritesIntoTheSequenceItReadsNorAnotherCommandsOutputs) {
+  const fs::path folder = testing::scratch_folder();
+  TestWave::write(folder / "sequence");
+  write_text_atomically(folder / "sequence" / "wave_statistics.tif", "the bake's statistics of every solver step");
+  for (const ExportFormat format : all_export_formats()) {
+    const std::string message = message_of({folder / "sequence", folder / "sequence", format, {}});
+    EXPECT_NE(message.find("is the folder the sequence being exported (ExportRequest::sequence_folder) comes from"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("choose another ExportRequest::output_folder"), std::string::npos) << message;
+  }
+  std::ifstream kept(folder / "sequence" / "wave_statistics.tif");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "the bake's statistics of every solver step");
+  TestWave::write(folder / "other");
+  const std::string message = message_of({folder / "sequence", folder / "other", ExportFormat::kGeotiff, {}});
+  EXPECT_NE(message.find("holds a baked sequence (written by nearshore bake) (manifest.json)"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(folder / "other" / "wave_statistics.tif"));
 }
 
 // Files are written under temporary names and renamed: what an interrupted export left behind

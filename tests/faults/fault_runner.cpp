@@ -4,6 +4,9 @@
 //   fault_runner bake CASE OUT [resume] [overwrite] [allow-over-budget]   run_bake, like `nearshore bake`
 //   fault_runner verify SEQUENCE                                           every checksum of a sequence
 //   fault_runner loops SEQUENCE                                            analyse_loops (writes loops.json)
+//   fault_runner export SEQUENCE FORMAT OUT                                export_sequence, like `nearshore export`
+//   fault_runner loops-vdb SEQUENCE OUT.vdb                                export_sequence_vdb, like `nearshore loops --vdb`
+//   fault_runner bathy OUT INPUT... [spacing=M]                            build_harbour_grid + write_bathymetry_outputs
 //
 // With NEARSHORE_FAULT set, it stops itself at one chosen write:
 //   kill-in-write:NAME:K        SIGKILL half-way through writing the K-th version of file NAME
@@ -30,6 +33,9 @@
 
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/bake/bake_run.hpp"
+#include "nearshore/bathymetry/harbour_builder.hpp"
+#include "nearshore/export/export_sequence.hpp"
+#include "nearshore/loops/sequence_vdb.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/inspector.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
@@ -125,7 +131,8 @@ extern "C" int rename(const char* from, const char* to) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: fault_runner bake CASE OUT [resume] [overwrite] [allow-over-budget] | verify SEQ | loops SEQ\n");
+    std::fprintf(stderr, "usage: fault_runner bake CASE OUT [resume] [overwrite] [allow-over-budget] | verify SEQ | loops SEQ | "
+                 "export SEQ FORMAT OUT | loops-vdb SEQ OUT | bathy OUT INPUT... [spacing=M]\n");
     return 2;
   }
   try {
@@ -139,6 +146,24 @@ int main(int argc, char** argv) {
       nearshore::loops::LoopsOptions options;
       options.report_lengths_s = {1.0};
       nearshore::loops::analyse_loops(argv[2], options);
+    } else if (mode == "export" && argc == 5) {
+      nearshore::exports::ExportRequest request;
+      request.sequence_folder = argv[2];
+      request.format = nearshore::exports::parse_export_format(argv[3]);
+      request.output_folder = argv[4];
+      nearshore::exports::export_sequence(request);
+    } else if (mode == "loops-vdb" && argc == 4) {
+      nearshore::loops::export_sequence_vdb(argv[2], argv[3]);
+    } else if (mode == "bathy" && argc >= 4) {
+      nearshore::bathymetry::BathyRequest request;
+      for (int i = 3; i < argc; ++i) {
+        const std::string_view word = argv[i];
+        if (word.starts_with("spacing="))
+          request.spacing_m = std::atof(argv[i] + 8);
+        else
+          request.inputs.emplace_back(argv[i]);
+      }
+      nearshore::bathymetry::write_bathymetry_outputs(argv[2], nearshore::bathymetry::build_harbour_grid(request));
     } else if (mode == "bake" && argc >= 4) {
       nearshore::bake::BakeOptions options;
       options.output_folder = argv[3];

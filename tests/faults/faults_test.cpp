@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "bake_test_support.hpp"
+#include "fault_support.hpp"
 #include "nearshore/bake/bake_run.hpp"
 #include "nearshore/core/folder_lock.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
@@ -29,48 +30,7 @@
 namespace nearshore::bake {
 namespace {
 namespace fs = std::filesystem;
-
-// This test's scratch folder, emptied.
-fs::path scratch_folder() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path folder = fs::path(NEARSHORE_BINARY_DIR) / "tests" / "faults" / "scratch" /
-                          (std::string(info->test_suite_name()) + "." + info->name());
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
-
-std::string file_bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// Starts fault_runner with `arguments`; `fault` goes into NEARSHORE_FAULT; stderr into `log`.
-pid_t start_runner(const std::vector<std::string>& arguments, const std::string& fault = {}, const fs::path& log = {}) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    if (!fault.empty()) setenv("NEARSHORE_FAULT", fault.c_str(), 1);
-    if (!log.empty()) {
-      if (!std::freopen(log.c_str(), "w", stderr)) _exit(126);
-    }
-    std::vector<char*> argv;
-    const std::string runner = FAULT_RUNNER_PATH;
-    argv.push_back(const_cast<char*>(runner.c_str()));
-    for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
-    argv.push_back(nullptr);
-    execv(runner.c_str(), argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-int wait_for(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return status;
-}
-
-bool exited_with(int status, int code) { return WIFEXITED(status) && WEXITSTATUS(status) == code; }
+using namespace faults;
 
 std::vector<std::string> temporary_files(const fs::path& folder) {
   std::vector<std::string> found;

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "loops_test_support.hpp"
+#include "nearshore/core/error.hpp"
 #include "nearshore/loops/synthetic_sea.hpp"
 #include "nearshore/sequence/checksum.hpp"
 #include "nearshore/sequence/loops_file.hpp"
@@ -88,6 +89,37 @@ TEST(Inspector, PeriodicSequenceLoopsAtItsPeriodAndTablesAreReused) {
   write_loops_pictures(first, folder / "png");
   for (const char* name : {"distance_matrix.png", "seam_ratios.png", "worst_seam_gauge.png"})
     EXPECT_TRUE(std::filesystem::exists(folder / "png" / name)) << name;
+}
+
+// Stored Gram matrices vouch for the frames as they were (issue 44): a frame removed or damaged
+// since is found (the run exited 0 reusing them), and the temporary table a killed run left
+// (loops_gram.bin.tmp-PID, megabytes) is removed by the next run, not kept.
+TEST(Inspector, ReusedTablesDoNotHideAMissingOrDamagedFrameAndKilledRunsTemporariesGo) {
+  const auto folder = fresh_folder("damaged");
+  write_sea_sequence(folder, periodic_sea(8.0, 3, 1.5, 8.0, 5), small_geometry(), 40, 0.25, 8.0);
+  LoopsOptions options;
+  options.report_lengths_s = {5};
+  analyse_loops(folder, options);
+  std::ofstream(folder / "loops_gram.bin.tmp-2147483646") << std::string(4096, 'g');  // a killed run's
+  EXPECT_TRUE(analyse_loops(folder, options).gram_reused);
+  EXPECT_FALSE(std::filesystem::exists(folder / "loops_gram.bin.tmp-2147483646"));
+  const std::filesystem::path frame = folder / "frame_000017.exr";
+  const std::string bytes = sequence::read_file_bytes(frame);
+  for (const bool removed : {true, false}) {
+    if (removed) {
+      std::filesystem::remove(frame);
+    } else {
+      std::string damaged = bytes;
+      damaged[damaged.size() / 2] ^= 0x5a;
+      std::ofstream(frame, std::ios::binary) << damaged;
+    }
+    try {
+      analyse_loops(folder, options);
+      ADD_FAILURE() << "loops ran on a sequence whose frame 17 is " << (removed ? "missing" : "damaged");
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("frame_000017.exr"), std::string::npos) << error.what();
+    }
+  }
 }
 
 }  // namespace

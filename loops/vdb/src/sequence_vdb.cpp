@@ -2,16 +2,31 @@
 #include "nearshore/loops/sequence_vdb.hpp"
 
 #include <openvdb/openvdb.h>
-#include <openvdb/io/File.h>
+#include <openvdb/io/Archive.h>
 
 #include <fmt/core.h>
 
 #include "nearshore/core/atomic_file.hpp"
+#include "nearshore/core/atomic_stream.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::loops {
+namespace {
+
+// OpenVDB's io::File::write writes through a std::ofstream whose state it never checks, so a full
+// disk left a truncated .vdb that was then renamed into place (issue 44). The same archive (header,
+// metadata, grids with their offsets: what io::File writes and reads) goes to the core's checked
+// stream instead (write_stream_atomically), which refuses to rename a file whose write failed.
+class CheckedVdbArchive : public openvdb::io::Archive {
+ public:
+  void write_to(std::ostream& out, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& metadata) const {
+    Archive::write(out, grids, /*seekable=*/true, metadata);
+  }
+};
+
+}  // namespace
 
 void export_sequence_vdb(const std::filesystem::path& sequence_folder, const std::filesystem::path& vdb_path,
                          const VdbExportOptions& options) {
@@ -67,16 +82,17 @@ void export_sequence_vdb(const std::filesystem::path& sequence_folder, const std
   metadata.insertMeta("nearshore_first_frame", openvdb::Int32Metadata(options.first_frame));
   metadata.insertMeta("nearshore_frame_stride", openvdb::Int32Metadata(options.frame_stride));
   metadata.insertMeta("nearshore_z_axis", openvdb::StringMetadata("voxel k = (frame - first_frame) / frame_stride"));
-  write_file_atomically(vdb_path, [&](const std::filesystem::path& temporary) {
-    try {
-      openvdb::io::File file(temporary.string());
-      file.write(output, metadata);
-      file.close();
-    } catch (const openvdb::Exception& e) {
-      throw Error(vdb_path.string(), std::string("writing the VDB failed: ") + e.what(),
-                  "free disk space or choose another output path");
-    }
-  });
+  write_stream_atomically(
+      vdb_path,
+      [&](std::ostream& out) {
+        try {
+          CheckedVdbArchive().write_to(out, output, metadata);
+        } catch (const openvdb::Exception& e) {
+          throw Error(vdb_path.string(), std::string("writing the VDB failed: ") + e.what(),
+                      "free disk space or choose another output path");
+        }
+      },
+      "the VDB");
 }
 
 }  // namespace nearshore::loops

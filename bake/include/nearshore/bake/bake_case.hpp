@@ -59,6 +59,9 @@ struct BakeTiming {
 
 struct BakeCase {
   std::filesystem::path case_file;  ///< where it was read from (named in every message)
+  /// The data files the case reads (a harbour grid, a local grid): a bake never writes into their
+  /// folders (core/output_folder.hpp), where its resampled depth.exr would replace the grid.
+  std::vector<std::filesystem::path> input_files;
   HarbourGrid harbour;              ///< the grid the solver runs on
   boussinesq::SolverParameters solver;          ///< time_step_s is always resolved (> 0): see resolve_time_step()
   boussinesq::WaveMaker wave_maker;
