@@ -20,10 +20,14 @@
 struct nearshore_sea {
   std::unique_ptr<nearshore::runtime::PlayedSea> played;  // one baked sequence, or a sea-state library
   std::optional<nearshore::MapProjection> projection;  // none for a laboratory grid
+  nearshore_time_mode time_mode = NEARSHORE_TIME_FREE_RUNNING;
+  // NEARSHORE_UNDERRUN from nearshore_sea_advance: for hosts of version >= 5 (their options struct
+  // has time_mode); a host built before it gets NEARSHORE_OK and the counters, as it was promised.
+  bool report_underruns = true;
 
   nearshore::runtime::StreamingEngine& engine() const { return played->engine(); }
   nearshore::runtime::SurfaceSnapshot snapshot() const { return played->snapshot(); }
-  void advance_to(double t) { played->advance_to(t); }
+  bool advance_to(double t) { return played->advance_to(t); }
 };
 
 namespace nearshore::playback {
