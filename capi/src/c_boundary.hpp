@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "nearshore.h"
+#include "c_failure.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/runtime/library_player.hpp"
@@ -44,13 +45,6 @@ const nearshore::playback::SurfaceLayers& fleet_surface_layers(nearshore_fleet& 
 /// The message of the last failed call on this thread (nearshore_last_error).
 std::string& last_error();
 
-// A failure with its status: thrown inside an entry point, caught at its boundary.
-struct Failure {
-  nearshore_status status;
-  std::string message;
-};
-
-[[noreturn]] inline void fail(nearshore_status status, std::string message) { throw Failure{status, std::move(message)}; }
 
 template <class T>
 T* require(T* pointer, const char* name) {
