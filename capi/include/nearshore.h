@@ -10,7 +10,7 @@
  *    message (which file, which value, and the fix) is kept per thread: nearshore_last_error().
  *    No C++ exception ever crosses this API.
  *  - Positions are in the SITE frame: metres east (x) and north (y) of the harbour grid's south-west
- *    corner, z up from the still-water level. nearshore_site_info() gives the corner's projected
+ *    corner, z up from the still-water level. nearshore_site_info_get() gives the corner's projected
  *    coordinates and latitude/longitude; nearshore_site_from_lat_lon() converts.
  *  - Times are display seconds of the sea's own timeline: time 0 is the first step of its plan.
  *    Any clock the host uses: faster or slower than real time, paused, stepped, or going back (an
@@ -185,7 +185,8 @@ typedef struct nearshore_stats {
   uint64_t transitions_taken;         /* jumps of the plan played so far */
   long long plan_step;                /* the step on display */
   int crossfading;                    /* 1 while a planned crossfade is on display */
-  char plan_name[32];                 /* "exact period", "optimal loop", "random walk", "frame order" */
+  char plan_name[32];                 /* the plan's kind: "exact period", "optimal loop", "random walk" or
+                                         "frame order" (after a fallback; message says why) */
   char message[512];                  /* the last warning (a held frame, no loops.json...), or "" */
   /* Since version 5 (a host's older, shorter struct is filled up to message). */
   uint64_t harbour_underruns;         /* advances that lacked a harbour keyframe */
@@ -203,7 +204,12 @@ typedef struct nearshore_surface_sample {
   float elevation_m;                  /* of the surface above still water */
   float velocity_x_m_s, velocity_y_m_s; /* depth-averaged current (flux / total depth); 0 where dry */
   float normal[3];                    /* unit, z up */
-  int dry;                            /* 1 on land or where the water has run off */
+  int dry;                            /* 1 on land or where the water has run off. There velocity is 0
+                                         and elevation_m is what the baked frames hold at that point
+                                         (blended with the open sea by the harbour weight): on the
+                                         cells a bake marks as land, the frames' value there, which a
+                                         host must not read as water; buoyancy code should skip dry
+                                         points */
 } nearshore_surface_sample;
 
 /* Samples the surface at `count` site points (xy_m: x0, y0, x1, y1, ...) as displayed after the

@@ -319,7 +319,9 @@ nearshore_status nearshore_sea_stats(const nearshore_sea* sea, nearshore_stats* 
     stats->transitions_taken = static_cast<uint64_t>(s.transitions_taken);
     stats->plan_step = s.plan_step;
     stats->crossfading = s.in_crossfade ? 1 : 0;
-    copy_text(stats->plan_name, s.plan);
+    // The kind, which fits the field; the full description (seed, loop length) is longer than 31
+    // characters and stays with the C++ StreamingStats::plan.
+    copy_text(stats->plan_name, std::string(nearshore::runtime::plan_kind_name(sea->engine().plan().kind())));
     copy_text(stats->message, s.last_message);
     stats->harbour_underruns = static_cast<uint64_t>(s.harbour_underruns);
     stats->deep_underruns = static_cast<uint64_t>(s.deep_underruns);

@@ -132,6 +132,7 @@ TEST(CApiHost, AFreeRunningUnderrunIsAStatusWithCountersAndOlderHostsKeepOk) {
   EXPECT_EQ(stats.underruns, 1u);
   EXPECT_EQ(stats.harbour_underruns, 1u);
   EXPECT_EQ(stats.last_advance_planned, 0);
+  EXPECT_STREQ(stats.plan_name, "frame order");  // the kind, whole (the description is longer than 31)
   // A wait of 0 s on a time the decoder has just been sent to is a timeout, said.
   EXPECT_EQ(nearshore_sea_wait_until_ready(sea, 200.0, 0.0), NEARSHORE_TIMEOUT);
   EXPECT_NE(std::string(nearshore_last_error()).find("200"), std::string::npos) << nearshore_last_error();
