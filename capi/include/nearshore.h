@@ -10,9 +10,12 @@
  *    message (which file, which value, and the fix) is kept per thread: nearshore_last_error().
  *    No C++ exception ever crosses this API.
  *  - Positions are in the SITE frame: metres east (x) and north (y) of the harbour grid's south-west
- *    corner, z up from the still-water level. nearshore_site_info() gives the corner's projected
+ *    corner, z up from the still-water level. nearshore_site_info_get() gives the corner's projected
  *    coordinates and latitude/longitude; nearshore_site_from_lat_lon() converts.
- *  - Times are display seconds since the sea was opened (any non-decreasing clock the host uses).
+ *  - Times are display seconds of the sea's own timeline: time 0 is the first step of its plan.
+ *    Any clock the host uses: faster or slower than real time, paused, stepped, or going back (an
+ *    instructor's rewind); nearshore_sea_options.time_mode says what a sea does when its
+ *    background decoder is not where the clock is.
  *  - Thread safety is stated per call: "render thread" calls must come from one thread at a time
  *    (the one that advances and draws); "any thread" calls may run concurrently with everything,
  *    including nearshore_sea_advance, because queries read an immutable snapshot.
@@ -37,8 +40,10 @@ extern "C" {
 
 /* 2: ships (nearshore_fleet_*). 3: the renderer draws a fleet (nearshore_renderer_set_fleet).
  * 4: a ship's dispersive wake (nearshore_ship_options.dispersive_wake, nearshore_fleet_dispersive_wake).
+ * 5: host-driven time: nearshore_sea_options.time_mode and ready_timeout_s, nearshore_sea_wait_until_ready,
+ *    NEARSHORE_TIMEOUT, NEARSHORE_UNDERRUN, the underrun counters of nearshore_stats; time may go back.
  * A host built against version N runs on a library of version >= N. */
-#define NEARSHORE_API_VERSION 4
+#define NEARSHORE_API_VERSION 5
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -46,7 +51,12 @@ typedef enum nearshore_status {
   NEARSHORE_IO_ERROR = 2,         /* a file is missing, unreadable, truncated or corrupt */
   NEARSHORE_FORMAT_ERROR = 3,     /* a manifest or loops.json of another version or another bake */
   NEARSHORE_GL_ERROR = 4,         /* no current OpenGL 3.3 core context, a shader that fails */
-  NEARSHORE_INTERNAL_ERROR = 5    /* a bug: the message says where; please report it */
+  NEARSHORE_INTERNAL_ERROR = 5,   /* a bug: the message says where; please report it */
+  NEARSHORE_TIMEOUT = 6,          /* a wait ran out before the sea was ready (version 5) */
+  NEARSHORE_UNDERRUN = 7          /* not a failure: nearshore_sea_advance moved the sea, but the background
+                                     decoder had not made the planned keyframes of that time, so older
+                                     ones are shown (free-running mode; version 5). nearshore_stats counts
+                                     them; NEARSHORE_TIME_LOCKSTEP never underruns. */
 } nearshore_status;
 
 /* The message of the last failed call on this thread ("" if none). Valid until the next failing
@@ -69,15 +79,41 @@ typedef enum nearshore_plan {
   NEARSHORE_PLAN_FRAME_ORDER = 4
 } nearshore_plan;
 
+/* What a sea does when the host's clock is somewhere its background decoder has not reached
+ * (version 5). */
+typedef enum nearshore_time_mode {
+  /* The default. nearshore_sea_advance never waits: a missing keyframe is an underrun, the
+   * nearest older ones are shown and the call returns NEARSHORE_UNDERRUN. For a visual channel
+   * that must never stall. The first advance after opening is the exception: it makes what it
+   * lacks, so a sea never starts flat. */
+  NEARSHORE_TIME_FREE_RUNNING = 0,
+  /* The host's clock drives everything: nearshore_sea_advance shows exactly the keyframes of the
+   * requested time, decoding and synthesising on the calling thread what the background has not
+   * made yet (the call then takes milliseconds to tens of milliseconds). Any time rate, pausing,
+   * stepping and rewinding give the same fields, bit for bit, as real time at the same display
+   * times. For ship physics, faster-than-real-time runs, several stations that must agree, and
+   * recordings. */
+  NEARSHORE_TIME_LOCKSTEP = 1
+} nearshore_time_mode;
+
+/* Every number has a range, and a value outside it is refused with NEARSHORE_INVALID_ARGUMENT and
+ * a message naming the field, its range and why (docs/c-api.md "Sea options"). */
 typedef struct nearshore_sea_options {
   uint32_t struct_size;
   nearshore_plan plan;
   uint64_t seed;                      /* random walk seed; 0: the one loops.json records */
-  int ring_keyframes;                 /* harbour keyframes decoded ahead; 0: the default */
-  double deep_water_interval_s;       /* deep-water keyframe spacing; 0: the default (1/30 s) */
+  int ring_keyframes;                 /* harbour keyframes decoded ahead: 0 (the default, about 1 s of
+                                         play within 512 MiB) or 2-1024 */
+  double deep_water_interval_s;       /* deep-water keyframe spacing: 0 (the default, 1/30 s) or
+                                         1/240 - 1 s */
   int beaufort_force;                 /* deep water when the bake has none: 0-12; -1: the default */
-  double wind_direction_deg;          /* compass direction the wind blows FROM, degrees */
+  double wind_direction_deg;          /* compass direction the wind blows FROM: -360 - 720 degrees */
   int verify_checksums;               /* 1: check each frame's XXH64 before use */
+  /* Since version 5 (a host's older, shorter struct gets FREE_RUNNING, 10 s and OK on underruns). */
+  nearshore_time_mode time_mode;      /* NEARSHORE_TIME_FREE_RUNNING (default) or NEARSHORE_TIME_LOCKSTEP */
+  double ready_timeout_s;             /* the open waits until the first frame (display time 0) is decoded,
+                                         at most this long (0-600 s; 0: no wait; default 10 s);
+                                         NEARSHORE_TIMEOUT if it is not */
 } nearshore_sea_options;
 
 /* Fills the defaults. Any thread. */
@@ -103,9 +139,19 @@ NEARSHORE_API nearshore_status nearshore_sea_request_conditions(nearshore_sea* s
  * any thread has returned. */
 NEARSHORE_API void nearshore_sea_close(nearshore_sea* sea);
 
-/* Moves the sea to display time `time_s` (>= the last one). Never waits on disk: if the decoder
- * is behind, the last frames are held and an underrun is counted. Render thread. */
+/* Moves the sea to display time `time_s` (any finite time >= 0; going back is a seek like going
+ * far ahead: the decoder restarts there). NEARSHORE_TIME_FREE_RUNNING: never waits on disk; if the
+ * decoder is behind, the nearest older keyframes are shown, the underrun is counted and the call
+ * returns NEARSHORE_UNDERRUN (the sea did move; keep calling). NEARSHORE_TIME_LOCKSTEP: always the
+ * planned keyframes of `time_s`, made on this thread when the decoder has not got there.
+ * Render thread. */
 NEARSHORE_API nearshore_status nearshore_sea_advance(nearshore_sea* sea, double time_s);
+
+/* Waits until the keyframes of display time `time_s` are decoded (at most `timeout_s`, 0-600 s):
+ * NEARSHORE_OK when they are, NEARSHORE_TIMEOUT when not. For a host's start-up (before it starts
+ * its clock), after a seek, or before a frame that must be exact; never for the render loop.
+ * Render thread. Since version 5. */
+NEARSHORE_API nearshore_status nearshore_sea_wait_until_ready(nearshore_sea* sea, double time_s, double timeout_s);
 
 /* Changes the deep water's wind when the bake has no deep-water section (the field is rebuilt in
  * the background and swapped in). Render thread. */
@@ -139,10 +185,18 @@ typedef struct nearshore_stats {
   uint64_t transitions_taken;         /* jumps of the plan played so far */
   long long plan_step;                /* the step on display */
   int crossfading;                    /* 1 while a planned crossfade is on display */
-  char plan_name[32];                 /* "exact period", "optimal loop", "random walk", "frame order" */
+  char plan_name[32];                 /* the plan's kind: "exact period", "optimal loop", "random walk" or
+                                         "frame order" (after a fallback; message says why) */
   char message[512];                  /* the last warning (a held frame, no loops.json...), or "" */
+  /* Since version 5 (a host's older, shorter struct is filled up to message). */
+  uint64_t harbour_underruns;         /* advances that lacked a harbour keyframe */
+  uint64_t deep_underruns;            /* advances that lacked a deep-water keyframe */
+  uint64_t synchronous_keyframes;     /* keyframes made on the calling thread (lockstep, the first
+                                         advance, nearshore_sea_query_at) */
+  int last_advance_planned;           /* 1: the last advance showed the planned keyframes */
+  nearshore_time_mode time_mode;
 } nearshore_stats;
-/* Any thread (a consistent copy). */
+/* Any thread (a consistent copy). struct_size: sizeof(nearshore_stats), or an older version's. */
 NEARSHORE_API nearshore_status nearshore_sea_stats(const nearshore_sea* sea, nearshore_stats* stats);
 
 /* ---- CPU surface queries: the water the GPU draws, without a read-back ------------------------ */
@@ -150,7 +204,12 @@ typedef struct nearshore_surface_sample {
   float elevation_m;                  /* of the surface above still water */
   float velocity_x_m_s, velocity_y_m_s; /* depth-averaged current (flux / total depth); 0 where dry */
   float normal[3];                    /* unit, z up */
-  int dry;                            /* 1 on land or where the water has run off */
+  int dry;                            /* 1 on land or where the water has run off. There velocity is 0
+                                         and elevation_m is what the baked frames hold at that point
+                                         (blended with the open sea by the harbour weight): on the
+                                         cells a bake marks as land, the frames' value there, which a
+                                         host must not read as water; buoyancy code should skip dry
+                                         points */
 } nearshore_surface_sample;
 
 /* Samples the surface at `count` site points (xy_m: x0, y0, x1, y1, ...) as displayed after the

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "nearshore.h"
+#include "c_failure.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/runtime/library_player.hpp"
@@ -20,10 +21,14 @@
 struct nearshore_sea {
   std::unique_ptr<nearshore::runtime::PlayedSea> played;  // one baked sequence, or a sea-state library
   std::optional<nearshore::MapProjection> projection;  // none for a laboratory grid
+  nearshore_time_mode time_mode = NEARSHORE_TIME_FREE_RUNNING;
+  // NEARSHORE_UNDERRUN from nearshore_sea_advance: for hosts of version >= 5 (their options struct
+  // has time_mode); a host built before it gets NEARSHORE_OK and the counters, as it was promised.
+  bool report_underruns = true;
 
   nearshore::runtime::StreamingEngine& engine() const { return played->engine(); }
   nearshore::runtime::SurfaceSnapshot snapshot() const { return played->snapshot(); }
-  void advance_to(double t) { played->advance_to(t); }
+  bool advance_to(double t) { return played->advance_to(t); }
 };
 
 namespace nearshore::playback {
@@ -40,13 +45,6 @@ const nearshore::playback::SurfaceLayers& fleet_surface_layers(nearshore_fleet& 
 /// The message of the last failed call on this thread (nearshore_last_error).
 std::string& last_error();
 
-// A failure with its status: thrown inside an entry point, caught at its boundary.
-struct Failure {
-  nearshore_status status;
-  std::string message;
-};
-
-[[noreturn]] inline void fail(nearshore_status status, std::string message) { throw Failure{status, std::move(message)}; }
 
 template <class T>
 T* require(T* pointer, const char* name) {

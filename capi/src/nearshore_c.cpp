@@ -4,8 +4,11 @@
 // goes to a per-thread last-error string and the call returns a status.
 #include "nearshore.h"
 #include "c_boundary.hpp"
+#include "sea_options.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -16,6 +19,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
@@ -51,31 +56,7 @@ namespace {
 namespace fs = std::filesystem;
 using nearshore::Error;
 using namespace nearshore::capi;
-
-nearshore::runtime::PlanKind plan_kind(nearshore_plan plan) {
-  switch (plan) {
-    case NEARSHORE_PLAN_AUTO:
-    case NEARSHORE_PLAN_OPTIMAL_LOOP: return nearshore::runtime::PlanKind::kOptimalLoop;
-    case NEARSHORE_PLAN_EXACT_PERIOD: return nearshore::runtime::PlanKind::kExactPeriod;
-    case NEARSHORE_PLAN_RANDOM_WALK: return nearshore::runtime::PlanKind::kRandomWalk;
-    case NEARSHORE_PLAN_FRAME_ORDER: return nearshore::runtime::PlanKind::kFrameOrder;
-  }
-  fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.plan = " + std::to_string(int(plan)) +
-                                       " is not a nearshore_plan; use NEARSHORE_PLAN_AUTO .. NEARSHORE_PLAN_FRAME_ORDER");
-}
-
 using nearshore::ocean::travel_direction_rad;  // compass "from" bearing -> travel direction
-
-nearshore::runtime::BeaufortSea beaufort_sea(int force, double wind_from_deg) {
-  if (force < 0 || force > 12)
-    fail(NEARSHORE_INVALID_ARGUMENT, "beaufort_force = " + std::to_string(force) + " is outside 0-12; give a force of the Beaufort scale");
-  if (!std::isfinite(wind_from_deg))
-    fail(NEARSHORE_INVALID_ARGUMENT, "wind_direction_deg is not a finite number; give a compass direction in degrees");
-  nearshore::runtime::BeaufortSea sea;
-  sea.force = force;
-  sea.wind_direction_rad = travel_direction_rad(wind_from_deg);
-  return sea;
-}
 
 template <std::size_t N>
 void copy_text(char (&out)[N], const std::string& text) {
@@ -98,49 +79,59 @@ const char* nearshore_status_name(nearshore_status status) {
     case NEARSHORE_FORMAT_ERROR: return "NEARSHORE_FORMAT_ERROR";
     case NEARSHORE_GL_ERROR: return "NEARSHORE_GL_ERROR";
     case NEARSHORE_INTERNAL_ERROR: return "NEARSHORE_INTERNAL_ERROR";
+    case NEARSHORE_TIMEOUT: return "NEARSHORE_TIMEOUT";
+    case NEARSHORE_UNDERRUN: return "NEARSHORE_UNDERRUN";
   }
   return "NEARSHORE_UNKNOWN_STATUS";
 }
 
 int nearshore_api_version(void) { return NEARSHORE_API_VERSION; }
 
-void nearshore_sea_options_init(nearshore_sea_options* options) {
-  if (!options) return;
-  *options = {};
-  options->struct_size = sizeof(nearshore_sea_options);
-  options->plan = NEARSHORE_PLAN_AUTO;
-  options->beaufort_force = -1;
-  options->wind_direction_deg = 225.0;  // a south-westerly, the prevailing wind of the mid-latitudes
-}
-
 }  // extern "C"
 
 namespace {
 
-nearshore::runtime::StreamingOptions streaming_options_of(const nearshore_sea_options* options) {
-  nearshore_sea_options chosen;
-  nearshore_sea_options_init(&chosen);
-  if (options) {
-    if (options->struct_size < sizeof(uint32_t) || options->struct_size > sizeof(nearshore_sea_options))
-      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.struct_size = " + std::to_string(options->struct_size) +
-                                           "; call nearshore_sea_options_init first");
-    std::memcpy(&chosen, options, options->struct_size);
-  }
-  nearshore::runtime::StreamingOptions streaming;
-  streaming.plan = plan_kind(chosen.plan);
-  if (chosen.seed != 0) streaming.seed = chosen.seed;
-  if (chosen.ring_keyframes < 0 || chosen.ring_keyframes > 1024)
-    fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.ring_keyframes = " + std::to_string(chosen.ring_keyframes) +
-                                         " is outside 0-1024; 0 chooses it");
-  streaming.ring_capacity = chosen.ring_keyframes;
-  if (chosen.deep_water_interval_s != 0.0) {
-    if (!(chosen.deep_water_interval_s > 0.0 && chosen.deep_water_interval_s <= 1.0))
-      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_sea_options.deep_water_interval_s must be in (0, 1] s (0: 1/30 s)");
-    streaming.deep_water_interval_s = chosen.deep_water_interval_s;
-  }
-  if (chosen.beaufort_force >= 0) streaming.beaufort = beaufort_sea(chosen.beaufort_force, chosen.wind_direction_deg);
-  streaming.verify = chosen.verify_checksums ? nearshore::sequence::Verify::kYes : nearshore::sequence::Verify::kNo;
-  return streaming;
+void set_projection(nearshore_sea& sea, const fs::path& folder);
+
+// Waits for display time `time_s` on every state shown; NEARSHORE_TIMEOUT naming what was asked.
+void wait_until_ready(nearshore_sea& sea, double time_s, double timeout_s, const char* asked_by) {
+  const auto timeout = std::chrono::milliseconds(static_cast<long long>(std::ceil(timeout_s * 1000.0)));
+  if (sea.played->wait_until_ready(time_s, timeout)) return;
+  const nearshore::runtime::StreamingStats stats = sea.engine().stats();
+  fail(NEARSHORE_TIMEOUT, fmt::format("the keyframes of display time {:.6g} s were not decoded within {} = {:.6g} s "
+                                      "({} harbour keyframes decoded, {} deep-water keyframes synthesised so far{}{}); "
+                                      "wait longer, or use NEARSHORE_TIME_LOCKSTEP, which makes them when asked",
+                                      time_s, asked_by, timeout_s, stats.keyframes_decoded, stats.deep_keyframes_synthesised,
+                                      stats.last_message.empty() ? "" : "; ", stats.last_message));
+}
+
+// Opens a sea with `choice` and waits for its first frame as asked.
+void open_sea(nearshore_sea** sea, const fs::path& folder, const nearshore::sequence::SeaConditions& conditions,
+              const SeaChoice& choice) {
+  auto opened = std::make_unique<nearshore_sea>();
+  opened->played = std::make_unique<nearshore::runtime::PlayedSea>(folder, conditions, choice.streaming);
+  opened->time_mode = choice.time_mode;
+  opened->report_underruns = choice.report_underruns;
+  set_projection(*opened, folder);
+  if (choice.ready_timeout_s > 0.0)
+    wait_until_ready(*opened, 0.0, choice.ready_timeout_s, "nearshore_sea_options.ready_timeout_s");
+  *sea = opened.release();
+}
+
+// A display time: finite, >= 0, and below 1e9 s (32 years: past it a double keeps under a
+// microsecond of the fraction between frames, and no exercise runs that long).
+void checked_time(double time_s, const char* field) {
+  if (!std::isfinite(time_s) || time_s < 0.0 || time_s > 1e9)
+    fail(NEARSHORE_INVALID_ARGUMENT, fmt::format("{} = {:.6g} is outside 0 - 1e9 s: a display time of the sea's timeline "
+                                                 "(time 0 is the first step of its plan)", field, time_s));
+}
+
+// Points of one query call: at most 2^26 (64 Mi points, 1.5 GiB of input and output), so a
+// wrapped size_t is refused instead of allocating.
+void checked_count(std::size_t count) {
+  if (count > (std::size_t{1} << 26))
+    fail(NEARSHORE_INVALID_ARGUMENT, fmt::format("count = {} points is above 2^26 in one call: a negative number passed "
+                                                 "as size_t? Query in batches", count));
 }
 
 // "KEY=VALUE,..." (NULL: none) as the library's conditions; a bad item is an invalid argument.
@@ -179,11 +170,7 @@ nearshore_status nearshore_sea_open(const char* sequence_folder, const nearshore
     require(sea, "sea");
     *sea = nullptr;
     const fs::path folder = existing_folder(sequence_folder, "sequence_folder", "manifest.json", "`nearshore bake`");
-    auto opened = std::make_unique<nearshore_sea>();
-    opened->played = std::make_unique<nearshore::runtime::PlayedSea>(folder, nearshore::sequence::SeaConditions{},
-                                                                     streaming_options_of(options));
-    set_projection(*opened, folder);
-    *sea = opened.release();
+    open_sea(sea, folder, nearshore::sequence::SeaConditions{}, sea_choice_of(options));
   });
 }
 
@@ -194,10 +181,7 @@ nearshore_status nearshore_sea_open_library(const char* library_folder, const ch
     *sea = nullptr;
     const fs::path folder = existing_folder(library_folder, "library_folder", "library.json", "`nearshore library`");
     const nearshore::sequence::SeaConditions requested = conditions_of(conditions);
-    auto opened = std::make_unique<nearshore_sea>();
-    opened->played = std::make_unique<nearshore::runtime::PlayedSea>(folder, requested, streaming_options_of(options));
-    set_projection(*opened, folder);
-    *sea = opened.release();
+    open_sea(sea, folder, requested, sea_choice_of(options));
   });
 }
 
@@ -224,11 +208,29 @@ nearshore_status nearshore_sea_request_conditions(nearshore_sea* sea, const char
 void nearshore_sea_close(nearshore_sea* sea) { delete sea; }
 
 nearshore_status nearshore_sea_advance(nearshore_sea* sea, double time_s) {
-  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+  // A nearshore::Error here is a frame the slow path could not make (lockstep): bad input.
+  bool planned = true;
+  const nearshore_status status = guarded(NEARSHORE_IO_ERROR, [&] {
     require(sea, "sea");
-    if (!std::isfinite(time_s) || time_s < 0)
-      fail(NEARSHORE_INVALID_ARGUMENT, "time_s = " + std::to_string(time_s) + " is not a display time >= 0 s");
-    sea->advance_to(time_s);
+    checked_time(time_s, "time_s");
+    planned = sea->advance_to(time_s);
+  });
+  if (status != NEARSHORE_OK || planned || !sea->report_underruns) return status;
+  const nearshore::runtime::StreamingStats stats = sea->engine().stats();
+  nearshore::capi::last_error() =
+      fmt::format("display time {:.6g} s shows older keyframes: the background decoder has not made the planned ones "
+                  "yet ({} underruns so far: {} harbour, {} deep water); keep advancing, wait with "
+                  "nearshore_sea_wait_until_ready, or open the sea with NEARSHORE_TIME_LOCKSTEP",
+                  time_s, stats.underruns, stats.harbour_underruns, stats.deep_underruns);
+  return NEARSHORE_UNDERRUN;
+}
+
+nearshore_status nearshore_sea_wait_until_ready(nearshore_sea* sea, double time_s, double timeout_s) {
+  return guarded(NEARSHORE_IO_ERROR, [&] {
+    require(sea, "sea");
+    checked_time(time_s, "time_s");
+    checked(timeout_s, "timeout_s", 0.0, 600.0, "seconds to wait; past 10 minutes a disk is not answering");
+    wait_until_ready(*sea, time_s, timeout_s, "timeout_s");
   });
 }
 
@@ -277,7 +279,15 @@ nearshore_status nearshore_site_from_lat_lon(const nearshore_sea* sea, double la
     if (!(std::abs(latitude_deg) <= 90.0) || !(std::abs(longitude_deg) <= 360.0))
       fail(NEARSHORE_INVALID_ARGUMENT, "latitude " + std::to_string(latitude_deg) + ", longitude " +
                                            std::to_string(longitude_deg) + " is not a place; give degrees (WGS 84)");
-    const nearshore::ProjectedPoint point = sea->projection->forward({longitude_deg, latitude_deg});
+    nearshore::ProjectedPoint point;
+    try {
+      point = sea->projection->forward({longitude_deg, latitude_deg});
+    } catch (const std::exception& error) {
+      // GeographicLib refuses a place far outside the grid's UTM zone: the caller's place, not a bug.
+      fail(NEARSHORE_INVALID_ARGUMENT, fmt::format("latitude {:.6g}, longitude {:.6g} cannot be put in this sequence's "
+                                                   "map projection ({}); give a place near the harbour",
+                                                   latitude_deg, longitude_deg, error.what()));
+    }
     const nearshore::GridGeometry& geometry = sea->engine().manifest().geometry;
     *x_m = point.x_m - geometry.origin_x_m;
     *y_m = point.y_m - geometry.origin_y_m;
@@ -287,9 +297,16 @@ nearshore_status nearshore_site_from_lat_lon(const nearshore_sea* sea, double la
 nearshore_status nearshore_sea_stats(const nearshore_sea* sea, nearshore_stats* stats) {
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     require(sea, "sea");
-    require(stats, "stats");
-    if (stats->struct_size != sizeof(nearshore_stats))
-      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_stats.struct_size must be sizeof(nearshore_stats)");
+    nearshore_stats* host = require(stats, "stats");
+    // Filled whole here, then copied up to the host's struct_size (a version 4 struct ends at message).
+    constexpr std::size_t kVersion4Size = offsetof(nearshore_stats, harbour_underruns);
+    if (host->struct_size != sizeof(nearshore_stats) && host->struct_size != kVersion4Size)
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_stats.struct_size = " + std::to_string(host->struct_size) +
+                                           " must be sizeof(nearshore_stats)");
+    const uint32_t host_size = host->struct_size;
+    nearshore_stats full{};
+    stats = &full;
+    stats->struct_size = host_size;
     const nearshore::runtime::StreamingStats s = sea->engine().stats();
     stats->display_time_s = sea->snapshot().display_time_s;
     stats->ring_filled = s.ring_fill;
@@ -302,8 +319,16 @@ nearshore_status nearshore_sea_stats(const nearshore_sea* sea, nearshore_stats* 
     stats->transitions_taken = static_cast<uint64_t>(s.transitions_taken);
     stats->plan_step = s.plan_step;
     stats->crossfading = s.in_crossfade ? 1 : 0;
-    copy_text(stats->plan_name, s.plan);
+    // The kind, which fits the field; the full description (seed, loop length) is longer than 31
+    // characters and stays with the C++ StreamingStats::plan.
+    copy_text(stats->plan_name, std::string(nearshore::runtime::plan_kind_name(sea->engine().plan().kind())));
     copy_text(stats->message, s.last_message);
+    stats->harbour_underruns = static_cast<uint64_t>(s.harbour_underruns);
+    stats->deep_underruns = static_cast<uint64_t>(s.deep_underruns);
+    stats->synchronous_keyframes = static_cast<uint64_t>(s.synchronous_keyframes);
+    stats->last_advance_planned = s.last_advance_planned ? 1 : 0;
+    stats->time_mode = sea->time_mode;
+    std::memcpy(host, &full, host_size);
   });
 }
 
@@ -312,6 +337,7 @@ nearshore_status nearshore_sea_query(const nearshore_sea* sea, const double* xy_
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     require(sea, "sea");
     if (count == 0) return;
+    checked_count(count);
     query(sea->snapshot(), require(xy_m, "xy_m"), count, require(samples, "samples"));
   });
 }
@@ -320,9 +346,9 @@ nearshore_status nearshore_sea_query_at(const nearshore_sea* sea, double time_s,
                                         nearshore_surface_sample* samples) {
   return guarded(NEARSHORE_IO_ERROR, [&] {
     require(sea, "sea");
-    if (!std::isfinite(time_s) || time_s < 0)
-      fail(NEARSHORE_INVALID_ARGUMENT, "time_s = " + std::to_string(time_s) + " is not a display time >= 0 s");
+    checked_time(time_s, "time_s");
     if (count == 0) return;
+    checked_count(count);
     query(sea->engine().snapshot_at(time_s), require(xy_m, "xy_m"), count, require(samples, "samples"));
   });
 }

@@ -143,9 +143,9 @@ const std::string& LibraryPlayer::request(const sequence::SeaConditions& conditi
   return m.shown_id;
 }
 
-void LibraryPlayer::advance_to(double display_time_s) {
+bool LibraryPlayer::advance_to(double display_time_s) {
   Impl& m = *impl_;
-  m.shown->advance_to(display_time_s);
+  bool planned = m.shown->advance_to(display_time_s);
   SurfaceSnapshot next = m.shown->snapshot();
   if (m.fading_out) {
     if (m.fade_start_s < 0.0) m.fade_start_s = display_time_s;
@@ -153,7 +153,7 @@ void LibraryPlayer::advance_to(double display_time_s) {
     if (m.weight >= 1.0) {
       m.fading_out.reset();
     } else {
-      m.fading_out->advance_to(display_time_s);
+      planned = m.fading_out->advance_to(display_time_s) && planned;
       const SurfaceSnapshot old = m.fading_out->snapshot();
       next.harbour_from = next.harbour_to = blend_harbour(old, next, m.weight);
       next.harbour_fraction = 0.0;
@@ -171,8 +171,11 @@ void LibraryPlayer::advance_to(double display_time_s) {
   } else {
     m.weight = 1.0;
   }
-  const std::lock_guard<std::mutex> lock(m.snapshot_mutex);
-  std::swap(m.current, next);
+  {
+    const std::lock_guard<std::mutex> lock(m.snapshot_mutex);
+    std::swap(m.current, next);
+  }
+  return planned;
 }
 
 bool LibraryPlayer::wait_until_ready(double display_time_s, std::chrono::milliseconds timeout) {

@@ -9,6 +9,7 @@
 #include <deque>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -138,11 +139,16 @@ struct StreamingEngine::Impl {
   std::optional<BeaufortSea> builder_request;
   bool builder_stop = false;
 
-  // The slow path of snapshot_at (serialised).
+  // The slow path (snapshot_at, lockstep, the first advance): keyframes made on the calling
+  // thread, serialised. In lockstep the last few are kept, so that consecutive display frames
+  // (k, k + 1 then k + 1, k + 2) decode each step once.
   std::mutex slow_mutex;
   PlaybackPlan slow_plan = PlaybackPlan::frame_order(1);
   std::unique_ptr<ocean::DeepWaterField> slow_field;
   std::shared_ptr<const ocean::RecordedDeepWater> slow_field_record;
+  std::deque<HarbourEntry> slow_harbour;
+  std::deque<DeepEntry> slow_deep;
+  static constexpr std::size_t kSlowKept = 3;
 
   // One worker per ring: harbour decoding (I/O and EXR) and deep-water synthesis (FFT) run on two
   // cores at once; each sleeps while its ring is full.
@@ -159,6 +165,15 @@ struct StreamingEngine::Impl {
   // cannot reach it: a time behind them, or far ahead of the worker. Caller holds `mutex`.
   void schedule_locked(long long k, long long j, bool consume);
   bool ready_locked(long long k, long long j) const;
+  // The slow path: fills what `result` lacks of harbour steps k, k + 1 (need_harbour) and deep
+  // keyframes j, j + 1 (need_deep) on the calling thread. Returns what it made and held.
+  struct SlowResult {
+    int made = 0, held = 0;
+    std::string message;
+  };
+  SlowResult make_synchronously(long long k, long long j, bool need_harbour, bool need_deep, SurfaceSnapshot& result);
+  std::shared_ptr<const HarbourKeyframe> slow_harbour_keyframe(long long s, SlowResult& out);
+  void count_slow(const SlowResult& made);  // takes `mutex`
   void set_message_locked(std::string message) { counters.last_message = std::move(message); }
 };
 
@@ -231,6 +246,103 @@ void StreamingEngine::Impl::synthesise_deep(long long index, PlaybackPlan& plan,
     const ocean::TimedWeight at{keyframe.display_time_s, 1.0};
     deep_field->synthesise_into(std::span<const ocean::TimedWeight>(&at, 1), keyframe.cascades, deep_with_flux);
   }
+}
+
+std::shared_ptr<const HarbourKeyframe> StreamingEngine::Impl::slow_harbour_keyframe(long long s, SlowResult& out) {
+  for (const HarbourEntry& kept : slow_harbour)
+    if (kept.index == s) return kept.keyframe;
+  auto keyframe = std::make_shared<HarbourKeyframe>();
+  keyframe->serial = ++serial;
+  keyframe->plan_step = s;
+  const PlanStep step = slow_plan.step(s);
+  keyframe->shown = step.shown;
+  // A frame that cannot be read is replaced as the worker replaces it, but by a rule of the step
+  // alone (the nearest earlier step that reads, within 8; else a flat sea), so that what lockstep
+  // shows never depends on what was shown before.
+  const sequence::ChannelSelection all = sequence::ChannelSelection::all();
+  std::string problem;
+  for (long long back = 0; back <= 8 && s - back >= 0; ++back) {
+    const PlanStep tried = back == 0 ? step : slow_plan.step(s - back);
+    try {
+      sequence::Frame source = reader.read_frame(tried.shown.source_frame, all, options.verify);
+      sequence::Frame shown;
+      if (tried.in_crossfade) {
+        const sequence::Frame target = reader.read_frame(tried.shown.target_frame, all, options.verify);
+        sequence::blend_frames(source, target, tried.shown.target_weight, shown);
+      } else {
+        shown = std::move(source);
+      }
+      swap_fields(*keyframe, shown);
+      if (back > 0) {
+        keyframe->held = true;
+        ++out.held;
+        out.message = fmt::format("{}; plan step {} holds the keyframe of step {} in its place", problem, s, s - back);
+      }
+      ++out.made;
+      if (options.lockstep) {
+        slow_harbour.push_back({s, step, keyframe});
+        if (slow_harbour.size() > kSlowKept) slow_harbour.pop_front();
+      }
+      return keyframe;
+    } catch (const std::exception& error) {
+      if (back == 0) problem = error.what();
+    }
+  }
+  const GridGeometry& g = reader.geometry();
+  for (Raster<float>* raster :
+       {&keyframe->surface_elevation_m, &keyframe->flux_x_m2_s, &keyframe->flux_y_m2_s, &keyframe->breaking})
+    *raster = Raster<float>(g.columns, g.rows, 0.0f);
+  keyframe->held = true;
+  ++out.held;
+  ++out.made;
+  out.message = fmt::format("{}; plan step {} holds a flat sea in its place", problem, s);
+  return keyframe;
+}
+
+StreamingEngine::Impl::SlowResult StreamingEngine::Impl::make_synchronously(long long k, long long j, bool need_harbour,
+                                                                             bool need_deep, SurfaceSnapshot& result) {
+  SlowResult out;
+  std::shared_ptr<const ocean::RecordedDeepWater> field_record;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    field_record = record;
+  }
+  const std::lock_guard<std::mutex> slow(slow_mutex);
+  if (need_harbour) {
+    result.harbour_from = slow_harbour_keyframe(k, out);
+    result.harbour_to = slow_harbour_keyframe(k + 1, out);
+  }
+  if (need_deep) {
+    if (field_record != slow_field_record) {
+      slow_field = field_record ? std::make_unique<ocean::DeepWaterField>(*field_record) : nullptr;
+      slow_field_record = field_record;
+      slow_deep.clear();
+    }
+    for (long long index : {j, j + 1}) {
+      std::shared_ptr<const DeepWaterKeyframe> made;
+      for (const DeepEntry& kept : slow_deep)
+        if (kept.index == index) made = kept.keyframe;
+      if (!made) {
+        auto keyframe = std::make_shared<DeepWaterKeyframe>();
+        synthesise_deep(index, slow_plan, slow_field.get(), slow_inside_field.get(), *keyframe);
+        made = keyframe;
+        ++out.made;
+        if (options.lockstep) {
+          slow_deep.push_back({index, made});
+          if (slow_deep.size() > kSlowKept) slow_deep.pop_front();
+        }
+      }
+      (index == j ? result.deep_from : result.deep_to) = std::move(made);
+    }
+  }
+  return out;
+}
+
+void StreamingEngine::Impl::count_slow(const SlowResult& made) {
+  const std::lock_guard<std::mutex> lock(mutex);
+  counters.synchronous_keyframes += made.made;
+  counters.bad_frames_held += made.held;
+  if (!made.message.empty()) set_message_locked(made.message);
 }
 
 bool StreamingEngine::Impl::ready_locked(long long k, long long j) const {
@@ -365,7 +477,8 @@ void StreamingEngine::Impl::run_builder() {
       const std::lock_guard<std::mutex> guard(mutex);
       if (message.empty()) {
         pending_record = built ? std::make_shared<const ocean::RecordedDeepWater>(built->record()) : nullptr;
-        pending_field = std::move(built);
+        // As in the constructor: the same construction as the slow path's field.
+        pending_field = pending_record ? std::make_unique<ocean::DeepWaterField>(*pending_record) : nullptr;
         has_pending_field = true;
       } else {
         set_message_locked(std::move(message));
@@ -434,7 +547,12 @@ StreamingEngine::StreamingEngine(const std::filesystem::path& folder, StreamingO
   } else if (o.deep_water != DeepWaterChoice::kNone) {
     m.deep_kind = Impl::DeepKind::kBeaufort;
     m.field = build_beaufort_field(o.beaufort);
-    if (m.field) m.record = std::make_shared<const ocean::RecordedDeepWater>(m.field->record());
+    if (m.field) {
+      // The worker's field is rebuilt from the record as the slow path's is, so that both make
+      // the same keyframe bit for bit (lockstep mixes them).
+      m.record = std::make_shared<const ocean::RecordedDeepWater>(m.field->record());
+      m.field = std::make_unique<ocean::DeepWaterField>(*m.record);
+    }
     site->choppiness = o.beaufort.choppiness;
     m.deep_depth_m = 0.0;
   }
@@ -501,7 +619,7 @@ StreamingEngine::~StreamingEngine() {
   if (m.deep_worker.joinable()) m.deep_worker.join();
 }
 
-void StreamingEngine::advance_to(double display_time_s) {
+bool StreamingEngine::advance_to(double display_time_s) {
   Impl& m = *impl_;
   const double t = std::max(display_time_s, 0.0);
   const double steps = t / m.frame_interval_s;
@@ -512,30 +630,33 @@ void StreamingEngine::advance_to(double display_time_s) {
   SurfaceSnapshot next = m.current;
   next.display_time_s = t;
   next.site = m.site;
+  const bool has_deep = m.deep_kind != Impl::DeepKind::kNone;
+  // Lockstep, or nothing shown yet (a sea never starts flat): what the rings lack is made here.
+  const bool make_missing = m.options.lockstep || !m.current.harbour_from;
+  bool missing_harbour = false, missing_deep = false;
+  std::optional<PlanStep> shown_step;
   {
     const std::lock_guard<std::mutex> lock(m.mutex);
     m.schedule_locked(k, j, true);
-    bool missing = false;
     const HarbourEntry* from = find(m.harbour_ring, k);
     const HarbourEntry* to = find(m.harbour_ring, k + 1);
     if (from && to) {
       next.harbour_from = from->keyframe;
       next.harbour_to = to->keyframe;
       next.harbour_fraction = steps - static_cast<double>(k);
+      shown_step = from->step;
     } else {
-      missing = true;
-      ++m.counters.harbour_underruns;
-      if (from) {  // show step k alone until k + 1 arrives
-        next.harbour_from = next.harbour_to = from->keyframe;
-        next.harbour_fraction = 0.0;
-      }  // else: hold the last pair shown
+      missing_harbour = true;
+      if (!make_missing) {
+        ++m.counters.harbour_underruns;
+        if (from) {  // show step k alone until k + 1 arrives
+          next.harbour_from = next.harbour_to = from->keyframe;
+          next.harbour_fraction = 0.0;
+          shown_step = from->step;
+        }  // else: hold the last pair shown
+      }
     }
-    if (from) {
-      m.counters.plan_step = from->step.step;
-      m.counters.transitions_taken = from->step.transitions_taken;
-      m.counters.in_crossfade = from->step.in_crossfade;
-    }
-    if (m.deep_kind == Impl::DeepKind::kNone) {
+    if (!has_deep) {
       next.deep_from = next.deep_to = nullptr;
       next.deep_fraction = 0.0;
     } else {
@@ -546,21 +667,47 @@ void StreamingEngine::advance_to(double display_time_s) {
         next.deep_to = deep_to->keyframe;
         next.deep_fraction = deep_steps - static_cast<double>(j);
       } else {
-        missing = true;
-        ++m.counters.deep_underruns;
-        if (deep_from) {
-          next.deep_from = next.deep_to = deep_from->keyframe;
-          next.deep_fraction = 0.0;
+        missing_deep = true;
+        if (!make_missing) {
+          ++m.counters.deep_underruns;
+          if (deep_from) {
+            next.deep_from = next.deep_to = deep_from->keyframe;
+            next.deep_fraction = 0.0;
+          }
         }
       }
     }
-    if (missing) ++m.counters.underruns;
+    if (!make_missing && (missing_harbour || missing_deep)) ++m.counters.underruns;
+  }
+  const bool planned = make_missing || !(missing_harbour || missing_deep);
+  if (make_missing && (missing_harbour || missing_deep)) {
+    // The slow path on this thread (snapshot_at's): exactly the keyframes of t.
+    if (missing_harbour) next.harbour_from = next.harbour_to = nullptr;
+    if (missing_deep) next.deep_from = next.deep_to = nullptr;
+    const Impl::SlowResult made = m.make_synchronously(k, j, missing_harbour, missing_deep, next);
+    m.count_slow(made);
+    if (missing_harbour) {
+      next.harbour_fraction = steps - static_cast<double>(k);
+      const std::lock_guard<std::mutex> slow(m.slow_mutex);
+      shown_step = m.slow_plan.step(k);
+    }
+    if (missing_deep) next.deep_fraction = deep_steps - static_cast<double>(j);
+  }
+  {
+    const std::lock_guard<std::mutex> lock(m.mutex);
+    if (shown_step) {
+      m.counters.plan_step = shown_step->step;
+      m.counters.transitions_taken = shown_step->transitions_taken;
+      m.counters.in_crossfade = shown_step->in_crossfade;
+    }
+    m.counters.last_advance_planned = planned;
   }
   // Swap under the snapshot lock; the old snapshot's keyframes are let go after it (outside).
   {
     const std::lock_guard<std::mutex> lock(m.snapshot_mutex);
     std::swap(m.current, next);
   }
+  return planned;
 }
 
 std::vector<std::shared_ptr<const HarbourKeyframe>> StreamingEngine::upcoming_harbour_keyframes(int count) const {
@@ -617,7 +764,6 @@ SurfaceSnapshot StreamingEngine::snapshot_at(double display_time_s) {
   result.site = m.site;
   result.harbour_fraction = steps - static_cast<double>(k);
   result.deep_fraction = m.deep_kind == Impl::DeepKind::kNone ? 0.0 : deep_steps - static_cast<double>(j);
-  std::shared_ptr<const ocean::RecordedDeepWater> record;
   {
     const std::lock_guard<std::mutex> lock(m.mutex);
     if (const HarbourEntry* from = find(m.harbour_ring, k))
@@ -631,45 +777,12 @@ SurfaceSnapshot StreamingEngine::snapshot_at(double display_time_s) {
           result.deep_from = from->keyframe;
           result.deep_to = to->keyframe;
         }
-    record = m.record;
   }
   const bool need_harbour = !result.harbour_from;
   const bool need_deep = m.deep_kind != Impl::DeepKind::kNone && !result.deep_from;
   if (!need_harbour && !need_deep) return result;
-
-  // The slow path, on the caller's thread: its own plan, frames and field (the worker's are its own).
-  const std::lock_guard<std::mutex> slow(m.slow_mutex);
-  if (need_harbour) {
-    for (long long s : {k, k + 1}) {
-      const PlanStep step = m.slow_plan.step(s);
-      auto keyframe = std::make_shared<HarbourKeyframe>();
-      keyframe->serial = ++m.serial;
-      keyframe->plan_step = s;
-      keyframe->shown = step.shown;
-      sequence::Frame source = m.reader.read_frame(step.shown.source_frame, sequence::ChannelSelection::all(), m.options.verify);
-      sequence::Frame shown;
-      if (step.in_crossfade) {
-        const sequence::Frame target =
-            m.reader.read_frame(step.shown.target_frame, sequence::ChannelSelection::all(), m.options.verify);
-        sequence::blend_frames(source, target, step.shown.target_weight, shown);
-      } else {
-        shown = std::move(source);
-      }
-      swap_fields(*keyframe, shown);
-      (s == k ? result.harbour_from : result.harbour_to) = std::move(keyframe);
-    }
-  }
-  if (need_deep) {
-    if (record != m.slow_field_record) {
-      m.slow_field = record ? std::make_unique<ocean::DeepWaterField>(*record) : nullptr;
-      m.slow_field_record = record;
-    }
-    for (long long index : {j, j + 1}) {
-      auto keyframe = std::make_shared<DeepWaterKeyframe>();
-      m.synthesise_deep(index, m.slow_plan, m.slow_field.get(), m.slow_inside_field.get(), *keyframe);
-      (index == j ? result.deep_from : result.deep_to) = std::move(keyframe);
-    }
-  }
+  const Impl::SlowResult made = m.make_synchronously(k, j, need_harbour, need_deep, result);
+  m.count_slow(made);
   return result;
 }
 

@@ -42,8 +42,9 @@ class LibraryPlayer {
   /// of the state now on its way to the screen. Render thread.
   const std::string& request(const sequence::SeaConditions& conditions, double crossfade_s);
 
-  /// As StreamingEngine::advance_to, for the state(s) on screen. Render thread.
-  void advance_to(double display_time_s);
+  /// As StreamingEngine::advance_to, for the state(s) on screen. Render thread. True when every
+  /// state shown showed its planned keyframes (no underrun).
+  bool advance_to(double display_time_s);
   /// The snapshot of the last advance_to: one state's, or the crossfade's blend. Any thread.
   SurfaceSnapshot snapshot() const;
   /// As StreamingEngine::wait_until_ready, for every state that `display_time_s` shows: the one on
@@ -77,8 +78,9 @@ class PlayedSea {
   StreamingEngine& engine() const { return library_ ? library_->engine() : *single_; }
   /// The library, or null for one sequence.
   LibraryPlayer* library() const { return library_.get(); }
-  void advance_to(double display_time_s) {
-    library_ ? library_->advance_to(display_time_s) : single_->advance_to(display_time_s);
+  /// True when the planned keyframes are shown (StreamingEngine::advance_to).
+  bool advance_to(double display_time_s) {
+    return library_ ? library_->advance_to(display_time_s) : single_->advance_to(display_time_s);
   }
   SurfaceSnapshot snapshot() const { return library_ ? library_->snapshot() : single_->snapshot(); }
   /// Every state on screen ready for `display_time_s` (LibraryPlayer::wait_until_ready).

@@ -20,6 +20,17 @@
 // trilinear sampling of the vertex textures, bilinear in space and linear in time). Hosts scale
 // time themselves (pass 0.5 t for half speed).
 //
+// Two ways for the host's clock (StreamingOptions::lockstep):
+//  - free-running (default): advance_to never waits; a keyframe the workers have not made yet is
+//    an underrun (counted, and advance_to returns false), the nearest keyframes are held. Only
+//    the very first advance_to makes what it lacks on the calling thread, so a sea never starts
+//    flat: the first displayed frame is always the planned one.
+//  - lockstep: the host's clock drives everything. advance_to shows exactly the keyframes of the
+//    requested time: from the rings when the workers got there, else decoded and synthesised on
+//    the calling thread (the slow path of snapshot_at). Any time rate, pausing, stepping and going
+//    back give the fields real time gives at the same display times, bit for bit (the keyframes
+//    of a time are a pure function of the sequence, plan, seed and field: no history enters).
+//
 // Threads: advance_to and snapshot_at are for one thread at a time (the render thread);
 // snapshot(), stats(), site() and set_beaufort() may be called from any thread. The only lock the
 // render thread takes is held by the worker for pointer moves, never across decoding or I/O.
@@ -65,6 +76,10 @@ struct StreamingOptions {
   DeepWaterChoice deep_water = DeepWaterChoice::kBakeElseBeaufort;
   BeaufortSea beaufort;                ///< the Beaufort sea (force 3 by default)
   double edge_fade_m = -1.0;           ///< < 0: automatic (harbour_site.hpp)
+  /// The host's clock drives everything (see the top of this header): advance_to makes what the
+  /// rings lack on the calling thread instead of holding the last keyframes. For simulators that
+  /// run faster or slower than real time, pause, step or rewind, and for recordings.
+  bool lockstep = false;
   /// Test hook, called on the harbour worker thread before it decodes step k (e.g. to hold it
   /// back and provoke an underrun deterministically). Must not call back into the engine.
   std::function<void(long long step)> before_decode;
@@ -78,6 +93,9 @@ struct StreamingStats {
   long long deep_keyframes_allocated = 0;
   long long underruns = 0;          ///< advance_to calls that could not show the planned keyframes
   long long harbour_underruns = 0, deep_underruns = 0;
+  /// Keyframes made on the calling thread (lockstep, the first advance, snapshot_at's slow path).
+  long long synchronous_keyframes = 0;
+  bool last_advance_planned = true;  ///< the last advance_to showed the planned keyframes
   long long keyframes_decoded = 0;  ///< harbour keyframes made (held ones included)
   long long deep_keyframes_synthesised = 0;
   double decode_seconds = 0.0;      ///< wall time of harbour decoding (read + blend) on its worker thread
@@ -111,8 +129,12 @@ class StreamingEngine {
   /// on the worker: it takes keyframes k, k + 1 (harbour) and j, j + 1 (deep water) from the
   /// rings; one that is not there yet is an underrun: the engine shows keyframe k alone if it has
   /// it, else holds the last pair shown, and counts it. A time behind the rings or far ahead of
-  /// the worker makes the worker restart there (a seek: underruns until it catches up).
-  void advance_to(double display_time_s);
+  /// the worker makes the worker restart there (a seek: underruns until it catches up). Going
+  /// back (an instructor's rewind) is a seek like any other. Exceptions: with
+  /// StreamingOptions::lockstep, and on the first call, what the rings lack is made on the
+  /// calling thread instead (that call then waits on disk and the FFTs). Returns true when the
+  /// snapshot shows the planned keyframes of `display_time_s`, false after an underrun.
+  bool advance_to(double display_time_s);
   /// The snapshot of the last advance_to (cheap: shared_ptr copies). Any thread.
   SurfaceSnapshot snapshot() const;
   /// The snapshot at any display time: from the rings when they hold the keyframes needed (no
