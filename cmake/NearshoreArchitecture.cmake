@@ -10,7 +10,8 @@
 #   ships_mesh (hull files, assimp) -> ships; ships_scenario (TOML) -> ships, ships_mesh;
 #   ships_layers (a fleet as the renderer's SurfaceLayers) -> ships, playback.
 #   export (sequence -> NetCDF, GeoTIFF, EXR, VDB files) -> sequence, plot (the GeoTIFF's Hs map).
-#   library (the sea-state library) -> bake, loops, sequence; library_mpi -> library (built only
+#   library (the sea-state library) -> bake, loops, sequence, export (berth agitation for the
+#   operability of a library), plot (its bar chart); library_mpi -> library (built only
 #   where MPI is found: a rule whose library name ends in "?" applies when that target exists).
 set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core:"
@@ -28,7 +29,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_ships_scenario:nearshore_ships,nearshore_ships_mesh,nearshore_core"
   "nearshore_ships_layers:nearshore_ships,nearshore_playback,nearshore_core"
   "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
-  "nearshore_library:nearshore_bake,nearshore_loops,nearshore_sequence,nearshore_core"
+  "nearshore_library:nearshore_bake,nearshore_loops,nearshore_export,nearshore_plot,nearshore_sequence,nearshore_core"
   "nearshore_library_mpi?:nearshore_library,nearshore_core"
   "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core")
 

@@ -3,8 +3,10 @@
 // harbour grid (the land mask), the frames to write and where, and the summary to add files to.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "nearshore/core/harbour_grid.hpp"
+#include "nearshore/export/agitation.hpp"
 #include "nearshore/export/export_sequence.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
@@ -19,6 +21,7 @@ struct ExportInput {
   const HarbourGrid& harbour;
   int first_frame = 0, end_frame = 0;
   std::filesystem::path output_folder;
+  AgitationOptions agitation;  ///< the agitation format's inputs (ExportRequest::agitation)
 
   int frame_count() const { return end_frame - first_frame; }
   bool is_land(std::size_t cell) const { return harbour.land.values()[cell] != 0; }
@@ -33,6 +36,15 @@ void write_netcdf(const ExportInput& input, ExportSummary& summary);
 void write_geotiff(const ExportInput& input, ExportSummary& summary);
 void write_exr_displacement(const ExportInput& input, ExportSummary& summary);
 void write_vdb(const ExportInput& input, ExportSummary& summary);
+void write_agitation(const ExportInput& input, ExportSummary& summary);
+
+/// agitation.tif: the coefficient as a one-band float32 GeoTIFF, NaN on land, georeferenced as
+/// wave_statistics.tif (agitation_files.cpp, which includes GDAL).
+void write_agitation_geotiff(const ExportInput& input, const Raster<float>& coefficient, const std::string& description,
+                             const std::filesystem::path& path);
+/// agitation.png: the coefficient as a map with the berths marked (agitation_map.cpp).
+void write_agitation_map(const ExportInput& input, const Raster<float>& coefficient, const std::string& subtitle,
+                         const std::vector<BerthValue>& berths, const std::filesystem::path& path);
 
 /// The simulated times of the first and last exported frame, seconds (the bake's clock).
 struct FrameTimes {

@@ -21,17 +21,18 @@ struct FormatEntry {
 };
 
 // The one table from a format's name to its writer.
-constexpr std::array<FormatEntry, 4> kFormats = {{
+constexpr std::array<FormatEntry, 5> kFormats = {{
     {ExportFormat::kNetcdf, "netcdf", write_netcdf},
     {ExportFormat::kGeotiff, "geotiff", write_geotiff},
     {ExportFormat::kExrDisplacement, "exr-displacement", write_exr_displacement},
     {ExportFormat::kVdb, "vdb", write_vdb},
+    {ExportFormat::kAgitation, "agitation", write_agitation},
 }};
 
 const FormatEntry& entry_of(ExportFormat format) {
   for (const FormatEntry& entry : kFormats)
     if (entry.format == format) return entry;
-  throw Error("ExportRequest::format", "is not one of the export formats", "use netcdf, geotiff, exr-displacement or vdb");
+  throw Error("ExportRequest::format", "is not one of the export formats", "use netcdf, geotiff, exr-displacement, vdb or agitation");
 }
 
 }  // namespace
@@ -42,7 +43,7 @@ ExportFormat parse_export_format(std::string_view name) {
   for (const FormatEntry& entry : kFormats)
     if (entry.name == name) return entry.format;
   throw Error("ExportRequest::format", fmt::format("'{}' is not an export format", name),
-              "use netcdf, geotiff, exr-displacement or vdb");
+              "use netcdf, geotiff, exr-displacement, vdb or agitation");
 }
 
 std::vector<ExportFormat> all_export_formats() {
@@ -68,7 +69,7 @@ std::uintmax_t ExportSummary::total_bytes() const {
 nlohmann::json ExportSummary::to_json() const {
   nlohmann::json listed = nlohmann::json::array();
   for (const ExportedFile& file : files) listed.push_back({{"file", file.file.string()}, {"bytes", file.bytes}});
-  return {{"sequence", sequence_folder.string()},
+  nlohmann::json summary = {{"sequence", sequence_folder.string()},
           {"output", output_folder.string()},
           {"format", export_format_name(format)},
           {"frames", {{"first", first_frame}, {"end", end_frame}, {"count", end_frame - first_frame}}},
@@ -78,6 +79,8 @@ nlohmann::json ExportSummary::to_json() const {
           {"seconds", seconds},
           {"horizontal_displacement", horizontal_displacement},
           {"notes", notes}};
+  if (!agitation.is_null()) summary["agitation"] = agitation;
+  return summary;
 }
 
 ExportSummary export_sequence(const ExportRequest& request) {
@@ -110,7 +113,7 @@ ExportSummary export_sequence(const ExportRequest& request) {
   summary.first_frame = first;
   summary.end_frame = end;
   summary.frame_interval_s = reader.frame_interval_s();
-  const ExportInput input{reader, harbour, first, end, request.output_folder};
+  const ExportInput input{reader, harbour, first, end, request.output_folder, request.agitation};
   entry_of(request.format).write(input, summary);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

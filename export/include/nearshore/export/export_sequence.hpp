@@ -13,11 +13,15 @@
 //                     excursion integrated from the fluxes (horizontal_excursion.hpp).
 //   vdb               surface_NNNNNN.vdb per frame: one height-field grid of the surface elevation
 //                     (and one of breaking), land inactive.
+//   agitation         agitation.tif: the disturbance coefficient Hs / Hs_incident (agitation.hpp) as a
+//                     float32 GeoTIFF, NaN on land, and agitation.png (the map with axes, colour bar,
+//                     land and structures); with berths, berths.csv (Hs and the coefficient at each).
 // NNNNNN is the frame index in the sequence, so tools read the files as an image sequence. Every
 // file is written atomically (temporary name, fsync, rename): an interrupted export leaves whole
 // files of the frames it finished and never a damaged one. One writer per output folder (FolderLock).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,9 +30,9 @@
 
 namespace nearshore::exports {
 
-enum class ExportFormat { kNetcdf, kGeotiff, kExrDisplacement, kVdb };
+enum class ExportFormat { kNetcdf, kGeotiff, kExrDisplacement, kVdb, kAgitation };
 
-/// "netcdf", "geotiff", "exr-displacement", "vdb".
+/// "netcdf", "geotiff", "exr-displacement", "vdb", "agitation".
 std::string_view export_format_name(ExportFormat format);
 /// The format of a name above; throws nearshore::Error listing the names for any other.
 ExportFormat parse_export_format(std::string_view name);
@@ -41,11 +45,20 @@ struct FrameRange {
   int end_frame = -1;
 };
 
+/// What the agitation export takes besides the sequence (agitation.hpp).
+struct AgitationOptions {
+  /// Hs_incident of (1), metres (> 0); nullopt: the wave maker's, from the manifest.
+  std::optional<double> incident_significant_wave_height_m;
+  /// Berths to read the map at (read_berths: CSV or GeoJSON); empty: none.
+  std::filesystem::path berths_file;
+};
+
 struct ExportRequest {
   std::filesystem::path sequence_folder;  ///< a complete baked sequence (its manifest.json exists)
   std::filesystem::path output_folder;    ///< created if missing; files of the same names are replaced
   ExportFormat format = ExportFormat::kNetcdf;
   FrameRange frames;                      ///< which frames to export
+  AgitationOptions agitation{};           ///< the agitation format's inputs ({}: no aggregate warning where it is left out)
 };
 
 struct ExportedFile {
@@ -64,10 +77,13 @@ struct ExportSummary {
   /// ..." or "zero: ..." with the reason); empty for the other formats.
   std::string horizontal_displacement;
   std::vector<std::string> notes;      ///< what a user should know about the output (e.g. no CRS)
+  /// The agitation format's numbers: {"incident_significant_wave_height_m", "incident_source",
+  /// "significant_wave_height_source", "berths": [berth_value_json...]}; null for the others.
+  nlohmann::json agitation;
 
   std::uintmax_t total_bytes() const;
   /// {"sequence", "output", "format", "frames": {"first", "end", "count"}, "files": [{"file",
-  /// "bytes"}], "total_bytes", "seconds", "horizontal_displacement", "notes"}.
+  /// "bytes"}], "total_bytes", "seconds", "horizontal_displacement", "notes"[, "agitation"]}.
   nlohmann::json to_json() const;
 };
 
