@@ -19,7 +19,8 @@
 #include "nearshore/boussinesq/model_dispersion.hpp"
 #include "nearshore/plot/plot.hpp"
 
-namespace nearshore::boussinesq {
+// Helpers in a namespace of their own: the suite is built in unity batches (cmake/NearshoreWarnings.cmake).
+namespace nearshore::boussinesq::harbour_diffraction {
 namespace {
 
 using Complex = std::complex<double>;
@@ -527,4 +528,4 @@ TEST(BoussinesqHarbourDiffraction, BreakwaterGapFollowsPennyAndPrice) {
 }
 
 }  // namespace
-}  // namespace nearshore::boussinesq
+}  // namespace nearshore::boussinesq::harbour_diffraction
