@@ -230,7 +230,7 @@ TEST(BoussinesqHarbourResonance, FullyOpenRectangularHarbourResonatesAsANarrowBa
   // Away from the resonance the basin follows the coast: at the lowest k l swept R is 1-2 (both).
   EXPECT_LT(response.model.front(), 2.0);
   std::vector<PlotSeries> series;
-  PlotSeries theory{"narrow-bay theory", {}, {}, {0.12f, 0.47f, 0.71f}, false};
+  PlotSeries theory{"narrow bay (long waves, radiation damping only)", {}, {}, {0.12f, 0.47f, 0.71f}, false};
   for (double kl = 0.7; kl <= 1.95; kl += 0.005) {
     theory.x.push_back(kl);
     theory.y.push_back(narrow_bay_amplification(kl, response.a_over_l));
