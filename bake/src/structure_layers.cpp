@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 #include <tuple>
+#include <unordered_map>
 #include <vector>
 
 #include <fmt/core.h>
@@ -149,7 +150,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
 
   // The core and face cells of structure s with its faces widened by `widening_m`.
   auto footprint = [&](std::size_t s, double widening_m) {
-    std::vector<unsigned char> part(g.columns * static_cast<std::size_t>(g.rows), 0);  // 1 face, 2 core
+    std::unordered_map<std::size_t, unsigned char> part;  // cell -> 1 face, 2 core (a real chart has hundreds of structures)
     bathymetry::for_each_footprint_cell(
         g, grid.still_water_depth_m, grid.structures[s], minimum_face_cells,
         [&](int c, int r, bathymetry::FootprintPart which) {
@@ -159,10 +160,9 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
         widening_m);
     core_of[s].clear();
     faces_of[s].clear();
-    for (std::size_t i = 0; i < part.size(); ++i) {
-      if (part[i] == 2) core_of[s].push_back(i);
-      if (part[i] == 1) faces_of[s].push_back(i);
-    }
+    for (const auto& [i, which] : part) (which == 2 ? core_of[s] : faces_of[s]).push_back(i);
+    std::sort(core_of[s].begin(), core_of[s].end());
+    std::sort(faces_of[s].begin(), faces_of[s].end());
   };
 
   // Steps 1-3 of the header: coefficients, footprint, the flume each structure needs.
@@ -224,8 +224,9 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       request.wall_behind = impermeable;
       request.target = std::round(1000.0 * (impermeable ? layer.reflection_requested : layer.transmission_requested)) / 1000.0;
       request.layer_cells = std::max(1, static_cast<int>(std::lround(layer.face_width_m / cell_m)));
-      // Depths within 5 % share a fit (the layer's response moves little within k h +- 2.5 %).
-      request.depth_m = std::exp(std::round(std::log(layer.depth_m) / 0.05) * 0.05);
+      // Depths within 10 % share a fit (k h within +- 5 %: the layer's response moves by less than
+      // the fit's tolerance; a real chart has hundreds of piers at as many depths).
+      request.depth_m = std::exp(std::round(std::log(layer.depth_m) / 0.1) * 0.1);
       request_of[s] = request;
       fits.emplace(request, FitResult{});
     }
@@ -292,7 +293,9 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
         warnings.push_back(fmt::format(
             "structure '{}' ({}): its {:.0f} m of porous faces at {:.1f} m depth (widened by {:.0f} m, as far as it goes) {} {} {:.2f} "
             "in the sea of {:.1f} s peak period; the closest is {:.2f} (porosity {:.2f})",
-            layer.name, layer.kind, layer.face_width_m, layer.depth_m, layer.widening_m, wall ? "cannot reflect as little as" : "cannot transmit",
+            layer.name, layer.kind, layer.face_width_m, layer.depth_m, layer.widening_m,
+            wall ? (layer.in_the_sea.reflection_coefficient > layer.reflection_requested ? "cannot reflect as little as" : "cannot reflect as much as")
+                 : (layer.in_the_sea.transmission_coefficient > layer.transmission_requested ? "cannot transmit as little as" : "cannot transmit as much as"),
             wall ? "Kr" : "Kt", wall ? layer.reflection_requested : layer.transmission_requested, layer.wave_period_s,
             wall ? layer.in_the_sea.reflection_coefficient : layer.in_the_sea.transmission_coefficient, layer.face_porosity));
       }

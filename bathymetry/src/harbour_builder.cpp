@@ -735,6 +735,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
         if (grid.porosity(c, r) > n) grid.porosity(c, r) = n;
         footprint.insert(static_cast<std::size_t>(r) * columns + c);
       });
+      if (footprint.empty()) continue;  // off this grid (a chart's structures beyond the box asked for)
       structure_cells[structure.category] += footprint.size();
       grid.structures.push_back(std::move(laid));
     }

@@ -206,9 +206,9 @@ namespace {
 
 // Regula falsi (Illinois variant) on n between `low` and `high`, whose values straddle `target`;
 // value(n) monotone on the interval. Converges in a few runs where bisection would take six.
-template <typename Value>
-PorosityFit regula_falsi(const PorousLayerFlume& flume, double target, double tolerance, LayerResponse low, LayerResponse high,
-                         Value&& value, int runs) {
+template <typename Measure, typename Value>
+PorosityFit regula_falsi(Measure&& measure, double target, double tolerance, LayerResponse low, LayerResponse high, Value&& value,
+                         int runs) {
   PorosityFit fit;
   fit.flume_runs = runs;
   double f_low = value(low) - target, f_high = value(high) - target;
@@ -223,7 +223,7 @@ PorosityFit regula_falsi(const PorousLayerFlume& flume, double target, double to
     // Keep the new point inside the bracket by a margin (a flat end would stall the secant).
     const double margin = 0.05 * std::abs(high.porosity - low.porosity);
     n = std::clamp(n, std::min(low.porosity, high.porosity) + margin, std::max(low.porosity, high.porosity) - margin);
-    const LayerResponse middle = measure_porous_layer(flume, n);
+    const LayerResponse middle = measure(n);
     ++fit.flume_runs;
     const double f_middle = value(middle) - target;
     if (f_low * f_middle <= 0.0) {
@@ -252,11 +252,21 @@ PorosityFit fit_porosity_to_reflection(const PorousLayerFlume& flume, double ref
   // its minimum; the branch above the minimum is the one fitted.
   // n = 1 first: the faces open, the wall alone (its own reflection, less than 1 by the bed friction
   // and the scheme on the way).
-  const double chart_porosity[] = {1.0, 0.9, 0.75, 0.6, 0.42, 0.28, 0.17, kLowestFittedPorosity};
-  std::vector<LayerResponse> chart;
+  // Kr is the layer's: relative to what the wall alone returns in the same flume (n = 1), so the
+  // bed friction on the way (strong in shallow water) is not counted against the layer.
+  const double chart_porosity[] = {0.9, 0.75, 0.6, 0.42, 0.28, 0.17, kLowestFittedPorosity};
+  const LayerResponse wall = measure_porous_layer(flume, 1.0);
+  auto relative = [&](LayerResponse r) {
+    if (wall.reflection_coefficient > 0.0) r.reflection_coefficient /= wall.reflection_coefficient;
+    for (std::size_t i = 0; i < r.per_wave.size() && i < wall.per_wave.size(); ++i)
+      if (wall.per_wave[i].reflection_coefficient > 0.0) r.per_wave[i].reflection_coefficient /= wall.per_wave[i].reflection_coefficient;
+    return r;
+  };
+  auto measure = [&](double n) { return relative(measure_porous_layer(flume, n)); };
+  std::vector<LayerResponse> chart = {relative(wall)};
   auto kr = [](const LayerResponse& r) { return r.reflection_coefficient; };
   for (double n : chart_porosity) {
-    chart.push_back(measure_porous_layer(flume, n));
+    chart.push_back(measure(n));
     const int runs = static_cast<int>(chart.size());
     const LayerResponse& last = chart.back();
     if (runs == 1) {
@@ -264,7 +274,7 @@ PorosityFit fit_porosity_to_reflection(const PorousLayerFlume& flume, double ref
       continue;
     }
     const LayerResponse& before = chart[chart.size() - 2];
-    if (kr(last) <= reflection_coefficient) return regula_falsi(flume, reflection_coefficient, tolerance, last, before, kr, runs);
+    if (kr(last) <= reflection_coefficient) return regula_falsi(measure, reflection_coefficient, tolerance, last, before, kr, runs);
     if (kr(last) > kr(before)) break;  // past the minimum without reaching the request
   }
   // The request lies below the chart's minimum: the closest the layer gets, refined by a golden-
@@ -275,7 +285,7 @@ PorosityFit fit_porosity_to_reflection(const PorousLayerFlume& flume, double ref
   const std::size_t at = static_cast<std::size_t>(lowest - chart.begin());
   for (std::size_t neighbour : {at == 0 ? at : at - 1, std::min(at + 1, chart.size() - 1)}) {
     if (neighbour == at) continue;
-    const LayerResponse between = measure_porous_layer(flume, 0.5 * (chart[neighbour].porosity + lowest->porosity));
+    const LayerResponse between = measure(0.5 * (chart[neighbour].porosity + lowest->porosity));
     ++runs;
     if (kr(between) < kr(best)) best = between;
   }
@@ -287,14 +297,49 @@ PorosityFit fit_porosity_to_transmission(const PorousLayerFlume& flume, double t
     throw Error(kSubject, "a transmission is fitted for a layer with open water behind it (PorousLayerFlume::wall_behind = true)",
                 "set wall_behind = false");
   check("transmission coefficient", transmission_coefficient, 0.0, 1.0, "a fraction of the incident height");
-  const LayerResponse closed = measure_porous_layer(flume, kLowestFittedPorosity);
-  const LayerResponse open = measure_porous_layer(flume, 0.98);
+  // Kt is the layer's: the transmitted height over what the same flume carries without it (n = 1),
+  // so the bed friction and the scheme on the way (strong in shallow water) are not counted.
+  const LayerResponse without = measure_porous_layer(flume, 1.0);
+  auto relative = [&](LayerResponse r) {
+    if (without.transmission_coefficient > 0.0) r.transmission_coefficient /= without.transmission_coefficient;
+    for (std::size_t i = 0; i < r.per_wave.size() && i < without.per_wave.size(); ++i)
+      if (without.per_wave[i].transmission_coefficient > 0.0) r.per_wave[i].transmission_coefficient /= without.per_wave[i].transmission_coefficient;
+    return r;
+  };
+  auto measure = [&](double n) { return relative(measure_porous_layer(flume, n)); };
+  const LayerResponse closed = measure(kLowestFittedPorosity);
+  const LayerResponse open = measure(0.98);
   auto kt = [](const LayerResponse& r) { return r.transmission_coefficient; };
   if (transmission_coefficient <= closed.transmission_coefficient + tolerance)
-    return {closed, transmission_coefficient >= closed.transmission_coefficient - tolerance, 2};
+    return {closed, transmission_coefficient >= closed.transmission_coefficient - tolerance, 3};
   if (transmission_coefficient >= open.transmission_coefficient - tolerance)
-    return {open, transmission_coefficient <= open.transmission_coefficient + tolerance, 2};
-  return regula_falsi(flume, transmission_coefficient, tolerance, closed, open, kt, 2);
+    return {open, transmission_coefficient <= open.transmission_coefficient + tolerance, 3};
+  // Regula falsi on the relative transmission (a flume that measures relative to `without`).
+  PorosityFit fit;
+  fit.flume_runs = 3;
+  LayerResponse low = closed, high = open;
+  double f_low = kt(low) - transmission_coefficient, f_high = kt(high) - transmission_coefficient;
+  int side = 0;
+  for (int i = 0; i < 16; ++i) {
+    if (std::min(std::abs(f_low), std::abs(f_high)) <= tolerance || std::abs(high.porosity - low.porosity) < 1e-3) break;
+    double n = (low.porosity * f_high - high.porosity * f_low) / (f_high - f_low);
+    const double margin = 0.05 * std::abs(high.porosity - low.porosity);
+    n = std::clamp(n, std::min(low.porosity, high.porosity) + margin, std::max(low.porosity, high.porosity) - margin);
+    const LayerResponse middle = measure(n);
+    ++fit.flume_runs;
+    const double f_middle = kt(middle) - transmission_coefficient;
+    if (f_low * f_middle <= 0.0) {
+      high = middle, f_high = f_middle;
+      if (side == -1) f_low *= 0.5;
+      side = -1;
+    } else {
+      low = middle, f_low = f_middle;
+      if (side == 1) f_high *= 0.5;
+      side = 1;
+    }
+  }
+  fit.response = std::abs(f_low) < std::abs(f_high) ? low : high;
+  return fit;
 }
 
 }  // namespace nearshore::boussinesq

@@ -79,6 +79,9 @@ struct PorosityFit {
 /// branch of n above the reflection's minimum is the one a rubble layer is on.
 inline constexpr double kLowestFittedPorosity = 0.08;
 PorosityFit fit_porosity_to_reflection(const PorousLayerFlume& flume, double reflection_coefficient, double tolerance = 0.02);
+/// The coefficients fitted (and returned) are the layer's: Kr relative to the wall alone in the same
+/// flume, Kt relative to the same flume without the layer (so the bed friction on the way, strong
+/// in shallow water, is not counted against the layer).
 PorosityFit fit_porosity_to_transmission(const PorousLayerFlume& flume, double transmission_coefficient, double tolerance = 0.02);
 
 }  // namespace nearshore::boussinesq
