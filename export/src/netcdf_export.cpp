@@ -142,6 +142,24 @@ void write_netcdf(const ExportInput& input, ExportSummary& summary) {
   const std::size_t cells = g.cell_count();
   const float fill = kNoDataValue;
 
+  // The disk it needs, before anything is written: HDF5 does not recover from a write that meets a
+  // full disk (the failed close leaves its file open, and HDF5's clean-up at exit then segfaulted,
+  // issue 44). Upper bound: the fields uncompressed (4 of float32 per cell and frame), the
+  // coordinates and depth, and 1 MiB of HDF5 metadata; deflate makes the file smaller.
+  {
+    const double field_bytes = 4.0 * 4.0 * static_cast<double>(cells) * input.frame_count();
+    const double needed_bytes = field_bytes + (georeferenced ? 20.0 : 4.0) * static_cast<double>(cells) + (1 << 20);
+    struct statvfs disk {};
+    if (::statvfs(input.output_folder.c_str(), &disk) == 0) {
+      const double free_bytes = static_cast<double>(disk.f_bavail) * static_cast<double>(disk.f_frsize);
+      if (free_bytes < needed_bytes)
+        throw Error(path.string(),
+                    fmt::format("needs up to {:.1f} MB of disk ({} frames of {} cells, uncompressed) but {:.1f} MB are free in "
+                                "{}: HDF5 cannot recover from a write that meets a full disk, so the export does not start",
+                                needed_bytes / 1e6, input.frame_count(), cells, free_bytes / 1e6, input.output_folder.string()),
+                    "free disk space, choose another output folder, or export fewer frames (ExportRequest::frames)");
+    }
+  }
   ProgressBar progress("NetCDF export", input.frame_count(), "frames");
   write_file_atomically(path, [&](const std::filesystem::path& temporary) {
     NetcdfFile file(temporary, path);

@@ -145,7 +145,9 @@ TEST(HostileCase, A309DigitNumberIsNotEchoedInFull) {
         std::pair{"float.toml", flume_with("height_m = 0.02", "height_m = " + digits + ".0")},
         std::pair{"string.toml", flume_with("height_m = 0.02", "height_m = \"" + digits + "\"")}}) {
     const std::string message = error_of_case(write_text(folder / name, text));
-    EXPECT_NE(message.find("height_m"), std::string::npos) << message;
+    // The key, or (toml++ refuses numbers over 126 characters itself) the line and column.
+    EXPECT_TRUE(message.find("height_m") != std::string::npos || message.find("is not valid TOML at line 18") != std::string::npos)
+        << message;
     EXPECT_EQ(message.find(std::string(30, '0')), std::string::npos) << name << ": " << message;
     EXPECT_LT(message.size(), 600u) << message;
   }

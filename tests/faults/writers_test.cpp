@@ -78,20 +78,21 @@ TEST(FullDisk, EveryWriterStopsNamingTheFileAndLeavesNothingTruncated) {
       if (const auto at = argument.find("OUT"); at == 0) argument = output.string() + argument.substr(3);
     return arguments;
   };
-  std::string script = R"(
+  std::string script = R"SH(
     set -u
-    dd if=/dev/zero of="$D/filler" bs=4096 2> /dev/null
-    FULL=$(stat -c %s "$D/filler")
     run_full() {  # NAME FREE_BYTES ARGUMENTS...: run fault_runner with FREE_BYTES of room
       name=$1; free=$2; shift 2
       mkdir -p "$D/$name"
+      # Fill the disk (appending: a file extended by truncate is a hole and takes no room), then
+      # give back FREE_BYTES.
+      cat /dev/zero >> "$D/filler" 2> /dev/null
+      FULL=$(stat -c %s "$D/filler")
       truncate -s $((FULL - free)) "$D/filler"
       "$RUNNER" "$@" 2> "$S/$name.txt"; echo $? > "$S/$name.rc"
       for f in "$D/$name"/*; do [ -f "$f" ] && echo "$(basename "$f") $(stat -c %s "$f")"; done > "$S/$name.sizes"
       rm -rf "$D/$name"
-      truncate -s "$FULL" "$D/filler"
     }
-  )";
+  )SH";
   for (const Writer& writer : writers) {
     const fs::path reference = folder / ("reference_" + writer.name);
     fs::create_directories(reference);
@@ -125,7 +126,8 @@ TEST(FullDisk, EveryWriterStopsNamingTheFileAndLeavesNothingTruncated) {
     // An error (exit 1, not a crash: HDF5's clean-up at exit segfaulted after a failed write).
     EXPECT_EQ(file_bytes(folder / (writer.name + ".rc")), "1\n") << message;
     EXPECT_NE(message.find(writer.failing_file), std::string::npos) << message;
-    EXPECT_NE(message.find("(the disk is full)"), std::string::npos) << message;
+    // NetCDF is refused before it starts (HDF5 cannot recover from a full disk); the others meet it.
+    EXPECT_NE(message.find(writer.name == "netcdf" ? "MB are free in" : "(the disk is full)"), std::string::npos) << message;
     // Whatever is left under a final name is complete; no temporary file remains; it did not finish.
     const auto reference = file_sizes_in(folder / ("reference_" + writer.name));
     const auto left = parse_sizes(file_bytes(folder / (writer.name + ".sizes")));
