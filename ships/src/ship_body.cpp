@@ -18,6 +18,10 @@ constexpr double kSeabedStiffnessRatio = 50.0;
 constexpr double kSeabedDampingTime_s = 0.1;
 constexpr double kSeabedFriction = 0.4;
 constexpr double kFrictionVelocity_m_s = 0.05;
+// Structures and land (ship_body.hpp): 10 times the bed's stiffness, a short damping time.
+constexpr double kStructureStiffnessRatio = 500.0;
+constexpr double kStructureDampingTime_s = 0.02;
+constexpr double kStructureFriction = 0.4;
 
 // Over one hull piece (a triangle, corners r_k relative to G in the world frame) with the
 // pressure head f = eta - z linear over it (f_k at the corners): m0 = integral of f+ dA and
@@ -326,6 +330,43 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
     }
   }
   if (report.contact_points > 0) report.contact_position_m /= report.contact_points;
+
+  // 2b. Structures and land: every hull point (wet or dry: a bow flare meets a quay above water)
+  //     inside a solid (phi < 0) and below its top. Skipped while the hull's centre is farther from
+  //     every face than half the hull's diagonal.
+  const HarbourObstacles* obstacles = environment.seabed != nullptr ? environment.seabed->obstacles() : nullptr;
+  if (obstacles != nullptr &&
+      obstacles->signed_distance_m(state_.position_m.x(), state_.position_m.y()) <
+          0.5 * std::hypot(p.length_m, p.beam_m) + 1.0) {
+    const double face_stiffness = kStructureStiffnessRatio * rho * g;
+    for (std::size_t i = 0; i < n; ++i) {
+      const ObstacleSample o = obstacles->sample(query_points_[i].x_m, query_points_[i].y_m);
+      if (!(o.signed_distance_m < 0.0) || o.normal.isZero()) continue;
+      const Eigen::Vector3d& arm = world_arm_m_[i];
+      const double z = state_.position_m.z() + arm.z();
+      if (z > o.top_m) continue;
+      const double depth = -o.signed_distance_m;
+      const Eigen::Vector3d point_velocity = state_.velocity_m_s + state_.angular_velocity_rad_s.cross(arm);
+      const Eigen::Vector3d normal(o.normal.x(), o.normal.y(), 0.0);
+      const double outward = point_velocity.dot(normal);
+      const double push =
+          std::max(0.0, face_stiffness * samples_.area_m2[i] * (depth - kStructureDampingTime_s * outward));
+      const Eigen::Vector3d slip = point_velocity - outward * normal;
+      const Eigen::Vector3d f =
+          push * normal - kStructureFriction * push * slip / std::sqrt(slip.squaredNorm() + kFrictionVelocity_m_s * kFrictionVelocity_m_s);
+      force += f;
+      torque += arm.cross(f);
+      ++report.structure_contact_points;
+      report.structure_force_N += push;
+      report.structure_closing_speed_m_s = std::max(report.structure_closing_speed_m_s, -outward);
+      if (depth > report.structure_penetration_m) {
+        report.structure_penetration_m = depth;
+        report.structure = o.structure;
+        report.structure_contact_m = state_.position_m + arm;
+        report.structure_normal = o.normal;
+      }
+    }
+  }
 
   // 3. Gravity at G.
   force.z() -= p.mass_kg * g;
