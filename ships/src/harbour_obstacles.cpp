@@ -118,18 +118,25 @@ HarbourObstacles::HarbourObstacles(const HarbourGrid& grid, HarbourObstacleOptio
     const double d = distance[c] >= far_m ? far_m : distance[c] - half;
     phi_[c] = static_cast<float>(label_[c] >= 0 ? -d : d);
   }
-  // 3. Binomial passes in x and y (edges clamped).
+  // 3. Binomial passes in x and y (edges clamped): two over phi, six over the +-1 indicator whose
+  //    gradient gives the normal.
   std::vector<float> tmp(n);
-  for (int pass = 0; pass < options_.smoothing_passes; ++pass) {
-    for (int j = 0; j < rows_; ++j)
-      for (int i = 0; i < columns_; ++i)
-        tmp[index(i, j)] = 0.25f * (phi_[index(std::max(i - 1, 0), j)] + 2.0f * phi_[index(i, j)] +
-                                    phi_[index(std::min(i + 1, columns_ - 1), j)]);
-    for (int j = 0; j < rows_; ++j)
-      for (int i = 0; i < columns_; ++i)
-        phi_[index(i, j)] = 0.25f * (tmp[index(i, std::max(j - 1, 0))] + 2.0f * tmp[index(i, j)] +
-                                     tmp[index(i, std::min(j + 1, rows_ - 1))]);
-  }
+  auto smooth = [&](std::vector<float>& field, int passes) {
+    for (int pass = 0; pass < passes; ++pass) {
+      for (int j = 0; j < rows_; ++j)
+        for (int i = 0; i < columns_; ++i)
+          tmp[index(i, j)] = 0.25f * (field[index(std::max(i - 1, 0), j)] + 2.0f * field[index(i, j)] +
+                                      field[index(std::min(i + 1, columns_ - 1), j)]);
+      for (int j = 0; j < rows_; ++j)
+        for (int i = 0; i < columns_; ++i)
+          field[index(i, j)] = 0.25f * (tmp[index(i, std::max(j - 1, 0))] + 2.0f * tmp[index(i, j)] +
+                                        tmp[index(i, std::min(j + 1, rows_ - 1))]);
+    }
+  };
+  smooth(phi_, 2);
+  indicator_.resize(n);
+  for (std::size_t c = 0; c < n; ++c) indicator_[c] = label_[c] >= 0 ? -1.0f : 1.0f;
+  smooth(indicator_, options_.smoothing_passes);
 }
 
 double HarbourObstacles::signed_distance_m(double x_m, double y_m) const {
@@ -152,10 +159,15 @@ ObstacleSample HarbourObstacles::sample(double x_m, double y_m) const {
   auto at = [&](int i, int j) { return static_cast<double>(phi_[static_cast<std::size_t>(j) * columns_ + i]); };
   const double f00 = at(i0, j0), f10 = at(i1, j0), f01 = at(i0, j1), f11 = at(i1, j1);
   out.signed_distance_m = (1 - b) * ((1 - a) * f00 + a * f10) + b * ((1 - a) * f01 + a * f11);
-  const Eigen::Vector2d gradient(((1 - b) * (f10 - f00) + b * (f11 - f01)) / dx_,
-                                 ((1 - a) * (f01 - f00) + a * (f11 - f10)) / dy_);
+  // The normal from the smoothed indicator: over a kernel of 1.7 cells the cells' staircase along a
+  // straight face averages out, so its gradient is the face's normal (phi's own gradient keeps the
+  // staircase's ripple near the face).
+  auto g = [&](int i, int j) { return static_cast<double>(indicator_[static_cast<std::size_t>(j) * columns_ + i]); };
+  const double g00 = g(i0, j0), g10 = g(i1, j0), g01 = g(i0, j1), g11 = g(i1, j1);
+  const Eigen::Vector2d gradient(((1 - b) * (g10 - g00) + b * (g11 - g01)) / dx_,
+                                 ((1 - a) * (g01 - g00) + a * (g11 - g10)) / dy_);
   const double norm = gradient.norm();
-  if (norm > 1e-6) out.normal = gradient / norm;
+  if (norm > 1e-9) out.normal = gradient / norm;
   const int ci = std::clamp(static_cast<int>(std::lround(u)), 0, columns_ - 1);
   const int cj = std::clamp(static_cast<int>(std::lround(v)), 0, rows_ - 1);
   const std::int32_t owner = owner_[static_cast<std::size_t>(cj) * columns_ + ci];

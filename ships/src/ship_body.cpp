@@ -22,6 +22,9 @@ constexpr double kFrictionVelocity_m_s = 0.05;
 constexpr double kStructureStiffnessRatio = 500.0;
 constexpr double kStructureDampingTime_s = 0.02;
 constexpr double kStructureFriction = 0.4;
+// What a hull keeps of its closing speed after striking (the rest goes into the fender or rubble,
+// the plating and the water's added mass): a largely inelastic impact.
+constexpr double kStructureRestitution = 0.2;
 
 // Over one hull piece (a triangle, corners r_k relative to G in the world frame) with the
 // pressure head f = eta - z linear over it (f_k at the corners): m0 = integral of f+ dA and
@@ -423,6 +426,25 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   const Eigen::Vector3d& w = state_.angular_velocity_rad_s;
   const Eigen::Vector3d angular_acceleration = inertia_world.ldlt().solve(torque - w.cross(inertia_world * w));
   state_.angular_velocity_rad_s += angular_acceleration * dt_s;
+  // 7. An impact on a structure or the land: the penalty alone would let a fast hull through a thin
+  //    breakwater (its depth inside is a cell or two) or bounce it back elastically, so the closing
+  //    velocity of the deepest contact point along the face's normal is taken away by one impulse
+  //    with the rigid body's effective mass there (Catto, "Iterative dynamics with temporal
+  //    coherence", GDC 2005; added masses included), leaving kStructureRestitution of it.
+  if (report.structure_contact_points > 0) {
+    const Eigen::Vector3d r = report.structure_contact_m - state_.position_m;
+    const Eigen::Vector3d normal(report.structure_normal.x(), report.structure_normal.y(), 0.0);
+    const double closing =
+        (state_.velocity_m_s + state_.angular_velocity_rad_s.cross(r)).dot(normal);  // < 0: into the solid
+    if (closing < 0.0) {
+      const Eigen::Vector3d linear = mass_world.ldlt().solve(normal);
+      const Eigen::Vector3d angular = inertia_world.ldlt().solve(r.cross(normal));
+      const double effective_inverse_mass = normal.dot(linear) + normal.dot(angular.cross(r));
+      const double impulse = -(1.0 + kStructureRestitution) * closing / effective_inverse_mass;
+      state_.velocity_m_s += impulse * linear;
+      state_.angular_velocity_rad_s += impulse * angular;
+    }
+  }
   state_.position_m += state_.velocity_m_s * dt_s;
   const double turn = state_.angular_velocity_rad_s.norm() * dt_s;
   if (turn > 0.0)

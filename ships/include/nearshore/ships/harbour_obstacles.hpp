@@ -9,12 +9,12 @@
 //   1. a cell centre's distance to the nearest cell centre of the other kind (Euclidean, searched
 //      within band_cells of the boundary; phi = +-band beyond), less half a cell, so that phi = 0
 //      on the face between a solid and a water cell: exact for walls along the grid axes;
-//   2. six binomial (1 2 1)/4 passes in x and y (a kernel of 1.7 cells' standard deviation): they
-//      keep a linear field (a straight face at any angle, away from corners) and round a diagonal
-//      face's staircase into its straight line, so the normal n = grad phi / |grad phi| of a face
-//      at 30 deg to the axes comes out at 30 deg and not at 0 or 90 (tested); corners are rounded
-//      over about two cells;
-//   3. the normal is the gradient of the bilinear interpolant (sub-cell, continuous across cells).
+//   2. two binomial (1 2 1)/4 passes in x and y, which keep a linear field (a straight face at any
+//      angle, away from corners) and take the sharpest steps off the staircase;
+//   3. the normal: the gradient of the +-1 solid/water indicator after six binomial passes (a
+//      kernel of 1.7 cells' standard deviation), interpolated bilinearly: over that kernel the
+//      cells' staircase along a straight face averages out, so a face at 30 deg to the axes gets a
+//      normal at 30 deg and not at 0 or 90 (tested); corners are rounded over about two cells.
 // Structures are the 8-connected components of structure cells, numbered from 1 in the order of
 // their south-westernmost cell (row by row from the south); land is 0. Each has its lowest
 // porosity: below 0.05 it is a wall (a quay, a caisson: the Boussinesq solver's kWallPorosity),
@@ -56,7 +56,7 @@ struct ObstacleSample {
 struct HarbourObstacleOptions {
   double structure_crest_m = 2.5;  ///< structures stand this high above still water
   int band_cells = 8;              ///< phi is exact within this many cells of a face, clamped beyond
-  int smoothing_passes = 6;        ///< binomial passes over phi (step 2 above)
+  int smoothing_passes = 6;        ///< binomial passes over the indicator (step 3 above)
 };
 
 class HarbourObstacles {
@@ -81,6 +81,7 @@ class HarbourObstacles {
   HarbourObstacleOptions options_;
   bool any_ = false;
   std::vector<float> phi_;           ///< signed distance at cell centres (m), smoothed
+  std::vector<float> indicator_;     ///< +1 water, -1 solid, smoothed: its gradient is the normal
   std::vector<std::int32_t> owner_;  ///< per cell: the index of the nearest solid cell (-1: none)
   std::vector<std::int32_t> label_;  ///< per solid cell: 0 land, k >= 1 structure k; -1 water
   std::vector<float> top_;           ///< per solid cell: its top above still water (m)
