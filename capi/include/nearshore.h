@@ -42,6 +42,7 @@ extern "C" {
  * 4: a ship's dispersive wake (nearshore_ship_options.dispersive_wake, nearshore_fleet_dispersive_wake).
  * 5: host-driven time: nearshore_sea_options.time_mode and ready_timeout_s, nearshore_sea_wait_until_ready,
  *    NEARSHORE_TIMEOUT, NEARSHORE_UNDERRUN, the underrun counters of nearshore_stats; time may go back.
+ *    Hulls stop at structures and land (nearshore_fleet_next_contact); every ship option range-checked.
  * A host built against version N runs on a library of version >= N. */
 #define NEARSHORE_API_VERSION 5
 
@@ -371,8 +372,14 @@ NEARSHORE_API void nearshore_fleet_destroy(nearshore_fleet* fleet);
 
 /* Adds a ship upright at its draft; `ship` (may be NULL) receives its number. Refused with a message
  * naming the ship or the file: an unreadable, open or inverted mesh (NEARSHORE_IO_ERROR /
- * NEARSHORE_FORMAT_ERROR), a mass the hull cannot float, a position on land or in water shallower
- * than the draft (NEARSHORE_INVALID_ARGUMENT). A refused ship changes nothing. */
+ * NEARSHORE_FORMAT_ERROR), a mass the hull cannot float, a position on land, on a structure or in
+ * water shallower than the draft (NEARSHORE_INVALID_ARGUMENT). A refused ship changes nothing.
+ * Since version 5 every field has a range, and a value outside it (NaN and infinities included) is
+ * NEARSHORE_INVALID_ARGUMENT naming the field, the range and its reason (docs/ships.md "Ranges"):
+ * length_m 2-500, beam_m 0.5-80, depth_m 0.5-50, draft_m 0.05-35 (0: not given), mass_kg 1-1e9 and
+ * floating the hull at a draft of at least 5 % of its depth, x_m / y_m and waypoints within 1e6 m,
+ * heading_deg finite, |initial_speed_m_s| and speed_m_s up to 30 m/s and length Froude number 1
+ * (sqrt(9.81 L)), hull_points 100-20000 (0: 2000), bow_wave_cells 16-512 (0: 128). */
 NEARSHORE_API nearshore_status nearshore_fleet_add_ship(nearshore_fleet* fleet, const nearshore_ship_options* options,
                                                         int* ship);
 NEARSHORE_API nearshore_status nearshore_fleet_ship_count(const nearshore_fleet* fleet, int* count);
@@ -410,6 +417,29 @@ NEARSHORE_API nearshore_status nearshore_fleet_ship_pose(const nearshore_fleet* 
  * copied into text (capacity chars, cut to fit, NUL-terminated); *has_event = 0 when none is left. */
 NEARSHORE_API nearshore_status nearshore_fleet_next_event(nearshore_fleet* fleet, char* text, size_t capacity,
                                                           int* has_event);
+
+/* Since version 5. A ship touching, or coming clear of, a structure of the harbour grid (a
+ * breakwater, quay or pier: its cells of porosity < 1, standing 2.5 m above still water) or the land.
+ * Hulls do not pass through them: a hull point inside one is pushed out along the face's normal,
+ * with friction; the ship keeps its orders (a tug may push on a quay). Structures are numbered 1, 2,
+ * ... as connected groups of structure cells, row by row from the south-west; 0 is the land. */
+typedef struct nearshore_ship_contact {
+  uint32_t struct_size;
+  int ship;                  /* the ship's number when it happened */
+  int began;                 /* 1: it struck; 0: it is clear again */
+  int structure;             /* 0: the land; k >= 1: structure k */
+  int wall;                  /* 1: a quay wall or caisson (porosity < 0.05); 0: a porous breakwater or land */
+  double porosity;           /* the structure's lowest porosity (1 for land) */
+  double x_m, y_m, z_m;      /* began: the deepest contact point; ended: the ship's centre of gravity */
+  double normal[2];          /* began: the face's normal there (site frame, out of the structure) */
+  double closing_speed_m_s;  /* began: how fast the hull met the face */
+  double time_s;             /* the fleet's time (the sum of its steps) */
+  char description[128];     /* "structure 2 (a quay wall, porosity 0.00, 40 cells about (512.0, 880.0) m)" */
+} nearshore_ship_contact;
+/* The oldest contact since the last call into `contact` (its struct_size set); *has_contact = 0
+ * when none is left. Each contact is also a text event (nearshore_fleet_next_event). */
+NEARSHORE_API nearshore_status nearshore_fleet_next_contact(nearshore_fleet* fleet, nearshore_ship_contact* contact,
+                                                            int* has_contact);
 
 /* One stern-wake foam decal: a quad of width_m (across the track) x length_m (along it), centred
  * at (x_m, y_m), rotated yaw_rad counter-clockwise from east, drawn with foam texture `variant`

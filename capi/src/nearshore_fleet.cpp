@@ -16,12 +16,14 @@
 #include "nearshore/ships/generic_hulls.hpp"
 #include "nearshore/ships/hull_file.hpp"
 #include "nearshore/ships/ship_fleet.hpp"
+#include "nearshore/ships/ship_limits.hpp"
 
 struct nearshore_fleet {
   const nearshore_sea* sea = nullptr;
   nearshore::ships::ShipFleet ships;
   nearshore::ships::FleetLayers layers;  // the hulls as drawn; the layers nearshore_renderer_draw adds
   std::deque<std::string> events;  // taken from the fleet after each step, handed out one by one
+  std::deque<nearshore::ships::ContactEvent> contacts;  // likewise
 };
 
 namespace {
@@ -48,8 +50,12 @@ std::vector<Eigen::Vector2d> route_of(const double* xy_m, std::size_t count, con
   if (count > 100000)
     fail(NEARSHORE_INVALID_ARGUMENT, std::string(parameter) + " has " + std::to_string(count) + " waypoints; give at most 100000");
   for (std::size_t k = 0; k < count; ++k) {
-    if (!std::isfinite(xy_m[2 * k]) || !std::isfinite(xy_m[2 * k + 1]))
-      fail(NEARSHORE_INVALID_ARGUMENT, "waypoint " + std::to_string(k) + " of " + parameter + " is not finite; give site metres");
+    const ships::ParameterRange& site = ships::limits::kSiteCoordinate;
+    for (int axis = 0; axis < 2; ++axis)
+      if (!(xy_m[2 * k + axis] >= site.min && xy_m[2 * k + axis] <= site.max))
+        fail(NEARSHORE_INVALID_ARGUMENT, "waypoint " + std::to_string(k) + " of " + parameter + " has " +
+                                             (axis == 0 ? "x = " : "y = ") + ships::format_value(xy_m[2 * k + axis]) +
+                                             " m, outside [-1e6, 1e6] m: " + site.reason + "; give site metres");
     route.emplace_back(xy_m[2 * k], xy_m[2 * k + 1]);
   }
   return route;
@@ -78,18 +84,53 @@ ships::HullMesh hull_of(const nearshore_ship_options& options, const std::string
   }
 }
 
+// A field of nearshore_ship_options in its range (ships/ship_limits.hpp), else INVALID_ARGUMENT
+// naming the ship, the field, the range and its reason.
+void check_field(const std::string& ship, const char* field, double value, const ships::ParameterRange& range) {
+  try {
+    ships::require_in_range("ship '" + ship + "'", std::string("nearshore_ship_options.") + field, value, range);
+  } catch (const nearshore::Error& error) {
+    fail(NEARSHORE_INVALID_ARGUMENT, error.what());
+  }
+}
+
+// Every field in its range before the hull is made (a 1e9 m hull would be lofted and cut first).
+void check_options(const nearshore_ship_options& o, const std::string& name) {
+  namespace limits = ships::limits;
+  if (o.length_m != 0.0) check_field(name, "length_m", o.length_m, limits::kLength);
+  if (o.beam_m != 0.0) check_field(name, "beam_m", o.beam_m, limits::kBeam);
+  if (o.depth_m != 0.0) check_field(name, "depth_m", o.depth_m, limits::kDepth);
+  if (o.mass_kg != 0.0)
+    check_field(name, "mass_kg", o.mass_kg, limits::kMass);
+  else if (o.draft_m != 0.0)
+    check_field(name, "draft_m", o.draft_m, limits::kDraft);
+  else
+    fail(NEARSHORE_INVALID_ARGUMENT, "ship '" + name + "': neither nearshore_ship_options.mass_kg nor draft_m is "
+                                     "given; give the displacement or the draft");
+  if (!o.use_lat_lon) {
+    check_field(name, "x_m", o.x_m, limits::kSiteCoordinate);
+    check_field(name, "y_m", o.y_m, limits::kSiteCoordinate);
+  }
+  if (!std::isfinite(o.heading_deg))
+    fail(NEARSHORE_INVALID_ARGUMENT, "ship '" + name + "': nearshore_ship_options.heading_deg = " +
+                                         ships::format_value(o.heading_deg) + " is not a compass heading; give degrees");
+  // The speed's upper limit depends on the hull's length (ShipFleet::add_ship checks it); here
+  // only what no hull allows.
+  const double speed_cap = limits::kSpeed.max;
+  check_field(name, "initial_speed_m_s", o.initial_speed_m_s, {-speed_cap, speed_cap, "m/s", limits::kSpeed.reason});
+  if (o.hull_points != 0) check_field(name, "hull_points", o.hull_points, limits::kHullPoints);
+  if (o.bow_wave != 0 && o.bow_wave_cells != 0) check_field(name, "bow_wave_cells", o.bow_wave_cells, limits::kBowWaveCells);
+}
+
 ships::ShipDefinition definition_of(const nearshore_fleet& fleet, const nearshore_ship_options& options) {
   ships::ShipDefinition d;
   d.name = options.name && *options.name ? options.name : "ship " + std::to_string(fleet.ships.size());
+  check_options(options, d.name);
   d.hull = hull_of(options, d.name);
-  if (options.mass_kg > 0.0) {
+  if (options.mass_kg != 0.0)
     d.loading.mass_kg = options.mass_kg;
-  } else if (options.draft_m > 0.0) {
+  else
     d.loading.draft_m = options.draft_m;
-  } else {
-    fail(NEARSHORE_INVALID_ARGUMENT, "ship '" + d.name + "': neither nearshore_ship_options.mass_kg nor draft_m is "
-                                     "positive; give the displacement or the draft");
-  }
   if (options.use_lat_lon) {
     const nearshore_status status =
         nearshore_site_from_lat_lon(fleet.sea, options.latitude_deg, options.longitude_deg, &d.x_m, &d.y_m);
@@ -99,21 +140,18 @@ ships::ShipDefinition definition_of(const nearshore_fleet& fleet, const nearshor
     d.y_m = options.y_m;
   }
   d.heading_deg = options.heading_deg;
-  if (!std::isfinite(options.initial_speed_m_s))
-    fail(NEARSHORE_INVALID_ARGUMENT, "ship '" + d.name + "': initial_speed_m_s is not a number");
   d.initial_speed_m_s = options.initial_speed_m_s;
   switch (options.order) {
     case NEARSHORE_ORDER_MANUAL: break;
     case NEARSHORE_ORDER_ENGINE:
       if (!(std::abs(options.engine_order) <= 1.0))
-        fail(NEARSHORE_INVALID_ARGUMENT, "ship '" + d.name + "': engine_order = " + std::to_string(options.engine_order) +
+        fail(NEARSHORE_INVALID_ARGUMENT, "ship '" + d.name + "': nearshore_ship_options.engine_order = " +
+                                             ships::format_value(options.engine_order) +
                                              " is outside [-1, 1] (full astern .. full ahead)");
       d.orders.engine_order = options.engine_order;
       break;
     case NEARSHORE_ORDER_SPEED:
-      if (!(options.speed_m_s >= 0.0 && options.speed_m_s < 100.0))
-        fail(NEARSHORE_INVALID_ARGUMENT, "ship '" + d.name + "': speed_m_s = " + std::to_string(options.speed_m_s) +
-                                             " is not a speed ahead (0-100 m/s)");
+      check_field(d.name, "speed_m_s", options.speed_m_s, ships::limits::kSpeed);  // the hull's own limit: add_ship
       d.orders.speed_m_s = options.speed_m_s;
       break;
     default:
@@ -240,8 +278,11 @@ nearshore_status nearshore_fleet_set_controls(nearshore_fleet* fleet, int ship, 
   return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
     ships::Ship& s = ship_of(fleet, ship);
     if (!(std::abs(engine_order) <= 1.0))
-      fail(NEARSHORE_INVALID_ARGUMENT, "engine_order = " + std::to_string(engine_order) + " is outside [-1, 1] (full astern .. full ahead)");
-    if (!std::isfinite(rudder_deg)) fail(NEARSHORE_INVALID_ARGUMENT, "rudder_deg is not a number");
+      fail(NEARSHORE_INVALID_ARGUMENT, "engine_order = " + ships::format_value(engine_order) +
+                                           " is outside [-1, 1] (full astern .. full ahead)");
+    if (!std::isfinite(rudder_deg))
+      fail(NEARSHORE_INVALID_ARGUMENT, "rudder_deg = " + ships::format_value(rudder_deg) +
+                                           " is not an angle; give degrees (> 0 to port, clamped to the rudder's limit)");
     s.set_orders({});
     s.manual_controls() = ships::ShipControls{engine_order, rudder_deg * kDegree};
   });
@@ -251,12 +292,10 @@ nearshore_status nearshore_fleet_set_speed(nearshore_fleet* fleet, int ship, dou
                                            size_t route_count) {
   return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
     ships::Ship& s = ship_of(fleet, ship);
-    if (!(speed_m_s >= 0.0 && speed_m_s < 100.0))
-      fail(NEARSHORE_INVALID_ARGUMENT, "speed_m_s = " + std::to_string(speed_m_s) + " is not a speed ahead (0-100 m/s)");
     ships::ShipOrders orders;
     orders.speed_m_s = speed_m_s;
     orders.route_m = route_of(route_xy_m, route_count, "route_xy_m");
-    s.set_orders(std::move(orders));
+    s.set_orders(std::move(orders));  // refuses a speed outside [0, the ship's limit] naming speed_m_s
   });
 }
 
@@ -264,9 +303,41 @@ nearshore_status nearshore_fleet_step(nearshore_fleet* fleet, double dt_s) {
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     require(fleet, "fleet");
     if (!(dt_s > 0.0 && dt_s <= 1.0))
-      fail(NEARSHORE_INVALID_ARGUMENT, "dt_s = " + std::to_string(dt_s) + " is outside (0, 1] s; step once per displayed frame");
+      fail(NEARSHORE_INVALID_ARGUMENT, "dt_s = " + ships::format_value(dt_s) + " is outside (0, 1] s; step once per displayed frame");
     fleet->ships.step(fleet->sea->snapshot(), dt_s);
     for (std::string& event : fleet->ships.take_events()) fleet->events.push_back(std::move(event));
+    for (ships::ContactEvent& contact : fleet->ships.take_contacts()) fleet->contacts.push_back(std::move(contact));
+  });
+}
+
+nearshore_status nearshore_fleet_next_contact(nearshore_fleet* fleet, nearshore_ship_contact* contact, int* has_contact) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(fleet, "fleet");
+    require(has_contact, "has_contact");
+    require(contact, "contact");
+    if (contact->struct_size != sizeof(nearshore_ship_contact))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_ship_contact.struct_size must be sizeof(nearshore_ship_contact)");
+    *has_contact = fleet->contacts.empty() ? 0 : 1;
+    if (fleet->contacts.empty()) return;
+    const ships::ContactEvent& e = fleet->contacts.front();
+    *contact = {};
+    contact->struct_size = sizeof(nearshore_ship_contact);
+    contact->ship = static_cast<int>(e.ship_index);
+    contact->began = e.began ? 1 : 0;
+    contact->structure = e.structure;
+    contact->wall = e.wall ? 1 : 0;
+    contact->porosity = e.porosity;
+    contact->x_m = e.position_m.x();
+    contact->y_m = e.position_m.y();
+    contact->z_m = e.position_m.z();
+    contact->normal[0] = e.normal.x();
+    contact->normal[1] = e.normal.y();
+    contact->closing_speed_m_s = e.closing_speed_m_s;
+    contact->time_s = e.time_s;
+    const std::size_t length = std::min(e.description.size(), sizeof contact->description - 1);
+    std::memcpy(contact->description, e.description.data(), length);
+    contact->description[length] = '\0';
+    fleet->contacts.pop_front();
   });
 }
 

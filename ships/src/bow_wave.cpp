@@ -26,11 +26,25 @@ BowWave::BowWave(const ShipParticulars& particulars, BowWaveOptions options)
 
 void BowWave::set_bottom(const Seabed* seabed) {
   const int n = grid_.columns();
+  const HarbourObstacles* obstacles = seabed != nullptr ? seabed->obstacles() : nullptr;
+  // Whether any face is near the window at all (the field is clamped a band away from faces).
+  const double half_side = 0.5 * n * spacing_m_;
+  const bool near_solid =
+      obstacles != nullptr &&
+      obstacles->signed_distance_m((origin_i_ + 0.5 * n) * spacing_m_, (origin_j_ + 0.5 * n) * spacing_m_) <
+          std::sqrt(2.0) * half_side + spacing_m_;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const double x = (origin_i_ + i) * spacing_m_, y = (origin_j_ + j) * spacing_m_;
       const double depth = seabed != nullptr ? seabed->depth_m(x, y) : options_.max_depth_m;
-      grid_.set_bottom_corner(i, j, -std::min(depth, options_.max_depth_m));
+      double bottom = -std::min(depth, options_.max_depth_m);
+      // Corners inside a structure (or land) take its top: those cells stay dry, and the scheme's
+      // wetting front reflects the waves that reach them (a wall in the grid where the structure is).
+      if (near_solid) {
+        const ObstacleSample o = obstacles->sample(x, y);
+        if (o.signed_distance_m < 0.0) bottom = std::max(bottom, o.top_m);
+      }
+      grid_.set_bottom_corner(i, j, bottom);
     }
 }
 

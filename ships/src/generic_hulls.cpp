@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/ships/ship_limits.hpp"
 
 namespace nearshore::ships {
 namespace {
@@ -163,11 +164,14 @@ HullMesh harbour_tug(double length_m, double beam_m, double depth_m) {
 }
 
 std::optional<HullMesh> generic_hull(const std::string& name, const GenericHullDimensions& dimensions) {
-  for (const double value : {dimensions.length_m, dimensions.beam_m, dimensions.depth_m, dimensions.draft_m})
-    if (!(value >= 0.0))
-      throw Error(fmt::format("generic hull '{}'", name),
-                  fmt::format("has a dimension {} that is not a positive length", value),
-                  "give positive metres, or 0 for the hull's default");
+  // Each dimension 0 (the hull's default) or within its range (ship_limits.hpp): a 1e9 m hull
+  // would be lofted and cut into pieces before anything else could refuse it.
+  const std::string subject = fmt::format("generic hull '{}'", name);
+  const std::pair<const char*, const ParameterRange*> checks[] = {
+      {"length_m", &limits::kLength}, {"beam_m", &limits::kBeam}, {"depth_m", &limits::kDepth}, {"draft_m", &limits::kDraft}};
+  const double values[] = {dimensions.length_m, dimensions.beam_m, dimensions.depth_m, dimensions.draft_m};
+  for (int k = 0; k < 4; ++k)
+    if (values[k] != 0.0) require_in_range(subject, checks[k].first, values[k], *checks[k].second);
   auto or_default = [](double value, double fallback) { return value > 0.0 ? value : fallback; };
   if (name == "box_barge")
     return box_barge(or_default(dimensions.length_m, 20.0), or_default(dimensions.beam_m, 8.0),

@@ -3,19 +3,26 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "nearshore/core/error.hpp"
+
 namespace nearshore::ships {
 
 namespace {
+
+struct TooManyPieces {};
 
 // Longest-edge bisection until a piece is no larger than the target area and no longer than twice
 // the target spacing: pieces stay well shaped (skinny lofted triangles are cut across, not along),
 // and their number is close to area / target area.
 void bisect(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& normal,
-            double target_area, double max_edge, HullSamples& out) {
+            double target_area, double max_edge, std::size_t max_count, HullSamples& out) {
   const double area = 0.5 * (b - a).cross(c - a).norm();
   const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
   const double longest = std::sqrt(std::max({ab, bc, ca}));
   if (area <= target_area && longest <= max_edge) {
+    if (out.size() >= max_count) throw TooManyPieces{};
     out.position_m.push_back((a + b + c) / 3.0);
     out.normal.push_back(normal);
     out.area_m2.push_back(area);
@@ -24,22 +31,22 @@ void bisect(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vec
   }
   if (ab >= bc && ab >= ca) {
     const Eigen::Vector3d m = 0.5 * (a + b);
-    bisect(a, m, c, normal, target_area, max_edge, out);
-    bisect(m, b, c, normal, target_area, max_edge, out);
+    bisect(a, m, c, normal, target_area, max_edge, max_count, out);
+    bisect(m, b, c, normal, target_area, max_edge, max_count, out);
   } else if (bc >= ca) {
     const Eigen::Vector3d m = 0.5 * (b + c);
-    bisect(a, b, m, normal, target_area, max_edge, out);
-    bisect(a, m, c, normal, target_area, max_edge, out);
+    bisect(a, b, m, normal, target_area, max_edge, max_count, out);
+    bisect(a, m, c, normal, target_area, max_edge, max_count, out);
   } else {
     const Eigen::Vector3d m = 0.5 * (c + a);
-    bisect(a, b, m, normal, target_area, max_edge, out);
-    bisect(m, b, c, normal, target_area, max_edge, out);
+    bisect(a, b, m, normal, target_area, max_edge, max_count, out);
+    bisect(m, b, c, normal, target_area, max_edge, max_count, out);
   }
 }
 
 }  // namespace
 
-HullSamples sample_hull(const HullMesh& mesh, int target_count) {
+HullSamples sample_hull(const HullMesh& mesh, int target_count, std::size_t max_count) {
   double total_area = 0.0;
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d& a = mesh.vertices_m[t[0]];
@@ -55,7 +62,14 @@ HullSamples sample_hull(const HullMesh& mesh, int target_count) {
     const Eigen::Vector3d a = mesh.vertices_m[t[0]], b = mesh.vertices_m[t[1]], c = mesh.vertices_m[t[2]];
     const Eigen::Vector3d cross = (b - a).cross(c - a);
     if (!(0.5 * cross.norm() > 1e-12 * total_area)) continue;
-    bisect(a, b, c, cross.normalized(), target_area, max_edge, out);
+    try {
+      bisect(a, b, c, cross.normalized(), target_area, max_edge, max_count, out);
+    } catch (const TooManyPieces&) {
+      throw Error(mesh.name,
+                  fmt::format("would be cut into more than {} pressure pieces for {} points ({} triangles)", max_count,
+                              target_count, mesh.triangles.size()),
+                  "decimate the mesh, or give a hull of ordinary proportions");
+    }
   }
   return out;
 }

@@ -2,14 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::ships {
 
-Seabed::Seabed(std::shared_ptr<const runtime::HarbourSite> site) : site_(std::move(site)) {
+Seabed::Seabed(std::shared_ptr<const runtime::HarbourSite> site, HarbourObstacleOptions obstacles) : site_(std::move(site)) {
   if (!site_ || site_->harbour.still_water_depth_m.empty())
     throw Error("Seabed", "the harbour site has no depth raster", "give the site of a sequence (read_harbour_site)");
+  obstacles_ = std::make_shared<const HarbourObstacles>(site_->harbour, obstacles);
 }
 
 Seabed Seabed::flat(double depth_m) {
@@ -20,6 +22,9 @@ Seabed Seabed::flat(double depth_m) {
 
 double Seabed::depth_m(double x_m, double y_m) const {
   if (!site_) return flat_depth_m_;
+  // A NaN position has no cell: casting it to an index is undefined (issue 44: an initial speed of
+  // 1e308 m/s made the hull's points NaN and this lookup read far outside the raster).
+  if (std::isnan(x_m) || std::isnan(y_m)) return std::numeric_limits<double>::quiet_NaN();
   const Raster<float>& d = site_->harbour.still_water_depth_m;
   const double dx = site_->harbour.geometry.spacing_x_m(), dy = site_->harbour.geometry.spacing_y_m();
   const int columns = d.columns(), rows = d.rows();

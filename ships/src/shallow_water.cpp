@@ -473,6 +473,13 @@ int BasicShallowWaterGrid<Real>::advance(double dt_s) {
     const double speed = sweep(w_, hu_, hv_, nullptr);
     const double limit = speed > 0.0 ? options_.cfl * spacing_m_ / speed : remaining;
     const double dt = std::min(remaining, limit);
+    // A state whose waves outrun any ship or tide (a non-finite speed, or so many steps that the
+    // caller's frame could never finish) stops here instead of hanging the caller.
+    if (!(dt > 0.0) || !std::isfinite(speed) || steps >= kMaxStepsPerAdvance)
+      throw Error("shallow-water grid",
+                  fmt::format("internal error: advancing {:.3g} s needs more than {} steps (fastest wave {:.3g} m/s)",
+                              dt_s, kMaxStepsPerAdvance, speed),
+                  "please report this with the ship or the grid that made it");
     const EulerStage first{dt, false, &w1_, &hu1_, &hv1_};
     Real lowest_depth(0);
     for (int j = 0; j < rows_; ++j)

@@ -18,6 +18,13 @@ constexpr double kSeabedStiffnessRatio = 50.0;
 constexpr double kSeabedDampingTime_s = 0.1;
 constexpr double kSeabedFriction = 0.4;
 constexpr double kFrictionVelocity_m_s = 0.05;
+// Structures and land (ship_body.hpp): 10 times the bed's stiffness, a short damping time.
+constexpr double kStructureStiffnessRatio = 500.0;
+constexpr double kStructureDampingTime_s = 0.02;
+constexpr double kStructureFriction = 0.4;
+// What a hull keeps of its closing speed after striking (the rest goes into the fender or rubble,
+// the plating and the water's added mass): a largely inelastic impact.
+constexpr double kStructureRestitution = 0.2;
 
 // Over one hull piece (a triangle, corners r_k relative to G in the world frame) with the
 // pressure head f = eta - z linear over it (f_k at the corners): m0 = integral of f+ dA and
@@ -327,6 +334,43 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   }
   if (report.contact_points > 0) report.contact_position_m /= report.contact_points;
 
+  // 2b. Structures and land: every hull point (wet or dry: a bow flare meets a quay above water)
+  //     inside a solid (phi < 0) and below its top. Skipped while the hull's centre is farther from
+  //     every face than half the hull's diagonal.
+  const HarbourObstacles* obstacles = environment.seabed != nullptr ? environment.seabed->obstacles() : nullptr;
+  if (obstacles != nullptr &&
+      obstacles->signed_distance_m(state_.position_m.x(), state_.position_m.y()) <
+          0.5 * std::hypot(p.length_m, p.beam_m) + 1.0) {
+    const double face_stiffness = kStructureStiffnessRatio * rho * g;
+    for (std::size_t i = 0; i < n; ++i) {
+      const ObstacleSample o = obstacles->sample(query_points_[i].x_m, query_points_[i].y_m);
+      if (!(o.signed_distance_m < 0.0) || o.normal.isZero()) continue;
+      const Eigen::Vector3d& arm = world_arm_m_[i];
+      const double z = state_.position_m.z() + arm.z();
+      if (z > o.top_m) continue;
+      const double depth = -o.signed_distance_m;
+      const Eigen::Vector3d point_velocity = state_.velocity_m_s + state_.angular_velocity_rad_s.cross(arm);
+      const Eigen::Vector3d normal(o.normal.x(), o.normal.y(), 0.0);
+      const double outward = point_velocity.dot(normal);
+      const double push =
+          std::max(0.0, face_stiffness * samples_.area_m2[i] * (depth - kStructureDampingTime_s * outward));
+      const Eigen::Vector3d slip = point_velocity - outward * normal;
+      const Eigen::Vector3d f =
+          push * normal - kStructureFriction * push * slip / std::sqrt(slip.squaredNorm() + kFrictionVelocity_m_s * kFrictionVelocity_m_s);
+      force += f;
+      torque += arm.cross(f);
+      ++report.structure_contact_points;
+      report.structure_force_N += push;
+      report.structure_closing_speed_m_s = std::max(report.structure_closing_speed_m_s, -outward);
+      if (depth > report.structure_penetration_m) {
+        report.structure_penetration_m = depth;
+        report.structure = o.structure;
+        report.structure_contact_m = state_.position_m + arm;
+        report.structure_normal = o.normal;
+      }
+    }
+  }
+
   // 3. Gravity at G.
   force.z() -= p.mass_kg * g;
 
@@ -382,6 +426,25 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   const Eigen::Vector3d& w = state_.angular_velocity_rad_s;
   const Eigen::Vector3d angular_acceleration = inertia_world.ldlt().solve(torque - w.cross(inertia_world * w));
   state_.angular_velocity_rad_s += angular_acceleration * dt_s;
+  // 7. An impact on a structure or the land: the penalty alone would let a fast hull through a thin
+  //    breakwater (its depth inside is a cell or two) or bounce it back elastically, so the closing
+  //    velocity of the deepest contact point along the face's normal is taken away by one impulse
+  //    with the rigid body's effective mass there (Catto, "Iterative dynamics with temporal
+  //    coherence", GDC 2005; added masses included), leaving kStructureRestitution of it.
+  if (report.structure_contact_points > 0) {
+    const Eigen::Vector3d r = report.structure_contact_m - state_.position_m;
+    const Eigen::Vector3d normal(report.structure_normal.x(), report.structure_normal.y(), 0.0);
+    const double closing =
+        (state_.velocity_m_s + state_.angular_velocity_rad_s.cross(r)).dot(normal);  // < 0: into the solid
+    if (closing < 0.0) {
+      const Eigen::Vector3d linear = mass_world.ldlt().solve(normal);
+      const Eigen::Vector3d angular = inertia_world.ldlt().solve(r.cross(normal));
+      const double effective_inverse_mass = normal.dot(linear) + normal.dot(angular.cross(r));
+      const double impulse = -(1.0 + kStructureRestitution) * closing / effective_inverse_mass;
+      state_.velocity_m_s += impulse * linear;
+      state_.angular_velocity_rad_s += impulse * angular;
+    }
+  }
   state_.position_m += state_.velocity_m_s * dt_s;
   const double turn = state_.angular_velocity_rad_s.norm() * dt_s;
   if (turn > 0.0)

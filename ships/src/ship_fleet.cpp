@@ -7,11 +7,16 @@
 #include <fmt/format.h>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/ships/ship_limits.hpp"
 
 namespace nearshore::ships {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+// Berthing velocities for fender design (PIANC WG 33, 2002, after Brolsma et al. 1977) reach
+// 0.1-0.5 m/s, the highest for small ships in difficult conditions: a closing speed above 0.5 m/s
+// is a collision, not a berthing (ShipFleet step 5).
+constexpr double kBerthingSpeedLimit_m_s = 0.5;
 
 double wrap_angle(double a) {
   while (a > kPi) a -= 2 * kPi;
@@ -66,7 +71,53 @@ Capsule capsule_of(const ShipBody& body) {
   return {{a.x(), a.y()}, {b.x(), b.y()}, r, 0.5 * (a.z() + b.z())};
 }
 
+// Every input is range-checked (ship_limits.hpp), so a ship whose state is not finite or moves
+// faster than any force here can drive it is a bug: it stops the step with a message saying so,
+// before a non-finite position reaches the seabed lookup or the bow-wave grid's window.
+void require_sound_motion(const Ship& ship) {
+  const ShipState& s = ship.body().state();
+  const double speed = s.velocity_m_s.norm(), turn = s.angular_velocity_rad_s.norm();
+  if (s.position_m.allFinite() && s.orientation.coeffs().allFinite() && speed <= 2.0 * limits::kSpeed.max &&
+      turn <= 10.0)
+    return;
+  throw Error(fmt::format("ship '{}'", ship.name()),
+              fmt::format("internal error: its motion diverged (speed {} m/s, turn rate {} rad/s, at ({}, {}) m)",
+                          format_value(speed), format_value(turn), format_value(s.position_m.x()),
+                          format_value(s.position_m.y())),
+              "please report this with the ship's definition and orders");
+}
+
+// The orders' ranges (ship_limits.hpp): an engine order in [-1, 1], a speed ahead below the ship's
+// limit, finite waypoints within the site's reach and a positive waypoint radius.
+void check_orders(const std::string& subject, const ShipOrders& o, double speed_limit_m_s) {
+  if (o.engine_order && !(std::abs(*o.engine_order) <= 1.0))
+    throw Error(subject,
+                fmt::format("engine_order = {} is outside [-1, 1] (full astern .. full ahead)", format_value(*o.engine_order)),
+                "give an engine order in [-1, 1]");
+  if (o.speed_m_s && !(*o.speed_m_s >= 0.0 && *o.speed_m_s <= speed_limit_m_s))
+    throw Error(subject,
+                fmt::format("speed_m_s = {} is outside [0, {:.3g}] m/s: {}", format_value(*o.speed_m_s), speed_limit_m_s,
+                            limits::kSpeed.reason),
+                fmt::format("order a speed ahead of at most {:.3g} m/s for this ship", speed_limit_m_s));
+  if (o.route_m.size() > 100000)
+    throw Error(subject, fmt::format("has a route of {} waypoints", o.route_m.size()), "give at most 100000 waypoints");
+  for (std::size_t k = 0; k < o.route_m.size(); ++k) {
+    require_in_range(subject, fmt::format("waypoint {} x_m", k), o.route_m[k].x(), limits::kSiteCoordinate);
+    require_in_range(subject, fmt::format("waypoint {} y_m", k), o.route_m[k].y(), limits::kSiteCoordinate);
+  }
+  if (!o.route_m.empty() && !(o.waypoint_radius_lengths > 0.0 && o.waypoint_radius_lengths <= 100.0))
+    throw Error(subject,
+                fmt::format("waypoint_radius_lengths = {} is outside (0, 100] ship lengths",
+                            format_value(o.waypoint_radius_lengths)),
+                "give the radius within which a waypoint counts as reached, in ship lengths (1.5 by default)");
+}
+
 }  // namespace
+
+void Ship::set_orders(ShipOrders orders) {
+  check_orders(fmt::format("ship '{}'", name_), orders, max_speed_m_s(body_.particulars().length_m));
+  orders_ = std::move(orders);
+}
 
 Ship::Ship(std::string name, ShipBody body, ShipOrders orders, std::unique_ptr<BowWave> bow_wave, SternWake wake)
     : name_(std::move(name)),
@@ -79,7 +130,7 @@ ShipFleet::ShipFleet(FleetOptions options) : options_(options) {}
 
 void ShipFleet::set_site(std::shared_ptr<const runtime::HarbourSite> site) {
   if (site)
-    seabed_.emplace(std::move(site));
+    seabed_.emplace(std::move(site), options_.obstacles);
   else
     seabed_.reset();
 }
@@ -88,14 +139,77 @@ void ShipFleet::set_seabed(Seabed seabed) { seabed_.emplace(std::move(seabed)); 
 
 std::size_t ShipFleet::add_ship(const ShipDefinition& d) {
   const std::string subject = fmt::format("ship '{}'", d.name);
-  if (d.hull_points < 16)
-    throw Error(subject, fmt::format("hull_points = {} is too few", d.hull_points), "use at least a few hundred");
-  if (!std::isfinite(d.x_m) || !std::isfinite(d.y_m) || !std::isfinite(d.heading_deg))
-    throw Error(subject, "has a position or heading that is not a number", "give finite site metres and degrees");
-  HullSamples samples = sample_hull(d.hull, d.hull_points);
+  // 1. Every parameter in its range (ship_limits.hpp) before anything is allocated or stepped.
+  require_in_range(subject, "hull_points", d.hull_points, limits::kHullPoints);
+  require_in_range(subject, "x_m", d.x_m, limits::kSiteCoordinate);
+  require_in_range(subject, "y_m", d.y_m, limits::kSiteCoordinate);
+  if (!std::isfinite(d.heading_deg))
+    throw Error(subject, fmt::format("heading_deg = {} is not a compass heading", format_value(d.heading_deg)),
+                "give degrees clockwise from north");
+  if (d.bow_wave) require_in_range(subject, "bow_wave_options.cells", d.bow_wave_options.cells, limits::kBowWaveCells);
+  if (d.bow_wave && d.dispersive_wake)
+    require_in_range(subject, "dispersive_wake_options.cells", d.dispersive_wake_options.cells, limits::kBowWaveCells);
+  if (d.loading.mass_kg) require_in_range(subject, "mass_kg", *d.loading.mass_kg, limits::kMass);
+  if (!d.loading.mass_kg && d.loading.draft_m) require_in_range(subject, "draft_m", *d.loading.draft_m, limits::kDraft);
+  if (d.loading.service_speed_m_s)
+    require_in_range(subject, "service_speed_m_s", *d.loading.service_speed_m_s,
+                     {0.1, limits::kSpeed.max, limits::kSpeed.unit, limits::kSpeed.reason});
+  if (d.hull.vertices_m.empty() || d.hull.triangles.empty())
+    throw Error(subject, "has an empty hull mesh", "give a generic hull or a closed triangle mesh");
+  double hull_length_m = 0.0;
+  {
+    // The main dimensions from the mesh's box, before the hull is sampled: a 1e9 m hull would
+    // otherwise be cut into pieces first (issue 44: 24 GB).
+    Eigen::Vector3d low = d.hull.vertices_m.front(), high = low;
+    for (const auto& v : d.hull.vertices_m) {
+      if (!v.allFinite()) throw Error(subject, fmt::format("hull {} has a vertex that is not finite", d.hull.name), "fix the mesh");
+      low = low.cwiseMin(v);
+      high = high.cwiseMax(v);
+    }
+    require_in_range(subject, fmt::format("the length of hull {}", d.hull.name), high.x() - low.x(), limits::kLength);
+    require_in_range(subject, fmt::format("the beam of hull {}", d.hull.name), high.y() - low.y(), limits::kBeam);
+    require_in_range(subject, fmt::format("the depth of hull {}", d.hull.name), high.z() - low.z(), limits::kDepth);
+    hull_length_m = high.x() - low.x();
+  }
+  const double speed_limit = max_speed_m_s(hull_length_m, options_.water.gravity_m_s2);
+  check_orders(subject, d.orders, speed_limit);
+  if (!(std::abs(d.initial_speed_m_s) <= speed_limit))
+    throw Error(subject,
+                fmt::format("initial_speed_m_s = {} is outside [-{:.3g}, {:.3g}] m/s: {}", format_value(d.initial_speed_m_s),
+                            speed_limit, speed_limit, limits::kSpeed.reason),
+                fmt::format("give a speed of at most {:.3g} m/s for this {:.3g} m hull", speed_limit, hull_length_m));
+  {
+    const WakeLayerChoice& c = d.wake_layer;
+    if (d.dispersive_wake &&
+        !(c.dispersive_below_froude > 0.0 && c.shallow_above_froude >= c.dispersive_below_froude &&
+          c.shallow_above_froude < 100.0 && c.fade_s >= 0.0 && c.fade_s <= 3600.0))
+      throw Error(subject,
+                  fmt::format("has wake_layer thresholds dispersive_below_froude = {}, shallow_above_froude = {}, "
+                              "fade_s = {}",
+                              format_value(c.dispersive_below_froude), format_value(c.shallow_above_froude),
+                              format_value(c.fade_s)),
+                  "use 0 < dispersive_below_froude <= shallow_above_froude < 100 and 0 <= fade_s <= 3600");
+  }
+
+  HullSamples samples = sample_hull(d.hull, d.hull_points, static_cast<std::size_t>(2 * limits::kHullPoints.max));
   HullLoading loading = d.loading;
   loading.water = options_.water;
   ShipParticulars particulars = particulars_for_hull(subject, d.hull, samples, loading);
+  // 2. The loading floats the hull at a draft a ship has (limits::kMinDraftFractionOfDepth).
+  if (particulars.design_draft_m < limits::kMinDraftFractionOfDepth * particulars.depth_m) {
+    const double half_depth_kg =
+        options_.water.density_kg_m3 *
+        displaced_volume_m3(samples, particulars.hull_centre_m.z() - 0.5 * particulars.depth_m + 0.5 * particulars.depth_m);
+    throw Error(subject,
+                fmt::format("{} = {} floats hull {} at a draft of {:.3g} m, under {:.0f} % of its depth {:.3g} m: no ship "
+                            "floats that light (a light ship displaces 20-40 % of its loaded displacement), and the bow "
+                            "wave would have no hull to push",
+                            d.loading.mass_kg ? "mass_kg" : "draft_m",
+                            format_value(d.loading.mass_kg ? *d.loading.mass_kg : d.loading.draft_m.value_or(0.0)),
+                            d.hull.name, particulars.design_draft_m, 100 * limits::kMinDraftFractionOfDepth,
+                            particulars.depth_m),
+                fmt::format("give the displacement in kg (about {:.3g} kg floats it at half its depth)", half_depth_kg));
+  }
 
   // Upright at the design draft, the hull's centre at (x, y).
   const double yaw = yaw_from_heading_rad(d.heading_deg);
@@ -118,6 +232,14 @@ std::size_t ShipFleet::add_ship(const ShipDefinition& d) {
                     fmt::format("is placed on land: the ground at ({:.1f}, {:.1f}) m is {:.2f} m above still water",
                                 at.x(), at.y(), -depth),
                     "move its position_m into the water");
+      if (const HarbourObstacles* obstacles = seabed_->obstacles()) {
+        const ObstacleSample o = obstacles->sample(at.x(), at.y());
+        if (o.signed_distance_m < 0.0 && o.structure >= 1)
+          throw Error(subject,
+                      fmt::format("is placed on {}: its hull at ({:.1f}, {:.1f}) m is {:.2f} m inside it",
+                                  obstacles->describe(o.structure).describe(), at.x(), at.y(), -o.signed_distance_m),
+                      "move its position_m into open water");
+      }
       if (depth < particulars.design_draft_m)
         throw Error(subject,
                     fmt::format("is placed where the water at ({:.1f}, {:.1f}) m is {:.2f} m deep, shallower than its "
@@ -131,13 +253,6 @@ std::size_t ShipFleet::add_ship(const ShipDefinition& d) {
   if (d.bow_wave) wave = std::make_unique<BowWave>(particulars, d.bow_wave_options);
   std::unique_ptr<DispersiveWake> dispersive;
   if (d.bow_wave && d.dispersive_wake) {
-    const WakeLayerChoice& c = d.wake_layer;
-    if (!(c.dispersive_below_froude > 0.0 && c.shallow_above_froude >= c.dispersive_below_froude && c.fade_s >= 0.0))
-      throw Error(subject,
-                  fmt::format("has wake_layer thresholds dispersive_below_froude = {}, shallow_above_froude = {}, "
-                              "fade_s = {}",
-                              c.dispersive_below_froude, c.shallow_above_froude, c.fade_s),
-                  "use 0 < dispersive_below_froude <= shallow_above_froude and fade_s >= 0");
     dispersive = std::make_unique<DispersiveWake>(particulars, d.dispersive_wake_options);
   }
   ShipBody body(std::move(samples), std::move(particulars), state);
@@ -157,6 +272,14 @@ void ShipFleet::apply_orders(Ship& ship) {
   const ShipParticulars& p = ship.body_.particulars();
   const ShipState& s = ship.body_.state();
   ShipControls c = ship.manual_;
+  // The host's keys (manual_controls) are clamped to their ranges; a value that is no number is
+  // refused, naming the ship, before it reaches the body.
+  if (!std::isfinite(c.engine_order) || !std::isfinite(c.rudder_order_rad))
+    throw Error(fmt::format("ship '{}'", ship.name_),
+                fmt::format("manual_controls() holds engine_order = {}, rudder_order_rad = {}", format_value(c.engine_order),
+                            format_value(c.rudder_order_rad)),
+                "set an engine order in [-1, 1] and a rudder angle in rad");
+  c.engine_order = std::clamp(c.engine_order, -1.0, 1.0);
   const ShipOrders& o = ship.orders_;
   if (o.engine_order) c.engine_order = std::clamp(*o.engine_order, -1.0, 1.0);
   if (o.speed_m_s) {
@@ -227,8 +350,12 @@ void ShipFleet::step(const runtime::SurfaceSnapshot& snapshot, double dt_s) {
 }
 
 void ShipFleet::step(const runtime::SurfaceSampler* water, double dt_s) {
-  if (!(dt_s > 0.0)) return;
+  if (dt_s == 0.0) return;
+  if (!(dt_s > 0.0 && dt_s <= 1.0))
+    throw Error("ShipFleet::step", fmt::format("dt_s = {} is outside (0, 1] s", format_value(dt_s)),
+                "step once per displayed frame");
   for (auto& s : ships_) apply_orders(*s);
+  time_s_ += dt_s;
   repel();
   for (std::size_t k = 0; k < ships_.size(); ++k) {
     Ship& ship = *ships_[k];
@@ -241,11 +368,14 @@ void ShipFleet::step(const runtime::SurfaceSampler* water, double dt_s) {
         return bow_wave_elevation_m(x, y, static_cast<long>(k));
       };
     ship.body_.step(environment, ship.controls_, ship.external_, dt_s);
+    require_sound_motion(ship);
   }
-  for (auto& s : ships_) {
+  for (std::size_t k = 0; k < ships_.size(); ++k) {
+    auto& s = ships_[k];
     update_bow_waves(*s, dt_s);
     s->wake_.update(s->body_, s->controls_.engine_order, dt_s);
     const BodyReport& r = s->body_.report();
+    report_structure_contact(*s, k);
     const bool aground = r.contact_points > 0;
     if (aground && !s->status_.aground) {
       s->orders_ = ShipOrders{};
@@ -326,6 +456,55 @@ std::vector<BowWaveField> ShipFleet::bow_wave_fields() const {
     if (s->bow_wave_ && s->bow_wave_->shown_weight() > 0.0) out.push_back(s->bow_wave_->field());
     if (s->dispersive_wake_ && s->dispersive_wake_->shown_weight() > 0.0) out.push_back(s->dispersive_wake_->field());
   }
+  return out;
+}
+
+void ShipFleet::report_structure_contact(Ship& s, std::size_t index) {
+  const BodyReport& r = s.body_.report();
+  const int now = r.structure_contact_points > 0 ? r.structure : -1;
+  const int before = s.status_.structure_contact;
+  if (now == before) return;
+  const HarbourObstacles* obstacles = seabed_ ? seabed_->obstacles() : nullptr;
+  auto event_for = [&](int structure, bool began) {
+    ContactEvent e;
+    e.ship = s.name_;
+    e.ship_index = index;
+    e.began = began;
+    e.structure = structure;
+    const HarbourStructure h = obstacles != nullptr ? obstacles->describe(structure) : HarbourStructure{};
+    e.wall = h.wall;
+    e.porosity = h.porosity;
+    e.description = h.describe();
+    e.time_s = time_s_;
+    if (began) {
+      e.position_m = r.structure_contact_m;
+      e.normal = r.structure_normal;
+      e.closing_speed_m_s = r.structure_closing_speed_m_s;
+      // An impact faster than a berthing ship ever meets a fender is a collision: the engine is
+      // stopped as on grounding. A gentler touch (a tug pushing on a quay) keeps the orders.
+      const bool collision = e.closing_speed_m_s > kBerthingSpeedLimit_m_s;
+      if (collision) {
+        s.orders_ = ShipOrders{};
+        s.manual_ = ShipControls{};
+      }
+      events_.push_back(fmt::format("ship '{}' struck {} at ({:.1f}, {:.1f}) m, closing at {:.2f} m/s against its face "
+                                    "(normal {:.2f}, {:.2f}){}",
+                                    s.name_, e.description, e.position_m.x(), e.position_m.y(), e.closing_speed_m_s,
+                                    e.normal.x(), e.normal.y(), collision ? "; engine stopped" : ""));
+    } else {
+      e.position_m = s.body_.state().position_m;
+      events_.push_back(fmt::format("ship '{}' is clear of {}", s.name_, e.description));
+    }
+    contacts_.push_back(std::move(e));
+  };
+  if (before >= 0) event_for(before, false);
+  if (now >= 0) event_for(now, true);
+  s.status_.structure_contact = now;
+}
+
+std::vector<ContactEvent> ShipFleet::take_contacts() {
+  std::vector<ContactEvent> out;
+  out.swap(contacts_);
   return out;
 }
 

@@ -2,6 +2,8 @@
 // scenario files.
 #include <cmath>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -38,6 +40,62 @@ std::shared_ptr<const runtime::HarbourSite> demo_site() {
   site->width_m = geometry.width_m();
   site->height_m = geometry.height_m();
   return site;
+}
+
+// Issue 44 through the C++ API: every out-of-range field of a ShipDefinition, its orders and the
+// fleet's step is a nearshore::Error naming the ship, the field and its range, before anything is
+// built (a 1e9 m hull is refused before it is cut into pieces), and the fleet goes on.
+TEST(ShipFleet, OutOfRangeDefinitionsOrdersAndStepsAreRefusedNamingTheField) {
+  ShipFleet fleet;
+  fleet.set_seabed(Seabed::flat(20.0));
+  auto tug = [] {
+    ShipDefinition d;
+    d.name = "Range";
+    d.hull = harbour_tug();
+    d.loading.draft_m = 3.0;
+    d.hull_points = 400;
+    d.bow_wave_options.cells = 32;
+    return d;
+  };
+  struct Case {
+    const char* field;
+    std::function<void(ShipDefinition&)> edit;
+  };
+  const std::vector<Case> cases = {
+      {"initial_speed_m_s", [](ShipDefinition& d) { d.initial_speed_m_s = 1e308; }},
+      {"initial_speed_m_s", [](ShipDefinition& d) { d.initial_speed_m_s = 1e8; }},
+      {"initial_speed_m_s", [](ShipDefinition& d) { d.initial_speed_m_s = std::nan(""); }},
+      {"mass_kg", [](ShipDefinition& d) { d.loading.mass_kg = 1e-300; }},
+      {"mass_kg", [](ShipDefinition& d) { d.loading.mass_kg = 2.0; }},  // floats the tug on 0.03 mm
+      {"draft_m", [](ShipDefinition& d) { d.loading.draft_m = -1.0; }},
+      {"hull_points", [](ShipDefinition& d) { d.hull_points = 2000000000; }},
+      {"bow_wave_options.cells", [](ShipDefinition& d) { d.bow_wave_options.cells = 1 << 20; }},
+      {"x_m", [](ShipDefinition& d) { d.x_m = std::numeric_limits<double>::infinity(); }},
+      {"speed_m_s", [](ShipDefinition& d) { d.orders.speed_m_s = 1e5; }},
+      {"engine_order", [](ShipDefinition& d) { d.orders.engine_order = std::nan(""); }},
+      {"waypoint 0", [](ShipDefinition& d) { d.orders.route_m = {{1e300, 0.0}}; }},
+  };
+  for (const Case& c : cases) {
+    ShipDefinition d = tug();
+    c.edit(d);
+    const std::string message = error_of([&] { fleet.add_ship(d); });
+    EXPECT_NE(message.find(c.field), std::string::npos) << c.field << ": " << message;
+    EXPECT_NE(message.find("Range"), std::string::npos) << message;
+  }
+  // Dimensions are refused by the generic hulls before they are lofted.
+  for (const char* name : {"tug", "wigley", "box_barge"}) {
+    EXPECT_NE(error_of([&] { generic_hull(name, {1e9, 0, 0, 0}); }).find("length_m"), std::string::npos) << name;
+    EXPECT_NE(error_of([&] { generic_hull(name, {0, 1e9, 0, 0}); }).find("beam_m"), std::string::npos) << name;
+  }
+  EXPECT_EQ(fleet.size(), 0u);
+  fleet.add_ship(tug());
+  EXPECT_NE(error_of([&] { fleet.ship(0).set_orders(ShipOrders{std::nullopt, 1e5, {}}); }).find("speed_m_s"), std::string::npos);
+  EXPECT_NE(error_of([&] { fleet.step(nullptr, std::numeric_limits<double>::infinity()); }).find("dt_s"), std::string::npos);
+  fleet.ship(0).manual_controls().engine_order = std::nan("");
+  EXPECT_NE(error_of([&] { fleet.step(nullptr, 1.0 / 30); }).find("engine_order"), std::string::npos);
+  fleet.ship(0).manual_controls().engine_order = 5.0;  // clamped to full ahead
+  for (int k = 0; k < 30; ++k) fleet.step(nullptr, 1.0 / 30);
+  EXPECT_TRUE(fleet.ship(0).body().state().position_m.allFinite());
 }
 
 TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {

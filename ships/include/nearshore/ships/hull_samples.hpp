@@ -31,7 +31,9 @@ struct HullSamples {
 
 /// About `target_count` points (more for meshes with many or long skinny triangles, at least one per
 /// triangle with area); triangles without area are skipped.
-HullSamples sample_hull(const HullMesh& mesh, int target_count);
+/// Throws nearshore::Error naming the hull when it would take more than max_count pieces (a mesh of
+/// more triangles than that, or of extreme proportions: each piece costs time every substep).
+HullSamples sample_hull(const HullMesh& mesh, int target_count, std::size_t max_count = 1000000);
 
 /// Displaced volume (m^3) below the plane z = waterline_z_m (body frame, upright), by the vertical
 /// projection of the sampled surface: V = sum over points below the plane of (z_w - z) (-n_z) A

@@ -101,7 +101,11 @@ class BasicShallowWaterGrid {
   /// The largest stable step for the current state (s): cfl dx / max(|u| + sqrt(g h)).
   double stable_time_step_s() const;
   /// Advances by dt_s in as many SSP-RK2 steps as the CFL condition needs; returns their number.
+  /// Throws nearshore::Error (an internal error: every input that could cause it is range-checked)
+  /// when that would take more than kMaxStepsPerAdvance steps or the wave speed is not finite,
+  /// instead of hanging: a bow wave's frame takes 2-4 steps, the tests' longest runs under 1000.
   int advance(double dt_s);
+  static constexpr int kMaxStepsPerAdvance = 20000;
   /// One SSP-RK2 step of exactly dt_s (the caller keeps it under the CFL limit).
   void step(double dt_s);
 

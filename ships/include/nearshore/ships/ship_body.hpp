@@ -25,6 +25,12 @@
 //              k A_i (z_b - z_i) - c A_i dz_i/dt (k = 50 rho g: a sand bed 50 times stiffer than
 //              the water's hydrostatic stiffness, c = 0.1 s k), with Coulomb friction mu = 0.4
 //              (regularised below 5 cm/s) against the point's horizontal velocity.
+//   structures breakwaters, quays, piers and land (the seabed's HarbourObstacles): a hull point at
+//              horizontal depth p = -phi inside a solid and below its top pushes out along the
+//              face's normal n with k_s A_i (p - t_s v.n) (k_s = 500 rho g: a face 10 times stiffer
+//              than the sand bed, so that a tug at 3 m/s stops within a few decimetres; t_s = 0.02 s
+//              keeps the explicit step stable, k_s A t_s dt / m well under 2), with Coulomb friction
+//              mu = 0.4 against the point's velocity along the face (steel on concrete or rock).
 //   external   ship-ship repulsion (ship_fleet.hpp), given as a force and a torque about G.
 // Dynamics: Newton for the translation with the world-frame mass matrix M = R (m Id + A_t) R^T
 // (eq. 4.17 with the added masses A_t of surge, sway, heave), Euler's equations with the
@@ -158,6 +164,15 @@ struct BodyReport {
   int contact_points = 0;                 ///< points below the seabed
   double max_penetration_m = 0.0;
   Eigen::Vector3d contact_position_m = Eigen::Vector3d::Zero();  ///< mean of the contact points
+  /// Contact with the harbour's structures and land (harbour_obstacles.hpp): hull points inside a
+  /// solid and below its top; the solid and the point of deepest penetration.
+  int structure_contact_points = 0;
+  int structure = -1;                     ///< 0 land, k >= 1 structure k, -1 none
+  double structure_penetration_m = 0.0;
+  Eigen::Vector3d structure_contact_m = Eigen::Vector3d::Zero();
+  Eigen::Vector2d structure_normal = Eigen::Vector2d::Zero();  ///< out of the solid, at that point
+  double structure_closing_speed_m_s = 0.0;  ///< the largest speed of a point into the solid
+  double structure_force_N = 0.0;         ///< the contact's normal force, summed over the points
   double rudder_angle_rad = 0.0;          ///< the rudder's actual angle (it moves at its rate)
   double thrust_N = 0.0;
 };

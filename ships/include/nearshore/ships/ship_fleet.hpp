@@ -26,7 +26,12 @@
 //      dispersive wake (dispersive_wake.hpp) has two bow-wave layers and shows one, chosen by its
 //      depth Froude number Fr_d = U / sqrt(g d) (WakeLayerChoice below), so that the hull's
 //      displacement is counted once: the shown weights of the two layers sum to 1.
-//   5. grounding: a ship with hull points below the seabed is aground; its engine is stopped (its
+//   5. structures: a ship whose hull touches a breakwater, quay, pier or the land (the body's
+//      contact, ship_body.hpp) gets an event naming the structure, where and how fast it struck, and
+//      another when it is clear again. A strike faster than 0.5 m/s (above the berthing speeds of
+//      PIANC's fender guidance) is a collision: its orders are dropped and the engine stopped, as
+//      on grounding; a gentler touch keeps the orders (a tug pushes on a quay).
+//   6. grounding: a ship with hull points below the seabed is aground; its engine is stopped (its
 //      orders dropped: the ship stops by the bed's friction), and an event says where, how deep and
 //      at what heel; refloating is said too.
 #include <algorithm>
@@ -91,7 +96,23 @@ struct ShipDefinition {
   SternWakeOptions wake_options;
 };
 
+/// A ship touching, or coming clear of, a structure or the land (harbour_obstacles.hpp).
+struct ContactEvent {
+  std::string ship;                 ///< the ship's name
+  std::size_t ship_index = 0;       ///< its index when the event happened
+  bool began = true;                ///< true: it struck; false: it is clear again
+  int structure = 0;                ///< 0 the land, k >= 1 structure k
+  bool wall = false;                ///< a quay wall (porosity < 0.05); else a porous breakwater or land
+  double porosity = 1.0;            ///< the structure's lowest porosity (1 for land)
+  std::string description;          ///< HarbourStructure::describe()
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< the deepest contact point, site frame
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();      ///< the face's normal there, out of the solid
+  double closing_speed_m_s = 0.0;   ///< how fast the hull met the face (began) or 0
+  double time_s = 0.0;              ///< the fleet's time (sum of its steps)
+};
+
 struct ShipStatus {
+  int structure_contact = -1;       ///< the structure (0 land) the hull touches, -1 none
   bool aground = false;
   Eigen::Vector3d contact_position_m = Eigen::Vector3d::Zero();
   double max_penetration_m = 0.0;
@@ -115,7 +136,9 @@ class Ship {
   const ShipStatus& status() const { return status_; }
   const ShipOrders& orders() const { return orders_; }
   /// Replaces the orders (a host's engine telegraph and helm): clears the route unless given.
-  void set_orders(ShipOrders orders) { orders_ = std::move(orders); }
+  /// Throws nearshore::Error naming the ship and the field for an order out of its range
+  /// (ship_limits.hpp: engine order in [-1, 1], speed ahead up to max_speed_m_s, finite waypoints).
+  void set_orders(ShipOrders orders);
   /// Manual controls: used when the orders hold no engine order, speed or route (a viewer's keys).
   ShipControls& manual_controls() { return manual_; }
   const ShipControls& controls() const { return controls_; }
@@ -139,6 +162,8 @@ class Ship {
 struct FleetOptions {
   WaterProperties water;
   double repulsion_speed_m_s = 3.0;  ///< v_0 above
+  /// Structures and land as obstacles (crest height, band of the distance field).
+  HarbourObstacleOptions obstacles;
 };
 
 class ShipFleet {
@@ -177,16 +202,21 @@ class ShipFleet {
 
   /// Messages since the last call ("ship 'Tug 1' ran aground at (812.4, 1033.0) m ..."), oldest first.
   std::vector<std::string> take_events();
+  /// Contacts with structures and land since the last call, oldest first (each is also a message).
+  std::vector<ContactEvent> take_contacts();
 
  private:
   void apply_orders(Ship& ship);
   void update_bow_waves(Ship& ship, double dt_s);
   void repel();
+  void report_structure_contact(Ship& ship, std::size_t index);
 
   FleetOptions options_;
   std::optional<Seabed> seabed_;
   std::vector<std::unique_ptr<Ship>> ships_;
   std::vector<std::string> events_;
+  std::vector<ContactEvent> contacts_;
+  double time_s_ = 0.0;
 };
 
 }  // namespace nearshore::ships
