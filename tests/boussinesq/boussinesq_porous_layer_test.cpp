@@ -129,8 +129,10 @@ TEST(PorousLayer, FitsThePorosityThatGivesARequestedReflectionOrTransmission) {
                 fit.response.reflection_coefficient, fit.response.relative_depth_kh, fit.response.layer_width_wavelengths, fit.flume_runs);
     ASSERT_TRUE(fit.reached) << requested;
     EXPECT_NEAR(fit.response.reflection_coefficient, requested, 0.02);
-    // Measured again at the fitted porosity: the same (the flume is deterministic).
-    EXPECT_DOUBLE_EQ(measure_porous_layer(flume, fit.response.porosity).reflection_coefficient, fit.response.reflection_coefficient);
+    // Measured again at the fitted porosity, relative to the wall alone as the fit reads it: the
+    // same (the flume is deterministic).
+    EXPECT_NEAR(measure_porous_layer(flume, fit.response.porosity).reflection_coefficient / measure_porous_layer(flume, 1.0).reflection_coefficient,
+                fit.response.reflection_coefficient, 1e-12);
   }
   // A free-standing layer (a pier on piles): the transmission.
   flume.wall_behind = false;

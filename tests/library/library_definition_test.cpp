@@ -224,57 +224,5 @@ TEST(LibraryTide, TheStillWaterLevelRaisesEveryDepthAndMovesTheWetDryLine) {
   EXPECT_THROW(read("still_water_level_m = 31.0"), Error);
 }
 
-// A sweep of 300 000 states planned silently for over an hour (issue 44): the count is refused at
-// once, with the reason and each list's size; a base case nested 150 000 levels deep (it overflowed
-// the stack) is refused by the case reader; the library never writes into another command's folder.
-TEST(LibraryDefinition, AHugeSweepADeepBaseCaseAndAnotherCommandsFolderAreRefusedAtOnce) {
-  const fs::path folder = scratch();
-  write_text_file(folder / "base.toml", kIrregularCase);
-  std::string heights = "height_m = [", periods = "period_s = [", directions = "direction_deg = [";
-  for (int i = 0; i < 100; ++i) {
-    heights += (i ? ", " : "") + std::to_string(0.5 + 0.01 * i);
-    periods += (i ? ", " : "") + std::to_string(5.0 + 0.1 * i);
-  }
-  for (int i = 0; i < 30; ++i) directions += (i ? ", " : "") + std::to_string(i);
-  const fs::path library = write_text_file(folder / "library.toml", "title = \"t\"\nbase_case = \"base.toml\"\n[sweep]\n" + heights +
-                                                                        "]\n" + periods + "]\n" + directions + "]\n");
-  const auto start = std::chrono::steady_clock::now();
-  try {
-    read_library_definition(library);
-    ADD_FAILURE() << "300 000 states accepted";
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find("[sweep] makes 300000 states (30 direction_deg x 100 height_m x 100 period_s)"), std::string::npos)
-        << message;
-    EXPECT_NE(message.find("more than a library takes (10000)"), std::string::npos) << message;
-  }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
-
-  const int levels = 150000;
-  write_text_file(folder / "deep.json", "{\"title\": " + std::string(levels, '[') + std::string(levels, ']') + "}");
-  const fs::path deep = write_text_file(folder / "deep_library.toml", "title = \"t\"\nbase_case = \"deep.json\"\n");
-  try {
-    read_library_definition(deep);
-    ADD_FAILURE() << "a base case 150 000 levels deep was read";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("levels deep"), std::string::npos) << std::string(error.what()).substr(0, 300);
-  }
-
-  const fs::path sequence = folder / "sequence";
-  fs::create_directories(sequence);
-  write_text_file(sequence / "manifest.json", "{}");
-  LibraryOptions options;
-  options.output_folder = sequence;
-  const fs::path small = write_text_file(folder / "small.toml", "title = \"t\"\nbase_case = \"base.toml\"\n");
-  try {
-    run_library(small, options);
-    ADD_FAILURE() << "a library was written into a sequence's folder";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("holds a baked sequence"), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("LibraryOptions::overwrite"), std::string::npos) << error.what();
-  }
-  EXPECT_FALSE(fs::exists(sequence / "library.json"));
-}
-
 }  // namespace
 }  // namespace nearshore::library
