@@ -314,32 +314,7 @@ PorosityFit fit_porosity_to_transmission(const PorousLayerFlume& flume, double t
     return {closed, transmission_coefficient >= closed.transmission_coefficient - tolerance, 3};
   if (transmission_coefficient >= open.transmission_coefficient - tolerance)
     return {open, transmission_coefficient <= open.transmission_coefficient + tolerance, 3};
-  // Regula falsi on the relative transmission (a flume that measures relative to `without`).
-  PorosityFit fit;
-  fit.flume_runs = 3;
-  LayerResponse low = closed, high = open;
-  double f_low = kt(low) - transmission_coefficient, f_high = kt(high) - transmission_coefficient;
-  int side = 0;
-  for (int i = 0; i < 16; ++i) {
-    if (std::min(std::abs(f_low), std::abs(f_high)) <= tolerance || std::abs(high.porosity - low.porosity) < 1e-3) break;
-    double n = (low.porosity * f_high - high.porosity * f_low) / (f_high - f_low);
-    const double margin = 0.05 * std::abs(high.porosity - low.porosity);
-    n = std::clamp(n, std::min(low.porosity, high.porosity) + margin, std::max(low.porosity, high.porosity) - margin);
-    const LayerResponse middle = measure(n);
-    ++fit.flume_runs;
-    const double f_middle = kt(middle) - transmission_coefficient;
-    if (f_low * f_middle <= 0.0) {
-      high = middle, f_high = f_middle;
-      if (side == -1) f_low *= 0.5;
-      side = -1;
-    } else {
-      low = middle, f_low = f_middle;
-      if (side == 1) f_high *= 0.5;
-      side = 1;
-    }
-  }
-  fit.response = std::abs(f_low) < std::abs(f_high) ? low : high;
-  return fit;
+  return regula_falsi(measure, transmission_coefficient, tolerance, closed, open, kt, 3);
 }
 
 }  // namespace nearshore::boussinesq
