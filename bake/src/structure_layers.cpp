@@ -45,7 +45,12 @@ struct FitResult {
   boussinesq::PorosityFit fit;
   int widening_cells = 0;  ///< cells the faces were widened by to reach the request
   std::vector<LayerResponse> across_band;
+  std::string failure;     ///< why the flume could not fit this layer (then the faces keep the fallback)
 };
+
+// Water shallower than this in front of a structure carries no wave the flume can stand for (a
+// structure on a drying beach): its faces keep the fallback porosity, said in a warning.
+constexpr double kShallowestFittedDepth_m = 0.1;
 
 // Faces too thin to absorb what a structure does not reflect are widened a cell at a time, up to
 // half a wavelength of layer or this many cells, whichever comes first (MIKE 21 BW's porosity
@@ -213,7 +218,8 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       layer.face_width_m = impermeable ? outline_m : narrowest_m + 2.0 * outline_m;
     }
     layer.wave_period_s = sea.peak_period_s;
-    layer.fitted = structure.porosity < 0.0 && can_fit && !face_depths.empty() && layer.face_cells > 0 && !sea.waves.empty();
+    layer.fitted = structure.porosity < 0.0 && can_fit && !face_depths.empty() && layer.face_cells > 0 && !sea.waves.empty() &&
+                   layer.depth_m >= kShallowestFittedDepth_m;
     layer.face_porosity = structure.porosity >= 0.0 ? structure.porosity : fallback_porosity;
     if (structure.porosity < 0.0 && !can_fit && layer.face_cells > 0)
       warnings.push_back(fmt::format("structure '{}' ({}): the wave maker gives no sea state (height and peak period) to fit its "
@@ -252,6 +258,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     flume.wall_behind = request.wall_behind;
     flume.solver = solver;
     FitResult& result = work[i]->second;
+    try {
     if (request.wall_behind) {
       result.fit = boussinesq::fit_porosity_to_reflection(flume, request.target, kStructureFitTolerance);
       // Too thin a layer against the wave: widen it (the request is below its chart's minimum).
@@ -269,11 +276,19 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       result.fit = boussinesq::fit_porosity_to_transmission(flume, request.target, kStructureFitTolerance);
     }
     result.across_band = result.fit.response.per_wave;
+    } catch (const Error& error) {
+      result.failure = error.problem();  // said per structure below; the bake goes on with the fallback
+    }
   });
 
   // Step 2's cells get their porosity: faces first, then cores (a core always wins).
   for (std::size_t s = 0; s < layers.size(); ++s) {
     StructureLayer& layer = layers[s];
+    if (layer.fitted && !fits.at(request_of[s]).failure.empty()) {
+      layer.fitted = false;
+      warnings.push_back(fmt::format("structure '{}' ({}): its faces could not be fitted ({}); they keep porosity {:.2f}", layer.name,
+                                     layer.kind, fits.at(request_of[s]).failure, layer.face_porosity));
+    }
     if (layer.fitted) {
       const FitResult& result = fits.at(request_of[s]);
       layer.face_porosity = result.fit.response.porosity;

@@ -222,7 +222,10 @@ void read_s57(GDALDataset& dataset, SourceData& out) {
     Pieces pieces;
     collect(f.GetGeometryRef(), pieces);
     if (pieces.lines.empty() && pieces.polygons.empty()) return;
-    ShoreStructure structure{category, std::move(pieces.lines), std::move(pieces.polygons)};
+    ShoreStructure structure;
+    structure.category = category;
+    structure.lines = std::move(pieces.lines);
+    structure.polygons = std::move(pieces.polygons);
     const int name_index = f.GetFieldIndex("OBJNAM");
     if (name_index >= 0 && f.IsFieldSetAndNotNull(name_index)) structure.name = f.GetFieldAsString(name_index);
     out.structures.push_back(std::move(structure));
@@ -268,7 +271,10 @@ void read_vector(GDALDataset& dataset, const ReadOptions& options, SourceData& o
         }
         continue;
       }
-      ShoreStructure structure{category, std::move(pieces.lines), std::move(pieces.polygons)};
+      ShoreStructure structure;
+      structure.category = category;
+      structure.lines = std::move(pieces.lines);
+      structure.polygons = std::move(pieces.polygons);
       const double crest = field_or_nan(*feature, "crest_width_m"), porosity = field_or_nan(*feature, "porosity");
       if (std::isfinite(crest)) structure.crest_width_m = crest;
       if (std::isfinite(porosity)) structure.porosity = porosity;
