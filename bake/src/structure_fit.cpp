@@ -1,0 +1,248 @@
+#include "nearshore/bake/structure_layers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+#include <fmt/core.h>
+#include <tbb/parallel_for.h>
+
+#include "nearshore/bathymetry/harbour_builder.hpp"
+#include "nearshore/bathymetry/structure_footprint.hpp"
+#include "nearshore/core/error.hpp"
+#include "nearshore/ocean/linear_waves.hpp"
+
+// lay_structures (structure_layers.hpp): the footprints and the flume's fits. Apart from the sea
+// state and the records (structure_layers.cpp) because it links the solver, which the case-file
+// fuzzer (clang) cannot build.
+namespace nearshore::bake {
+namespace {
+
+using boussinesq::LayerResponse;
+using boussinesq::PorousLayerFlume;
+
+double median_of_copy(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// One fit the flume makes; structures that ask the same of the same layer share it.
+struct FitRequest {
+  bool wall_behind = true;
+  double target = 1.0;
+  int layer_cells = 2;
+  double depth_m = 0.0;
+  bool operator<(const FitRequest& other) const {
+    return std::tie(wall_behind, target, layer_cells, depth_m) < std::tie(other.wall_behind, other.target, other.layer_cells, other.depth_m);
+  }
+};
+
+struct FitResult {
+  boussinesq::PorosityFit fit;
+  int widening_cells = 0;  ///< cells the faces were widened by to reach the request
+  std::vector<LayerResponse> across_band;
+  std::string failure;     ///< why the flume could not fit this layer (then the faces keep the fallback)
+};
+
+// Water shallower than this in front of a structure carries no wave the flume can stand for (a
+// structure on a drying beach): its faces keep the fallback porosity, said in a warning.
+constexpr double kShallowestFittedDepth_m = 0.1;
+
+// Faces too thin to absorb what a structure does not reflect are widened a cell at a time, up to
+// half a wavelength of layer or this many cells, whichever comes first (MIKE 21 BW's porosity
+// layers are drawn L/4 - L/2 wide for the same reason).
+constexpr int kMostWideningCells = 4;
+
+}  // namespace
+
+std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::SolverParameters& solver, const StructureSeaState& sea,
+                                           std::vector<std::string>& warnings, double fallback_porosity) {
+  const GridGeometry& g = grid.geometry;
+  const double cell_m = g.smaller_spacing_m();
+  const double core_reach_m = 0.5 * std::hypot(g.spacing_x_m(), g.spacing_y_m()) * std::sqrt(0.5);
+  const int minimum_face_cells = bathymetry::kMinimumStructureFaceCells;
+  const bool can_fit = sea.significant_wave_height_m > 0.0 && sea.peak_period_s > 0.0;
+  grid.porosity = Raster<float>(g.columns, g.rows, 1.0f);
+  std::vector<StructureLayer> layers;
+  std::vector<std::vector<std::size_t>> core_of(grid.structures.size()), faces_of(grid.structures.size());
+  std::map<FitRequest, FitResult> fits;
+  std::vector<FitRequest> request_of(grid.structures.size());
+
+  // The core and face cells of structure s with its faces widened by `widening_m`.
+  auto footprint = [&](std::size_t s, double widening_m) {
+    std::unordered_map<std::size_t, unsigned char> part;  // cell -> 1 face, 2 core (a real chart has hundreds of structures)
+    bathymetry::for_each_footprint_cell(
+        g, grid.still_water_depth_m, grid.structures[s], minimum_face_cells,
+        [&](int c, int r, bathymetry::FootprintPart which) {
+          unsigned char& p = part[static_cast<std::size_t>(r) * g.columns + c];
+          p = std::max<unsigned char>(p, which == bathymetry::FootprintPart::kCore ? 2 : 1);
+        },
+        widening_m);
+    core_of[s].clear();
+    faces_of[s].clear();
+    for (const auto& [i, which] : part) (which == 2 ? core_of[s] : faces_of[s]).push_back(i);
+    std::sort(core_of[s].begin(), core_of[s].end());
+    std::sort(faces_of[s].begin(), faces_of[s].end());
+  };
+
+  // Steps 1-3 of the header: coefficients, footprint, the flume each structure needs.
+  for (std::size_t s = 0; s < grid.structures.size(); ++s) {
+    const CoastalStructure& structure = grid.structures[s];
+    StructureLayer layer;
+    layer.name = structure.name;
+    layer.kind = structure.kind;
+    layer.transmission_requested = structure.transmission_coefficient;
+    layer.reflection_requested = structure.reflection_coefficient;
+    layer.reflection_from = "given";
+    if (structure.reflection_coefficient < 0.0) {
+      layer.reflection_requested = reflection_of_slope(structure.side_slope, structure.roughness_factor, sea.significant_wave_height_m,
+                                                       sea.spectral_period_s);
+      const double l0 = ocean::kGravity_m_s2 * sea.spectral_period_s * sea.spectral_period_s / (2.0 * std::numbers::pi);
+      layer.reflection_from = can_fit ? fmt::format("Zanuttigh & van der Meer (2008): slope 1:{:.3g}, gamma_f {:.2f}, xi {:.2f}",
+                                                    structure.side_slope, structure.roughness_factor,
+                                                    (1.0 / structure.side_slope) / std::sqrt(sea.significant_wave_height_m / l0))
+                                      : "no sea state to compute it from";
+    }
+    footprint(s, 0.0);
+    std::vector<double> face_depths;
+    for (std::size_t i : faces_of[s])
+      if (grid.still_water_depth_m.values()[i] > solver.dry_depth_m && grid.land.values()[i] == kWaterCell)
+        face_depths.push_back(grid.still_water_depth_m.values()[i]);
+    layer.core_cells = core_of[s].size();
+    layer.face_cells = faces_of[s].size();
+    if (layer.core_cells + layer.face_cells == 0)
+      warnings.push_back(fmt::format("structure '{}' ({}) lies outside the grid: left out", structure.name, structure.kind));
+    layer.depth_m = median_of_copy(face_depths);
+    const bool impermeable = bathymetry::has_impermeable_core(structure);
+    if (!structure.lines.empty()) {
+      const double reach_m = std::max(structure.footprint_half_width_m(layer.depth_m), (impermeable ? core_reach_m : 0.0) + minimum_face_cells * cell_m);
+      layer.face_width_m = impermeable ? reach_m - core_reach_m : 2.0 * reach_m;
+    } else {
+      const double outline_m = std::max(structure.side_slope * (structure.crest_elevation_m + layer.depth_m), minimum_face_cells * cell_m);
+      double narrowest_m = 0.0;
+      if (!impermeable) {
+        narrowest_m = INFINITY;
+        for (const auto& polygon : structure.polygons) {
+          if (polygon.empty()) continue;
+          double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+          for (const auto& [x, y] : polygon.front()) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+          narrowest_m = std::min(narrowest_m, std::min(x1 - x0, y1 - y0));
+        }
+        if (!std::isfinite(narrowest_m)) narrowest_m = 0.0;
+      }
+      layer.face_width_m = impermeable ? outline_m : narrowest_m + 2.0 * outline_m;
+    }
+    layer.wave_period_s = sea.peak_period_s;
+    layer.fitted = structure.porosity < 0.0 && can_fit && !face_depths.empty() && layer.face_cells > 0 && !sea.waves.empty() &&
+                   layer.depth_m >= kShallowestFittedDepth_m;
+    layer.face_porosity = structure.porosity >= 0.0 ? structure.porosity : fallback_porosity;
+    if (structure.porosity < 0.0 && !can_fit && layer.face_cells > 0)
+      warnings.push_back(fmt::format("structure '{}' ({}): the wave maker gives no sea state (height and peak period) to fit its "
+                                     "porous faces to; they keep porosity {:.2f}",
+                                     structure.name, structure.kind, fallback_porosity));
+    if (layer.fitted) {
+      FitRequest request;
+      request.wall_behind = impermeable;
+      request.target = std::round(1000.0 * (impermeable ? layer.reflection_requested : layer.transmission_requested)) / 1000.0;
+      request.layer_cells = std::max(1, static_cast<int>(std::lround(layer.face_width_m / cell_m)));
+      // Depths within 10 % share a fit (k h within +- 5 %: the layer's response moves by less than
+      // the fit's tolerance; a real chart has hundreds of piers at as many depths).
+      request.depth_m = std::exp(std::round(std::log(layer.depth_m) / 0.1) * 0.1);
+      request_of[s] = request;
+      fits.emplace(request, FitResult{});
+    }
+    layers.push_back(std::move(layer));
+  }
+
+  // The flume runs, in parallel over the distinct requests.
+  std::vector<std::pair<const FitRequest, FitResult>*> work;
+  for (auto& entry : fits) work.push_back(&entry);
+  tbb::parallel_for(std::size_t{0}, work.size(), [&](std::size_t i) {
+    const FitRequest& request = work[i]->first;
+    PorousLayerFlume flume;
+    flume.still_water_depth_m = request.depth_m;
+    // The sea's waves, lowered together where the water in front of the structure is too shallow
+    // to carry them unbroken (their heights summed below 0.8 d; the flume turns breaking off).
+    flume.waves = sea.waves;
+    double height_sum_m = 0.0;
+    for (const auto& wave : flume.waves) height_sum_m += wave.height_m;
+    const double lowered = std::min(1.0, 0.75 * request.depth_m / height_sum_m);
+    for (auto& wave : flume.waves) wave.height_m *= lowered;
+    flume.spacing_m = cell_m;
+    flume.layer_width_m = request.layer_cells * cell_m;
+    flume.wall_behind = request.wall_behind;
+    flume.solver = solver;
+    FitResult& result = work[i]->second;
+    try {
+    if (request.wall_behind) {
+      result.fit = boussinesq::fit_porosity_to_reflection(flume, request.target, kStructureFitTolerance);
+      // Too thin a layer against the wave: widen it (the request is below its chart's minimum).
+      while (!result.fit.reached && result.fit.response.reflection_coefficient > request.target &&
+             result.widening_cells < kMostWideningCells && result.fit.response.layer_width_wavelengths < 0.5) {
+        ++result.widening_cells;
+        PorousLayerFlume wider = flume;
+        wider.layer_width_m = (request.layer_cells + result.widening_cells) * cell_m;
+        const int runs = result.fit.flume_runs;
+        result.fit = boussinesq::fit_porosity_to_reflection(wider, request.target, kStructureFitTolerance);
+        result.fit.flume_runs += runs;
+        flume = wider;
+      }
+    } else {
+      result.fit = boussinesq::fit_porosity_to_transmission(flume, request.target, kStructureFitTolerance);
+    }
+    result.across_band = result.fit.response.per_wave;
+    } catch (const Error& error) {
+      result.failure = error.problem();  // said per structure below; the bake goes on with the fallback
+    }
+  });
+
+  // Step 2's cells get their porosity: faces first, then cores (a core always wins).
+  for (std::size_t s = 0; s < layers.size(); ++s) {
+    StructureLayer& layer = layers[s];
+    if (layer.fitted && !fits.at(request_of[s]).failure.empty()) {
+      layer.fitted = false;
+      warnings.push_back(fmt::format("structure '{}' ({}): its faces could not be fitted ({}); they keep porosity {:.2f}", layer.name,
+                                     layer.kind, fits.at(request_of[s]).failure, layer.face_porosity));
+    }
+    if (layer.fitted) {
+      const FitResult& result = fits.at(request_of[s]);
+      layer.face_porosity = result.fit.response.porosity;
+      layer.in_the_sea = result.fit.response;
+      layer.across_band = result.across_band;
+      layer.reached = result.fit.reached;
+      layer.flume_runs = result.fit.flume_runs;
+      if (result.widening_cells > 0) {
+        layer.widening_m = result.widening_cells * cell_m;
+        layer.face_width_m += layer.widening_m;
+        footprint(s, layer.widening_m);
+        layer.core_cells = core_of[s].size();
+        layer.face_cells = faces_of[s].size();
+      }
+      if (!layer.reached) {
+        const bool wall = bathymetry::has_impermeable_core(grid.structures[s]);
+        warnings.push_back(fmt::format(
+            "structure '{}' ({}): its {:.0f} m of porous faces at {:.1f} m depth (widened by {:.0f} m, as far as it goes) {} {} {:.2f} "
+            "in the sea of {:.1f} s peak period; the closest is {:.2f} (porosity {:.2f})",
+            layer.name, layer.kind, layer.face_width_m, layer.depth_m, layer.widening_m,
+            wall ? (layer.in_the_sea.reflection_coefficient > layer.reflection_requested ? "cannot reflect as little as" : "cannot reflect as much as")
+                 : (layer.in_the_sea.transmission_coefficient > layer.transmission_requested ? "cannot transmit as little as" : "cannot transmit as much as"),
+            wall ? "Kr" : "Kt", wall ? layer.reflection_requested : layer.transmission_requested, layer.wave_period_s,
+            wall ? layer.in_the_sea.reflection_coefficient : layer.in_the_sea.transmission_coefficient, layer.face_porosity));
+      }
+    }
+    const float n = static_cast<float>(layer.face_porosity);
+    for (std::size_t i : faces_of[s]) grid.porosity.values()[i] = std::min(grid.porosity.values()[i], n);
+  }
+  for (std::size_t s = 0; s < layers.size(); ++s)
+    for (std::size_t i : core_of[s]) grid.porosity.values()[i] = 0.0f;
+  return layers;
+}
+
+}  // namespace nearshore::bake
