@@ -28,13 +28,19 @@ double linear_phase_speed_squared(double k, double d, double B) {
 // of boussinesq_steady_wave has 8 points per retained harmonic, so the products stay resolved).
 std::vector<double> periodic_derivative(const std::vector<double>& samples, int order) {
   const int M = static_cast<int>(samples.size());
+  // cos(m theta_j) = cos(2 pi ((m j) mod M) / M): M angles serve all M^2 products.
+  std::vector<double> cos_q(M), sin_q(M);
+  for (int q = 0; q < M; ++q) {
+    cos_q[q] = std::cos(2.0 * std::numbers::pi * q / M);
+    sin_q[q] = std::sin(2.0 * std::numbers::pi * q / M);
+  }
   std::vector<double> out(M, 0.0);
   for (int m = 1; m < M / 2; ++m) {
     double a = 0.0, b = 0.0;  // samples ~ a cos(m theta) + b sin(m theta)
     for (int j = 0; j < M; ++j) {
-      const double theta = 2.0 * std::numbers::pi * j / M;
-      a += 2.0 / M * samples[j] * std::cos(m * theta);
-      b += 2.0 / M * samples[j] * std::sin(m * theta);
+      const int q = (m * j) % M;
+      a += 2.0 / M * samples[j] * cos_q[q];
+      b += 2.0 / M * samples[j] * sin_q[q];
     }
     // d/dtheta maps (a, b) -> m (b, -a); `order` times.
     for (int o = 0; o < order; ++o) {
@@ -43,8 +49,8 @@ std::vector<double> periodic_derivative(const std::vector<double>& samples, int 
       b = b_next;
     }
     for (int j = 0; j < M; ++j) {
-      const double theta = 2.0 * std::numbers::pi * j / M;
-      out[j] += a * std::cos(m * theta) + b * std::sin(m * theta);
+      const int q = (m * j) % M;
+      out[j] += a * cos_q[q] + b * sin_q[q];
     }
   }
   return out;
@@ -121,6 +127,17 @@ SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, Disper
                                   int harmonic_count, Equations equations) {
   const int N = std::max(2, harmonic_count), M = 8 * N;  // quadrature points: products de-aliased
   const double B3 = B + 1.0 / 3.0;
+  // cos(n theta_j) and sin(n theta_j) once: Newton evaluates the residual (N + 1) times an
+  // iteration, and the bake's wave maker and the structure flume ask for this wave many times.
+  std::vector<double> cos_nj(static_cast<std::size_t>(N) * M), sin_nj(static_cast<std::size_t>(N) * M);
+  for (int n = 1; n <= N; ++n)
+    for (int j = 0; j < M; ++j) {
+      const double angle = n * 2.0 * std::numbers::pi * j / M;
+      cos_nj[static_cast<std::size_t>(n - 1) * M + j] = std::cos(angle);
+      sin_nj[static_cast<std::size_t>(n - 1) * M + j] = std::sin(angle);
+    }
+  auto cos_of = [&](int n, int j) { return cos_nj[static_cast<std::size_t>(n - 1) * M + j]; };
+  auto sin_of = [&](int n, int j) { return sin_nj[static_cast<std::size_t>(n - 1) * M + j]; };
   // Unknowns x = (c, a_2 .. a_N); residual R_m = projection of r(theta) on sin(m theta), m = 1..N
   // (r is odd in theta for a wave symmetric about its crest, so these are all its components).
   auto residual = [&](const Eigen::VectorXd& x, double a1) {
@@ -129,25 +146,24 @@ SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, Disper
     if (equations == Equations::kFullyNonlinear) {
       std::vector<double> eta(M, 0.0);
       for (int j = 0; j < M; ++j)
-        for (int n = 1; n <= N; ++n) eta[j] += (n == 1 ? a1 : x[n - 1]) * std::cos(n * 2.0 * std::numbers::pi * j / M);
+        for (int n = 1; n <= N; ++n) eta[j] += (n == 1 ? a1 : x[n - 1]) * cos_of(n, j);
       const std::vector<double> r = fully_nonlinear_residual(eta, c, k, d, B);
       for (int j = 0; j < M; ++j)
-        for (int m = 1; m <= N; ++m) R[m - 1] += 2.0 / M * r[j] * std::sin(m * 2.0 * std::numbers::pi * j / M) / k;
+        for (int m = 1; m <= N; ++m) R[m - 1] += 2.0 / M * r[j] * sin_of(m, j) / k;
       return R;
     }
     for (int j = 0; j < M; ++j) {
-      const double theta = 2.0 * std::numbers::pi * j / M;
       double eta = 0, eta_1 = 0, eta_3 = 0;
       for (int n = 1; n <= N; ++n) {
         const double amplitude = n == 1 ? a1 : x[n - 1];
-        eta += amplitude * std::cos(n * theta);
-        eta_1 -= n * amplitude * std::sin(n * theta);
-        eta_3 += n * n * n * amplitude * std::sin(n * theta);
+        eta += amplitude * cos_of(n, j);
+        eta_1 -= n * amplitude * sin_of(n, j);
+        eta_3 += n * n * n * amplitude * sin_of(n, j);
       }
       const double h = d + eta, D = depth_kind == DispersionDepth::kTotal ? h : d;
       const double r = -c2 * eta_1 + c2 * eta_1 * eta * (2.0 * d + eta) / (h * h) + g * h * eta_1 +
                        k * k * (B3 * D * D * c2 - B * g * D * D * D) * eta_3;
-      for (int m = 1; m <= N; ++m) R[m - 1] += 2.0 / M * r * std::sin(m * theta);
+      for (int m = 1; m <= N; ++m) R[m - 1] += 2.0 / M * r * sin_of(m, j);
     }
     return R;
   };
