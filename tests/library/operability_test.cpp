@@ -48,7 +48,7 @@ TEST(Operability, OccurrenceTableIsReadInEitherDirectionConvention) {
   ASSERT_EQ(toward.size(), 2u);
   EXPECT_DOUBLE_EQ(toward[1].significant_wave_height_m, 1.5);
   EXPECT_DOUBLE_EQ(toward[1].direction_deg, 75.0);
-  EXPECT_EQ(toward[1].place, "toward.csv:6");
+  EXPECT_EQ(toward[1].place, "toward.csv:5");  // line 5: comment, header, row, blank, row
   // From the south (180 nautical) is travelling north, 90 counter-clockwise from east; from the
   // north-west (315) travels south-east, -45 = 315.
   const auto from = read_occurrence_table(
