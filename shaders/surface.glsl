@@ -1,5 +1,6 @@
 // The sea surface of a runtime::SurfaceSnapshot at a site point (runtime/surface_snapshot.hpp):
-//   harbour(p) = (1 - f_h) H_from(p) + f_h H_to(p)                 bilinear, cell-centred rasters
+//   harbour(p) = h00 H_from(p) + h10 T R_from(p) + h01 H_to(p) + h11 T R_to(p)   Hermite in time,
+//                bilinear in the cell-centred rasters (R = d eta / dt; (1 - f_h) H_from + f_h H_to without)
 //   deep(p)    = (1 - f_d) sum_c D_from,c(p) + f_d sum_c D_to,c(p) bilinear, periodic tiles
 //   shown(p)   = w(p) harbour(p) + (1 - w(p)) deep(p)               w = harbour_weight(site, p)
 // and the deep water's choppy shift (1 - w) lambda D(p) (ocean/deep_water.hpp: x -> x + lambda D).
@@ -20,6 +21,9 @@ uniform sampler2D u_still_water_depth;  // d, positive down, land negative
 uniform sampler2D u_porosity;
 uniform sampler2D u_land;          // R8: 1 land
 uniform float u_harbour_fraction;  // f_h
+uniform bool u_harbour_hermite;    // both keyframes carry d eta / dt (R): cubic Hermite in time
+uniform float u_frame_interval_s;  // T: display seconds between the harbour keyframes
+uniform sampler2D u_harbour_eta_rate_from, u_harbour_eta_rate_to;  // R, m/s
 uniform ivec2 u_cells;             // columns, rows
 uniform vec2 u_spacing_m;          // cell size dx, dy (rectangular cells: docs/solver.md)
 uniform vec2 u_site_size_m;        // width, height
@@ -152,6 +156,17 @@ vec2 patch_slope(vec2 p) {
               patch_elevation(p + vec2(0.0, h)) - patch_elevation(p - vec2(0.0, h))) / (2.0 * h);
 }
 
+// H_eta at p: the Hermite of runtime/surface_snapshot.hpp (h00, h10, h01, h11 at f_h), else linear.
+float harbour_in_time(vec2 p) {
+  float from = harbour_bilinear(u_harbour_eta_from, p), to = harbour_bilinear(u_harbour_eta_to, p);
+  float f = u_harbour_fraction;
+  if (!u_harbour_hermite) return mix(from, to, f);
+  float f2 = f * f, f3 = f2 * f;
+  float T = u_frame_interval_s;
+  return (2.0 * f3 - 3.0 * f2 + 1.0) * from + (f3 - 2.0 * f2 + f) * T * harbour_bilinear(u_harbour_eta_rate_from, p) +
+         (-2.0 * f3 + 3.0 * f2) * to + (f3 - f2) * T * harbour_bilinear(u_harbour_eta_rate_to, p);
+}
+
 struct Surface {
   float eta;     // shown surface elevation (m)
   vec2 shift;    // horizontal displacement of the point (m)
@@ -163,7 +178,7 @@ Surface surface_at(vec2 p) {
   s.weight = harbour_weight(p);
   float harbour = 0.0;
   if (s.weight > 0.0 && u_has_keyframes)
-    harbour = mix(harbour_bilinear(u_harbour_eta_from, p), harbour_bilinear(u_harbour_eta_to, p), u_harbour_fraction);
+    harbour = harbour_in_time(p);
   float deep_from = 0.0, deep_to = 0.0;
   vec2 shift_from = vec2(0.0), shift_to = vec2(0.0);
   if (s.weight < 1.0) {

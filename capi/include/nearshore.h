@@ -44,7 +44,7 @@ extern "C" {
  *    NEARSHORE_TIMEOUT, NEARSHORE_UNDERRUN, the underrun counters of nearshore_stats; time may go back.
  *    Hulls stop at structures and land (nearshore_fleet_next_contact); every ship option range-checked.
  * A host built against version N runs on a library of version >= N. */
-#define NEARSHORE_API_VERSION 5
+#define NEARSHORE_API_VERSION 6
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -222,6 +222,13 @@ NEARSHORE_API nearshore_status nearshore_sea_query(const nearshore_sea* sea, con
 NEARSHORE_API nearshore_status nearshore_sea_query_at(const nearshore_sea* sea, double time_s, const double* xy_m,
                                                       size_t count, nearshore_surface_sample* samples);
 
+/* d eta / dt (m/s) of the displayed surface at `count` site points, one float each: the time
+ * derivative of the cubic Hermite the harbour's keyframes are joined by (heights are smooth in
+ * time: the rates come from the bake's mass equation), blended with the open sea's. For heave
+ * damping and relative motion. Any thread. (API version 6.) */
+NEARSHORE_API nearshore_status nearshore_sea_query_vertical_velocity(const nearshore_sea* sea, const double* xy_m,
+                                                                     size_t count, float* vertical_velocity_m_s);
+
 /* ---- drawing in the host's OpenGL context -------------------------------------------------- */
 typedef struct nearshore_renderer nearshore_renderer;
 
@@ -300,7 +307,7 @@ typedef struct nearshore_gl_textures {
   /* Harbour: R32F GL_TEXTURE_2D, columns x rows texels, texel (i, j) at the centre of cell (i, j)
    * ((i + 0.5) cell_size_x_m, (j + 0.5) cell_size_y_m), row 0 south. [0] from, [1] to. */
   unsigned int harbour_elevation[2], harbour_breaking[2];
-  float harbour_fraction;               /* shown = (1 - f) from + f to */
+  float harbour_fraction;               /* f; without rates (below) shown = (1 - f) from + f to */
   /* Deep water: R32F GL_TEXTURE_2D_ARRAY, N x N texels, one layer per cascade; texel (i, j) of
    * layer c at (i L_c / N, j L_c / N) of the site frame, repeating with period L_c. */
   unsigned int deep_elevation[2], deep_displacement_x[2], deep_displacement_y[2];
@@ -309,13 +316,20 @@ typedef struct nearshore_gl_textures {
   int deep_grid_size;                   /* N */
   float cascade_tile_m[8];              /* L_c */
   float deep_water_fraction;
+  /* API version 6: the harbour's d eta / dt (R32F, m/s) at each keyframe. With harbour_has_rates,
+   * shown = h00 E0 + h10 T R0 + h01 E1 + h11 T R1 (cubic Hermite in f: h00 = 2f^3 - 3f^2 + 1,
+   * h10 = f^3 - 2f^2 + f, h01 = -2f^3 + 3f^2, h11 = f^3 - f^2; T = frame_interval_s). A struct of
+   * version 5 (struct_size up to deep_water_fraction) is filled without these. */
+  unsigned int harbour_elevation_rate[2];
+  int harbour_has_rates;
+  float frame_interval_s;
 } nearshore_gl_textures;
 /* Makes the fields of the last nearshore_sea_advance resident on the GPU without drawing (for a
  * host that draws them itself) and returns their texture names (owned by nearshore, valid until
  * the next upload or draw). Render thread, context current. */
 NEARSHORE_API nearshore_status nearshore_renderer_upload(nearshore_renderer* renderer, nearshore_gl_textures* textures);
 
-/* Copies the displayed harbour surface elevation (m), blended as drawn, into `elevation_m`
+/* Copies the displayed harbour surface elevation (m), joined in time as drawn (the Hermite above), into `elevation_m`
  * (columns x rows floats, row 0 south; `capacity` floats available). Any thread. */
 NEARSHORE_API nearshore_status nearshore_sea_copy_harbour_elevation(const nearshore_sea* sea, float* elevation_m,
                                                                     size_t capacity);

@@ -366,10 +366,38 @@ nearshore_status nearshore_sea_copy_harbour_elevation(const nearshore_sea* sea, 
       std::fill(elevation_m, elevation_m + geometry.cell_count(), 0.f);
       return;
     }
-    const auto& from = snapshot.harbour_from->surface_elevation_m.values();
-    const auto& to = (snapshot.harbour_to ? snapshot.harbour_to : snapshot.harbour_from)->surface_elevation_m.values();
-    const float f = static_cast<float>(snapshot.harbour_fraction);
-    for (std::size_t i = 0; i < geometry.cell_count(); ++i) elevation_m[i] = (1.f - f) * from[i] + f * to[i];
+    const nearshore::runtime::HarbourKeyframe& from = *snapshot.harbour_from;
+    const nearshore::runtime::HarbourKeyframe& to = snapshot.harbour_to ? *snapshot.harbour_to : from;
+    const double f = snapshot.harbour_fraction, T = snapshot.site ? snapshot.site->frame_interval_s : 0.0;
+    const std::size_t cells = geometry.cell_count();
+    if (T > 0.0 && from.surface_elevation_rate_m_s.size() == cells && to.surface_elevation_rate_m_s.size() == cells) {
+      // The Hermite in time (runtime/surface_snapshot.hpp), as the renderer and the queries join them.
+      const nearshore::runtime::HermiteWeights h = nearshore::runtime::hermite_weights(f);
+      for (std::size_t i = 0; i < cells; ++i)
+        elevation_m[i] = static_cast<float>(h.from * from.surface_elevation_m.values()[i] + h.from_rate * T * from.surface_elevation_rate_m_s.values()[i] +
+                                            h.to * to.surface_elevation_m.values()[i] + h.to_rate * T * to.surface_elevation_rate_m_s.values()[i]);
+      return;
+    }
+    const float linear = static_cast<float>(f);
+    for (std::size_t i = 0; i < cells; ++i)
+      elevation_m[i] = (1.f - linear) * from.surface_elevation_m.values()[i] + linear * to.surface_elevation_m.values()[i];
+  });
+}
+
+nearshore_status nearshore_sea_query_vertical_velocity(const nearshore_sea* sea, const double* xy_m, size_t count,
+                                                       float* vertical_velocity_m_s) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    require(sea, "sea");
+    if (count == 0) return;
+    checked_count(count);
+    require(xy_m, "xy_m");
+    require(vertical_velocity_m_s, "vertical_velocity_m_s");
+    const nearshore::runtime::SurfaceSampler sampler(sea->snapshot());
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!std::isfinite(xy_m[2 * i]) || !std::isfinite(xy_m[2 * i + 1]))
+        fail(NEARSHORE_INVALID_ARGUMENT, "point " + std::to_string(i) + " of xy_m is not finite; give site metres");
+      vertical_velocity_m_s[i] = static_cast<float>(sampler.state(xy_m[2 * i], xy_m[2 * i + 1]).vertical_velocity_m_s);
+    }
   });
 }
 
@@ -571,8 +599,10 @@ nearshore_status nearshore_renderer_upload(nearshore_renderer* renderer, nearsho
   return guarded(NEARSHORE_GL_ERROR, [&] {
     require(renderer, "renderer");
     require(textures, "textures");
-    if (textures->struct_size != sizeof(nearshore_gl_textures))
+    constexpr std::size_t kVersion5Size = offsetof(nearshore_gl_textures, harbour_elevation_rate);
+    if (textures->struct_size != sizeof(nearshore_gl_textures) && textures->struct_size != kVersion5Size)
       fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_gl_textures.struct_size must be sizeof(nearshore_gl_textures)");
+    const bool version_6 = textures->struct_size == sizeof(nearshore_gl_textures);
     const nearshore::playback::GpuTextures& gpu = renderer->renderer->upload(renderer->sea->snapshot());
     if (gpu.cascade_count > 8)
       fail(NEARSHORE_INTERNAL_ERROR, "the deep water has " + std::to_string(gpu.cascade_count) + " cascades; the C API carries 8");
@@ -590,6 +620,11 @@ nearshore_status nearshore_renderer_upload(nearshore_renderer* renderer, nearsho
     textures->deep_grid_size = gpu.deep_grid_size;
     for (int c = 0; c < 8; ++c) textures->cascade_tile_m[c] = c < gpu.cascade_count ? gpu.tile_lengths_m[static_cast<std::size_t>(c)] : 0.f;
     textures->deep_water_fraction = static_cast<float>(gpu.deep_fraction);
+    if (version_6) {
+      for (int k = 0; k < 2; ++k) textures->harbour_elevation_rate[k] = gpu.harbour_elevation_rate[k];
+      textures->harbour_has_rates = gpu.harbour_has_rates ? 1 : 0;
+      textures->frame_interval_s = static_cast<float>(gpu.frame_interval_s);
+    }
   });
 }
 

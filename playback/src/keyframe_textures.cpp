@@ -103,7 +103,7 @@ void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::
                 "has a breaking raster of another size than its surface elevation",
                 "give both rasters the harbour grid's size");
   if (slot.width != width || slot.height != height || slot.layers != 0 || !slot.textures[0]) {
-    for (int field = 0; field < 2; ++field) {
+    for (int field = 0; field < kHarbourFieldCount; ++field) {
       if (!slot.textures[field]) slot.textures[field] = new_texture(GL_TEXTURE_2D);
       glBindTexture(GL_TEXTURE_2D, slot.textures[field]);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, nullptr);
@@ -112,7 +112,7 @@ void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::
     slot.height = height;
     slot.layers = 0;
   }
-  slot.rows_total = 2LL * height;  // eta rows, then breaking rows
+  slot.rows_total = static_cast<long long>(kHarbourFieldCount) * height;  // eta rows, breaking rows, rate rows
   slot.harbour = std::move(keyframe);
 }
 
@@ -167,8 +167,10 @@ std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) 
       const int field = static_cast<int>(slot.rows_done / slot.height), row = static_cast<int>(slot.rows_done % slot.height);
       const int count = static_cast<int>(std::min<long long>(rows, slot.height - row));
       glBindTexture(GL_TEXTURE_2D, slot.textures[field]);
-      const Raster<float>& raster = field == 0 ? slot.harbour->surface_elevation_m : slot.harbour->breaking;
-      if (raster.empty()) {  // no breaking raster: nothing breaks
+      const Raster<float>& raster = field == 0   ? slot.harbour->surface_elevation_m
+                                    : field == 1 ? slot.harbour->breaking
+                                                 : slot.harbour->surface_elevation_rate_m_s;
+      if (raster.size() != std::size_t(slot.width) * slot.height) {  // no breaking (nothing breaks) or no rate (linear)
         zero_row_.assign(std::size_t(slot.width), 0.f);
         for (int r = 0; r < count; ++r)
           glTexSubImage2D(GL_TEXTURE_2D, 0, 0, row + r, slot.width, 1, GL_RED, GL_FLOAT, zero_row_.data());
@@ -255,6 +257,10 @@ KeyframeTextures::Bound KeyframeTextures::prepare(const runtime::SurfaceSnapshot
     bound.harbour_breaking[0] = from.textures[1];
     bound.harbour_eta[1] = to.textures[0];
     bound.harbour_breaking[1] = to.textures[1];
+    bound.harbour_eta_rate[0] = from.textures[2];
+    bound.harbour_eta_rate[1] = to.textures[2];
+    bound.harbour_has_rates = harbour_from->surface_elevation_rate_m_s.size() == harbour_from->surface_elevation_m.size() &&
+                              harbour_to->surface_elevation_rate_m_s.size() == harbour_to->surface_elevation_m.size();
   }
   const auto& deep_from = snapshot.deep_from ? snapshot.deep_from : snapshot.deep_to;
   const auto& deep_to = snapshot.deep_to ? snapshot.deep_to : snapshot.deep_from;

@@ -2,7 +2,7 @@
 // The GPU copies of a snapshot's keyframes (private to the renderer). Each harbour and deep-water
 // keyframe is uploaded once, by serial, into a small pool of texture slots. A keyframe the engine
 // says is coming (stage) is uploaded in row chunks within a byte budget per drawn frame, so a
-// 1024 x 1024 keyframe (8 MB: eta and breaking as R32F) spreads over several frames instead of
+// 1024 x 1024 keyframe (12 MB: eta, its rate and breaking as R32F) spreads over several frames instead of
 // stalling one; a keyframe a snapshot needs before it is complete is finished at once (counted
 // as forced). Needs a current OpenGL context.
 #include <glad/gl.h>
@@ -24,6 +24,9 @@ struct UploadCounters {
 
 /// The deep-water fields a vertex or fragment shader reads, one R32F array per field.
 enum DeepField { kDeepEta, kDeepDx, kDeepDy, kDeepSlopeX, kDeepSlopeY, kDeepFieldCount };
+/// A harbour keyframe's textures: surface elevation, breaking, d eta / dt (R32F, the grid's size).
+inline constexpr int kHarbourFieldCount = 3;
+static_assert(kHarbourFieldCount <= kDeepFieldCount, "a slot's texture array holds either kind");
 
 class KeyframeTextures {
  public:
@@ -40,6 +43,8 @@ class KeyframeTextures {
   /// What a draw binds: the textures of the snapshot's pair (from, to), resident after prepare().
   struct Bound {
     GLuint harbour_eta[2] = {0, 0}, harbour_breaking[2] = {0, 0};
+    GLuint harbour_eta_rate[2] = {0, 0};  ///< d eta / dt (zeros where a keyframe has none)
+    bool harbour_has_rates = false;       ///< both keyframes carry d eta / dt: the Hermite in time
     GLuint deep[kDeepFieldCount][2] = {};
     int deep_size = 0, cascade_count = 0;  ///< cascade_count: the field's cascades (layers 0 .. count - 1)
     /// The split's inside layer (runtime/surface_snapshot.hpp): bit c of the mask draws the

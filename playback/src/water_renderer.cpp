@@ -50,9 +50,10 @@ constexpr const char* kSamplerUnits[] = {
     "u_deep_eta_to",       "u_deep_dx_from",      "u_deep_dx_to",            "u_deep_dy_from",
     "u_deep_dy_to",        "u_deep_slope_x_from", "u_deep_slope_x_to",       "u_deep_slope_y_from",
     "u_deep_slope_y_to",   "u_coast_distance",    "u_reflection",            "u_patches",
-    "u_decal_foam",        "u_deep_foam",         "u_previous_foam"};
+    "u_decal_foam",        "u_deep_foam",         "u_previous_foam",         "u_harbour_eta_rate_from",
+    "u_harbour_eta_rate_to"};
 enum Unit { kHarbourEta = 0, kHarbourBreaking = 2, kDepth = 4, kPorosity = 5, kLand = 6, kDeepFirst = 7, kCoast = 17,
-            kReflection = 18, kPatches = 19, kDecalFoam = 20, kDeepFoam = 21, kPreviousFoam = 22 };
+            kReflection = 18, kPatches = 19, kDecalFoam = 20, kDeepFoam = 21, kPreviousFoam = 22, kHarbourEtaRate = 23 };
 
 GLuint link_program(std::initializer_list<const char*> vertex_prefixes, const std::string& vertex_name,
                     std::initializer_list<const char*> fragment_prefixes, const std::string& fragment_name) {
@@ -381,6 +382,10 @@ struct WaterRenderer::Impl {
     set_uniform(program, "u_has_site", site ? 1 : 0);
     set_uniform(program, "u_has_keyframes", bound.harbour_eta[0] ? 1 : 0);
     set_uniform(program, "u_harbour_fraction", float(snapshot.harbour_fraction));
+    // The Hermite in time (surface_snapshot.hpp) when both keyframes carry d eta / dt.
+    const double frame_interval_s = site ? site->frame_interval_s : 0.0;
+    set_uniform(program, "u_harbour_hermite", bound.harbour_has_rates && frame_interval_s > 0.0 ? 1 : 0);
+    set_uniform(program, "u_frame_interval_s", float(frame_interval_s));
     set_uniform(program, "u_open_sea_depth_m", open_sea_depth_m);
     if (site) {
       const GridGeometry& g = site->harbour.geometry;
@@ -464,6 +469,7 @@ struct WaterRenderer::Impl {
     for (int k = 0; k < 2; ++k) {
       bind(kHarbourEta + k, GL_TEXTURE_2D, bound.harbour_eta[k]);
       bind(kHarbourBreaking + k, GL_TEXTURE_2D, bound.harbour_breaking[k]);
+      bind(kHarbourEtaRate + k, GL_TEXTURE_2D, bound.harbour_eta_rate[k]);
     }
     bind(kDepth, GL_TEXTURE_2D, depth_texture);
     bind(kPorosity, GL_TEXTURE_2D, porosity_texture);
@@ -582,6 +588,7 @@ struct WaterRenderer::Impl {
     for (int k = 0; k < 2; ++k) {
       textures.harbour_elevation[k] = bound.harbour_eta[k];
       textures.harbour_breaking[k] = bound.harbour_breaking[k];
+      textures.harbour_elevation_rate[k] = bound.harbour_eta_rate[k];
       textures.deep_elevation[k] = bound.deep[kDeepEta][k];
       textures.deep_displacement_x[k] = bound.deep[kDeepDx][k];
       textures.deep_displacement_y[k] = bound.deep[kDeepDy][k];
@@ -592,6 +599,8 @@ struct WaterRenderer::Impl {
     textures.deep_grid_size = bound.deep_size;
     textures.tile_lengths_m = bound.tile_lengths_m;
     textures.harbour_fraction = snapshot.harbour_fraction;
+    textures.harbour_has_rates = bound.harbour_has_rates;
+    textures.frame_interval_s = snapshot.site ? snapshot.site->frame_interval_s : 0.0;
     textures.deep_fraction = snapshot.deep_fraction;
   }
 

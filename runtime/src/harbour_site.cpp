@@ -26,6 +26,7 @@ HarbourSite read_harbour_site(const sequence::SequenceReader& reader, double edg
   const GridGeometry& geometry = reader.geometry();
   site.width_m = geometry.width_m();  // columns dx, rows dy (rectangular cells alike)
   site.height_m = geometry.height_m();
+  site.frame_interval_s = reader.frame_interval_s();
   const sequence::SequenceManifest& manifest = reader.manifest();
   std::string source_side;
   if (manifest.deep_water) {

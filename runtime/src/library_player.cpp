@@ -42,6 +42,7 @@ std::shared_ptr<const HarbourKeyframe> blend_harbour(const SurfaceSnapshot& a, c
   mix(&HarbourKeyframe::flux_x_m2_s, blended->flux_x_m2_s);
   mix(&HarbourKeyframe::flux_y_m2_s, blended->flux_y_m2_s);
   mix(&HarbourKeyframe::breaking, blended->breaking);
+  mix(&HarbourKeyframe::surface_elevation_rate_m_s, blended->surface_elevation_rate_m_s);
   return blended;
 }
 

@@ -76,6 +76,27 @@ void swap_fields(HarbourKeyframe& keyframe, sequence::Frame& frame) {
   std::swap(keyframe.breaking, frame.breaking);
 }
 
+// The keyframe's d eta / dt (surface_snapshot.hpp) from its own fluxes. Inside a crossfade the
+// shown field is (1 - alpha) source + alpha target with alpha rising by 1 / (c + 1) a step
+// (loop_playback.hpp), so its rate also holds d alpha / dt (target - source).
+void fill_rate(HarbourKeyframe& keyframe, const HarbourSite& site, const PlanStep& step, const sequence::Frame* source,
+               const sequence::Frame* target) {
+  const GridGeometry& g = site.harbour.geometry;
+  if (keyframe.flux_x_m2_s.columns() != g.columns || keyframe.flux_x_m2_s.rows() != g.rows ||
+      keyframe.flux_y_m2_s.columns() != g.columns || keyframe.flux_y_m2_s.rows() != g.rows) {
+    keyframe.surface_elevation_rate_m_s = Raster<float>();  // no fluxes stored: linear in time
+    return;
+  }
+  keyframe.surface_elevation_rate_m_s = surface_elevation_rate(site.harbour, keyframe.flux_x_m2_s, keyframe.flux_y_m2_s);
+  if (!step.in_crossfade || !source || !target || !(site.frame_interval_s > 0.0) || step.jump_crossfade_frames < 1) return;
+  const Raster<float>& a = source->surface_elevation_m;
+  const Raster<float>& b = target->surface_elevation_m;
+  if (a.size() != keyframe.surface_elevation_rate_m_s.size() || b.size() != a.size()) return;
+  const double alpha_rate = 1.0 / ((step.jump_crossfade_frames + 1) * site.frame_interval_s);
+  float* rate = keyframe.surface_elevation_rate_m_s.data();
+  for (std::size_t i = 0; i < a.size(); ++i) rate[i] += static_cast<float>(alpha_rate * (b.values()[i] - a.values()[i]));
+}
+
 }  // namespace
 
 struct StreamingEngine::Impl {
@@ -193,8 +214,10 @@ void StreamingEngine::Impl::decode_harbour(const PlanStep& step, HarbourKeyframe
       reader.read_frame_into(reading, target_frame, all, options.verify);
       sequence::blend_frames(source_frame, target_frame, step.shown.target_weight, blended_frame);
       swap_fields(keyframe, blended_frame);
+      fill_rate(keyframe, *site, step, &source_frame, &target_frame);
     } else {
       swap_fields(keyframe, source_frame);
+      fill_rate(keyframe, *site, step, nullptr, nullptr);
     }
   } catch (const std::exception& error) {
     // Hold the previous good keyframe in its place (its memory is reused: the same sizes).
@@ -205,9 +228,10 @@ void StreamingEngine::Impl::decode_harbour(const PlanStep& step, HarbourKeyframe
       keyframe.flux_x_m2_s = last_good->flux_x_m2_s;
       keyframe.flux_y_m2_s = last_good->flux_y_m2_s;
       keyframe.breaking = last_good->breaking;
+      keyframe.surface_elevation_rate_m_s = last_good->surface_elevation_rate_m_s;
     } else {
       for (Raster<float>* raster : {&keyframe.surface_elevation_m, &keyframe.flux_x_m2_s, &keyframe.flux_y_m2_s,
-                                    &keyframe.breaking})
+                                    &keyframe.breaking, &keyframe.surface_elevation_rate_m_s})
         *raster = Raster<float>(g.columns, g.rows, 0.0f);
     }
     message = fmt::format("{}; plan step {} holds {} in its place", error.what(), step.step,
@@ -269,10 +293,12 @@ std::shared_ptr<const HarbourKeyframe> StreamingEngine::Impl::slow_harbour_keyfr
       if (tried.in_crossfade) {
         const sequence::Frame target = reader.read_frame(tried.shown.target_frame, all, options.verify);
         sequence::blend_frames(source, target, tried.shown.target_weight, shown);
+        swap_fields(*keyframe, shown);
+        fill_rate(*keyframe, *site, tried, &source, &target);
       } else {
-        shown = std::move(source);
+        swap_fields(*keyframe, source);
+        fill_rate(*keyframe, *site, tried, nullptr, nullptr);
       }
-      swap_fields(*keyframe, shown);
       if (back > 0) {
         keyframe->held = true;
         ++out.held;
@@ -289,8 +315,8 @@ std::shared_ptr<const HarbourKeyframe> StreamingEngine::Impl::slow_harbour_keyfr
     }
   }
   const GridGeometry& g = reader.geometry();
-  for (Raster<float>* raster :
-       {&keyframe->surface_elevation_m, &keyframe->flux_x_m2_s, &keyframe->flux_y_m2_s, &keyframe->breaking})
+  for (Raster<float>* raster : {&keyframe->surface_elevation_m, &keyframe->flux_x_m2_s, &keyframe->flux_y_m2_s,
+                                &keyframe->breaking, &keyframe->surface_elevation_rate_m_s})
     *raster = Raster<float>(g.columns, g.rows, 0.0f);
   keyframe->held = true;
   ++out.held;

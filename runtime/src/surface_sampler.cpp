@@ -124,6 +124,11 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
     if (!site.harbour.land.empty() && site.harbour.land.columns() == columns_ && site.harbour.land.rows() == rows_)
       land_ = site.harbour.land.data();
     harbour_fraction_ = std::clamp(s.harbour_fraction, 0.0, 1.0);
+    frame_interval_s_ = site.frame_interval_s > 0.0 && std::isfinite(site.frame_interval_s) ? site.frame_interval_s : 0.0;
+    if (frame_interval_s_ > 0.0 && from.surface_elevation_rate_m_s.size() == from.surface_elevation_m.size() &&
+        to.surface_elevation_rate_m_s.size() == to.surface_elevation_m.size())
+      eta_rate_ = {data_or_null(from.surface_elevation_rate_m_s, columns_, rows_), data_or_null(to.surface_elevation_rate_m_s, columns_, rows_)};
+    hermite_ = hermite_weights(harbour_fraction_);
   }
   if (s.deep_from) {
     const DeepWaterKeyframe& from = *s.deep_from;
@@ -156,6 +161,8 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
     for (std::size_t c = 0; c < from.inside_cascades.size(); ++c) add_inside(from.inside_cascades[c], to.inside_cascades[c]);
     has_inside_ = !inside_.empty();
     deep_fraction_ = std::clamp(s.deep_fraction, 0.0, 1.0);
+    const double deep_interval_s = to.display_time_s - from.display_time_s;
+    inverse_deep_interval_ = deep_interval_s > 0.0 && std::isfinite(deep_interval_s) ? 1.0 / deep_interval_s : 0.0;
   }
   choppiness_ = s.site ? s.site->choppiness : 1.0;
   if (has_harbour_) {
@@ -182,9 +189,19 @@ double SurfaceSampler::weight(double x_m, double y_m) const {
   return harbour_weight(*snapshot_.site, x_m, y_m);
 }
 
+SurfaceSampler::EtaAndRate SurfaceSampler::harbour_in_time(double from, double to, double from_rate, double to_rate) const {
+  const HermiteWeights& h = hermite_;
+  const double T = frame_interval_s_;
+  if (!(T > 0.0)) return {(1.0 - harbour_fraction_) * from + harbour_fraction_ * to, 0.0};
+  if (!eta_rate_.from) from_rate = to_rate = (to - from) / T;  // the secant: the straight line
+  return {h.from * from + h.from_rate * T * from_rate + h.to * to + h.to_rate * T * to_rate,
+          (h.d_from * from + h.d_to * to) / T + h.d_from_rate * from_rate + h.d_to_rate * to_rate};
+}
+
 double SurfaceSampler::harbour_eta(double x_m, double y_m) const {
   const Tap t = harbour_tap(x_m, y_m, inverse_spacing_x_, inverse_spacing_y_, columns_, rows_);
-  return (1.0 - harbour_fraction_) * bilinear(eta_.from, t) + harbour_fraction_ * bilinear(eta_.to, t);
+  if (!eta_rate_.from) return (1.0 - harbour_fraction_) * bilinear(eta_.from, t) + harbour_fraction_ * bilinear(eta_.to, t);
+  return harbour_in_time(bilinear(eta_.from, t), bilinear(eta_.to, t), bilinear(eta_rate_.from, t), bilinear(eta_rate_.to, t)).eta;
 }
 
 double SurfaceSampler::cascades_eta(const std::vector<Cascade>& cascades, double x_m, double y_m) const {
@@ -219,7 +236,7 @@ SurfaceSampler::CascadeSum SurfaceSampler::cascades_sum(const std::vector<Cascad
   }
   return {(1.0 - f) * from.eta + f * to.eta, (1.0 - f) * from.slope_x + f * to.slope_x,
           (1.0 - f) * from.slope_y + f * to.slope_y, (1.0 - f) * from.flux_x + f * to.flux_x,
-          (1.0 - f) * from.flux_y + f * to.flux_y};
+          (1.0 - f) * from.flux_y + f * to.flux_y, (to.eta - from.eta) * inverse_deep_interval_};
 }
 
 void SurfaceSampler::deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const {
@@ -343,12 +360,16 @@ SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) co
   if (has_harbour_) w = harbour_weight_and_gradient(*snapshot_.site, p.x_m, p.y_m);
   s.harbour_weight = w.weight;
   double harbour_eta_m = 0.0, deep_eta_m = 0.0;
-  double harbour_u = 0.0, harbour_v = 0.0, deep_u = 0.0, deep_v = 0.0;
+  double harbour_u = 0.0, harbour_v = 0.0, deep_u = 0.0, deep_v = 0.0, harbour_rate = 0.0, deep_rate = 0.0;
   Gradient harbour_slope, deep_slope;
   if (w.weight > 0.0) {
     const Tap t = harbour_tap(p.x_m, p.y_m, inverse_spacing_x_, inverse_spacing_y_, columns_, rows_);
     const double f = harbour_fraction_;
-    harbour_eta_m = (1.0 - f) * bilinear(eta_.from, t) + f * bilinear(eta_.to, t);
+    const double eta_from = bilinear(eta_.from, t), eta_to = bilinear(eta_.to, t);
+    const EtaAndRate in_time = eta_rate_.from ? harbour_in_time(eta_from, eta_to, bilinear(eta_rate_.from, t), bilinear(eta_rate_.to, t))
+                                              : harbour_in_time(eta_from, eta_to, 0.0, 0.0);
+    harbour_eta_m = in_time.eta;
+    harbour_rate = in_time.rate;
     const Gradient a = bilinear_gradient(eta_.from, t, columns_, rows_, spacing_x_m_, spacing_y_m_);
     const Gradient b = bilinear_gradient(eta_.to, t, columns_, rows_, spacing_x_m_, spacing_y_m_);
     harbour_slope = {(1.0 - f) * a.x + f * b.x, (1.0 - f) * a.y + f * b.y};
@@ -368,6 +389,7 @@ SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) co
     // The split's inside layer rides on the harbour's part (formulas 3, 5, 6).
     const CascadeSum inside = cascades_sum(inside_, p.x_m, p.y_m, has_inside_flux_);
     harbour_eta_m += inside.eta;
+    harbour_rate += inside.eta_rate;
     harbour_slope.x += inside.slope_x;
     harbour_slope.y += inside.slope_y;
     const double total_depth_m = snapshot_.deep_from->still_water_depth_m + inside.eta;
@@ -379,6 +401,7 @@ SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) co
   if (w.weight < 1.0 && has_deep_) {
     const CascadeSum deep = cascades_sum(cascades_, p.x_m, p.y_m, has_deep_flux_);
     deep_eta_m = deep.eta;
+    deep_rate = deep.eta_rate;
     deep_slope = {deep.slope_x, deep.slope_y};
     if (has_deep_flux_) {
       const double total_depth_m = snapshot_.deep_from->still_water_depth_m + deep_eta_m;
@@ -390,6 +413,7 @@ SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) co
   }
   const double ww = w.weight;
   s.surface_elevation_m = ww * harbour_eta_m + (1.0 - ww) * deep_eta_m;
+  s.vertical_velocity_m_s = ww * harbour_rate + (1.0 - ww) * deep_rate;
   s.velocity_x_m_s = ww * harbour_u + (1.0 - ww) * deep_u;
   s.velocity_y_m_s = ww * harbour_v + (1.0 - ww) * deep_v;
   s.slope_x = ww * harbour_slope.x + (1.0 - ww) * deep_slope.x + (harbour_eta_m - deep_eta_m) * w.d_dx_per_m;

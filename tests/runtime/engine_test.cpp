@@ -82,14 +82,23 @@ TEST(StreamingEngine, ShowsThePlansKeyframesInterpolatedInTime) {
     EXPECT_EQ(snapshot.harbour_from->shown.source_frame, k % 24);
     EXPECT_NEAR(snapshot.harbour_fraction, t / kFrameInterval_s - k, 1e-12);
     EXPECT_FALSE(snapshot.deep_from);
-    // At a cell centre the sampler gives the frames' values interpolated linearly in time.
+    // At a cell centre the sampler gives the frames' values joined by the Hermite in time, with
+    // each keyframe's rate the mass equation of that frame's fluxes (surface_snapshot.hpp).
     const sequence::Frame a = reader.read_frame(static_cast<int>(k % 24));
     const sequence::Frame b = reader.read_frame(static_cast<int>((k + 1) % 24));
+    const HarbourGrid grid = reader.read_harbour_grid();
+    const Raster<float> rate_a = surface_elevation_rate(grid, a.flux_x_m2_s, a.flux_y_m2_s);
+    const Raster<float> rate_b = surface_elevation_rate(grid, b.flux_x_m2_s, b.flux_y_m2_s);
     const SurfaceSampler sampler(snapshot);
     const int column = 13, row = 11;
-    const double f = snapshot.harbour_fraction;
+    EXPECT_EQ(snapshot.harbour_from->surface_elevation_rate_m_s(column, row), rate_a(column, row));
+    EXPECT_EQ(snapshot.harbour_to->surface_elevation_rate_m_s(column, row), rate_b(column, row));
+    const HermiteWeights h = hermite_weights(snapshot.harbour_fraction);
+    const double T = kFrameInterval_s;
     EXPECT_NEAR(sampler.harbour_elevation_m((column + 0.5) * 2.0, (row + 0.5) * 2.0),
-                (1 - f) * a.surface_elevation_m(column, row) + f * b.surface_elevation_m(column, row), 1e-6);
+                h.from * a.surface_elevation_m(column, row) + h.from_rate * T * rate_a(column, row) +
+                    h.to * b.surface_elevation_m(column, row) + h.to_rate * T * rate_b(column, row),
+                1e-6);
   }
   const StreamingStats stats = engine.stats();
   EXPECT_EQ(stats.underruns, 0);

@@ -93,6 +93,12 @@ struct GpuTextures {
   int cascade_count = 0, deep_grid_size = 0;
   std::vector<float> tile_lengths_m;
   double harbour_fraction = 0.0, deep_fraction = 0.0;  ///< shown = (1 - f) from + f to
+  /// d eta / dt of the harbour keyframes (R32F, m/s; zeros where a keyframe has none) and whether
+  /// both have one: then the harbour is the cubic Hermite of runtime/surface_snapshot.hpp with
+  /// T = frame_interval_s.
+  unsigned harbour_elevation_rate[2] = {0, 0};
+  bool harbour_has_rates = false;
+  double frame_interval_s = 0.0;
 };
 
 class WaterRenderer {

@@ -17,7 +17,10 @@
 //    the edge the value is the edge texel's (flat), which only matters where w > 0 there, i.e.
 //    with edge_fade_m < s / 2. GLSL: do this by hand with texelFetch (hardware bilinear filtering
 //    quantises a to 8 bits on many GPUs: up to 2 mm on a 1 m wave).
-//    Time: H(p) = (1 - f_h) F_from(p) + f_h F_to(p) for eta, P, Q and breaking.
+//    Time: H_eta(p) = h00 F_from(p) + h10 T R_from(p) + h01 F_to(p) + h11 T R_to(p), the cubic
+//    Hermite of surface_snapshot.hpp with R = HarbourKeyframe::surface_elevation_rate_m_s sampled
+//    like F (the secant (F_to - F_from) / T for both where a keyframe has no rate);
+//    H(p) = (1 - f_h) F_from(p) + f_h F_to(p) for P, Q, breaking and the slopes.
 // 2. Deep-water cascade c (tile L_c, N nodes; node (i, j) at (i L/N, j L/N), periodic):
 //      u = frac(x / L) N, v = frac(y / L) N  (frac in double: x may be 100 km, L 10 m)
 //      i0 = floor(u), i1 = (i0 + 1) mod N, a = u - i0; rows alike; bilinear as above
@@ -49,6 +52,12 @@
 //    deep water). The inside layer's u_i = (P_i, Q_i) / (d_deep + I_eta) likewise (its fluxes
 //    at the field's depth; 0 in deep water). Shown u = w (u_h + u_i) + (1 - w) u_d. Dry only
 //    where w > 0 (a dry point keeps u = 0: the layer does not wet land).
+// 7. Vertical velocity (m/s): d eta / dt of formula 3 at the lattice point, with w fixed:
+//    w (dH_eta/dt + dI_eta/dt) + (1 - w) dD_eta/dt, dH_eta/dt the Hermite's derivative
+//    (h00' F_from + h10' T R_from + h01' F_to + h11' T R_to) / T, the deep water's and the inside
+//    layer's (D_to - D_from) / (t_to - t_from) of their keyframes' display times (0 when equal).
+//    At a displaced point it is the lattice point's (the horizontal drift of p is left out: the
+//    deep water's keyframes are 1/30 s apart, the harbour's have no displacement).
 // 6. Normal: slope = w (grad H + grad I) + (1 - w) grad D + (H_eta + I_eta - D_eta) grad w, normal = normalize(
 //    -slope_x, -slope_y, 1). grad H is the bilinear interpolation (weights of 1.) of per-texel
 //    central differences (F[i+1, j] - F[i-1, j]) / ((i+1 - (i-1)) s) with i-1, i+1 clamped to
@@ -86,6 +95,7 @@ struct SurfaceState {
   double velocity_x_m_s = 0.0, velocity_y_m_s = 0.0;
   double slope_x = 0.0, slope_y = 0.0;        ///< d eta / dx, d eta / dy
   double normal_x = 0.0, normal_y = 0.0, normal_z = 1.0;  ///< unit, z up
+  double vertical_velocity_m_s = 0.0;         ///< d eta / dt (formula 7)
   double harbour_weight = 0.0;                ///< w at the lattice point used
   bool dry = false;
 };
@@ -132,11 +142,16 @@ class SurfaceSampler {
   };
   double weight(double x_m, double y_m) const;
   double harbour_eta(double x_m, double y_m) const;
+  struct EtaAndRate {
+    double eta = 0.0, rate = 0.0;
+  };
+  // H_eta and its time derivative from the keyframes' values (and rates) at one point.
+  EtaAndRate harbour_in_time(double from, double to, double from_rate, double to_rate) const;
   void deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const;
   double deep_eta(double x_m, double y_m) const;
   // eta, slopes and (with_flux) fluxes of a list of cascades at (x, y), both keyframes blended in time.
   struct CascadeSum {
-    double eta = 0.0, slope_x = 0.0, slope_y = 0.0, flux_x = 0.0, flux_y = 0.0;
+    double eta = 0.0, slope_x = 0.0, slope_y = 0.0, flux_x = 0.0, flux_y = 0.0, eta_rate = 0.0;
   };
   double cascades_eta(const std::vector<Cascade>& cascades, double x_m, double y_m) const;
   CascadeSum cascades_sum(const std::vector<Cascade>& cascades, double x_m, double y_m, bool with_flux) const;
@@ -150,9 +165,12 @@ class SurfaceSampler {
   int columns_ = 0, rows_ = 0;
   double spacing_x_m_ = 1.0, spacing_y_m_ = 1.0, inverse_spacing_x_ = 1.0, inverse_spacing_y_ = 1.0;  // dx, dy
   double harbour_fraction_ = 0.0, deep_fraction_ = 0.0, choppiness_ = 0.0;
+  double frame_interval_s_ = 0.0;    // T of the Hermite (0: linear, no rate)
+  double inverse_deep_interval_ = 0.0;  // 1 / (t_to - t_from) of the deep keyframes (0 when equal)
+  HermiteWeights hermite_;
   // Where w = 1 exactly (beyond the maker's zone and every edge fade): no ramp to evaluate.
   double full_x0_ = 0.0, full_x1_ = -1.0, full_y0_ = 0.0, full_y1_ = -1.0;
-  Raster2 eta_, flux_x_, flux_y_;
+  Raster2 eta_, flux_x_, flux_y_, eta_rate_;  // eta_rate_: both null unless both keyframes have rates
   const float* depth_ = nullptr;
   const std::uint8_t* land_ = nullptr;
   std::vector<Cascade> cascades_;

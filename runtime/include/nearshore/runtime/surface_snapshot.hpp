@@ -11,7 +11,8 @@
 // deep-water field's x = 0, y = 0 is the same corner (sequence/deep_water_section.hpp coupling).
 //
 // The surface shown at a site point p and display time t:
-//   harbour(p)  = (1 - f_h) H_from(p) + f_h H_to(p)                 bilinear in the cell-centred rasters
+//   harbour(p)  = h00 H_from(p) + h10 T R_from(p) + h01 H_to(p) + h11 T R_to(p)   cubic Hermite in
+//                 time (below), bilinear in the cell-centred rasters; R = d eta / dt of each keyframe
 //   deep(p)     = (1 - f_d) sum_c D_from,c(p) + f_d sum_c D_to,c(p) bilinear in each periodic cascade tile
 //   inside(p)   = the deep water's components above the bake's band (the split, issue 14):
 //                 (1 - f_d) sum_c I_from,c(p) + f_d sum_c I_to,c(p)  over the whole cascades of
@@ -20,6 +21,15 @@
 // Where w = 1 the bake's frames carry the band they resolve and the deep-water layer the rest;
 // where w = 0 the whole field is shown; deep = (what the bake holds) + inside, so the blend only
 // crossfades the bake's band and the split-off waves run through the rectangle unchanged.
+// Time between the harbour keyframes (T = HarbourSite::frame_interval_s, the bake's output
+// interval) is a cubic Hermite in f = f_h, so heights are C1 in time and a ship's heave feels no
+// corner at each keyframe:
+//   h00 = 2f^3 - 3f^2 + 1, h10 = f^3 - 2f^2 + f, h01 = -2f^3 + 3f^2, h11 = f^3 - f^2
+// with each keyframe's rate R from the bake's own mass equation (surface_elevation_rate below),
+// d eta/dt = -(dP/dx + dQ/dy) / n (seed 003 eq. 1), so the slopes are the physics', not a guess
+// from neighbouring frames. Where a keyframe has no rate (R empty, T <= 0) the rate is the
+// secant (H_to - H_from) / T at both ends, which makes the cubic the straight line. Fluxes and
+// breaking stay linear in time: they feed currents and foam, not heave.
 // Keyframes are immutable once published and shared (std::shared_ptr<const ...>), so a snapshot
 // stays valid on any thread for as long as it is held, whatever the engine does next.
 #include <cstdint>
@@ -41,6 +51,9 @@ struct HarbourKeyframe {
   sequence::BlendSource shown;   ///< the frame(s) and crossfade weight this step shows
   bool held = false;             ///< a bad frame was replaced by the previous good keyframe
   Raster<float> surface_elevation_m, flux_x_m2_s, flux_y_m2_s, breaking;
+  /// d eta / dt (m/s) at this keyframe: surface_elevation_rate of its fluxes (plus, inside a
+  /// crossfade, the blend weight's own rate times target - source). Empty: linear in time.
+  Raster<float> surface_elevation_rate_m_s;
 };
 
 /// The deep-water field at one keyframe time: every cascade's tile (ocean::DeepWaterFrame:
@@ -79,7 +92,27 @@ struct HarbourSite {
   /// Total depth d + eta (m) at or below which a harbour point is dry (the bake's solver
   /// dry_depth_m, 0.01 m by default): the CPU queries give zero velocity and dry = true there.
   double dry_depth_m = 0.01;
+  /// Display seconds between consecutive harbour keyframes (the sequence's frame interval; T of
+  /// the Hermite above). 0: unknown, the harbour is linear in time.
+  double frame_interval_s = 0.0;
 };
+
+/// The cubic Hermite basis at fraction f in [0, 1] (above) and its derivatives d/df.
+struct HermiteWeights {
+  double from = 1.0, from_rate = 0.0, to = 0.0, to_rate = 0.0;      ///< h00, h10, h01, h11
+  double d_from = 0.0, d_from_rate = 1.0, d_to = 0.0, d_to_rate = 0.0;  ///< their derivatives in f
+};
+HermiteWeights hermite_weights(double fraction);
+
+/// d eta / dt (m/s) of a keyframe's fields from the mass equation n eta_t + P_x + Q_y = 0 (seed 003
+/// eq. 1): `flux_x`, `flux_y` are the cell-centred averages of the bake's face fluxes
+/// (BoussinesqSolver::flux_x_m2_s: A_i = (P_{i-1/2} + P_{i+1/2}) / 2). Their centred difference
+/// G_i = (A_{i+1} - A_{i-1}) / (2 dx) is the solver's own divergence D_i = (P_{i+1/2} - P_{i-1/2}) / dx
+/// smoothed by [1 2 1] / 4 (G = (D_{i-1} + 2 D_i + D_{i+1}) / 4, a response cos^2(k dx / 2));
+/// D = G - (G_{i-1} - 2 G_i + G_{i+1}) / 4 undoes it to 1 - sin^4(k dx / 2) (0.4 % at 8 cells per
+/// 50 m wave) where both neighbours are water, else G. Land and wall cells (porosity 0) get 0;
+/// porous cells divide by n. Row 0 south; rasters of the grid's size.
+Raster<float> surface_elevation_rate(const HarbourGrid& grid, const Raster<float>& flux_x_m2_s, const Raster<float>& flux_y_m2_s);
 
 /// w(p) in [0, 1]: the harbour's weight at site point (x, y) (0 outside the rectangle).
 double harbour_weight(const HarbourSite& site, double x_m, double y_m);
