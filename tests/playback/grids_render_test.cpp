@@ -203,8 +203,9 @@ TEST(Render, StagedKeyframesUploadWithinTheBudget) {
   WaterRenderer renderer(settings);
   const Camera camera = Camera::overlooking_site(256, 128);
   renderer.render(snapshot, camera, Lighting{}, 32, 24);
-  // The first frame needs its keyframe whole: forced (eta + breaking, 256 x 128 x 4 bytes each).
-  const std::size_t keyframe_bytes = 2 * 256 * 128 * 4;
+  // The first frame needs its keyframe whole: forced (eta, breaking and d eta / dt, 256 x 128 x 4
+  // bytes each).
+  const std::size_t keyframe_bytes = 3 * 256 * 128 * 4;
   EXPECT_EQ(renderer.last_frame().forced_upload_bytes, keyframe_bytes);
   // The next keyframe, staged, goes up in row chunks of at most the budget...
   const auto next = test::make_harbour_keyframe(*snapshot.site, 1, 2);

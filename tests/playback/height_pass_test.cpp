@@ -59,7 +59,8 @@ TEST(HeightPass, AgreesWithTheCpuFormulasToATenthOfAMillimetre) {
   const runtime::SurfaceSnapshot snapshot = scene(false, 0.0);
   WaterRenderer renderer;
   // The site (256 x 192 m) and 40 m of deep water round it: every part of the formula (harbour
-  // pair, blend zone, edge fades, both cascades, wrap-around of the tiles) at 2 m pixels.
+  // pair joined by the Hermite in time, blend zone, edge fades, both cascades, wrap-around of the
+  // tiles) at 2 m pixels.
   const SiteRectangle rectangle{-40.0, -40.0, 296.0, 232.0};
   const Raster<float> heights = renderer.render_height_map(snapshot, rectangle, 168, 136);
   const Comparison c = compare_with_cpu(snapshot, heights, rectangle);

@@ -54,6 +54,7 @@ inline std::shared_ptr<runtime::HarbourSite> make_site(const SiteOptions& o = {}
   site->blend_width_m = 40.0;
   site->edge_fade_m = 24.0;
   site->choppiness = o.choppiness;
+  site->frame_interval_s = 0.5;  // the keyframes carry rates: the Hermite in time (surface_snapshot.hpp)
   return site;
 }
 
@@ -63,6 +64,12 @@ inline double analytic_eta_m(int which, double x, double y) {
                     : 0.5 * std::cos(2 * std::numbers::pi * (x / 43.0 - y / 29.0)) + 0.1;
 }
 
+/// Its d eta / dt (m/s), any smooth field: the GPU and the CPU must join the keyframes alike.
+inline double analytic_eta_rate_m_s(int which, double x, double y) {
+  return which == 0 ? 0.6 * std::cos(2 * std::numbers::pi * (x / 53.0 + y / 41.0))
+                    : -0.4 * std::sin(2 * std::numbers::pi * (x / 47.0 - y / 33.0));
+}
+
 inline std::shared_ptr<runtime::HarbourKeyframe> make_harbour_keyframe(const runtime::HarbourSite& site, int which,
                                                                        std::uint64_t serial) {
   auto keyframe = std::make_shared<runtime::HarbourKeyframe>();
@@ -70,9 +77,13 @@ inline std::shared_ptr<runtime::HarbourKeyframe> make_harbour_keyframe(const run
   const GridGeometry& g = site.harbour.geometry;
   keyframe->surface_elevation_m = Raster<float>(g.columns, g.rows);
   keyframe->breaking = Raster<float>(g.columns, g.rows, 0.f);
+  keyframe->surface_elevation_rate_m_s = Raster<float>(g.columns, g.rows);
   for (int j = 0; j < g.rows; ++j)
-    for (int i = 0; i < g.columns; ++i)
-      keyframe->surface_elevation_m(i, j) = float(analytic_eta_m(which, (i + 0.5) * g.spacing_m, (j + 0.5) * g.spacing_m));
+    for (int i = 0; i < g.columns; ++i) {
+      const double x = (i + 0.5) * g.spacing_m, y = (j + 0.5) * g.spacing_m;
+      keyframe->surface_elevation_m(i, j) = float(analytic_eta_m(which, x, y));
+      keyframe->surface_elevation_rate_m_s(i, j) = float(analytic_eta_rate_m_s(which, x, y));
+    }
   return keyframe;
 }
 
