@@ -43,6 +43,8 @@ extern "C" {
  * 5: host-driven time: nearshore_sea_options.time_mode and ready_timeout_s, nearshore_sea_wait_until_ready,
  *    NEARSHORE_TIMEOUT, NEARSHORE_UNDERRUN, the underrun counters of nearshore_stats; time may go back.
  *    Hulls stop at structures and land (nearshore_fleet_next_contact); every ship option range-checked.
+ * 6: harbour heights joined in time by a cubic Hermite of the bake's own d eta / dt:
+ *    nearshore_sea_query_vertical_velocity, the rate textures of nearshore_gl_textures.
  * A host built against version N runs on a library of version >= N. */
 #define NEARSHORE_API_VERSION 6
 
@@ -246,6 +248,8 @@ typedef struct nearshore_camera {
   double near_m, far_m;
   double sun_azimuth_deg, sun_elevation_deg;
 } nearshore_camera;
+/* Fills a camera looking north from 100 m up, 45 degree field of view, sun at 200/35 degrees.
+ * Any thread. */
 NEARSHORE_API void nearshore_camera_init(nearshore_camera* camera);
 
 /* Returns the address of an OpenGL function by name (glfwGetProcAddress, SDL_GL_GetProcAddress,
@@ -258,13 +262,14 @@ typedef void* (*nearshore_gl_proc_address)(const char* name);
 NEARSHORE_API nearshore_status nearshore_renderer_create(nearshore_sea* sea, nearshore_grid grid,
                                                          nearshore_gl_proc_address get_proc_address,
                                                          nearshore_renderer** renderer);
-/* Frees the GL objects; the same context must be current. NULL is allowed. */
+/* Frees the GL objects; the same context must be current. NULL is allowed. Render thread. */
 NEARSHORE_API void nearshore_renderer_destroy(nearshore_renderer* renderer);
 /* Draws the sea as of the last advance into the framebuffer bound by the host, viewport
  * width x height pixels. Render thread, context current. */
 NEARSHORE_API nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nearshore_camera* camera,
                                                        int width_px, int height_px);
-/* Reads back the last nearshore_renderer_draw as RGBA8, row 0 at the top (screenshots). */
+/* Reads back the last nearshore_renderer_draw as RGBA8, row 0 at the top (screenshots). Render
+ * thread, context current. */
 NEARSHORE_API nearshore_status nearshore_renderer_read_pixels(nearshore_renderer* renderer, int width_px,
                                                               int height_px, uint8_t* rgba);
 
@@ -289,7 +294,7 @@ typedef struct nearshore_lighting {
   int local_reflections;               /* 1: land and structures mirrored in the water; 0: sky only */
 } nearshore_lighting;
 /* Fills the defaults (struct_size, no UTC time, T 2.5, chlorophyll 0.3, sediment 0.5 NTU, wind
- * 5 m/s from the north, exposure 1, local reflections on). */
+ * 5 m/s from the north, exposure 1, local reflections on). Any thread. */
 NEARSHORE_API void nearshore_lighting_init(nearshore_lighting* lighting);
 /* Render thread. A bad value (a UTC string that does not parse, a place with no map projection,
  * a number out of its range) is refused, naming the field, and the previous lighting is kept. */
