@@ -12,40 +12,11 @@
 #include <fmt/core.h>
 
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/csv_fields.hpp"
 #include "nearshore/core/map_projection.hpp"
 
 namespace nearshore::exports {
 namespace {
-
-std::string trimmed(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return {};
-  const auto last = text.find_last_not_of(" \t\r\n");
-  return text.substr(first, last - first + 1);
-}
-
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  std::string field;
-  while (std::getline(stream, field, ',')) fields.push_back(trimmed(field));
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
-
-// A finite number filling the whole field, or nullopt.
-std::optional<double> number_of(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (used != text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
 
 // Grid frame of a WGS 84 place: metres from the south-west corner (the cell centre of column i is
 // at (i + 0.5) dx, grid_position_of puts it at column i).
@@ -102,7 +73,7 @@ std::vector<Berth> read_berths_csv(const std::filesystem::path& file, const Grid
                                             : "write name,longitude,latitude: three fields separated by commas (no comma in the name)");
     if (fields[0].empty())
       throw Error(subject, fmt::format("line {}: the berth has no name", number), "give each berth a name in the first field");
-    const std::optional<double> a = number_of(fields[1]), b = number_of(fields[2]);
+    const std::optional<double> a = finite_number(fields[1]), b = finite_number(fields[2]);
     if (!a || !b)
       throw Error(subject, fmt::format("line {}: berth '{}': '{}' is not a number", number, fields[0], !a ? fields[1] : fields[2]),
                   columns == Columns::kGrid ? "give x_m and y_m in metres, e.g. 812.5"

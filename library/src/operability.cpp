@@ -10,6 +10,7 @@
 
 #include <fmt/core.h>
 
+#include "nearshore/core/csv_fields.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
@@ -17,34 +18,6 @@ namespace nearshore::library {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string trimmed_field(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return {};
-  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
-}
-
-std::vector<std::string> split_fields(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream stream(line);
-  std::string field;
-  while (std::getline(stream, field, ',')) fields.push_back(trimmed_field(field));
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
-
-std::optional<double> finite_number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (used != text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
 
 double wrapped_deg(double degrees) {
   const double wrapped = std::fmod(degrees, 360.0);
@@ -130,9 +103,9 @@ std::vector<OccurrenceCondition> read_occurrence_table(const fs::path& file) {
   double sum = 0.0;
   while (std::getline(in, line)) {
     ++number;
-    const std::string text = trimmed_field(line);
+    const std::string text = trimmed(line);
     if (text.empty() || text.front() == '#') continue;
-    const std::vector<std::string> fields = split_fields(text);
+    const std::vector<std::string> fields = csv_fields(text);
     if (!header_read) {
       if (fields == std::vector<std::string>{"hs_m", "tp_s", "direction_deg", "probability"})
         from_north = false;
