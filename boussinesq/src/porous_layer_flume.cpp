@@ -25,6 +25,16 @@ void check(const char* field, double value, double lowest, double highest, const
                 fmt::format("give PorousLayerFlume::{} inside that range", field));
 }
 
+// `response` with `member` (Kr or Kt, the whole and per wave) divided by the reference run's (the
+// same flume at n = 1): the layer's own coefficient, without the bed friction and the scheme on
+// the way, which the reference run has too.
+LayerResponse relative_to(const LayerResponse& reference, double LayerResponse::*member, LayerResponse response) {
+  if (reference.*member > 0.0) response.*member /= reference.*member;
+  for (std::size_t i = 0; i < response.per_wave.size() && i < reference.per_wave.size(); ++i)
+    if (reference.per_wave[i].*member > 0.0) response.per_wave[i].*member /= reference.per_wave[i].*member;
+  return response;
+}
+
 // Gauge cells from `start_m` about 0.1 of the shortest wavelength apart on whole cells, spanning 0.4
 // of the longest (Mansard & Funke: no spacing a multiple of any wave's L/2 for all pairs); at least
 // three distinct cells, at most sixteen.
@@ -256,12 +266,7 @@ PorosityFit fit_porosity_to_reflection(const PorousLayerFlume& flume, double ref
   // bed friction on the way (strong in shallow water) is not counted against the layer.
   const double chart_porosity[] = {0.9, 0.75, 0.6, 0.42, 0.28, 0.17, kLowestFittedPorosity};
   const LayerResponse wall = measure_porous_layer(flume, 1.0);
-  auto relative = [&](LayerResponse r) {
-    if (wall.reflection_coefficient > 0.0) r.reflection_coefficient /= wall.reflection_coefficient;
-    for (std::size_t i = 0; i < r.per_wave.size() && i < wall.per_wave.size(); ++i)
-      if (wall.per_wave[i].reflection_coefficient > 0.0) r.per_wave[i].reflection_coefficient /= wall.per_wave[i].reflection_coefficient;
-    return r;
-  };
+  auto relative = [&](const LayerResponse& r) { return relative_to(wall, &LayerResponse::reflection_coefficient, r); };
   auto measure = [&](double n) { return relative(measure_porous_layer(flume, n)); };
   std::vector<LayerResponse> chart = {relative(wall)};
   auto kr = [](const LayerResponse& r) { return r.reflection_coefficient; };
@@ -300,12 +305,7 @@ PorosityFit fit_porosity_to_transmission(const PorousLayerFlume& flume, double t
   // Kt is the layer's: the transmitted height over what the same flume carries without it (n = 1),
   // so the bed friction and the scheme on the way (strong in shallow water) are not counted.
   const LayerResponse without = measure_porous_layer(flume, 1.0);
-  auto relative = [&](LayerResponse r) {
-    if (without.transmission_coefficient > 0.0) r.transmission_coefficient /= without.transmission_coefficient;
-    for (std::size_t i = 0; i < r.per_wave.size() && i < without.per_wave.size(); ++i)
-      if (without.per_wave[i].transmission_coefficient > 0.0) r.per_wave[i].transmission_coefficient /= without.per_wave[i].transmission_coefficient;
-    return r;
-  };
+  auto relative = [&](const LayerResponse& r) { return relative_to(without, &LayerResponse::transmission_coefficient, r); };
   auto measure = [&](double n) { return relative(measure_porous_layer(flume, n)); };
   const LayerResponse closed = measure(kLowestFittedPorosity);
   const LayerResponse open = measure(0.98);
