@@ -18,6 +18,24 @@ PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" cc -std=c11 -pedantic -Wall -Wextra
 PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" cc -std=c11 -pedantic -Wall -Wextra -Werror \
   $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags nearshore) \
   -c "$source_dir/samples/ship_track.c" -o "$work/ship_track_c11.o"
+# A C host of the CMake package on a machine without the C++ API's header-only dependencies
+# (simulated: find_package of nlohmann_json and Eigen3 disabled): nearshore::c links; asking for
+# the C++ component fails and names them.
+mkdir -p "$work/c_host"
+cat > "$work/c_host/CMakeLists.txt" <<CMAKE
+cmake_minimum_required(VERSION 3.25)
+project(c_host C)
+find_package(nearshore 0.1 REQUIRED CONFIG \${NEARSHORE_COMPONENTS})
+add_executable(c_host "$source_dir/samples/query_track.c")
+target_link_libraries(c_host PRIVATE nearshore::c m)
+CMAKE
+without_cxx_dependencies=(-DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON)
+cmake -S "$work/c_host" -B "$work/c_host/build" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" \
+  "${without_cxx_dependencies[@]}" > "$work/c_host.log"
+cmake --build "$work/c_host/build" >> "$work/c_host.log"
+if cmake -S "$work/c_host" -B "$work/c_host/build_cxx" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" \
+  "${without_cxx_dependencies[@]}" -DNEARSHORE_COMPONENTS="COMPONENTS;cxx" > "$work/c_host_cxx.log" 2>&1; then exit 1; fi
+grep -q "nlohmann_json" "$work/c_host_cxx.log"
 cmake -S "$source_dir/samples" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"
 cmake --build "$work/build" > "$work/build.log"
