@@ -38,39 +38,39 @@ Raster<float> surface_elevation_rate(const HarbourGrid& grid, const Raster<float
   std::vector<unsigned char> water(cells);
   for (std::size_t i = 0; i < cells; ++i) water[i] = (!has_land || grid.land.values()[i] == kWaterCell) && porosity(i) > 0.0f;
 
-  // G along one axis: the centred difference of the cell averages (one-sided at the grid's edge).
-  // stride: 1 along x, columns along y; count, position: the axis's length and a cell's index on it.
-  auto smoothed_divergence = [&](const Raster<float>& flux, double spacing_m, bool along_x) {
-    std::vector<double> g(cells, 0.0);
-    const std::ptrdiff_t stride = along_x ? 1 : columns;
-    const int count = along_x ? columns : rows;
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < columns; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r) * columns + c;
-        if (!water[i] || count < 2) continue;
-        const int position = along_x ? c : r;
-        const bool has_before = position > 0, has_after = position + 1 < count;
-        // A land or wall neighbour holds no flux: its average is 0, as the solver's wall face is.
-        const double before = has_before ? (water[i - stride] ? flux.values()[i - stride] : 0.0) : flux.values()[i];
-        const double after = has_after ? (water[i + stride] ? flux.values()[i + stride] : 0.0) : flux.values()[i];
-        g[i] = (after - before) / ((has_before && has_after ? 2.0 : 1.0) * spacing_m);
-      }
-    // D = G - (G_{i-1} - 2 G_i + G_{i+1}) / 4 where both neighbours are water.
-    std::vector<double> d = g;
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < columns; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r) * columns + c;
-        const int position = along_x ? c : r;
-        if (!water[i] || position == 0 || position + 1 == count || !water[i - stride] || !water[i + stride]) continue;
-        d[i] = g[i] - 0.25 * (g[i - stride] - 2.0 * g[i] + g[i + stride]);
-      }
-    return d;
+  // One pass, no temporaries (a 1024 x 1024 keyframe is decoded 15 times a second). Along an axis
+  // (stride 1 for x, columns for y; `position` the cell's index on it, `count` its length):
+  //   G_j = (A_{j+1} - A_{j-1}) / (2 dx), one-sided at the grid's edge, a land or wall neighbour's
+  //         average 0 (it holds no flux, as the solver's wall face);
+  //   D_i = G_i - (G_{i-1} - 2 G_i + G_{i+1}) / 4 where both neighbours are water, else G_i.
+  // Where the four neighbours are water inside the grid this is the five-point
+  //   D_i = (6 (A_{i+1} - A_{i-1}) - (A_{i+2} - A_{i-2})) / (8 dx).
+  auto divergence = [&](const float* a, std::size_t i, int position, int count, std::ptrdiff_t stride, double spacing_m) {
+    auto g_at = [&](std::size_t j, int at) {
+      const bool has_before = at > 0, has_after = at + 1 < count;
+      const double before = has_before ? (water[j - stride] ? a[j - stride] : 0.0) : a[j];
+      const double after = has_after ? (water[j + stride] ? a[j + stride] : 0.0) : a[j];
+      return (after - before) / ((has_before && has_after ? 2.0 : 1.0) * spacing_m);
+    };
+    if (count < 2) return 0.0;
+    if (position >= 2 && position + 2 < count && water[i - 2 * stride] && water[i - stride] && water[i + stride] && water[i + 2 * stride])
+      return (6.0 * (static_cast<double>(a[i + stride]) - a[i - stride]) - (static_cast<double>(a[i + 2 * stride]) - a[i - 2 * stride])) /
+             (8.0 * spacing_m);
+    const double g = g_at(i, position);
+    if (position == 0 || position + 1 == count || !water[i - stride] || !water[i + stride]) return g;
+    return g - 0.25 * (g_at(i - stride, position - 1) - 2.0 * g + g_at(i + stride, position + 1));
   };
-  const std::vector<double> dp_dx = smoothed_divergence(flux_x_m2_s, grid.geometry.spacing_x_m(), true);
-  const std::vector<double> dq_dy = smoothed_divergence(flux_y_m2_s, grid.geometry.spacing_y_m(), false);
   Raster<float> rate(columns, rows, 0.0f);
-  for (std::size_t i = 0; i < cells; ++i)
-    if (water[i]) rate.values()[i] = static_cast<float>(-(dp_dx[i] + dq_dy[i]) / porosity(i));
+  const float* p = flux_x_m2_s.data();
+  const float* q = flux_y_m2_s.data();
+  const double dx = grid.geometry.spacing_x_m(), dy = grid.geometry.spacing_y_m();
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * columns + c;
+      if (!water[i]) continue;
+      const double div = divergence(p, i, c, columns, 1, dx) + divergence(q, i, r, rows, columns, dy);
+      rate.values()[i] = static_cast<float>(-div / porosity(i));
+    }
   return rate;
 }
 
