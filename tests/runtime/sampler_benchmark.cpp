@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   site->blend_start_m = 50.0;
   site->blend_width_m = 80.0;
   site->edge_fade_m = 80.0;
+  site->frame_interval_s = 0.5;  // keyframes with rates: the harbour is the Hermite in time, as played
   SurfaceSnapshot snapshot;
   snapshot.site = site;
   for (int which = 0; which < 2; ++which) {
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
         keyframe->surface_elevation_m(column, row) = static_cast<float>(0.8 * std::cos(phase));
         keyframe->flux_x_m2_s(column, row) = static_cast<float>(4.0 * std::cos(phase));
       }
+    keyframe->surface_elevation_rate_m_s = surface_elevation_rate(site->harbour, keyframe->flux_x_m2_s, keyframe->flux_y_m2_s);
     (which == 0 ? snapshot.harbour_from : snapshot.harbour_to) = keyframe;
   }
   snapshot.harbour_fraction = 0.4;
