@@ -87,8 +87,9 @@ inline void fill_sample(const nearshore::runtime::SurfaceState& state, nearshore
   sample.dry = state.dry ? 1 : 0;
 }
 
-inline void query(const nearshore::runtime::SurfaceSnapshot& snapshot, const double* xy_m, std::size_t count,
-                  nearshore_surface_sample* samples) {
+// The surface states at the host's points (xy_m: x0, y0, x1, y1, ...), each checked finite.
+inline std::vector<nearshore::runtime::SurfaceState> surface_states(const nearshore::runtime::SurfaceSnapshot& snapshot,
+                                                                    const double* xy_m, std::size_t count) {
   const nearshore::runtime::SurfaceSampler sampler(snapshot);
   std::vector<nearshore::runtime::SitePoint> points(count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -98,6 +99,12 @@ inline void query(const nearshore::runtime::SurfaceSnapshot& snapshot, const dou
   }
   std::vector<nearshore::runtime::SurfaceState> states(count);
   sampler.states(points, states);
+  return states;
+}
+
+inline void query(const nearshore::runtime::SurfaceSnapshot& snapshot, const double* xy_m, std::size_t count,
+                  nearshore_surface_sample* samples) {
+  const std::vector<nearshore::runtime::SurfaceState> states = surface_states(snapshot, xy_m, count);
   for (std::size_t i = 0; i < count; ++i) fill_sample(states[i], samples[i]);
 }
 

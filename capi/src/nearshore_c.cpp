@@ -392,12 +392,8 @@ nearshore_status nearshore_sea_query_vertical_velocity(const nearshore_sea* sea,
     checked_count(count);
     require(xy_m, "xy_m");
     require(vertical_velocity_m_s, "vertical_velocity_m_s");
-    const nearshore::runtime::SurfaceSampler sampler(sea->snapshot());
-    for (std::size_t i = 0; i < count; ++i) {
-      if (!std::isfinite(xy_m[2 * i]) || !std::isfinite(xy_m[2 * i + 1]))
-        fail(NEARSHORE_INVALID_ARGUMENT, "point " + std::to_string(i) + " of xy_m is not finite; give site metres");
-      vertical_velocity_m_s[i] = static_cast<float>(sampler.state(xy_m[2 * i], xy_m[2 * i + 1]).vertical_velocity_m_s);
-    }
+    const std::vector<nearshore::runtime::SurfaceState> states = surface_states(sea->snapshot(), xy_m, count);
+    for (std::size_t i = 0; i < count; ++i) vertical_velocity_m_s[i] = static_cast<float>(states[i].vertical_velocity_m_s);
   });
 }
 
