@@ -362,25 +362,8 @@ nearshore_status nearshore_sea_copy_harbour_elevation(const nearshore_sea* sea, 
     if (capacity < geometry.cell_count())
       fail(NEARSHORE_INVALID_ARGUMENT, "capacity = " + std::to_string(capacity) + " floats; the harbour has " +
                                            std::to_string(geometry.cell_count()) + " cells (columns x rows)");
-    if (!snapshot.harbour_from) {
-      std::fill(elevation_m, elevation_m + geometry.cell_count(), 0.f);
-      return;
-    }
-    const nearshore::runtime::HarbourKeyframe& from = *snapshot.harbour_from;
-    const nearshore::runtime::HarbourKeyframe& to = snapshot.harbour_to ? *snapshot.harbour_to : from;
-    const double f = snapshot.harbour_fraction, T = snapshot.site ? snapshot.site->frame_interval_s : 0.0;
-    const std::size_t cells = geometry.cell_count();
-    if (T > 0.0 && from.surface_elevation_rate_m_s.size() == cells && to.surface_elevation_rate_m_s.size() == cells) {
-      // The Hermite in time (runtime/surface_snapshot.hpp), as the renderer and the queries join them.
-      const nearshore::runtime::HermiteWeights h = nearshore::runtime::hermite_weights(f);
-      for (std::size_t i = 0; i < cells; ++i)
-        elevation_m[i] = static_cast<float>(h.from * from.surface_elevation_m.values()[i] + h.from_rate * T * from.surface_elevation_rate_m_s.values()[i] +
-                                            h.to * to.surface_elevation_m.values()[i] + h.to_rate * T * to.surface_elevation_rate_m_s.values()[i]);
-      return;
-    }
-    const float linear = static_cast<float>(f);
-    for (std::size_t i = 0; i < cells; ++i)
-      elevation_m[i] = (1.f - linear) * from.surface_elevation_m.values()[i] + linear * to.surface_elevation_m.values()[i];
+    // Joined in time as the renderer and the queries join them (runtime/surface_snapshot.hpp).
+    nearshore::runtime::shown_harbour_elevation(snapshot, elevation_m);
   });
 }
 

@@ -259,8 +259,6 @@ KeyframeTextures::Bound KeyframeTextures::prepare(const runtime::SurfaceSnapshot
     bound.harbour_breaking[1] = to.textures[1];
     bound.harbour_eta_rate[0] = from.textures[2];
     bound.harbour_eta_rate[1] = to.textures[2];
-    bound.harbour_has_rates = harbour_from->surface_elevation_rate_m_s.size() == harbour_from->surface_elevation_m.size() &&
-                              harbour_to->surface_elevation_rate_m_s.size() == harbour_to->surface_elevation_m.size();
   }
   const auto& deep_from = snapshot.deep_from ? snapshot.deep_from : snapshot.deep_to;
   const auto& deep_to = snapshot.deep_to ? snapshot.deep_to : snapshot.deep_from;

@@ -43,8 +43,8 @@ class KeyframeTextures {
   /// What a draw binds: the textures of the snapshot's pair (from, to), resident after prepare().
   struct Bound {
     GLuint harbour_eta[2] = {0, 0}, harbour_breaking[2] = {0, 0};
-    GLuint harbour_eta_rate[2] = {0, 0};  ///< d eta / dt (zeros where a keyframe has none)
-    bool harbour_has_rates = false;       ///< both keyframes carry d eta / dt: the Hermite in time
+    GLuint harbour_eta_rate[2] = {0, 0};  ///< d eta / dt (zeros where a keyframe has none; used when
+                                          ///< runtime::harbour_joined_by_hermite)
     GLuint deep[kDeepFieldCount][2] = {};
     int deep_size = 0, cascade_count = 0;  ///< cascade_count: the field's cascades (layers 0 .. count - 1)
     /// The split's inside layer (runtime/surface_snapshot.hpp): bit c of the mask draws the

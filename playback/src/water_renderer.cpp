@@ -384,7 +384,7 @@ struct WaterRenderer::Impl {
     set_uniform(program, "u_harbour_fraction", float(snapshot.harbour_fraction));
     // The Hermite in time (surface_snapshot.hpp) when both keyframes carry d eta / dt.
     const double frame_interval_s = site ? site->frame_interval_s : 0.0;
-    set_uniform(program, "u_harbour_hermite", bound.harbour_has_rates && frame_interval_s > 0.0 ? 1 : 0);
+    set_uniform(program, "u_harbour_hermite", runtime::harbour_joined_by_hermite(snapshot) ? 1 : 0);
     set_uniform(program, "u_frame_interval_s", float(frame_interval_s));
     set_uniform(program, "u_open_sea_depth_m", open_sea_depth_m);
     if (site) {
@@ -599,7 +599,7 @@ struct WaterRenderer::Impl {
     textures.deep_grid_size = bound.deep_size;
     textures.tile_lengths_m = bound.tile_lengths_m;
     textures.harbour_fraction = snapshot.harbour_fraction;
-    textures.harbour_has_rates = bound.harbour_has_rates;
+    textures.harbour_has_rates = runtime::harbour_joined_by_hermite(snapshot);
     textures.frame_interval_s = snapshot.site ? snapshot.site->frame_interval_s : 0.0;
     textures.deep_fraction = snapshot.deep_fraction;
   }

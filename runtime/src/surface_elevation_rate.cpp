@@ -1,5 +1,7 @@
 // The harbour keyframes' time interpolation (surface_snapshot.hpp): the cubic Hermite basis and
 // each keyframe's d eta / dt from the bake's mass equation.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include <fmt/core.h>
@@ -21,6 +23,37 @@ HermiteWeights hermite_weights(double f) {
   h.d_to = -6.0 * f2 + 6.0 * f;
   h.d_to_rate = 3.0 * f2 - 2.0 * f;
   return h;
+}
+
+bool harbour_joined_by_hermite(const SurfaceSnapshot& snapshot) {
+  if (!snapshot.site || !snapshot.harbour_from || !(snapshot.site->frame_interval_s > 0.0) || !std::isfinite(snapshot.site->frame_interval_s))
+    return false;
+  const HarbourKeyframe& from = *snapshot.harbour_from;
+  const HarbourKeyframe& to = snapshot.harbour_to ? *snapshot.harbour_to : from;
+  return from.surface_elevation_rate_m_s.size() == from.surface_elevation_m.size() &&
+         to.surface_elevation_rate_m_s.size() == to.surface_elevation_m.size();
+}
+
+void shown_harbour_elevation(const SurfaceSnapshot& snapshot, float* elevation_m) {
+  if (!snapshot.site) return;
+  const std::size_t cells = snapshot.site->harbour.geometry.cell_count();
+  if (!snapshot.harbour_from) {
+    std::fill(elevation_m, elevation_m + cells, 0.f);
+    return;
+  }
+  const HarbourKeyframe& from = *snapshot.harbour_from;
+  const HarbourKeyframe& to = snapshot.harbour_to ? *snapshot.harbour_to : from;
+  if (harbour_joined_by_hermite(snapshot) && from.surface_elevation_m.size() == cells && to.surface_elevation_m.size() == cells) {
+    const HermiteWeights h = hermite_weights(snapshot.harbour_fraction);
+    const double T = snapshot.site->frame_interval_s;
+    for (std::size_t i = 0; i < cells; ++i)
+      elevation_m[i] = static_cast<float>(h.from * from.surface_elevation_m.values()[i] + h.from_rate * T * from.surface_elevation_rate_m_s.values()[i] +
+                                          h.to * to.surface_elevation_m.values()[i] + h.to_rate * T * to.surface_elevation_rate_m_s.values()[i]);
+    return;
+  }
+  const float linear = static_cast<float>(snapshot.harbour_fraction);
+  for (std::size_t i = 0; i < cells; ++i)
+    elevation_m[i] = (1.f - linear) * from.surface_elevation_m.values()[i] + linear * to.surface_elevation_m.values()[i];
 }
 
 Raster<float> surface_elevation_rate(const HarbourGrid& grid, const Raster<float>& flux_x_m2_s, const Raster<float>& flux_y_m2_s) {

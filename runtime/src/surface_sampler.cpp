@@ -125,8 +125,7 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
       land_ = site.harbour.land.data();
     harbour_fraction_ = std::clamp(s.harbour_fraction, 0.0, 1.0);
     frame_interval_s_ = site.frame_interval_s > 0.0 && std::isfinite(site.frame_interval_s) ? site.frame_interval_s : 0.0;
-    if (frame_interval_s_ > 0.0 && from.surface_elevation_rate_m_s.size() == from.surface_elevation_m.size() &&
-        to.surface_elevation_rate_m_s.size() == to.surface_elevation_m.size())
+    if (harbour_joined_by_hermite(s))
       eta_rate_ = {data_or_null(from.surface_elevation_rate_m_s, columns_, rows_), data_or_null(to.surface_elevation_rate_m_s, columns_, rows_)};
     hermite_ = hermite_weights(harbour_fraction_);
   }

@@ -136,4 +136,13 @@ struct SurfaceSnapshot {
   double deep_fraction = 0.0;                              ///< f_d
 };
 
+/// Whether the snapshot's harbour keyframes are joined by the Hermite: the site has a frame
+/// interval and both keyframes (`to` may be null: `from` alone) carry rates of their elevation's size.
+bool harbour_joined_by_hermite(const SurfaceSnapshot& snapshot);
+
+/// The harbour's surface elevation at every cell centre as shown at the snapshot's time (m; row 0
+/// south; `elevation_m` holds columns x rows floats): the Hermite above, else linear in time, 0
+/// without harbour keyframes.
+void shown_harbour_elevation(const SurfaceSnapshot& snapshot, float* elevation_m);
+
 }  // namespace nearshore::runtime
