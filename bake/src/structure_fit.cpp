@@ -92,6 +92,32 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     std::sort(faces_of[s].begin(), faces_of[s].end());
   };
 
+  // The faces of an impermeable line structure as its core dilated by exactly `cells` cells (cell
+  // centres within cells x the cell size of a core cell's centre), so both sides of a straight
+  // breakwater get the number of cells the flume was fitted with: laid by distance from the
+  // centre line, one side got N and the other N + 1 depending on where the line fell in its cell,
+  // and a thin layer's reflection swings with its width (docs/structures.md).
+  auto dilate_core = [&](std::size_t s, int cells) {
+    const double dx = g.spacing_x_m(), dy = g.spacing_y_m();
+    const double reach_m = cells * cell_m + 1e-6 * cell_m;
+    const int reach_c = static_cast<int>(std::ceil(reach_m / dx)), reach_r = static_cast<int>(std::ceil(reach_m / dy));
+    std::vector<unsigned char> part(static_cast<std::size_t>(g.columns) * g.rows, 0);
+    for (std::size_t i : core_of[s]) part[i] = 2;
+    std::vector<std::size_t> faces;
+    for (std::size_t i : core_of[s]) {
+      const int c0 = static_cast<int>(i % g.columns), r0 = static_cast<int>(i / g.columns);
+      for (int r = std::max(0, r0 - reach_r); r <= std::min(g.rows - 1, r0 + reach_r); ++r)
+        for (int c = std::max(0, c0 - reach_c); c <= std::min(g.columns - 1, c0 + reach_c); ++c) {
+          const std::size_t j = static_cast<std::size_t>(r) * g.columns + c;
+          if (part[j] != 0 || std::hypot((c - c0) * dx, (r - r0) * dy) > reach_m) continue;
+          part[j] = 1;
+          faces.push_back(j);
+        }
+    }
+    std::sort(faces.begin(), faces.end());
+    faces_of[s] = std::move(faces);
+  };
+
   // Steps 1-3 of the header: coefficients, footprint, the flume each structure needs.
   for (std::size_t s = 0; s < grid.structures.size(); ++s) {
     const CoastalStructure& structure = grid.structures[s];
@@ -157,6 +183,10 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       request.depth_m = std::exp(std::round(std::log(layer.depth_m) / 0.1) * 0.1);
       request_of[s] = request;
       fits.emplace(request, FitResult{});
+      if (impermeable && !structure.lines.empty() && !core_of[s].empty()) {
+        dilate_core(s, request.layer_cells);
+        layer.face_cells = faces_of[s].size();
+      }
     }
     layers.push_back(std::move(layer));
   }
@@ -222,6 +252,8 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
         layer.widening_m = result.widening_cells * cell_m;
         layer.face_width_m += layer.widening_m;
         footprint(s, layer.widening_m);
+        if (bathymetry::has_impermeable_core(grid.structures[s]) && !grid.structures[s].lines.empty() && !core_of[s].empty())
+          dilate_core(s, request_of[s].layer_cells + result.widening_cells);
         layer.core_cells = core_of[s].size();
         layer.face_cells = faces_of[s].size();
       }

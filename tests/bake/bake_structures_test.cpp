@@ -184,16 +184,15 @@ double channel_reflection(const HarbourGrid& grid, const boussinesq::SolverParam
   return boussinesq::separate_incident_reflected(positions, amplitudes, k).reflection_coefficient();
 }
 
-// DISABLED (it fails, and says why): the 2-D bake reflects what the flume gives for the faces it
-// is given (16 s: 0.298 in 2-D, 0.297 in the flume at 4 cells), but lay_structures fits the flume
-// with round(face width / cell) cells (plus widening) while the footprint, laid by distance from
-// the centre line, puts N cells on one side and N + 1 on the other depending on where the line
-// falls in its cell; and a thin layer's Kr swings with its width (16 s, n 0.51: 3 cells 0.50,
-// 4 cells 0.30, 8 cells 0.55; 5 s, n 0.66: 8 cells 0.79, 9 cells 0.48). Measured: 16 s 0.298, 12 s
-// 0.499, 8.5 s 0.508, 6 s 0.812 (Kr 0.5 not reachable there: said by a warning), 5 s 0.837, for
-// 0.5 asked. The fix is a footprint whose faces are the core dilated by exactly the fitted number
-// of cells (both sides alike) or a fit per side; the depth bins of the fit move Kr by <= 0.02.
-TEST(StructureLayers, DISABLED_TheBakeReflectsWhatTheStructureAsksAcrossTheKhOfTheDemoAndTacomaSeas) {
+// The 2-D bake reflects what the flume fitted, across the k h of the demo (12 s swell over 8 m)
+// and Tacoma (5-6 s over 12 m) seas: a straight mound across a six-row channel, Kr separated in
+// front of it (Mansard & Funke) and divided by the core alone's, against the fit's own Kr in the
+// sea (and the request where the fit reached it). Tolerance 0.05: the fit's depth bin moves Kr by
+// <= 0.02 and the fit's tolerance is kStructureFitTolerance; the rest is what a 2-D channel with
+// side walls and a bent footprint adds to the 1-D flume (measured <= 0.031). Before the faces were
+// laid as the core dilated by the fitted count and the flume's wall was an interior wall, this
+// read 0.298 at 16 s and 0.837 at 5 s for 0.5 asked (docs/structures.md).
+TEST(StructureLayers, TheBakeReflectsWhatTheStructureAsksAcrossTheKhOfTheDemoAndTacomaSeas) {
   struct Case {
     double period_s, depth_m, cell_m, height_m;
   };
@@ -229,27 +228,12 @@ TEST(StructureLayers, DISABLED_TheBakeReflectsWhatTheStructureAsksAcrossTheKhOfT
     std::vector<std::string> warnings;
     const std::vector<StructureLayer> layers = lay_structures(grid, solver, sea, warnings);
     ASSERT_EQ(layers.size(), 1u);
-    EXPECT_TRUE(layers[0].fitted && layers[0].reached) << c.period_s << " s: " << (warnings.empty() ? "" : warnings.front());
-    {
-      std::string profile;
-      for (int column = 0; column < grid.geometry.columns; ++column)
-        if (grid.porosity(column, 3) < 1.0f) profile += fmt::format(" {}:{:.2f}", column, grid.porosity(column, 3));
-      std::printf("face width %.1f m, %zu face cells, %zu core cells; row 3:%s\n", layers[0].face_width_m, layers[0].face_cells,
-                  layers[0].core_cells, profile.c_str());
-      for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
-      // The flume at the widths the footprint has on its two sides, to show what the bake sees.
-      for (int cells : {3, 4, 8, 9}) {
-        boussinesq::PorousLayerFlume flume;
-        flume.still_water_depth_m = c.depth_m;
-        flume.waves = {{c.period_s, c.height_m}};
-        flume.spacing_m = c.cell_m;
-        flume.layer_width_m = cells * c.cell_m;
-        flume.solver = solver;
-        const auto a = boussinesq::measure_porous_layer(flume, layers[0].face_porosity);
-        const auto b = boussinesq::measure_porous_layer(flume, 1.0);
-        std::printf("  flume %.2f m, %d cells at n %.3f: Kr %.3f / %.3f = %.3f\n", flume.still_water_depth_m, cells, layers[0].face_porosity, a.reflection_coefficient,
-                    b.reflection_coefficient, a.reflection_coefficient / b.reflection_coefficient);
-      }
+    ASSERT_TRUE(layers[0].fitted) << c.period_s << " s";
+    // A request the faces cannot give is said, naming the structure (6 s: a 30 m layer reflects at
+    // least 0.8 there; 5 s: at least 0.55).
+    if (!layers[0].reached) {
+      ASSERT_EQ(warnings.size(), 1u) << c.period_s << " s";
+      EXPECT_NE(warnings[0].find("channel mound"), std::string::npos);
     }
     const double with_faces = channel_reflection(grid, solver, c.period_s, c.height_m, c.depth_m, first_gauge_m, last_gauge_m);
     HarbourGrid core_alone = grid;
@@ -261,7 +245,10 @@ TEST(StructureLayers, DISABLED_TheBakeReflectsWhatTheStructureAsksAcrossTheKhOfT
                 "(%.3f / wall alone %.3f)\n",
                 c.period_s, c.depth_m, c.cell_m, k * c.depth_m, layers[0].face_porosity, layers[0].widening_m,
                 layers[0].in_the_sea.reflection_coefficient, kr, with_faces, wall);
-    EXPECT_NEAR(kr, 0.5, 0.05) << c.period_s << " s, k h " << k * c.depth_m;
+    EXPECT_NEAR(kr, layers[0].in_the_sea.reflection_coefficient, 0.05) << c.period_s << " s, k h " << k * c.depth_m;
+    if (layers[0].reached) {
+      EXPECT_NEAR(kr, 0.5, 0.05) << c.period_s << " s, k h " << k * c.depth_m;
+    }
   }
 }
 

@@ -11,7 +11,7 @@
 // The flume, along x, one cell across (the solver's 1-D road: docs/solver.md "Modes across a
 // narrow flume"), flat bed at `still_water_depth_m`, cells of `spacing_m`:
 //   west sponge (1.5 L) | source line (Wei et al. 1999) | gauges over 0.4 L | 0.3 L | the layer, `layer_width_m`
-//   | wall_behind: the flume's east end, a wall        else: open water, 5 gauges, east sponge (2 L)
+//   | wall_behind: two wall cells (porosity 0, as the bake lays a core)   else: open water, 5 gauges, east sponge (2 L)
 // L the model's wavelength (model_dispersion.hpp) of the longest wave. The waves ramp up over two
 // of their longest periods; the record is one common period of them all (eight longest periods)
 // after the waves reflected from the far end have passed the gauges (group speed of the slowest).
