@@ -255,7 +255,9 @@ Eigen::Quaterniond orientation_from_euler(double yaw_rad, double pitch_rad, doub
                             Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()));
 }
 
-double yaw_from_heading_rad(double heading_deg) { return (90.0 - heading_deg) * kPi / 180.0; }
+// Reduced to one turn first (std::fmod is exact): any finite heading is a heading, and 1e308 deg
+// times pi would overflow to infinity and make the orientation NaN (issue 44).
+double yaw_from_heading_rad(double heading_deg) { return (90.0 - std::fmod(heading_deg, 360.0)) * kPi / 180.0; }
 
 ShipBody::ShipBody(HullSamples samples, ShipParticulars particulars, ShipState initial)
     : samples_(std::move(samples)), particulars_(std::move(particulars)), state_(initial) {
