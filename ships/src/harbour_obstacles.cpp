@@ -137,6 +137,113 @@ HarbourObstacles::HarbourObstacles(const HarbourGrid& grid, HarbourObstacleOptio
   indicator_.resize(n);
   for (std::size_t c = 0; c < n; ++c) indicator_[c] = label_[c] >= 0 ? -1.0f : 1.0f;
   smooth(indicator_, options_.smoothing_passes);
+  fit_normals(distance);
+}
+
+void HarbourObstacles::fit_normals(const std::vector<float>& distance) {
+  // 4. The fitted normal near the faces (step 3 of the header). The boundary edges: between cell
+  //    (i, j) and its east or north neighbour where one is solid and the other water, at the
+  //    edge's midpoint, with the outward (solid -> water) unit normal of the edge; bucketed by
+  //    (i, j) so that a window of cells finds its edges.
+  const std::size_t n = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
+  auto index = [&](int i, int j) { return static_cast<std::size_t>(j) * columns_ + i; };
+  auto solid = [&](int i, int j) { return label_[index(i, j)] >= 0; };
+  struct Edge {
+    Eigen::Vector2d mid_m;
+    Eigen::Vector2d outward;
+  };
+  std::vector<Edge> edges;
+  std::vector<std::uint32_t> first(n + 1, 0);
+  for (int j = 0; j < rows_; ++j)
+    for (int i = 0; i < columns_; ++i) {
+      first[index(i, j)] = static_cast<std::uint32_t>(edges.size());
+      const bool here = solid(i, j);
+      const double sign = here ? 1.0 : -1.0;
+      if (i + 1 < columns_ && solid(i + 1, j) != here)
+        edges.push_back({{(i + 1) * dx_, (j + 0.5) * dy_}, {sign, 0.0}});
+      if (j + 1 < rows_ && solid(i, j + 1) != here)
+        edges.push_back({{(i + 0.5) * dx_, (j + 1) * dy_}, {0.0, sign}});
+    }
+  first[n] = static_cast<std::uint32_t>(edges.size());
+  fitted_normal_.assign(n, Eigen::Vector2f::Zero());
+  const double cell_m = std::max(dx_, dy_);
+  const double near_m = options_.normal_fit_cells * cell_m;
+  const double radius_m = std::max(options_.normal_fit_radius_cells, 1.0) * std::sqrt(dx_ * dy_);
+  std::vector<std::pair<Eigen::Vector2d, double>> picked;  // one fit's midpoints and weights
+  // Every edge within `reach_m` of `centre`, by the cells whose edges can lie there.
+  auto for_edges_near = [&](const Eigen::Vector2d& centre, double reach_m, auto&& visit) {
+    const int i0 = std::max(static_cast<int>(std::floor((centre.x() - reach_m) / dx_)) - 1, 0);
+    const int i1 = std::min(static_cast<int>(std::floor((centre.x() + reach_m) / dx_)) + 1, columns_ - 1);
+    const int j0 = std::max(static_cast<int>(std::floor((centre.y() - reach_m) / dy_)) - 1, 0);
+    const int j1 = std::min(static_cast<int>(std::floor((centre.y() + reach_m) / dy_)) + 1, rows_ - 1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+        for (std::uint32_t e = first[index(i, j)]; e < first[index(i, j) + 1]; ++e) visit(edges[e]);
+  };
+  for (int j = 0; j < rows_; ++j)
+    for (int i = 0; i < columns_; ++i) {
+      const std::size_t c = index(i, j);
+      if (distance[c] > near_m) continue;
+      // The nearest boundary edge (the face this cell belongs to).
+      const Eigen::Vector2d centre((i + 0.5) * dx_, (j + 0.5) * dy_);
+      const Edge* nearest = nullptr;
+      double nearest_m2 = 1e300;
+      for_edges_near(centre, distance[c] + cell_m, [&](const Edge& e) {
+        const double d2 = (e.mid_m - centre).squaredNorm();
+        if (d2 < nearest_m2) {
+          nearest_m2 = d2;
+          nearest = &e;
+        }
+      });
+      if (nearest == nullptr) continue;
+      // Weighted total least squares over the edges within the radius on this side of the solid:
+      // first the weighted mean outward normal of the edges that do not face against the nearest
+      // one (`side`), then only the edges that face along it, which leaves out the far side of a
+      // thin pier or breakwater (its risers are perpendicular to the nearest tread, and would pull
+      // the line across the structure). Weights: a Gaussian of standard deviation R / 2, cut at R.
+      const double inverse_two_variance = 2.0 / (radius_m * radius_m);
+      Eigen::Vector2d side = Eigen::Vector2d::Zero();
+      for_edges_near(nearest->mid_m, radius_m, [&](const Edge& e) {
+        const double r2 = (e.mid_m - nearest->mid_m).squaredNorm();
+        if (r2 < radius_m * radius_m && e.outward.dot(nearest->outward) >= 0.0)
+          side += std::exp(-r2 * inverse_two_variance) * e.outward;
+      });
+      double weight_sum = 0.0;
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero(), outward_sum = Eigen::Vector2d::Zero();
+      picked.clear();
+      for_edges_near(nearest->mid_m, radius_m, [&](const Edge& e) {
+        const double r2 = (e.mid_m - nearest->mid_m).squaredNorm();
+        if (r2 >= radius_m * radius_m || !(e.outward.dot(side) > 0.0)) return;
+        const double w = std::exp(-r2 * inverse_two_variance);
+        picked.emplace_back(e.mid_m, w);
+        weight_sum += w;
+        mean += w * e.mid_m;
+        outward_sum += w * e.outward;
+      });
+      if (picked.empty()) continue;
+      mean /= weight_sum;
+      double cxx = 0.0, cyy = 0.0, cxy = 0.0;
+      for (const auto& [m, w] : picked) {
+        const Eigen::Vector2d d = m - mean;
+        cxx += w * d.x() * d.x();
+        cyy += w * d.y() * d.y();
+        cxy += w * d.x() * d.y();
+      }
+      // The principal axis of the covariance is the line's direction (angle theta); the normal is
+      // perpendicular. Where the points spread about equally both ways (a structure of a cell or
+      // two, a tight corner) the line is undefined and the edges' mean outward normal stands in.
+      const double spread = std::hypot(cxx - cyy, 2.0 * cxy);
+      Eigen::Vector2d normal;
+      if (picked.size() >= 3 && spread > 0.3 * (cxx + cyy)) {
+        const double theta = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+        normal = Eigen::Vector2d(-std::sin(theta), std::cos(theta));
+        const Eigen::Vector2d side = outward_sum.squaredNorm() > 1e-12 ? outward_sum : nearest->outward;
+        if (normal.dot(side) < 0.0) normal = -normal;
+      } else {
+        normal = outward_sum.squaredNorm() > 1e-12 ? outward_sum.normalized() : nearest->outward;
+      }
+      fitted_normal_[c] = normal.cast<float>();
+    }
 }
 
 double HarbourObstacles::signed_distance_m(double x_m, double y_m) const {
@@ -162,12 +269,19 @@ ObstacleSample HarbourObstacles::sample(double x_m, double y_m) const {
   // The normal from the smoothed indicator: over a kernel of 1.7 cells the cells' staircase along a
   // straight face averages out, so its gradient is the face's normal (phi's own gradient keeps the
   // staircase's ripple near the face).
-  auto g = [&](int i, int j) { return static_cast<double>(indicator_[static_cast<std::size_t>(j) * columns_ + i]); };
-  const double g00 = g(i0, j0), g10 = g(i1, j0), g01 = g(i0, j1), g11 = g(i1, j1);
-  const Eigen::Vector2d gradient(((1 - b) * (g10 - g00) + b * (g11 - g01)) / dx_,
-                                 ((1 - a) * (g01 - g00) + a * (g11 - g10)) / dy_);
-  const double norm = gradient.norm();
-  if (norm > 1e-9) out.normal = gradient / norm;
+  // Near a face: the fitted normals of the four cells (step 4 of the constructor), blended.
+  auto fitted = [&](int i, int j) { return fitted_normal_[static_cast<std::size_t>(j) * columns_ + i].cast<double>(); };
+  const Eigen::Vector2d n00 = fitted(i0, j0), n10 = fitted(i1, j0), n01 = fitted(i0, j1), n11 = fitted(i1, j1);
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();
+  if (!n00.isZero() && !n10.isZero() && !n01.isZero() && !n11.isZero())
+    normal = (1 - b) * ((1 - a) * n00 + a * n10) + b * ((1 - a) * n01 + a * n11);
+  if (normal.norm() < 1e-6) {
+    auto g = [&](int i, int j) { return static_cast<double>(indicator_[static_cast<std::size_t>(j) * columns_ + i]); };
+    const double g00 = g(i0, j0), g10 = g(i1, j0), g01 = g(i0, j1), g11 = g(i1, j1);
+    normal = Eigen::Vector2d(((1 - b) * (g10 - g00) + b * (g11 - g01)) / dx_, ((1 - a) * (g01 - g00) + a * (g11 - g10)) / dy_);
+  }
+  const double norm = normal.norm();
+  if (norm > 1e-9) out.normal = normal / norm;
   const int ci = std::clamp(static_cast<int>(std::lround(u)), 0, columns_ - 1);
   const int cj = std::clamp(static_cast<int>(std::lround(v)), 0, rows_ - 1);
   const std::int32_t owner = owner_[static_cast<std::size_t>(cj) * columns_ + ci];

@@ -11,10 +11,21 @@
 //      on the face between a solid and a water cell: exact for walls along the grid axes;
 //   2. two binomial (1 2 1)/4 passes in x and y, which keep a linear field (a straight face at any
 //      angle, away from corners) and take the sharpest steps off the staircase;
-//   3. the normal: the gradient of the +-1 solid/water indicator after six binomial passes (a
-//      kernel of 1.7 cells' standard deviation), interpolated bilinearly: over that kernel the
-//      cells' staircase along a straight face averages out, so a face at 30 deg to the axes gets a
-//      normal at 30 deg and not at 0 or 90 (tested); corners are rounded over about two cells.
+//   3. the normal, near the faces (cells within normal_fit_cells of one): a weighted
+//      least-squares line through the midpoints of the solid/water cell edges ("boundary edges")
+//      within normal_fit_radius_cells of the cell's nearest boundary edge, i.e. the face the
+//      staircase digitises rather than the staircase itself. A straight face at any angle puts its
+//      edge midpoints within half a cell of the true line, scattered evenly either side, so the fit's
+//      direction is the face's to a few degrees over a 3.5-cell radius (tested at 30 deg: the
+//      staircase's own edges would give 0 or 90 deg; the gradient of a smoothed solid/water
+//      indicator, the earlier normal, came out 7.7 deg off because its 1.7-cell kernel sees only two
+//      or three steps of the staircase). The fit is the total least-squares line (the principal
+//      axis of the weighted midpoints' covariance, weights (1 - r^2/R^2)^2), oriented out of the
+//      solid by the nearest edge's own outward normal; edges facing the other way (the far side of
+//      a thin pier) are left out. Corners are rounded over the fit radius. Farther from any face the
+//      normal is the gradient of the +-1 indicator after smoothing_passes binomial passes, which
+//      points away from the solid everywhere within the band. Both are interpolated bilinearly; a
+//      sample uses the fitted normals only where all four surrounding cells have one.
 // Structures are the 8-connected components of structure cells, numbered from 1 in the order of
 // their south-westernmost cell (row by row from the south); land is 0. Each has its lowest
 // porosity: below 0.05 it is a wall (a quay, a caisson: the Boussinesq solver's kWallPorosity),
@@ -57,6 +68,8 @@ struct HarbourObstacleOptions {
   double structure_crest_m = 2.5;  ///< structures stand this high above still water
   int band_cells = 8;              ///< phi is exact within this many cells of a face, clamped beyond
   int smoothing_passes = 6;        ///< binomial passes over the indicator (step 3 above)
+  int normal_fit_cells = 3;        ///< cells this close to a face get the fitted normal (step 3)
+  double normal_fit_radius_cells = 4.5;  ///< the line fit's radius about the nearest boundary edge
 };
 
 class HarbourObstacles {
@@ -81,11 +94,16 @@ class HarbourObstacles {
   HarbourObstacleOptions options_;
   bool any_ = false;
   std::vector<float> phi_;           ///< signed distance at cell centres (m), smoothed
-  std::vector<float> indicator_;     ///< +1 water, -1 solid, smoothed: its gradient is the normal
+  std::vector<float> indicator_;     ///< +1 water, -1 solid, smoothed: its gradient is the far normal
+  std::vector<Eigen::Vector2f> fitted_normal_;  ///< per cell near a face: the line fit's normal (0: none)
   std::vector<std::int32_t> owner_;  ///< per cell: the index of the nearest solid cell (-1: none)
   std::vector<std::int32_t> label_;  ///< per solid cell: 0 land, k >= 1 structure k; -1 water
   std::vector<float> top_;           ///< per solid cell: its top above still water (m)
   std::vector<HarbourStructure> structures_;
+
+  /// Step 4 of the constructor: fitted_normal_ from the boundary edges (`distance`: each cell
+  /// centre's distance to the nearest centre of the other kind, m).
+  void fit_normals(const std::vector<float>& distance);
 };
 
 }  // namespace nearshore::ships

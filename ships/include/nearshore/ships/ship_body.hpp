@@ -31,6 +31,9 @@
 //              than the sand bed, so that a tug at 3 m/s stops within a few decimetres; t_s = 0.02 s
 //              keeps the explicit step stable, k_s A t_s dt / m well under 2), with Coulomb friction
 //              mu = 0.4 against the point's velocity along the face (steel on concrete or rock).
+//              An impact is near-plastic (ship_body.cpp step 7: restitution 0 at the deepest point,
+//              a friction impulse of at most mu times the normal one, Pedersen & Zhang 1998), and
+//              the penalty pushes the hull out no faster than 5 cm/s: a struck ship stays at the face.
 //   external   ship-ship repulsion (ship_fleet.hpp), given as a force and a torque about G.
 // Dynamics: Newton for the translation with the world-frame mass matrix M = R (m Id + A_t) R^T
 // (eq. 4.17 with the added masses A_t of surge, sway, heave), Euler's equations with the
