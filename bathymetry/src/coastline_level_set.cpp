@@ -1,50 +1,23 @@
 // The only translation unit that includes OpenVDB (see coastline_level_set.hpp).
 #include "nearshore/bathymetry/coastline_level_set.hpp"
 
-#include <openvdb/io/Archive.h>
-#include <openvdb/openvdb.h>
-
 #include <cmath>
-#include <mutex>
 
 #include <fmt/core.h>
 
-#include "nearshore/core/atomic_file.hpp"
-#include "nearshore/core/atomic_stream.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/vdb_file.hpp"
 
 namespace nearshore::bathymetry {
-namespace {
-
-void initialise_openvdb() {
-  static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
-}
-
-
-// OpenVDB's io::File::write writes through a std::ofstream whose state it never checks, so a full
-// disk left a truncated .vdb that was then renamed into place (issue 44). The same archive (header,
-// metadata, grids with their offsets: what io::File writes and reads) goes to the core's checked
-// stream instead (write_stream_atomically), which refuses to rename a file whose write failed.
-class CheckedVdbArchive : public openvdb::io::Archive {
- public:
-  void write_to(std::ostream& out, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& metadata) const {
-    Archive::write(out, grids, /*seekable=*/true, metadata);
-  }
-};
-
-}  // namespace
-
 std::size_t write_coastline_level_set(const std::filesystem::path& vdb_path, const GridGeometry& geometry,
                                       const Raster<float>& coast_distance_m, double half_band_m) {
   initialise_openvdb();
   auto grid = openvdb::FloatGrid::create(static_cast<float>(half_band_m));
   grid->setName("coast_distance");
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
-  // Index (i, j, 0) -> world (origin + (i + 0.5) s, origin + (j + 0.5) s, 0): a cell-centred voxel.
-  auto transform = openvdb::math::Transform::createLinearTransform(geometry.spacing_m);
-  transform->postTranslate(openvdb::Vec3d(geometry.origin_x_m + 0.5 * geometry.spacing_m,
-                                          geometry.origin_y_m + 0.5 * geometry.spacing_m, 0.0));
+  // Voxel (i, j, 0) is cell (column i, row j) at its centre, in metres from the grid's south-west
+  // corner, the georeference as metadata: as every VDB of the project (vdb_file.hpp).
+  const openvdb::math::Transform::Ptr transform = cell_centre_transform(geometry);
   grid->setTransform(transform);
   grid->insertMeta("crs_wkt", openvdb::StringMetadata(geometry.crs_wkt));
   grid->insertMeta("units", openvdb::StringMetadata("metres, negative on land"));
@@ -56,17 +29,9 @@ std::size_t write_coastline_level_set(const std::filesystem::path& vdb_path, con
     }
   grid->pruneGrid();
   const std::size_t active = grid->activeVoxelCount();
-  write_stream_atomically(
-      vdb_path,
-      [&](std::ostream& out) {
-        try {
-          CheckedVdbArchive().write_to(out, openvdb::GridPtrVec{grid}, openvdb::MetaMap());
-        } catch (const openvdb::Exception& e) {
-          throw Error(vdb_path.string(), std::string("writing the OpenVDB level set failed: ") + e.what(),
-                      "check the folder is writable and has space");
-        }
-      },
-      "the OpenVDB level set");
+  openvdb::MetaMap metadata;
+  add_georeference(metadata, geometry);
+  write_vdb_file(vdb_path, openvdb::GridPtrVec{grid}, metadata, "the OpenVDB level set");
   return active;
 }
 

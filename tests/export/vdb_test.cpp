@@ -1,12 +1,15 @@
 // The per-frame VDBs read back by OpenVDB: one file per frame, a height field on one voxel layer
-// (never frames stacked as z), the frame's values, land inactive, placement and time as metadata.
+// (never frames stacked as z), the frame's values, land inactive, placement and time as metadata;
+// and the one placement every VDB of the project shares.
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
 #include <gtest/gtest.h>
 
 #include "export_test_support.hpp"
+#include "nearshore/bathymetry/coastline_level_set.hpp"
 #include "nearshore/export/export_sequence.hpp"
+#include "nearshore/loops/sequence_vdb.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::exports {
@@ -54,6 +57,37 @@ TEST(ExportVdb, EachFrameIsOneHeightFieldWithLandInactive) {
     const openvdb::Vec3d centre = eta->transform().indexToWorld(openvdb::Coord(3, 4, 0));
     EXPECT_DOUBLE_EQ(centre.x(), 35.0);
     EXPECT_DOUBLE_EQ(centre.y(), 45.0);
+  }
+}
+
+// The three VDB writers (export --to vdb, loops --vdb, bathy's coastline level set) put a cell at
+// the same point: they all go through core/vdb (before, `loops --vdb` put it at its corner, half a
+// cell from where `export --to vdb` put it), with rectangular cells too.
+TEST(ExportVdb, EveryVdbOfTheProjectPlacesACellAtTheSamePoint) {
+  const fs::path folder = testing::scratch_folder();
+  const double spacing_y_m = 6.0;
+  TestWave::write(folder / "sequence", spacing_y_m);
+  export_sequence({folder / "sequence", folder / "out", ExportFormat::kVdb, {0, 1}});
+  loops::export_sequence_vdb(folder / "sequence", folder / "stacked.vdb", {0, 1, 1, false});
+  const GridGeometry geometry = TestWave::geometry(spacing_y_m);
+  bathymetry::write_coastline_level_set(folder / "coast.vdb", geometry,
+                                        Raster<float>(geometry.columns, geometry.rows, 1.0f), 5.0);
+  openvdb::initialize();
+  const std::vector<std::pair<fs::path, std::string>> files = {
+      {folder / "out" / "surface_000000.vdb", "surface_elevation"},
+      {folder / "stacked.vdb", "surface_elevation"},
+      {folder / "coast.vdb", "coast_distance"}};
+  for (const auto& [path, name] : files) {
+    openvdb::io::File file(path.string());
+    file.open();
+    const openvdb::GridBase::Ptr grid = file.readGrid(name);
+    const openvdb::MetaMap::Ptr metadata = file.getMetadata();
+    file.close();
+    const openvdb::Vec3d centre = grid->transform().indexToWorld(openvdb::Coord(3, 4, 0));
+    EXPECT_DOUBLE_EQ(centre.x(), 3.5 * TestWave::kSpacing_m) << path;
+    EXPECT_DOUBLE_EQ(centre.y(), 4.5 * spacing_y_m) << path;
+    EXPECT_DOUBLE_EQ(metadata->metaValue<double>("nearshore_origin_y_m"), TestWave::kOriginY_m) << path;
+    EXPECT_DOUBLE_EQ(metadata->metaValue<double>("nearshore_spacing_y_m"), spacing_y_m) << path;
   }
 }
 

@@ -44,6 +44,10 @@ TEST(SequenceVdb, FramesBecomeTheThirdAxisWithLandInactive) {
   EXPECT_FALSE(accessor.isValueOn(openvdb::Coord(5, 7, 1)));  // land
   EXPECT_TRUE(file.readGrid("flux_y"));
   EXPECT_DOUBLE_EQ(grid->voxelSize()[0], geometry.spacing_m);
+  // Voxel (5, 2, 1) is cell (5, 2) at its centre, metres from the south-west corner (vdb_file.hpp).
+  const openvdb::Vec3d centre = grid->transform().indexToWorld(openvdb::Coord(5, 2, 1));
+  EXPECT_DOUBLE_EQ(centre.x(), 5.5 * geometry.spacing_m);
+  EXPECT_DOUBLE_EQ(centre.y(), 2.5 * geometry.spacing_m);
   file.close();
 }
 

@@ -1,33 +1,15 @@
-// The only translation unit that includes OpenVDB on the sequence side (toolchain.md: ~45 s).
+// The sequence as one volume, frames stacked as the third axis; voxels placed, georeferenced and
+// written by core/vdb (vdb_file.hpp), as `export --to vdb` and `bathy`'s level set are.
 #include "nearshore/loops/sequence_vdb.hpp"
-
-#include <openvdb/openvdb.h>
-#include <openvdb/io/Archive.h>
 
 #include <fmt/core.h>
 
-#include "nearshore/core/atomic_file.hpp"
-#include "nearshore/core/atomic_stream.hpp"
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
+#include "nearshore/core/vdb_file.hpp"
 #include "nearshore/sequence/sequence_reader.hpp"
 
 namespace nearshore::loops {
-namespace {
-
-// OpenVDB's io::File::write writes through a std::ofstream whose state it never checks, so a full
-// disk left a truncated .vdb that was then renamed into place (issue 44). The same archive (header,
-// metadata, grids with their offsets: what io::File writes and reads) goes to the core's checked
-// stream instead (write_stream_atomically), which refuses to rename a file whose write failed.
-class CheckedVdbArchive : public openvdb::io::Archive {
- public:
-  void write_to(std::ostream& out, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& metadata) const {
-    Archive::write(out, grids, /*seekable=*/true, metadata);
-  }
-};
-
-}  // namespace
-
 void export_sequence_vdb(const std::filesystem::path& sequence_folder, const std::filesystem::path& vdb_path,
                          const VdbExportOptions& options) {
   const sequence::SequenceReader reader(sequence_folder);
@@ -39,11 +21,10 @@ void export_sequence_vdb(const std::filesystem::path& sequence_folder, const std
                             last - 1, options.frame_stride, reader.frame_count() - 1),
                 "choose a frame range inside the sequence and a stride >= 1");
   const HarbourGrid harbour = reader.read_harbour_grid();
-  openvdb::initialize();
-  // Voxels dx x dy in the plane (rectangular cells, docs/formats.md); the frame axis keeps dx.
-  openvdb::math::Mat4d voxel_scale = openvdb::math::Mat4d::identity();
-  voxel_scale.preScale(openvdb::math::Vec3d(g.spacing_x_m(), g.spacing_y_m(), g.spacing_x_m()));
-  const openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(voxel_scale);
+  initialise_openvdb();
+  // Cell (column, row) of frame f at voxel (column, row, (f - first) / stride), centred as every
+  // VDB of the project (vdb_file.hpp); the frame axis has the smaller cell size.
+  const openvdb::math::Transform::Ptr transform = cell_centre_transform(g);
   auto make = [&](const char* name) {
     openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
     grid->setName(name);
@@ -73,26 +54,12 @@ void export_sequence_vdb(const std::filesystem::path& sequence_folder, const std
   progress.finish();
   openvdb::GridPtrVec output(grids.begin(), grids.end());
   openvdb::MetaMap metadata;
-  metadata.insertMeta("nearshore_origin_x_m", openvdb::DoubleMetadata(g.origin_x_m));
-  metadata.insertMeta("nearshore_origin_y_m", openvdb::DoubleMetadata(g.origin_y_m));
-  metadata.insertMeta("nearshore_spacing_m", openvdb::DoubleMetadata(g.spacing_x_m()));
-  metadata.insertMeta("nearshore_spacing_y_m", openvdb::DoubleMetadata(g.spacing_y_m()));
-  metadata.insertMeta("nearshore_crs_wkt", openvdb::StringMetadata(g.crs_wkt));
+  add_georeference(metadata, g);
   metadata.insertMeta("nearshore_frame_interval_s", openvdb::DoubleMetadata(reader.frame_interval_s()));
   metadata.insertMeta("nearshore_first_frame", openvdb::Int32Metadata(options.first_frame));
   metadata.insertMeta("nearshore_frame_stride", openvdb::Int32Metadata(options.frame_stride));
   metadata.insertMeta("nearshore_z_axis", openvdb::StringMetadata("voxel k = (frame - first_frame) / frame_stride"));
-  write_stream_atomically(
-      vdb_path,
-      [&](std::ostream& out) {
-        try {
-          CheckedVdbArchive().write_to(out, output, metadata);
-        } catch (const openvdb::Exception& e) {
-          throw Error(vdb_path.string(), std::string("writing the VDB failed: ") + e.what(),
-                      "free disk space or choose another output path");
-        }
-      },
-      "the VDB");
+  write_vdb_file(vdb_path, output, metadata, "the VDB");
 }
 
 }  // namespace nearshore::loops
