@@ -1,8 +1,9 @@
 # The rooms and their allowed arrows (docs/architecture.md): every library may link only the
 # libraries listed for it, all of them further down the data flow. Checked at configure time from
 # the targets' own link lists, so a new arrow fails the build before anyone compiles it.
-#   ocean, sequence, plot, core_vdb (the one road to an OpenVDB file) -> core; boussinesq -> ocean;
-#   bathymetry, export and sequence_vdb -> core_vdb; bathymetry -> core, plot;
+#   ocean, sequence, plot, core_vdb and core_geotiff (the one road to an OpenVDB file, to a GeoTIFF)
+#   -> core; boussinesq -> ocean; bathymetry, export and sequence_vdb -> core_vdb; bathymetry, bake
+#   and export -> core_geotiff; bathymetry -> core, plot;
 #   bake -> bathymetry (a case file's grid in local metres), boussinesq, ocean, sequence;
 #   loops -> sequence, ocean, plot; playback -> sequence, ocean;
 #   tools -> all. Never: playback to bathymetry, bake, boussinesq, loops or plot; no library to tools.
@@ -17,12 +18,13 @@
 set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core:"
   "nearshore_core_vdb:nearshore_core"
+  "nearshore_core_geotiff:nearshore_core"
   "nearshore_plot:nearshore_core"
   "nearshore_ocean:nearshore_core"
   "nearshore_sequence:nearshore_core"
   "nearshore_boussinesq:nearshore_ocean,nearshore_core"
-  "nearshore_bathymetry:nearshore_plot,nearshore_core_vdb,nearshore_core"
-  "nearshore_bake:nearshore_bathymetry,nearshore_boussinesq,nearshore_ocean,nearshore_sequence,nearshore_core"
+  "nearshore_bathymetry:nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core"
+  "nearshore_bake:nearshore_core_geotiff,nearshore_bathymetry,nearshore_boussinesq,nearshore_ocean,nearshore_sequence,nearshore_core"
   "nearshore_loops:nearshore_sequence,nearshore_ocean,nearshore_plot,nearshore_core"
   "nearshore_sequence_vdb:nearshore_sequence,nearshore_core_vdb,nearshore_core"
   "nearshore_runtime:nearshore_sequence,nearshore_ocean,nearshore_core"
@@ -33,7 +35,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
   "nearshore_library:nearshore_bake,nearshore_loops,nearshore_export,nearshore_plot,nearshore_sequence,nearshore_core"
   "nearshore_library_mpi?:nearshore_library,nearshore_core"
-  "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core_vdb,nearshore_core")
+  "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core")
 
 function(nearshore_check_architecture)
   foreach(rule IN LISTS NEARSHORE_ALLOWED_ARROWS)

@@ -1,9 +1,8 @@
 // The agitation export's GDAL side: reading the Hs the bake wrote (wave_statistics.tif band 2,
-// docs/formats/wave-statistics.md) and writing agitation.tif. The bake owns the statistics' writer
+// docs/formats/wave-statistics.md) and writing agitation.tif (through core/geotiff). The bake owns the statistics' writer
 // (bake/src/wave_statistics_geotiff.cpp); export reads the file as any GIS does, through GDAL,
 // because the sequence folder is its only input.
 #include <gdal_priv.h>
-#include <ogr_spatialref.h>
 
 #include <cmath>
 #include <limits>
@@ -12,8 +11,8 @@
 #include <fmt/core.h>
 
 #include "export_input.hpp"
-#include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/geotiff_file.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/export/agitation.hpp"
 #include "nearshore/export/surface_statistics.hpp"
@@ -97,43 +96,14 @@ SignificantWaveHeight sequence_significant_wave_height(const sequence::SequenceR
 
 void write_agitation_geotiff(const ExportInput& input, const Raster<float>& coefficient, const std::string& description,
                              const std::filesystem::path& path) {
-  const GridGeometry& g = input.harbour.geometry;
-  const auto fail = [&](const std::string& what) {
-    return Error(path.string(), what + ": " + CPLGetLastErrorMsg(), "check that the output folder is writable and has space");
-  };
-  GDALAllRegister();
-  write_file_atomically(path, [&](const std::filesystem::path& temporary) {
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
-    if (!driver) throw fail("GDAL has no GTiff driver");
-    const char* options[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", nullptr};
-    GDALDataset* dataset = driver->Create(temporary.c_str(), g.columns, g.rows, 1, GDT_Float32, const_cast<char**>(options));
-    if (!dataset) throw fail("cannot create the GeoTIFF");
-    // Georeferenced as wave_statistics.tif and depth.tif: north-up, the grid's CRS.
-    double geotransform[6] = {g.origin_x_m, g.spacing_x_m(), 0.0, g.origin_y_m + g.height_m(), 0.0, -g.spacing_y_m()};
-    dataset->SetGeoTransform(geotransform);
-    if (!g.crs_wkt.empty()) {
-      OGRSpatialReference crs;
-      crs.importFromWkt(g.crs_wkt.c_str());
-      dataset->SetSpatialRef(&crs);
-    }
-    dataset->SetMetadataItem("NEARSHORE_SEQUENCE", input.reader.folder().string().c_str());
-    dataset->SetMetadataItem("NEARSHORE_AGITATION", description.c_str());
-    std::vector<float> lines(g.cell_count());
-    for (int row = 0; row < g.rows; ++row)
-      for (int column = 0; column < g.columns; ++column)
-        lines[static_cast<std::size_t>(g.rows - 1 - row) * g.columns + column] =
-            input.is_land(static_cast<std::size_t>(row) * g.columns + column) ? std::numeric_limits<float>::quiet_NaN()
-                                                                                : coefficient(column, row);
-    GDALRasterBand* band = dataset->GetRasterBand(1);
-    band->SetNoDataValue(std::numeric_limits<double>::quiet_NaN());
-    band->SetDescription("agitation_coefficient (Hs / incident Hs, 1)");
-    band->SetUnitType("1");
-    const CPLErr written =
-        band->RasterIO(GF_Write, 0, 0, g.columns, g.rows, lines.data(), g.columns, g.rows, GDT_Float32, 0, 0);
-    CPLErrorReset();
-    GDALClose(dataset);  // void in GDAL 3.6: failures surface through CPLGetLastErrorType
-    if (written != CE_None || CPLGetLastErrorType() >= CE_Failure) throw fail("writing the agitation band failed");
-  });
+  Raster<float> values = coefficient;  // land is no data (NaN), as in wave_statistics.tif and depth.tif
+  for (std::size_t cell = 0; cell < values.values().size(); ++cell)
+    if (input.is_land(cell)) values.values()[cell] = std::numeric_limits<float>::quiet_NaN();
+  GeoTiffContent content;
+  content.no_data_value = std::numeric_limits<float>::quiet_NaN();
+  content.bands = {{&values, "agitation_coefficient (Hs / incident Hs, 1)", "1"}};
+  content.metadata = {{"NEARSHORE_SEQUENCE", input.reader.folder().string()}, {"NEARSHORE_AGITATION", description}};
+  write_geotiff_file(path, input.harbour.geometry, content, "the agitation band");
 }
 
 }  // namespace nearshore::exports
