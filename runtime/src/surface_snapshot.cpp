@@ -77,4 +77,36 @@ HarbourWeight harbour_weight_and_gradient(const HarbourSite& site, double x_m, d
   return result;
 }
 
+void pack_query_tile(const ocean::DeepWaterFrame& frame, QueryTile& tile) {
+  tile.grid_size = frame.grid_size;
+  tile.tile_length_m = frame.tile_length_m;
+  const std::size_t nodes = frame.surface_elevation_m.size();
+  const bool displaced = frame.displacement_x_m.size() == nodes && frame.displacement_y_m.size() == nodes;
+  const std::vector<float>* channels[3] = {&frame.displacement_x_m, &frame.displacement_y_m, &frame.surface_elevation_m};
+  tile.nodes.assign(4 * nodes, 0);  // reuses the allocation of a pooled keyframe's last tile
+  for (float& scale : tile.scale) scale = 0.0f;
+  for (int k = 0; k < 3; ++k) {
+    if (k < 2 && !displaced) continue;
+    const std::vector<float>& values = *channels[k];
+    float largest = 0.0f;
+    for (float v : values) largest = std::max(largest, std::abs(v));
+    if (!(largest > 0.0f) || !std::isfinite(largest)) continue;  // a zero (or broken) channel stays 0
+    // The scale rounded to a float first, so value = scale x integer holds for the float the sampler reads.
+    tile.scale[k] = largest / 32767.0f;
+    const double inverse = 1.0 / static_cast<double>(tile.scale[k]);
+    for (std::size_t i = 0; i < nodes; ++i)
+      tile.nodes[4 * i + k] =
+          static_cast<std::int16_t>(std::clamp(std::lround(values[i] * inverse), -32767L, 32767L));
+  }
+}
+
+void pack_query_tiles(DeepWaterKeyframe& keyframe) {
+  std::size_t count = 0;
+  for (const ocean::DeepWaterFrame& frame : keyframe.cascades) count += frame.surface_elevation_m.empty() ? 0 : 1;
+  keyframe.query_tiles.resize(count);
+  std::size_t next = 0;
+  for (const ocean::DeepWaterFrame& frame : keyframe.cascades)
+    if (!frame.surface_elevation_m.empty()) pack_query_tile(frame, keyframe.query_tiles[next++]);
+}
+
 }  // namespace nearshore::runtime

@@ -96,6 +96,7 @@ int main(int argc, char** argv) {
     auto keyframe = std::make_shared<DeepWaterKeyframe>();
     const ocean::TimedWeight at{12.0 + which / 30.0, 1.0};
     field->synthesise_into(std::span<const ocean::TimedWeight>(&at, 1), keyframe->cascades);
+    pack_query_tiles(*keyframe);  // as the streaming engine's worker does
     (which == 0 ? snapshot.deep_from : snapshot.deep_to) = keyframe;
   }
   snapshot.deep_fraction = 0.25;
