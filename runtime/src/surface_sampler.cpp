@@ -355,7 +355,7 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
       w[i] = {};
       if (has_harbour_) {
         // Inside the full-weight box, or wherever w reaches 1, nothing moves: p = q.
-        if (p[i].x_m > full_x0_ && p[i].x_m < full_x1_ && p[i].y_m > full_y0_ && p[i].y_m < full_y1_) {
+        if (in_full_box(p[i].x_m, p[i].y_m)) {
           out[i] = {q[i]};
           continue;
         }
@@ -478,12 +478,27 @@ void SurfaceSampler::elevations_m(std::span<const SitePoint> points, std::span<d
   }
   // Blocks of points solved side by side (solve_block): the same arithmetic per point as a single
   // query, so a batch gives the single calls' heights bit for bit, in any order.
+  // Points inside the full-weight box (p = q at once, what solve_block would say) skip the block.
   Solution solutions[kSolveBlock];
-  for (std::size_t start = 0; start < points.size(); start += kSolveBlock) {
-    const int count = static_cast<int>(std::min<std::size_t>(kSolveBlock, points.size() - start));
-    solve_block(points.data() + start, count, solutions);
-    for (int i = 0; i < count; ++i) out[start + i] = elevation_at_solution(solutions[i]);
+  SitePoint block[kSolveBlock];
+  std::size_t index[kSolveBlock];
+  int count = 0;
+  const auto flush = [&] {
+    solve_block(block, count, solutions);
+    for (int i = 0; i < count; ++i) out[index[i]] = elevation_at_solution(solutions[i]);
+    count = 0;
+  };
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const SitePoint q = points[i];
+    if (in_full_box(q.x_m, q.y_m)) {
+      out[i] = elevation_at_lattice(q);
+      continue;
+    }
+    block[count] = q;
+    index[count++] = i;
+    if (count == kSolveBlock) flush();
   }
+  if (count > 0) flush();
 }
 
 SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) const {

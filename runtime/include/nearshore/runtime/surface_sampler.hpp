@@ -173,6 +173,9 @@ class SurfaceSampler {
   };
   static constexpr int kSolveBlock = 16;
   static constexpr std::size_t kStoredTaps = 6;
+  bool in_full_box(double x_m, double y_m) const {
+    return has_harbour_ && x_m > full_x0_ && x_m < full_x1_ && y_m > full_y0_ && y_m < full_y1_;
+  }
   // out[i] for q[i], i < count <= kSolveBlock, the points iterated side by side.
   void solve_block(const SitePoint* q, int count, Solution* out) const;
   Solution solve(double x_m, double y_m) const;
