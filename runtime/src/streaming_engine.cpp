@@ -597,8 +597,9 @@ StreamingEngine::StreamingEngine(const std::filesystem::path& folder, StreamingO
   m.bytes_harbour = std::size_t{4} * sizeof(float) * static_cast<std::size_t>(g.columns) * static_cast<std::size_t>(g.rows);
   if (m.record)
     for (const ocean::RecordedCascade& cascade : m.record->cascades)
-      m.bytes_deep += (m.deep_with_flux ? 10u : 8u) * sizeof(float) * static_cast<std::size_t>(cascade.grid_size) *
-                      static_cast<std::size_t>(cascade.grid_size);
+      // The channels, plus the CPU queries' layout of each cascade (4 int16 a node: QueryTile).
+      m.bytes_deep += ((m.deep_with_flux ? 10u : 8u) * sizeof(float) + 4u * sizeof(std::int16_t)) *
+                      static_cast<std::size_t>(cascade.grid_size) * static_cast<std::size_t>(cascade.grid_size);
   if (m.inside_layer)
     for (const ocean::RecordedCascade& cascade : m.inside_layer->straddling.cascades)
       m.bytes_deep += (m.deep_with_flux ? 10u : 8u) * sizeof(float) * static_cast<std::size_t>(cascade.grid_size) *

@@ -82,21 +82,42 @@ void pack_query_tile(const ocean::DeepWaterFrame& frame, QueryTile& tile) {
   tile.tile_length_m = frame.tile_length_m;
   const std::size_t nodes = frame.surface_elevation_m.size();
   const bool displaced = frame.displacement_x_m.size() == nodes && frame.displacement_y_m.size() == nodes;
-  const std::vector<float>* channels[3] = {&frame.displacement_x_m, &frame.displacement_y_m, &frame.surface_elevation_m};
-  tile.nodes.assign(4 * nodes, 0);  // reuses the allocation of a pooled keyframe's last tile
-  for (float& scale : tile.scale) scale = 0.0f;
+  const float* channels[3] = {displaced ? frame.displacement_x_m.data() : nullptr,
+                              displaced ? frame.displacement_y_m.data() : nullptr, frame.surface_elevation_m.data()};
+  float inverse[3] = {0.0f, 0.0f, 0.0f};
+  for (int k = 0; k < 4; ++k) tile.scale[k] = 0.0f;
   for (int k = 0; k < 3; ++k) {
-    if (k < 2 && !displaced) continue;
-    const std::vector<float>& values = *channels[k];
+    if (!channels[k]) continue;
     float largest = 0.0f;
-    for (float v : values) largest = std::max(largest, std::abs(v));
+    for (std::size_t i = 0; i < nodes; ++i) largest = std::max(largest, std::abs(channels[k][i]));
     if (!(largest > 0.0f) || !std::isfinite(largest)) continue;  // a zero (or broken) channel stays 0
-    // The scale rounded to a float first, so value = scale x integer holds for the float the sampler reads.
+    // value = scale x integer with the float scale the sampler reads; |value| / scale <= 32767.
     tile.scale[k] = largest / 32767.0f;
-    const double inverse = 1.0 / static_cast<double>(tile.scale[k]);
-    for (std::size_t i = 0; i < nodes; ++i)
-      tile.nodes[4 * i + k] =
-          static_cast<std::int16_t>(std::clamp(std::lround(values[i] * inverse), -32767L, 32767L));
+    inverse[k] = 1.0f / tile.scale[k];
+  }
+  tile.nodes.resize(4 * nodes);  // keeps a pooled keyframe's allocation
+  std::int16_t* out = tile.nodes.data();
+  // Rounded to nearest (half away from 0), clamped against the 1-ulp overshoot of v / scale.
+  // A NaN (a broken synthesis) becomes 0 rather than an undefined conversion.
+  const auto quantise = [](float v, float inverse_scale) {
+    const float r = v * inverse_scale;
+    return static_cast<std::int16_t>(r == r ? std::clamp(r + (r >= 0.0f ? 0.5f : -0.5f), -32767.0f, 32767.0f) : 0.0f);
+  };
+  const float* eta = channels[2];
+  if (displaced) {
+    const float* dx = channels[0];
+    const float* dy = channels[1];
+    for (std::size_t i = 0; i < nodes; ++i) {
+      out[4 * i + 0] = quantise(dx[i], inverse[0]);
+      out[4 * i + 1] = quantise(dy[i], inverse[1]);
+      out[4 * i + 2] = quantise(eta[i], inverse[2]);
+      out[4 * i + 3] = 0;
+    }
+  } else {
+    for (std::size_t i = 0; i < nodes; ++i) {
+      out[4 * i + 0] = out[4 * i + 1] = out[4 * i + 3] = 0;
+      out[4 * i + 2] = quantise(eta[i], inverse[2]);
+    }
   }
 }
 
