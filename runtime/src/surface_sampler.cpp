@@ -310,19 +310,6 @@ SurfaceSampler::CascadeSum SurfaceSampler::cascades_sum(const std::vector<Cascad
           (1.0 - f) * from.flux_y + f * to.flux_y, (to.eta - from.eta) * inverse_deep_interval_};
 }
 
-void SurfaceSampler::deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const {
-  double fx = 0.0, fy = 0.0, tx = 0.0, ty = 0.0;
-  for (const Cascade& c : cascades_) {
-    const Tap t = cascade_tap(x_m, y_m, c.inverse_tile_length, c.n);
-    fx += bilinear(c.from->displacement_x_m.data(), t);
-    fy += bilinear(c.from->displacement_y_m.data(), t);
-    tx += bilinear(c.to->displacement_x_m.data(), t);
-    ty += bilinear(c.to->displacement_y_m.data(), t);
-  }
-  dx_m = (1.0 - deep_fraction_) * fx + deep_fraction_ * tx;
-  dy_m = (1.0 - deep_fraction_) * fy + deep_fraction_ * ty;
-}
-
 void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) const {
   // Formula 4: solve F(p) = p + (1 - w(p)) lambda D(p) - q = 0 from p = q. Newton's method with
   // the exact Jacobian of what is sampled (D bilinear in each cascade tile: its derivative comes
@@ -449,7 +436,8 @@ double SurfaceSampler::elevation_m(double x_m, double y_m, ChoppyPoint point) co
 
 double SurfaceSampler::elevation_at_solution(const Solution& solution) const {
   if (!solution.has_deep_eta) return elevation_at_lattice(solution.lattice);
-  // elevation_at_lattice with D_eta from the solve's last sample (the same sums: bit for bit).
+  // elevation_at_lattice with D_eta from the solve's last sample (the query layout: equal to
+  // the float channels' sum within its int16 rounding, surface_sampler.hpp formula 4).
   const SitePoint p = solution.lattice;
   const double w = weight(p.x_m, p.y_m);
   double eta = 0.0;

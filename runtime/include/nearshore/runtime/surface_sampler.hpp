@@ -156,7 +156,6 @@ class SurfaceSampler {
   };
   // H_eta and its time derivative from the keyframes' values (and rates) at one point.
   EtaAndRate harbour_in_time(double from, double to, double from_rate, double to_rate) const;
-  void deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const;
   double deep_eta(double x_m, double y_m) const;
   // eta, slopes and (with_flux) fluxes of a list of cascades at (x, y), both keyframes blended in time.
   struct CascadeSum {

@@ -60,9 +60,9 @@ struct HarbourKeyframe {
 /// 4, whose Newton solve samples D_x, D_y and then eta at 2-4 points per query): node (i, j) as
 /// four int16 {D_x, D_y, eta, 0} side by side, value = scale[channel] x integer with scale =
 /// max |value| / 32767 of the channel over the tile. 8 bytes a node where the three float channels
-/// are 12 bytes in three places: a tap reads 2 cache lines instead of 6, and a 256^2 tile is 512 kB,
-/// so the tiles a hull's points touch stay in a core's L2. Rounding moves a value by at most
-/// scale / 2 (15 micrometres on a 1 m wave; the bound surface_sampler.hpp adds to its tolerance).
+/// are 12 bytes in three places: a tap reads 2 cache lines instead of 6 and one float4 bilinear
+/// gives all three. Rounding moves a value by at most scale / 2 (15 micrometres on a 1 m wave;
+/// the bound surface_sampler.hpp adds to its tolerance).
 struct QueryTile {
   int grid_size = 0;
   double tile_length_m = 0.0;
