@@ -165,6 +165,7 @@ bool LibraryPlayer::advance_to(double display_time_s) {
         add_scaled_cascades(old, 1.0 - m.weight, *deep);
         add_scaled_cascades(next, m.weight, *deep);
         deep->still_water_depth_m = next.deep_from ? next.deep_from->still_water_depth_m : old.deep_from->still_water_depth_m;
+        pack_query_tiles(*deep);
         next.deep_from = next.deep_to = deep;
         next.deep_fraction = 0.0;
       }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <fmt/format.h>
 
@@ -93,6 +94,45 @@ inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int
   return {w00 * g00.x + w10 * g10.x + w01 * g01.x + w11 * g11.x, w00 * g00.y + w10 * g10.y + w01 * g01.y + w11 * g11.y};
 }
 
+// Formula 4's hot loop on the query layout (surface_snapshot.hpp QueryTile): the four nodes of a
+// tap as {D_x, D_y, eta, 0} vectors, each keyframe's integers times its weighted scales, so one
+// bilinear in float4 gives D, eta and (from the same nodes) the gradient of D. GCC/Clang vector
+// extensions: SSE2 on any x86-64, NEON on ARM, no intrinsics.
+typedef float Float4 __attribute__((vector_size(16)));
+typedef std::int16_t Short8 __attribute__((vector_size(16)));
+typedef std::int32_t Int4 __attribute__((vector_size(16)));
+typedef std::int64_t Long2 __attribute__((vector_size(16)));
+inline Float4 load_node(const std::int16_t* tile, std::size_t index) {
+  // Each int16 doubled into a 32-bit lane and shifted back arithmetically: the sign extension SSE2
+  // has no single instruction for (a plain conversion of the int16 vector compiles to scalar code).
+  // One 8-byte load into the low half of a register (a memcpy into a vector on the stack would be
+  // written in halves and read whole: a store-forwarding stall per node).
+  std::int64_t bits;
+  std::memcpy(&bits, tile + 4 * index, sizeof bits);
+  const Long2 wide = {bits, 0};
+  const Short8 node = reinterpret_cast<Short8>(wide);
+  const Short8 doubled = __builtin_shufflevector(node, node, 0, 0, 1, 1, 2, 2, 3, 3);
+  return __builtin_convertvector(reinterpret_cast<Int4>(doubled) >> 16, Float4);
+}
+inline Float4 load_weights(const float* w) {
+  Float4 v;
+  std::memcpy(&v, w, sizeof v);
+  return v;
+}
+// A cascade tap as the solve keeps it between its two sweeps (no initialisers: a block's array
+// of them is written before it is read, and zeroing it would cost more than a point's solve).
+struct BlockTap {
+  std::size_t i00, i10, i01, i11;
+  float a, b;
+};
+inline BlockTap block_tap(double x_m, double y_m, double inverse_tile_length, int n) {
+  const Tap t = cascade_tap(x_m, y_m, inverse_tile_length, n);
+  return {t.i00, t.i10, t.i01, t.i11, static_cast<float>(t.a), static_cast<float>(t.b)};
+}
+struct PackedSum {
+  Float4 value = {0, 0, 0, 0}, d_dx = {0, 0, 0, 0}, d_dy = {0, 0, 0, 0};  // per metre
+};
+
 const float* data_or_null(const Raster<float>& raster, int columns, int rows) {
   if (raster.empty()) return nullptr;
   if (raster.columns() != columns || raster.rows() != rows)
@@ -144,6 +184,38 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
       has_deep_flux_ = has_deep_flux_ && !a.flux_x_m2_s.empty() && !b.flux_x_m2_s.empty();
     }
     has_deep_ = !cascades_.empty();
+    // The query layout: the keyframes' own tiles (packed by the engine's worker) where they match
+    // the cascades, else a copy packed here for this sampler's lifetime.
+    const auto usable = [&](const DeepWaterKeyframe& keyframe) {
+      if (keyframe.query_tiles.size() != cascades_.size()) return false;
+      for (std::size_t c = 0; c < cascades_.size(); ++c) {
+        const QueryTile& tile = keyframe.query_tiles[c];
+        const std::size_t n = static_cast<std::size_t>(cascades_[c].n);
+        if (tile.grid_size != cascades_[c].n || tile.tile_length_m != cascades_[c].tile_length_m || tile.nodes.size() != 4 * n * n)
+          return false;
+      }
+      return true;
+    };
+    const bool from_usable = usable(from), to_usable = usable(to);
+    if (!from_usable || !to_usable) own_tiles_.resize(2 * cascades_.size());
+    const double f = std::clamp(s.deep_fraction, 0.0, 1.0);
+    for (std::size_t c = 0; c < cascades_.size(); ++c) {
+      if (!from_usable) pack_query_tile(*cascades_[c].from, own_tiles_[2 * c]);
+      if (!to_usable) pack_query_tile(*cascades_[c].to, own_tiles_[2 * c + 1]);
+      const QueryTile& a = from_usable ? from.query_tiles[c] : own_tiles_[2 * c];
+      const QueryTile& b = to_usable ? to.query_tiles[c] : own_tiles_[2 * c + 1];
+      PackedCascade packed;
+      packed.n = cascades_[c].n;
+      packed.inverse_tile_length = cascades_[c].inverse_tile_length;
+      packed.texels_per_m = static_cast<float>(cascades_[c].n * cascades_[c].inverse_tile_length);
+      packed.from = a.nodes.data();
+      packed.to = b.nodes.data();
+      for (int k = 0; k < 4; ++k) {
+        packed.from_weight[k] = static_cast<float>((1.0 - f) * a.scale[k]);
+        packed.to_weight[k] = static_cast<float>(f * b.scale[k]);
+      }
+      packed_.push_back(packed);
+    }
     // The split's inside layer (surface_snapshot.hpp): the field's cascades wholly above the
     // bake's band as they are, then the straddling ones band-limited.
     if (from.inside_cascade_mask != to.inside_cascade_mask || from.inside_cascades.size() != to.inside_cascades.size())
@@ -238,74 +310,114 @@ SurfaceSampler::CascadeSum SurfaceSampler::cascades_sum(const std::vector<Cascad
           (1.0 - f) * from.flux_y + f * to.flux_y, (to.eta - from.eta) * inverse_deep_interval_};
 }
 
-void SurfaceSampler::deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const {
-  double fx = 0.0, fy = 0.0, tx = 0.0, ty = 0.0;
-  for (const Cascade& c : cascades_) {
-    const Tap t = cascade_tap(x_m, y_m, c.inverse_tile_length, c.n);
-    fx += bilinear(c.from->displacement_x_m.data(), t);
-    fy += bilinear(c.from->displacement_y_m.data(), t);
-    tx += bilinear(c.to->displacement_x_m.data(), t);
-    ty += bilinear(c.to->displacement_y_m.data(), t);
-  }
-  dx_m = (1.0 - deep_fraction_) * fx + deep_fraction_ * tx;
-  dy_m = (1.0 - deep_fraction_) * fy + deep_fraction_ * ty;
-}
-
-SitePoint SurfaceSampler::solve_lattice_point(double x_m, double y_m, SitePoint offset) const {
+void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) const {
   // Formula 4: solve F(p) = p + (1 - w(p)) lambda D(p) - q = 0 from p = q. Newton's method with
   // the exact Jacobian of what is sampled (D bilinear in each cascade tile: its derivative comes
   // from the same four nodes, so a step costs what a fixed-point step costs):
   //   J = I + lambda ((1 - w) grad D - D grad w^T)
-  // It converges in 2-3 steps where the fixed point p = q - (1 - w) lambda D(p) needs up to 8
-  // (contraction lambda |grad D|); where J is near singular (a folding crest, det J < 0.2) the
-  // step falls back to the fixed point. Stops when a step moves less than the tolerance.
-  if (!has_deep_ || choppiness_ == 0.0) return {x_m, y_m};
-  SitePoint p{x_m + offset.x_m, y_m + offset.y_m};
-  for (int iteration = 0; iteration < kDisplacementIterations; ++iteration) {
-    HarbourWeight w;
-    if (has_harbour_) {
-      if (p.x_m > full_x0_ && p.x_m < full_x1_ && p.y_m > full_y0_ && p.y_m < full_y1_) return {x_m, y_m};
-      w = harbour_weight_and_gradient(*snapshot_.site, p.x_m, p.y_m);
-    }
-    const double fade = 1.0 - w.weight;
-    if (fade <= 0.0) return {x_m, y_m};
-    // D and its gradient, both keyframes blended in time.
-    double dx = 0.0, dy = 0.0, dxx = 0.0, dxy = 0.0, dyx = 0.0, dyy = 0.0;
-    for (const Cascade& c : cascades_) {
-      const Tap t = cascade_tap(p.x_m, p.y_m, c.inverse_tile_length, c.n);
-      const double scale = c.n * c.inverse_tile_length;  // d(texel) / dx
-      for (int which = 0; which < 2; ++which) {
-        const ocean::DeepWaterFrame& frame = which == 0 ? *c.from : *c.to;
-        const double weight = which == 0 ? 1.0 - deep_fraction_ : deep_fraction_;
-        for (int axis = 0; axis < 2; ++axis) {
-          const float* f = axis == 0 ? frame.displacement_x_m.data() : frame.displacement_y_m.data();
-          const double value = bilinear(f, t);
-          const double d_dx = ((1.0 - t.b) * (f[t.i10] - f[t.i00]) + t.b * (f[t.i11] - f[t.i01])) * scale;
-          const double d_dy = ((1.0 - t.a) * (f[t.i01] - f[t.i00]) + t.a * (f[t.i11] - f[t.i10])) * scale;
-          (axis == 0 ? dx : dy) += weight * value;
-          (axis == 0 ? dxx : dyx) += weight * d_dx;
-          (axis == 0 ? dxy : dyy) += weight * d_dy;
+  // where J is near singular (a folding crest, det J < 0.2) the step falls back to the fixed
+  // point p - F(p). Stops when the residual |F(p)| is at most the tolerance: the surface point
+  // returned then lies that close to q, and the sample that measured it gave D_eta(p) too.
+  // The points of a block iterate side by side: each sweep first finds every point's taps and
+  // asks for their cache lines, then sums them, so the memory latencies of up to kSolveBlock
+  // points overlap (one point's solve is a dependent chain: alone it waits on every miss).
+  for (int i = 0; i < count; ++i) out[i] = {q[i]};
+  if (!has_deep_ || choppiness_ == 0.0) return;
+  const double lambda = choppiness_;
+  const std::size_t cascade_count = packed_.size();
+  const std::size_t stored = std::min<std::size_t>(cascade_count, kStoredTaps);
+  SitePoint p[kSolveBlock];
+  HarbourWeight w[kSolveBlock];
+  BlockTap taps[kSolveBlock][kStoredTaps];
+  int active[kSolveBlock];
+  int active_count = 0;
+  for (int i = 0; i < count; ++i) {
+    p[i] = q[i];
+    active[active_count++] = i;
+  }
+  for (int iteration = 0; iteration <= kDisplacementIterations && active_count > 0; ++iteration) {
+    int kept = 0;
+    for (int k = 0; k < active_count; ++k) {
+      const int i = active[k];
+      w[i] = {};
+      if (has_harbour_) {
+        // Inside the full-weight box, or wherever w reaches 1, nothing moves: p = q.
+        if (in_full_box(p[i].x_m, p[i].y_m)) {
+          out[i] = {q[i]};
+          continue;
+        }
+        w[i] = harbour_weight_and_gradient(*snapshot_.site, p[i].x_m, p[i].y_m);
+        if (1.0 - w[i].weight <= 0.0) {
+          out[i] = {q[i]};
+          continue;
         }
       }
+      for (std::size_t c = 0; c < stored; ++c) {
+        const PackedCascade& cascade = packed_[c];
+        const BlockTap& t = taps[i][c] = block_tap(p[i].x_m, p[i].y_m, cascade.inverse_tile_length, cascade.n);
+        __builtin_prefetch(cascade.from + 4 * t.i00);
+        __builtin_prefetch(cascade.from + 4 * t.i11);
+        __builtin_prefetch(cascade.to + 4 * t.i00);
+        __builtin_prefetch(cascade.to + 4 * t.i11);
+      }
+      active[kept++] = i;
     }
-    const double lambda = choppiness_;
-    const double fx = p.x_m + fade * lambda * dx - x_m, fy = p.y_m + fade * lambda * dy - y_m;
-    const double jxx = 1.0 + lambda * (fade * dxx - dx * w.d_dx_per_m), jxy = lambda * (fade * dxy - dx * w.d_dy_per_m);
-    const double jyx = lambda * (fade * dyx - dy * w.d_dx_per_m), jyy = 1.0 + lambda * (fade * dyy - dy * w.d_dy_per_m);
-    const double det = jxx * jyy - jxy * jyx;
-    double step_x = -fx, step_y = -fy;  // the fixed-point step
-    if (det > 0.2) {
-      step_x = -(jyy * fx - jxy * fy) / det;
-      step_y = -(-jyx * fx + jxx * fy) / det;
+    active_count = kept;
+    kept = 0;
+    for (int k = 0; k < active_count; ++k) {
+      const int i = active[k];
+      // D, its gradient and D_eta in one pass over the cascades (both keyframes, blended in time).
+      PackedSum sum;
+      for (std::size_t c = 0; c < cascade_count; ++c) {
+        const PackedCascade& cascade = packed_[c];
+        const BlockTap t = c < stored ? taps[i][c] : block_tap(p[i].x_m, p[i].y_m, cascade.inverse_tile_length, cascade.n);
+        const Float4 wf = load_weights(cascade.from_weight), wt = load_weights(cascade.to_weight);
+        const Float4 n00 = load_node(cascade.from, t.i00) * wf + load_node(cascade.to, t.i00) * wt;
+        const Float4 n10 = load_node(cascade.from, t.i10) * wf + load_node(cascade.to, t.i10) * wt;
+        const Float4 n01 = load_node(cascade.from, t.i01) * wf + load_node(cascade.to, t.i01) * wt;
+        const Float4 n11 = load_node(cascade.from, t.i11) * wf + load_node(cascade.to, t.i11) * wt;
+        const float a = t.a, b = t.b;
+        sum.value += (1.0f - b) * ((1.0f - a) * n00 + a * n10) + b * ((1.0f - a) * n01 + a * n11);
+        sum.d_dx += ((1.0f - b) * (n10 - n00) + b * (n11 - n01)) * cascade.texels_per_m;
+        sum.d_dy += ((1.0f - a) * (n01 - n00) + a * (n11 - n10)) * cascade.texels_per_m;
+      }
+      const double fade = 1.0 - w[i].weight;
+      const double dx = sum.value[0], dy = sum.value[1];
+      const double fx = p[i].x_m + fade * lambda * dx - q[i].x_m, fy = p[i].y_m + fade * lambda * dy - q[i].y_m;
+      if (fx * fx + fy * fy <= kDisplacementTolerance_m * kDisplacementTolerance_m) {
+        out[i] = {p[i], sum.value[2], true};
+        continue;
+      }
+      if (iteration == kDisplacementIterations) {
+        out[i] = {p[i], 0.0, false};
+        continue;
+      }
+      const double dxx = sum.d_dx[0], dxy = sum.d_dy[0], dyx = sum.d_dx[1], dyy = sum.d_dy[1];
+      const HarbourWeight& wi = w[i];
+      const double jxx = 1.0 + lambda * (fade * dxx - dx * wi.d_dx_per_m), jxy = lambda * (fade * dxy - dx * wi.d_dy_per_m);
+      const double jyx = lambda * (fade * dyx - dy * wi.d_dx_per_m), jyy = 1.0 + lambda * (fade * dyy - dy * wi.d_dy_per_m);
+      const double det = jxx * jyy - jxy * jyx;
+      if (det > 0.2) {
+        p[i].x_m -= (jyy * fx - jxy * fy) / det;
+        p[i].y_m -= (-jyx * fx + jxx * fy) / det;
+      } else {
+        p[i].x_m -= fx;
+        p[i].y_m -= fy;
+      }
+      active[kept++] = i;
     }
-    p.x_m += step_x;
-    p.y_m += step_y;
-    if (std::hypot(step_x, step_y) < kDisplacementTolerance_m) break;
+    active_count = kept;
   }
-  return p;
 }
 
-SitePoint SurfaceSampler::lattice_point(double x_m, double y_m) const { return solve_lattice_point(x_m, y_m, {}); }
+SurfaceSampler::Solution SurfaceSampler::solve(double x_m, double y_m) const {
+  const SitePoint q{x_m, y_m};
+  Solution solution;
+  solve_block(&q, 1, &solution);
+  return solution;
+}
+
+SitePoint SurfaceSampler::lattice_point(double x_m, double y_m) const { return solve(x_m, y_m).lattice; }
 
 double SurfaceSampler::harbour_elevation_m(double x_m, double y_m) const {
   return has_harbour_ ? harbour_eta(x_m, y_m) : 0.0;
@@ -318,8 +430,21 @@ double SurfaceSampler::inside_elevation_m(double x_m, double y_m) const {
 }
 
 double SurfaceSampler::elevation_m(double x_m, double y_m, ChoppyPoint point) const {
-  const SitePoint p = point == ChoppyPoint::kDisplaced ? solve_lattice_point(x_m, y_m, {}) : SitePoint{x_m, y_m};
-  return elevation_at_lattice(p);
+  if (point == ChoppyPoint::kDisplaced) return elevation_at_solution(solve(x_m, y_m));
+  return elevation_at_lattice({x_m, y_m});
+}
+
+double SurfaceSampler::elevation_at_solution(const Solution& solution) const {
+  if (!solution.has_deep_eta) return elevation_at_lattice(solution.lattice);
+  // elevation_at_lattice with D_eta from the solve's last sample (the query layout: equal to
+  // the float channels' sum within its int16 rounding, surface_sampler.hpp formula 4).
+  const SitePoint p = solution.lattice;
+  const double w = weight(p.x_m, p.y_m);
+  double eta = 0.0;
+  if (w > 0.0) eta += w * harbour_eta(p.x_m, p.y_m);
+  if (w > 0.0 && has_inside_) eta += w * cascades_eta(inside_, p.x_m, p.y_m);
+  if (w < 1.0) eta += (1.0 - w) * solution.deep_eta;
+  return eta;
 }
 
 double SurfaceSampler::elevation_at_lattice(SitePoint p) const {
@@ -339,21 +464,33 @@ void SurfaceSampler::elevations_m(std::span<const SitePoint> points, std::span<d
     for (std::size_t i = 0; i < points.size(); ++i) out[i] = elevation_at_lattice(points[i]);
     return;
   }
-  // Neighbouring points of a batch (a hull's) have nearly the same displacement: start each
-  // Newton solve from the previous point's offset when it is within kWarmStartDistance_m.
-  SitePoint offset{}, previous{};
+  // Blocks of points solved side by side (solve_block): the same arithmetic per point as a single
+  // query, so a batch gives the single calls' heights bit for bit, in any order.
+  // Points inside the full-weight box (p = q at once, what solve_block would say) skip the block.
+  Solution solutions[kSolveBlock];
+  SitePoint block[kSolveBlock];
+  std::size_t index[kSolveBlock];
+  int count = 0;
+  const auto flush = [&] {
+    solve_block(block, count, solutions);
+    for (int i = 0; i < count; ++i) out[index[i]] = elevation_at_solution(solutions[i]);
+    count = 0;
+  };
   for (std::size_t i = 0; i < points.size(); ++i) {
     const SitePoint q = points[i];
-    const bool near = i > 0 && std::abs(q.x_m - previous.x_m) + std::abs(q.y_m - previous.y_m) < kWarmStartDistance_m;
-    const SitePoint p = solve_lattice_point(q.x_m, q.y_m, near ? offset : SitePoint{});
-    out[i] = elevation_at_lattice(p);
-    offset = {p.x_m - q.x_m, p.y_m - q.y_m};
-    previous = q;
+    if (in_full_box(q.x_m, q.y_m)) {
+      out[i] = elevation_at_lattice(q);
+      continue;
+    }
+    block[count] = q;
+    index[count++] = i;
+    if (count == kSolveBlock) flush();
   }
+  if (count > 0) flush();
 }
 
 SurfaceState SurfaceSampler::state(double x_m, double y_m, ChoppyPoint point) const {
-  const SitePoint p = point == ChoppyPoint::kDisplaced ? solve_lattice_point(x_m, y_m, {}) : SitePoint{x_m, y_m};
+  const SitePoint p = point == ChoppyPoint::kDisplaced ? solve(x_m, y_m).lattice : SitePoint{x_m, y_m};
   SurfaceState s;
   HarbourWeight w;
   if (has_harbour_) w = harbour_weight_and_gradient(*snapshot_.site, p.x_m, p.y_m);

@@ -77,4 +77,57 @@ HarbourWeight harbour_weight_and_gradient(const HarbourSite& site, double x_m, d
   return result;
 }
 
+void pack_query_tile(const ocean::DeepWaterFrame& frame, QueryTile& tile) {
+  tile.grid_size = frame.grid_size;
+  tile.tile_length_m = frame.tile_length_m;
+  const std::size_t nodes = frame.surface_elevation_m.size();
+  const bool displaced = frame.displacement_x_m.size() == nodes && frame.displacement_y_m.size() == nodes;
+  const float* channels[3] = {displaced ? frame.displacement_x_m.data() : nullptr,
+                              displaced ? frame.displacement_y_m.data() : nullptr, frame.surface_elevation_m.data()};
+  float inverse[3] = {0.0f, 0.0f, 0.0f};
+  for (int k = 0; k < 4; ++k) tile.scale[k] = 0.0f;
+  for (int k = 0; k < 3; ++k) {
+    if (!channels[k]) continue;
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < nodes; ++i) largest = std::max(largest, std::abs(channels[k][i]));
+    if (!(largest > 0.0f) || !std::isfinite(largest)) continue;  // a zero (or broken) channel stays 0
+    // value = scale x integer with the float scale the sampler reads; |value| / scale <= 32767.
+    tile.scale[k] = largest / 32767.0f;
+    inverse[k] = 1.0f / tile.scale[k];
+  }
+  tile.nodes.resize(4 * nodes);  // keeps a pooled keyframe's allocation
+  std::int16_t* out = tile.nodes.data();
+  // Rounded to nearest (half away from 0), clamped against the 1-ulp overshoot of v / scale.
+  // A NaN (a broken synthesis) becomes 0 rather than an undefined conversion.
+  const auto quantise = [](float v, float inverse_scale) {
+    const float r = v * inverse_scale;
+    return static_cast<std::int16_t>(r == r ? std::clamp(r + (r >= 0.0f ? 0.5f : -0.5f), -32767.0f, 32767.0f) : 0.0f);
+  };
+  const float* eta = channels[2];
+  if (displaced) {
+    const float* dx = channels[0];
+    const float* dy = channels[1];
+    for (std::size_t i = 0; i < nodes; ++i) {
+      out[4 * i + 0] = quantise(dx[i], inverse[0]);
+      out[4 * i + 1] = quantise(dy[i], inverse[1]);
+      out[4 * i + 2] = quantise(eta[i], inverse[2]);
+      out[4 * i + 3] = 0;
+    }
+  } else {
+    for (std::size_t i = 0; i < nodes; ++i) {
+      out[4 * i + 0] = out[4 * i + 1] = out[4 * i + 3] = 0;
+      out[4 * i + 2] = quantise(eta[i], inverse[2]);
+    }
+  }
+}
+
+void pack_query_tiles(DeepWaterKeyframe& keyframe) {
+  std::size_t count = 0;
+  for (const ocean::DeepWaterFrame& frame : keyframe.cascades) count += frame.surface_elevation_m.empty() ? 0 : 1;
+  keyframe.query_tiles.resize(count);
+  std::size_t next = 0;
+  for (const ocean::DeepWaterFrame& frame : keyframe.cascades)
+    if (!frame.surface_elevation_m.empty()) pack_query_tile(frame, keyframe.query_tiles[next++]);
+}
+
 }  // namespace nearshore::runtime

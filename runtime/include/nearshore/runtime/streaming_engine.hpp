@@ -69,7 +69,8 @@ struct StreamingOptions {
   double ring_lookahead_s = 1.0;
   std::size_t max_ring_bytes = std::size_t{512} << 20;
   /// The deep-water ring's own bound. Its keyframes come every 1/30 s: at 3 x 256^2 cascades
-  /// (7.5 MiB each) the harbour ring's span would hold 60 of them; 128 MiB keeps half a second.
+  /// (9 MiB each: 7.5 of channels, 1.5 of the CPU queries' QueryTile) the harbour ring's span
+  /// would hold 60 of them; 128 MiB keeps 14, about half a second.
   std::size_t max_deep_ring_bytes = std::size_t{128} << 20;
   double deep_water_interval_s = 1.0 / 30.0;  ///< deep keyframes at display times j * interval
   sequence::Verify verify = sequence::Verify::kNo;  ///< check each frame's XXH64 as it is read

@@ -40,10 +40,19 @@
 //    the lattice point p with F(p) = p + (1 - w(p)) lambda D_disp(p) - q = 0, by Newton's method
 //    from p_0 = q with the exact Jacobian of the sampled field, J = I + lambda ((1 - w) grad D -
 //    D grad w^T) (grad D of the bilinear interpolant, from the same four nodes), falling back to
-//    the fixed-point step p - F(p) where det J < 0.2 (near a folding crest); at most
-//    kDisplacementIterations steps, stopping when a step is below kDisplacementTolerance_m; then
-//    eta(q) := eta(p). Solvable while the Jacobian of the displacement stays positive (no folded
-//    crests; ocean/deep_water.hpp). Inside the full-weight box (w = 1) p = q at once.
+//    the fixed-point step p - F(p) where det J < 0.2 (near a folding crest); it stops at the first
+//    p whose residual |F(p)| <= kDisplacementTolerance_m (at most kDisplacementIterations steps):
+//    the surface point it reports lies within 0.1 mm of q horizontally, so its height is off by
+//    at most 0.1 mm x the slope. Then eta(q) := eta(p) (formula 3), with D_eta taken from the
+//    sample that checked the residual. Solvable while the Jacobian of the displacement stays
+//    positive (no folded crests; ocean/deep_water.hpp). Inside the full-weight box (w = 1) p = q.
+//    The solve reads the cascades in the query layout (surface_snapshot.hpp QueryTile: D_x, D_y,
+//    eta as int16 of a per-channel scale), whose rounding moves each cascade's value by at most
+//    scale / 2 (15 micrometres on a 1 m wave); so a displaced height is eta at its lattice point
+//    to within sum_c (scale_c / 2) (+ float round-off), not bit for bit. tests/runtime
+//    (SurfaceSampler.DisplacedQueriesMatchAConvergedSolve) holds it to 1 mm of a solve converged
+//    to 1e-10 m on the float fields, over a Beaufort 5 sea. The GLSL does not need the inverse:
+//    a vertex shader displaces lattice points (formula 3).
 // 5. Velocity (m/s): harbour u_h = (P, Q) / h with h = d + eta_H (d bilinear still-water depth of
 //    depth.exr); zero, and the point DRY, where the cell holding p (floor(x/s), floor(y/s),
 //    clamped) is land or h <= site.dry_depth_m. Deep water u_d = (P_d, Q_d) / (d_deep + D_eta)
@@ -107,9 +116,9 @@ class SurfaceSampler {
 
   /// Elevation (m) at (x, y).
   double elevation_m(double x_m, double y_m, ChoppyPoint point = ChoppyPoint::kDisplaced) const;
-  /// Batched: out[i] = elevation_m(points[i]) to the displacement tolerance (a displaced query
-  /// starts its solve from the previous point's solution when that point lies within 20 m, so
-  /// the batch of a hull's points is cheaper than the single calls); out.size() >= points.size().
+  /// Batched: out[i] = elevation_m(points[i]), bit for bit; out.size() >= points.size(). A
+  /// displaced batch solves blocks of kSolveBlock points side by side, so their cache misses
+  /// overlap: the batch of a hull's points is cheaper than the single calls.
   void elevations_m(std::span<const SitePoint> points, std::span<double> out,
                     ChoppyPoint point = ChoppyPoint::kDisplaced) const;
   /// Elevation, velocity, slopes, normal and the dry flag at (x, y).
@@ -147,7 +156,6 @@ class SurfaceSampler {
   };
   // H_eta and its time derivative from the keyframes' values (and rates) at one point.
   EtaAndRate harbour_in_time(double from, double to, double from_rate, double to_rate) const;
-  void deep_displacement(double x_m, double y_m, double& dx_m, double& dy_m) const;
   double deep_eta(double x_m, double y_m) const;
   // eta, slopes and (with_flux) fluxes of a list of cascades at (x, y), both keyframes blended in time.
   struct CascadeSum {
@@ -155,10 +163,23 @@ class SurfaceSampler {
   };
   double cascades_eta(const std::vector<Cascade>& cascades, double x_m, double y_m) const;
   CascadeSum cascades_sum(const std::vector<Cascade>& cascades, double x_m, double y_m, bool with_flux) const;
-  // The lattice point of a displaced query, Newton started from q + offset.
-  SitePoint solve_lattice_point(double x_m, double y_m, SitePoint offset) const;
+  // The lattice point of a displaced query with what the last sample there gave: D_eta at p (the
+  // deep part of the height: no second pass over the cascades).
+  struct Solution {
+    SitePoint lattice;
+    double deep_eta = 0.0;
+    bool has_deep_eta = false;  // false: p = q taken at once, or the iterations ran out
+  };
+  static constexpr int kSolveBlock = 16;
+  static constexpr std::size_t kStoredTaps = 6;
+  bool in_full_box(double x_m, double y_m) const {
+    return has_harbour_ && x_m > full_x0_ && x_m < full_x1_ && y_m > full_y0_ && y_m < full_y1_;
+  }
+  // out[i] for q[i], i < count <= kSolveBlock, the points iterated side by side.
+  void solve_block(const SitePoint* q, int count, Solution* out) const;
+  Solution solve(double x_m, double y_m) const;
+  double elevation_at_solution(const Solution& solution) const;
   double elevation_at_lattice(SitePoint p) const;
-  static constexpr double kWarmStartDistance_m = 20.0;
 
   SurfaceSnapshot snapshot_;
   bool has_harbour_ = false, has_deep_ = false, has_deep_flux_ = false, has_inside_ = false, has_inside_flux_ = false;
@@ -174,6 +195,18 @@ class SurfaceSampler {
   const float* depth_ = nullptr;
   const std::uint8_t* land_ = nullptr;
   std::vector<Cascade> cascades_;
+  // The cascades in the query layout (surface_snapshot.hpp QueryTile), both keyframes, with each
+  // keyframe's time weight folded into its channel scales: (1 - f_d) scale_from, f_d scale_to.
+  struct PackedCascade {
+    int n = 0;
+    double inverse_tile_length = 0.0;
+    float texels_per_m = 0.0f;  // N / L
+    const std::int16_t* from = nullptr;
+    const std::int16_t* to = nullptr;
+    float from_weight[4] = {0, 0, 0, 0}, to_weight[4] = {0, 0, 0, 0};
+  };
+  std::vector<PackedCascade> packed_;
+  std::vector<QueryTile> own_tiles_;  // only for keyframes that came without (valid) query tiles
   std::vector<Cascade> inside_;  // the split's inside layer: whole cascades of the mask, then the straddling ones
 };
 

@@ -56,6 +56,24 @@ struct HarbourKeyframe {
   Raster<float> surface_elevation_rate_m_s;
 };
 
+/// One cascade tile in the layout of the CPU's displaced-point queries (surface_sampler.hpp formula
+/// 4, whose Newton solve samples D_x, D_y and then eta at 2-4 points per query): node (i, j) as
+/// four int16 {D_x, D_y, eta, 0} side by side, value = scale[channel] x integer with scale =
+/// max |value| / 32767 of the channel over the tile. 8 bytes a node where the three float channels
+/// are 12 bytes in three places: a tap reads 2 cache lines instead of 6 and one float4 bilinear
+/// gives all three. Rounding moves a value by at most scale / 2 (15 micrometres on a 1 m wave;
+/// the bound surface_sampler.hpp adds to its tolerance).
+struct QueryTile {
+  int grid_size = 0;
+  double tile_length_m = 0.0;
+  float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};  ///< metres per unit of {D_x, D_y, eta, 0}
+  std::vector<std::int16_t> nodes;            ///< 4 per node, row-major like the cascade's channels
+};
+
+/// `tile` := the query layout of one cascade (above; its allocation reused). A frame without
+/// displacement gets D = 0.
+void pack_query_tile(const ocean::DeepWaterFrame& frame, QueryTile& tile);
+
 /// The deep-water field at one keyframe time: every cascade's tile (ocean::DeepWaterFrame:
 /// eta, choppy displacement, slopes and displacement derivatives).
 struct DeepWaterKeyframe {
@@ -73,7 +91,14 @@ struct DeepWaterKeyframe {
   /// The cascades that straddle the split, with only their components above it (the same tiles:
   /// inside_cascades[i] has its tile length and grid size). Empty without a split.
   std::vector<ocean::DeepWaterFrame> inside_cascades;
+  /// The cascades with an elevation in the query layout, in their order (pack_query_tiles, which
+  /// the streaming engine runs on its worker after each synthesis, so hosts never pay for it).
+  /// Empty or stale (sizes that do not match): a sampler packs its own copy for its lifetime.
+  std::vector<QueryTile> query_tiles;
 };
+
+/// Fills keyframe.query_tiles from keyframe.cascades (call after every change to them).
+void pack_query_tiles(DeepWaterKeyframe& keyframe);
 
 /// Where the harbour is shown and how it fades into the deep water. Static for a sequence.
 struct HarbourSite {
