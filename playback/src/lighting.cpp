@@ -22,11 +22,6 @@ constexpr double kAdaptationFloorKcdM2 = 0.01;  // the eye stops adapting at dus
 constexpr double kCrestPathM = 4.0;
 constexpr double kCrestTransmission = 0.15;
 
-double dot(const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vector3 normalize(const Vector3& v) {
-  const double length = std::sqrt(dot(v, v));
-  return {v[0] / length, v[1] / length, v[2] / length};
-}
 double luminance(const Radiance& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 double smoothstep(double edge0, double edge1, double x) {  // GLSL's
   const double t = std::clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);

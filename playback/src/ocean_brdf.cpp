@@ -7,7 +7,6 @@
 namespace nearshore::playback {
 namespace {
 constexpr double kPi = std::numbers::pi;
-double dot(const double (&a)[3], const double (&b)[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 }  // namespace
 
 double fresnel_reflectance_at_normal_incidence(double n) { return std::pow((n - 1.0) / (n + 1.0), 2); }
@@ -37,12 +36,10 @@ double smith_lambda(double cos_theta, double slope_variance) {
 
 double cox_munk_slope_variance(double wind_speed_m_s) { return 0.003 + 0.00512 * std::max(wind_speed_m_s, 0.0); }
 
-double ocean_brdf(const double (&n)[3], const double (&v)[3], const double (&l)[3], double slope_variance) {
+double ocean_brdf(const Vector3& n, const Vector3& v, const Vector3& l, double slope_variance) {
   const double cos_v = dot(n, v), cos_l = dot(n, l);
   if (cos_v <= 0.0 || cos_l <= 0.0) return 0.0;
-  double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
-  const double length = std::sqrt(dot(h, h));
-  for (double& component : h) component /= length;
+  const Vector3 h = normalize({v[0] + l[0], v[1] + l[1], v[2] + l[2]});
   const double h_z = dot(n, h);
   // eq. (3.13): the probability density of the facet slope zeta_h that mirrors l into v.
   const double zeta_squared = (1.0 - h_z * h_z) / (h_z * h_z);

@@ -156,10 +156,10 @@ TEST(OceanBrdf, DirectionalAlbedoIsAtMostOne) {
   // Energy: integral over the hemisphere of brdf(v, l) cos(theta_l) <= 1 for every view, by the
   // midpoint rule on 0.2 x 0.4 degree cells (the lobe of the smallest variance is ~6 degrees
   // wide, so the quadrature error is far below the 1 % allowed).
-  const double n[3] = {0, 0, 1};
+  const playback::Vector3 n = {0, 0, 1};
   for (double variance : {0.003, 0.02, 0.1})
     for (double view_deg : {0.0, 30.0, 60.0, 80.0, 88.0}) {
-      const double v[3] = {std::sin(view_deg * std::numbers::pi / 180), 0.0, std::cos(view_deg * std::numbers::pi / 180)};
+      const playback::Vector3 v = {std::sin(view_deg * std::numbers::pi / 180), 0.0, std::cos(view_deg * std::numbers::pi / 180)};
       constexpr int kTheta = 450, kPhi = 900;
       const double d_theta = 0.5 * std::numbers::pi / kTheta, d_phi = 2 * std::numbers::pi / kPhi;
       double albedo = 0.0;
@@ -168,7 +168,7 @@ TEST(OceanBrdf, DirectionalAlbedoIsAtMostOne) {
         const double weight = std::cos(theta) * std::sin(theta) * d_theta * d_phi;
         for (int j = 0; j < kPhi; ++j) {
           const double phi = (j + 0.5) * d_phi;
-          const double l[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+          const playback::Vector3 l = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
           albedo += playback::ocean_brdf(n, v, l, variance) * weight;
         }
       }

@@ -10,10 +10,10 @@
 #include <array>
 
 #include "nearshore/core/raster.hpp"
+#include "nearshore/playback/vector3.hpp"
 
 namespace nearshore::playback {
 
-using Vector3 = std::array<double, 3>;
 /// A 4 x 4 matrix, column-major (OpenGL's order: element (row r, column c) at [c * 4 + r]).
 using Matrix4 = std::array<double, 16>;
 

@@ -5,6 +5,8 @@
 // beyond the finest grid, and whatever the mesh filters out with distance), Smith shadowing.
 // Isotropic: sigma_x^2 = sigma_y^2 = slope_variance_per_axis (eq. 3.14 then gives sigma_v^2 the
 // same). GL-free; shaders/common.glsl has the same functions in GLSL.
+#include "nearshore/playback/vector3.hpp"
+
 namespace nearshore::playback {
 
 /// Refractive index of sea water for visible light.
@@ -30,7 +32,7 @@ double cox_munk_slope_variance(double wind_speed_m_s);
 /// The BRDF (1/sr) of a surface with mean normal n for unit vectors v (to the eye) and l (to the
 /// light): p(zeta_h) F(v.h) / (4 h_z^4 cos theta_v cos theta_l (1 + Lambda_v + Lambda_l)), eq. (3.20).
 /// 0 when v or l is below the mean surface.
-double ocean_brdf(const double (&normal)[3], const double (&to_eye)[3], const double (&to_light)[3],
+double ocean_brdf(const Vector3& normal, const Vector3& to_eye, const Vector3& to_light,
                   double slope_variance_per_axis);
 /// Bruneton's mean Fresnel reflectance of the sky seen in a rough surface, eq. (3.24):
 /// R + (1 - R) (1 - cos theta_v)^(5 exp(-2.69 sigma_v)) / (1 + 22.7 sigma_v^1.5) (the exponent as in

@@ -18,9 +18,10 @@
 // Colours are linear sRGB triples whose Y (0.2126 R + 0.7152 G + 0.0722 B) is the luminance.
 #include <array>
 
+#include "nearshore/playback/vector3.hpp"
+
 namespace nearshore::playback {
 
-using Vector3 = std::array<double, 3>;
 using Radiance = std::array<double, 3>;  ///< linear sRGB, kcd/m2 (luminance-weighted)
 
 /// Perez et al. (1993) distribution coefficients A..E of one quantity (Y, x or y).
