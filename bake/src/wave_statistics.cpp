@@ -36,8 +36,7 @@ WaveStatistics::WaveStatistics(const HarbourGrid& harbour, double dry_depth_m)
     : geometry_(harbour.geometry),
       still_water_depth_m_(harbour.still_water_depth_m.values().begin(), harbour.still_water_depth_m.values().end()),
       dry_depth_m_(dry_depth_m),
-      sum_m_(geometry_.cell_count(), 0.0),
-      sum_squares_m2_(geometry_.cell_count(), 0.0),
+      moments_(geometry_.cell_count()),
       maximum_m_(geometry_.cell_count(), kNeverWet) {}
 
 void WaveStatistics::add_step(const Raster<float>& surface_elevation_m) {
@@ -47,15 +46,13 @@ void WaveStatistics::add_step(const Raster<float>& surface_elevation_m) {
   // Rows in parallel: one pass over the grid per solver step, a few per cent of the step itself.
   tbb::parallel_for(tbb::blocked_range<int>(0, geometry_.rows, 16), [&](const tbb::blocked_range<int>& rows) {
     for (std::size_t cell = rows.begin() * columns; cell < rows.end() * columns; ++cell) {
-      const double value = eta[cell];
-      sum_m_[cell] += value;
-      sum_squares_m2_[cell] += value * value;
+      moments_.add(cell, eta[cell]);
       // Wet as the solver's moving shoreline counts it (docs/solver.md, "Wet and dry"): total
       // depth above the dry threshold.
       if (still_water_depth_m_[cell] + eta[cell] > dry_depth_m_ && eta[cell] > maximum_m_[cell]) maximum_m_[cell] = eta[cell];
     }
   });
-  ++step_count_;
+  moments_.end_sample();
 }
 
 Raster<float> WaveStatistics::maximum_surface_elevation_m() const {
@@ -67,22 +64,17 @@ Raster<float> WaveStatistics::maximum_surface_elevation_m() const {
 
 Raster<float> WaveStatistics::significant_wave_height_m() const {
   Raster<float> map(geometry_.columns, geometry_.rows, kNoValue);
-  if (step_count_ == 0) return map;
-  const double n = static_cast<double>(step_count_);
-  for (std::size_t cell = 0; cell < sum_m_.size(); ++cell) {
-    if (!(still_water_depth_m_[cell] > 0)) continue;
-    const double mean = sum_m_[cell] / n;
-    const double variance = std::max(0.0, sum_squares_m2_[cell] / n - mean * mean);  // population variance
-    map.values()[cell] = static_cast<float>(4.0 * std::sqrt(variance));
-  }
+  if (moments_.sample_count() == 0) return map;
+  for (std::size_t cell = 0; cell < moments_.cell_count(); ++cell)
+    if (still_water_depth_m_[cell] > 0) map.values()[cell] = static_cast<float>(moments_.significant_wave_height_m(cell));
   return map;
 }
 
 Raster<float> WaveStatistics::mean_surface_elevation_m() const {
   Raster<float> map(geometry_.columns, geometry_.rows, kNoValue);
-  if (step_count_ == 0) return map;
-  for (std::size_t cell = 0; cell < sum_m_.size(); ++cell)
-    if (still_water_depth_m_[cell] > 0) map.values()[cell] = static_cast<float>(sum_m_[cell] / static_cast<double>(step_count_));
+  if (moments_.sample_count() == 0) return map;
+  for (std::size_t cell = 0; cell < moments_.cell_count(); ++cell)
+    if (still_water_depth_m_[cell] > 0) map.values()[cell] = static_cast<float>(moments_.mean_m(cell));
   return map;
 }
 
@@ -118,12 +110,12 @@ std::optional<RunupPoint> WaveStatistics::highest_runup() const {
 
 void WaveStatistics::save(std::ostream& out) const {
   const std::int32_t size[2] = {geometry_.columns, geometry_.rows};
-  const std::int64_t steps = step_count_;
+  const std::int64_t steps = moments_.sample_count();
   out.write(kStateMagic, sizeof kStateMagic);
   out.write(reinterpret_cast<const char*>(size), sizeof size);
   out.write(reinterpret_cast<const char*>(&steps), sizeof steps);
-  write_values(out, sum_m_);
-  write_values(out, sum_squares_m2_);
+  write_values(out, moments_.sums_m());
+  write_values(out, moments_.sums_of_squares_m2());
   write_values(out, maximum_m_);
 }
 
@@ -142,9 +134,9 @@ void WaveStatistics::load(std::istream& in, const std::string& source) {
   if (size[0] != geometry_.columns || size[1] != geometry_.rows || steps < 0)
     throw broken(fmt::format("they cover {} x {} cells over {} steps but the grid is {} x {}", size[0], size[1], steps,
                              geometry_.columns, geometry_.rows));
-  if (!read_values(in, sum_m_) || !read_values(in, sum_squares_m2_) || !read_values(in, maximum_m_))
+  if (!read_values(in, moments_.sums_m()) || !read_values(in, moments_.sums_of_squares_m2()) || !read_values(in, maximum_m_))
     throw broken("the file ends inside their maps");
-  step_count_ = steps;
+  moments_.set_sample_count(static_cast<long>(steps));
 }
 
 }  // namespace nearshore::bake

@@ -79,7 +79,7 @@ TEST(Agitation, IncidentHeightIsTheBakedPartOfASplitElseTheComponents) {
 TEST(Agitation, CoefficientOfAKnownSinusoidFromTheFrames) {
   // The frames: a = 0.1 m over three whole periods at T/20, Hs = 2 sqrt(2) a; the maker's component
   // a = 0.25 m, Hs_incident = 2 sqrt(2) 0.25: K = 0.4 in every water cell. The frames hold floats:
-  // eta to 1e-8 m, Welford in double, so K to 1e-5.
+  // eta to 1e-8 m, sums in double (core/elevation_moments.hpp), so K to 1e-5.
   const fs::path sequence = wave_with_maker(scratch_folder() / "sequence", 0.25);
   const fs::path output = sequence.parent_path() / "agitation";
   ExportRequest request;

@@ -9,9 +9,8 @@
 //   maximum surface elevation   the envelope: max over the steps of eta in each cell while it is
 //                               wet (total depth d + eta > solver.dry_depth_m), metres above still
 //                               water; undefined (nodata) where the cell was never wet.
-//   significant wave height     Hs = 4 sqrt(m0), m0 the variance of eta about its time mean over
-//                               the steps (the spectral Hm0; Holthuijsen 2007, "Waves in Oceanic and
-//                               Coastal Waters", 4.2.2); a sinusoid of amplitude a has 2 sqrt(2) a.
+//   significant wave height     Hs = 4 sqrt(m0) over the steps (core/elevation_moments.hpp, the
+//                               definition `export` uses on frames too).
 //   mean surface elevation      the time mean of eta (set-up and set-down), metres.
 //   run-up line                 the wet/dry front at its furthest reach: every cell that was ever
 //                               wet and touches (4-neighbours) a cell that never was, with the
@@ -21,10 +20,7 @@
 //                               shoreline (still-water depth d <= 0) while it was wet, with its
 //                               place and ground elevation: the definition of Synolakis (1987) and
 //                               of the NTHMP benchmarks (docs/validation.md).
-// Mean and variance use sums of eta and eta^2 in double precision: eta is measured from still
-// water, so |mean| is small next to the standard deviation and sum(eta^2)/n - mean^2 loses no
-// significant digit (a 1e-16 relative rounding of values near Hs^2). Hs and the mean are kept for
-// water cells (d > 0); land never wet is nodata in every map.
+// Hs and the mean are kept for water cells (d > 0); land never wet is nodata in every map.
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -32,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "nearshore/core/elevation_moments.hpp"
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/raster.hpp"
 
@@ -55,7 +52,7 @@ class WaveStatistics {
 
   /// Adds one solver step's surface elevation (a raster of the grid's size, row 0 south).
   void add_step(const Raster<float>& surface_elevation_m);
-  long step_count() const { return step_count_; }
+  long step_count() const { return moments_.sample_count(); }
 
   /// The maps (row 0 south); NaN marks "no value" (never wet, or land for Hs and the mean).
   Raster<float> maximum_surface_elevation_m() const;
@@ -76,8 +73,7 @@ class WaveStatistics {
   GridGeometry geometry_;
   std::vector<float> still_water_depth_m_;
   double dry_depth_m_;
-  long step_count_ = 0;
-  std::vector<double> sum_m_, sum_squares_m2_;
+  ElevationMoments moments_;
   std::vector<float> maximum_m_;  // -infinity until the cell is first wet
 };
 

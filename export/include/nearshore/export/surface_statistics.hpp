@@ -1,18 +1,18 @@
 #pragma once
 // SurfaceStatistics: the wave climate of each cell over a run of frames, what a harbour engineer
 // maps (the `geotiff` export):
-//   significant wave height  Hs = 4 sqrt(m0), m0 the variance of the surface elevation about its
-//                            time mean (the spectral Hm0; Holthuijsen 2007, "Waves in Oceanic and
-//                            Coastal Waters", section 4.2.2), metres;
+//   significant wave height  Hs = 4 sqrt(m0) over the frames (core/elevation_moments.hpp, the
+//                            definition the bake's every-step map uses too), metres;
 //   mean water level         the time mean of eta (set-up / set-down near breaking), metres;
 //   breaking fraction        the time mean of the breaking indicator: the fraction of time the
 //                            cell breaks where the indicator is 0 or 1, weighted by its strength
 //                            where the solver writes values between.
-// Accumulated frame by frame (Welford's update in double precision, Knuth TAOCP vol. 2, 4.2.2), so
-// a sequence of any length takes the memory of three rasters of doubles.
+// Accumulated frame by frame, so a sequence of any length takes the memory of three rasters of
+// doubles.
 #include <cstdint>
 #include <vector>
 
+#include "nearshore/core/elevation_moments.hpp"
 #include "nearshore/core/raster.hpp"
 
 namespace nearshore::exports {
@@ -24,15 +24,16 @@ class SurfaceStatistics {
   /// Adds one frame's fields (rasters of the constructor's size, row 0 south).
   void add_frame(const Raster<float>& surface_elevation_m, const Raster<float>& breaking);
 
-  int frame_count() const { return frame_count_; }
+  int frame_count() const { return static_cast<int>(moments_.sample_count()); }
   /// Hs = 4 standard deviations of eta over the frames added (population variance), metres.
   Raster<float> significant_wave_height_m() const;
   Raster<float> mean_surface_elevation_m() const;
   Raster<float> breaking_fraction() const;
 
  private:
-  int columns_, rows_, frame_count_ = 0;
-  std::vector<double> mean_m_, sum_squared_deviation_m2_, breaking_sum_;
+  int columns_, rows_;
+  ElevationMoments moments_;
+  std::vector<double> breaking_sum_;
 };
 
 }  // namespace nearshore::exports
