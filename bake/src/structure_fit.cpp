@@ -7,6 +7,7 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <fmt/core.h>
@@ -97,25 +98,28 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
   // breakwater get the number of cells the flume was fitted with: laid by distance from the
   // centre line, one side got N and the other N + 1 depending on where the line fell in its cell,
   // and a thin layer's reflection swings with its width (docs/structures.md).
+  // Only the cells it touches are kept (a set, as `footprint` keeps a map): a real chart has
+  // hundreds of structures on millions of cells.
   auto dilate_core = [&](std::size_t s, int cells) {
     const double dx = g.spacing_x_m(), dy = g.spacing_y_m();
     const double reach_m = cells * cell_m + 1e-6 * cell_m;
     const int reach_c = static_cast<int>(std::ceil(reach_m / dx)), reach_r = static_cast<int>(std::ceil(reach_m / dy));
-    std::vector<unsigned char> part(static_cast<std::size_t>(g.columns) * g.rows, 0);
-    for (std::size_t i : core_of[s]) part[i] = 2;
-    std::vector<std::size_t> faces;
+    const std::unordered_set<std::size_t> core(core_of[s].begin(), core_of[s].end());
+    std::unordered_set<std::size_t> faces;
     for (std::size_t i : core_of[s]) {
       const int c0 = static_cast<int>(i % g.columns), r0 = static_cast<int>(i / g.columns);
       for (int r = std::max(0, r0 - reach_r); r <= std::min(g.rows - 1, r0 + reach_r); ++r)
         for (int c = std::max(0, c0 - reach_c); c <= std::min(g.columns - 1, c0 + reach_c); ++c) {
           const std::size_t j = static_cast<std::size_t>(r) * g.columns + c;
-          if (part[j] != 0 || std::hypot((c - c0) * dx, (r - r0) * dy) > reach_m) continue;
-          part[j] = 1;
-          faces.push_back(j);
+          if (!core.contains(j) && std::hypot((c - c0) * dx, (r - r0) * dy) <= reach_m) faces.insert(j);
         }
     }
-    std::sort(faces.begin(), faces.end());
-    faces_of[s] = std::move(faces);
+    faces_of[s].assign(faces.begin(), faces.end());
+    std::sort(faces_of[s].begin(), faces_of[s].end());
+  };
+  // Which structures get their faces by dilate_core: a line with an impermeable core on the grid.
+  auto faces_follow_core = [&](std::size_t s) {
+    return bathymetry::has_impermeable_core(grid.structures[s]) && !grid.structures[s].lines.empty() && !core_of[s].empty();
   };
 
   // Steps 1-3 of the header: coefficients, footprint, the flume each structure needs.
@@ -183,7 +187,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       request.depth_m = std::exp(std::round(std::log(layer.depth_m) / 0.1) * 0.1);
       request_of[s] = request;
       fits.emplace(request, FitResult{});
-      if (impermeable && !structure.lines.empty() && !core_of[s].empty()) {
+      if (faces_follow_core(s)) {
         dilate_core(s, request.layer_cells);
         layer.face_cells = faces_of[s].size();
       }
@@ -251,9 +255,11 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       if (result.widening_cells > 0) {
         layer.widening_m = result.widening_cells * cell_m;
         layer.face_width_m += layer.widening_m;
-        footprint(s, layer.widening_m);
-        if (bathymetry::has_impermeable_core(grid.structures[s]) && !grid.structures[s].lines.empty() && !core_of[s].empty())
+        // Widening moves only the faces' outer edge; the core stays.
+        if (faces_follow_core(s))
           dilate_core(s, request_of[s].layer_cells + result.widening_cells);
+        else
+          footprint(s, layer.widening_m);
         layer.core_cells = core_of[s].size();
         layer.face_cells = faces_of[s].size();
       }
