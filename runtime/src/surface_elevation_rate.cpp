@@ -124,9 +124,9 @@ Raster<float> surface_elevation_rate(const HarbourGrid& grid, const Raster<float
       for (int c = 2; c + 2 < columns; ++c)
         o[c] = -((6.0f * (pr[c + 1] - pr[c - 1]) - (pr[c + 2] - pr[c - 2])) * fx +
                  (6.0f * (qr[c + up] - qr[c - up]) - (qr[c + 2 * up] - qr[c - 2 * up])) * fy);
-      if (has_porosity) {
+      if (has_porosity) {  // walls (n = 0) are not open water: the pass below writes them
         const float* __restrict n = grid.porosity.values().data() + row;
-        for (int c = 2; c + 2 < columns; ++c) o[c] /= n[c];
+        for (int c = 2; c + 2 < columns; ++c) o[c] /= n[c] > 0.0f ? n[c] : 1.0f;
       }
     }
     for (int c = 0; c < columns; ++c) {
