@@ -20,6 +20,8 @@ uniform vec4 u_decal_foam_rect_m;       // ... x0, y0, width, height of the site
 uniform float u_detail_parallax;        // seed 004 eq. (5) on (1) or off (0): Lighting::detail_parallax
 uniform bool u_has_deep_foam;           // the persistent foam f_t of seed 000 eq. (3.46) (foam_decay.frag.glsl) ...
 uniform sampler2D u_deep_foam;          // ... over the largest cascade's tile, repeating
+uniform bool u_has_relative_wave_height;     // runtime::HarbourSite::relative_wave_height (K) ...
+uniform sampler2D u_relative_wave_height;    // ... over the site, cell centres at texel centres
 in vec2 v_site_m;
 in vec3 v_position_m;
 in float v_lod;
@@ -97,12 +99,19 @@ void shoreline_waves(vec2 p, float still_depth_m, float footprint_m, inout vec2 
   }
 }
 
-// How much of cascade c's normal map a point of harbour weight w gets: all of it beyond the
-// harbour; over the harbour only the finest cascades (tiles under 32 harbour cells), which stand
-// for the wind chop a bake's grid is too coarse to carry.
-float cascade_share(int c, float w) {
-  bool over_harbour = u_has_site && u_tile_length_m[c] < 32.0 * max(u_spacing_m.x, u_spacing_m.y);
-  return (1.0 - w) + (over_harbour ? w : 0.0);
+// How much of cascade c a point of harbour weight w gets (cascade_share, cascade_variance_share:
+// lighting.hpp): all of it beyond the harbour; over the harbour only the finest cascades (tiles
+// under 32 harbour cells), which stand for the short waves a bake's grid is too coarse to carry,
+// sheltered as the baked sea is there (the relative wave height K of the site).
+float relative_wave_height_at(vec2 p) {
+  if (!u_has_relative_wave_height || !u_has_site) return 1.0;
+  return texture(u_relative_wave_height, clamp(p / u_site_size_m, vec2(0.0), vec2(1.0))).r;
+}
+bool over_harbour(int c) { return u_has_site && u_tile_length_m[c] < 32.0 * max(u_spacing_m.x, u_spacing_m.y); }
+float cascade_share(int c, float w, float k) { return over_harbour(c) ? (1.0 - w) + w * clamp(k, 0.0, 1.0) : 1.0 - w; }
+float cascade_variance_share(int c, float w, float k) {
+  float kc = clamp(k, 0.0, 1.0);
+  return over_harbour(c) ? (1.0 - w) + w * kc * kc : 1.0 - w;
 }
 
 void main() {
@@ -140,10 +149,11 @@ void main() {
   // where it meets it: the drawn point moved along the view by eq. (5) for the relief the grid
   // leaves out (each cascade's height weighted by how much of it the grid cannot draw and, as
   // its normals are, by how much detail the pixel keeps).
+  float sheltering = relative_wave_height_at(p);
   float relief_m = 0.0;
   for (int c = 0; c < u_cascade_count && u_detail_parallax > 0.0; ++c) {
     float texel_m = u_tile_length_m[c] / float(u_deep_size);
-    float share = cascade_share(c, weight);
+    float share = cascade_share(c, weight, sheltering);
     float w = share * detail_normal_weight(texel_m, footprint_m) * unresolved_relief_weight(texel_m, footprint_m);
     if (w <= 0.0) continue;
     vec3 uvw = cascade_uvw(p, c);
@@ -155,8 +165,8 @@ void main() {
   for (int c = 0; c < u_cascade_count; ++c) {
     float texel_m = u_tile_length_m[c] / float(u_deep_size);
     float detail = detail_normal_weight(texel_m, footprint_m);
-    float share = cascade_share(c, weight);
-    extra_variance += share * (1.0 - detail) * u_cascade_slope_variance[c];
+    float share = cascade_share(c, weight, sheltering);
+    extra_variance += cascade_variance_share(c, weight, sheltering) * (1.0 - detail) * u_cascade_slope_variance[c];
     if (detail <= 0.0 || share <= 0.0) continue;
     vec3 uvw = cascade_uvw(p_detail, c);
     slope += share * detail * mix(vec2(texture(u_deep_slope_x_from, uvw).r, texture(u_deep_slope_y_from, uvw).r),

@@ -136,6 +136,16 @@ Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   return out;
 }
 
+double cascade_share(bool over_harbour, double harbour_weight, double relative_wave_height) {
+  const double k = std::clamp(relative_wave_height, 0.0, 1.0);
+  return over_harbour ? (1.0 - harbour_weight) + harbour_weight * k : 1.0 - harbour_weight;
+}
+
+double cascade_variance_share(bool over_harbour, double harbour_weight, double relative_wave_height) {
+  const double k = std::clamp(relative_wave_height, 0.0, 1.0);
+  return over_harbour ? (1.0 - harbour_weight) + harbour_weight * k * k : 1.0 - harbour_weight;
+}
+
 double detail_normal_weight(double texel_m, double footprint_m) {
   return 1.0 - smoothstep(texel_m, 4.0 * texel_m, footprint_m);
 }

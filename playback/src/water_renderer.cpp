@@ -51,9 +51,10 @@ constexpr const char* kSamplerUnits[] = {
     "u_deep_dy_to",        "u_deep_slope_x_from", "u_deep_slope_x_to",       "u_deep_slope_y_from",
     "u_deep_slope_y_to",   "u_coast_distance",    "u_reflection",            "u_patches",
     "u_decal_foam",        "u_deep_foam",         "u_previous_foam",         "u_harbour_eta_rate_from",
-    "u_harbour_eta_rate_to"};
+    "u_harbour_eta_rate_to", "u_relative_wave_height"};
 enum Unit { kHarbourEta = 0, kHarbourBreaking = 2, kDepth = 4, kPorosity = 5, kLand = 6, kDeepFirst = 7, kCoast = 17,
-            kReflection = 18, kPatches = 19, kDecalFoam = 20, kDeepFoam = 21, kPreviousFoam = 22, kHarbourEtaRate = 23 };
+            kReflection = 18, kPatches = 19, kDecalFoam = 20, kDeepFoam = 21, kPreviousFoam = 22, kHarbourEtaRate = 23,
+            kRelativeWaveHeight = 25 };
 
 GLuint link_program(std::initializer_list<const char*> vertex_prefixes, const std::string& vertex_name,
                     std::initializer_list<const char*> fragment_prefixes, const std::string& fragment_name) {
@@ -292,7 +293,7 @@ struct WaterRenderer::Impl {
 
   // The site (static for a sequence): uploaded when the snapshot's site changes.
   std::shared_ptr<const runtime::HarbourSite> site;
-  GLuint depth_texture = 0, porosity_texture = 0, land_texture = 0, coast_texture = 0;
+  GLuint depth_texture = 0, porosity_texture = 0, land_texture = 0, coast_texture = 0, relative_wave_height_texture = 0;
   Mesh terrain;
   // Slope variance (per axis) of each cascade's tiles: measured once on the first deep keyframe
   // (the spectrum is stationary: the next keyframes hold the same variance to sampling noise).
@@ -333,7 +334,7 @@ struct WaterRenderer::Impl {
   }
 
   void release_site() {
-    for (GLuint* texture : {&depth_texture, &porosity_texture, &land_texture, &coast_texture})
+    for (GLuint* texture : {&depth_texture, &porosity_texture, &land_texture, &coast_texture, &relative_wave_height_texture})
       if (*texture) glDeleteTextures(1, texture), *texture = 0;
     terrain.release();
     site.reset();
@@ -363,6 +364,30 @@ struct WaterRenderer::Impl {
         coast[k] = std::isfinite(h.coast_distance_m.data()[k]) ? std::clamp(h.coast_distance_m.data()[k], -1e4f, 1e4f) : 1e4f;
     coast_texture = site_texture(GL_R32F, GL_FLOAT, columns, rows, coast.data(), GL_LINEAR);
     statistics.upload_bytes += std::size_t(columns) * rows * 9;
+    // K of the site: land and structure cells (NaN) take their water neighbours' mean, so the
+    // bilinear filter brings no NaN to the water beside a quay (and no unsheltered halo).
+    const Raster<float>& k = site->relative_wave_height;
+    if (k.columns() == columns && k.rows() == rows) {
+      std::vector<float> filled(k.values());
+      for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+          if (std::isfinite(k(i, j))) continue;
+          double sum = 0.0;
+          int count = 0;
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+              const int ii = i + di, jj = j + dj;
+              if (ii < 0 || jj < 0 || ii >= columns || jj >= rows || !std::isfinite(k(ii, jj))) continue;
+              sum += k(ii, jj);
+              ++count;
+            }
+          filled[std::size_t(j) * columns + i] = count > 0 ? float(sum / count) : 1.f;
+        }
+      glActiveTexture(GLenum(GL_TEXTURE0 + kRelativeWaveHeight));
+      relative_wave_height_texture = site_texture(GL_R32F, GL_FLOAT, columns, rows, filled.data(), GL_LINEAR);
+      glActiveTexture(GL_TEXTURE0);
+      statistics.upload_bytes += std::size_t(columns) * rows * 4;
+    }
     // The sea beyond the grid takes the deepest depth found on its edges (lighting only).
     float edge_depth = 0.f;
     for (int i = 0; i < columns; ++i)
@@ -403,6 +428,7 @@ struct WaterRenderer::Impl {
     } else {
       set_uniform(program, "u_choppiness", 1.f);
     }
+    set_uniform(program, "u_has_relative_wave_height", relative_wave_height_texture ? 1 : 0);
     set_uniform(program, "u_cascade_count", bound.cascade_count);
     // The split (issue 14 item 1): what water_vertex.glsl draws inside the harbour rectangle.
     set_uniform(program, "u_inside_cascade_mask", static_cast<int>(bound.inside_cascade_mask));
@@ -475,6 +501,7 @@ struct WaterRenderer::Impl {
     bind(kPorosity, GL_TEXTURE_2D, porosity_texture);
     bind(kLand, GL_TEXTURE_2D, land_texture);
     bind(kCoast, GL_TEXTURE_2D, coast_texture);
+    bind(kRelativeWaveHeight, GL_TEXTURE_2D, relative_wave_height_texture);
     for (int field = 0; field < kDeepFieldCount; ++field)
       for (int k = 0; k < 2; ++k) bind(kDeepFirst + 2 * field + k, GL_TEXTURE_2D_ARRAY, bound.deep[field][k]);
     glActiveTexture(GL_TEXTURE0);

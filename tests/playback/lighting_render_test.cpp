@@ -13,6 +13,7 @@
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/plot/plot.hpp"
+#include "nearshore/runtime/surface_snapshot.hpp"
 #include "snapshot_fixtures.hpp"
 
 namespace nearshore {
@@ -396,6 +397,98 @@ TEST(LightingRender, DetailNormalsAndTheirParallaxMatchTheCpuTwin) {
     for (int x = 0; x < width; ++x)
       if (std::abs(luminance(images[0].get(x, y)) - luminance(images[1].get(x, y))) > 4.0 / 255) ++changed;
   EXPECT_GT(changed, width * height / 20);
+}
+
+TEST(LightingRender, ShelteredShortWavesMatchTheCpuTwin) {
+  // A still harbour (both keyframes zero) under deep water whose one cascade (64 m tiles of 64
+  // samples, finer than 32 harbour cells of 4 m: drawn over the harbour) carries a slope pattern,
+  // and a relative wave height K of 0 west of x = 98 m rising linearly to 1 at x = 162 m (a basin
+  // sheltered towards the west). Where the harbour weight is 1 each sampled pixel is the
+  // twin's shade_water with the cascade's slope scaled by cascade_share (K) and its faded
+  // variance by cascade_variance_share (K^2); and the sheltering shows: the west half is calmer.
+  playback::GlWindow window(64, 64, "test", false);
+  test::SiteOptions options;
+  options.land = false;
+  auto site = test::make_site(options);  // 256 m x 192 m, 12 m deep in the south to 3 m in the north
+  const GridGeometry& g = site->harbour.geometry;
+  site->relative_wave_height = Raster<float>(g.columns, g.rows);
+  for (int j = 0; j < g.rows; ++j)
+    for (int i = 0; i < g.columns; ++i) site->relative_wave_height(i, j) = float(std::clamp((4.0 * i + 2.0 - 98.0) / 64.0, 0.0, 1.0));
+  auto still = std::make_shared<runtime::HarbourKeyframe>();
+  still->serial = 1;
+  still->surface_elevation_m = still->breaking = still->surface_elevation_rate_m_s = Raster<float>(g.columns, g.rows, 0.f);
+  const int n = 64;
+  const double tile = 64.0;
+  runtime::SurfaceSnapshot snapshot;
+  snapshot.site = site;
+  snapshot.harbour_from = snapshot.harbour_to = still;
+  snapshot.deep_from = snapshot.deep_to = relief_pattern_keyframe({tile}, {0.0}, n);
+  const auto& cascade = snapshot.deep_from->cascades[0];
+  double sum = 0;
+  for (std::size_t k = 0; k < cascade.slope_x.size(); ++k)
+    sum += double(cascade.slope_x[k]) * cascade.slope_x[k] + double(cascade.slope_y[k]) * cascade.slope_y[k];
+  const double variance = 0.5 * sum / double(cascade.slope_x.size());
+  playback::Camera camera;
+  camera.eye_m = {128.0, 40.0, 14.0};
+  camera.target_m = {128.0, 140.0, 0.0};
+  camera.vertical_field_of_view_deg = 60.0;
+  const int width = 160, height = 100;
+  const playback::CameraView view = playback::camera_view(camera, width, height, 1.0, 1000.0);
+  Lighting lighting;  // the sun behind the camera: no glitter
+  lighting.sun_azimuth_deg = 170.0;
+  lighting.sun_elevation_deg = 35.0;
+  lighting.detail_parallax = 0.0;
+  lighting.shore_wave_amplitude_m = 0.0;
+  playback::WaterRenderer renderer;
+  renderer.render(snapshot, camera, lighting, width, height);
+  const Image image = renderer.read_pixels();
+  const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+  const auto water_point = [&](int x, int y) {
+    const Vector3 ray = pixel_ray(view, x, y);
+    const double t = -camera.eye_m[2] / ray[2];
+    return std::array<double, 2>{camera.eye_m[0] + t * ray[0], camera.eye_m[1] + t * ray[1]};
+  };
+  int compared = 0;
+  // How much neighbouring pixels (2 apart in a row) differ where K < 0.3 and where K > 0.7: the
+  // short waves' texture, free of the picture's slow gradients (depth, view angle).
+  std::vector<double> west, east;
+  for (int y = height - 1 - 2; y > 0; y -= 2)  // the lower-left pixel of each 2 x 2 quad
+    for (int x = 2; x + 1 < width; x += 2) {
+      if (pixel_ray(view, x, y - 1)[2] > -0.05) continue;
+      const auto p = water_point(x, y), px = water_point(x + 1, y), py = water_point(x, y - 1);
+      if (runtime::harbour_weight(*site, p[0], p[1]) < 1.0 || p[0] < 8.0 || p[0] > 248.0) continue;
+      const double footprint = std::max(std::hypot(px[0] - p[0], px[1] - p[1]), std::hypot(py[0] - p[0], py[1] - p[1]));
+      const double k = std::clamp((p[0] - 98.0) / 64.0, 0.0, 1.0);  // its kinks at cell centres: bilinear is exact
+      const double detail = playback::detail_normal_weight(tile / n, footprint);
+      const double share = playback::cascade_share(true, 1.0, k);
+      playback::SurfacePoint point;
+      point.normal = normalized({-share * detail * periodic_bilinear(cascade.slope_x, n, tile, p[0], p[1]),
+                                 -share * detail * periodic_bilinear(cascade.slope_y, n, tile, p[0], p[1]), 1.0});
+      point.to_eye = normalized({camera.eye_m[0] - p[0], camera.eye_m[1] - p[1], camera.eye_m[2]});
+      const double row = std::clamp(p[1] / options.spacing_m - 0.5, 0.0, double(options.rows - 1));
+      point.water_depth_m = 12.0 - 9.0 * row / (options.rows - 1);
+      point.extra_slope_variance_per_axis = playback::cascade_variance_share(true, 1.0, k) * (1.0 - detail) * variance;
+      const auto expected = playback::to_display(frame, playback::shade_water(frame, point));
+      const auto pixel = image.get(x, y);
+      ++compared;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(pixel[std::size_t(c)], expected[std::size_t(c)], 3.0 / 255)
+            << "pixel (" << x << ", " << y << ") channel " << c << ", K " << k << ", footprint " << footprint;
+      const double texture = std::abs(luminance(pixel) - luminance(image.get(x + 2 < width ? x + 2 : x - 2, y)));
+      if (detail > 0.9 && k < 0.3) west.push_back(texture);  // where the pixel keeps the normal map
+      if (detail > 0.9 && k > 0.7) east.push_back(texture);
+    }
+  EXPECT_GT(compared, 400);
+  const auto spread = [](const std::vector<double>& values) {
+    double mean = 0;
+    for (double v : values) mean += v;
+    return mean / double(values.size());
+  };
+  ASSERT_GT(west.size(), 50u);
+  ASSERT_GT(east.size(), 50u);
+  // The sheltered side's short waves have at most 0.3 of the open side's slopes (at least 0.7
+  // there): its neighbouring pixels differ at most half as much.
+  EXPECT_LT(spread(west), 0.5 * spread(east)) << "west " << spread(west) << ", east " << spread(east);
 }
 
 TEST(LightingRender, DeepWaterFoamFadesByOneOverEInItsDecayTime) {

@@ -108,6 +108,20 @@ double detail_normal_weight(double texel_m, double footprint_m);
 /// How much of a cascade's height the drawn grid does not carry: none while its vertices (every
 /// kMeshVertexSpacingPx pixels) are at most a texel apart, all of it from four texels apart.
 double unresolved_relief_weight(double texel_m, double footprint_m);
+/// How much of a deep-water cascade's slopes (cascade_share) and slope variance
+/// (cascade_variance_share) a point of harbour weight w (runtime::harbour_weight) shows. Beyond
+/// the harbour all of it (1 - w of it in the blend). Over the harbour only the cascades finer than
+/// the bake's grid resolves (`over_harbour`: tiles under 32 cells), the short waves of the
+/// incident sea; they are sheltered as the baked sea is: their amplitude scales with the relative
+/// wave height K = Hs / Hs_incident of the point (runtime::HarbourSite::relative_wave_height),
+/// never above 1. Shorter waves diffract less far into a breakwater's shadow than the baked ones
+/// (Penney & Price 1952: the diffracted field spreads over angles of order L / B), so the baked
+/// K bounds theirs from above; waves of 0.5-14 m also need fetches of kilometres to grow (JONSWAP
+/// fetch laws), which a basin of a few hundred metres does not give its own wind. The wind's
+/// ripples below the last cascade (Lighting::sub_grid_slope_variance) are not sheltered: they
+/// rise and fall with the local wind within metres (Cox & Munk 1954).
+double cascade_share(bool over_harbour, double harbour_weight, double relative_wave_height);
+double cascade_variance_share(bool over_harbour, double harbour_weight, double relative_wave_height);
 /// Seed 004 eq. (5): where the eye ray through a point of the drawn surface meets a relief
 /// `relief_m` above it, as a horizontal offset (m) of the normal-map lookup: to_eye.xy /
 /// to_eye.z * relief (to_eye unit, towards the viewer; its z at least kParallaxMinViewCosine).

@@ -120,6 +120,11 @@ struct HarbourSite {
   /// Display seconds between consecutive harbour keyframes (the sequence's frame interval; T of
   /// the Hermite above). 0: unknown, the harbour is linear in time.
   double frame_interval_s = 0.0;
+  /// How much of the incident sea reaches each cell: Hs(cell) / Hs(incident) of the baked
+  /// surface elevation (port engineers' disturbance coefficient), row 0 south, the grid's size;
+  /// NaN on land and structures; empty when unknown. The renderer shelters the short waves the
+  /// bake does not carry by it (docs/lighting.md); the CPU queries do not use it.
+  Raster<float> relative_wave_height;
 };
 
 /// The cubic Hermite basis at fraction f in [0, 1] (above) and its derivatives d/df.
