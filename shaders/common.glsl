@@ -16,6 +16,12 @@ uniform float u_perez_Y[5], u_perez_x[5], u_perez_y[5];
 uniform vec3 u_zenith_Yxy;         // Y_zenith (kcd/m2, twilight-dimmed), x_zenith, y_zenith
 uniform vec3 u_perez_zenith;       // F(0, theta_s) of Y, x, y
 uniform float u_night_luminance;   // kcd/m2 floor
+uniform float u_cloud_cover;       // c: the CIE overcast sky's share (sky_model.hpp)
+uniform float u_overcast_zenith_luminance;  // its L_z, kcd/m2
+// The air (lighting.hpp): Koschmieder's extinction in a fog layer up to u_fog_top_m, the viewer.
+uniform float u_fog_extinction_per_m;  // 0: clear air
+uniform float u_fog_top_m;
+uniform vec3 u_eye_m;              // the viewer (site frame)
 // The water (water_optics.hpp) and the surfaces.
 uniform vec3 u_water_attenuation;  // K = a + b_b per band, 1/m
 uniform vec3 u_deep_reflectance;   // R_inf per band
@@ -44,7 +50,34 @@ vec3 sky_radiance(vec3 direction) {
   float Y = max(u_zenith_Yxy.x * perez(u_perez_Y, cos_theta, gamma) / u_perez_zenith.x, u_night_luminance);
   float x = u_zenith_Yxy.y * perez(u_perez_x, cos_theta, gamma) / u_perez_zenith.y;
   float y = u_zenith_Yxy.z * perez(u_perez_y, cos_theta, gamma) / u_perez_zenith.z;
-  return xyY_to_linear_srgb(x, y, Y);
+  vec3 clear = xyY_to_linear_srgb(x, y, Y);
+  if (u_cloud_cover <= 0.0) return clear;
+  // CIE standard overcast sky L_z (1 + 2 cos theta) / 3, grey (sky_model.cpp)
+  float overcast = max(u_overcast_zenith_luminance * (1.0 + 2.0 * max(direction.z, 0.0)) / 3.0, u_night_luminance);
+  return mix(clear, vec3(overcast), u_cloud_cover);
+}
+
+// ---- the air: Koschmieder (1924) in a fog layer (lighting.cpp, the same names) --------------
+float fog_transmittance(vec3 eye, vec3 point) {
+  if (u_fog_extinction_per_m <= 0.0) return 1.0;
+  float low = min(eye.z, point.z), high = max(eye.z, point.z);
+  float inside = low >= u_fog_top_m ? 0.0 : high > u_fog_top_m ? (u_fog_top_m - low) / (high - low) : 1.0;
+  return exp(-u_fog_extinction_per_m * length(point - eye) * inside);
+}
+vec3 fog_radiance(vec3 direction) {
+  vec2 horizontal = direction.xy;
+  return sky_radiance(dot(horizontal, horizontal) > 1e-18 ? vec3(normalize(horizontal), 0.0) : vec3(1.0, 0.0, 0.0));
+}
+vec3 through_air(vec3 radiance, vec3 eye, vec3 point) {
+  float t = fog_transmittance(eye, point);
+  if (t >= 1.0) return radiance;
+  return mix(fog_radiance(point - eye), radiance, t);
+}
+vec3 sky_seen(vec3 from_m, vec3 direction) {
+  vec3 sky = sky_radiance(direction);
+  if (u_fog_extinction_per_m <= 0.0) return sky;
+  float t = exp(-u_fog_extinction_per_m * max(u_fog_top_m - from_m.z, 0.0) / max(direction.z, 0.01));
+  return mix(fog_radiance(direction), sky, t);
 }
 
 // ---- Fresnel and the Bruneton (2010) BRDF, seed 000 eq. (3.13)-(3.24) -----------------------
@@ -85,7 +118,7 @@ vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_sl
   vec3 mirror = reflect(-v, n);
   mirror.z = abs(mirror.z);
   float sky_fresnel = mean_fresnel_reflectance(cos_v, sigma2);
-  vec3 sky = mix(sky_radiance(mirror), local_reflection.rgb, clamp(local_reflection.a, 0.0, 1.0));
+  vec3 sky = mix(sky_seen(vec3(0.0), mirror), local_reflection.rgb, clamp(local_reflection.a, 0.0, 1.0));
   // 2. sun glitter, eq. (3.22)
   float glitter = 0.0;
   float cos_l = dot(n, l);

@@ -18,5 +18,5 @@ void main() {
     fragment_colour = vec4(shade_lambertian(normal, albedo), 1.0);
     return;
   }
-  fragment_colour = vec4(to_display(shade_lambertian(normal, albedo)), 1.0);
+  fragment_colour = vec4(to_display(through_air(shade_lambertian(normal, albedo), u_eye_m, v_position_m)), 1.0);
 }

@@ -9,7 +9,7 @@
 
 // kPi: common.glsl
 
-uniform vec3 u_eye_m;              // the viewer (site frame)
+// u_eye_m, the viewer (site frame): common.glsl
 uniform float u_earth_radius_m;    // > 0: the surface lies on a sphere touching still water under the eye
 
 // Harbour (texture units 0-6): keyframes as R32F, cell (i, j) at texel (i, j), row 0 south.

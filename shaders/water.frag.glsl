@@ -203,5 +203,6 @@ void main() {
   // surface's slope (a planar reflection's usual distortion, 3 % of the picture per unit slope).
   vec4 local = vec4(0.0);
   if (u_has_reflection) local = texture(u_reflection, gl_FragCoord.xy / u_viewport_px + 0.03 * normal.xy);
-  fragment_colour = vec4(to_display(shade_water(normal, to_eye, total_depth, foam, extra_variance, crest_thinness, local)), 1.0);
+  vec3 radiance = shade_water(normal, to_eye, total_depth, foam, extra_variance, crest_thinness, local);
+  fragment_colour = vec4(to_display(through_air(radiance, u_eye_m, v_position_m)), 1.0);
 }

@@ -55,7 +55,9 @@ struct PlayOptions {
   // Lighting (docs/lighting.md): the sun from a UTC time at the site (or --lat-lon), the air, the water.
   std::string utc;
   std::vector<double> lat_lon;
-  double haze = 2.5, turbidity_ntu = 0.5, chlorophyll_mg_m3 = 0.3, cdom_per_m = -1, exposure = 1.0;
+  std::string weather = "clear";
+  double visibility_m = -1, cloud_cover = -1;  // < 0: the weather's
+  double haze = -1, turbidity_ntu = 0.5, chlorophyll_mg_m3 = 0.3, cdom_per_m = -1, exposure = 1.0;
   std::string lighting_mode = "full";
   double detail_parallax = 1.0, foam_decay_s = 3.0;
   bool panel = false, json = false, quiet = false;
@@ -285,7 +287,10 @@ playback::Lighting scene_lighting(const PlayOptions& o, const runtime::Streaming
     }
     lighting.set_sun_for(place.latitude_deg, place.longitude_deg, time);
   }
-  lighting.atmospheric_turbidity = o.haze;
+  playback::apply_weather(lighting, o.weather);
+  if (o.haze > 0) lighting.atmospheric_turbidity = o.haze;
+  if (o.visibility_m >= 0) lighting.visibility_m = o.visibility_m;
+  if (o.cloud_cover >= 0) lighting.cloud_cover = o.cloud_cover;
   lighting.water.turbidity_ntu = o.turbidity_ntu;
   lighting.water.chlorophyll_mg_m3 = o.chlorophyll_mg_m3;
   lighting.water.cdom_absorption_440_per_m = o.cdom_per_m;
@@ -565,8 +570,19 @@ void add_play_command(CLI::App& app) {
       ->excludes(sun_azimuth)->excludes(sun_elevation);
   cmd->add_option("--lat-lon", o->lat_lon, "Place the --utc sun is seen from, LAT,LON (default: the site's own centre)")
       ->delimiter(',')->expected(2)->check(finite_number());
-  cmd->add_option("--haze", o->haze, "Atmospheric turbidity (Preetham's T): 2 very clear, 3 clear, 6 hazy, 10 thin fog")
-      ->check(number_in(at_least(1.7), at_most(10)))->capture_default_str();
+  std::string weather_names;
+  for (const playback::WeatherPreset& preset : playback::weather_presets())
+    weather_names += (weather_names.empty() ? "" : ", ") + preset.name + " (" + preset.description + ")";
+  std::vector<std::string> weather_choices;
+  for (const playback::WeatherPreset& preset : playback::weather_presets()) weather_choices.push_back(preset.name);
+  cmd->add_option("--weather", o->weather, "Sky and air: " + weather_names)
+      ->check(CLI::IsMember(weather_choices))->capture_default_str();
+  cmd->add_option("--visibility", o->visibility_m, "Meteorological optical range, metres (fog < 1000, mist 1000-5000; 0 unlimited; default: the weather's)")
+      ->check(number_in(at_least(0), at_most(1e6)));
+  cmd->add_option("--cloud-cover", o->cloud_cover, "Cloud cover 0..1 (1: CIE overcast sky, sun hidden; default: the weather's)")
+      ->check(number_in(at_least(0), at_most(1)));
+  cmd->add_option("--haze", o->haze, "Atmospheric turbidity (Preetham's T): 2 very clear, 3 clear, 6 hazy, 10 thin fog (default: the weather's: 2.5 clear, 6 hazy, 4 overcast)")
+      ->check(number_in(at_least(1.7), at_most(10)));
   cmd->add_option("--turbidity", o->turbidity_ntu, "Water turbidity from suspended sediment, NTU (0 clear ocean, 10 a muddy harbour)")
       ->check(number_in(at_least(0), at_most(200)))->capture_default_str();
   cmd->add_option("--chlorophyll", o->chlorophyll_mg_m3, "Chlorophyll, mg/m3 (0.05 open ocean, 1 coastal, 10 a bloom)")

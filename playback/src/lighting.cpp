@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "nearshore/core/error.hpp"
 #include "nearshore/ocean/deep_water.hpp"
 
 namespace nearshore::playback {
@@ -47,7 +48,7 @@ void Lighting::set_sun_for(double latitude_deg, double longitude_deg, const UtcT
 
 LightingFrame prepare_lighting(const Lighting& l) {
   LightingFrame f;
-  f.sky = make_sky(l.sun_azimuth_deg, l.sun_elevation_deg, l.atmospheric_turbidity);
+  f.sky = make_sky(l.sun_azimuth_deg, l.sun_elevation_deg, l.atmospheric_turbidity, l.cloud_cover);
   f.sky_illuminance_klx = sky_illuminance_klx(f.sky);
   f.water = water_optics(l.water);
   f.seabed_albedo = l.seabed_albedo;
@@ -69,7 +70,72 @@ LightingFrame prepare_lighting(const Lighting& l) {
   f.exposure = std::max(l.exposure_compensation, 0.0) * kExposureKey / std::max(adaptation, kAdaptationFloorKcdM2);
   f.detail_parallax = std::max(l.detail_parallax, 0.0);
   f.foam_decay_time_s = std::max(l.foam_decay_time_s, 0.0);
+  // Koschmieder: the contrast of a black object falls as exp(-beta s); the WMO's meteorological
+  // optical range is where it reaches 5 %.
+  f.fog_extinction_per_m = l.visibility_m > 0.0 && std::isfinite(l.visibility_m) ? -std::log(0.05) / l.visibility_m : 0.0;
+  f.fog_top_m = std::max(l.fog_top_m, 0.0);
   return f;
+}
+
+const std::vector<WeatherPreset>& weather_presets() {
+  // Visibility classes of the WMO (No. 8, 2018: fog below 1 km, mist 1-5 km) and Preetham's
+  // turbidity (2 very clear, 6 hazy); fog layers of sea fog are 100-400 m deep.
+  static const std::vector<WeatherPreset> presets = {
+      {"clear", 0.0, 2.5, 0.0, 150.0, "clear sky, sun, unlimited visibility"},
+      {"hazy", 0.0, 6.0, 8000.0, 800.0, "hazy sun, visibility 8 km in a haze layer 800 m deep"},
+      {"overcast", 1.0, 4.0, 0.0, 150.0, "CIE overcast sky, no sun, good visibility"},
+      {"mist", 1.0, 4.0, 2000.0, 300.0, "overcast, mist: visibility 2 km in a layer 300 m deep"},
+      {"fog", 1.0, 4.0, 400.0, 150.0, "overcast, fog: visibility 400 m in a layer 150 m deep"},
+  };
+  return presets;
+}
+
+void apply_weather(Lighting& lighting, std::string_view name) {
+  std::string names;
+  for (const WeatherPreset& preset : weather_presets()) {
+    if (preset.name == name) {
+      lighting.cloud_cover = preset.cloud_cover;
+      lighting.atmospheric_turbidity = preset.atmospheric_turbidity;
+      lighting.visibility_m = preset.visibility_m;
+      lighting.fog_top_m = preset.fog_top_m;
+      return;
+    }
+    names += (names.empty() ? "" : ", ") + preset.name;
+  }
+  throw Error("weather \"" + std::string(name) + "\"", "is not a preset", "choose one of " + names);
+}
+
+double fog_transmittance(const LightingFrame& f, const Vector3& eye_m, const Vector3& point_m) {
+  if (f.fog_extinction_per_m <= 0.0) return 1.0;
+  const Vector3 d = {point_m[0] - eye_m[0], point_m[1] - eye_m[1], point_m[2] - eye_m[2]};
+  const double length = std::sqrt(dot(d, d));
+  const double low = std::min(eye_m[2], point_m[2]), high = std::max(eye_m[2], point_m[2]);
+  double inside = 1.0;  // the fraction of the segment below the layer's top (z is linear along it)
+  if (low >= f.fog_top_m) inside = 0.0;
+  else if (high > f.fog_top_m) inside = (f.fog_top_m - low) / (high - low);
+  return std::exp(-f.fog_extinction_per_m * length * inside);
+}
+
+Radiance fog_radiance(const LightingFrame& f, const Vector3& direction) {
+  const double horizontal = std::hypot(direction[0], direction[1]);
+  const Vector3 horizon = horizontal > 1e-9 ? Vector3{direction[0] / horizontal, direction[1] / horizontal, 0.0} : Vector3{1, 0, 0};
+  return sky_radiance(f.sky, horizon);
+}
+
+Radiance through_air(const LightingFrame& f, const Radiance& radiance, const Vector3& eye_m, const Vector3& point_m) {
+  const double t = fog_transmittance(f, eye_m, point_m);
+  if (t >= 1.0) return radiance;
+  const Radiance fog = fog_radiance(f, {point_m[0] - eye_m[0], point_m[1] - eye_m[1], point_m[2] - eye_m[2]});
+  return {t * radiance[0] + (1 - t) * fog[0], t * radiance[1] + (1 - t) * fog[1], t * radiance[2] + (1 - t) * fog[2]};
+}
+
+Radiance sky_seen(const LightingFrame& f, const Vector3& from_m, const Vector3& direction) {
+  const Radiance sky = sky_radiance(f.sky, direction);
+  if (f.fog_extinction_per_m <= 0.0) return sky;
+  const double path_m = std::max(f.fog_top_m - from_m[2], 0.0) / std::max(direction[2], 0.01);
+  const double t = std::exp(-f.fog_extinction_per_m * path_m);
+  const Radiance fog = fog_radiance(f, direction);
+  return {t * sky[0] + (1 - t) * fog[0], t * sky[1] + (1 - t) * fog[1], t * sky[2] + (1 - t) * fog[2]};
 }
 
 Radiance shade_lambertian(const LightingFrame& f, const Vector3& normal, const Radiance& albedo) {
@@ -92,7 +158,7 @@ Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   Vector3 mirror = {2 * dot(n, v) * n[0] - v[0], 2 * dot(n, v) * n[1] - v[1], 2 * dot(n, v) * n[2] - v[2]};
   mirror[2] = std::abs(mirror[2]);
   const double sky_fresnel = mean_fresnel_reflectance(cos_v, sigma2);
-  const Radiance sky_seen = sky_radiance(f.sky, mirror);
+  const Radiance sky_seen = playback::sky_seen(f, {0.0, 0.0, 0.0}, mirror);
   const double covered = std::clamp(s.local_reflection_coverage, 0.0, 1.0);
   Radiance sky{};
   for (std::size_t c = 0; c < 3; ++c) sky[c] = (1.0 - covered) * sky_seen[c] + covered * s.local_reflection[c];

@@ -81,8 +81,16 @@ Radiance sun_transmittance(double turbidity, double zenith_rad) {
   return t;
 }
 
-SkyModel make_sky(double sun_azimuth_deg, double sun_elevation_deg, double turbidity) {
+double overcast_horizontal_illuminance_klx(double sun_elevation_deg) {
+  if (sun_elevation_deg >= 0.0) return 0.3 + 21.0 * std::sin(sun_elevation_deg * kDegree);
+  return 0.3 * std::pow(10.0, sun_elevation_deg / kTwilightDegreesPerDecade);
+}
+
+SkyModel make_sky(double sun_azimuth_deg, double sun_elevation_deg, double turbidity, double cloud_cover) {
   SkyModel sky;
+  sky.cloud_cover = std::isfinite(cloud_cover) ? std::clamp(cloud_cover, 0.0, 1.0) : 0.0;
+  // E_h = integral of L_z (1 + 2 cos t) / 3 cos t sin t dt dphi = 7 pi L_z / 9.
+  sky.overcast_zenith_luminance_kcd_m2 = 9.0 * overcast_horizontal_illuminance_klx(sun_elevation_deg) / (7.0 * kPi);
   const double azimuth = sun_azimuth_deg * kDegree, elevation = sun_elevation_deg * kDegree;
   sky.sun_direction = {std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth), std::sin(elevation)};
   sky.turbidity = std::clamp(turbidity, 1.7, 10.0);
@@ -105,7 +113,7 @@ SkyModel make_sky(double sun_azimuth_deg, double sun_elevation_deg, double turbi
   const Radiance transmittance = sun_transmittance(T, theta_s);
   const double above = smoothstep(-0.27, 0.27, sun_elevation_deg);
   for (int c = 0; c < 3; ++c)
-    sky.sun_illuminance_klx[std::size_t(c)] = kExtraterrestrialSunKlx * transmittance[std::size_t(c)] * above;
+    sky.sun_illuminance_klx[std::size_t(c)] = kExtraterrestrialSunKlx * transmittance[std::size_t(c)] * above * (1.0 - sky.cloud_cover);
   return sky;
 }
 
@@ -130,7 +138,13 @@ Radiance sky_radiance(const SkyModel& sky, const Vector3& direction) {
                             sky.night_luminance_kcd_m2);
   const double x = sky.zenith_x * perez(sky.perez_x, cos_theta, gamma) / sky.perez_zenith_x;
   const double y = sky.zenith_y * perez(sky.perez_y, cos_theta, gamma) / sky.perez_zenith_y;
-  return xyY_to_linear_srgb(x, y, Y);
+  Radiance clear = xyY_to_linear_srgb(x, y, Y);
+  if (sky.cloud_cover <= 0.0) return clear;
+  // CIE overcast: grey (linear sRGB white is D65 with Y = 1), below the horizon its horizon value.
+  const double overcast = std::max(sky.overcast_zenith_luminance_kcd_m2 * (1.0 + 2.0 * std::max(direction[2], 0.0)) / 3.0,
+                                   sky.night_luminance_kcd_m2);
+  for (double& channel : clear) channel = (1.0 - sky.cloud_cover) * channel + sky.cloud_cover * overcast;
+  return clear;
 }
 
 Radiance sky_illuminance_klx(const SkyModel& sky) {

@@ -108,6 +108,10 @@ void set_lighting_uniforms(GLuint program, const LightingFrame& f) {
   set_uniform(program, "u_zenith_Yxy", std::array<double, 3>{sky.zenith_luminance_kcd_m2, sky.zenith_x, sky.zenith_y});
   set_uniform(program, "u_perez_zenith", std::array<double, 3>{sky.perez_zenith_Y, sky.perez_zenith_x, sky.perez_zenith_y});
   set_uniform(program, "u_night_luminance", float(sky.night_luminance_kcd_m2));
+  set_uniform(program, "u_cloud_cover", float(sky.cloud_cover));
+  set_uniform(program, "u_overcast_zenith_luminance", float(sky.overcast_zenith_luminance_kcd_m2));
+  set_uniform(program, "u_fog_extinction_per_m", float(f.fog_extinction_per_m));
+  set_uniform(program, "u_fog_top_m", float(f.fog_top_m));
   set_uniform(program, "u_water_attenuation", f.water.diffuse_attenuation_per_m);
   set_uniform(program, "u_deep_reflectance", f.water.deep_reflectance);
   set_uniform(program, "u_seabed_albedo", f.seabed_albedo);

@@ -53,8 +53,15 @@ TEST(LightingRender, ShaderMatchesTheCpuTwinOverATestPattern) {
   camera.vertical_field_of_view_deg = 60.0;
   const int width = 160, height = 100;
   int compared_sky = 0, compared_water = 0;
-  for (const auto& [azimuth, elevation] : {std::pair{120.0, 40.0}, std::pair{300.0, 8.0}, std::pair{30.0, -3.0}}) {
+  // The last two: weather presets (the CIE overcast sky, and fog whose layer the camera at 25 m
+  // stands in: the sky dimmed by the 125 m above it, the water by its distance through the fog).
+  const std::pair<double, double> suns[] = {{120.0, 40.0}, {300.0, 8.0}, {30.0, -3.0}, {200.0, 35.0}, {200.0, 35.0}};
+  const char* weathers[] = {"clear", "clear", "clear", "overcast", "fog"};
+  for (int run = 0; run < 5; ++run) {
+    const auto [azimuth, elevation] = suns[run];
     Lighting lighting;
+    playback::apply_weather(lighting, weathers[run]);
+    if (run == 4) lighting.visibility_m = 300.0;  // the water 25-250 m away: transmittance 0.74-0.05
     lighting.sun_azimuth_deg = azimuth;
     lighting.sun_elevation_deg = elevation;
     lighting.water.turbidity_ntu = 2.0;
@@ -68,7 +75,7 @@ TEST(LightingRender, ShaderMatchesTheCpuTwinOverATestPattern) {
         const Vector3 ray = pixel_ray(view, x, y);
         playback::Radiance expected{};
         if (ray[2] > 0.02) {
-          expected = playback::to_display(frame, playback::sky_radiance(frame.sky, ray));
+          expected = playback::to_display(frame, playback::sky_seen(frame, camera.eye_m, ray));
           ++compared_sky;
         } else if (ray[2] < -0.02) {
           const double t = -camera.eye_m[2] / ray[2];
@@ -79,7 +86,8 @@ TEST(LightingRender, ShaderMatchesTheCpuTwinOverATestPattern) {
           point.to_eye = {-ray[0], -ray[1], -ray[2]};
           const double row = std::clamp(py / options.spacing_m - 0.5, 0.0, double(options.rows - 1));
           point.water_depth_m = 12.0 - 9.0 * row / (options.rows - 1);
-          expected = playback::to_display(frame, playback::shade_water(frame, point));
+          expected = playback::to_display(frame, playback::through_air(frame, playback::shade_water(frame, point), camera.eye_m,
+                                                                       {px, py, 0.0}));
           ++compared_water;
         } else {
           continue;  // the horizon's own pixels mix the two
@@ -89,7 +97,8 @@ TEST(LightingRender, ShaderMatchesTheCpuTwinOverATestPattern) {
         // of the hardware-filtered depth texture (a few mm of depth): 3/255.
         for (int c = 0; c < 3; ++c)
           EXPECT_NEAR(pixel[std::size_t(c)], expected[std::size_t(c)], 3.0 / 255)
-              << "pixel (" << x << ", " << y << ") channel " << c << ", sun " << azimuth << " / " << elevation;
+              << "pixel (" << x << ", " << y << ") channel " << c << ", sun " << azimuth << " / " << elevation << ", "
+              << weathers[run];
       }
   }
   EXPECT_GT(compared_sky, 500);

@@ -394,3 +394,74 @@ TEST(Lighting, DetailNormalsFadeWithFootprintAndTheirReliefWhereTheGridCannotDra
     previous = w;
   }
 }
+
+namespace {
+double luminance_of(const Radiance& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+}  // namespace
+
+TEST(Weather, OvercastSkyIsTheCieSkyOfKrochmannsIlluminance) {
+  // CIE standard overcast sky: zenith three times the horizon, the same in every azimuth, grey;
+  // its dome gives the horizontal illuminance of Krochmann & Seidl (1974), 0.3 + 21 sin(e) klx
+  // (the midpoint rule of sky_illuminance_klx: within 1 %). No sun beam under full cloud.
+  for (const double elevation : {10.0, 35.0, 60.0}) {
+    const playback::SkyModel sky = playback::make_sky(200.0, elevation, 4.0, 1.0);
+    const double zenith = luminance_of(playback::sky_radiance(sky, {0, 0, 1}));
+    const Radiance north = playback::sky_radiance(sky, {0, 1, 0}), south = playback::sky_radiance(sky, {0, -1, 0});
+    EXPECT_NEAR(zenith / luminance_of(north), 3.0, 1e-9);
+    EXPECT_NEAR(luminance_of(north), luminance_of(south), 1e-12);
+    EXPECT_NEAR(north[0], north[2], 1e-12) << "grey";
+    const double expected_klx = 0.3 + 21.0 * std::sin(elevation * std::numbers::pi / 180.0);
+    EXPECT_NEAR(luminance_of(playback::sky_illuminance_klx(sky)), expected_klx, 0.01 * expected_klx) << elevation;
+    EXPECT_EQ(luminance_of(sky.sun_illuminance_klx), 0.0);
+  }
+  // Half cover: half of each sky and half of the sun's beam.
+  const playback::SkyModel clear = playback::make_sky(200.0, 35.0, 4.0, 0.0), half = playback::make_sky(200.0, 35.0, 4.0, 0.5),
+                           full = playback::make_sky(200.0, 35.0, 4.0, 1.0);
+  const playback::Vector3 direction = {0.3, 0.5, 0.81};
+  EXPECT_NEAR(luminance_of(playback::sky_radiance(half, direction)),
+              0.5 * (luminance_of(playback::sky_radiance(clear, direction)) + luminance_of(playback::sky_radiance(full, direction))), 1e-9);
+  EXPECT_NEAR(luminance_of(half.sun_illuminance_klx), 0.5 * luminance_of(clear.sun_illuminance_klx), 1e-9);
+}
+
+TEST(Weather, FogFollowsKoschmiederAndTheWmoVisibility) {
+  Lighting lighting;
+  playback::apply_weather(lighting, "fog");
+  const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+  const double visibility = lighting.visibility_m, top = lighting.fog_top_m;
+  // A black object at the visibility, seen horizontally inside the layer, keeps 5 % contrast
+  // against the fog behind it (the WMO's meteorological optical range).
+  const playback::Vector3 eye = {0, 0, 20}, object = {visibility, 0, 20};
+  const Radiance seen = playback::through_air(frame, {0, 0, 0}, eye, object);
+  const Radiance fog = playback::fog_radiance(frame, {1, 0, 0});
+  EXPECT_NEAR(1.0 - luminance_of(seen) / luminance_of(fog), 0.05, 1e-9);
+  // From above the layer (an aircraft at 3 x the top) straight down: only the layer's depth counts.
+  EXPECT_NEAR(playback::fog_transmittance(frame, {0, 0, 3 * top}, {0, 0, 0}), std::exp(-frame.fog_extinction_per_m * top), 1e-12);
+  EXPECT_EQ(playback::fog_transmittance(frame, {0, 0, 3 * top}, {500, 0, 2 * top}), 1.0) << "both above the layer";
+  // The sky at the zenith from the sea: dimmed by the layer's whole depth, from its top: not at all.
+  const Radiance zenith = playback::sky_radiance(frame.sky, {0, 0, 1});
+  const double t = std::exp(-frame.fog_extinction_per_m * top);
+  const Radiance from_sea = playback::sky_seen(frame, {0, 0, 0}, {0, 0, 1});
+  EXPECT_NEAR(luminance_of(from_sea), t * luminance_of(zenith) + (1 - t) * luminance_of(playback::fog_radiance(frame, {0, 0, 1})), 1e-9);
+  EXPECT_NEAR(luminance_of(playback::sky_seen(frame, {0, 0, top}, {0, 0, 1})), luminance_of(zenith), 1e-12);
+  // Clear air changes nothing.
+  const playback::LightingFrame clear = playback::prepare_lighting(Lighting{});
+  EXPECT_EQ(playback::through_air(clear, {1, 2, 3}, eye, object), (Radiance{1, 2, 3}));
+}
+
+TEST(Weather, PresetsByNameAndAnUnknownNameListsThem) {
+  Lighting lighting;
+  playback::apply_weather(lighting, "mist");
+  EXPECT_EQ(lighting.cloud_cover, 1.0);
+  EXPECT_GE(lighting.visibility_m, 1000.0);  // WMO: mist 1-5 km
+  EXPECT_LE(lighting.visibility_m, 5000.0);
+  playback::apply_weather(lighting, "fog");
+  EXPECT_LT(lighting.visibility_m, 1000.0);  // WMO: fog below 1 km
+  try {
+    playback::apply_weather(lighting, "drizzle");
+    FAIL() << "an unknown weather was accepted";
+  } catch (const nearshore::Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("drizzle"), std::string::npos);
+    for (const char* name : {"clear", "hazy", "overcast", "mist", "fog"}) EXPECT_NE(message.find(name), std::string::npos) << name;
+  }
+}

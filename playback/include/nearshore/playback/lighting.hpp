@@ -12,6 +12,9 @@
 //
 // Units: radiance in kcd/m2 (luminance-weighted linear sRGB), illuminance in klx.
 #include <array>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "nearshore/playback/ocean_brdf.hpp"
 #include "nearshore/playback/sky_model.hpp"
@@ -26,6 +29,14 @@ struct Lighting {
   double sun_elevation_deg = 35.0;  ///< apparent height above the horizon (negative: set)
   /// Preetham's atmospheric turbidity T (1.7 .. 10): 2 very clear, 3 clear, 6 hazy, 10 thin fog.
   double atmospheric_turbidity = 2.5;
+  /// Cloud cover in [0, 1]: 1 is the CIE standard overcast sky with the sun hidden (sky_model.hpp).
+  double cloud_cover = 0.0;
+  /// Meteorological optical range (m): the distance at which a black object's contrast against
+  /// the horizon falls to 5 % (WMO); fog below 1000 m, mist 1-5 km. 0: no fog or haze layer.
+  double visibility_m = 0.0;
+  /// Top of the fog or haze layer above the sea (m): a bridge inside it sees the sky dimmed by the
+  /// layer above it only, an aircraft above it sees it from the top down.
+  double fog_top_m = 150.0;
   WaterConstituents water;                          ///< chlorophyll, CDOM, turbidity of the water
   Radiance seabed_albedo = {0.55, 0.50, 0.38};      ///< C_object / I_g of eq. (3.25): sand
   Radiance foam_albedo = {0.85, 0.87, 0.88};        ///< C_foam, seed 003 eq. (15)
@@ -71,8 +82,37 @@ struct LightingFrame {
   double wind_direction_rad = 0.0, shore_wave_amplitude_m = 0.0, shore_band_m = 80.0;
   double exposure = 1.0;        ///< 1 / (kcd/m2): displayed luminance = 1 - exp(-exposure Y)
   double detail_parallax = 1.0, foam_decay_time_s = 3.0;
+  /// Koschmieder (1924): beta = -ln(0.05) / visibility_m, 1/m (0: clear air); the layer's top, m.
+  double fog_extinction_per_m = 0.0, fog_top_m = 150.0;
 };
 LightingFrame prepare_lighting(const Lighting& lighting);
+
+/// Weather an instructor selects by name: the sky's cloud cover and turbidity and the fog layer.
+struct WeatherPreset {
+  std::string name;
+  double cloud_cover = 0.0, atmospheric_turbidity = 2.5, visibility_m = 0.0, fog_top_m = 150.0;
+  std::string description;
+};
+/// clear, hazy, overcast, mist, fog (in that order); the one road from a name to the settings.
+const std::vector<WeatherPreset>& weather_presets();
+/// Sets the preset's fields of `lighting` (the sun, the water and the wind stay); throws
+/// nearshore::Error naming the weather and listing the presets for an unknown name.
+void apply_weather(Lighting& lighting, std::string_view name);
+
+// ---- The air between the eye and what it sees (shaders/common.glsl, the same names) ---------
+/// exp(-beta s): s the part of the segment eye -> point inside the fog layer (z below fog_top_m;
+/// the layer's extinction is uniform, the air above it clear).
+double fog_transmittance(const LightingFrame& frame, const Vector3& eye_m, const Vector3& point_m);
+/// The fog's own radiance seen along `direction`: the horizon sky in that azimuth (a layer lit by
+/// the sky above it scatters the light it receives; its colour is the horizon's).
+Radiance fog_radiance(const LightingFrame& frame, const Vector3& direction);
+/// What reaches the eye from a surface of `radiance` at `point_m`: Koschmieder's
+/// L = T L_0 + (1 - T) L_fog, T = fog_transmittance.
+Radiance through_air(const LightingFrame& frame, const Radiance& radiance, const Vector3& eye_m, const Vector3& point_m);
+/// The sky seen from `from_m` along the unit `direction` (z > 0): sky_radiance through the part
+/// of the fog layer above `from_m` (its slant path (top - z) / direction.z). The water's mirror
+/// image of the sky is the sky seen from the sea surface (z = 0).
+Radiance sky_seen(const LightingFrame& frame, const Vector3& from_m, const Vector3& direction);
 
 /// One point of the sea surface as the fragment shader sees it.
 struct SurfacePoint {

@@ -8,6 +8,12 @@
 //    xyY -> XYZ -> linear sRGB by seed 001 eq. (11)-(12).
 //  - Sun: the extraterrestrial illuminance dimmed along the air mass by Rayleigh and aerosol
 //    optical depths (Preetham appendix A.1's Angstrom turbidity), per colour band.
+//  - Cloud: the CIE standard overcast sky (Moon & Spencer 1942; CIE S 011/E:2003 sky type 1),
+//    L(theta) = L_z (1 + 2 cos theta) / 3, grey (D65), its zenith luminance from the horizontal
+//    illuminance of an overcast day E_h = 0.3 + 21 sin(sun elevation) klx (Krochmann & Seidl 1974)
+//    through E_h = 7 pi L_z / 9; the sun's beam hidden. A cloud cover c between 0 and 1 mixes the
+//    two skies linearly (c of the overcast one, 1 - c of the clear one and of the sun's beam): a
+//    simple stand-in for CIE's intermediate skies, exact at both ends.
 //  - Twilight and night: the model is fitted for the sun above the horizon; below it, the sky of
 //    a sun on the horizon is dimmed by a decade per 2.4 degrees of depression (a zenith luminance
 //    of ~3 cd/m2 at civil dusk, sun 6 degrees down) to a floor of a moonless night, and the
@@ -43,6 +49,8 @@ struct SkyModel {
   double night_luminance_kcd_m2 = 1e-6; ///< floor: a moonless night sky (~1 mcd/m2)
   /// Illuminance of the sun's beam on a plane facing it, per colour band (klx), 0 once it set.
   Radiance sun_illuminance_klx = {0, 0, 0};
+  double cloud_cover = 0.0;                       ///< c in [0, 1]: the overcast sky's share
+  double overcast_zenith_luminance_kcd_m2 = 0.0;  ///< L_z of the CIE overcast sky
 };
 
 /// Seed 001 eq. (3): Y_zenith (kcd/m2) for turbidity T and sun zenith angle theta_s (rad);
@@ -65,8 +73,11 @@ double relative_air_mass(double zenith_rad);
 /// with Preetham's beta = 0.04608 T - 0.04586.
 Radiance sun_transmittance(double turbidity, double zenith_rad);
 
-/// The clear sky for a sun at compass azimuth / apparent elevation (degrees) and turbidity T.
-SkyModel make_sky(double sun_azimuth_deg, double sun_elevation_deg, double turbidity);
+/// Horizontal illuminance of an overcast sky (klx) for a sun at this elevation: 0.3 + 21 sin(e)
+/// (Krochmann & Seidl 1974), dimmed below the horizon by a decade per 2.4 degrees as the clear sky is.
+double overcast_horizontal_illuminance_klx(double sun_elevation_deg);
+/// The sky for a sun at compass azimuth / apparent elevation (degrees), turbidity T and cloud cover c.
+SkyModel make_sky(double sun_azimuth_deg, double sun_elevation_deg, double turbidity, double cloud_cover = 0.0);
 /// Sky luminance and colour seen along a unit direction (z up). Below the horizon the horizon's
 /// value (the sea's reflection of a grazing ray sees the sky's lowest band).
 Radiance sky_radiance(const SkyModel& sky, const Vector3& direction);
