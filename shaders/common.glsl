@@ -27,7 +27,9 @@ uniform vec3 u_water_attenuation;  // K = a + b_b per band, 1/m
 uniform vec3 u_deep_reflectance;   // R_inf per band
 uniform vec3 u_seabed_albedo;      // I_g of eq. (3.25): sand
 uniform vec3 u_foam_albedo;        // C_foam, seed 003 eq. (15)
-uniform float u_slope_variance;    // sigma^2 per axis the drawn normals cannot show
+uniform float u_slope_variance;    // sigma^2 per axis the drawn normals cannot show (the mean of:)
+uniform float u_slope_variance_upwind, u_slope_variance_crosswind;  // ... along and across the wind
+uniform vec2 u_wind_toward;        // unit vector the wind blows towards
 uniform float u_translucency;      // mu scale of eq. (3.38)
 uniform float u_exposure;          // displayed luminance = 1 - exp(-exposure Y)
 
@@ -109,11 +111,26 @@ vec3 shade_lambertian(vec3 normal, vec3 albedo) {
 //   normal, to_eye: unit; water_depth_m: d + eta under the point; foam in [0, 1];
 //   extra_slope_variance: what the drawn normals filtered out here; crest_thinness: mu of eq. (3.38).
 //   local_reflection: radiance of land or structures seen in the mirror direction, alpha = covered.
+float slope_variance_along(vec3 direction, float extra) {
+  float horizontal = length(direction.xy);
+  float along = u_slope_variance;
+  if (horizontal > 1e-9) {
+    float cos_phi = dot(direction.xy, u_wind_toward) / horizontal;
+    along = u_slope_variance_upwind * cos_phi * cos_phi + u_slope_variance_crosswind * (1.0 - cos_phi * cos_phi);
+  }
+  return along + max(extra, 0.0);
+}
+float facet_slope_density(float a, float c, float extra) {
+  float s_u = u_slope_variance_upwind + max(extra, 0.0), s_c = u_slope_variance_crosswind + max(extra, 0.0);
+  return exp(-0.5 * (a * a / s_u + c * c / s_c)) / (2.0 * kPi * sqrt(s_u * s_c));
+}
+
 vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_slope_variance, float crest_thinness,
                  vec4 local_reflection) {
   vec3 l = u_sun_direction;
   float cos_v = max(dot(n, v), 1e-3);
-  float sigma2 = u_slope_variance + max(extra_slope_variance, 0.0);
+  float extra = max(extra_slope_variance, 0.0);
+  float sigma2 = slope_variance_along(v, extra), sigma2_light = slope_variance_along(l, extra);
   // 1. sky reflected, eq. (3.23)-(3.24)
   vec3 mirror = reflect(-v, n);
   mirror.z = abs(mirror.z);
@@ -125,10 +142,10 @@ vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_sl
   if (cos_l > 0.0) {
     vec3 h = normalize(v + l);
     float h_z = max(dot(n, h), 1e-4);
-    float zeta2 = (1.0 - h_z * h_z) / (h_z * h_z);
-    float p = exp(-0.5 * zeta2 / sigma2) / (2.0 * kPi * sigma2);
+    vec2 zeta = (h.xy - h_z * n.xy) / h_z;  // the mirroring facet's slope relative to n
+    float p = facet_slope_density(dot(zeta, u_wind_toward), dot(zeta, vec2(-u_wind_toward.y, u_wind_toward.x)), extra);
     glitter = p * fresnel_reflectance(dot(v, h)) /
-              (4.0 * pow(h_z, 4.0) * cos_v * (1.0 + smith_lambda(cos_v, sigma2) + smith_lambda(cos_l, sigma2)));
+              (4.0 * pow(h_z, 4.0) * cos_v * (1.0 + smith_lambda(cos_v, sigma2) + smith_lambda(cos_l, sigma2_light)));
   }
   // 3. water body and seabed, eq. (3.25) with the shallow-water reflectance (water_optics.hpp)
   float mu_s = max(l.z, 0.0);

@@ -7,7 +7,7 @@ uniform float u_foam_full_m;            // h_max of eq. (16)
 uniform float u_cascade_slope_variance[8];  // sigma^2 per axis each cascade's slopes carry
 uniform float u_jacobian_foam_onset;    // J_b: foam where the deep water's Jacobian falls below it
 uniform float u_time_s;                 // display time, for the shoreline waves
-uniform vec2 u_wind_toward;             // unit vector the wind blows towards
+// u_wind_toward: common.glsl
 uniform float u_shore_amplitude_m;      // the shoreline waves' amplitude on a windward shore (0: none)
 uniform float u_shore_band_m;           // how far from the coastline they reach
 uniform sampler2D u_coast_distance;     // signed distance to the coastline (m), negative on land

@@ -54,7 +54,10 @@ LightingFrame prepare_lighting(const Lighting& l) {
   f.seabed_albedo = l.seabed_albedo;
   f.foam_albedo = l.foam_albedo;
   const double total = l.sub_grid_slope_variance >= 0.0 ? l.sub_grid_slope_variance : cox_munk_slope_variance(l.wind_speed_m_s);
-  f.slope_variance_per_axis = std::max(0.5 * total, 1e-4);
+  const double upwind_share = cox_munk_upwind_share(l.wind_speed_m_s);
+  f.slope_variance_upwind = std::max(total * upwind_share, 1e-4);
+  f.slope_variance_crosswind = std::max(total * (1.0 - upwind_share), 1e-4);
+  f.slope_variance_per_axis = 0.5 * (f.slope_variance_upwind + f.slope_variance_crosswind);
   f.foam_onset_m = l.foam_onset_m;
   f.foam_full_m = l.foam_full_m;
   f.translucency = std::max(l.translucency, 0.0);
@@ -147,12 +150,29 @@ Radiance shade_lambertian(const LightingFrame& f, const Vector3& normal, const R
   return out;
 }
 
+double slope_variance_along(const LightingFrame& f, const Vector3& direction, double extra) {
+  const double horizontal = std::hypot(direction[0], direction[1]);
+  double along = f.slope_variance_per_axis;
+  if (horizontal > 1e-9) {
+    const double cos_phi = (direction[0] * std::cos(f.wind_direction_rad) + direction[1] * std::sin(f.wind_direction_rad)) / horizontal;
+    along = f.slope_variance_upwind * cos_phi * cos_phi + f.slope_variance_crosswind * (1.0 - cos_phi * cos_phi);
+  }
+  return along + std::max(extra, 0.0);
+}
+
+double facet_slope_density(const LightingFrame& f, double a, double c, double extra) {
+  const double s_u = f.slope_variance_upwind + std::max(extra, 0.0), s_c = f.slope_variance_crosswind + std::max(extra, 0.0);
+  return std::exp(-0.5 * (a * a / s_u + c * c / s_c)) / (2.0 * kPi * std::sqrt(s_u * s_c));
+}
+
 Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   const Vector3& n = s.normal;
   const Vector3& v = s.to_eye;
   const Vector3& l = f.sky.sun_direction;
   const double cos_v = std::max(dot(n, v), 1e-3);
-  const double sigma2 = f.slope_variance_per_axis + std::max(s.extra_slope_variance_per_axis, 0.0);
+  const double extra = std::max(s.extra_slope_variance_per_axis, 0.0);
+  // The roughness each direction sees: Cox & Munk's ellipse, long along the wind.
+  const double sigma2 = slope_variance_along(f, v, extra), sigma2_light = slope_variance_along(f, l, extra);
   // 1. Sky light reflected, eq. (3.23)-(3.24): the sky in the mirror direction times the mean
   //    Fresnel reflectance of the rough surface. A ray mirrored downwards sees the sky's lowest band.
   Vector3 mirror = {2 * dot(n, v) * n[0] - v[0], 2 * dot(n, v) * n[1] - v[1], 2 * dot(n, v) * n[2] - v[2]};
@@ -168,10 +188,13 @@ Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   if (cos_l > 0.0) {
     const Vector3 h = normalize({v[0] + l[0], v[1] + l[1], v[2] + l[2]});
     const double h_z = std::max(dot(n, h), 1e-4);
-    const double zeta2 = (1.0 - h_z * h_z) / (h_z * h_z);
-    const double p = std::exp(-0.5 * zeta2 / sigma2) / (2.0 * kPi * sigma2);
+    // The facet slope that mirrors l into v, relative to n (its tangential part over h_z), in the
+    // wind's frame: (along, across).
+    const double zx = (h[0] - h_z * n[0]) / h_z, zy = (h[1] - h_z * n[1]) / h_z;
+    const double cw = std::cos(f.wind_direction_rad), sw = std::sin(f.wind_direction_rad);
+    const double p = facet_slope_density(f, zx * cw + zy * sw, -zx * sw + zy * cw, extra);
     glitter = p * fresnel_reflectance(dot(v, h)) /
-              (4.0 * std::pow(h_z, 4) * cos_v * (1.0 + smith_lambda(cos_v, sigma2) + smith_lambda(cos_l, sigma2)));
+              (4.0 * std::pow(h_z, 4) * cos_v * (1.0 + smith_lambda(cos_v, sigma2) + smith_lambda(cos_l, sigma2_light)));
   }
   // 3. Light from the water body and the seabed, eq. (3.25): the downwelling illuminance that
   //    crosses the surface, times the shallow-water reflectance along the refracted view, back

@@ -36,6 +36,11 @@ double smith_lambda(double cos_theta, double slope_variance) {
 
 double cox_munk_slope_variance(double wind_speed_m_s) { return 0.003 + 0.00512 * std::max(wind_speed_m_s, 0.0); }
 
+double cox_munk_upwind_share(double wind_speed_m_s) {
+  const double u = std::max(wind_speed_m_s, 0.0);
+  return (0.0015 + 0.00316 * u) / (0.003 + 0.00508 * u);
+}
+
 double ocean_brdf(const Vector3& n, const Vector3& v, const Vector3& l, double slope_variance) {
   const double cos_v = dot(n, v), cos_l = dot(n, l);
   if (cos_v <= 0.0 || cos_l <= 0.0) return 0.0;

@@ -117,6 +117,9 @@ void set_lighting_uniforms(GLuint program, const LightingFrame& f) {
   set_uniform(program, "u_seabed_albedo", f.seabed_albedo);
   set_uniform(program, "u_foam_albedo", f.foam_albedo);
   set_uniform(program, "u_slope_variance", float(f.slope_variance_per_axis));
+  set_uniform(program, "u_slope_variance_upwind", float(f.slope_variance_upwind));
+  set_uniform(program, "u_slope_variance_crosswind", float(f.slope_variance_crosswind));
+  glUniform2f(at(program, "u_wind_toward"), float(std::cos(f.wind_direction_rad)), float(std::sin(f.wind_direction_rad)));
   set_uniform(program, "u_translucency", float(f.translucency));
   set_uniform(program, "u_exposure", float(f.exposure));
   set_uniform(program, "u_foam_onset_m", float(f.foam_onset_m));

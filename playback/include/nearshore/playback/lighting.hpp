@@ -77,7 +77,10 @@ struct LightingFrame {
   Radiance sky_illuminance_klx{};  ///< of the sky dome on a horizontal plane
   WaterOptics water;
   Radiance seabed_albedo{}, foam_albedo{};
-  double slope_variance_per_axis = 0.0;  ///< sigma^2 of eq. (3.13), each axis
+  double slope_variance_per_axis = 0.0;  ///< sigma^2 of eq. (3.13): the mean of the two axes below
+  /// The sub-grid slope variance along and across the wind (cox_munk_upwind_share of the total):
+  /// the glitter's ellipse of facet slopes, long along the wind.
+  double slope_variance_upwind = 0.0, slope_variance_crosswind = 0.0;
   double foam_onset_m = 0.6, foam_full_m = 1.6, translucency = 1.0, jacobian_foam_onset = 0.557;
   double wind_direction_rad = 0.0, shore_wave_amplitude_m = 0.0, shore_band_m = 80.0;
   double exposure = 1.0;        ///< 1 / (kcd/m2): displayed luminance = 1 - exp(-exposure Y)
@@ -127,6 +130,15 @@ struct SurfacePoint {
   Radiance local_reflection{};
   double local_reflection_coverage = 0.0;
 };
+
+/// The slope variance (per axis) of the rough surface in the vertical plane of `direction` (its
+/// horizontal part against the wind), plus `extra_slope_variance` (isotropic): what Smith's
+/// shadowing and the mean Fresnel reflectance see along a view or a light.
+double slope_variance_along(const LightingFrame& frame, const Vector3& direction, double extra_slope_variance);
+/// The density of facet slopes (zeta_along, zeta_across the wind) of eq. (3.13) with the two axes'
+/// variances: exp(-(a^2 / s_u + c^2 / s_c) / 2) / (2 pi sqrt(s_u s_c)), s_u = upwind + extra,
+/// s_c = crosswind + extra.
+double facet_slope_density(const LightingFrame& frame, double zeta_along_wind, double zeta_across_wind, double extra_slope_variance);
 
 /// Sea surface radiance: sky (eq. 3.23-3.24) and sun (eq. 3.22) reflection, the water body and
 /// seabed through it (eq. 3.25 with water_optics.hpp), thin-crest translucency (eq. 3.38), foam
