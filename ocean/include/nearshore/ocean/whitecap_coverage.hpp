@@ -1,0 +1,95 @@
+#pragma once
+// Whitecap coverage by wind speed (issue 41): the fraction of the sea surface that foams, from
+// the literature, and the Jacobian foam onset J_b (seed 000 eq. 3.45) at which a synthesised
+// deep-water field foams that much.
+//
+// Monahan & O'Muircheartaigh (1980), "Optimal power-law description of oceanic whitecap coverage
+// dependence on wind speed", J. Phys. Oceanogr. 10, 2094-2099:
+//     W(U10) = 3.84e-6 U10^3.41          (fraction of the surface; U10 in m/s, 10 m above the sea)
+// fitted to photographs of the open sea (stage A crests and stage B decaying foam together) for
+// winds of about 4 to 20 m/s; later data sets reach 23 m/s (Callaghan, de Leeuw, Cohen & O'Dowd
+// 2008, GRL 35 L23609: a fit valid 3.7-23.1 m/s). Published coverages at one wind speed scatter
+// by a factor of 2-3 around such fits (Anguelova & Webster 2006, JGR 111 C03017, compare dozens of
+// them), which is the tolerance a renderer's coverage can be held to. Beyond the fitted range the
+// power law is extrapolated: it passes 1 at 38.7 m/s and is clamped there; seed 000 table 3.1 says
+// the same thing in words ("sea completely white", force 12, 118 km/h and above).
+//
+// The coverage definition (one, used everywhere here): the fraction of the surface where the
+// water shader's f_b = clamp(J_b - J, 0, 1) is above zero, i.e. where J < J_b, with J computed as
+// the shader computes it at full detail (shaders/surface.glsl cascade_displacement_gradient: each
+// cascade's displacement differenced centrally over one texel, bilinear between samples, summed
+// over cascades; seed 000 eq. 3.39-3.44). Why this one: it is exactly the set of surface points
+// that the shader paints with deep-water foam this frame (and that foam_decay.frag.glsl starts a
+// persistent foam trail from), so matching it to W matches where foam is drawn. The analytic
+// derivative channels (ocean::jacobian of DeepWaterFrame::displacement_xx ...) are not what the
+// screen shows: central differences damp the shortest waves of each cascade, which carry much of
+// the slope. Measured on `nearshore play`'s Beaufort 8 sea at t = 0 (65536 points), J < 0.70 covers
+// 1.95 % of it by the analytic channels and 1.35 % by the shader's differences (force 4: 0.72 %
+// and 0.39 %): a factor 1.4-1.8, more than the statistics' noise.
+//
+// J_b is taken from the field's own J distribution (a quantile measured on its samples), not from
+// a fitted constant, so it holds for any spectrum, cascade layout and choppiness. It is clamped to
+// [kLowestFoamOnsetJacobian, kHighestFoamOnsetJacobian]:
+//  - 1: foam wherever the surface is compressed at all (J < 1); above 1 stretched water, which a
+//    breaking crest never is, would foam. The mean of J over a periodic tile is exactly 1 (the
+//    determinant of a gradient field's Hessian integrates to zero), so at most about half the
+//    surface can foam: where W asks for more (above ~30 m/s), the coverage stays below it.
+//  - 0: foam only where the choppy surface has folded over (J < 0, seed 000 section 3.1.4); a
+//    lower J_b would keep foam only inside the folds of the linear model, where even the surface
+//    drawn is an artefact. Where W asks for less than the folded fraction (light winds with a
+//    large choppiness), the coverage stays above it.
+#include <span>
+#include <vector>
+
+#include "nearshore/ocean/deep_water.hpp"
+
+namespace nearshore::ocean {
+
+/// Monahan & O'Muircheartaigh (1980): W = 3.84e-6 U10^3.41, the fraction of the sea surface
+/// covered by whitecaps at a wind of `wind_speed_10_m_s` (m/s, 10 m above the sea), clamped to
+/// [0, 1]. Throws nearshore::Error naming the parameter for a negative or non-finite wind speed.
+double monahan_whitecap_coverage(double wind_speed_10_m_s);
+
+inline constexpr double kLowestFoamOnsetJacobian = 0.0;   ///< J_b floor: only folded water (see above)
+inline constexpr double kHighestFoamOnsetJacobian = 1.0;  ///< J_b ceiling: all compressed water
+
+/// J at (x, y) (m) as the water shader computes it with every cascade at full detail: for each
+/// cascade, the displacement D_x, D_y bilinear between its samples (i L / N, periodic) and
+/// differenced centrally over one sample spacing L / N; the gradients summed over the cascades;
+/// J = (1 + lambda dDx/dx)(1 + lambda dDy/dy) - lambda^2 dDx/dy dDy/dx (seed 000 eq. 3.39).
+/// `choppiness` is lambda. Frames without displacement give J = 1.
+double rendered_jacobian(std::span<const DeepWaterFrame> cascades, double choppiness, double x_m, double y_m);
+
+/// The distribution of the rendered J over a field's surface, pooled over one or more frames.
+class JacobianDistribution {
+ public:
+  /// Adds `sample_count` points of the largest tile (cascades.front()) on a 2-D Kronecker (R2)
+  /// low-discrepancy sequence, as foam_statistics places them: they never alias with the smaller
+  /// tiles' periods. Throws nearshore::Error naming the parameter for no cascades or a
+  /// sample_count below 1.
+  void add_frames(std::span<const DeepWaterFrame> cascades, double choppiness, int sample_count);
+  int sample_count() const { return static_cast<int>(jacobians_.size()); }
+  /// The fraction of the samples with J < `jacobian_foam_onset`: the coverage that J_b gives.
+  double coverage_below(double jacobian_foam_onset) const;
+  /// The J below which `coverage` (in [0, 1]) of the samples lie (linear between order statistics).
+  double quantile(double coverage) const;
+
+ private:
+  mutable std::vector<double> jacobians_;
+  mutable bool sorted_ = true;
+};
+
+/// What foam_onset_for_coverage found.
+struct FoamOnset {
+  double jacobian_foam_onset = kStokesBreakingJacobian;  ///< J_b, within the clamp
+  double target_coverage = 0.0;  ///< the coverage asked for (fraction)
+  double coverage = 0.0;         ///< the coverage J_b gives on the distribution's samples
+  bool clamped = false;          ///< the J_b the target needs lies outside [lowest, highest]
+};
+
+/// The J_b at which `target_coverage` (fraction in [0, 1]) of the distribution's samples foam
+/// (J < J_b), clamped to [kLowestFoamOnsetJacobian, kHighestFoamOnsetJacobian]. A distribution
+/// without samples gives kStokesBreakingJacobian (nothing to match) and coverage 0. Throws nearshore::Error naming the parameter for a target outside [0, 1].
+FoamOnset foam_onset_for_coverage(const JacobianDistribution& distribution, double target_coverage);
+
+}  // namespace nearshore::ocean
