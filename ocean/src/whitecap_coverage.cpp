@@ -63,21 +63,36 @@ void JacobianDistribution::add_frames(std::span<const DeepWaterFrame> cascades, 
   sorted_ = false;
 }
 
+void JacobianDistribution::prepare() const {
+  if (sorted_) return;
+  std::sort(jacobians_.begin(), jacobians_.end());
+  // A point of the undisplaced plane with Jacobian J is drawn over J times its area (x -> x + lambda D);
+  // where the surface has folded (J < 0) it is drawn over another, and adds no area of its own.
+  drawn_area_below_.assign(jacobians_.size() + 1, 0.0);
+  for (std::size_t i = 0; i < jacobians_.size(); ++i) drawn_area_below_[i + 1] = drawn_area_below_[i] + std::max(jacobians_[i], 0.0);
+  sorted_ = true;
+}
+
 double JacobianDistribution::coverage_below(double jacobian_foam_onset) const {
   if (jacobians_.empty()) return 0.0;
-  if (!sorted_) std::sort(jacobians_.begin(), jacobians_.end()), sorted_ = true;
+  prepare();
+  if (drawn_area_below_.back() <= 0.0) return 0.0;
   const auto below = std::lower_bound(jacobians_.begin(), jacobians_.end(), jacobian_foam_onset) - jacobians_.begin();
-  return static_cast<double>(below) / static_cast<double>(jacobians_.size());
+  return drawn_area_below_[static_cast<std::size_t>(below)] / drawn_area_below_.back();
 }
 
 double JacobianDistribution::quantile(double coverage) const {
   if (jacobians_.empty()) return 1.0;
-  if (!sorted_) std::sort(jacobians_.begin(), jacobians_.end()), sorted_ = true;
-  // coverage_below(J_(i)) = i / n for the i-th smallest J (0-based); between two, linear.
-  const double position = std::clamp(coverage, 0.0, 1.0) * static_cast<double>(jacobians_.size());
-  const auto i = std::min(static_cast<std::size_t>(position), jacobians_.size() - 1);
+  prepare();
+  // The smallest J_b whose drawn area below reaches `coverage` of the whole: coverage_below is
+  // a step function of J_b rising at each sample; between two samples, linear.
+  const double wanted = std::clamp(coverage, 0.0, 1.0) * drawn_area_below_.back();
+  const auto step = std::lower_bound(drawn_area_below_.begin(), drawn_area_below_.end(), wanted) - drawn_area_below_.begin();
+  if (step <= 0) return jacobians_.front();
+  const auto i = static_cast<std::size_t>(step) - 1;  // drawn_area_below_[i] < wanted <= drawn_area_below_[i + 1]
   if (i + 1 >= jacobians_.size()) return jacobians_.back();
-  return jacobians_[i] + (position - static_cast<double>(i)) * (jacobians_[i + 1] - jacobians_[i]);
+  const double share = (wanted - drawn_area_below_[i]) / std::max(drawn_area_below_[i + 1] - drawn_area_below_[i], 1e-300);
+  return jacobians_[i] + share * (jacobians_[i + 1] - jacobians_[i]);
 }
 
 FoamOnset foam_onset_for_coverage(const JacobianDistribution& distribution, double target_coverage) {

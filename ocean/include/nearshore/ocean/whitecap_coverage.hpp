@@ -14,9 +14,12 @@
 // power law is extrapolated: it passes 1 at 38.7 m/s and is clamped there; seed 000 table 3.1 says
 // the same thing in words ("sea completely white", force 12, 118 km/h and above).
 //
-// The coverage definition (one, used everywhere here): the fraction of the surface where the
-// water shader's f_b = clamp(J_b - J, 0, 1) is above zero, i.e. where J < J_b, with J computed as
-// the shader computes it at full detail (shaders/surface.glsl cascade_displacement_gradient: each
+// The coverage definition (one, used everywhere here): the share of the DRAWN surface where the
+// water shader's f_b = clamp(J_b - J, 0, 1) is above zero, i.e. where J < J_b. The choppy
+// displacement x -> x + lambda D draws a patch of the plane over J times its area, so a compressed
+// (foaming) patch takes less of the picture than of the plane: each point counts with weight
+// max(J, 0) (folded water, J < 0, lies over other water and adds none). A photograph, from which
+// W was measured, sees the drawn surface. J is computed as the shader computes it at full detail (shaders/surface.glsl cascade_displacement_gradient: each
 // cascade's displacement differenced centrally over one texel, bilinear between samples, summed
 // over cascades; seed 000 eq. 3.39-3.44). Why this one: it is exactly the set of surface points
 // that the shader paints with deep-water foam this frame (and that foam_decay.frag.glsl starts a
@@ -31,9 +34,9 @@
 // a fitted constant, so it holds for any spectrum, cascade layout and choppiness. It is clamped to
 // [kLowestFoamOnsetJacobian, kHighestFoamOnsetJacobian]:
 //  - 1: foam wherever the surface is compressed at all (J < 1); above 1 stretched water, which a
-//    breaking crest never is, would foam. The mean of J over a periodic tile is exactly 1 (the
-//    determinant of a gradient field's Hessian integrates to zero), so at most about half the
-//    surface can foam: where W asks for more (above ~30 m/s), the coverage stays below it.
+//    breaking crest never is, would foam. About half the plane is compressed, and it is drawn
+//    over less than half the picture: where W asks for more (above ~30 m/s, Beaufort 11-12), the
+//    coverage stays below it (force 12: 45 % for Monahan's 69 %).
 //  - 0: foam only where the choppy surface has folded over (J < 0, seed 000 section 3.1.4); a
 //    lower J_b would keep foam only inside the folds of the linear model, where even the surface
 //    drawn is an artefact. Where W asks for less than the folded fraction (light winds with a
@@ -69,13 +72,16 @@ class JacobianDistribution {
   /// sample_count below 1.
   void add_frames(std::span<const DeepWaterFrame> cascades, double choppiness, int sample_count);
   int sample_count() const { return static_cast<int>(jacobians_.size()); }
-  /// The fraction of the samples with J < `jacobian_foam_onset`: the coverage that J_b gives.
+  /// The coverage that J_b = `jacobian_foam_onset` gives: the share of the drawn surface where
+  /// J < J_b, each sample weighted by the area it is drawn over, max(J, 0) (see the top).
   double coverage_below(double jacobian_foam_onset) const;
-  /// The J below which `coverage` (in [0, 1]) of the samples lie (linear between order statistics).
+  /// The J_b at which coverage_below reaches `coverage` (in [0, 1]; linear between samples).
   double quantile(double coverage) const;
 
  private:
+  void prepare() const;  // sorts, and sums the drawn area below each sample
   mutable std::vector<double> jacobians_;
+  mutable std::vector<double> drawn_area_below_;
   mutable bool sorted_ = true;
 };
 
