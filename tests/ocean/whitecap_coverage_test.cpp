@@ -86,8 +86,8 @@ TEST(WhitecapCoverage, TheFoamOnsetGivesMonahansCoverageAtEveryForce) {
   // Forces 4-12 (the seed's Phillips for 4, unified above), each preset's middle wind. The J_b
   // measured at t = 0 must give, on frames 7 and 19 s later, Monahan's W within a factor 1.5
   // (or, where J_b is clamped, the clamp's coverage within the same factor). Why 1.5: published
-  // coverages scatter by a factor 2-3 about the fit (Anguelova & Webster 2006), so a renderer
-  // inside 1.5 is as close to the sea as the data say anything; what moves our figure is the
+  // coverages differ by a factor of several between data sets (Anguelova & Webster 2006), so a
+  // renderer inside 1.5 is as close to the sea as the data say anything; what moves our figure is the
   // field's own variation in time and the counting noise of 65536 correlated points (force 4:
   // W = 0.28 %, ~180 points below J_b per frame).
   const auto start = std::chrono::steady_clock::now();

@@ -34,7 +34,7 @@ TEST(WhitecapRender, TheFoamDrawnCoversWhatMonahanSaysAtTwoWinds) {
   // f = f_b mix(T, 1, f_b) with f_b = J_b - J, so just below J_b (f_b < ~0.03, where the foam
   // texture T is low) the foam does not show. Bounds [W / 2, 1.25 W]: half for the faint edge of
   // every patch (J within ~0.03 of J_b is ~20-40 % of the J < J_b area at these J_b) plus the
-  // views' sampling noise, inside the factor 2-3 scatter of published coverages; no more foam
+  // views' sampling noise, inside the factor of several between published data sets; no more foam
   // than W (25 % for the 8 views' sampling of a sea whose crests are 50-100 m apart).
   // Measured (load ~4, 3-6 s): Beaufort 6 1.87 % for W 2.28 %, Beaufort 8 6.68 % for 9.07 %. The
   // pixels brighter by more than 0.25 (foam that reads as white rather than a tint) are printed

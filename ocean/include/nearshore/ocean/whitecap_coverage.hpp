@@ -6,22 +6,24 @@
 // Monahan & O'Muircheartaigh (1980), "Optimal power-law description of oceanic whitecap coverage
 // dependence on wind speed", J. Phys. Oceanogr. 10, 2094-2099:
 //     W(U10) = 3.84e-6 U10^3.41          (fraction of the surface; U10 in m/s, 10 m above the sea)
-// fitted to photographs of the open sea (stage A crests and stage B decaying foam together) for
-// winds of about 4 to 20 m/s; later data sets reach 23 m/s (Callaghan, de Leeuw, Cohen & O'Dowd
-// 2008, GRL 35 L23609: a fit valid 3.7-23.1 m/s). Published coverages at one wind speed scatter
-// by a factor of 2-3 around such fits (Anguelova & Webster 2006, JGR 111 C03017, compare dozens of
-// them), which is the tolerance a renderer's coverage can be held to. Beyond the fitted range the
-// power law is extrapolated: it passes 1 at 38.7 m/s and is clamped there; seed 000 table 3.1 says
-// the same thing in words ("sea completely white", force 12, 118 km/h and above).
+// fitted to shipboard photographs of open-sea whitecaps (stage A crests and stage B decaying foam
+// together; its data reach about 20 m/s). Later data reach 23 m/s (Callaghan, de Leeuw, Cohen &
+// O'Dowd 2008, GRL 35 L23609, doi:10.1029/2008GL036165: their fit is valid for 3.7-23.1 m/s).
+// Coverages published for one wind speed differ by a factor of several between data sets (the
+// compilation of Anguelova & Webster 2006, JGR 111 C03017, doi:10.1029/2005JC003158), so a
+// coverage within a factor 1.5 of the fit is inside what the data can tell apart. Beyond the
+// fitted range the power law is extrapolated: it passes 1 at 38.7 m/s and is clamped there; seed
+// 000 table 3.1 says as much in words (force 12, 118 km/h and above: "the whole sea is white").
 //
 // The coverage definition (one, used everywhere here): the share of the DRAWN surface where the
 // water shader's f_b = clamp(J_b - J, 0, 1) is above zero, i.e. where J < J_b. The choppy
 // displacement x -> x + lambda D draws a patch of the plane over J times its area, so a compressed
 // (foaming) patch takes less of the picture than of the plane: each point counts with weight
 // max(J, 0) (folded water, J < 0, lies over other water and adds none). A photograph, from which
-// W was measured, sees the drawn surface. J is computed as the shader computes it at full detail (shaders/surface.glsl cascade_displacement_gradient: each
-// cascade's displacement differenced centrally over one texel, bilinear between samples, summed
-// over cascades; seed 000 eq. 3.39-3.44). Why this one: it is exactly the set of surface points
+// W was measured, sees the drawn surface. J is computed as the shader computes it at full detail
+// (shaders/surface.glsl cascade_displacement_gradient: each cascade's displacement differenced
+// centrally over one texel, bilinear between samples, summed over cascades; seed 000 eq.
+// 3.39-3.44). Why this one: it is exactly the set of surface points
 // that the shader paints with deep-water foam this frame (and that foam_decay.frag.glsl starts a
 // persistent foam trail from), so matching it to W matches where foam is drawn. The analytic
 // derivative channels (ocean::jacobian of DeepWaterFrame::displacement_xx ...) are not what the
