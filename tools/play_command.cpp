@@ -301,39 +301,6 @@ playback::Lighting scene_lighting(const PlayOptions& o, const runtime::Streaming
   return lighting;
 }
 
-// Issue 41: the deep water foams on the share of the surface Monahan & O'Muircheartaigh (1980)
-// give for the wind (ocean/whitecap_coverage.hpp): J_b is the quantile of the rendered Jacobian,
-// measured on the deep keyframe on screen, at W(U10). U10 is the lighting's wind (--beaufort's
-// force, whether the deep water is that preset or the bake's own field, whose spectrum records
-// no wind). Measured again whenever the sea shown changes (another force or library state: other
-// tiles) or the wind does; about 30 ms for 65536 points.
-class WhitecapFoamOnset {
- public:
-  void update(const runtime::SurfaceSnapshot& snapshot, double choppiness, bool quiet, playback::Lighting& lighting) {
-    if (!snapshot.deep_from || snapshot.deep_from->cascades.empty()) return;
-    const std::vector<ocean::DeepWaterFrame>& cascades = snapshot.deep_from->cascades;
-    if (cascades.front().tile_length_m == measured_tile_length_m_ && lighting.wind_speed_m_s == measured_wind_m_s_ &&
-        cascades.size() == measured_cascades_)
-      return;
-    measured_tile_length_m_ = cascades.front().tile_length_m;
-    measured_wind_m_s_ = lighting.wind_speed_m_s;
-    measured_cascades_ = cascades.size();
-    ocean::JacobianDistribution distribution;
-    distribution.add_frames(cascades, choppiness, 65536);
-    const double target = ocean::monahan_whitecap_coverage(lighting.wind_speed_m_s);
-    const ocean::FoamOnset onset = ocean::foam_onset_for_coverage(distribution, target);
-    lighting.jacobian_foam_onset = onset.jacobian_foam_onset;
-    if (!quiet)
-      std::fprintf(stderr, "whitecaps: J_b %.3f foams %.2f %% of the deep water (Monahan & O'Muircheartaigh: %.2f %% at U10 %.1f m/s%s)\n",
-                   onset.jacobian_foam_onset, 100.0 * onset.coverage, 100.0 * target, lighting.wind_speed_m_s,
-                   onset.clamped ? "; J_b held in [0, 1]" : "");
-  }
-
- private:
-  double measured_tile_length_m_ = -1.0, measured_wind_m_s_ = -1.0;
-  std::size_t measured_cascades_ = 0;
-};
-
 std::string play(const PlayOptions& o) {
   const bool headless = !o.screenshot.empty() || o.frames > 0;
   std::string plan = o.plan;
@@ -367,7 +334,7 @@ std::string play(const PlayOptions& o) {
   if (!headless) glfwSetScrollCallback(window.glfw_window(), on_scroll);  // before ImGui, which chains it
 
   playback::Lighting lighting = scene_lighting(o, sea.engine(), *site, frame);
-  WhitecapFoamOnset whitecaps;
+  ocean::WhitecapFoamOnset whitecaps;
   playback::DrawOptions draw_options;
   if (o.lighting_mode == "off") {  // the cheapest picture: flat-coloured sea, no sky (bench baseline)
     draw_options.colouring = playback::SurfaceColouring::flat;
@@ -424,7 +391,18 @@ std::string play(const PlayOptions& o) {
       if (headless) sea.wait_until_ready(display_time_s, std::chrono::seconds(30));
     }
     sea.advance_to(display_time_s);
-    whitecaps.update(sea.snapshot(), sea.engine().site()->choppiness, o.quiet, lighting);
+    // Issue 41: the deep water foams on the share of its drawn surface that Monahan &
+    // O'Muircheartaigh (1980) give for the lighting's wind (the --beaufort force's, whether the
+    // deep water is that preset or the bake's own field, whose spectrum records no wind), J_b
+    // measured on the deep keyframe on screen when the sea or the wind changes.
+    if (const auto deep = sea.snapshot().deep_from)
+      if (const auto onset = whitecaps.update(deep->cascades, sea.engine().site()->choppiness, lighting.wind_speed_m_s)) {
+        lighting.jacobian_foam_onset = onset->jacobian_foam_onset;
+        if (!o.quiet)
+          std::fprintf(stderr, "whitecaps: J_b %.3f foams %.2f %% of the deep water (Monahan & O'Muircheartaigh: %.2f %% at U10 %.1f m/s%s)\n",
+                       onset->jacobian_foam_onset, 100.0 * onset->coverage, 100.0 * onset->target_coverage,
+                       lighting.wind_speed_m_s, onset->clamped ? "; J_b held in [0, 1]" : "");
+      }
     renderer.stage_upcoming(sea.engine());
     if (!headless) control.update(window.glfw_window(), dt_s, panel && panel->wants_input());
     if (ships) {

@@ -109,4 +109,18 @@ FoamOnset foam_onset_for_coverage(const JacobianDistribution& distribution, doub
   return onset;
 }
 
+std::optional<FoamOnset> WhitecapFoamOnset::update(std::span<const DeepWaterFrame> cascades, double choppiness,
+                                                   double wind_speed_10_m_s) {
+  if (cascades.empty()) return std::nullopt;
+  if (cascades.front().tile_length_m == tile_length_m_ && cascades.size() == cascade_count_ &&
+      choppiness == choppiness_ && wind_speed_10_m_s == wind_speed_10_m_s_)
+    return std::nullopt;
+  const double target = monahan_whitecap_coverage(wind_speed_10_m_s);
+  JacobianDistribution distribution;
+  distribution.add_frames(cascades, choppiness, 65536);
+  tile_length_m_ = cascades.front().tile_length_m, cascade_count_ = cascades.size();
+  choppiness_ = choppiness, wind_speed_10_m_s_ = wind_speed_10_m_s;
+  return foam_onset_for_coverage(distribution, target);
+}
+
 }  // namespace nearshore::ocean

@@ -150,3 +150,21 @@ TEST(WhitecapCoverage, HoldsForAnySpectrumAndChoppiness) {
     EXPECT_LT(m.later_coverage, 0.01 * 1.5);
   }
 }
+
+TEST(WhitecapCoverage, TheTrackerMeasuresOnlyWhenTheSeaOrTheWindChanges) {
+  // What `nearshore play` calls every frame: a J_b on the first frame, none while the sea and the
+  // wind stay, a new one (higher: more wind, more foam) when the wind rises, and one for another sea.
+  auto moderate = whitecap_beaufort_field(6);
+  auto gale = whitecap_beaufort_field(8);
+  const std::vector<DeepWaterFrame> frames = whitecap_frames(*moderate, 0.0), later = whitecap_frames(*moderate, 1.0);
+  WhitecapFoamOnset tracker;
+  EXPECT_FALSE(tracker.update({}, 1.0, 12.8).has_value());
+  const auto first = tracker.update(frames, 1.0, 12.8);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_NEAR(first->coverage, monahan_whitecap_coverage(12.8), 1e-4);
+  EXPECT_FALSE(tracker.update(later, 1.0, 12.8).has_value());
+  const auto windier = tracker.update(later, 1.0, 19.2);
+  ASSERT_TRUE(windier.has_value());
+  EXPECT_GT(windier->jacobian_foam_onset, first->jacobian_foam_onset);
+  EXPECT_TRUE(tracker.update(whitecap_frames(*gale, 0.0), 1.0, 19.2).has_value());
+}

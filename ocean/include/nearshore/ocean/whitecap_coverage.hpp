@@ -43,6 +43,8 @@
 //    lower J_b would keep foam only inside the folds of the linear model, where even the surface
 //    drawn is an artefact. Where W asks for less than the folded fraction (light winds with a
 //    large choppiness), the coverage stays above it.
+#include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -99,5 +101,21 @@ struct FoamOnset {
 /// (J < J_b), clamped to [kLowestFoamOnsetJacobian, kHighestFoamOnsetJacobian]. A distribution
 /// without samples gives kStokesBreakingJacobian (nothing to match) and coverage 0. Throws nearshore::Error naming the parameter for a target outside [0, 1].
 FoamOnset foam_onset_for_coverage(const JacobianDistribution& distribution, double target_coverage);
+
+/// J_b kept at Monahan's W for the deep water a renderer shows (what `nearshore play` uses each
+/// frame): measures the distribution of the frames it is given (65536 points) only when the sea
+/// differs from the last one measured (largest tile length, cascade count, choppiness) or the
+/// wind does; about 30 ms when it measures, nothing otherwise.
+class WhitecapFoamOnset {
+ public:
+  /// The onset for `cascades` (a deep keyframe's frames) at wind `wind_speed_10_m_s` (m/s) when
+  /// it measured anew; nullopt when nothing changed or there are no cascades. Throws what
+  /// monahan_whitecap_coverage throws.
+  std::optional<FoamOnset> update(std::span<const DeepWaterFrame> cascades, double choppiness, double wind_speed_10_m_s);
+
+ private:
+  double tile_length_m_ = -1.0, choppiness_ = -1.0, wind_speed_10_m_s_ = -1.0;
+  std::size_t cascade_count_ = 0;
+};
 
 }  // namespace nearshore::ocean
