@@ -27,6 +27,7 @@
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/ocean/sea_state_beaufort.hpp"
+#include "nearshore/ocean/whitecap_coverage.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/plot/plot.hpp"
@@ -338,6 +339,7 @@ std::string play(const PlayOptions& o) {
   if (!headless) glfwSetScrollCallback(window.glfw_window(), on_scroll);  // before ImGui, which chains it
 
   playback::Lighting lighting = scene_lighting(o, sea.engine(), *site, frame);
+  ocean::WhitecapFoamOnset whitecaps;
   playback::DrawOptions draw_options;
   if (o.lighting_mode == "off") {  // the cheapest picture: flat-coloured sea, no sky (bench baseline)
     draw_options.colouring = playback::SurfaceColouring::flat;
@@ -394,6 +396,18 @@ std::string play(const PlayOptions& o) {
       if (headless) sea.wait_until_ready(display_time_s, std::chrono::seconds(30));
     }
     sea.advance_to(display_time_s);
+    // Issue 41: the deep water foams on the share of its drawn surface that Monahan &
+    // O'Muircheartaigh (1980) give for the lighting's wind (the --beaufort force's, whether the
+    // deep water is that preset or the bake's own field, whose spectrum records no wind), J_b
+    // measured on the deep keyframe on screen when the sea or the wind changes.
+    if (const auto deep = sea.snapshot().deep_from)
+      if (const auto onset = whitecaps.update(deep->cascades, sea.engine().site()->choppiness, lighting.wind_speed_m_s)) {
+        lighting.jacobian_foam_onset = onset->jacobian_foam_onset;
+        if (!o.quiet)
+          std::fprintf(stderr, "whitecaps: J_b %.3f foams %.2f %% of the deep water (Monahan & O'Muircheartaigh: %.2f %% at U10 %.1f m/s%s)\n",
+                       onset->jacobian_foam_onset, 100.0 * onset->coverage, 100.0 * onset->target_coverage,
+                       lighting.wind_speed_m_s, onset->clamped ? "; J_b held in [0, 1]" : "");
+      }
     renderer.stage_upcoming(sea.engine());
     if (!headless) control.update(window.glfw_window(), dt_s, panel && panel->wants_input());
     if (ships) {
