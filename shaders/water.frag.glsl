@@ -179,7 +179,13 @@ void main() {
   // the foam map (eq. 3.48).
   float deep_breaking = clamp(u_jacobian_foam_onset - jacobian_of(gradient), 0.0, 1.0);
   if (u_has_deep_foam) deep_breaking = max(deep_breaking, texture(u_deep_foam, p_detail / u_tile_length_m[0]).r);
-  float deep_foam = (1.0 - weight) * deep_breaking * mix(foam_texture(p_detail, footprint_m), 1.0, deep_breaking);
+  // How white: eq. (3.45)'s f_b is J_b - J in metres' units, a few tenths at most, where the
+  // seed's texture units made it reach 1. Monahan's coverage (ocean/whitecap_coverage.hpp sets
+  // J_b from it) is the area of white water, so a crest 0.1 past the onset (ak 0.1 beyond the
+  // Stokes limit: J = 1 - ak cos) is drawn fully broken and white, less thinly in proportion.
+  const float kFoamOpaqueBeyondOnset = 0.1;
+  float whiteness = clamp(deep_breaking / kFoamOpaqueBeyondOnset, 0.0, 1.0);
+  float deep_foam = (1.0 - weight) * whiteness * mix(foam_texture(p_detail, footprint_m), 1.0, whiteness);
   float still_depth = still_water_depth_at(p);
   float shore_foam = 0.0;
   shoreline_waves(p, still_depth, footprint_m, slope, shore_foam);
