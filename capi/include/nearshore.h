@@ -45,8 +45,10 @@ extern "C" {
  *    Hulls stop at structures and land (nearshore_fleet_next_contact); every ship option range-checked.
  * 6: harbour heights joined in time by a cubic Hermite of the bake's own d eta / dt:
  *    nearshore_sea_query_vertical_velocity, the rate textures of nearshore_gl_textures.
+ * 7: weather: nearshore_lighting.cloud_cover, visibility_m, fog_top_m (a version 6 struct is
+ *    still taken, with clear air).
  * A host built against version N runs on a library of version >= N. */
-#define NEARSHORE_API_VERSION 6
+#define NEARSHORE_API_VERSION 7
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -292,9 +294,15 @@ typedef struct nearshore_lighting {
   double wind_direction_deg;           /* compass direction the wind blows FROM, degrees */
   double exposure_compensation;        /* 1: automatic exposure; 2: one stop brighter */
   int local_reflections;               /* 1: land and structures mirrored in the water; 0: sky only */
+  /* API version 7: the weather (docs/lighting.md step 13). A struct of version 6 (struct_size up
+   * to local_reflections, padded) is taken with clear air. */
+  double cloud_cover;                  /* 0..1: the share of the CIE overcast sky; the sun's beam dims by 1 - c */
+  double visibility_m;                 /* meteorological optical range (5 % contrast), m; 0: no fog or haze */
+  double fog_top_m;                    /* top of the fog or haze layer above the sea, m */
 } nearshore_lighting;
 /* Fills the defaults (struct_size, no UTC time, T 2.5, chlorophyll 0.3, sediment 0.5 NTU, wind
- * 5 m/s from the north, exposure 1, local reflections on). Any thread. */
+ * 5 m/s from the north, exposure 1, local reflections on, clear sky: no cloud, no fog, a fog top
+ * of 150 m). Any thread. */
 NEARSHORE_API void nearshore_lighting_init(nearshore_lighting* lighting);
 /* Render thread. A bad value (a UTC string that does not parse, a place with no map projection,
  * a number out of its range) is refused, naming the field, and the previous lighting is kept. */

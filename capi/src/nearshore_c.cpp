@@ -475,6 +475,9 @@ void nearshore_lighting_init(nearshore_lighting* lighting) {
   lighting->wind_direction_deg = 0.0;
   lighting->exposure_compensation = defaults.exposure_compensation;
   lighting->local_reflections = 1;
+  lighting->cloud_cover = defaults.cloud_cover;
+  lighting->visibility_m = defaults.visibility_m;
+  lighting->fog_top_m = defaults.fog_top_m;
 }
 
 namespace {
@@ -500,9 +503,12 @@ nearshore_status nearshore_renderer_set_lighting(nearshore_renderer* renderer, c
   return guarded(NEARSHORE_INVALID_ARGUMENT, [&] {
     require(renderer, "renderer");
     require(lighting, "lighting");
-    if (lighting->struct_size != sizeof(nearshore_lighting))
+    // Version 6 ended at local_reflections (padded to the doubles' alignment): clear air.
+    constexpr std::size_t kVersion6Size = offsetof(nearshore_lighting, cloud_cover);
+    if (lighting->struct_size != sizeof(nearshore_lighting) && lighting->struct_size != kVersion6Size)
       fail(NEARSHORE_INVALID_ARGUMENT,
            "nearshore_lighting.struct_size must be sizeof(nearshore_lighting); call nearshore_lighting_init");
+    const bool has_weather = lighting->struct_size >= sizeof(nearshore_lighting);
     // Built aside and swapped in whole, so a refused field leaves the previous lighting.
     nearshore::playback::Lighting next = renderer->lighting;
     next.atmospheric_turbidity = lighting_field(lighting->atmospheric_turbidity, "atmospheric_turbidity", 1.7, 10.0);
@@ -516,6 +522,10 @@ nearshore_status nearshore_renderer_set_lighting(nearshore_renderer* renderer, c
     next.wind_direction_rad =
         travel_direction_rad(lighting_field(lighting->wind_direction_deg, "wind_direction_deg", -360.0, 720.0));
     next.exposure_compensation = lighting_field(lighting->exposure_compensation, "exposure_compensation", 1e-3, 1e3);
+    const nearshore::playback::Lighting clear_air;
+    next.cloud_cover = has_weather ? lighting_field(lighting->cloud_cover, "cloud_cover", 0.0, 1.0) : clear_air.cloud_cover;
+    next.visibility_m = has_weather ? lighting_field(lighting->visibility_m, "visibility_m", 0.0, 1e6) : clear_air.visibility_m;
+    next.fog_top_m = has_weather ? lighting_field(lighting->fog_top_m, "fog_top_m", 0.0, 1e4) : clear_air.fog_top_m;
     bool sun_from_time = false;
     const std::string utc(lighting->utc_iso8601, strnlen(lighting->utc_iso8601, sizeof(lighting->utc_iso8601)));
     if (!utc.empty()) {

@@ -12,6 +12,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
+
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -121,6 +124,27 @@ TEST(CApiLighting, TheRendererDrawsUnderTheSunOfAPlaceAndTimeAndKeepsItsLighting
   camera.sun_elevation_deg = 60.0;
   const Picture camera_sun = draw();
   EXPECT_NE(camera_sun.rgba, sunset.rgba);
+
+  // API 7's weather: fog of 100 m visibility in a layer above the camera makes the picture nearly
+  // one grey (the sea beyond 30 m keeps under 40 % of its contrast, Koschmieder); a struct of
+  // version 6 (no weather fields) is taken, with clear air: the same picture as before.
+  lighting.cloud_cover = 1.0;
+  lighting.visibility_m = 100.0;
+  lighting.fog_top_m = 200.0;
+  ASSERT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_OK) << nearshore_last_error();
+  const Picture fog = draw();
+  const auto spread = [](const Picture& p) {  // the standard deviation of the green channel
+    double mean = p.mean(1), square = 0;
+    for (std::size_t i = 1; i < p.rgba.size(); i += 4) square += (p.rgba[i] - mean) * (p.rgba[i] - mean);
+    return std::sqrt(square / double(p.rgba.size() / 4));
+  };
+  EXPECT_LT(spread(fog), 0.5 * spread(camera_sun)) << "fog " << spread(fog) << ", clear " << spread(camera_sun);
+  lighting.visibility_m = -5.0;
+  EXPECT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(nearshore_last_error()).find("visibility_m"), std::string::npos) << nearshore_last_error();
+  lighting.struct_size = offsetof(nearshore_lighting, cloud_cover);
+  ASSERT_EQ(nearshore_renderer_set_lighting(renderer, &lighting), NEARSHORE_OK) << nearshore_last_error();
+  EXPECT_EQ(draw().rgba, camera_sun.rgba);
   nearshore_renderer_destroy(renderer);
   nearshore_sea_close(sea);
 }
