@@ -192,6 +192,9 @@ TEST(GpuTiming, PassTimesArriveFramesLaterWithoutFailingAFrame) {
       ASSERT_TRUE(times.measured) << window.gl_description();
     if (!times.measured) continue;
     EXPECT_GE(times.frames_behind, 1);
+    std::printf("%d samples: GPU ms of a frame %d behind:", samples, times.frames_behind);
+    for (int pass = 0; pass < kGpuPassCount; ++pass) std::printf(" %s %.3f", gpu_pass_name(GpuPass(pass)), times.ms[std::size_t(pass)]);
+    std::printf("\n");
     double sum = 0;
     for (int pass = 0; pass < kGpuPassCount; ++pass) {
       EXPECT_GE(times.ms[std::size_t(pass)], 0.0) << gpu_pass_name(GpuPass(pass));
