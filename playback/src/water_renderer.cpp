@@ -838,6 +838,7 @@ struct WaterRenderer::Impl {
     if (deep_foam.valid && dt == 0.0) return true;
     const float persistence = deep_foam.valid && dt > 0.0 ? float(std::exp(-dt / light.foam_decay_time_s)) : 0.f;
     const int next = 1 - deep_foam.current;
+    timer.begin_pass(GpuPass::deep_foam);
     glBindFramebuffer(GL_FRAMEBUFFER, deep_foam.framebuffer[next]);
     glViewport(0, 0, deep_foam.size, deep_foam.size);
     glDisable(GL_DEPTH_TEST);
@@ -854,6 +855,7 @@ struct WaterRenderer::Impl {
     glBindVertexArray(0);
     glEnable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    timer.end_pass();
     deep_foam.current = next;
     deep_foam.time_s = snapshot.display_time_s;
     deep_foam.valid = true;
@@ -903,9 +905,7 @@ struct WaterRenderer::Impl {
 
     const bool lit = options.colouring == SurfaceColouring::lit;
     bind_textures(bound);
-    if (lit && bound.cascade_count > 0) timer.begin_pass(GpuPass::deep_foam);
     const bool deep_foam_drawn = lit && update_deep_foam(snapshot, bound, light);
-    timer.end_pass();
     const int samples = sample_count();
     target.resize(width, height, GL_RGBA8, samples);
     statistics.msaa_samples = samples;

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
-#include <cstdio>
 #include <string>
 
 #include "nearshore/playback/water_renderer.hpp"
@@ -90,14 +90,17 @@ TEST(Antialiasing, DiscEdgePixelsTakeTheCoverageOfTheirSamples) {
   // sample (errors of random sign: the sum is far under that), 8R x 1/8 at four (measured: 2.5 px
   // off at one sample, 1.1 px at four).
   const double area = std::numbers::pi * r * r;
-  std::printf("disc R = %.1f px: in between %d at 1 sample, %d at 4; area %.1f px at 1, %.1f at 4, pi R^2 = %.1f\n", r,
-              single_between, multi_between, single_area, multi_area, area);
+  std::printf(
+      "disc R = %.1f px: in between %d at 1 sample, %d at 4; area %.1f px at 1, %.1f at 4, pi R^2 = %.1f\n",
+      r, single_between, multi_between, single_area, multi_area, area);
   EXPECT_NEAR(multi_area, area, 8.0 * r / 8.0);
   EXPECT_NEAR(single_area, area, 8.0 * r / 2.0);
   EXPECT_LE(std::abs(multi_area - area), std::abs(single_area - area) + 8.0 * r / 8.0);
 }
 
-double luminance_of(const std::array<float, 3>& p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+double luminance_of(const std::array<float, 3>& p) {
+  return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
 
 TEST(Antialiasing, LitHarbourAgreesAwayFromEdgesAndBlendsAtThem) {
   // The test site's land block (north-east, 4-5 m high) and the horizon seen from 3 m over the
@@ -143,7 +146,9 @@ TEST(Antialiasing, LitHarbourAgreesAwayFromEdgesAndBlendsAtThem) {
       if (std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2]}) <= 3.5f / 255) {
         ++smooth;
         double difference = 0;
-        for (int c = 0; c < 3; ++c) difference = std::max(difference, double(std::abs(images[1].get(x, y)[c] - images[0].get(x, y)[c])));
+        for (int c = 0; c < 3; ++c)
+          difference =
+              std::max(difference, double(std::abs(images[1].get(x, y)[c] - images[0].get(x, y)[c])));
         largest_smooth_difference = std::max(largest_smooth_difference, difference);
         smooth_off += difference > 3.5 / 255;
       } else if (high_l - low_l > 0.1) {
@@ -155,7 +160,8 @@ TEST(Antialiasing, LitHarbourAgreesAwayFromEdgesAndBlendsAtThem) {
       }
     }
   EXPECT_GT(smooth, width * height / 2) << "the scene is mostly smooth sky and sea";
-  EXPECT_EQ(smooth_off, 0) << "largest difference away from edges " << largest_smooth_difference * 255 << "/255";
+  EXPECT_EQ(smooth_off, 0) << "largest difference away from edges " << largest_smooth_difference * 255
+                           << "/255";
   ASSERT_GT(edges, 100) << "the land and the horizon give edges";
   // A hard edge seen at one sample: its neighbourhood pixels are all one side or the other, so the
   // in-between ones (shading varying along the edge, the reflection's bilinear texture) are a few;
@@ -166,8 +172,10 @@ TEST(Antialiasing, LitHarbourAgreesAwayFromEdgesAndBlendsAtThem) {
   // disc test above): 3/16 to 1/4 of the neighbourhoods.
   EXPECT_GE(between[1], 2 * between[0] + 10) << "edges " << edges;
   EXPECT_GE(between[1], edges / 6) << "edges " << edges << ", in between at 1 sample " << between[0];
-  std::printf("lit harbour: %d smooth (largest difference %.2f/255), %d edge neighbourhoods, in between %d at 1 sample, %d at 4\n",
-              smooth, largest_smooth_difference * 255, edges, between[0], between[1]);
+  std::printf(
+      "lit harbour: %d smooth (largest difference %.2f/255), %d edge neighbourhoods, in between %d at 1 "
+      "sample, %d at 4\n",
+      smooth, largest_smooth_difference * 255, edges, between[0], between[1]);
 }
 
 TEST(GpuTiming, PassTimesArriveFramesLaterWithoutFailingAFrame) {
@@ -193,7 +201,8 @@ TEST(GpuTiming, PassTimesArriveFramesLaterWithoutFailingAFrame) {
     if (!times.measured) continue;
     EXPECT_GE(times.frames_behind, 1);
     std::printf("%d samples: GPU ms of a frame %d behind:", samples, times.frames_behind);
-    for (int pass = 0; pass < kGpuPassCount; ++pass) std::printf(" %s %.3f", gpu_pass_name(GpuPass(pass)), times.ms[std::size_t(pass)]);
+    for (int pass = 0; pass < kGpuPassCount; ++pass)
+      std::printf(" %s %.3f", gpu_pass_name(GpuPass(pass)), times.ms[std::size_t(pass)]);
     std::printf("\n");
     double sum = 0;
     for (int pass = 0; pass < kGpuPassCount; ++pass) {
