@@ -196,8 +196,9 @@ TEST(GpuTiming, PassTimesArriveFramesLaterWithoutFailingAFrame) {
       times = renderer.last_frame().gpu;
     }
     // Mesa's llvmpipe has a timer (OpenGL 4.5 core); elsewhere a driver without one reports nothing.
-    if (window.gl_description().find("llvmpipe") != std::string::npos)
+    if (window.gl_description().find("llvmpipe") != std::string::npos) {
       ASSERT_TRUE(times.measured) << window.gl_description();
+    }
     if (!times.measured) continue;
     EXPECT_GE(times.frames_behind, 1);
     std::printf("%d samples: GPU ms of a frame %d behind:", samples, times.frames_behind);
@@ -214,7 +215,9 @@ TEST(GpuTiming, PassTimesArriveFramesLaterWithoutFailingAFrame) {
     // Passes the frame did not draw take no time: no layers (decals, hulls), no resolve at 1 sample.
     EXPECT_EQ(times.ms_of(GpuPass::decal_foam), 0.0);
     EXPECT_EQ(times.ms_of(GpuPass::meshes), 0.0);
-    if (samples == 1) EXPECT_EQ(times.ms_of(GpuPass::resolve), 0.0);
+    if (samples == 1) {
+      EXPECT_EQ(times.ms_of(GpuPass::resolve), 0.0);
+    }
   }
   // Timing off: no queries, nothing measured.
   RendererSettings settings;
