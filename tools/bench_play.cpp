@@ -6,11 +6,14 @@
 //  3. per grid: vertices drawn and frames/s on this machine's OpenGL at 640x360 and 1280x720, every
 //     grid set to the same screen-space error (--screen-error px);
 //  4. the lighting's cost (docs/lighting.md): frames/s at both sizes on the quadtree grid with the
-//     full lighting and with lighting off (a flat-coloured sea, no sky).
+//     full lighting and with lighting off (a flat-coloured sea, no sky);
+//  5. the GPU time of each pass (FrameStatistics::gpu, timer queries) and frames/s at 1280x720 and
+//     1920x1080, quadtree grid, full lighting, without anti-aliasing and with --msaa samples.
 // Without SEQ it writes a 1024 x 1024 synthetic sequence (irregular linear sea) to --work first.
 #include <time.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +57,7 @@ struct Options {
   fs::path sequence, work = "nearshore-bench-play";
   int size = 1024, frames = 40;
   double seconds = 20.0, screen_error_px = 4.0;
+  int msaa_samples = 4, draws = 5;
   long long queries = 2'000'000;
   bool json = false;
 };
@@ -70,6 +74,45 @@ fs::path synthetic_sequence(const Options& o) {
   loops::write_sea_sequence(folder, loops::irregular_sea(8.0, 24, 1.5, 20.0, 0.5 * std::numbers::pi, 3), geometry,
                             o.frames, 0.5, 0.0);
   return folder;
+}
+
+// Frames/s of `draws` renders of one view (each read back: llvmpipe renders on read, and a GPU
+// finishes the frame), after one to upload and build; and the GPU time per pass averaged over the
+// frames the timer queries report on (each render reports an earlier one: FrameStatistics::gpu).
+struct FrameCost {
+  double frames_per_s = 0;
+  bool gpu_timer = false;
+  int timed_frames = 0;
+  std::array<double, playback::kGpuPassCount> gpu_ms{};
+  double gpu_total_ms = 0;
+};
+
+FrameCost measure_frames(playback::WaterRenderer& renderer, const runtime::SurfaceSnapshot& snapshot,
+                         const playback::Camera& camera, const playback::DrawOptions& options, int width, int height,
+                         int draws) {
+  renderer.render(snapshot, camera, {}, width, height, options);  // uploads, builds the grid
+  (void)renderer.read_pixels();
+  FrameCost cost;
+  int timed = 0, last_reported = 0;  // frame 0: the warm-up (shader compilation, uploads), never counted
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < draws; ++k) {
+    renderer.render(snapshot, camera, {}, width, height, options);  // frame k + 1
+    (void)renderer.read_pixels();
+    // Each frame counted once: a render reports the newest earlier frame whose queries are done.
+    const playback::GpuPassTimes& gpu = renderer.last_frame().gpu;
+    const int reported = k + 1 - gpu.frames_behind;
+    if (!gpu.measured || reported <= last_reported) continue;
+    last_reported = reported;
+    ++timed;
+    for (int pass = 0; pass < playback::kGpuPassCount; ++pass) cost.gpu_ms[std::size_t(pass)] += gpu.ms[std::size_t(pass)];
+    cost.gpu_total_ms += gpu.total_ms;
+  }
+  cost.frames_per_s = draws / seconds_since(t0);
+  cost.gpu_timer = timed > 0;
+  cost.timed_frames = timed;
+  for (double& ms : cost.gpu_ms) ms /= std::max(timed, 1);
+  cost.gpu_total_ms /= std::max(timed, 1);
+  return cost;
 }
 
 void bench_play(const Options& o) {
@@ -160,21 +203,15 @@ void bench_play(const Options& o) {
       settings.radial.segment_count = static_cast<int>(std::lround(2.0 * std::numbers::pi * focal_px / o.screen_error_px));
       settings.quadtree.screen_error_px = o.screen_error_px;
       settings.projected.vertex_spacing_px = o.screen_error_px;
+      settings.msaa_samples = o.msaa_samples;
       playback::WaterRenderer renderer(settings);
       const auto site = engine.site();
       const playback::Camera camera = playback::Camera::overlooking_site(site->width_m, site->height_m);
-      renderer.render(engine.snapshot(), camera, {}, width, height);  // uploads, builds the grid
-      const int draws = 5;
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int k = 0; k < draws; ++k) {
-        renderer.render(engine.snapshot(), camera, {}, width, height);
-        (void)renderer.read_pixels();  // waits for the GPU (llvmpipe renders on read)
-      }
-      const double wall = seconds_since(t0);
+      const FrameCost cost = measure_frames(renderer, engine.snapshot(), camera, {}, width, height, o.draws);
       report["grids"].push_back({{"grid", std::string(playback::grid_kind_name(kind))},
                                  {"size", fmt::format("{}x{}", width, height)},
                                  {"vertices_drawn", renderer.last_frame().vertices_drawn},
-                                 {"frames_per_s", draws / wall}});
+                                 {"frames_per_s", cost.frames_per_s}});
     }
   }
   // 4. Lighting on and off, quadtree grid, the same view.
@@ -182,6 +219,7 @@ void bench_play(const Options& o) {
     for (const bool lit : {true, false}) {
       playback::RendererSettings settings;
       settings.quadtree.screen_error_px = o.screen_error_px;
+      settings.msaa_samples = o.msaa_samples;
       playback::WaterRenderer renderer(settings);
       const auto site = engine.site();
       const playback::Camera camera = playback::Camera::overlooking_site(site->width_m, site->height_m);
@@ -191,16 +229,33 @@ void bench_play(const Options& o) {
         options.flat_colour = {0.05f, 0.25f, 0.35f};
         options.sky = false;
       }
-      renderer.render(engine.snapshot(), camera, {}, width, height, options);
-      const int draws = 5;
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int k = 0; k < draws; ++k) {
-        renderer.render(engine.snapshot(), camera, {}, width, height, options);
-        (void)renderer.read_pixels();
-      }
-      const double wall = seconds_since(t0);
+      const FrameCost cost = measure_frames(renderer, engine.snapshot(), camera, options, width, height, o.draws);
       report["lighting"].push_back({{"lighting", lit ? "full" : "off"}, {"size", fmt::format("{}x{}", width, height)},
-                                    {"frames_per_s", draws / wall}});
+                                    {"frames_per_s", cost.frames_per_s}});
+    }
+  }
+  // 5. GPU time per pass, quadtree grid, full lighting, the same view; without and with MSAA.
+  std::vector<int> sample_counts = {1};
+  if (o.msaa_samples > 1) sample_counts.push_back(o.msaa_samples);
+  for (auto [width, height] : {std::pair{1280, 720}, std::pair{1920, 1080}}) {
+    for (const int samples : sample_counts) {
+      playback::RendererSettings settings;
+      settings.quadtree.screen_error_px = o.screen_error_px;
+      settings.msaa_samples = samples;
+      playback::WaterRenderer renderer(settings);
+      const auto site = engine.site();
+      const playback::Camera camera = playback::Camera::overlooking_site(site->width_m, site->height_m);
+      const FrameCost cost = measure_frames(renderer, engine.snapshot(), camera, {}, width, height, o.draws);
+      nlohmann::json gpu_ms = nlohmann::json::object();
+      for (int pass = 0; pass < playback::kGpuPassCount; ++pass)
+        gpu_ms[playback::gpu_pass_name(playback::GpuPass(pass))] = cost.gpu_ms[std::size_t(pass)];
+      gpu_ms["total"] = cost.gpu_total_ms;
+      report["passes"].push_back({{"size", fmt::format("{}x{}", width, height)},
+                                  {"msaa_samples", renderer.last_frame().msaa_samples},
+                                  {"frames_per_s", cost.frames_per_s},
+                                  {"gpu_timer", cost.gpu_timer},
+                                  {"gpu_timed_frames", cost.timed_frames},
+                                  {"gpu_ms", gpu_ms}});
     }
   }
   report["load_average_after"] = load_average();
@@ -234,13 +289,29 @@ void bench_play(const Options& o) {
   for (const auto& g : report["lighting"])
     std::printf("| %s | %s | %.2f |\n", g["size"].get<std::string>().c_str(), g["lighting"].get<std::string>().c_str(),
                 g["frames_per_s"].get<double>());
+  std::printf("GPU ms per pass (quadtree grid, full lighting; timer queries, mean over the frames reported)\n| size | msaa | fps | frames |");
+  for (int pass = 0; pass < playback::kGpuPassCount; ++pass) std::printf(" %s |", playback::gpu_pass_name(playback::GpuPass(pass)));
+  std::printf(" total |\n|---|---|---|---|");
+  for (int pass = 0; pass <= playback::kGpuPassCount; ++pass) std::printf("---|");
+  std::printf("\n");
+  for (const auto& g : report["passes"]) {
+    std::printf("| %s | %d | %.2f | %d |", g["size"].get<std::string>().c_str(), g["msaa_samples"].get<int>(),
+                g["frames_per_s"].get<double>(), g["gpu_timed_frames"].get<int>());
+    if (!g["gpu_timer"].get<bool>()) {
+      std::printf(" no GPU timer |\n");
+      continue;
+    }
+    for (int pass = 0; pass < playback::kGpuPassCount; ++pass)
+      std::printf(" %.2f |", g["gpu_ms"][playback::gpu_pass_name(playback::GpuPass(pass))].get<double>());
+    std::printf(" %.2f |\n", g["gpu_ms"]["total"].get<double>());
+  }
 }
 
 }  // namespace
 
 void add_bench_play(CLI::App& bench) {
   auto o = std::make_shared<Options>();
-  CLI::App* command = bench.add_subcommand("play", "Runtime cost: main-thread CPU per frame, decode, uploads, CPU queries, grids");
+  CLI::App* command = bench.add_subcommand("play", "Runtime cost: main-thread CPU per frame, decode, uploads, CPU queries, grids, GPU ms per pass");
   command->add_option("sequence", o->sequence, "Baked sequence (default: a synthetic --size x --size one in --work)");
   command->add_option("--size", o->size, "Grid side of the synthetic sequence (cells)")->capture_default_str()
       ->check(number_in(at_least(16), at_most(8192)));
@@ -252,6 +323,11 @@ void add_bench_play(CLI::App& bench) {
       ->check(number_in(at_least(65536), at_most(1e10)));
   command->add_option("--screen-error", o->screen_error_px, "Screen-space error every grid is set to (pixels)")
       ->capture_default_str()->check(number_in(at_least(0.5), at_most(64)));
+  command->add_option("--msaa", o->msaa_samples, "Anti-aliasing samples per pixel of the frame-rate sections (the pass "
+                                                  "section also runs at 1)")
+      ->capture_default_str()->check(number_in(at_least(1), at_most(32)));
+  command->add_option("--draws", o->draws, "Frames drawn per frame-rate measurement (after one to warm up)")
+      ->capture_default_str()->check(number_in(at_least(2), at_most(1000)));
   command->add_option("--work", o->work, "Scratch folder for the synthetic sequence (kept for the next run)")->capture_default_str();
   command->add_flag("--json", o->json, "Print the figures as JSON");
   set_example(*command, "xvfb-run -a nearshore bench play --seconds 20");

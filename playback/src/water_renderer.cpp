@@ -181,35 +181,171 @@ GLuint site_texture(GLenum internal_format, GLenum type, int columns, int rows, 
   return texture;
 }
 
-// An offscreen target: one colour attachment and a float depth buffer.
+// An offscreen target: one colour attachment and a float depth buffer, both with `samples`
+// samples per pixel (1: plain renderbuffers). A multisampled target is resolved (the samples of a
+// pixel averaged by glBlitFramebuffer, a box filter) into a single-sample colour renderbuffer,
+// `resolved_framebuffer`, which read_pixels() and blit_to_window() read: a multisampled buffer
+// cannot be read with glReadPixels nor blitted at another size.
 struct Target {
   GLuint framebuffer = 0, colour = 0, depth = 0;
-  int width = 0, height = 0;
-  void resize(int w, int h, GLenum colour_format) {
-    if (w == width && h == height && framebuffer) return;
+  GLuint resolved_framebuffer = 0, resolved_colour = 0;  // == framebuffer, colour when samples == 1
+  int width = 0, height = 0, samples = 0;
+  void resize(int w, int h, GLenum colour_format, int sample_count = 1) {
+    if (w == width && h == height && sample_count == samples && framebuffer) return;
     release();
+    const auto storage = [&](GLenum format) {
+      if (sample_count > 1)
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, sample_count, format, w, h);
+      else
+        glRenderbufferStorage(GL_RENDERBUFFER, format, w, h);
+    };
     glGenFramebuffers(1, &framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glGenRenderbuffers(1, &colour);
     glBindRenderbuffer(GL_RENDERBUFFER, colour);
-    glRenderbufferStorage(GL_RENDERBUFFER, colour_format, w, h);
+    storage(colour_format);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
     glGenRenderbuffers(1, &depth);
     glBindRenderbuffer(GL_RENDERBUFFER, depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, w, h);
+    storage(GL_DEPTH_COMPONENT32F);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error("water renderer", "the framebuffer object is incomplete", "update the GPU driver");
+      throw Error("water renderer", "the framebuffer object (" + std::to_string(sample_count) + " samples) is incomplete",
+                  sample_count > 1 ? "set RendererSettings::msaa_samples = 1" : "update the GPU driver");
+    if (sample_count > 1) {
+      glGenFramebuffers(1, &resolved_framebuffer);
+      glBindFramebuffer(GL_FRAMEBUFFER, resolved_framebuffer);
+      glGenRenderbuffers(1, &resolved_colour);
+      glBindRenderbuffer(GL_RENDERBUFFER, resolved_colour);
+      glRenderbufferStorage(GL_RENDERBUFFER, colour_format, w, h);
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolved_colour);
+      if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("water renderer", "the resolve framebuffer object is incomplete", "set RendererSettings::msaa_samples = 1");
+    } else {
+      resolved_framebuffer = framebuffer;
+      resolved_colour = colour;
+    }
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
     width = w;
     height = h;
+    samples = sample_count;
+  }
+  // The samples averaged into the single-sample colour buffer (nothing to do without MSAA).
+  void resolve() const {
+    if (resolved_framebuffer == framebuffer) return;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved_framebuffer);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
   void release() {
     if (!framebuffer) return;
+    if (resolved_framebuffer != framebuffer) {
+      glDeleteFramebuffers(1, &resolved_framebuffer);
+      glDeleteRenderbuffers(1, &resolved_colour);
+    }
     glDeleteFramebuffers(1, &framebuffer);
     glDeleteRenderbuffers(1, &colour);
     glDeleteRenderbuffers(1, &depth);
     *this = Target{};
   }
+};
+
+// GPU time per pass (GL_TIME_ELAPSED, core since OpenGL 3.3): one query object per pass in each of
+// kFrames sets used in turn, read kFrames - 1 frames later at the latest and only once the driver
+// says the result is there (GL_QUERY_RESULT_AVAILABLE), so the frame loop never waits for the GPU.
+// A set still pending when its turn comes again (the GPU more than kFrames - 1 frames behind) leaves
+// that frame untimed rather than wait. Timer queries cannot nest: the passes are timed one after the
+// other, and a frame is left untimed when the host has its own GL_TIME_ELAPSED query running.
+class PassTimer {
+ public:
+  static constexpr int kFrames = 4;
+  void release() {  // with the context current (WaterRenderer's destructor)
+    if (queries_[0][0]) glDeleteQueries(kFrames * kGpuPassCount, &queries_[0][0]);
+    *this = PassTimer{};
+  }
+  // Starts a frame: collects what the earlier frames' queries have finished (newest wins) into
+  // `times`, then opens this frame's set when it is free.
+  void begin_frame(bool enabled, GpuPassTimes& times) {
+    end_pass();  // a frame that threw between begin_pass and end_pass
+    ++frame_;
+    times = latest_;
+    times.frames_behind = latest_.measured ? int(frame_ - latest_frame_) : 0;
+    timing_ = false;
+    if (!enabled || !available()) return;
+    poll(times);
+    GLint running = 0;
+    glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &running);
+    Set& set = sets_[frame_ % kFrames];
+    if (running || set.pending) return;
+    set = Set{};
+    set.frame = frame_;
+    timing_ = true;
+  }
+  void begin_pass(GpuPass pass) {
+    if (!timing_) return;
+    end_pass();
+    Set& set = sets_[frame_ % kFrames];
+    glBeginQuery(GL_TIME_ELAPSED, queries_[frame_ % kFrames][int(pass)]);
+    set.used[int(pass)] = true;
+    set.pending = true;
+    active_ = true;
+  }
+  void end_pass() {
+    if (!active_) return;
+    glEndQuery(GL_TIME_ELAPSED);
+    active_ = false;
+  }
+
+ private:
+  struct Set {
+    bool pending = false;
+    bool used[kGpuPassCount] = {};
+    unsigned long long frame = 0;
+  };
+  // Whether the driver counts time at all (GL_QUERY_COUNTER_BITS 0: no timer; asked once).
+  bool available() {
+    if (checked_) return queries_[0][0] != 0;
+    checked_ = true;
+    GLint bits = 0;
+    glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
+    if (glGetError() != GL_NO_ERROR || bits <= 0) return false;
+    glGenQueries(kFrames * kGpuPassCount, &queries_[0][0]);
+    return true;
+  }
+  // Reads every pending set whose last-issued query has its result (the GPU finishes queries in
+  // order), oldest first, so `latest_` ends on the newest finished frame.
+  void poll(GpuPassTimes& times) {
+    for (int age = kFrames; age >= 1; --age) {  // age kFrames: the set this frame would reuse
+      const int slot = int((frame_ + kFrames - unsigned(age)) % kFrames);
+      Set& set = sets_[slot];
+      if (!set.pending) continue;
+      GLuint available_all = 1;
+      for (int pass = 0; pass < kGpuPassCount && available_all; ++pass)
+        if (set.used[pass]) glGetQueryObjectuiv(queries_[slot][pass], GL_QUERY_RESULT_AVAILABLE, &available_all);
+      if (!available_all) break;  // a later set cannot be done before this one
+      GpuPassTimes read;
+      read.measured = true;
+      for (int pass = 0; pass < kGpuPassCount; ++pass) {
+        if (!set.used[pass]) continue;
+        GLuint64 elapsed_ns = 0;
+        glGetQueryObjectui64v(queries_[slot][pass], GL_QUERY_RESULT, &elapsed_ns);
+        read.ms[std::size_t(pass)] = 1e-6 * double(elapsed_ns);
+        read.total_ms += read.ms[std::size_t(pass)];
+      }
+      set.pending = false;
+      latest_ = read;
+      latest_frame_ = set.frame;
+    }
+    times = latest_;
+    times.frames_behind = latest_.measured ? int(frame_ - latest_frame_) : 0;
+  }
+
+  GLuint queries_[kFrames][kGpuPassCount] = {};
+  Set sets_[kFrames];
+  GpuPassTimes latest_;
+  unsigned long long frame_ = 0, latest_frame_ = 0;
+  bool checked_ = false, timing_ = false, active_ = false;
 };
 
 // The local reflection: land and structures mirrored in still water, drawn as linear radiance
@@ -297,6 +433,8 @@ struct WaterRenderer::Impl {
   Target target, height_target;
   ReflectionTarget reflection;
   DeepFoamMap deep_foam;
+  PassTimer timer;
+  int max_samples = 0;  // GL_MAX_SAMPLES, asked on the first multisampled frame
 
   // The site (static for a sequence): uploaded when the snapshot's site changes.
   std::shared_ptr<const runtime::HarbourSite> site;
@@ -338,6 +476,18 @@ struct WaterRenderer::Impl {
     height_target.release();
     reflection.release();
     deep_foam.release();
+    timer.release();
+  }
+
+  // RendererSettings::msaa_samples within what the driver offers (GL_MAX_SAMPLES is at least 4
+  // in OpenGL 3.3 core; Mesa's llvmpipe offers 4).
+  int sample_count() {
+    if (settings.msaa_samples <= 1) return 1;
+    if (max_samples == 0) {
+      glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+      max_samples = std::max(max_samples, 1);
+    }
+    return std::min(settings.msaa_samples, max_samples);
   }
 
   void release_site() {
@@ -688,6 +838,7 @@ struct WaterRenderer::Impl {
     if (deep_foam.valid && dt == 0.0) return true;
     const float persistence = deep_foam.valid && dt > 0.0 ? float(std::exp(-dt / light.foam_decay_time_s)) : 0.f;
     const int next = 1 - deep_foam.current;
+    timer.begin_pass(GpuPass::deep_foam);
     glBindFramebuffer(GL_FRAMEBUFFER, deep_foam.framebuffer[next]);
     glViewport(0, 0, deep_foam.size, deep_foam.size);
     glDisable(GL_DEPTH_TEST);
@@ -704,6 +855,7 @@ struct WaterRenderer::Impl {
     glBindVertexArray(0);
     glEnable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    timer.end_pass();
     deep_foam.current = next;
     deep_foam.time_s = snapshot.display_time_s;
     deep_foam.valid = true;
@@ -723,12 +875,16 @@ struct WaterRenderer::Impl {
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width,
               int height, const DrawOptions& options, const SurfaceLayers* layers) {
     const KeyframeTextures::Bound bound = upload(snapshot);
+    timer.begin_frame(settings.gpu_timing, statistics.gpu);  // and what an earlier frame measured
     const LightingFrame light = prepare_lighting(lighting);
     prepare_patches(layers);
     // The wakes' foam map first: it draws into its own framebuffer.
+    if (layers && options.colouring == SurfaceColouring::lit && !layers->foam_decals.empty())
+      timer.begin_pass(GpuPass::decal_foam);
     const bool decal_foam = layers && options.colouring == SurfaceColouring::lit &&
                             layer_gpu.draw_decals(layers->foam_decals, decal_program, settings.decal_foam_texels,
                                                   settings.decal_foam_finest_m);
+    timer.end_pass();
     statistics.foam_decals = decal_foam ? int(layers->foam_decals.size()) : 0;
 
     // Clip distances: near from the eye's height; far where the grid ends.
@@ -750,7 +906,9 @@ struct WaterRenderer::Impl {
     const bool lit = options.colouring == SurfaceColouring::lit;
     bind_textures(bound);
     const bool deep_foam_drawn = lit && update_deep_foam(snapshot, bound, light);
-    target.resize(width, height, GL_RGBA8);
+    const int samples = sample_count();
+    target.resize(width, height, GL_RGBA8, samples);
+    statistics.msaa_samples = samples;
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
     glViewport(0, 0, width, height);
     glClearColor(options.background[0], options.background[1], options.background[2], 1.f);
@@ -763,6 +921,7 @@ struct WaterRenderer::Impl {
 
     // 1. Sky at the far plane.
     if (options.sky) {
+      timer.begin_pass(GpuPass::sky);
       glUseProgram(sky_program);
       set_lighting_uniforms(sky_program, light);
       set_uniform(sky_program, "u_inverse_view_projection", inverse(view.view_projection));
@@ -771,9 +930,11 @@ struct WaterRenderer::Impl {
       glDepthMask(GL_FALSE);
       glDrawArrays(GL_TRIANGLES, 0, 3);
       glDepthMask(GL_TRUE);
+      timer.end_pass();
     }
     // 2. Seabed, land and structures.
     if (site) {
+      timer.begin_pass(GpuPass::terrain);
       glUseProgram(terrain_program);
       set_lighting_uniforms(terrain_program, light);
       set_uniform(terrain_program, "u_view_projection", view.view_projection);
@@ -782,10 +943,12 @@ struct WaterRenderer::Impl {
       set_uniform(terrain_program, "u_mirror", 0);
       glBindVertexArray(terrain.vertex_array);
       glDrawElements(GL_TRIANGLES, terrain.index_count, GL_UNSIGNED_INT, nullptr);
+      timer.end_pass();
     }
     // 2b. Land and structures mirrored in still water (z -> -z), for the sea's local reflection.
     const bool reflect = site && settings.local_reflections && options.colouring == SurfaceColouring::lit;
     if (reflect) {
+      timer.begin_pass(GpuPass::reflection);
       const int downscale = std::max(settings.reflection_downscale, 1);
       reflection.resize(std::max(width / downscale, 1), std::max(height / downscale, 1));
       glBindFramebuffer(GL_FRAMEBUFFER, reflection.framebuffer);
@@ -803,6 +966,7 @@ struct WaterRenderer::Impl {
       glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
       glViewport(0, 0, width, height);
     }
+    timer.end_pass();
     glActiveTexture(GLenum(GL_TEXTURE0 + kReflection));
     glBindTexture(GL_TEXTURE_2D, reflect ? reflection.colour : 0);
     glActiveTexture(GLenum(GL_TEXTURE0 + kDecalFoam));
@@ -811,7 +975,11 @@ struct WaterRenderer::Impl {
     glBindTexture(GL_TEXTURE_2D, deep_foam_drawn ? deep_foam.texture[deep_foam.current] : 0);
     glActiveTexture(GL_TEXTURE0);
     // 2c. Hulls and other solids, before the sea: the sea's depth test then hides what is under water.
-    if (layers) draw_meshes(*layers, view, snapshot, bound, light, earth_radius);
+    if (layers && !layers->meshes.empty()) {
+      timer.begin_pass(GpuPass::meshes);
+      draw_meshes(*layers, view, snapshot, bound, light, earth_radius);
+      timer.end_pass();
+    }
     // 3. The sea surface, and its grid's edges over it when asked.
     QuadtreeSelection selection;
     ProjectedGridLayout layout;
@@ -829,6 +997,7 @@ struct WaterRenderer::Impl {
       glUniform4f(at(program, "u_decal_foam_rect_m"), rect[0], rect[1], rect[2], rect[3]);
     }
     glUniform2f(at(program, "u_viewport_px"), float(width), float(height));
+    timer.begin_pass(GpuPass::water);
     draw_water(program, kind, view, earth_radius, snapshot, bound, options, &selection, &layout, true);
     if (options.wireframe) {
       glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
@@ -838,6 +1007,12 @@ struct WaterRenderer::Impl {
       glDisable(GL_POLYGON_OFFSET_LINE);
       glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     }
+    // 4. One sample per pixel for read_pixels() and blit_to_window().
+    if (samples > 1) {
+      timer.begin_pass(GpuPass::resolve);
+      target.resolve();
+    }
+    timer.end_pass();
     if (GLenum error = glGetError(); error != GL_NO_ERROR)
       throw Error("water renderer", "OpenGL error " + std::to_string(error) + " while drawing", "report this bug");
   }
@@ -928,8 +1103,15 @@ Raster<float> WaterRenderer::render_height_map(const runtime::SurfaceSnapshot& s
   return impl_->render_height_map(snapshot, rectangle, columns, rows, layers);
 }
 
+const char* gpu_pass_name(GpuPass pass) {
+  static constexpr const char* kNames[kGpuPassCount] = {"decal_foam", "deep_foam", "sky",   "terrain",
+                                                        "reflection", "meshes",    "water", "resolve"};
+  const int k = static_cast<int>(pass);
+  return k >= 0 && k < kGpuPassCount ? kNames[k] : "unknown";
+}
+
 void WaterRenderer::blit_to_window(int window_width_px, int window_height_px) const {
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->target.framebuffer);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->target.resolved_framebuffer);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glBlitFramebuffer(0, 0, impl_->target.width, impl_->target.height, 0, 0, window_width_px, window_height_px,
                     GL_COLOR_BUFFER_BIT, GL_LINEAR);
@@ -939,7 +1121,7 @@ void WaterRenderer::blit_to_window(int window_width_px, int window_height_px) co
 Image WaterRenderer::read_pixels() const {
   const Target& t = impl_->target;
   std::vector<unsigned char> bytes(std::size_t(t.width) * t.height * 4);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.framebuffer);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.resolved_framebuffer);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
   Image image(t.width, t.height);

@@ -14,6 +14,7 @@
 //
 // Needs a current OpenGL 3.3+ context (GlWindow) on the calling thread; not thread-safe. Renders
 // into its own framebuffer object, so screenshots are exact even from a hidden window.
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -48,6 +49,14 @@ struct RendererSettings {
   /// decals' bounding box but never finer than decal_foam_finest_m per texel.
   int decal_foam_texels = 1024;
   double decal_foam_finest_m = 0.25;
+  /// Samples per pixel of the picture (multisample anti-aliasing): edges of land, structures,
+  /// hulls and the horizon are covered by this many samples and averaged when the frame is
+  /// resolved. Clamped to the driver's GL_MAX_SAMPLES; 1 (or less) = off. The height pass
+  /// (render_height_map) is always single-sample. docs/rendering.md ("Anti-aliasing") gives the cost.
+  int msaa_samples = 4;
+  /// GPU time per pass in FrameStatistics::gpu (timer queries, read back frames later without
+  /// waiting); false issues no queries.
+  bool gpu_timing = true;
 };
 
 /// How the sea is coloured: lit (the frame loop), or flat and by level of detail for tests and
@@ -62,6 +71,33 @@ struct DrawOptions {
   Rgb background = {0.f, 0.f, 0.f};
 };
 
+/// The passes of render(), in the order drawn, for the GPU time of each (FrameStatistics::gpu).
+enum class GpuPass {
+  decal_foam,  ///< the SurfaceLayers' foam decals into their foam map
+  deep_foam,   ///< one step of the deep water's persistent foam (seed 000 eq. 3.46)
+  sky,         ///< the sky at the far plane
+  terrain,     ///< seabed, land and structures
+  reflection,  ///< land, structures and hulls mirrored into the reflection texture
+  meshes,      ///< hulls and other solids
+  water,       ///< the sea surface on its grid (and the wireframe over it when asked)
+  resolve,     ///< the multisampled picture averaged into one sample per pixel
+};
+inline constexpr int kGpuPassCount = 8;
+/// "decal_foam", "deep_foam", "sky", "terrain", "reflection", "meshes", "water", "resolve".
+const char* gpu_pass_name(GpuPass pass);
+
+/// GPU time of each pass of one earlier frame (GL_TIME_ELAPSED). Timer queries are read back only
+/// once the GPU has finished them, so these belong to the frame `frames_behind` renders back
+/// (typically 1 or 2); `measured` is false (and every time 0) while no frame has finished yet, with
+/// RendererSettings::gpu_timing off, or when the driver has no timer (GL_QUERY_COUNTER_BITS 0).
+struct GpuPassTimes {
+  bool measured = false;
+  int frames_behind = 0;
+  std::array<double, kGpuPassCount> ms{};  ///< per GpuPass; 0 for a pass that frame did not draw
+  double total_ms = 0;                     ///< sum of the passes (uploads and the CPU are not in it)
+  double ms_of(GpuPass pass) const { return ms[static_cast<std::size_t>(pass)]; }
+};
+
 /// What the last render() did.
 struct FrameStatistics {
   std::size_t upload_bytes = 0;           ///< texture bytes sent (keyframes and, once, the site)
@@ -73,6 +109,8 @@ struct FrameStatistics {
   double near_m = 0, far_m = 0;           ///< the clip distances used
   std::size_t layer_upload_bytes = 0;     ///< height patches and meshes sent (SurfaceLayers)
   int height_patches = 0, foam_decals = 0, meshes = 0;  ///< the layers drawn
+  int msaa_samples = 1;                   ///< samples per pixel drawn (RendererSettings::msaa_samples, clamped)
+  GpuPassTimes gpu;                       ///< GPU ms per pass of an earlier frame (see GpuPassTimes)
 };
 
 /// A rectangle of the site frame, metres.
@@ -149,7 +187,8 @@ class WaterRenderer {
   /// = 0. For tests and documentation (it reads the GPU back): never in the frame loop.
   Raster<float> deep_foam_map() const;
 
-  /// Copies the last render to the window's back buffer (call GlWindow::present after).
+  /// Copies the last render (resolved to one sample per pixel) to the window's back buffer, scaled
+  /// to the window's size (call GlWindow::present after).
   void blit_to_window(int window_width_px, int window_height_px) const;
   /// The last render as an image (row 0 at the top).
   Image read_pixels() const;
