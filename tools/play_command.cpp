@@ -61,7 +61,7 @@ struct PlayOptions {
   double haze = -1, turbidity_ntu = 0.5, chlorophyll_mg_m3 = 0.3, cdom_per_m = -1, exposure = 1.0;
   std::string lighting_mode = "full";
   double detail_parallax = 1.0, foam_decay_s = 3.0;
-  int msaa_samples = 4;  // RendererSettings::msaa_samples
+  int msaa_samples = 0;  // RendererSettings::msaa_samples (0: automatic)
   bool panel = false, json = false, quiet = false;
   // A sea-state library (a folder with library.json): the state to start with, and scripted
   // switches "TIME:KEY=VALUE,..." crossfaded over crossfade_s.
@@ -614,8 +614,8 @@ void add_play_command(CLI::App& app) {
       ->check(number_in(at_least(0), at_most(60)))->capture_default_str();
   cmd->add_option("--lighting", o->lighting_mode, "full (docs/lighting.md) or off (a flat sea, no sky: the cost baseline)")
       ->check(CLI::IsMember({"full", "off"}))->capture_default_str();
-  cmd->add_option("--msaa", o->msaa_samples, "Anti-aliasing: samples per pixel (1: off; more than the GPU offers: its most)")
-      ->check(number_in(at_least(1), at_most(32)))->capture_default_str();
+  cmd->add_option("--msaa", o->msaa_samples, "Anti-aliasing: samples per pixel (1: off; more than the GPU offers: its most; 0: 4 on a GPU, 1 on a software renderer such as llvmpipe)")
+      ->check(number_in(at_least(0), at_most(32)))->capture_default_str();
   cmd->add_option("--frames", o->frames, "Headless: draw this many frames at 30 fps display time, then exit")
       ->check(number_in(at_least(1), at_most(1e6)));
   cmd->add_option("--screenshot", o->screenshot, "Headless: write the last frame to this PNG (hidden window)");

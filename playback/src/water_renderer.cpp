@@ -434,7 +434,8 @@ struct WaterRenderer::Impl {
   ReflectionTarget reflection;
   DeepFoamMap deep_foam;
   PassTimer timer;
-  int max_samples = 0;  // GL_MAX_SAMPLES, asked on the first multisampled frame
+  int max_samples = 0;  // GL_MAX_SAMPLES, asked on the first frame
+  bool software_rasteriser = false;  // GL_RENDERER names Mesa's llvmpipe, softpipe or swrast
 
   // The site (static for a sequence): uploaded when the snapshot's site changes.
   std::shared_ptr<const runtime::HarbourSite> site;
@@ -482,12 +483,16 @@ struct WaterRenderer::Impl {
   // RendererSettings::msaa_samples within what the driver offers (GL_MAX_SAMPLES is at least 4
   // in OpenGL 3.3 core; Mesa's llvmpipe offers 4).
   int sample_count() {
-    if (settings.msaa_samples <= 1) return 1;
     if (max_samples == 0) {
       glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
       max_samples = std::max(max_samples, 1);
+      const char* renderer_name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+      const std::string name = renderer_name ? renderer_name : "";
+      software_rasteriser = name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
+                            name.find("swrast") != std::string::npos;
     }
-    return std::min(settings.msaa_samples, max_samples);
+    const int asked = settings.msaa_samples > 0 ? settings.msaa_samples : software_rasteriser ? 1 : 4;
+    return asked <= 1 ? 1 : std::min(asked, max_samples);
   }
 
   void release_site() {

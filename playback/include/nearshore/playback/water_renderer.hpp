@@ -51,9 +51,11 @@ struct RendererSettings {
   double decal_foam_finest_m = 0.25;
   /// Samples per pixel of the picture (multisample anti-aliasing): edges of land, structures,
   /// hulls and the horizon are covered by this many samples and averaged when the frame is
-  /// resolved. Clamped to the driver's GL_MAX_SAMPLES; 1 (or less) = off. The height pass
-  /// (render_height_map) is always single-sample. docs/rendering.md ("Anti-aliasing") gives the cost.
-  int msaa_samples = 4;
+  /// resolved. Clamped to the driver's GL_MAX_SAMPLES; 1 = off; 0 (the default) = automatic: 4 on a
+  /// GPU, 1 on a software rasteriser (Mesa's llvmpipe, softpipe or swrast: GL_RENDERER), where 4
+  /// samples cost 2-6 times the frame. The height pass (render_height_map) is always
+  /// single-sample. docs/rendering.md ("Anti-aliasing") gives the cost.
+  int msaa_samples = 0;
   /// GPU time per pass in FrameStatistics::gpu (timer queries, read back frames later without
   /// waiting); false issues no queries.
   bool gpu_timing = true;
