@@ -102,6 +102,31 @@ float mean_fresnel_reflectance(float cos_view, float slope_variance) {
   return r + (1.0 - r) * pow(1.0 - clamp(cos_view, 0.0, 1.0), 5.0 * exp(-2.69 * sigma)) / (1.0 + 22.7 * pow(sigma, 1.5));
 }
 
+// ---- textures: value noise and the seabed (lighting.cpp, the same names) ------------------------
+// A smooth value noise in [0, 1] on a unit lattice (an integer hash per lattice point, smoothstep
+// between them): the "foam map" of seed 000 eq. (3.48) and section 4.1, which the paper lays over
+// the foam "to lower its continuity", made procedurally (no texture asset to ship or to tile), and
+// the seabed's patches.
+float lattice_hash(vec2 cell) {
+  uvec2 q = uvec2(ivec2(cell)) * uvec2(1597334677u, 3812015801u);
+  uint n = (q.x ^ q.y) * 1597334677u;
+  return float(n >> 8) * (1.0 / 16777215.0);
+}
+float value_noise(vec2 x) {
+  vec2 i = floor(x), f = fract(x), u = f * f * (3.0 - 2.0 * f);
+  return mix(mix(lattice_hash(i), lattice_hash(i + vec2(1.0, 0.0)), u.x),
+             mix(lattice_hash(i + vec2(0.0, 1.0)), lattice_hash(i + vec2(1.0, 1.0)), u.x), u.y);
+}
+// The seabed's texture, a factor of mean 1 on its albedo: patches 14 m and 5 m across between 0.7
+// and 1.3 (sand with darker mud or weed and cleaner, lighter sand).
+float seabed_texture(vec2 p) { return 0.7 + 0.6 * (0.65 * value_noise(p / 14.0) + 0.35 * value_noise(p / 5.0 + 7.1)); }
+// Where the view from the eye, refracted into the water at a surface point with normal n (Snell,
+// n = 1.333: seed 003 eq. 14), meets a flat seabed depth_m below: the seabed seen through the waves.
+vec2 refracted_seabed_point(vec2 p, vec3 n, vec3 to_eye, float depth_m) {
+  vec3 r = refract(-to_eye, n, 1.0 / kWaterIndex);
+  return p + r.xy * (max(depth_m, 0.0) / max(-r.z, 0.1));
+}
+
 // ---- surfaces -----------------------------------------------------------------------------
 vec3 shade_lambertian(vec3 normal, vec3 albedo) {
   return albedo * (u_sun_illuminance * max(dot(normal, u_sun_direction), 0.0) + u_sky_illuminance * 0.5 * (1.0 + normal.z)) / kPi;
@@ -126,7 +151,7 @@ float facet_slope_density(float a, float c, float extra) {
 }
 
 vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_slope_variance, float crest_thinness,
-                 vec4 local_reflection) {
+                 vec4 local_reflection, float seabed_scale) {
   vec3 l = u_sun_direction;
   float cos_v = max(dot(n, v), 1e-3);
   float extra = max(extra_slope_variance, 0.0);
@@ -153,7 +178,7 @@ vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_sl
   float cos_v_water = sqrt(max(1.0 - (1.0 - cos_v * cos_v) / n2, 0.0));
   float path_factor = 1.0 / 0.8 + 1.0 / max(cos_v_water, 0.1);
   vec3 seen = exp(-u_water_attenuation * path_factor * max(water_depth_m, 0.0));
-  vec3 reflectance = u_deep_reflectance * (1.0 - seen) + u_seabed_albedo * seen;
+  vec3 reflectance = u_deep_reflectance * (1.0 - seen) + seabed_scale * u_seabed_albedo * seen;
   // 4. thin crests lit from behind, eq. (3.38)
   float lobe = pow(clamp(0.5 * (cos_l - dot(v, l)), 0.0, 1.0), 5.0);
   float crest = u_translucency * clamp(crest_thinness, 0.0, 1.0) * lobe * 0.15;

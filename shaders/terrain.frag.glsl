@@ -9,7 +9,7 @@ void main() {
   vec3 normal = normalize(cross(dFdx(v_position_m), dFdy(v_position_m)));
   if (normal.z < 0.0) normal = -normal;
   float elevation = v_position_m.z;
-  vec3 sand = u_seabed_albedo;
+  vec3 sand = u_seabed_albedo * seabed_texture(v_position_m.xy);  // the same sand as seen through the water
   vec3 grass = vec3(0.16, 0.22, 0.10);
   vec3 rock = vec3(0.38, 0.37, 0.35);
   vec3 albedo = elevation < 1.0 ? sand : mix(sand, grass, clamp((elevation - 1.0) / 3.0, 0.0, 1.0));

@@ -36,19 +36,7 @@ vec3 lod_colour(float lod) {
   return mix(palette[level % 6], palette[(level + 1) % 6], fract(lod));
 }
 
-// A smooth value noise in [0, 1] on a unit lattice (an integer hash per lattice point, smoothstep
-// between them): the "foam map" of seed 000 eq. (3.48) and section 4.1, which the paper lays over
-// the foam "to lower its continuity", made procedurally (no texture asset to ship or to tile).
-float lattice_hash(vec2 cell) {
-  uvec2 q = uvec2(ivec2(cell)) * uvec2(1597334677u, 3812015801u);
-  uint n = (q.x ^ q.y) * 1597334677u;
-  return float(n >> 8) * (1.0 / 16777215.0);
-}
-float value_noise(vec2 x) {
-  vec2 i = floor(x), f = fract(x), u = f * f * (3.0 - 2.0 * f);
-  return mix(mix(lattice_hash(i), lattice_hash(i + vec2(1.0, 0.0)), u.x),
-             mix(lattice_hash(i + vec2(0.0, 1.0)), lattice_hash(i + vec2(1.0, 1.0)), u.x), u.y);
-}
+// value_noise (the foam map of seed 000 eq. 3.48): common.glsl
 // Foam's texture at p (m): two octaves of noise 6 m and 2.5 m across, sharpened into patches and
 // streaks; where one pixel spans the texture's detail it fades to its mean (0.5) so it never shimmers.
 float foam_texture(vec2 p, float footprint_m) {
@@ -209,6 +197,8 @@ void main() {
   // surface's slope (a planar reflection's usual distortion, 3 % of the picture per unit slope).
   vec4 local = vec4(0.0);
   if (u_has_reflection) local = texture(u_reflection, gl_FragCoord.xy / u_viewport_px + 0.03 * normal.xy);
-  vec3 radiance = shade_water(normal, to_eye, total_depth, foam, extra_variance, crest_thinness, local);
+  // The seabed seen through the water where the refracted view meets it (its texture there).
+  float seabed = seabed_texture(refracted_seabed_point(p, normal, to_eye, total_depth));
+  vec3 radiance = shade_water(normal, to_eye, total_depth, foam, extra_variance, crest_thinness, local, seabed);
   fragment_colour = vec4(to_display(through_air(radiance, u_eye_m, v_position_m)), 1.0);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "nearshore/core/error.hpp"
@@ -150,6 +151,38 @@ Radiance shade_lambertian(const LightingFrame& f, const Vector3& normal, const R
   return out;
 }
 
+namespace {
+double lattice_hash(double cell_x, double cell_y) {  // GLSL: uvec2(ivec2(cell)) * (...), wrapping
+  const std::uint32_t qx = std::uint32_t(std::int32_t(cell_x)) * 1597334677u, qy = std::uint32_t(std::int32_t(cell_y)) * 3812015801u;
+  const std::uint32_t n = (qx ^ qy) * 1597334677u;
+  return double(n >> 8) * (1.0 / 16777215.0);
+}
+}  // namespace
+
+double value_noise(double x, double y) {
+  const double ix = std::floor(x), iy = std::floor(y), fx = x - ix, fy = y - iy;
+  const double ux = fx * fx * (3.0 - 2.0 * fx), uy = fy * fy * (3.0 - 2.0 * fy);
+  const double south = lattice_hash(ix, iy) + (lattice_hash(ix + 1, iy) - lattice_hash(ix, iy)) * ux;
+  const double north = lattice_hash(ix, iy + 1) + (lattice_hash(ix + 1, iy + 1) - lattice_hash(ix, iy + 1)) * ux;
+  return south + (north - south) * uy;
+}
+
+double seabed_texture(double x_m, double y_m) {
+  return 0.7 + 0.6 * (0.65 * value_noise(x_m / 14.0, y_m / 14.0) + 0.35 * value_noise(x_m / 5.0 + 7.1, y_m / 5.0 + 7.1));
+}
+
+std::array<double, 2> refracted_seabed_point(double x_m, double y_m, const Vector3& n, const Vector3& to_eye, double depth_m) {
+  const double eta = 1.0 / kWaterRefractiveIndex;
+  const Vector3 i = {-to_eye[0], -to_eye[1], -to_eye[2]};
+  const double n_dot_i = dot(n, i);
+  const double k = 1.0 - eta * eta * (1.0 - n_dot_i * n_dot_i);
+  Vector3 r = {0, 0, 0};
+  if (k >= 0.0)
+    for (int c = 0; c < 3; ++c) r[std::size_t(c)] = eta * i[std::size_t(c)] - (eta * n_dot_i + std::sqrt(k)) * n[std::size_t(c)];
+  const double reach = std::max(depth_m, 0.0) / std::max(-r[2], 0.1);
+  return {x_m + r[0] * reach, y_m + r[1] * reach};
+}
+
 double slope_variance_along(const LightingFrame& f, const Vector3& direction, double extra) {
   const double horizontal = std::hypot(direction[0], direction[1]);
   double along = f.slope_variance_per_axis;
@@ -203,7 +236,9 @@ Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   const double n2 = kWaterRefractiveIndex * kWaterRefractiveIndex;
   const double cos_v_water = std::sqrt(std::max(1.0 - (1.0 - cos_v * cos_v) / n2, 0.0));
   const double path_factor = 1.0 / kDownwellingMeanCosine + 1.0 / std::max(cos_v_water, 0.1);
-  const Radiance reflectance = shallow_water_reflectance(f.water, f.seabed_albedo, s.water_depth_m, path_factor);
+  const Radiance seabed = {f.seabed_albedo[0] * s.seabed_albedo_scale, f.seabed_albedo[1] * s.seabed_albedo_scale,
+                           f.seabed_albedo[2] * s.seabed_albedo_scale};
+  const Radiance reflectance = shallow_water_reflectance(f.water, seabed, s.water_depth_m, path_factor);
   // 4. Thin crests lit from behind, eq. (3.38): (n.l + v.l)^5 mu, v the viewing direction (from
   //    the eye); halved so the lobe peaks at 1 looking straight into the sun through the crest.
   const double lobe = std::pow(std::clamp(0.5 * (cos_l - dot(v, l)), 0.0, 1.0), 5.0);

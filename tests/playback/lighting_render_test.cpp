@@ -86,6 +86,8 @@ TEST(LightingRender, ShaderMatchesTheCpuTwinOverATestPattern) {
           point.to_eye = {-ray[0], -ray[1], -ray[2]};
           const double row = std::clamp(py / options.spacing_m - 0.5, 0.0, double(options.rows - 1));
           point.water_depth_m = 12.0 - 9.0 * row / (options.rows - 1);
+          const auto bottom = playback::refracted_seabed_point(px, py, point.normal, point.to_eye, point.water_depth_m);
+          point.seabed_albedo_scale = playback::seabed_texture(bottom[0], bottom[1]);
           expected = playback::to_display(frame, playback::through_air(frame, playback::shade_water(frame, point), camera.eye_m,
                                                                        {px, py, 0.0}));
           ++compared_water;
@@ -387,6 +389,8 @@ TEST(LightingRender, DetailNormalsAndTheirParallaxMatchTheCpuTwin) {
         point.normal = normalized({-slope_x, -slope_y, 1.0});
         point.to_eye = to_eye;
         point.water_depth_m = 20.0 + plane_z;  // the renderer's open sea without a harbour
+        const auto bottom = playback::refracted_seabed_point(p[0], p[1], point.normal, to_eye, point.water_depth_m);
+        point.seabed_albedo_scale = playback::seabed_texture(bottom[0], bottom[1]);
         point.extra_slope_variance_per_axis = extra_variance;
         point.crest_thinness = std::clamp(plane_z / std::max(lighting.foam_onset_m, 0.1), 0.0, 1.0);
         const auto expected = playback::to_display(frame, playback::shade_water(frame, point));
@@ -476,6 +480,8 @@ TEST(LightingRender, ShelteredShortWavesMatchTheCpuTwin) {
       point.to_eye = normalized({camera.eye_m[0] - p[0], camera.eye_m[1] - p[1], camera.eye_m[2]});
       const double row = std::clamp(p[1] / options.spacing_m - 0.5, 0.0, double(options.rows - 1));
       point.water_depth_m = 12.0 - 9.0 * row / (options.rows - 1);
+      const auto bottom = playback::refracted_seabed_point(p[0], p[1], point.normal, point.to_eye, point.water_depth_m);
+      point.seabed_albedo_scale = playback::seabed_texture(bottom[0], bottom[1]);
       point.extra_slope_variance_per_axis = playback::cascade_variance_share(true, 1.0, k) * (1.0 - detail) * variance;
       const auto expected = playback::to_display(frame, playback::shade_water(frame, point));
       const auto pixel = image.get(x, y);

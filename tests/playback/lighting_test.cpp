@@ -495,3 +495,27 @@ TEST(Lighting, GlitterFacetsFollowCoxAndMunksEllipseAlongTheWind) {
   EXPECT_NEAR(playback::slope_variance_along(frame, crosswind, 0.0), frame.slope_variance_crosswind, 1e-12);
   EXPECT_NEAR(playback::slope_variance_along(frame, {0, 0, 1}, 0.0), frame.slope_variance_per_axis, 1e-12);
 }
+
+TEST(Lighting, TheSeabedIsSeenWhereTheRefractedViewMeetsItAndItsTextureAveragesOne) {
+  // Snell: a view 45 degrees from the vertical refracts to asin(sin 45 / 1.333) = 32.0 degrees, so
+  // a seabed 4 m down is met tan(32.0) x 4 = 2.50 m beyond the point, away from the eye; straight
+  // down it is met right below.
+  const double s = std::sqrt(0.5);
+  const auto bottom = playback::refracted_seabed_point(10.0, 20.0, {0, 0, 1}, {-s, 0, s}, 4.0);
+  EXPECT_NEAR(bottom[0], 10.0 + 4.0 * std::tan(std::asin(s / 1.333)), 1e-3);
+  EXPECT_NEAR(bottom[1], 20.0, 1e-12);
+  const auto below = playback::refracted_seabed_point(10.0, 20.0, {0, 0, 1}, {0, 0, 1}, 4.0);
+  EXPECT_NEAR(below[0], 10.0, 1e-12);
+  // The texture keeps the seabed's mean albedo (mean 1 over a wide area, within 2 %) and stays in
+  // 0.7 .. 1.3.
+  double sum = 0, lowest = 2, highest = 0;
+  int count = 0;
+  for (double x = 0; x < 2000; x += 1.7)
+    for (double y = 0; y < 2000; y += 1.9) {
+      const double t = playback::seabed_texture(x, y);
+      sum += t, ++count, lowest = std::min(lowest, t), highest = std::max(highest, t);
+    }
+  EXPECT_NEAR(sum / count, 1.0, 0.02);
+  EXPECT_GE(lowest, 0.7);
+  EXPECT_LE(highest, 1.3);
+}

@@ -69,6 +69,8 @@ TEST(WaterRenderer, FlatSeaSeenFromAboveMatchesTheCpuReference) {
   playback::SurfacePoint point;
   point.to_eye = to_eye;
   point.water_depth_m = depth;
+  const auto bottom = playback::refracted_seabed_point(x, y, point.normal, to_eye, depth);  // the seabed's texture there
+  point.seabed_albedo_scale = playback::seabed_texture(bottom[0], bottom[1]);
   const auto expected = playback::to_display(frame, playback::shade_water(frame, point));
   // 8-bit output: 2/255 for rounding plus llvmpipe's float32 vs the reference's double.
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(pixel[c], expected[c], 2.5 / 255) << "channel " << c << " on " << window.gl_description();
@@ -82,7 +84,11 @@ TEST(WaterRenderer, WavesLandAndSkyAllAppearInTheOverview) {
   for (int j = 0; j < 100; ++j)
     for (int i = 0; i < 120; ++i) eta(i, j) = 0.8f * std::sin(2 * M_PI * j * 5.0 / 40.0);  // 40 m waves
   const playback::Camera camera = playback::Camera::overlooking_site(harbour.geometry.width_m(), harbour.geometry.height_m());
-  renderer.render(snapshot_of(harbour, eta), camera, playback::Lighting{}, 320, 200);
+  // Muddy water (20 NTU) hides the seabed and its texture, so a flat sea's own variation is its
+  // smooth gradients alone.
+  playback::Lighting muddy;
+  muddy.water.turbidity_ntu = 20.0;
+  renderer.render(snapshot_of(harbour, eta), camera, muddy, 320, 200);
   const Image image = renderer.read_pixels();
   write_png(image, std::filesystem::path(NEARSHORE_BINARY_DIR) / "playback_overview_test.png");
   // The top rows are sky (bright, blue above red); somewhere below there is land (green above blue).
@@ -98,15 +104,15 @@ TEST(WaterRenderer, WavesLandAndSkyAllAppearInTheOverview) {
   EXPECT_GT(land_pixels, 100);
   // The waves modulate the shading of the water in the foreground: along a row and a column
   // there, the pixel-to-pixel variation is well above that of the same view of a flat sea (whose
-  // own variation is the 8-bit steps of its smooth gradient: the seabed shoaling under clear
-  // water and the view angle changing the Fresnel reflectance, docs/lighting.md).
+  // own variation is the 8-bit steps of its smooth gradient: the view angle changing the Fresnel
+  // reflectance, docs/lighting.md).
   const auto variation = [](const Image& picture) {
     double sum = 0;
     for (int x = 1; x < 320; ++x) sum += std::abs(picture.get(x, 190)[2] - picture.get(x - 1, 190)[2]);
     for (int y = 121; y < 200; ++y) sum += std::abs(picture.get(160, y)[2] - picture.get(160, y - 1)[2]);
     return sum;
   };
-  renderer.render(snapshot_of(harbour, Raster<float>(120, 100, 0.f)), camera, playback::Lighting{}, 320, 200);
+  renderer.render(snapshot_of(harbour, Raster<float>(120, 100, 0.f)), camera, muddy, 320, 200);
   const double flat = variation(renderer.read_pixels());
   EXPECT_GT(variation(image), 2.0 * flat + 0.1) << "flat sea: " << flat;
 }

@@ -129,7 +129,19 @@ struct SurfacePoint {
   /// radiance replaces the sky's in proportion to the coverage.
   Radiance local_reflection{};
   double local_reflection_coverage = 0.0;
+  /// The seabed's texture where the refracted view meets it (seabed_texture at
+  /// refracted_seabed_point): a factor on the seabed albedo.
+  double seabed_albedo_scale = 1.0;
 };
+
+/// Value noise in [0, 1] on a unit lattice (shaders/common.glsl value_noise, the same hash).
+double value_noise(double x, double y);
+/// The seabed's texture at site point (x, y): 0.7 + 0.6 (0.65 n(p / 14 m) + 0.35 n(p / 5 m + 7.1)),
+/// mean 1, patches 14 m and 5 m across (sand, darker mud or weed, cleaner sand).
+double seabed_texture(double x_m, double y_m);
+/// Where the view refracted at a surface point (x, y) with unit normal `normal` (Snell, n = 1.333;
+/// `to_eye` unit, towards the eye) meets a flat seabed `depth_m` below (GLSL refract's formula).
+std::array<double, 2> refracted_seabed_point(double x_m, double y_m, const Vector3& normal, const Vector3& to_eye, double depth_m);
 
 /// The slope variance (per axis) of the rough surface in the vertical plane of `direction` (its
 /// horizontal part against the wind), plus `extra_slope_variance` (isotropic): what Smith's
