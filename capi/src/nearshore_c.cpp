@@ -25,6 +25,7 @@
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/ocean/sea_state_beaufort.hpp"
+#include "nearshore/ocean/whitecap_coverage.hpp"
 #include "nearshore/playback/gl_loader.hpp"
 #include "nearshore/playback/lighting.hpp"
 #include "nearshore/playback/sun_position.hpp"
@@ -41,6 +42,10 @@ struct nearshore_renderer {
   nearshore::playback::Lighting lighting;
   bool sun_from_time = false;
   nearshore_fleet* fleet = nullptr;  // drawn with the sea (nearshore_renderer_set_fleet)
+  // The deep water's foam onset J_b for Monahan's whitecap coverage at the lighting's wind,
+  // measured on the deep keyframe drawn when the sea or the wind changes (as nearshore play does).
+  nearshore::ocean::WhitecapFoamOnset whitecaps;
+  double jacobian_foam_onset = nearshore::playback::Lighting{}.jacobian_foam_onset;
 };
 
 namespace nearshore::capi {
@@ -441,10 +446,16 @@ nearshore_status nearshore_renderer_draw(nearshore_renderer* renderer, const nea
       lighting.sun_azimuth_deg = camera->sun_azimuth_deg;
       lighting.sun_elevation_deg = camera->sun_elevation_deg;
     }
+    const nearshore::runtime::SurfaceSnapshot snapshot = renderer->sea->snapshot();
+    if (snapshot.deep_from)
+      if (const auto onset = renderer->whitecaps.update(snapshot.deep_from->cascades,
+                                                        snapshot.site ? snapshot.site->choppiness : 1.0, lighting.wind_speed_m_s))
+        renderer->jacobian_foam_onset = onset->jacobian_foam_onset;
+    lighting.jacobian_foam_onset = renderer->jacobian_foam_onset;
     renderer->renderer->stage_upcoming(renderer->sea->engine());
     const nearshore::playback::SurfaceLayers* layers =
         renderer->fleet ? &nearshore::capi::fleet_surface_layers(*renderer->fleet) : nullptr;
-    renderer->renderer->render(renderer->sea->snapshot(), view, lighting, width_px, height_px, {}, layers);
+    renderer->renderer->render(snapshot, view, lighting, width_px, height_px, {}, layers);
     renderer->renderer->blit_to_window(width_px, height_px);
     renderer->last_width_px = width_px;
     renderer->last_height_px = height_px;
