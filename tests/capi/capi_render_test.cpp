@@ -160,13 +160,8 @@ TEST(CApiLighting, WhitecapsFollowTheWindGiven) {
   constexpr int kWidth = 160, kHeight = 90;
   Window host(kWidth, kHeight);
   ASSERT_NE(host.window, nullptr) << "no OpenGL 3.3 context (run under xvfb-run)";
-  nearshore_sea_options options;
-  nearshore_sea_options_init(&options);
-  options.plan = NEARSHORE_PLAN_FRAME_ORDER;
-  options.beaufort_force = 8;
-  options.time_mode = NEARSHORE_TIME_LOCKSTEP;
-  nearshore_sea* sea = nullptr;
-  ASSERT_EQ(nearshore_sea_open(write_sequence("whitecaps").c_str(), &options, &sea), NEARSHORE_OK) << nearshore_last_error();
+  nearshore_sea* sea = open_in_frame_order(write_sequence("whitecaps"), 8);
+  ASSERT_NE(sea, nullptr);
   ASSERT_EQ(nearshore_sea_advance(sea, 1.0), NEARSHORE_OK) << nearshore_last_error();
   nearshore_renderer* renderer = nullptr;
   ASSERT_EQ(nearshore_renderer_create(sea, NEARSHORE_GRID_QUADTREE, proc_address, &renderer), NEARSHORE_OK)

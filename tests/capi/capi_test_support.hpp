@@ -61,11 +61,13 @@ inline fs::path write_sequence(const std::string& name, double amplitude_m = kAm
   return folder;
 }
 
-inline nearshore_sea* open_calm(const fs::path& folder) {
+/// The sequence in `folder` in frame order, lockstep, with a Beaufort `beaufort_force` sea beyond
+/// the harbour.
+inline nearshore_sea* open_in_frame_order(const fs::path& folder, int beaufort_force) {
   nearshore_sea_options options;
   nearshore_sea_options_init(&options);
   options.plan = NEARSHORE_PLAN_FRAME_ORDER;
-  options.beaufort_force = 0;  // a calm sea beyond the harbour: the queries see the frames alone
+  options.beaufort_force = beaufort_force;
   // Every advance shows the planned frames (made on the calling thread when the decoder is behind
   // on a loaded machine), so the tests may assert NEARSHORE_OK from each advance.
   options.time_mode = NEARSHORE_TIME_LOCKSTEP;
@@ -73,5 +75,8 @@ inline nearshore_sea* open_calm(const fs::path& folder) {
   EXPECT_EQ(nearshore_sea_open(folder.c_str(), &options, &sea), NEARSHORE_OK) << nearshore_last_error();
   return sea;
 }
+
+/// A calm sea beyond the harbour: the queries see the frames alone.
+inline nearshore_sea* open_calm(const fs::path& folder) { return open_in_frame_order(folder, 0); }
 
 }  // namespace nearshore::capi_test
