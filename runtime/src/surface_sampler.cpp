@@ -94,40 +94,61 @@ inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int
   return {w00 * g00.x + w10 * g10.x + w01 * g01.x + w11 * g11.x, w00 * g00.y + w10 * g10.y + w01 * g01.y + w11 * g11.y};
 }
 
-// Formula 4's hot loop on the query layout (surface_snapshot.hpp QueryTile): the four nodes of a
-// tap as {D_x, D_y, eta, 0} vectors, each keyframe's integers times its weighted scales, so one
-// bilinear in float4 gives D, eta and (from the same nodes) the gradient of D. GCC/Clang vector
-// extensions: SSE2 on any x86-64, NEON on ARM, no intrinsics.
+// Formula 4's hot loop on the query layout (surface_snapshot.hpp QueryTile): a tap's four nodes
+// as {D_x, D_y, eta, 0} vectors, each keyframe's integers times its weighted scales, so one
+// bilinear in float4 gives D, eta and (from the same nodes) the gradient of D. A row of the
+// padded tile holds (i0, j) and (i0 + 1, j) side by side: one 16-byte read and one conversion give
+// both. GCC/Clang vector extensions (SSE2 on any x86-64, AVX2 where the CPU has it, NEON on ARM),
+// no intrinsics; the arithmetic is the same on every path (no FMA contraction in ISO C++ mode),
+// so every CPU returns the same heights bit for bit.
+// The helpers pass 32-byte vectors by value: always inlined into the solve, so the ABI of such
+// calls without AVX (GCC's -Wpsabi note) never applies.
+#pragma GCC diagnostic ignored "-Wpsabi"
 typedef float Float4 __attribute__((vector_size(16)));
+typedef float Float8 __attribute__((vector_size(32)));
 typedef std::int16_t Short8 __attribute__((vector_size(16)));
-typedef std::int32_t Int4 __attribute__((vector_size(16)));
-typedef std::int64_t Long2 __attribute__((vector_size(16)));
-inline Float4 load_node(const std::int16_t* tile, std::size_t index) {
-  // Each int16 doubled into a 32-bit lane and shifted back arithmetically: the sign extension SSE2
-  // has no single instruction for (a plain conversion of the int16 vector compiles to scalar code).
-  // One 8-byte load into the low half of a register (a memcpy into a vector on the stack would be
-  // written in halves and read whole: a store-forwarding stall per node).
-  std::int64_t bits;
-  std::memcpy(&bits, tile + 4 * index, sizeof bits);
-  const Long2 wide = {bits, 0};
-  const Short8 node = reinterpret_cast<Short8>(wide);
-  const Short8 doubled = __builtin_shufflevector(node, node, 0, 0, 1, 1, 2, 2, 3, 3);
-  return __builtin_convertvector(reinterpret_cast<Int4>(doubled) >> 16, Float4);
+typedef std::int16_t Short16 __attribute__((vector_size(32)));
+typedef std::int32_t Int8 __attribute__((vector_size(32)));
+inline Float8 load_row(const std::int16_t* tile, std::size_t node) {
+  Short8 raw;
+  std::memcpy(&raw, tile + 4 * node, sizeof raw);
+  return __builtin_convertvector(__builtin_convertvector(raw, Int8), Float8);
 }
-inline Float4 load_weights(const float* w) {
-  Float4 v;
+inline Float8 load_weights(const float* w) {
+  Float8 v;
   std::memcpy(&v, w, sizeof v);
   return v;
 }
-// A cascade tap as the solve keeps it between its two sweeps (no initialisers: a block's array
-// of them is written before it is read, and zeroing it would cost more than a point's solve).
+inline Float4 low_half(Float8 v) { return __builtin_shufflevector(v, v, 0, 1, 2, 3); }
+inline Float4 high_half(Float8 v) { return __builtin_shufflevector(v, v, 4, 5, 6, 7); }
+// A cascade tap as the solve keeps it between its two sweeps: the padded tile's node indices of
+// (i0, j0) and (i0, j1), and the fractions (no initialisers: a block's array of them is written
+// before it is read, and zeroing it would cost more than a point's solve).
 struct BlockTap {
-  std::size_t i00, i10, i01, i11;
+  std::size_t row0, row1;
   float a, b;
 };
-inline BlockTap block_tap(double x_m, double y_m, double inverse_tile_length, int n) {
-  const Tap t = cascade_tap(x_m, y_m, inverse_tile_length, n);
-  return {t.i00, t.i10, t.i01, t.i11, static_cast<float>(t.a), static_cast<float>(t.b)};
+// Formula 2 split for the solve: (u, v) = frac(q / L) N + (p - q) N / L, the fraction of the
+// query point taken once in double, the solve's offset added per step; floor by truncation and a
+// correction (u may be negative), both axes in one packed double.
+typedef double Double2 __attribute__((vector_size(16)));
+typedef std::int32_t Int2 __attribute__((vector_size(8)));
+typedef std::int64_t Long2 __attribute__((vector_size(16)));
+inline BlockTap block_tap(Double2 uv, int n) {
+  const Int2 truncated = __builtin_convertvector(uv, Int2);
+  const Long2 went_up = uv < __builtin_convertvector(truncated, Double2);  // -1 where a negative u was rounded up
+  const Int2 floor_uv = truncated + __builtin_convertvector(went_up, Int2);
+  const Double2 fraction = uv - __builtin_convertvector(floor_uv, Double2);
+  const std::uint32_t mask = static_cast<std::uint32_t>(n) - 1, stride = static_cast<std::uint32_t>(n) + 1;
+  const std::uint32_t i0 = static_cast<std::uint32_t>(floor_uv[0]) & mask, j0 = static_cast<std::uint32_t>(floor_uv[1]) & mask;
+  return {std::size_t{j0} * stride + i0, std::size_t{(j0 + 1) & mask} * stride + i0, static_cast<float>(fraction[0]),
+          static_cast<float>(fraction[1])};
+}
+inline Double2 as_double2(SitePoint p) { return Double2{p.x_m, p.y_m}; }
+inline double texel_of_fraction(double p_m, double inverse_tile_length, int n) {
+  double cycles = p_m * inverse_tile_length;
+  cycles -= std::floor(cycles);
+  return cycles * n;
 }
 struct PackedSum {
   Float4 value = {0, 0, 0, 0}, d_dx = {0, 0, 0, 0}, d_dy = {0, 0, 0, 0};  // per metre
@@ -191,7 +212,7 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
       for (std::size_t c = 0; c < cascades_.size(); ++c) {
         const QueryTile& tile = keyframe.query_tiles[c];
         const std::size_t n = static_cast<std::size_t>(cascades_[c].n);
-        if (tile.grid_size != cascades_[c].n || tile.tile_length_m != cascades_[c].tile_length_m || tile.nodes.size() != 4 * n * n)
+        if (tile.grid_size != cascades_[c].n || tile.tile_length_m != cascades_[c].tile_length_m || tile.nodes.size() != 4 * (n + 1) * n)
           return false;
       }
       return true;
@@ -210,9 +231,10 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
       packed.texels_per_m = static_cast<float>(cascades_[c].n * cascades_[c].inverse_tile_length);
       packed.from = a.nodes.data();
       packed.to = b.nodes.data();
-      for (int k = 0; k < 4; ++k) {
-        packed.from_weight[k] = static_cast<float>((1.0 - f) * a.scale[k]);
-        packed.to_weight[k] = static_cast<float>(f * b.scale[k]);
+      packed.texels_per_m_d = cascades_[c].n * cascades_[c].inverse_tile_length;
+      for (int k = 0; k < 8; ++k) {  // the two nodes of a row read at once: the weights twice
+        packed.from_weight[k] = static_cast<float>((1.0 - f) * a.scale[k % 4]);
+        packed.to_weight[k] = static_cast<float>(f * b.scale[k % 4]);
       }
       packed_.push_back(packed);
     }
@@ -241,6 +263,8 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
     // maker's side the zone's end too.
     const HarbourSite& site = *s.site;
     const double fade = std::max(site.edge_fade_m, 0.0);
+    site_width_m_ = site.width_m;
+    site_height_m_ = site.height_m;
     full_x0_ = fade;
     full_x1_ = site.width_m - fade;
     full_y0_ = fade;
@@ -255,7 +279,7 @@ SurfaceSampler::SurfaceSampler(SurfaceSnapshot snapshot) : snapshot_(std::move(s
 }
 
 double SurfaceSampler::weight(double x_m, double y_m) const {
-  if (!has_harbour_) return 0.0;
+  if (!has_harbour_ || !in_site(x_m, y_m)) return 0.0;
   if (x_m > full_x0_ && x_m < full_x1_ && y_m > full_y0_ && y_m < full_y1_) return 1.0;
   return harbour_weight(*snapshot_.site, x_m, y_m);
 }
@@ -323,18 +347,40 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
   // points overlap (one point's solve is a dependent chain: alone it waits on every miss).
   for (int i = 0; i < count; ++i) out[i] = {q[i]};
   if (!has_deep_ || choppiness_ == 0.0) return;
+  solve_packed(q, count, out);
+}
+
+// The kernel of solve_block, compiled for the baseline x86-64 and for x86-64-v3 (AVX2), picked
+// once at load time by the CPU (the same arithmetic on both: the results do not depend on it).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
+void SurfaceSampler::solve_packed(const SitePoint* q, int count, Solution* out) const {
   const double lambda = choppiness_;
   const std::size_t cascade_count = packed_.size();
   const std::size_t stored = std::min<std::size_t>(cascade_count, kStoredTaps);
   SitePoint p[kSolveBlock];
   HarbourWeight w[kSolveBlock];
   BlockTap taps[kSolveBlock][kStoredTaps];
+  Double2 base[kSolveBlock][kStoredTaps];  // frac(q / L) N of each stored cascade
   int active[kSolveBlock];
   int active_count = 0;
   for (int i = 0; i < count; ++i) {
     p[i] = q[i];
+    for (std::size_t c = 0; c < stored; ++c) {
+      const PackedCascade& cascade = packed_[c];
+      base[i][c] = Double2{texel_of_fraction(q[i].x_m, cascade.inverse_tile_length, cascade.n),
+                           texel_of_fraction(q[i].y_m, cascade.inverse_tile_length, cascade.n)};
+    }
     active[active_count++] = i;
   }
+  const auto tap_of = [&](int i, std::size_t c) {
+    const PackedCascade& cascade = packed_[c];
+    if (c < stored) return block_tap(base[i][c] + (as_double2(p[i]) - as_double2(q[i])) * cascade.texels_per_m_d, cascade.n);
+    return block_tap(Double2{texel_of_fraction(p[i].x_m, cascade.inverse_tile_length, cascade.n),
+                             texel_of_fraction(p[i].y_m, cascade.inverse_tile_length, cascade.n)},
+                     cascade.n);
+  };
   for (int iteration = 0; iteration <= kDisplacementIterations && active_count > 0; ++iteration) {
     int kept = 0;
     for (int k = 0; k < active_count; ++k) {
@@ -346,7 +392,8 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
           out[i] = {q[i]};
           continue;
         }
-        w[i] = harbour_weight_and_gradient(*snapshot_.site, p[i].x_m, p[i].y_m);
+        // Off the site w = 0 (surface_snapshot.cpp site_ramps): no call for the open sea's points.
+        if (in_site(p[i].x_m, p[i].y_m)) w[i] = harbour_weight_and_gradient(*snapshot_.site, p[i].x_m, p[i].y_m);
         if (1.0 - w[i].weight <= 0.0) {
           out[i] = {q[i]};
           continue;
@@ -354,11 +401,11 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
       }
       for (std::size_t c = 0; c < stored; ++c) {
         const PackedCascade& cascade = packed_[c];
-        const BlockTap& t = taps[i][c] = block_tap(p[i].x_m, p[i].y_m, cascade.inverse_tile_length, cascade.n);
-        __builtin_prefetch(cascade.from + 4 * t.i00);
-        __builtin_prefetch(cascade.from + 4 * t.i11);
-        __builtin_prefetch(cascade.to + 4 * t.i00);
-        __builtin_prefetch(cascade.to + 4 * t.i11);
+        const BlockTap& t = taps[i][c] = tap_of(i, c);
+        __builtin_prefetch(cascade.from + 4 * t.row0);
+        __builtin_prefetch(cascade.from + 4 * t.row1);
+        __builtin_prefetch(cascade.to + 4 * t.row0);
+        __builtin_prefetch(cascade.to + 4 * t.row1);
       }
       active[kept++] = i;
     }
@@ -370,16 +417,18 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
       PackedSum sum;
       for (std::size_t c = 0; c < cascade_count; ++c) {
         const PackedCascade& cascade = packed_[c];
-        const BlockTap t = c < stored ? taps[i][c] : block_tap(p[i].x_m, p[i].y_m, cascade.inverse_tile_length, cascade.n);
-        const Float4 wf = load_weights(cascade.from_weight), wt = load_weights(cascade.to_weight);
-        const Float4 n00 = load_node(cascade.from, t.i00) * wf + load_node(cascade.to, t.i00) * wt;
-        const Float4 n10 = load_node(cascade.from, t.i10) * wf + load_node(cascade.to, t.i10) * wt;
-        const Float4 n01 = load_node(cascade.from, t.i01) * wf + load_node(cascade.to, t.i01) * wt;
-        const Float4 n11 = load_node(cascade.from, t.i11) * wf + load_node(cascade.to, t.i11) * wt;
-        const float a = t.a, b = t.b;
-        sum.value += (1.0f - b) * ((1.0f - a) * n00 + a * n10) + b * ((1.0f - a) * n01 + a * n11);
-        sum.d_dx += ((1.0f - b) * (n10 - n00) + b * (n11 - n01)) * cascade.texels_per_m;
-        sum.d_dy += ((1.0f - a) * (n01 - n00) + a * (n11 - n10)) * cascade.texels_per_m;
+        const BlockTap t = c < stored ? taps[i][c] : tap_of(i, c);
+        const Float8 wf = load_weights(cascade.from_weight), wt = load_weights(cascade.to_weight);
+        const Float8 south = load_row(cascade.from, t.row0) * wf + load_row(cascade.to, t.row0) * wt;  // (i0, j0), (i1, j0)
+        const Float8 north = load_row(cascade.from, t.row1) * wf + load_row(cascade.to, t.row1) * wt;  // (i0, j1), (i1, j1)
+        // Along y first, both columns at once: C = (c0 | c1) with c_k = (1 - b) n_k0 + b n_k1; then
+        // the value (1 - a) c0 + a c1 and d/dx = (c1 - c0) N / L; d/dy from the rows' difference.
+        const Float8 along_y = (1.0f - t.b) * south + t.b * north;
+        const Float8 rise = north - south;
+        const Float4 c0 = low_half(along_y), c1 = high_half(along_y);
+        sum.value += (1.0f - t.a) * c0 + t.a * c1;
+        sum.d_dx += (c1 - c0) * cascade.texels_per_m;
+        sum.d_dy += ((1.0f - t.a) * low_half(rise) + t.a * high_half(rise)) * cascade.texels_per_m;
       }
       const double fade = 1.0 - w[i].weight;
       const double dx = sum.value[0], dy = sum.value[1];

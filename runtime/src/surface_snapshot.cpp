@@ -4,6 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
+#include "nearshore/core/error.hpp"
+
 namespace nearshore::runtime {
 
 namespace {
@@ -95,7 +99,13 @@ void pack_query_tile(const ocean::DeepWaterFrame& frame, QueryTile& tile) {
     tile.scale[k] = largest / 32767.0f;
     inverse[k] = 1.0f / tile.scale[k];
   }
-  tile.nodes.resize(4 * nodes);  // keeps a pooled keyframe's allocation
+  // Rows of N + 1 nodes: node N repeats node 0 of its row (the tile is periodic), so the two nodes
+  // of a tap's row, (i0, j) and (i0 + 1, j), are always 16 bytes side by side: one load.
+  const std::size_t n = static_cast<std::size_t>(std::max(frame.grid_size, 0));
+  if (n * n != nodes || (displaced && frame.displacement_x_m.size() != nodes))
+    throw Error("query tile", fmt::format("a cascade of grid size {} holds {} nodes", frame.grid_size, nodes),
+                "give a deep-water frame whose channels hold grid_size^2 nodes");
+  tile.nodes.resize(4 * (n + 1) * n);  // keeps a pooled keyframe's allocation
   std::int16_t* out = tile.nodes.data();
   // Rounded to nearest (half away from 0), clamped against the 1-ulp overshoot of v / scale.
   // A NaN (a broken synthesis) becomes 0 rather than an undefined conversion.
@@ -104,21 +114,17 @@ void pack_query_tile(const ocean::DeepWaterFrame& frame, QueryTile& tile) {
     return static_cast<std::int16_t>(r == r ? std::clamp(r + (r >= 0.0f ? 0.5f : -0.5f), -32767.0f, 32767.0f) : 0.0f);
   };
   const float* eta = channels[2];
-  if (displaced) {
-    const float* dx = channels[0];
-    const float* dy = channels[1];
-    for (std::size_t i = 0; i < nodes; ++i) {
-      out[4 * i + 0] = quantise(dx[i], inverse[0]);
-      out[4 * i + 1] = quantise(dy[i], inverse[1]);
-      out[4 * i + 2] = quantise(eta[i], inverse[2]);
-      out[4 * i + 3] = 0;
+  const float* dx = channels[0];
+  const float* dy = channels[1];
+  for (std::size_t row = 0; row < n; ++row)
+    for (std::size_t column = 0; column <= n; ++column) {
+      const std::size_t i = row * n + (column == n ? 0 : column);
+      std::int16_t* node = out + 4 * (row * (n + 1) + column);
+      node[0] = displaced ? quantise(dx[i], inverse[0]) : std::int16_t{0};
+      node[1] = displaced ? quantise(dy[i], inverse[1]) : std::int16_t{0};
+      node[2] = quantise(eta[i], inverse[2]);
+      node[3] = 0;
     }
-  } else {
-    for (std::size_t i = 0; i < nodes; ++i) {
-      out[4 * i + 0] = out[4 * i + 1] = out[4 * i + 3] = 0;
-      out[4 * i + 2] = quantise(eta[i], inverse[2]);
-    }
-  }
 }
 
 void pack_query_tiles(DeepWaterKeyframe& keyframe) {

@@ -175,8 +175,12 @@ class SurfaceSampler {
   bool in_full_box(double x_m, double y_m) const {
     return has_harbour_ && x_m > full_x0_ && x_m < full_x1_ && y_m > full_y0_ && y_m < full_y1_;
   }
+  bool in_site(double x_m, double y_m) const {
+    return x_m >= 0.0 && y_m >= 0.0 && x_m <= site_width_m_ && y_m <= site_height_m_;
+  }
   // out[i] for q[i], i < count <= kSolveBlock, the points iterated side by side.
   void solve_block(const SitePoint* q, int count, Solution* out) const;
+  void solve_packed(const SitePoint* q, int count, Solution* out) const;  // solve_block past its early outs
   Solution solve(double x_m, double y_m) const;
   double elevation_at_solution(const Solution& solution) const;
   double elevation_at_lattice(SitePoint p) const;
@@ -191,6 +195,7 @@ class SurfaceSampler {
   HermiteWeights hermite_;
   // Where w = 1 exactly (beyond the maker's zone and every edge fade): no ramp to evaluate.
   double full_x0_ = 0.0, full_x1_ = -1.0, full_y0_ = 0.0, full_y1_ = -1.0;
+  double site_width_m_ = 0.0, site_height_m_ = 0.0;  // the rectangle off which w = 0
   Raster2 eta_, flux_x_, flux_y_, eta_rate_;  // eta_rate_: both null unless both keyframes have rates
   const float* depth_ = nullptr;
   const std::uint8_t* land_ = nullptr;
@@ -201,9 +206,11 @@ class SurfaceSampler {
     int n = 0;
     double inverse_tile_length = 0.0;
     float texels_per_m = 0.0f;  // N / L
+    double texels_per_m_d = 0.0;
     const std::int16_t* from = nullptr;
     const std::int16_t* to = nullptr;
-    float from_weight[4] = {0, 0, 0, 0}, to_weight[4] = {0, 0, 0, 0};
+    // {D_x, D_y, eta, 0} twice: the weights of a row's two nodes, read at once
+    float from_weight[8] = {0, 0, 0, 0, 0, 0, 0, 0}, to_weight[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   };
   std::vector<PackedCascade> packed_;
   std::vector<QueryTile> own_tiles_;  // only for keyframes that came without (valid) query tiles

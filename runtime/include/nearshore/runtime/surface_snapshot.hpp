@@ -62,12 +62,13 @@ struct HarbourKeyframe {
 /// max |value| / 32767 of the channel over the tile. 8 bytes a node where the three float channels
 /// are 12 bytes in three places: a tap reads 2 cache lines instead of 6 and one float4 bilinear
 /// gives all three. Rounding moves a value by at most scale / 2 (15 micrometres on a 1 m wave;
-/// the bound surface_sampler.hpp adds to its tolerance).
+/// the bound surface_sampler.hpp adds to its tolerance). Each row holds N + 1 nodes, the last a copy
+/// of the row's first (the tile is periodic), so a tap's two nodes along x are one 16-byte read.
 struct QueryTile {
   int grid_size = 0;
   double tile_length_m = 0.0;
   float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};  ///< metres per unit of {D_x, D_y, eta, 0}
-  std::vector<std::int16_t> nodes;            ///< 4 per node, row-major like the cascade's channels
+  std::vector<std::int16_t> nodes;            ///< 4 per node, N rows of N + 1 nodes (south row first)
 };
 
 /// `tile` := the query layout of one cascade (above; its allocation reused). A frame without
