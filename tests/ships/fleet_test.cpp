@@ -301,6 +301,14 @@ TEST(Scenario, BadFilesAndShipsAreClearErrorsNamingTheFileAndTheShip) {
   m = error_of([&] { read_scenario(write("key.toml", "[[ship]]\nname = \"A\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\nspeed_knots = 3\n")); });
   EXPECT_NE(m.find("speed_knots"), std::string::npos) << m;
 
+  // restricted_water (squat and shallow-water resistance) is read as a boolean, and nothing else.
+  const std::string restricted = "[[ship]]\nname = \"A\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\n";
+  EXPECT_FALSE(read_scenario(write("restricted.toml", restricted + "restricted_water = false\n")).front().restricted_water);
+  EXPECT_TRUE(read_scenario(write("default.toml", restricted)).front().restricted_water);
+  m = error_of([&] { read_scenario(write("restricted_bad.toml", restricted + "restricted_water = 1\n")); });
+  EXPECT_NE(m.find("restricted_bad.toml"), std::string::npos) << m;
+  EXPECT_NE(m.find("restricted_water"), std::string::npos) << m;
+
   const std::string sinks =
       "[[ship]]\nname = \"Fine\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\n"
       "[[ship]]\nname = \"Lead\"\nhull = \"tug\"\nmass_kg = 5e6\nposition_m = [500, 300]\n";

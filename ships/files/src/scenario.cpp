@@ -151,7 +151,7 @@ ShipDefinition read_ship(const fs::path& file, const toml::table& table, int num
     d.dispersive_wake = *on;  // the Kelvin layer (dispersive_wake.hpp), chosen by Fr_d (ship_fleet.hpp)
   }
   if (const toml::node* restricted = table.get("restricted_water")) {
-    const auto on = restricted->value<bool>();
+    const auto on = restricted->value_exact<bool>();  // not value<bool>(), which takes 1 for true
     if (!on) t.fail("restricted_water", "must be true or false", "write restricted_water = false");
     d.restricted_water = *on;  // squat and shallow-water resistance (restricted_water.hpp)
   }
