@@ -112,6 +112,45 @@ Load still_water_pressure(const HullSamples& samples, const Eigen::Vector3d& g_b
   return load;
 }
 
+// Area (m^2) of the hull's section by the plane x = x_m below the waterline z = waterline_z_m,
+// exactly from the mesh: the plane cuts the closed oriented surface in closed loops, each
+// triangle's piece of loop oriented along e_x x n, and Green's theorem gives the area as the
+// integral of y dz around the part of the loops below the waterline (the waterline chord adds
+// nothing: dz = 0 along it).
+double section_area_m2(const HullMesh& mesh, double x_m, double waterline_z_m) {
+  double sum = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.vertices_m[t[0]], b = mesh.vertices_m[t[1]], c = mesh.vertices_m[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.squaredNorm() == 0.0) continue;
+    Eigen::Vector2d ends[2];
+    int count = 0;
+    const Eigen::Vector3d v[3] = {a, b, c};
+    for (int k = 0; k < 3 && count < 2; ++k) {
+      const Eigen::Vector3d& p = v[k];
+      const Eigen::Vector3d& q = v[(k + 1) % 3];
+      const double dp = p.x() - x_m, dq = q.x() - x_m;
+      if ((dp < 0.0 && dq >= 0.0) || (dp >= 0.0 && dq < 0.0)) {
+        const Eigen::Vector3d r = p + (dp / (dp - dq)) * (q - p);
+        ends[count++] = {r.y(), r.z()};
+      }
+    }
+    if (count < 2) continue;
+    Eigen::Vector2d p = ends[0], q = ends[1];
+    if ((q - p).dot(Eigen::Vector2d(-n.z(), n.y())) < 0.0) std::swap(p, q);
+    if (p.y() > waterline_z_m && q.y() > waterline_z_m) continue;
+    // Clip to z <= waterline (the second coordinate is z).
+    auto clip = [&](Eigen::Vector2d& out, const Eigen::Vector2d& other) {
+      const double s = (waterline_z_m - other.y()) / (out.y() - other.y());
+      out = other + s * (out - other);
+    };
+    if (p.y() > waterline_z_m) clip(p, q);
+    if (q.y() > waterline_z_m) clip(q, p);
+    sum += 0.5 * (p.x() + q.x()) * (q.y() - p.y());
+  }
+  return std::abs(sum);
+}
+
 }  // namespace
 
 ShipParticulars particulars_for_hull(const std::string& ship_name, const HullMesh& mesh, const HullSamples& samples,
@@ -178,6 +217,38 @@ ShipParticulars particulars_for_hull(const std::string& ship_name, const HullMes
   bwl = std::max(bwl, 1e-3);
   p.design_wetted_area_m2 = std::max(wetted, 1e-6);
 
+  // 3b. Restricted water (restricted_water.hpp): Lpp as the waterline length, Cb on it, the
+  //     midship section, the waterplane and its centroid (the x-moment of the displaced volume
+  //     differenced across the waterline, as the waterplane area above).
+  auto displaced_moment_x = [&](double z_w) {
+    double m = 0.0;
+    for (std::size_t i = 0; i < samples.size(); ++i)
+      if (samples.position_m[i].z() < z_w)
+        m += (z_w - samples.position_m[i].z()) * (-samples.normal[i].z()) * samples.area_m2[i] * samples.position_m[i].x();
+    return m;
+  };
+  p.waterplane_area_m2 = std::max(waterplane_m2, 0.0);
+  p.flotation_centre_x_m =
+      waterplane_m2 > 0.0 ? (displaced_moment_x(waterline_z + dz) - displaced_moment_x(waterline_z - dz)) / (2 * dz) / waterplane_m2
+                          : p.hull_centre_m.x();
+  //     The waterline's length and breadth from the pieces' corners below it (the centroids above
+  //     fall half a piece short of the ends).
+  double pp_low = 1e300, pp_high = -1e300, beam_wl = 0.0;
+  for (const auto& corners : samples.corner_m)
+    for (const auto& c : corners) {
+      if (c.z() > waterline_z) continue;
+      pp_low = std::min(pp_low, c.x());
+      pp_high = std::max(pp_high, c.x());
+      beam_wl = std::max(beam_wl, 2.0 * std::abs(c.y() - p.hull_centre_m.y()));
+    }
+  const double lpp = std::max(pp_high - pp_low, 1e-3);
+  beam_wl = std::max(beam_wl, 1e-3);
+  p.squat.length_pp_m = lpp;
+  p.squat.draft_m = draft;
+  p.squat.displaced_volume_m3 = volume;
+  p.squat.block_coefficient = volume / (lpp * beam_wl * draft);
+  p.midship_area_m2 = section_area_m2(mesh, 0.5 * (pp_low + pp_high), waterline_z);
+
   // 4. Added masses: flat-plate strip values at the free surface (high-frequency limit).
   p.added_mass_kg = {0.05 * p.mass_kg, rho * kPi * draft * draft * lwl / 2.0, rho * kPi * bwl * bwl * lwl / 8.0};
   p.added_inertia_kg_m2 = {0.1 * p.inertia_kg_m2(0, 0), p.added_mass_kg.z() * lwl * lwl / 12.0,
@@ -198,6 +269,7 @@ ShipParticulars particulars_for_hull(const std::string& ship_name, const HullMes
   };
   const double roll_stiffness = stiffness(Eigen::Vector3d::UnitX(), 0);
   const double pitch_stiffness = stiffness(Eigen::Vector3d::UnitY(), 1);
+  p.pitch_stiffness_N_m_rad = pitch_stiffness;
   const double heave_stiffness = rho * g * waterplane_m2;
   const double zeta = 0.05;  // radiation damping, fraction of critical
   // Surge, sway and yaw have no restoring force: a linear (laminar, low-speed) damping with a 120 s
@@ -316,6 +388,7 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   BodyReport report;
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
   const double bed_stiffness = kSeabedStiffnessRatio * rho * g;
+  double bottom_weight = 0.0, bottom_depth = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& arm = world_arm_m_[i];
     const double z = state_.position_m.z() + arm.z();
@@ -342,6 +415,13 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
     }
     if (environment.seabed != nullptr) {
       const double bed_z = -environment.seabed->depth_m(query_points_[i].x_m, query_points_[i].y_m);
+      // The depth under the hull's bottom for squat and the shallow-water resistance: the bed's
+      // depth below still water, weighted by the wet bottom's horizontal projection.
+      const double bottom = samples_.area_m2[i] * std::max(0.0, -(rotation * samples_.normal[i]).z());
+      if (bottom > 0.0 && elevations_m_[i] > z && std::isfinite(bed_z)) {
+        bottom_weight += bottom;
+        bottom_depth += bottom * -bed_z;
+      }
       const double penetration = bed_z - z;
       if (penetration > 0.0) {
         const Eigen::Vector3d point_velocity = state_.velocity_m_s + state_.angular_velocity_rad_s.cross(arm);
@@ -410,9 +490,36 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   }
   const Eigen::Vector3d v_body = rotation.transpose() * (state_.velocity_m_s - current);
   const Eigen::Vector3d w_body = rotation.transpose() * state_.angular_velocity_rad_s;
+  // 4a. Restricted water (restricted_water.hpp) over the mean depth under the hull's bottom.
+  report.depth_under_hull_m = bottom_weight > 0.0 ? bottom_depth / bottom_weight : std::nan("");
+  Eigen::Vector3d drag_velocity = v_body;  // surge at Lackenby's equivalent deep-water speed
+  if (bottom_weight > 0.0) {
+    const double depth = report.depth_under_hull_m;
+    if (p.midship_area_m2 > 0.0) {
+      const double deep = deep_water_equivalent_speed_m_s(p.midship_area_m2, depth, p.squat.draft_m, v_body.x(), g);
+      drag_velocity.x() = std::copysign(deep, v_body.x());
+      report.deep_water_equivalent_speed_m_s = deep;
+    }
+    // Squat: the return flow's pressure deficit, as the loads the hull's hydrostatics balance at
+    // Tuck's sinkage S_m (rho g A_wp S_m down at the centre of flotation, where it sinks without
+    // trimming) and at the trim theta (a couple K_pitch theta, bow down for theta > 0: +y body).
+    // Faded out as the hull leaves the water (no return flow round a hull in the air).
+    report.squat = squat(p.squat, v_body.x(), depth, g);
+    const double afloat = std::min(1.0, 2.0 * wet_fraction);
+    if (afloat > 0.0 && (report.squat.midship_sinkage_m != 0.0 || report.squat.trim_rad != 0.0)) {
+      const Eigen::Vector3d down =
+          Eigen::Vector3d(0.0, 0.0, -afloat * rho * g * p.waterplane_area_m2 * report.squat.midship_sinkage_m);
+      const Eigen::Vector3d flotation_arm =
+          rotation * (Eigen::Vector3d(p.flotation_centre_x_m, p.centre_of_gravity_m.y(), p.centre_of_gravity_m.z()) -
+                      p.centre_of_gravity_m);
+      force += down;
+      torque += flotation_arm.cross(down);
+      torque += rotation * Eigen::Vector3d(0.0, afloat * p.pitch_stiffness_N_m_rad * report.squat.trim_rad, 0.0);
+    }
+  }
   const Eigen::Vector3d drag_body =
-      -wet_fraction * (p.linear_damping_N_s_m.cwiseProduct(v_body) +
-                       p.quadratic_drag_N_s2_m2.cwiseProduct(v_body.cwiseAbs()).cwiseProduct(v_body));
+      -wet_fraction * (p.linear_damping_N_s_m.cwiseProduct(drag_velocity) +
+                       p.quadratic_drag_N_s2_m2.cwiseProduct(drag_velocity.cwiseAbs()).cwiseProduct(drag_velocity));
   const Eigen::Vector3d drag_moment_body =
       -wet_fraction * (p.linear_damping_N_m_s.cwiseProduct(w_body) +
                        p.quadratic_drag_N_m_s2.cwiseProduct(w_body.cwiseAbs()).cwiseProduct(w_body));

@@ -195,6 +195,10 @@ std::size_t ShipFleet::add_ship(const ShipDefinition& d) {
   HullLoading loading = d.loading;
   loading.water = options_.water;
   ShipParticulars particulars = particulars_for_hull(subject, d.hull, samples, loading);
+  if (!d.restricted_water) {  // no squat, no shallow-water resistance (ship_body.hpp)
+    particulars.squat = {};
+    particulars.midship_area_m2 = 0.0;
+  }
   // 2. The loading floats the hull at a draft a ship has (limits::kMinDraftFractionOfDepth).
   if (particulars.design_draft_m < limits::kMinDraftFractionOfDepth * particulars.depth_m) {
     const double half_depth_kg =

@@ -13,6 +13,7 @@
 #include "nearshore/ships/generic_hulls.hpp"
 #include "nearshore/ships/scenario.hpp"
 #include "nearshore/ships/ship_fleet.hpp"
+#include "nearshore/ships/restricted_water.hpp"
 #include "ships_test_support.hpp"
 
 namespace nearshore::ships {
@@ -112,6 +113,9 @@ TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {
   tug.initial_speed_m_s = 3.0;
   tug.orders.engine_order = 1.0;
   tug.bow_wave_options.cells = 64;
+  // A hard grounding on the slope: without squat (ShipFleet.ATugAtSpeedTouchesBottomBySquat...
+  // below is the same run with it, where the tug touches first in deeper water and refloats).
+  tug.restricted_water = false;
   fleet.add_ship(tug);
   const double frame = 1.0 / 30;
   std::vector<std::string> events;
@@ -137,6 +141,58 @@ TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {
   EXPECT_LT(speed, 0.05);                 // stopped by the bed's friction, engine stopped
   EXPECT_GT(std::abs(heel_deg), 0.2);     // lists: the bed rises under one side first
   EXPECT_GT(std::abs(trim_deg), 0.2);     // and its bow rides up the slope
+}
+
+TEST(ShipFleet, ATugAtSpeedTouchesBottomBySquatWhereItsDraftClears) {
+  // The beach run above with squat (restricted_water.hpp): at full ahead over the shoaling bed
+  // the tug sinks and trims by the bow (Cb > 0.7, Barrass), so its keel meets the bed where the
+  // water is deeper than its static draft by its bow squat (ICORELS, at the speed and the depth
+  // under the hull the step before it touches), within 0.2 m: the tug pitches by about +-0.013 rad
+  // (+-0.16 m at its ends) after the squat's trim sets in, and the bed is met by the lowest hull
+  // point, not exactly at the bow. Then it stops on the bed (engine stopped on grounding).
+  ShipFleet fleet;
+  fleet.set_site(demo_site());
+  ShipDefinition tug;
+  tug.name = "Tug 1";
+  tug.hull = harbour_tug();
+  tug.loading.draft_m = 3.0;
+  tug.hull_points = 800;
+  tug.x_m = 200.0;
+  tug.y_m = 860.0;
+  tug.heading_deg = 40.0;
+  tug.initial_speed_m_s = 3.0;
+  tug.orders.engine_order = 1.0;
+  tug.bow_wave_options.cells = 64;
+  fleet.add_ship(tug);
+  const double frame = 1.0 / 30;
+  double aground_at = -1.0, bow_squat_m = 0.0, speed_at_touch = 0.0;
+  std::vector<std::string> events;
+  for (int k = 0; k < 90 * 30; ++k) {
+    const Squat before = fleet.ship(0).body().report().squat;
+    const double speed_before = fleet.ship(0).body().state().forward_speed_m_s();
+    fleet.step(nullptr, frame);
+    for (auto& e : fleet.take_events()) events.push_back(e);
+    if (aground_at < 0 && fleet.ship(0).status().aground) {
+      aground_at = k * frame;
+      bow_squat_m = before.max_squat_m;
+      speed_at_touch = speed_before;
+    }
+  }
+  ASSERT_GE(aground_at, 0.0) << "the tug never touched";
+  ASSERT_GT(bow_squat_m, 0.0);
+  ASSERT_FALSE(events.empty());
+  const std::string& touch = events.front();
+  const auto at = touch.find("where the water is ");
+  ASSERT_NE(at, std::string::npos) << touch;
+  const double depth_at_touch = std::stod(touch.substr(at + 19));
+  const ShipState& s = fleet.ship(0).body().state();
+  std::printf("%s\nat %.1f s, %.2f m/s, ICORELS bow squat %.3f m; 90 s: aground %d, speed %.3f m/s\n", touch.c_str(),
+              aground_at, speed_at_touch, bow_squat_m, fleet.ship(0).status().aground ? 1 : 0,
+              s.velocity_m_s.head<2>().norm());
+  EXPECT_NE(touch.find("Tug 1"), std::string::npos);
+  EXPECT_GT(depth_at_touch, 3.0 + 0.3);  // deeper than the static draft: squat, not the draft, touched
+  EXPECT_NEAR(depth_at_touch - 3.0, bow_squat_m, 0.2);
+  EXPECT_LT(s.velocity_m_s.head<2>().norm(), 0.05);
 }
 
 // True when a body-frame point lies inside the Wigley hull 20 x 2 x 1 (depth 2) of the test below.
@@ -244,6 +300,14 @@ TEST(Scenario, BadFilesAndShipsAreClearErrorsNamingTheFileAndTheShip) {
 
   m = error_of([&] { read_scenario(write("key.toml", "[[ship]]\nname = \"A\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\nspeed_knots = 3\n")); });
   EXPECT_NE(m.find("speed_knots"), std::string::npos) << m;
+
+  // restricted_water (squat and shallow-water resistance) is read as a boolean, and nothing else.
+  const std::string restricted = "[[ship]]\nname = \"A\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\n";
+  EXPECT_FALSE(read_scenario(write("restricted.toml", restricted + "restricted_water = false\n")).front().restricted_water);
+  EXPECT_TRUE(read_scenario(write("default.toml", restricted)).front().restricted_water);
+  m = error_of([&] { read_scenario(write("restricted_bad.toml", restricted + "restricted_water = 1\n")); });
+  EXPECT_NE(m.find("restricted_bad.toml"), std::string::npos) << m;
+  EXPECT_NE(m.find("restricted_water"), std::string::npos) << m;
 
   const std::string sinks =
       "[[ship]]\nname = \"Fine\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\n"

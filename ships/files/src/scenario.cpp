@@ -68,7 +68,8 @@ const std::set<std::string> kKeys = {"name",      "hull",        "length_m",    
                                      "depth_m",   "draft_m",     "mass_kg",           "centre_of_gravity_height_m",
                                      "position_m", "heading_deg", "speed_m_s",        "speed_kn",
                                      "engine_order", "initial_speed_m_s", "route",    "hull_points",
-                                     "bow_wave",  "bow_wave_cells", "service_speed_m_s", "dispersive_wake"};
+                                     "bow_wave",  "bow_wave_cells", "service_speed_m_s", "dispersive_wake",
+                                     "restricted_water"};
 
 ShipDefinition read_ship(const fs::path& file, const toml::table& table, int number) {
   ShipTable t(file, table, number);
@@ -148,6 +149,11 @@ ShipDefinition read_ship(const fs::path& file, const toml::table& table, int num
     const auto on = dispersive->value<bool>();
     if (!on) t.fail("dispersive_wake", "must be true or false", "write dispersive_wake = true");
     d.dispersive_wake = *on;  // the Kelvin layer (dispersive_wake.hpp), chosen by Fr_d (ship_fleet.hpp)
+  }
+  if (const toml::node* restricted = table.get("restricted_water")) {
+    const auto on = restricted->value_exact<bool>();  // not value<bool>(), which takes 1 for true
+    if (!on) t.fail("restricted_water", "must be true or false", "write restricted_water = false");
+    d.restricted_water = *on;  // squat and shallow-water resistance (restricted_water.hpp)
   }
   if (const auto cells = t.number("bow_wave_cells")) {
     if (!(*cells >= 16 && *cells <= 1024)) t.fail("bow_wave_cells", fmt::format("= {} is outside [16, 1024]", *cells), "use 64-256");

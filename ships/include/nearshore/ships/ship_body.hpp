@@ -34,6 +34,15 @@
 //              An impact is near-plastic (ship_body.cpp step 7: restitution 0 at the deepest point,
 //              a friction impulse of at most mu times the normal one, Pedersen & Zhang 1998), and
 //              the penalty pushes the hull out no faster than 5 cm/s: a struck ship stays at the face.
+//   squat      in shallow water (restricted_water.hpp: Tuck 1966 / ICORELS 1980 / Barrass 2004 at the
+//              mean depth under the hull and the speed through the water): the return flow's
+//              pressure deficit as a vertical force -rho g A_wp S_m at the centre of flotation and
+//              a trimming couple K_pitch theta, the loads the hull's own hydrostatics balance at
+//              the published sinkage S_m and trim theta; so squat builds up and decays with the
+//              hull's heave and pitch dynamics and can put the keel on the bed.
+//   shallow    the surge drag evaluated at Lackenby's (1963) equivalent deep-water speed
+//              (restricted_water.hpp): at a fixed engine order the ship is slowed by the published
+//              speed loss.
 //   external   ship-ship repulsion (ship_fleet.hpp), given as a force and a torque about G.
 // Dynamics: Newton for the translation with the world-frame mass matrix M = R (m Id + A_t) R^T
 // (eq. 4.17 with the added masses A_t of surge, sway, heave), Euler's equations with the
@@ -56,6 +65,7 @@
 
 #include "nearshore/runtime/surface_sampler.hpp"
 #include "nearshore/ships/hull_samples.hpp"
+#include "nearshore/ships/restricted_water.hpp"
 #include "nearshore/ships/seabed.hpp"
 
 namespace nearshore::ships {
@@ -90,6 +100,13 @@ struct ShipParticulars {
   double length_m = 0.0, beam_m = 0.0, depth_m = 0.0, design_draft_m = 0.0;
   Eigen::Vector3d hull_centre_m = Eigen::Vector3d::Zero();  ///< body-frame centre of the hull's bounding box
   double service_speed_m_s = 0.0;
+  // Restricted water (restricted_water.hpp), from the hull upright at the design draft. A ship
+  // whose squat.length_pp_m or midship_area_m2 is zero feels no squat or no shallow-water resistance.
+  SquatParticulars squat;              ///< Lpp (waterline length), T, Cb, displaced volume
+  double midship_area_m2 = 0.0;        ///< A_M: the section at mid-length below the waterline
+  double waterplane_area_m2 = 0.0;     ///< A_wp: the squat's vertical load is rho g A_wp S_m
+  double flotation_centre_x_m = 0.0;   ///< body x of the waterplane's centroid (LCF), where that load acts
+  double pitch_stiffness_N_m_rad = 0.0;  ///< hydrostatic restoring moment per radian of trim, about G
 };
 
 /// How a hull is loaded: its mass (or the draft to float at) and, optionally, where G is.
@@ -176,6 +193,11 @@ struct BodyReport {
   Eigen::Vector2d structure_normal = Eigen::Vector2d::Zero();  ///< out of the solid, at that point
   double structure_closing_speed_m_s = 0.0;  ///< the largest speed of a point into the solid
   double structure_force_N = 0.0;         ///< the contact's normal force, summed over the points
+  /// Restricted water (restricted_water.hpp): the mean seabed depth under the hull's bottom (NaN
+  /// without a seabed), the squat the loads aim at, and the surge drag's deep-water speed.
+  double depth_under_hull_m = 0.0;
+  Squat squat;
+  double deep_water_equivalent_speed_m_s = 0.0;
   double rudder_angle_rad = 0.0;          ///< the rudder's actual angle (it moves at its rate)
   double thrust_N = 0.0;
 };

@@ -92,6 +92,10 @@ struct ShipDefinition {
   /// bow_wave). Off by default: the C API's nearshore_fleet_bow_wave hands out one field per ship.
   bool dispersive_wake = false;
   DispersiveWakeOptions dispersive_wake_options;
+  /// Squat and the shallow-water resistance (restricted_water.hpp) from the depth under the hull.
+  /// On by default; off gives the hull its deep-water behaviour in any depth (comparisons, tests of
+  /// the contact mechanics alone).
+  bool restricted_water = true;
   WakeLayerChoice wake_layer;
   SternWakeOptions wake_options;
 };
