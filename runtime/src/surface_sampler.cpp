@@ -98,11 +98,10 @@ inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int
 // as {D_x, D_y, eta, 0} vectors, each keyframe's integers times its weighted scales, so one
 // bilinear in float4 gives D, eta and (from the same nodes) the gradient of D. A row of the
 // padded tile holds (i0, j) and (i0 + 1, j) side by side: one 16-byte read and one conversion give
-// both. GCC/Clang vector extensions (SSE2 on any x86-64, AVX2 where the CPU has it, NEON on ARM),
-// no intrinsics; the arithmetic is the same on every path (no FMA contraction in ISO C++ mode),
-// so every CPU returns the same heights bit for bit.
-// The helpers pass 32-byte vectors by value: always inlined into the solve, so the ABI of such
-// calls without AVX (GCC's -Wpsabi note) never applies.
+// both. GCC/Clang vector extensions (SSE2 on any x86-64, NEON on ARM), no intrinsics. (An AVX2
+// clone of the solve, whose sign extension is one instruction, measured no faster here.)
+// The helpers pass 32-byte vectors by value; inlined into the solve, so the ABI of such calls
+// without AVX (GCC's -Wpsabi note) never applies.
 #pragma GCC diagnostic ignored "-Wpsabi"
 typedef float Float4 __attribute__((vector_size(16)));
 typedef float Float8 __attribute__((vector_size(32)));
@@ -347,15 +346,6 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
   // points overlap (one point's solve is a dependent chain: alone it waits on every miss).
   for (int i = 0; i < count; ++i) out[i] = {q[i]};
   if (!has_deep_ || choppiness_ == 0.0) return;
-  solve_packed(q, count, out);
-}
-
-// The kernel of solve_block, compiled for the baseline x86-64 and for x86-64-v3 (AVX2), picked
-// once at load time by the CPU (the same arithmetic on both: the results do not depend on it).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-#endif
-void SurfaceSampler::solve_packed(const SitePoint* q, int count, Solution* out) const {
   const double lambda = choppiness_;
   const std::size_t cascade_count = packed_.size();
   const std::size_t stored = std::min<std::size_t>(cascade_count, kStoredTaps);

@@ -51,8 +51,10 @@
 //    scale / 2 (15 micrometres on a 1 m wave); so a displaced height is eta at its lattice point
 //    to within sum_c (scale_c / 2) (+ float round-off), not bit for bit. tests/runtime
 //    (SurfaceSampler.DisplacedQueriesMatchAConvergedSolve) holds it to 1 mm of a solve converged
-//    to 1e-10 m on the float fields, over a Beaufort 5 sea. The GLSL does not need the inverse:
-//    a vertex shader displaces lattice points (formula 3).
+//    to 1e-10 m on the float fields, over a Beaufort 5 sea. The solve's taps take formula 2 as
+//    u = frac(q_x / L) N + (p_x - q_x) N / L (the query point's fraction once, in double): formula
+//    2 at p to double round-off. The GLSL does not need the inverse: a vertex shader displaces
+//    lattice points (formula 3).
 // 5. Velocity (m/s): harbour u_h = (P, Q) / h with h = d + eta_H (d bilinear still-water depth of
 //    depth.exr); zero, and the point DRY, where the cell holding p (floor(x/s), floor(y/s),
 //    clamped) is land or h <= site.dry_depth_m. Deep water u_d = (P_d, Q_d) / (d_deep + D_eta)
@@ -180,7 +182,6 @@ class SurfaceSampler {
   }
   // out[i] for q[i], i < count <= kSolveBlock, the points iterated side by side.
   void solve_block(const SitePoint* q, int count, Solution* out) const;
-  void solve_packed(const SitePoint* q, int count, Solution* out) const;  // solve_block past its early outs
   Solution solve(double x_m, double y_m) const;
   double elevation_at_solution(const Solution& solution) const;
   double elevation_at_lattice(SitePoint p) const;
