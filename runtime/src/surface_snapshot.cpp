@@ -20,9 +20,10 @@ Ramp sin2_ramp(double s, double width, bool with_slope) {
   if (width <= 0.0) return {s > 0.0 ? 1.0 : 0.0, 0.0};
   if (s <= 0.0) return {0.0, 0.0};
   if (s >= width) return {1.0, 0.0};
-  const double u = s / width;
-  const double r = std::sin(0.5 * std::numbers::pi * u);
-  return {r * r, with_slope ? 0.5 * std::numbers::pi / width * std::sin(std::numbers::pi * u) : 0.0};
+  const double half_angle = 0.5 * std::numbers::pi * s / width;
+  const double r = std::sin(half_angle);
+  // d/ds sin^2(pi s / 2 W) = (pi / 2 W) sin(pi s / W) = (pi / W) sin cos of the half angle.
+  return {r * r, with_slope ? std::numbers::pi / width * r * std::cos(half_angle) : 0.0};
 }
 
 // The ramps of a site point: the maker's (along the source axis) and the three other edges'.
