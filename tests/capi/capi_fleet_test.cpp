@@ -11,8 +11,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "capi_test_support.hpp"
 #include "nearshore.h"
 
@@ -22,15 +20,8 @@ using namespace nearshore::capi_test;
 
 constexpr double kWaterDensityKgM3 = 1025.0;  // the fleet's sea water (ships::WaterProperties)
 
-// The test's files in a folder of its own under the system's temporary folder, not wherever the
-// test was started from (run from the repository's root, they were left in the source tree).
 fs::path write_text(const std::string& name, const std::string& text) {
-  static const fs::path folder = [] {
-    const fs::path made = fs::temp_directory_path() / ("nearshore-capi-fleet-" + std::to_string(::getpid()));
-    fs::create_directories(made);
-    return made;
-  }();
-  const fs::path path = folder / name;
+  const fs::path path = scratch_folder() / ("capi_fleet_" + name);
   std::ofstream(path) << text;
   return path;
 }

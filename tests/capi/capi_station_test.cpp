@@ -109,7 +109,7 @@ TEST(CApiStation, TwoProcessesGiveBitIdenticalQueriesAndHarbourFields) {
   // A random walk with crossfades, so the plan, the seed and the walk's draws must agree too.
   nearshore::sequence::write_loops_file(
       folder, nearshore::runtime::testing::walk_tables_for(folder, {{9, 2, 0.5, 2}, {6, 1, 0.3, 1}}, 0, 11));
-  const fs::path outputs[2] = {fs::current_path() / "capi_station_a.bin", fs::current_path() / "capi_station_b.bin"};
+  const fs::path outputs[2] = {scratch_folder() / "capi_station_a.bin", scratch_folder() / "capi_station_b.bin"};
   pid_t stations[2];
   for (int i = 0; i < 2; ++i) {
     fs::remove(outputs[i]);

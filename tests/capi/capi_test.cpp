@@ -193,7 +193,7 @@ TEST(CApi, QueriesFromOtherThreadsWhileTheRenderThreadAdvances) {
 // A sea-state library through the C API: opened at the state nearest the conditions, switched
 // with a crossfade whose midpoint shows both states' waves, bad conditions named.
 TEST(CApi, ALibrarySwitchesSeaStateWithACrossfade) {
-  const fs::path folder = fs::current_path() / "capi_library";
+  const fs::path folder = scratch_folder() / "capi_library";
   fs::remove_all(folder);
   nearshore::runtime::testing::write_two_state_library(folder);
   nearshore_sea_options options;

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "nearshore.h"
@@ -19,6 +21,18 @@ constexpr double kAmplitudeM = 0.5, kWavelengthM = 40.0, kPeriodS = 6.0, kSpacin
 constexpr int kColumns = 40, kRows = 30, kFrames = 12;
 constexpr double kFrameIntervalS = 0.5;
 
+// This test process's own folder under the system's temporary folder, for every file the C API
+// tests write (not the folder the test was started from: from the repository's root they were
+// left in the source tree).
+inline const fs::path& scratch_folder() {
+  static const fs::path folder = [] {
+    const fs::path made = fs::temp_directory_path() / ("nearshore-capi-tests-" + std::to_string(::getpid()));
+    fs::create_directories(made);
+    return made;
+  }();
+  return folder;
+}
+
 inline double analytic_eta(double x_m, double t_s, double amplitude_m = kAmplitudeM) {
   return amplitude_m * std::cos(2 * std::numbers::pi * (x_m / kWavelengthM - t_s / kPeriodS));
 }
@@ -26,7 +40,7 @@ inline double analytic_eta(double x_m, double t_s, double amplitude_m = kAmplitu
 // A 160 m x 120 m basin of 10 m water in UTM zone 51N, a plane wave of `amplitude_m` travelling
 // east, float frames; the eastern `land_columns` columns are land 2 m above still water.
 inline fs::path write_sequence(const std::string& name, double amplitude_m = kAmplitudeM, int land_columns = 0) {
-  const fs::path folder = fs::current_path() / ("capi_" + name);
+  const fs::path folder = scratch_folder() / ("capi_" + name);
   fs::remove_all(folder);
   nearshore::GridGeometry geometry;
   geometry.columns = kColumns;
