@@ -2,6 +2,7 @@
 // Shared by the C API tests: a small basin written as a real sequence (sequence::SequenceWriter,
 // exported by libnearshore.so too) and a sea opened on it with a calm deep water.
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -23,13 +24,19 @@ constexpr double kFrameIntervalS = 0.5;
 
 // This test process's own folder under the system's temporary folder, for every file the C API
 // tests write (not the folder the test was started from: from the repository's root they were
-// left in the source tree).
+// left in the source tree); removed when the process exits.
 inline const fs::path& scratch_folder() {
   static const fs::path folder = [] {
     const fs::path made = fs::temp_directory_path() / ("nearshore-capi-tests-" + std::to_string(::getpid()));
     fs::create_directories(made);
     return made;
   }();
+  // Registered after `folder` is made, so at exit it runs before `folder`'s destructor.
+  static const bool removed_at_exit = std::atexit([] {
+                                        std::error_code ignored;
+                                        fs::remove_all(scratch_folder(), ignored);
+                                      }) == 0;
+  (void)removed_at_exit;
   return folder;
 }
 
