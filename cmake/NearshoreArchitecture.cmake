@@ -15,6 +15,9 @@
 #   library (the sea-state library) -> bake, loops, sequence, export (berth agitation for the
 #   operability of a library), plot (its bar chart); library_mpi -> library (built only
 #   where MPI is found: a rule whose library name ends in "?" applies when that target exists).
+#   shared (libnearshore.so, the C API: capi/) -> the runtime side only: runtime, playback, ships,
+#   ships_mesh, ships_layers and what they stand on; never the bake side (bathymetry, boussinesq,
+#   bake, loops, library, export).
 set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core:"
   "nearshore_core_vdb:nearshore_core"
@@ -35,7 +38,8 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
   "nearshore_library:nearshore_bake,nearshore_loops,nearshore_export,nearshore_plot,nearshore_sequence,nearshore_core"
   "nearshore_library_mpi?:nearshore_library,nearshore_core"
-  "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core")
+  "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core"
+  "nearshore_shared:nearshore_runtime,nearshore_playback,nearshore_ships,nearshore_ships_mesh,nearshore_ships_layers,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
 
 function(nearshore_check_architecture)
   foreach(rule IN LISTS NEARSHORE_ALLOWED_ARROWS)

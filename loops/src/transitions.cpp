@@ -73,7 +73,7 @@ CrossfadeChoice choose_crossfade(const Eigen::MatrixXd& distances, double median
                                  int max_crossfade_frames) {
   // Blending the last c frames before the jump spreads the discontinuity f(j) - f(i+1) over c + 1
   // steps: the step into blend k deviates from the natural motion by D(j-c+k, i+1-c+k) / (c+1)
-  // (seam.hpp). The target frames j-c .. j-1 must exist.
+  // The target frames j-c .. j-1 must exist.
   const int next = from + 1;
   const double scale = median_step > 0 ? median_step : 1.0;
   CrossfadeChoice best{0, distances(to, next) / scale};

@@ -43,7 +43,7 @@ struct SeamReport {
   Transition transition;
   int run_before_frames = 0;        ///< frames shown since the previous jump landed
   double seam_ratio_before = 0;     ///< R without crossfade
-  double seam_ratio_after = 0;      ///< R across the crossfade (crossfade.hpp)
+  double seam_ratio_after = 0;      ///< R across the crossfade (sequence/loop_playback.hpp crossfade_blend)
   double volume_jump_m3 = 0;        ///< V(j) - V(i+1): volume discontinuity without crossfade
   double volume_jump_after_m3 = 0;  ///< the largest per-step volume deviation across the crossfade
   double energy_jump_fraction = 0;  ///< (E(j) - E(i+1)) / mean E, E = 1/2 rho g sum eta^2 dA

@@ -35,9 +35,9 @@ struct Transition {
   double cost = 0;         ///< C_ij = D'_{i+1, j} (0 for the natural successor)
   double future_cost = 0;  ///< D''_ij
   double probability = 0;  ///< T_ij after pruning (0: kept for loop planning, never taken at random)
-  int crossfade_frames = 0;       ///< c: the last c frames before the jump are blends (crossfade.hpp)
+  int crossfade_frames = 0;       ///< c: the last c frames before the jump are blends (sequence/loop_playback.hpp crossfade_blend)
   double seam_ratio = 0;          ///< R = |f(j) - f(i+1)| / median_k |f(k+1) - f(k)|, no crossfade
-  double seam_ratio_after = 0;    ///< the same across the crossfade (seam.hpp)
+  double seam_ratio_after = 0;    ///< the same across the crossfade (choose_crossfade)
   bool natural() const { return to == from + 1; }
 };
 
@@ -64,7 +64,7 @@ struct TransitionTable {
 /// The diagonal filter; entries without full filter support are +infinity.
 Eigen::MatrixXd filter_distances(const Eigen::MatrixXd& distances, int half_width);
 
-/// The seam ratio after a crossfade of c frames, and the c in [0, max] that minimises it (seam.hpp).
+/// The seam ratio after a crossfade of c frames, and the c in [0, max] that minimises it.
 struct CrossfadeChoice {
   int frames = 0;
   double seam_ratio_after = 0;
