@@ -308,6 +308,10 @@ TEST(Scenario, BadFilesAndShipsAreClearErrorsNamingTheFileAndTheShip) {
   m = error_of([&] { read_scenario(write("restricted_bad.toml", restricted + "restricted_water = 1\n")); });
   EXPECT_NE(m.find("restricted_bad.toml"), std::string::npos) << m;
   EXPECT_NE(m.find("restricted_water"), std::string::npos) << m;
+  for (const std::string key : {"bow_wave", "dispersive_wake"}) {  // the other switches likewise
+    m = error_of([&] { read_scenario(write("switch_bad.toml", restricted + key + " = 1\n")); });
+    EXPECT_NE(m.find(key), std::string::npos) << m;
+  }
 
   const std::string sinks =
       "[[ship]]\nname = \"Fine\"\nhull = \"tug\"\ndraft_m = 3\nposition_m = [300, 300]\n"

@@ -141,12 +141,12 @@ ShipDefinition read_ship(const fs::path& file, const toml::table& table, int num
     d.hull_points = static_cast<int>(*points);
   }
   if (const toml::node* bow = table.get("bow_wave")) {
-    const auto on = bow->value<bool>();
+    const auto on = bow->value_exact<bool>();  // not value<bool>(), which takes 1 for true
     if (!on) t.fail("bow_wave", "must be true or false", "write bow_wave = true");
     d.bow_wave = *on;
   }
   if (const toml::node* dispersive = table.get("dispersive_wake")) {
-    const auto on = dispersive->value<bool>();
+    const auto on = dispersive->value_exact<bool>();
     if (!on) t.fail("dispersive_wake", "must be true or false", "write dispersive_wake = true");
     d.dispersive_wake = *on;  // the Kelvin layer (dispersive_wake.hpp), chosen by Fr_d (ship_fleet.hpp)
   }
