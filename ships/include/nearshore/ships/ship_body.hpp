@@ -16,7 +16,10 @@
 //   gravity    m g at G.
 //   drag       body axes, relative to the water's velocity at G: -(D_l v + D_q |v| v) for surge,
 //              sway, heave and -(D_l w + D_q |w| w) for roll, pitch, yaw, scaled by the wetted area
-//              over the upright design wetted area (no drag in the air).
+//              over the upright design wetted area (no drag in the air). The surge and sway forces
+//              act at the heights where the water resists (ShipParticulars::surge_drag_z_m,
+//              sway_drag_z_m), not at G: the sway force at the underwater lateral area's centroid is
+//              what heels a turning ship outward by m V^2 / R (KG - T/2) (issue 42).
 //   engine     thrust along body x at the propeller (seed 002 eq. 3 F_e), order in [-1, 1].
 //   rudder     lift 1/2 rho A_R C_L' delta V_R^2 along body -y at the rudder, V_R^2 = u^2 + 8 T /
 //              (pi rho D_p^2) (the propeller slipstream by momentum theory, so a ship with the
@@ -55,6 +58,7 @@
 // physical drag above, so a ship keeps its momentum and settles by itself.
 #include <array>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -107,6 +111,14 @@ struct ShipParticulars {
   double waterplane_area_m2 = 0.0;     ///< A_wp: the squat's vertical load is rho g A_wp S_m
   double flotation_centre_x_m = 0.0;   ///< body x of the waterplane's centroid (LCF), where that load acts
   double pitch_stiffness_N_m_rad = 0.0;  ///< hydrostatic restoring moment per radian of trim, about G
+  /// KM: the transverse metacentre above the keel, KB + I_wp / nabla, upright at the design draft
+  /// (GM = KM - KG; informative: the body integrates the pressure, not this number).
+  double metacentre_height_m = 0.0;
+  /// Body z where the surge and the sway drag act (the resistance is spread over the wet hull, not
+  /// at G): the wetted surface's centroid for surge, the underwater lateral area's for sway
+  /// (about T/2 for a wall-sided hull). NaN (a hand-made ShipParticulars): at G.
+  double surge_drag_z_m = std::numeric_limits<double>::quiet_NaN();
+  double sway_drag_z_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// How a hull is loaded: its mass (or the draft to float at) and, optionally, where G is.
