@@ -203,7 +203,7 @@ struct BodyReport {
   double structure_penetration_m = 0.0;
   Eigen::Vector3d structure_contact_m = Eigen::Vector3d::Zero();
   Eigen::Vector2d structure_normal = Eigen::Vector2d::Zero();  ///< out of the solid, at that point
-  double structure_closing_speed_m_s = 0.0;  ///< the largest speed of a point into the solid
+  double structure_closing_speed_m_s = 0.0;  ///< the largest speed of a point into the solid (over the step's substeps)
   double structure_force_N = 0.0;         ///< the contact's normal force, summed over the points
   /// Restricted water (restricted_water.hpp): the mean seabed depth under the hull's bottom (NaN
   /// without a seabed), the squat the loads aim at, and the surge drag's deep-water speed.
