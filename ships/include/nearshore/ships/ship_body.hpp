@@ -48,8 +48,11 @@
 //              speed loss.
 //   external   ship-ship repulsion (ship_fleet.hpp), given as a force and a torque about G.
 // Dynamics: Newton for the translation with the world-frame mass matrix M = R (m Id + A_t) R^T
-// (eq. 4.17 with the added masses A_t of surge, sway, heave), Euler's equations with the
-// world-frame inertia tensor I = R (I_G + A_r) R^T (eq. 4.18-4.20):
+// (eq. 4.17 with the added masses A_t of surge, sway, heave) and the added masses' Coriolis force
+// of Kirchhoff's equations, A_t (w x v_r) - w x (A_t v_r) (so a turning ship needs (m + A_11) V^2 / R
+// of lateral force, not (m + A_22) V^2 / R; the Munk moment that goes with it is left out: the body
+// has no linear hull lift to balance it, and with it the launch ran into a spin at 6 deg of rudder),
+// Euler's equations with the world-frame inertia tensor I = R (I_G + A_r) R^T (eq. 4.18-4.20):
 //   dw/dt = I^-1 [T - w x (I w)]
 // Integrator: semi-implicit (symplectic) Euler, velocities first, then position and the
 // orientation quaternion q <- exp(w dt / 2) q, in substeps of at most 1/60 s: stable at a host's
@@ -130,8 +133,10 @@ struct HullLoading {
   WaterProperties water;
 };
 
-/// Particulars from the hull: G, inertia (the closed-mesh integrals of the solid, scaled to the
-/// mass), the design draft (displaced_volume_m3 = m / rho), added masses from flat-plate strip
+/// Particulars from the hull: G (over the centre of buoyancy of the design waterline, so the ship
+/// floats upright on an even keel; KG the solid's centroid unless given, but no higher than
+/// KM - 0.15 m, the IS Code's least GM0), inertia (the closed-mesh integrals of the solid, scaled to
+/// the mass, about G), the design draft (displaced_volume_m3 = m / rho), added masses from flat-plate strip
 /// values (heave rho pi B^2 L / 8, sway rho pi T^2 L / 2, surge 5 % of m, roll 10 % of I_xx, pitch
 /// and yaw the heave and sway values times L^2 / 12), quadratic drag (surge 1/2 rho S C_T with
 /// C_T = 0.006 on the wetted area S, sway and heave 1/2 rho C_D A with C_D = 1 on the lateral and
