@@ -623,18 +623,18 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
       rotation * (p.mass_kg * Eigen::Matrix3d::Identity() + p.added_mass_kg.asDiagonal().toDenseMatrix()) *
       rotation.transpose();
   //    The added masses are the fluid's momentum A v_r (v_r relative to the water), carried in body
-  //    axes: Kirchhoff's equations (Lamb 1932, Hydrodynamics section 124; Fossen 2011 eq. 6.43, the
-  //    added-mass Coriolis matrix C_A) add -w x (A v_r) + A (w x v_r) to the force (the second term
-  //    undoes the part of M dv/dt that turns A with the body) and the Munk moment -v_r x (A v_r) to
-  //    the torque. Without them a turning ship needed (m + A_sway) V^2 / R of lateral force instead of
-  //    (m + A_surge) V^2 / R, and so heeled twice the IS Code's estimate (issue 42).
+  //    axes: Kirchhoff's equations (Lamb 1932, Hydrodynamics section 124; Fossen 2011, Handbook of
+  //    Marine Craft Hydrodynamics and Motion Control, the added-mass Coriolis matrix C_A) add
+  //    A (w x v_r) - w x (A v_r) to the force (the first term undoes the part of M dv/dt that turns A
+  //    with the body). Without it a turning ship needed (m + A_22) V^2 / R of lateral force instead
+  //    of (m + A_11) V^2 / R, and so heeled twice the turning-heel estimate (issue 42). The Munk
+  //    moment -v_r x (A v_r) that completes the pair is left out (ship_body.hpp): this body has no
+  //    linear hull lift to balance its yaw, and with it the launch ran into a spin at 0.1 rad of rudder.
   {
     const Eigen::Vector3d v_r = state_.velocity_m_s - current;
     const Eigen::Matrix3d added_world = rotation * p.added_mass_kg.asDiagonal().toDenseMatrix() * rotation.transpose();
-    const Eigen::Vector3d fluid_momentum = added_world * v_r;
     const Eigen::Vector3d& w_now = state_.angular_velocity_rad_s;
-    force += added_world * w_now.cross(v_r) - w_now.cross(fluid_momentum);
-    //MUNK torque += -wet_fraction * v_r.cross(fluid_momentum);
+    force += added_world * w_now.cross(v_r) - w_now.cross(added_world * v_r);
   }
   state_.velocity_m_s += mass_world.ldlt().solve(force) * dt_s;
   const Eigen::Matrix3d inertia_world =

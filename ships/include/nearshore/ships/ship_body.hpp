@@ -51,7 +51,7 @@
 // (eq. 4.17 with the added masses A_t of surge, sway, heave) and the added masses' Coriolis force
 // of Kirchhoff's equations, A_t (w x v_r) - w x (A_t v_r) (so a turning ship needs (m + A_11) V^2 / R
 // of lateral force, not (m + A_22) V^2 / R; the Munk moment that goes with it is left out: the body
-// has no linear hull lift to balance it, and with it the launch ran into a spin at 6 deg of rudder),
+// has no linear hull lift to balance it, and with it the launch ran into a spin at 0.1 rad (6 deg) of rudder),
 // Euler's equations with the world-frame inertia tensor I = R (I_G + A_r) R^T (eq. 4.18-4.20):
 //   dw/dt = I^-1 [T - w x (I w)]
 // Integrator: semi-implicit (symplectic) Euler, velocities first, then position and the
