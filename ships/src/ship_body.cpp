@@ -39,6 +39,9 @@ constexpr double kStructureFriction = 0.4;
 // a penalty spring alone gives back the energy it stored, the rebound the previous e = 0.2 model
 // showed as 0.6 m/s after a 3 m/s strike and 19 m of drift in 60 s).
 constexpr double kStructureRestitution = 0.0;
+// The least initial metacentric height of a default loading: IMO Intact Stability Code (2008),
+// Part A 2.2.4, GM0 >= 0.15 m.
+constexpr double kMinimumMetacentricHeight_m = 0.15;
 constexpr double kStructureSeparationSpeed_m_s = 0.05;
 constexpr double kStructureRelaxTime_s = 1.0;
 
@@ -195,7 +198,41 @@ ShipParticulars particulars_for_hull(const std::string& ship_name, const HullMes
   p.design_draft_m = waterline_z - low.z();
 
   // 2. Centre of gravity and inertia (the solid's, scaled to the mass, moved to G by parallel axes).
-  p.centre_of_gravity_m = solid.centroid_m;
+  //    A loaded ship floats at its design draft on an even keel and upright: G over the centre of
+  //    buoyancy B of that waterline (a loading's trim is set by its ballast; the solid's centroid is
+  //    not over B for a hull whose ends differ, and put the tug 0.7 deg down by the head at rest).
+  //    KG: the solid's centroid unless given, but no higher than KM - 0.15 m, the least initial
+  //    metacentric height GM0 the IMO Intact Stability Code (2008, Part A 2.2.4) allows: the solid
+  //    centroid of a narrow hull with high sides is above its metacentre (the 20 x 3 m Wigley launch:
+  //    KG 1.405 m, KM 1.396 m), and such a "ship" lolls 15-60 deg to whichever side a turn or a
+  //    wave first pushes it (issue 42). KM = KB + BM, BM = I_wp / nabla, from the pieces' columns to
+  //    the waterline (each wet piece's (z_w - z) (-n_z) A: volume, moments and waterplane).
+  {
+    double v = 0.0, mx = 0.0, my = 0.0, mz = 0.0, i_wp = 0.0, foot_y = 0.0, foot = 0.0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const Eigen::Vector3d& x = samples.position_m[i];
+      if (x.z() >= waterline_z) continue;
+      const double a = -samples.normal[i].z() * samples.area_m2[i];
+      const double column = (waterline_z - x.z()) * a;
+      v += column;
+      mx += column * x.x();
+      my += column * x.y();
+      mz += column * 0.5 * (waterline_z + x.z());
+      foot += a;
+      foot_y += a * x.y();
+      i_wp += a * x.y() * x.y();
+    }
+    p.centre_of_gravity_m = solid.centroid_m;
+    if (v > 0.0 && foot > 0.0) {
+      p.centre_of_gravity_m.x() = mx / v;
+      p.centre_of_gravity_m.y() = my / v;
+      const double y_f = foot_y / foot;  // the waterplane's centreline
+      p.metacentre_height_m = mz / v + (i_wp - foot * y_f * y_f) / v - low.z();
+      if (!loading.centre_of_gravity_height_m)
+        p.centre_of_gravity_m.z() =
+            std::min(solid.centroid_m.z(), low.z() + p.metacentre_height_m - kMinimumMetacentricHeight_m);
+    }
+  }
   if (loading.centre_of_gravity_height_m) p.centre_of_gravity_m.z() = *loading.centre_of_gravity_height_m;
   const Eigen::Vector3d d = p.centre_of_gravity_m - solid.centroid_m;
   p.inertia_kg_m2 = solid.inertia_per_density_m5 * (p.mass_kg / solid.volume_m3) +
@@ -216,6 +253,22 @@ ShipParticulars particulars_for_hull(const std::string& ship_name, const HullMes
   const double lwl = std::max(lwl_high - lwl_low, 1e-3), draft = std::max(p.design_draft_m, 1e-3);
   bwl = std::max(bwl, 1e-3);
   p.design_wetted_area_m2 = std::max(wetted, 1e-6);
+  // Where the surge and sway drag act (ship_body.hpp): the wetted surface's centroid height, and the
+  // centroid height of the underwater lateral area (the pieces' side projections |n_y| A).
+  {
+    double a = 0.0, az = 0.0, side = 0.0, side_z = 0.0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const Eigen::Vector3d& x = samples.position_m[i];
+      if (x.z() >= waterline_z) continue;
+      a += samples.area_m2[i];
+      az += samples.area_m2[i] * x.z();
+      const double s_y = std::abs(samples.normal[i].y()) * samples.area_m2[i];
+      side += s_y;
+      side_z += s_y * x.z();
+    }
+    p.surge_drag_z_m = a > 0.0 ? az / a : p.centre_of_gravity_m.z();
+    p.sway_drag_z_m = side > 0.0 ? side_z / side : p.centre_of_gravity_m.z();
+  }
 
   // 3b. Restricted water (restricted_water.hpp): Lpp as the waterline length, Cb on it, the
   //     midship section, the waterplane and its centroid (the x-moment of the displaced volume
@@ -361,7 +414,15 @@ void ShipBody::step(const ShipEnvironment& environment, const ShipControls& cont
                     double dt_s) {
   if (!(dt_s > 0.0)) return;
   const int substeps = std::max(1, static_cast<int>(std::ceil(dt_s / max_substep_s - 1e-9)));
-  for (int s = 0; s < substeps; ++s) substep(environment, controls, external, dt_s / substeps);
+  // The closing speed of a strike is reported as the largest over the step's substeps: the impact
+  // impulse stops the hull in the substep it strikes, and a report of the last substep alone missed
+  // a strike in an earlier one (it read 0.07 m/s for a tug that struck at 3 m/s).
+  double closing_m_s = 0.0;
+  for (int s = 0; s < substeps; ++s) {
+    substep(environment, controls, external, dt_s / substeps);
+    closing_m_s = std::max(closing_m_s, report_.structure_closing_speed_m_s);
+  }
+  report_.structure_closing_speed_m_s = closing_m_s;
 }
 
 void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& controls, const ExternalLoad& external,
@@ -524,7 +585,14 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
       -wet_fraction * (p.linear_damping_N_m_s.cwiseProduct(w_body) +
                        p.quadratic_drag_N_m_s2.cwiseProduct(w_body.cwiseAbs()).cwiseProduct(w_body));
   force += rotation * drag_body;
-  torque += rotation * drag_moment_body;
+  // The surge and sway drag at their heights (ship_body.hpp): their moments about G.
+  auto drag_arm = [&](double z_m) {
+    return Eigen::Vector3d(0.0, 0.0, std::isfinite(z_m) ? z_m - p.centre_of_gravity_m.z() : 0.0);
+  };
+  const Eigen::Vector3d drag_arm_surge = drag_arm(p.surge_drag_z_m), drag_arm_sway = drag_arm(p.sway_drag_z_m);
+  const Eigen::Vector3d drag_lever_moment_body = drag_arm_surge.cross(Eigen::Vector3d(drag_body.x(), 0.0, 0.0)) +
+                                                 drag_arm_sway.cross(Eigen::Vector3d(0.0, drag_body.y(), 0.0));
+  torque += rotation * (drag_moment_body + drag_lever_moment_body);
 
   // 5. Engine (seed 002 eq. 3, F_e along the hull) and rudder, at their body points.
   const double order = std::clamp(controls.engine_order, -1.0, 1.0);
@@ -554,6 +622,20 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   const Eigen::Matrix3d mass_world =
       rotation * (p.mass_kg * Eigen::Matrix3d::Identity() + p.added_mass_kg.asDiagonal().toDenseMatrix()) *
       rotation.transpose();
+  //    The added masses are the fluid's momentum A v_r (v_r relative to the water), carried in body
+  //    axes: Kirchhoff's equations (Lamb 1932, Hydrodynamics section 124; Fossen 2011, Handbook of
+  //    Marine Craft Hydrodynamics and Motion Control, the added-mass Coriolis matrix C_A) add
+  //    A (w x v_r) - w x (A v_r) to the force (the first term undoes the part of M dv/dt that turns A
+  //    with the body). Without it a turning ship needed (m + A_22) V^2 / R of lateral force instead
+  //    of (m + A_11) V^2 / R, and so heeled twice the turning-heel estimate (issue 42). The Munk
+  //    moment -v_r x (A v_r) that completes the pair is left out (ship_body.hpp): this body has no
+  //    linear hull lift to balance its yaw, and with it the launch ran into a spin at 0.1 rad of rudder.
+  {
+    const Eigen::Vector3d v_r = state_.velocity_m_s - current;
+    const Eigen::Matrix3d added_world = rotation * p.added_mass_kg.asDiagonal().toDenseMatrix() * rotation.transpose();
+    const Eigen::Vector3d& w_now = state_.angular_velocity_rad_s;
+    force += added_world * w_now.cross(v_r) - w_now.cross(added_world * v_r);
+  }
   state_.velocity_m_s += mass_world.ldlt().solve(force) * dt_s;
   const Eigen::Matrix3d inertia_world =
       rotation * (p.inertia_kg_m2 + p.added_inertia_kg_m2.asDiagonal().toDenseMatrix()) * rotation.transpose();

@@ -287,9 +287,23 @@ void ShipFleet::apply_orders(Ship& ship) {
   const ShipOrders& o = ship.orders_;
   if (o.engine_order) c.engine_order = std::clamp(*o.engine_order, -1.0, 1.0);
   if (o.speed_m_s) {
+    // The engine order that holds `target` against the ship's own surge drag (ship_body.hpp: linear
+    // and quadratic, at Lackenby's deep-water speed over the depth under the hull) plus a
+    // proportional term with the gain 2 / V_service. Surge under this law is first order,
+    // (m + A_11) du/dt = F(u) with F decreasing through F(target) = 0, so u approaches the order
+    // without crossing it: no overshoot, and no steady error (the former feed-forward
+    // (target / V_service)^2 counted the linear drag as quadratic and left the tug 3.6 % short).
     const double target = std::max(*o.speed_m_s, 0.0), service = std::max(p.service_speed_m_s, 1e-3);
     const double u = s.forward_speed_m_s();
-    c.engine_order = std::clamp(target * target / (service * service) + 2.0 * (target - u) / service, -1.0, 1.0);
+    double drag_speed = target;
+    const double depth = ship.body_.report().depth_under_hull_m;
+    if (p.midship_area_m2 > 0.0 && std::isfinite(depth) && depth > 0.0)
+      drag_speed = deep_water_equivalent_speed_m_s(p.midship_area_m2, depth, p.squat.draft_m, target,
+                                                   options_.water.gravity_m_s2);
+    const double holding_N =
+        p.linear_damping_N_s_m.x() * drag_speed + p.quadratic_drag_N_s2_m2.x() * drag_speed * drag_speed;
+    const double holding_order = p.max_thrust_N > 0.0 ? holding_N / p.max_thrust_N : 0.0;
+    c.engine_order = std::clamp(holding_order + 2.0 * (target - u) / service, -1.0, 1.0);
   }
   if (!o.route_m.empty()) {
     int& next = ship.status_.waypoint;

@@ -106,38 +106,6 @@ TEST(ShipBody, HeaveAndRollPeriodsFollowFromTheWaterplaneAndTheMetacentricHeight
               measured_heave, heave_period, measured_roll, roll_period, gm);
 }
 
-TEST(ShipBody, AFloatingHullDoesNotDriftInStillWater) {
-  for (const HullMesh& hull : {box_barge(kL, kB, kD), harbour_tug()}) {
-    HullSamples samples = sample_hull(hull, 2000);
-    HullLoading loading;
-    loading.draft_m = hull.name.find("tug") != std::string::npos ? 3.0 : kDraft;
-    const ShipParticulars p = particulars_for_hull("drift test", hull, samples, loading);
-    ShipState state;
-    state.position_m = {100.0, 200.0, p.centre_of_gravity_m.z() - p.design_draft_m};
-    state.orientation = orientation_from_euler(0.7, 0.0, 0.0);
-    ShipBody body(std::move(samples), p, state);
-    ShipEnvironment still;
-    // Settle its trim (the tug's G is not over its centre of buoyancy at the design draft), then
-    // leave it at rest in that pose: a ship at equilibrium must stay there.
-    for (int k = 0; k < 60 * 30; ++k) body.step(still, {}, {}, 1.0 / 30);
-    ShipState settled = body.state();
-    settled.velocity_m_s.setZero();
-    settled.angular_velocity_rad_s.setZero();
-    body.set_state(settled);
-    for (int k = 0; k < 60 * 30; ++k) body.step(still, {}, {}, 1.0 / 30);
-    const ShipState later = body.state();
-    const double moved = (later.position_m - settled.position_m).head<2>().norm();
-    const double turned = std::abs(later.yaw_rad() - settled.yaw_rad());
-    std::printf("%s: still water, 60 s after settling: moved %.3g m, turned %.3g rad, trim %.3f deg\n",
-                hull.name.c_str(), moved, turned, later.pitch_rad() * 180 / std::numbers::pi);
-    // Any residual horizontal pressure force of the point sampling would show as a steady drift;
-    // 1 mm in a minute is far below what a viewer sees.
-    EXPECT_LT(moved, 1e-3);
-    EXPECT_LT(turned, 1e-5);
-    EXPECT_LT(std::abs(later.position_m.z() - settled.position_m.z()), 1e-3);
-  }
-}
-
 // Heave amplitude / wave amplitude of the floating barge in head seas of wavelength lambda,
 // measured over the last two wave periods of a 90 s run.
 double heave_response(double wavelength_m, double amplitude_m, ShipParticulars* used = nullptr) {

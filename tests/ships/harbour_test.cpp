@@ -74,9 +74,9 @@ TEST(HarbourObstacles, TheFieldFindsAStraightFaceAtThirtyDegreesAndItsNormalOffT
   EXPECT_LT(obstacles.signed_distance_m(kBreakwaterCentre.x(), kBreakwaterCentre.y()), -1.5);
 }
 
-// Measured: the tug strikes at 2.93 m/s (engine stopped), gets 0.38 m past the face, and with the
-// near-plastic contact (ship_body.cpp: e = 0, Pedersen & Zhang 1998) is at 0.013 m/s after 60 s,
-// heading 325.4 deg: the impact at the bow, 2 deg off the hull's axis (the fitted normal's error
+// Measured: the tug strikes at 3.00 m/s (engine stopped), gets 0.40 m past the face, and with the
+// near-plastic contact (ship_body.cpp: e = 0, Pedersen & Zhang 1998) is at 0.012 m/s after 60 s,
+// heading 328.2 deg: the impact at the bow, 2 deg off the hull's axis (the fitted normal's error
 // there), leaves it a yaw of 0.002 rad/s that the yaw damping takes tens of seconds to stop. With
 // the earlier restitution 0.2 it rebounded at 0.6 m/s and was 19 m off after 60 s.
 TEST(HarbourObstacles, ATugSteeredAtABreakwaterStopsAtItsFaceAndTheFleetNamesIt) {
@@ -96,8 +96,9 @@ TEST(HarbourObstacles, ATugSteeredAtABreakwaterStopsAtItsFaceAndTheFleetNamesIt)
   tug.initial_speed_m_s = 3.0;
   tug.orders.speed_m_s = 3.0;
   // The contact mechanics alone: with squat and the shallow-water resistance (10 m of water, Fnh
-  // 0.3) the tug meets the face at 2.91 m/s trimmed 0.4 deg by the bow, and the yaw the strike
-  // leaves turns it to 324.0 deg after 60 s (6.0 deg off the approach, 325.4 deg without them).
+  // 0.3) the tug met the face at 2.91 m/s trimmed 0.4 deg by the bow, and the yaw the strike
+  // left turned it to 324.0 deg after 60 s (measured before issue 42's loading and speed-order
+  // changes; without them it is now 328.2 deg).
   tug.restricted_water = false;
   fleet.add_ship(tug);
   std::vector<ContactEvent> contacts;

@@ -16,7 +16,10 @@
 //   gravity    m g at G.
 //   drag       body axes, relative to the water's velocity at G: -(D_l v + D_q |v| v) for surge,
 //              sway, heave and -(D_l w + D_q |w| w) for roll, pitch, yaw, scaled by the wetted area
-//              over the upright design wetted area (no drag in the air).
+//              over the upright design wetted area (no drag in the air). The surge and sway forces
+//              act at the heights where the water resists (ShipParticulars::surge_drag_z_m,
+//              sway_drag_z_m), not at G: the sway force at the underwater lateral area's centroid is
+//              what heels a turning ship outward by m V^2 / R (KG - T/2) (issue 42).
 //   engine     thrust along body x at the propeller (seed 002 eq. 3 F_e), order in [-1, 1].
 //   rudder     lift 1/2 rho A_R C_L' delta V_R^2 along body -y at the rudder, V_R^2 = u^2 + 8 T /
 //              (pi rho D_p^2) (the propeller slipstream by momentum theory, so a ship with the
@@ -45,8 +48,11 @@
 //              speed loss.
 //   external   ship-ship repulsion (ship_fleet.hpp), given as a force and a torque about G.
 // Dynamics: Newton for the translation with the world-frame mass matrix M = R (m Id + A_t) R^T
-// (eq. 4.17 with the added masses A_t of surge, sway, heave), Euler's equations with the
-// world-frame inertia tensor I = R (I_G + A_r) R^T (eq. 4.18-4.20):
+// (eq. 4.17 with the added masses A_t of surge, sway, heave) and the added masses' Coriolis force
+// of Kirchhoff's equations, A_t (w x v_r) - w x (A_t v_r) (so a turning ship needs (m + A_11) V^2 / R
+// of lateral force, not (m + A_22) V^2 / R; the Munk moment that goes with it is left out: the body
+// has no linear hull lift to balance it, and with it the launch ran into a spin at 0.1 rad (6 deg) of rudder),
+// Euler's equations with the world-frame inertia tensor I = R (I_G + A_r) R^T (eq. 4.18-4.20):
 //   dw/dt = I^-1 [T - w x (I w)]
 // Integrator: semi-implicit (symplectic) Euler, velocities first, then position and the
 // orientation quaternion q <- exp(w dt / 2) q, in substeps of at most 1/60 s: stable at a host's
@@ -55,6 +61,7 @@
 // physical drag above, so a ship keeps its momentum and settles by itself.
 #include <array>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -107,6 +114,14 @@ struct ShipParticulars {
   double waterplane_area_m2 = 0.0;     ///< A_wp: the squat's vertical load is rho g A_wp S_m
   double flotation_centre_x_m = 0.0;   ///< body x of the waterplane's centroid (LCF), where that load acts
   double pitch_stiffness_N_m_rad = 0.0;  ///< hydrostatic restoring moment per radian of trim, about G
+  /// KM: the transverse metacentre above the keel, KB + I_wp / nabla, upright at the design draft
+  /// (GM = KM - KG; informative: the body integrates the pressure, not this number).
+  double metacentre_height_m = 0.0;
+  /// Body z where the surge and the sway drag act (the resistance is spread over the wet hull, not
+  /// at G): the wetted surface's centroid for surge, the underwater lateral area's for sway
+  /// (about T/2 for a wall-sided hull). NaN (a hand-made ShipParticulars): at G.
+  double surge_drag_z_m = std::numeric_limits<double>::quiet_NaN();
+  double sway_drag_z_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// How a hull is loaded: its mass (or the draft to float at) and, optionally, where G is.
@@ -118,8 +133,10 @@ struct HullLoading {
   WaterProperties water;
 };
 
-/// Particulars from the hull: G, inertia (the closed-mesh integrals of the solid, scaled to the
-/// mass), the design draft (displaced_volume_m3 = m / rho), added masses from flat-plate strip
+/// Particulars from the hull: G (over the centre of buoyancy of the design waterline, so the ship
+/// floats upright on an even keel; KG the solid's centroid unless given, but no higher than
+/// KM - 0.15 m, the IS Code's least GM0), inertia (the closed-mesh integrals of the solid, scaled to
+/// the mass, about G), the design draft (displaced_volume_m3 = m / rho), added masses from flat-plate strip
 /// values (heave rho pi B^2 L / 8, sway rho pi T^2 L / 2, surge 5 % of m, roll 10 % of I_xx, pitch
 /// and yaw the heave and sway values times L^2 / 12), quadratic drag (surge 1/2 rho S C_T with
 /// C_T = 0.006 on the wetted area S, sway and heave 1/2 rho C_D A with C_D = 1 on the lateral and
@@ -191,7 +208,7 @@ struct BodyReport {
   double structure_penetration_m = 0.0;
   Eigen::Vector3d structure_contact_m = Eigen::Vector3d::Zero();
   Eigen::Vector2d structure_normal = Eigen::Vector2d::Zero();  ///< out of the solid, at that point
-  double structure_closing_speed_m_s = 0.0;  ///< the largest speed of a point into the solid
+  double structure_closing_speed_m_s = 0.0;  ///< the largest speed of a point into the solid (over the step's substeps)
   double structure_force_N = 0.0;         ///< the contact's normal force, summed over the points
   /// Restricted water (restricted_water.hpp): the mean seabed depth under the hull's bottom (NaN
   /// without a seabed), the squat the loads aim at, and the surge drag's deep-water speed.
