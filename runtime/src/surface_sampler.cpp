@@ -106,7 +106,6 @@ inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int
 typedef float Float4 __attribute__((vector_size(16)));
 typedef float Float8 __attribute__((vector_size(32)));
 typedef std::int16_t Short8 __attribute__((vector_size(16)));
-typedef std::int16_t Short16 __attribute__((vector_size(32)));
 typedef std::int32_t Int8 __attribute__((vector_size(32)));
 inline Float8 load_row(const std::int16_t* tile, std::size_t node) {
   Short8 raw;

@@ -103,7 +103,7 @@ void pack_query_tile(const ocean::DeepWaterFrame& frame, QueryTile& tile) {
   // Rows of N + 1 nodes: node N repeats node 0 of its row (the tile is periodic), so the two nodes
   // of a tap's row, (i0, j) and (i0 + 1, j), are always 16 bytes side by side: one load.
   const std::size_t n = static_cast<std::size_t>(std::max(frame.grid_size, 0));
-  if (n * n != nodes || (displaced && frame.displacement_x_m.size() != nodes))
+  if (n * n != nodes)
     throw Error("query tile", fmt::format("a cascade of grid size {} holds {} nodes", frame.grid_size, nodes),
                 "give a deep-water frame whose channels hold grid_size^2 nodes");
   tile.nodes.resize(4 * (n + 1) * n);  // keeps a pooled keyframe's allocation
