@@ -99,17 +99,24 @@ TEST(ShipFleet, OutOfRangeDefinitionsOrdersAndStepsAreRefusedNamingTheField) {
   EXPECT_TRUE(fleet.ship(0).body().state().position_m.allFinite());
 }
 
-TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {
-  ShipFleet fleet;
-  fleet.set_site(demo_site());
+// The tug of the demo beach runs: 5 m of water, the beach (shore at y = 1045 m) ahead, meeting the
+// depth contours obliquely so that one side takes the ground first.
+ShipDefinition beach_run_tug() {
   ShipDefinition tug;
   tug.name = "Tug 1";
   tug.hull = harbour_tug();
   tug.loading.draft_m = 3.0;
   tug.hull_points = 800;
   tug.x_m = 200.0;
-  tug.y_m = 860.0;         // 5 m of water, the beach (shore at y = 1045 m) ahead
-  tug.heading_deg = 40.0;  // meets the depth contours obliquely: one side takes the ground first
+  tug.y_m = 860.0;
+  tug.heading_deg = 40.0;
+  return tug;
+}
+
+TEST(ShipFleet, ATugSteeredOntoTheDemoBeachGroundsStopsListsAndSaysSo) {
+  ShipFleet fleet;
+  fleet.set_site(demo_site());
+  ShipDefinition tug = beach_run_tug();
   tug.initial_speed_m_s = 3.0;
   tug.orders.engine_order = 1.0;
   tug.bow_wave_options.cells = 64;
@@ -152,14 +159,7 @@ TEST(ShipFleet, ATugAtSpeedTouchesBottomBySquatWhereItsDraftClears) {
   // point, not exactly at the bow. Then it stops on the bed (engine stopped on grounding).
   ShipFleet fleet;
   fleet.set_site(demo_site());
-  ShipDefinition tug;
-  tug.name = "Tug 1";
-  tug.hull = harbour_tug();
-  tug.loading.draft_m = 3.0;
-  tug.hull_points = 800;
-  tug.x_m = 200.0;
-  tug.y_m = 860.0;
-  tug.heading_deg = 40.0;
+  ShipDefinition tug = beach_run_tug();
   tug.initial_speed_m_s = 3.0;
   tug.orders.engine_order = 1.0;
   tug.bow_wave_options.cells = 64;
