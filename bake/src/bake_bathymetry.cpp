@@ -162,6 +162,10 @@ HarbourGrid resample_harbour_grid(const HarbourGrid& grid, CellSize spacing) {
       out.coast_distance_m(column, row) = std::isfinite(distance) ? distance : grid.coast_distance_m(ni, nj);
       out.land(column, row) = grid.land(ni, nj);
       out.porosity(column, row) = grid.porosity(ni, nj);
+      if (grid.porous_stone_diameter_m.size() > 0) {
+        if (out.porous_stone_diameter_m.size() == 0) out.porous_stone_diameter_m = Raster<float>(to.columns, to.rows, 1.0f);
+        out.porous_stone_diameter_m(column, row) = grid.porous_stone_diameter_m(ni, nj);
+      }
     }
   }
   // The structures' geometry is in metres: the bake lays their footprints again at these cells

@@ -71,6 +71,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
   const int minimum_face_cells = bathymetry::kMinimumStructureFaceCells;
   const bool can_fit = sea.significant_wave_height_m > 0.0 && sea.peak_period_s > 0.0;
   grid.porosity = Raster<float>(g.columns, g.rows, 1.0f);
+  grid.porous_stone_diameter_m = Raster<float>();
   std::vector<StructureLayer> layers;
   std::vector<std::vector<std::size_t>> core_of(grid.structures.size()), faces_of(grid.structures.size());
   std::map<FitRequest, FitResult> fits;
@@ -173,6 +174,7 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     layer.fitted = structure.porosity < 0.0 && can_fit && !face_depths.empty() && layer.face_cells > 0 && !sea.waves.empty() &&
                    layer.depth_m >= kShallowestFittedDepth_m;
     layer.face_porosity = structure.porosity >= 0.0 ? structure.porosity : fallback_porosity;
+    layer.stone_diameter_m = solver.porous.stone_diameter_m;
     if (structure.porosity < 0.0 && !can_fit && layer.face_cells > 0)
       warnings.push_back(fmt::format("structure '{}' ({}): the wave maker gives no sea state (height and peak period) to fit its "
                                      "porous faces to; they keep porosity {:.2f}",
@@ -231,6 +233,26 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     } else {
       result.fit = boussinesq::fit_porosity_to_transmission(flume, request.target, kStructureFitTolerance);
     }
+    // Still too much comes back (or through): the layer's resistance is fitted too, with finer
+    // effective stones (structure_layers.hpp): a short wave crosses a layer of the solver's stones
+    // with little loss, reflects from the core and crosses back.
+    auto value = [&](const LayerResponse& r) { return request.wall_behind ? r.reflection_coefficient : r.transmission_coefficient; };
+    const double solver_stone_diameter_m = flume.solver.porous.stone_diameter_m;
+    if (!result.fit.reached && value(result.fit.response) > request.target && solver_stone_diameter_m > 0.0) {
+      boussinesq::PorosityFit best = result.fit;
+      int runs = result.fit.flume_runs;
+      for (int step = 1; step <= kMostStoneDiameterSteps && !best.reached; ++step) {
+        PorousLayerFlume finer = flume;
+        finer.solver.porous.stone_diameter_m = solver_stone_diameter_m * std::pow(10.0, -0.5 * step);
+        const boussinesq::PorosityFit fit = request.wall_behind
+                                                ? boussinesq::fit_porosity_to_reflection(finer, request.target, kStructureFitTolerance)
+                                                : boussinesq::fit_porosity_to_transmission(finer, request.target, kStructureFitTolerance);
+        runs += fit.flume_runs;
+        if (fit.reached || std::abs(value(fit.response) - request.target) < std::abs(value(best.response) - request.target)) best = fit;
+      }
+      result.fit = best;
+      result.fit.flume_runs = runs;
+    }
     result.across_band = result.fit.response.per_wave;
     } catch (const Error& error) {
       result.failure = error.problem();  // said per structure below; the bake goes on with the fallback
@@ -248,6 +270,8 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
     if (layer.fitted) {
       const FitResult& result = fits.at(request_of[s]);
       layer.face_porosity = result.fit.response.porosity;
+      layer.stone_diameter_m = result.fit.response.stone_diameter_m;
+      layer.stones_fitted = layer.stone_diameter_m != solver.porous.stone_diameter_m;
       layer.in_the_sea = result.fit.response;
       layer.across_band = result.across_band;
       layer.reached = result.fit.reached;
@@ -266,17 +290,29 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
       if (!layer.reached) {
         const bool wall = bathymetry::has_impermeable_core(grid.structures[s]);
         warnings.push_back(fmt::format(
-            "structure '{}' ({}): its {:.0f} m of porous faces at {:.1f} m depth (widened by {:.0f} m, as far as it goes) {} {} {:.2f} "
-            "in the sea of {:.1f} s peak period; the closest is {:.2f} (porosity {:.2f})",
+            "structure '{}' ({}): its {:.0f} m of porous faces at {:.1f} m depth (widened by {:.0f} m and their stones made as fine as "
+            "{:.2g} m, as far as either goes) {} {} {:.2f} in the sea of {:.1f} s peak period; the closest is {:.2f} (porosity {:.2f}, "
+            "stones {:.2g} m)",
             layer.name, layer.kind, layer.face_width_m, layer.depth_m, layer.widening_m,
+            solver.porous.stone_diameter_m * std::pow(10.0, -0.5 * kMostStoneDiameterSteps),
             wall ? (layer.in_the_sea.reflection_coefficient > layer.reflection_requested ? "cannot reflect as little as" : "cannot reflect as much as")
                  : (layer.in_the_sea.transmission_coefficient > layer.transmission_requested ? "cannot transmit as little as" : "cannot transmit as much as"),
             wall ? "Kr" : "Kt", wall ? layer.reflection_requested : layer.transmission_requested, layer.wave_period_s,
-            wall ? layer.in_the_sea.reflection_coefficient : layer.in_the_sea.transmission_coefficient, layer.face_porosity));
+            wall ? layer.in_the_sea.reflection_coefficient : layer.in_the_sea.transmission_coefficient, layer.face_porosity,
+            layer.stone_diameter_m));
       }
     }
     const float n = static_cast<float>(layer.face_porosity);
     for (std::size_t i : faces_of[s]) grid.porosity.values()[i] = std::min(grid.porosity.values()[i], n);
+    // Stones of its own: the grid's stone diameter channel, the solver's D elsewhere; where two
+    // structures' faces meet, the finer stones (the more resistance) as the lower porosity above.
+    if (layer.stones_fitted) {
+      if (grid.porous_stone_diameter_m.size() == 0)
+        grid.porous_stone_diameter_m = Raster<float>(g.columns, g.rows, static_cast<float>(solver.porous.stone_diameter_m));
+      const float diameter = static_cast<float>(layer.stone_diameter_m);
+      for (std::size_t i : faces_of[s])
+        grid.porous_stone_diameter_m.values()[i] = std::min(grid.porous_stone_diameter_m.values()[i], diameter);
+    }
   }
   for (std::size_t s = 0; s < layers.size(); ++s)
     for (std::size_t i : core_of[s]) grid.porosity.values()[i] = 0.0f;

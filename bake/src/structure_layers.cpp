@@ -100,6 +100,7 @@ StructureSeaState structure_sea_state(const boussinesq::WaveMaker& maker) {
 nlohmann::json structure_layers_record(const std::vector<StructureLayer>& layers) {
   auto response = [](const LayerResponse& r) {
     return nlohmann::json{{"porosity", r.porosity},
+                          {"stone_diameter_m", r.stone_diameter_m},
                           {"reflection_coefficient", r.reflection_coefficient},
                           {"transmission_coefficient", r.transmission_coefficient},
                           {"kh", r.relative_depth_kh},
@@ -116,6 +117,8 @@ nlohmann::json structure_layers_record(const std::vector<StructureLayer>& layers
                          {"fitted", layer.fitted},
                          {"reached", layer.reached},
                          {"face_porosity", layer.face_porosity},
+                         {"stone_diameter_m", layer.stone_diameter_m},
+                         {"stones_fitted", layer.stones_fitted},
                          {"depth_m", layer.depth_m},
                          {"face_width_m", layer.face_width_m},
                          {"widening_m", layer.widening_m},
@@ -150,9 +153,14 @@ std::string describe_structure_layers(const std::vector<StructureLayer>& layers)
       text += ", by period:";
       for (const LayerResponse& r : layer.across_band) text += fmt::format(" {:.1f} s {:.2f}", r.period_s, value(r));
     }
-    text += fmt::format("; {:.0f} m of faces{} at porosity {:.2f} in {:.1f} m of water, {} wall cells", layer.face_width_m,
+    text += fmt::format("; {:.0f} m of faces{} at porosity {:.2f}{} in {:.1f} m of water, {} wall cells", layer.face_width_m,
                         layer.widening_m > 0 ? fmt::format(" (widened by {:.0f} m to absorb enough)", layer.widening_m) : std::string(),
-                        layer.face_porosity, layer.depth_m, layer.core_cells);
+                        layer.face_porosity,
+                        layer.stones_fitted ? fmt::format(" with effective stones of {:.2g} m (finer than the solver's: porosity alone "
+                                                          "could not absorb enough)",
+                                                          layer.stone_diameter_m)
+                                            : std::string(),
+                        layer.depth_m, layer.core_cells);
   }
   return text;
 }

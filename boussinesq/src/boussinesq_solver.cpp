@@ -136,7 +136,7 @@ double dispersion_weight(double depth_m, const SolverParameters& p, double peak_
 // in the frame's layout (cell (c along, l line) at c * rows + l; boussinesq_sweep.hpp). The face
 // values the sweep derives from the cells (boussinesq_sweep.hpp) are used here for the taper and
 // the porous blocks, so both agree by construction.
-StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, int cols, int rows,
+StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, std::vector<float> stone_diameter_ratio, int cols, int rows,
                         double spacing_along_m, double spacing_across_m, const SolverParameters& p, double peak_w) {
   StaticFrame frame;
   frame.cols = cols;
@@ -145,6 +145,7 @@ StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, i
   frame.spacing_across_m = spacing_across_m;
   frame.depth_m = std::move(depth);
   frame.porosity = std::move(porosity);
+  frame.stone_diameter_ratio = std::move(stone_diameter_ratio);
   frame.inverse_porosity.resize(frame.depth_m.size());
   for (std::size_t i = 0; i < frame.porosity.size(); ++i)
     frame.inverse_porosity[i] =
@@ -220,6 +221,26 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
     }
     max_depth = std::max(max_depth, static_cast<double>(depth[i]));
   }
+  // Each cell's stone diameter as a ratio to the solver's (StaticFrame::stone_diameter_ratio); none
+  // for a grid without its own (every ratio 1, no array).
+  std::vector<float> stone_ratio;
+  if (harbour.porous_stone_diameter_m.size() > 0) {
+    stone_ratio.assign(cells, 1.0f);
+    if (harbour.porous_stone_diameter_m.columns() != geometry.columns || harbour.porous_stone_diameter_m.rows() != geometry.rows)
+      throw Error(subject, "the harbour grid's stone diameter raster does not match the grid geometry",
+                  "give HarbourGrid::porous_stone_diameter_m the grid's size, or leave it empty for the solver's stone diameter everywhere");
+    const double solver_diameter = parameters.porous.stone_diameter_m > 0.0 ? parameters.porous.stone_diameter_m : 1.0;
+    for (std::size_t i = 0; i < cells; ++i) {
+      const float diameter = harbour.porous_stone_diameter_m.values()[i];
+      if (!(diameter > 0.0f) || !std::isfinite(diameter)) {
+        const int c = static_cast<int>(i % s.nx), r = static_cast<int>(i / s.nx);
+        throw Error(subject, "HarbourGrid::porous_stone_diameter_m is " + std::to_string(diameter) + " m at cell (" + std::to_string(c) + ", " +
+                                 std::to_string(r) + ")",
+                    "give every cell a positive stone diameter (the solver's, PorousResistance::stone_diameter_m, where it has none of its own)");
+      }
+      stone_ratio[i] = static_cast<float>(diameter / solver_diameter);
+    }
+  }
   if (max_depth <= 0.0) throw Error(subject, "the grid holds no water (every depth <= 0)", "check the sign of the depths (positive down)");
   const double celerity = std::sqrt(kGravity_m_s2 * max_depth);
   s.dt = parameters.time_step_s > 0.0 ? parameters.time_step_s : parameters.courant_number * smaller_spacing / celerity;
@@ -288,12 +309,13 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
                  parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls};
   s.source = std::make_unique<detail::SourceFunction>(wave_maker, geometry, depth, parameters);
   {
-    std::vector<float> depth_t(cells), porosity_t(cells);
+    std::vector<float> depth_t(cells), porosity_t(cells), stone_ratio_t(stone_ratio.size());
     detail::transpose(depth.data(), depth_t.data(), s.nx, s.ny);
     detail::transpose(porosity.data(), porosity_t.data(), s.nx, s.ny);
-    s.frame_x = build_frame(std::move(depth_t), std::move(porosity_t), s.nx, s.ny, s.dx, s.dy, parameters, peak_w);
+    if (!stone_ratio.empty()) detail::transpose(stone_ratio.data(), stone_ratio_t.data(), s.nx, s.ny);
+    s.frame_x = build_frame(std::move(depth_t), std::move(porosity_t), std::move(stone_ratio_t), s.nx, s.ny, s.dx, s.dy, parameters, peak_w);
   }
-  s.frame_y = build_frame(std::move(depth), std::move(porosity), s.ny, s.nx, s.dy, s.dx, parameters, peak_w);
+  s.frame_y = build_frame(std::move(depth), std::move(porosity), std::move(stone_ratio), s.ny, s.nx, s.dy, s.dx, parameters, peak_w);
   const float* const cell_depth = s.frame_y.depth_m.data();
   const std::size_t faces_x = static_cast<std::size_t>(s.nx + 1) * s.ny, faces_y = static_cast<std::size_t>(s.nx) * (s.ny + 1);
 
@@ -1088,6 +1110,7 @@ std::size_t BoussinesqSolver::memory_bytes() const {
   for (const StaticFrame* frame : {&s.frame_x, &s.frame_y}) {
     add(frame->depth_m);
     add(frame->porosity);
+    add(frame->stone_diameter_ratio);
     add(frame->inverse_porosity);
     add(frame->face_dispersion_weight);
     add(frame->block_is_porous);

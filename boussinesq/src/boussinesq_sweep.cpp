@@ -112,6 +112,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   // Porous resistance (Van Gent 1995) of a face from its porosity, as build_frame describes it.
   const double laminar_factor = frame.porous_laminar_factor, turbulent_factor = frame.porous_turbulent_factor;
   const double stone_diameter = frame.porous_stone_diameter_m;
+  const StoneDiameterRatio stone_ratio = StoneDiameterRatio::of(frame);
   // The face values the frame does not store (boussinesq_sweep.hpp); faces 0 and cols are walls of depth 0.
   auto depth_at_face = [&](int f, std::size_t face) __attribute__((always_inline)) {
     return f == 0 || f == cols ? 0.0 : face_depth(depth, face - stride, face);
@@ -517,8 +518,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
           double resistance = friction;
           if (!kOpenWater) {
             const double n3 = n_f * n_f * n_f;  // laminar alpha (1/s) and turbulent beta (1/m) of eq. (2)
-            const double alpha = laminar_factor * (1.0 - n_f) * (1.0 - n_f) / (n3 * stone_diameter * stone_diameter);
-            const double beta = turbulent_factor * (1.0 - n_f) / (n3 * stone_diameter);
+            const double D_f = stone_diameter * face_stone_diameter_ratio(porosity, stone_ratio, cL, cR);
+            const double alpha = laminar_factor * (1.0 - n_f) * (1.0 - n_f) / (n3 * D_f * D_f);
+            const double beta = turbulent_factor * (1.0 - n_f) / (n3 * D_f);
             resistance = friction + n_f * (alpha + beta * flux_magnitude * inv_h_f);
           }
 

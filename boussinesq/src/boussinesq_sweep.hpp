@@ -30,6 +30,12 @@ struct StaticFrame {
   /// Van Gent (1995) porous resistance of the faces (build_frame): alpha = laminar_factor (1-n)^2 /
   /// (n^3 D^2), beta = turbulent_factor (1-n) / (n^3 D); porous_stone_diameter_m = D (0: none).
   double porous_laminar_factor = 0.0, porous_turbulent_factor = 0.0, porous_stone_diameter_m = 0.0;
+  /// Each cell's D over porous_stone_diameter_m, for a grid with stones of its own
+  /// (HarbourGrid::porous_stone_diameter_m); empty otherwise: every ratio is then 1, read without
+  /// an array (StoneDiameterRatio), so such a grid holds no more memory and computes what it did
+  /// bit for bit. A face's D is its two cells' weighted by their solid fraction 1 - n
+  /// (face_stone_diameter_ratio).
+  std::vector<float> stone_diameter_ratio;
   /// d per cell (land negative), float: the harbour grid's own precision, so the values are exact.
   std::vector<float> depth_m;
   /// n per cell clamped to [0, 1], float: the harbour grid's precision (exact).
@@ -90,6 +96,27 @@ inline double face_depth(const float* depth, std::size_t L, std::size_t R) {
 inline double face_porosity(const float* porosity, const float* inverse_porosity, std::size_t L, std::size_t R) {
   const double mean = 0.5 * (static_cast<double>(porosity[L]) + static_cast<double>(porosity[R]));
   return face_open(inverse_porosity, L, R) != 0.0 ? mean : 1.0;
+}
+/// The cells' stone diameter ratios as the sweep reads them: scale x values[i] + offset, with
+/// (1, 0) and StaticFrame::stone_diameter_ratio, or (0, 1) and any array of finite values (the
+/// porosity) when the frame has none, which gives exactly 1 with no branch in the vectorised loop.
+struct StoneDiameterRatio {
+  const float* values;
+  double scale, offset;
+  static StoneDiameterRatio of(const StaticFrame& frame) {
+    return frame.stone_diameter_ratio.empty() ? StoneDiameterRatio{frame.porosity.data(), 0.0, 1.0}
+                                              : StoneDiameterRatio{frame.stone_diameter_ratio.data(), 1.0, 0.0};
+  }
+  double operator[](std::size_t i) const { return scale * static_cast<double>(values[i]) + offset; }
+};
+/// A porous face's stone diameter over the solver's: its two cells' ratios weighted by their solid
+/// fractions 1 - n, so the stones of a porous cell, not an open one beside it (n = 1, no stones),
+/// set a face on the layer's edge; equal ratios give that ratio exactly.
+inline double face_stone_diameter_ratio(const float* porosity, const StoneDiameterRatio& ratio, std::size_t L, std::size_t R) {
+  const double solid_L = 1.0 - static_cast<double>(porosity[L]), solid_R = 1.0 - static_cast<double>(porosity[R]);
+  const double weight_R = solid_R / std::max(solid_L + solid_R, 1e-30);
+  const double ratio_L = ratio[L];
+  return ratio_L + weight_R * (ratio[R] - ratio_L);
 }
 /// Bed slope along the sweep at the face, clamped to kMaxDispersiveSlope (the dispersive terms only).
 inline double face_slope_along(const float* depth, std::size_t L, std::size_t R, double spacing_m) {

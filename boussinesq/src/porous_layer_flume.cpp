@@ -194,11 +194,13 @@ LayerResponse measure_porous_layer(const PorousLayerFlume& flume, double porosit
   };
   LayerResponse response;
   response.porosity = porosity;
+  response.stone_diameter_m = parameters.porous.stone_diameter_m;
   double incident_m2 = 0.0, reflected_m2 = 0.0, transmitted_m2 = 0.0;
   for (std::size_t i = 0; i < flume.waves.size(); ++i) {
     const IncidentReflected front = separate(0, front_gauges.size(), i);
     LayerResponse own;
     own.porosity = porosity;
+    own.stone_diameter_m = response.stone_diameter_m;
     own.reflection_coefficient = front.reflection_coefficient();
     own.relative_depth_kh = k[i] * depth_m;
     own.layer_width_wavelengths = layer_cells * dx * k[i] / (2.0 * kPi);

@@ -26,6 +26,8 @@ constexpr const char* kGeometryAttribute = "nearshore_geometry";
 constexpr const char* kStructuresAttribute = "nearshore_structures";
 constexpr const char* kFormatAttribute = "nearshore_format";
 constexpr const char* kFormatName = "nearshore harbour grid 1";
+// The optional channel (harbour_grid.hpp): grids without it read as before.
+constexpr const char* kStoneDiameterChannel = "stone_diameter";
 
 // EXR line 0 is north; Raster row 0 is south. One flip, here, in both directions.
 std::vector<float> to_exr_lines(const Raster<float>& raster) {
@@ -60,10 +62,11 @@ void write_harbour_grid(const fs::path& depth_exr, const HarbourGrid& grid) {
   Raster<float> land(columns, rows);
   for (std::size_t i = 0; i < land.size(); ++i)
     land.values()[i] = grid.land.values()[i] == kOutsideChartCell ? 2.f : grid.land.values()[i] ? 1.f : 0.f;
-  const std::pair<const char*, const Raster<float>*> channels[] = {{"depth", &grid.still_water_depth_m},
-                                                                   {"land", &land},
-                                                                   {"porosity", &grid.porosity},
-                                                                   {"coast_distance", &grid.coast_distance_m}};
+  std::vector<std::pair<const char*, const Raster<float>*>> channels = {{"depth", &grid.still_water_depth_m},
+                                                                       {"land", &land},
+                                                                       {"porosity", &grid.porosity},
+                                                                       {"coast_distance", &grid.coast_distance_m}};
+  if (grid.porous_stone_diameter_m.size() > 0) channels.emplace_back(kStoneDiameterChannel, &grid.porous_stone_diameter_m);
   for (const auto& [name, raster] : channels)
     if (raster->columns() != columns || raster->rows() != rows)
       throw Error(depth_exr.string(), fmt::format("channel {} is {} x {} but the grid is {} x {}", name,
@@ -79,7 +82,7 @@ void write_harbour_grid(const fs::path& depth_exr, const HarbourGrid& grid) {
       if (!grid.structures.empty())
         header.insert(kStructuresAttribute, Imf::StringAttribute(nlohmann::json(grid.structures).dump()));
       Imf::FrameBuffer frame_buffer;
-      for (std::size_t c = 0; c < std::size(channels); ++c) {
+      for (std::size_t c = 0; c < channels.size(); ++c) {
         header.channels().insert(channels[c].first, Imf::Channel(Imf::FLOAT));
         frame_buffer.insert(channels[c].first,
                             Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(lines[c].data()), sizeof(float),
@@ -148,8 +151,16 @@ HarbourGrid read_harbour_grid(const fs::path& depth_exr) {
                    (static_cast<std::ptrdiff_t>(window.min.y) * columns + window.min.x) * sizeof(float);
       frame_buffer.insert(names[c], Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * columns));
     }
+    const bool has_stone_diameter = header.channels().findChannel(kStoneDiameterChannel) != nullptr;
+    if (has_stone_diameter) {
+      lines.emplace_back(static_cast<std::size_t>(columns) * rows);
+      char* base = reinterpret_cast<char*>(lines.back().data()) -
+                   (static_cast<std::ptrdiff_t>(window.min.y) * columns + window.min.x) * sizeof(float);
+      frame_buffer.insert(kStoneDiameterChannel, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * columns));
+    }
     file.setFrameBuffer(frame_buffer);
     file.readPixels(window.min.y, window.max.y);
+    if (has_stone_diameter) grid.porous_stone_diameter_m = from_exr_lines(lines[4], columns, rows);
     grid.still_water_depth_m = from_exr_lines(lines[0], columns, rows);
     const Raster<float> land = from_exr_lines(lines[1], columns, rows);
     grid.land = Raster<std::uint8_t>(columns, rows);
@@ -163,6 +174,14 @@ HarbourGrid read_harbour_grid(const fs::path& depth_exr) {
     throw Error(depth_exr.string(), std::string("cannot be read as a harbour grid: ") + e.what(),
                 "if it is the depth.exr of `nearshore bathy`, it is truncated or corrupt: regenerate it with `nearshore bathy`");
   }
+  for (std::size_t i = 0; i < grid.porous_stone_diameter_m.size(); ++i)
+    if (!(grid.porous_stone_diameter_m.values()[i] > 0.0f) || !std::isfinite(grid.porous_stone_diameter_m.values()[i])) {
+      const int column = static_cast<int>(i % grid.geometry.columns), row = static_cast<int>(i / grid.geometry.columns);
+      throw Error(depth_exr.string(),
+                  fmt::format("stone diameter {} m at cell ({}, {}) is not a positive number", grid.porous_stone_diameter_m.values()[i],
+                              column, row),
+                  "rewrite it with `nearshore bathy` (the channel is optional: without it every cell takes the solver's stone diameter)");
+    }
   for (int row = 0; row < grid.geometry.rows; ++row)
     for (int column = 0; column < grid.geometry.columns; ++column)
       if (!std::isfinite(grid.still_water_depth_m(column, row)))

@@ -1,6 +1,7 @@
 // A porous layer (seed 003 eq. (2)-(3)) against the analytic long-wave solution, and the flume that
 // fits a layer's porosity to a requested reflection or transmission (porous_layer_flume.hpp).
 // Numbers and the figure: docs/validation.md, "Porous layers: reflection and transmission".
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -111,6 +112,52 @@ TEST(PorousLayer, ReflectsAndTransmitsLongWavesAsTheAnalyticLayer) {
                   "r / w (resistance rate over wave frequency)", "reflected or transmitted height / incident height",
                   {wall_theory, wall_model, open_r_theory, open_r_model, open_t_theory, open_t_model}, 900, 480};
   write_png(render_line_plot(figure), testing::plot_folder() / "porous_layer.png");
+}
+
+// A harbour grid's own stone diameters (HarbourGrid::porous_stone_diameter_m, what the bake lays
+// where a structure's fit needed finer stones) act as the solver's one diameter would: in the rough
+// basin's breakwater (its faces cross both sweeps), with waves through it for 300 steps. The same
+// diameter as the solver's everywhere gives the same bits as no channel; 5 cm stones in the layer's
+// cells and 1 m (the solver's) in the open water give what 5 cm solver stones give, to the float
+// rounding of the ratio 0.05 / 1 (so a face on the layer's edge takes its porous cell's stones, not
+// the open cell's); and the stones matter there (1 m everywhere is far off).
+TEST(PorousLayer, TheGridsOwnStoneDiametersActAsTheSolversWould) {
+  auto run = [](const HarbourGrid& grid, double solver_stone_diameter_m) {
+    SolverParameters parameters;
+    parameters.courant_number = 0.5;
+    parameters.porous.stone_diameter_m = solver_stone_diameter_m;
+    BoussinesqSolver solver(grid, parameters, testing::regular_waves_from_west(6.0, 8.0, 0.15, 5.0));
+    for (int step = 0; step < 300; ++step) solver.step();
+    return testing::solver_snapshot(solver);
+  };
+  auto largest_difference = [](const std::vector<float>& a, const std::vector<float>& b) {
+    double largest = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) largest = std::max(largest, std::abs(static_cast<double>(a[i]) - b[i]));
+    return largest;
+  };
+  const HarbourGrid plain = testing::rough_basin();
+  HarbourGrid solvers_stones = plain;
+  solvers_stones.porous_stone_diameter_m = Raster<float>(plain.geometry.columns, plain.geometry.rows, 1.0f);
+  EXPECT_EQ(run(solvers_stones, 1.0), run(plain, 1.0));
+
+  HarbourGrid fine_in_the_layer = solvers_stones;
+  for (std::size_t i = 0; i < plain.porosity.size(); ++i)
+    if (plain.porosity.values()[i] > 0.0f && plain.porosity.values()[i] < 1.0f) fine_in_the_layer.porous_stone_diameter_m.values()[i] = 0.05f;
+  const std::vector<float> reference = run(plain, 0.05);
+  double largest_value = 0.0;
+  for (float v : reference) largest_value = std::max(largest_value, std::abs(static_cast<double>(v)));
+  EXPECT_LT(largest_difference(run(fine_in_the_layer, 1.0), reference), 1e-5 * largest_value);
+  EXPECT_GT(largest_difference(run(plain, 1.0), reference), 1e-2 * largest_value);
+
+  // A stone diameter that is no positive number is refused, naming the cell.
+  HarbourGrid broken = solvers_stones;
+  broken.porous_stone_diameter_m(20, 12) = 0.0f;
+  try {
+    run(broken, 1.0);
+    ADD_FAILURE() << "a zero stone diameter was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(error.problem().find("(20, 12)"), std::string::npos) << error.problem();
+  }
 }
 
 TEST(PorousLayer, FitsThePorosityThatGivesARequestedReflectionOrTransmission) {

@@ -19,7 +19,12 @@
 //      over the incident Hs as Zanuttigh & van der Meer define theirs;
 //      where even the least reflecting porosity reflects more than asked (a layer too thin against a
 //      long wave), the faces are widened by whole cells into the water in front, up to four cells
-//      or half a wavelength of layer;
+//      or half a wavelength of layer; where that is still not enough (short waves: a layer whose
+//      resistance, with the solver's stones, lets them through to the core and back), the layer's
+//      resistance is fitted too: finer effective stones, D / sqrt(10) a step, at most four steps
+//      (docs/structures.md, "When porosity is not enough"). The layer stands for a sloping mound
+//      whose waves also break and run up on the slope, so its stone diameter is an effective one, a
+//      resistance, as MIKE 21 BW's porosity layers take theirs;
 //   4. each wave's own response is recorded, so a user sees how the layer's reflection moves with
 //      k h across the sea's band (frequency dependence is physics: a real mound's does too).
 // Structures that give their porosity keep it (no fit); they are recorded likewise.
@@ -68,6 +73,11 @@ struct StructureLayer {
   bool fitted = false;                  ///< false: the source gave its porosity
   bool reached = true;                  ///< the fit reached the request within its tolerance
   double face_porosity = 1.0;
+  /// D of the faces' porous resistance, metres: the solver's (PorousResistance::stone_diameter_m)
+  /// unless the fit needed finer effective stones to reach the request (then the harbour grid's
+  /// porous_stone_diameter_m holds it at the faces).
+  double stone_diameter_m = 1.0;
+  bool stones_fitted = false;  ///< the fit made the stones finer than the solver's
   double depth_m = 0.0, face_width_m = 0.0;
   double wave_period_s = 0.0;  ///< the sea's peak period
   /// How far the faces reach beyond the footprint: a layer too thin against the wave to absorb
@@ -84,8 +94,14 @@ struct StructureLayer {
 /// measurements with three-gauge separation (Mansard & Funke 1980 report a few per cent).
 inline constexpr double kStructureFitTolerance = 0.02;
 
+/// Finer effective stones tried, each D / sqrt(10) of the one before, where porosity and widening
+/// alone cannot absorb what a structure does not reflect or transmit: at most a hundredth of the
+/// solver's D (a metre's stones become 1 cm: past that the layer turns into a wall again).
+inline constexpr int kMostStoneDiameterSteps = 4;
+
 /// Lays every structure of `grid` (which must carry them) at its cells: the porosity channel
-/// becomes 1 everywhere but the footprints. `sea` may be empty (Hs = 0): then no fit is possible,
+/// becomes 1 everywhere but the footprints, the stone diameter channel (HarbourGrid::
+/// porous_stone_diameter_m) is made where a fit needed stones of its own and is empty otherwise. `sea` may be empty (Hs = 0): then no fit is possible,
 /// each face keeps `fallback_porosity` and a warning says so. Warnings (a request no layer of that
 /// width reaches, a structure off the grid) are appended to `warnings`, naming the structure.
 std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::SolverParameters& solver,

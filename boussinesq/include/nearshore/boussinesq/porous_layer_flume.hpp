@@ -51,6 +51,7 @@ struct PorousLayerFlume {
 
 struct LayerResponse {
   double porosity = 1.0;
+  double stone_diameter_m = 1.0;  ///< D of the layer's resistance (the flume solver's PorousResistance)
   /// Reflected / incident height in front of the layer; for several waves the energy ratio's root,
   /// sqrt(sum |Z_R|^2 / sum |Z_I|^2): the reflected Hs over the incident Hs of the sea they stand for.
   double reflection_coefficient = 0.0;

@@ -8,6 +8,10 @@
 //   porosity         n of seed 003 eq. (2)-(3): 1 open water, 0 < n < 1 porous structure
 //                    (rubble-mound breakwater), 0 a solid vertical wall (quay)
 //   coast_distance   signed distance to the coastline, metres, negative on land
+//   stone_diameter   optional: the porous resistance's stone diameter D of seed 003 eq. (2)-(3)
+//                    (Van Gent 1995) per cell, metres; absent: the solver's one D everywhere
+//                    (boussinesq::PorousResistance::stone_diameter_m). The bake writes it where a
+//                    structure's fit needed a resistance of its own (bake/structure_layers.hpp).
 // and the grid geometry (GridGeometry as JSON) in the header attribute "nearshore_geometry", the
 // coastal structures (CoastalStructure as a JSON array, coastal_structure.hpp) in
 // "nearshore_structures" (absent in grids written before it: no structures, porosity as stored).
@@ -32,6 +36,9 @@ struct HarbourGrid {
   Raster<std::uint8_t> land;          ///< kLandCell 1, kWaterCell 0, kOutsideChartCell 2 (no data)
   Raster<float> porosity;             ///< 1 open water .. 0 solid wall
   Raster<float> coast_distance_m;     ///< signed, negative on land
+  /// D of the porous resistance per cell, metres (> 0); empty (0 x 0) when every cell takes the
+  /// solver's own (boussinesq::PorousResistance::stone_diameter_m). Read only where 0 < n < 1.
+  Raster<float> porous_stone_diameter_m;
   /// The structures whose footprints the porosity channel holds, as the chart describes them; the
   /// bake re-lays their porous layers at its own cells and wave period (bake/structure_layers.hpp).
   std::vector<CoastalStructure> structures;
