@@ -69,6 +69,50 @@ const Entry* find(const std::deque<Entry>& ring, long long index) {
   return &ring[static_cast<std::size_t>(offset)];
 }
 
+// A ring of keyframes of consecutive indices that a worker fills ahead of the display time (the
+// harbour's steps, the deep water's keyframes): one definition for both. Every member is guarded
+// by StreamingEngine::Impl::mutex.
+template <class Entry>
+struct KeyframeRing {
+  std::deque<Entry> entries;
+  long long next = 0;        // the index the worker makes next
+  long long generation = 0;  // bumped by a restart: a keyframe made for an older one is dropped
+  int capacity = 0;
+
+  const Entry* find(long long index) const { return runtime::find(entries, index); }
+  bool holds_pair(long long index) const { return find(index) && find(index + 1); }
+  bool has_room() const { return static_cast<int>(entries.size()) < capacity; }
+  bool full() const { return static_cast<int>(entries.size()) >= capacity; }
+  int fill() const { return static_cast<int>(entries.size()); }
+  // Drops the entries before `index` (shown and gone); true when one was dropped.
+  bool consume_before(long long index) {
+    bool dropped = false;
+    while (!entries.empty() && entries.front().index < index) {
+      entries.pop_front();
+      dropped = true;
+    }
+    return dropped;
+  }
+  // Restarts the ring at `index` when it cannot reach it: a time behind it (a seek back), or a
+  // worker further behind than a ring's length (it would make keyframes no one will show). True
+  // when it restarted.
+  bool restart_if_unreachable(long long index) {
+    const bool unreachable = entries.empty() ? next > index || next < index - capacity : entries.front().index > index;
+    if (!unreachable) return false;
+    entries.clear();
+    next = index;
+    ++generation;
+    return true;
+  }
+  // What the worker made for `made_generation`: kept, and the worker moves on, unless a restart
+  // came in between.
+  void accept(long long made_generation, Entry entry) {
+    if (made_generation != generation) return;
+    entries.push_back(std::move(entry));
+    ++next;
+  }
+};
+
 void swap_fields(HarbourKeyframe& keyframe, sequence::Frame& frame) {
   std::swap(keyframe.surface_elevation_m, frame.surface_elevation_m);
   std::swap(keyframe.flux_x_m2_s, frame.flux_x_m2_s);
@@ -116,7 +160,6 @@ struct StreamingEngine::Impl {
   DeepKind deep_kind = DeepKind::kNone;
   bool deep_with_flux = false;
   double deep_depth_m = 0.0;
-  int capacity_harbour = 0, capacity_deep = 0;
   std::size_t bytes_harbour = 0, bytes_deep = 0;
   KeyframePool<HarbourKeyframe> harbour_pool;
   KeyframePool<DeepWaterKeyframe> deep_pool;
@@ -126,10 +169,8 @@ struct StreamingEngine::Impl {
   // never held across decoding, synthesis or I/O.
   mutable std::mutex mutex;
   std::condition_variable work_cv, ready_cv;
-  std::deque<HarbourEntry> harbour_ring;
-  std::deque<DeepEntry> deep_ring;
-  long long next_harbour = 0, next_deep = 0;          // what the worker makes next
-  long long harbour_generation = 0, deep_generation = 0;  // bumped by a seek: in-flight work is dropped
+  KeyframeRing<HarbourEntry> harbour_ring;
+  KeyframeRing<DeepEntry> deep_ring;
   bool stop = false;
   StreamingStats counters;
   std::shared_ptr<const ocean::RecordedDeepWater> record;  // the current field's lattices (slow path)
@@ -376,43 +417,17 @@ void StreamingEngine::Impl::count_slow(const SlowResult& made) {
 }
 
 bool StreamingEngine::Impl::ready_locked(long long k, long long j) const {
-  const bool harbour = find(harbour_ring, k) && find(harbour_ring, k + 1);
-  const bool deep = deep_kind == DeepKind::kNone || (find(deep_ring, j) && find(deep_ring, j + 1));
-  return harbour && deep;
+  return harbour_ring.holds_pair(k) && (deep_kind == DeepKind::kNone || deep_ring.holds_pair(j));
 }
 
 void StreamingEngine::Impl::schedule_locked(long long k, long long j, bool consume) {
   bool wake = false;
   if (consume) {
-    while (!harbour_ring.empty() && harbour_ring.front().index < k) {
-      harbour_ring.pop_front();
-      wake = true;
-    }
-    while (!deep_ring.empty() && deep_ring.front().index < j) {
-      deep_ring.pop_front();
-      wake = true;
-    }
+    wake |= harbour_ring.consume_before(k);
+    wake |= deep_ring.consume_before(j);
   }
-  // Restart when the rings cannot reach k: a time behind them (a seek back), or a worker further
-  // behind than a ring's length (it would decode steps no one will show).
-  const auto unreachable = [](long long needed, long long front, bool empty, long long next, int capacity) {
-    if (!empty) return front > needed;
-    return next > needed || next < needed - capacity;
-  };
-  if (unreachable(k, harbour_ring.empty() ? 0 : harbour_ring.front().index, harbour_ring.empty(), next_harbour,
-                  capacity_harbour)) {
-    harbour_ring.clear();
-    next_harbour = k;
-    ++harbour_generation;
-    wake = true;
-  }
-  if (deep_kind != DeepKind::kNone &&
-      unreachable(j, deep_ring.empty() ? 0 : deep_ring.front().index, deep_ring.empty(), next_deep, capacity_deep)) {
-    deep_ring.clear();
-    next_deep = j;
-    ++deep_generation;
-    wake = true;
-  }
+  wake |= harbour_ring.restart_if_unreachable(k);
+  if (deep_kind != DeepKind::kNone) wake |= deep_ring.restart_if_unreachable(j);
   if (wake) work_cv.notify_all();
 }
 
@@ -424,14 +439,13 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
       record = pending_record;
       has_pending_field = false;
     }
-    const bool room = harbour ? static_cast<int>(harbour_ring.size()) < capacity_harbour
-                              : static_cast<int>(deep_ring.size()) < capacity_deep;
+    const bool room = harbour ? harbour_ring.has_room() : deep_ring.has_room();
     if (!room) {
       work_cv.wait(lock);
       continue;
     }
     if (harbour) {
-      const long long index = next_harbour, generation = harbour_generation;
+      const long long index = harbour_ring.next, generation = harbour_ring.generation;
       lock.unlock();
       const double wall0 = wall_seconds(), cpu0 = thread_cpu_seconds();
       const PlanStep step = harbour_plan.step(index);
@@ -450,12 +464,9 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
         ++counters.bad_frames_held;
         set_message_locked(std::move(message));
       }
-      if (generation == harbour_generation) {
-        harbour_ring.push_back({index, step, std::move(published)});
-        ++next_harbour;
-      }
+      harbour_ring.accept(generation, {index, step, std::move(published)});
     } else {
-      const long long index = next_deep, generation = deep_generation;
+      const long long index = deep_ring.next, generation = deep_ring.generation;
       ocean::DeepWaterField* deep_field = field.get();
       lock.unlock();
       const double wall0 = wall_seconds(), cpu0 = thread_cpu_seconds();
@@ -477,10 +488,7 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
       counters.deep_cpu_seconds += cpu1 - cpu0;
       ++counters.deep_keyframes_synthesised;
       if (!message.empty()) set_message_locked(std::move(message));
-      if (generation == deep_generation) {
-        deep_ring.push_back({index, std::move(published)});
-        ++next_deep;
-      }
+      deep_ring.accept(generation, {index, std::move(published)});
     }
     // Let go of keyframes outside the lock: the last one returns to its pool.
     lock.unlock();
@@ -605,23 +613,23 @@ StreamingEngine::StreamingEngine(const std::filesystem::path& folder, StreamingO
       m.bytes_deep += (m.deep_with_flux ? 10u : 8u) * sizeof(float) * static_cast<std::size_t>(cascade.grid_size) *
                       static_cast<std::size_t>(cascade.grid_size);
   if (o.ring_capacity > 0) {
-    m.capacity_harbour = o.ring_capacity;
+    m.harbour_ring.capacity = o.ring_capacity;
   } else {
-    m.capacity_harbour = std::clamp(static_cast<int>(std::ceil(o.ring_lookahead_s / m.frame_interval_s)) + 2, 4, 64);
-    while (m.capacity_harbour > 3 && static_cast<std::size_t>(m.capacity_harbour) * m.bytes_harbour > o.max_ring_bytes)
-      --m.capacity_harbour;
+    m.harbour_ring.capacity = std::clamp(static_cast<int>(std::ceil(o.ring_lookahead_s / m.frame_interval_s)) + 2, 4, 64);
+    while (m.harbour_ring.capacity > 3 && static_cast<std::size_t>(m.harbour_ring.capacity) * m.bytes_harbour > o.max_ring_bytes)
+      --m.harbour_ring.capacity;
   }
   if (o.deep_water_ring_capacity > 0) {
-    m.capacity_deep = o.deep_water_ring_capacity;
+    m.deep_ring.capacity = o.deep_water_ring_capacity;
   } else {
-    const double span_s = m.capacity_harbour * m.frame_interval_s;
-    m.capacity_deep = std::clamp(static_cast<int>(std::ceil(span_s / m.deep_interval_s)) + 2, 4, 256);
-    while (m.capacity_deep > 3 &&
-           static_cast<std::size_t>(m.capacity_deep) * m.bytes_deep > std::min(o.max_ring_bytes, o.max_deep_ring_bytes))
-      --m.capacity_deep;
+    const double span_s = m.harbour_ring.capacity * m.frame_interval_s;
+    m.deep_ring.capacity = std::clamp(static_cast<int>(std::ceil(span_s / m.deep_interval_s)) + 2, 4, 256);
+    while (m.deep_ring.capacity > 3 &&
+           static_cast<std::size_t>(m.deep_ring.capacity) * m.bytes_deep > std::min(o.max_ring_bytes, o.max_deep_ring_bytes))
+      --m.deep_ring.capacity;
   }
-  m.counters.ring_capacity = m.capacity_harbour;
-  m.counters.deep_ring_capacity = m.deep_kind == Impl::DeepKind::kNone ? 0 : m.capacity_deep;
+  m.counters.ring_capacity = m.harbour_ring.capacity;
+  m.counters.deep_ring_capacity = m.deep_kind == Impl::DeepKind::kNone ? 0 : m.deep_ring.capacity;
   m.counters.harbour_keyframe_bytes = m.bytes_harbour;
   m.counters.deep_keyframe_bytes = m.bytes_deep;
   m.counters.frame_interval_s = m.frame_interval_s;
@@ -670,8 +678,8 @@ bool StreamingEngine::advance_to(double display_time_s) {
   {
     const std::lock_guard<std::mutex> lock(m.mutex);
     m.schedule_locked(k, j, true);
-    const HarbourEntry* from = find(m.harbour_ring, k);
-    const HarbourEntry* to = find(m.harbour_ring, k + 1);
+    const HarbourEntry* from = m.harbour_ring.find(k);
+    const HarbourEntry* to = m.harbour_ring.find(k + 1);
     if (from && to) {
       next.harbour_from = from->keyframe;
       next.harbour_to = to->keyframe;
@@ -692,8 +700,8 @@ bool StreamingEngine::advance_to(double display_time_s) {
       next.deep_from = next.deep_to = nullptr;
       next.deep_fraction = 0.0;
     } else {
-      const DeepEntry* deep_from = find(m.deep_ring, j);
-      const DeepEntry* deep_to = find(m.deep_ring, j + 1);
+      const DeepEntry* deep_from = m.deep_ring.find(j);
+      const DeepEntry* deep_to = m.deep_ring.find(j + 1);
       if (deep_from && deep_to) {
         next.deep_from = deep_from->keyframe;
         next.deep_to = deep_to->keyframe;
@@ -745,13 +753,13 @@ bool StreamingEngine::advance_to(double display_time_s) {
 std::vector<std::shared_ptr<const HarbourKeyframe>> StreamingEngine::upcoming_harbour_keyframes(int count) const {
   const Impl& m = *impl_;
   const std::lock_guard<std::mutex> lock(m.mutex);
-  return keyframes_after(m.harbour_ring, m.current.harbour_to, count);  // the render thread writes current
+  return keyframes_after(m.harbour_ring.entries, m.current.harbour_to, count);  // the render thread writes current
 }
 
 std::vector<std::shared_ptr<const DeepWaterKeyframe>> StreamingEngine::upcoming_deep_keyframes(int count) const {
   const Impl& m = *impl_;
   const std::lock_guard<std::mutex> lock(m.mutex);
-  return keyframes_after(m.deep_ring, m.current.deep_to, count);
+  return keyframes_after(m.deep_ring.entries, m.current.deep_to, count);
 }
 
 SurfaceSnapshot StreamingEngine::snapshot() const {
@@ -779,8 +787,7 @@ bool StreamingEngine::wait_until_filled(std::chrono::milliseconds timeout) {
   Impl& m = *impl_;
   std::unique_lock<std::mutex> lock(m.mutex);
   return m.ready_cv.wait_for(lock, timeout, [&] {
-    return static_cast<int>(m.harbour_ring.size()) >= m.capacity_harbour &&
-           (m.deep_kind == Impl::DeepKind::kNone || static_cast<int>(m.deep_ring.size()) >= m.capacity_deep);
+    return m.harbour_ring.full() && (m.deep_kind == Impl::DeepKind::kNone || m.deep_ring.full());
   });
 }
 
@@ -798,14 +805,14 @@ SurfaceSnapshot StreamingEngine::snapshot_at(double display_time_s) {
   result.deep_fraction = m.deep_kind == Impl::DeepKind::kNone ? 0.0 : deep_steps - static_cast<double>(j);
   {
     const std::lock_guard<std::mutex> lock(m.mutex);
-    if (const HarbourEntry* from = find(m.harbour_ring, k))
-      if (const HarbourEntry* to = find(m.harbour_ring, k + 1)) {
+    if (const HarbourEntry* from = m.harbour_ring.find(k))
+      if (const HarbourEntry* to = m.harbour_ring.find(k + 1)) {
         result.harbour_from = from->keyframe;
         result.harbour_to = to->keyframe;
       }
     if (m.deep_kind != Impl::DeepKind::kNone)
-      if (const DeepEntry* from = find(m.deep_ring, j))
-        if (const DeepEntry* to = find(m.deep_ring, j + 1)) {
+      if (const DeepEntry* from = m.deep_ring.find(j))
+        if (const DeepEntry* to = m.deep_ring.find(j + 1)) {
           result.deep_from = from->keyframe;
           result.deep_to = to->keyframe;
         }
@@ -824,8 +831,8 @@ StreamingStats StreamingEngine::stats() const {
   {
     const std::lock_guard<std::mutex> lock(m.mutex);
     result = m.counters;
-    result.ring_fill = static_cast<int>(m.harbour_ring.size());
-    result.deep_ring_fill = static_cast<int>(m.deep_ring.size());
+    result.ring_fill = m.harbour_ring.fill();
+    result.deep_ring_fill = m.deep_ring.fill();
   }
   result.harbour_keyframes_allocated = m.harbour_pool.allocated();
   result.deep_keyframes_allocated = m.deep_pool.allocated();
@@ -834,11 +841,11 @@ StreamingStats StreamingEngine::stats() const {
 
 std::string StreamingEngine::memory_summary() const {
   const Impl& m = *impl_;
-  std::string text = fmt::format("harbour ring {} x {:.1f} MiB = {:.1f} MiB", m.capacity_harbour,
-                                 mebibytes(m.bytes_harbour), mebibytes(m.capacity_harbour * m.bytes_harbour));
+  std::string text = fmt::format("harbour ring {} x {:.1f} MiB = {:.1f} MiB", m.harbour_ring.capacity,
+                                 mebibytes(m.bytes_harbour), mebibytes(m.harbour_ring.capacity * m.bytes_harbour));
   if (m.deep_kind != Impl::DeepKind::kNone)
-    text += fmt::format("; deep-water ring {} x {:.2f} MiB = {:.1f} MiB", m.capacity_deep, mebibytes(m.bytes_deep),
-                        mebibytes(m.capacity_deep * m.bytes_deep));
+    text += fmt::format("; deep-water ring {} x {:.2f} MiB = {:.1f} MiB", m.deep_ring.capacity, mebibytes(m.bytes_deep),
+                        mebibytes(m.deep_ring.capacity * m.bytes_deep));
   return text;
 }
 
