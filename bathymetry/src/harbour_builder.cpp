@@ -817,10 +817,14 @@ SlopeLimiting limit_bed_slope(const BathyRequest& request, const GridGeometry& g
 // lines and polygons in grid metres. Gives nothing for a structure that passes waves unchanged
 // (porosity 1, or a style that is fully open and transmits everything): it is not an obstacle. Throws
 // for a category without a style when the feature lacks width or porosity, and for coefficients
-// outside 0 .. 1.
-std::optional<CoastalStructure> lay_structure(const SourceData& source, const ShoreStructure& structure,
-                                              const BathyRequest& request, const MapProjection& projection,
-                                              std::size_t number, float& face_porosity) {
+// outside 0 .. 1. `ordinal` names a structure that has no name ("breakwater 3").
+struct LaidStructure {
+  CoastalStructure structure;
+  float face_porosity = 1.0f;  // nominal porosity of the faces beyond the solid core, 0 .. 1
+};
+std::optional<LaidStructure> lay_structure(const SourceData& source, const ShoreStructure& structure,
+                                           const BathyRequest& request, const MapProjection& projection,
+                                           std::size_t ordinal) {
   auto style_it = request.structure_styles.find(structure.category);
   if (style_it == request.structure_styles.end() && (structure.porosity < 0 || structure.crest_width_m <= 0))
     throw Error(source.path.string(), "structure category '" + structure.category + "' has no width and porosity",
@@ -839,8 +843,9 @@ std::optional<CoastalStructure> lay_structure(const SourceData& source, const Sh
   if (structure.transmission_coefficient >= 0) in_unit_range("transmission_coefficient", style.transmission_coefficient = structure.transmission_coefficient);
   if (structure.porosity >= 0) in_unit_range("porosity", structure.porosity);
   if (structure.porosity >= 1.0 || (structure.porosity < 0 && style.porosity >= 1.0 && style.transmission_coefficient >= 1.0)) return std::nullopt;
-  CoastalStructure laid;
-  laid.name = structure.name.empty() ? fmt::format("{} {}", structure.category, number) : structure.name;
+  LaidStructure result;
+  CoastalStructure& laid = result.structure;
+  laid.name = structure.name.empty() ? fmt::format("{} {}", structure.category, ordinal) : structure.name;
   laid.kind = structure.category;
   for (const auto& line : structure.lines) {
     StructureLine plane;
@@ -863,8 +868,8 @@ std::optional<CoastalStructure> lay_structure(const SourceData& source, const Sh
   laid.roughness_factor = style.roughness_factor;
   laid.transmission_coefficient = style.transmission_coefficient;
   laid.porosity = structure.porosity;
-  face_porosity = static_cast<float>(std::clamp(structure.porosity >= 0 ? structure.porosity : style.porosity, 0.0, 1.0));
-  return laid;
+  result.face_porosity = static_cast<float>(std::clamp(structure.porosity >= 0 ? structure.porosity : style.porosity, 0.0, 1.0));
+  return result;
 }
 
 // Structures' footprints: every input's structures laid (lay_structure) and burnt into the grid's
@@ -881,19 +886,17 @@ std::map<std::string, std::size_t> lay_structure_footprints(const BathyRequest& 
   std::map<std::string, std::size_t> structure_cells;
   for (const auto& source : sources)
     for (const auto& structure : source.structures) {
-      float face_porosity = 1.0f;
-      std::optional<CoastalStructure> laid =
-          lay_structure(source, structure, request, projection, grid.structures.size() + 1, face_porosity);
+      std::optional<LaidStructure> laid = lay_structure(source, structure, request, projection, grid.structures.size() + 1);
       if (!laid) continue;
       std::unordered_set<std::size_t> footprint;
-      for_each_footprint_cell(g, depth_of_structures, *laid, kMinimumStructureFaceCells, [&](int c, int r, FootprintPart part) {
-        const float n = part == FootprintPart::kCore ? 0.0f : face_porosity;
+      for_each_footprint_cell(g, depth_of_structures, laid->structure, kMinimumStructureFaceCells, [&](int c, int r, FootprintPart part) {
+        const float n = part == FootprintPart::kCore ? 0.0f : laid->face_porosity;
         if (grid.porosity(c, r) > n) grid.porosity(c, r) = n;
         footprint.insert(static_cast<std::size_t>(r) * g.columns + c);
       });
       if (footprint.empty()) continue;
       structure_cells[structure.category] += footprint.size();
-      grid.structures.push_back(std::move(*laid));
+      grid.structures.push_back(std::move(laid->structure));
     }
   return structure_cells;
 }
@@ -985,30 +988,37 @@ nlohmann::json summarise_harbour_grid(const BathyRequest& request, const MapProj
 
 }  // namespace
 
-// The steps in order (harbour_builder.hpp lists them); each function above says what it takes and gives.
+// The steps in order (harbour_builder.hpp numbers them; each function above says what it takes and
+// gives). Each step reports what it changed where, for the summary.
 BathyResult build_harbour_grid(const BathyRequest& request) {
   check_request(request);
-  const ChartInputs inputs = read_chart_inputs(request);                      // 1
+  const ChartInputs inputs = read_chart_inputs(request);  // 1
   const std::vector<SourceData>& sources = inputs.sources;
-  const GridFrame frame = lay_grid_frame(request, inputs);                    // 2
+  const GridFrame frame = lay_grid_frame(request, inputs);  // 2
+  const GridGeometry& g = frame.geometry;
   BathyResult result;
   StepReports reports;
-  const DepthAreaBounds bounds = rasterise_depth_area_bounds(sources, frame.geometry, frame.projection);
-  Raster<std::uint8_t> land = rasterise_land_polygons(sources, frame.geometry, frame.projection);
+  // 3. Depth per input, merged by priority; 4. bounded by the chart's depth areas.
+  const DepthAreaBounds bounds = rasterise_depth_area_bounds(sources, g, frame.projection);
+  Raster<std::uint8_t> land = rasterise_land_polygons(sources, g, frame.projection);
   MergedDepth merged = grid_depth_by_priority(sources, frame, land, bounds, request, reports.inputs,
-                                              result.leave_one_out_error_m);  // 3
-  reports.bounded = bound_by_depth_areas(sources, bounds, merged);           // 4
+                                              result.leave_one_out_error_m);
+  reports.bounded = bound_by_depth_areas(sources, bounds, merged);
   Raster<float> depth = std::move(merged.depth_m);
-  reports.uncovered = fill_uncovered_cells(request, frame, depth, land);    // 5
-  reports.land_cells = lay_land_mask(request, sources, frame, bounds.chart_water, depth, land);  // 6
+  // 5. Cells no input covers; 6. still water and the land mask.
+  reports.uncovered = fill_uncovered_cells(request, frame, depth, land);
+  reports.land_cells = lay_land_mask(request, sources, frame, bounds.chart_water, depth, land);
   HarbourGrid& grid = result.grid;
-  grid.geometry = frame.geometry;
+  grid.geometry = g;
   grid.land = std::move(land);
-  reports.clamped = clamp_minimum_depth(request, grid.land, reports.land_cells, depth, result.warnings);  // 7
-  reports.slope = limit_bed_slope(request, frame.geometry, grid.land, depth);
+  // 7. Conditioning for the solver.
+  reports.clamped = clamp_minimum_depth(request, grid.land, reports.land_cells, depth, result.warnings);
+  reports.slope = limit_bed_slope(request, g, grid.land, depth);
   grid.still_water_depth_m = std::move(depth);
+  // Structures' footprints on the conditioned depth, the coast distance from the final land mask,
+  // the preview's coastline and the summary.
   reports.structure_cells = lay_structure_footprints(request, sources, frame.projection, grid);
-  grid.coast_distance_m = signed_coast_distance(grid.land, frame.geometry.spacing_m);
+  grid.coast_distance_m = signed_coast_distance(grid.land, g.spacing_m);
   trace_preview_coastline(sources, frame.projection, result);
   result.summary = summarise_harbour_grid(request, frame.projection, result, reports);
   return result;
