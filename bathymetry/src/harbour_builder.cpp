@@ -396,14 +396,20 @@ double estimated_peak_bytes(double cells, std::size_t input_count) {
   return cells * (96.0 + 4.0 * static_cast<double>(input_count));
 }
 
-BathyResult build_harbour_grid(const BathyRequest& request) {
+namespace {
+
+// --- The steps of build_harbour_grid, in order ------------------------------------------------------
+
+// Step 0: the request's own numbers, checked before any file is opened, so a mistyped level fails in
+// a second and not after minutes of gridding. Levels in metres are bounded by what the Earth has
+// (sources.hpp) and, for the still-water level above the sounding datum, by the largest tides and
+// surges (Bay of Fundy: 16 m range).
+void check_request(const BathyRequest& request) {
   if (request.inputs.empty())
     throw Error("BathyRequest::inputs", "is empty", "name at least one chart, raster or sounding file");
   if (!(request.spacing_m > 0))
     throw Error(fmt::format("BathyRequest::spacing_m = {}", request.spacing_m), "is not a positive cell size",
                 "give the cell size in metres, e.g. 10");
-  // Levels given in metres: bounded by what the Earth has (sources.hpp) and, for the still-water
-  // level above the sounding datum, by the largest tides and surges (Bay of Fundy: 16 m range).
   const auto check_level = [](const char* field, double value_m, double lowest_m, double highest_m, const char* why) {
     if (!(value_m >= lowest_m && value_m <= highest_m))
       throw Error(fmt::format("BathyRequest::{} = {} m", field, value_m),
@@ -416,23 +422,48 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
               "no water is deeper than the Challenger Deep, 10 935 m");
   check_level("land_elevation_m", request.land_elevation_m, 0.0, kHighestPlausibleElevation_m,
               "no land is higher than Everest, 8 849 m");
-  // 1. Read.
+}
+
+// Every input read (sources.hpp), in the caller's priority order, and the lon/lat box they cover
+// together (the default area, and what a box outside the data is told it missed).
+struct ChartInputs {
   std::vector<SourceData> sources;
+  std::array<double, 4> extent_lon_lat{INFINITY, INFINITY, -INFINITY, -INFINITY};
+};
+
+// Step 1: reads every input. Takes the request (paths, sign, text CRS); gives the sources. Throws
+// when none of them holds a depth: coastlines, land and structures alone leave nothing to grid.
+ChartInputs read_chart_inputs(const BathyRequest& request) {
+  ChartInputs inputs;
   const ReadOptions read_options{request.sign, request.text_crs};
-  std::array<double, 4> data_extent{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  std::array<double, 4>& data_extent = inputs.extent_lon_lat;
   for (const auto& path : request.inputs) {
-    sources.push_back(read_source(path, read_options));
-    const auto& e = sources.back().extent_lon_lat;
+    inputs.sources.push_back(read_source(path, read_options));
+    const auto& e = inputs.sources.back().extent_lon_lat;
     data_extent = {std::min(data_extent[0], e[0]), std::min(data_extent[1], e[1]), std::max(data_extent[2], e[2]),
                    std::max(data_extent[3], e[3])};
   }
-  const bool has_depth = std::any_of(sources.begin(), sources.end(), [](const SourceData& s) {
+  const bool has_depth = std::any_of(inputs.sources.begin(), inputs.sources.end(), [](const SourceData& s) {
     return s.raster.has_value() || !s.soundings.empty() || !s.contours.empty();
   });
   if (!has_depth)
     throw Error(request.inputs.front().string(), "no input holds depths (only coastlines, land or structures)",
                 "add a chart, a depth raster or soundings");
-  // 2. Projection and grid.
+  return inputs;
+}
+
+// The map projection and the grid laid in it.
+struct GridFrame {
+  MapProjection projection;
+  GridGeometry geometry;
+};
+
+// Step 2: chooses the projection (at the centre of the area) and lays the grid over the area: the
+// box asked for (lon/lat or projected metres), else where the depth-bearing inputs are (coastline or
+// structure files may reach further). Takes the request and the inputs; gives the frame. Throws for
+// a box that is empty or misses the data, and (lay_grid) for a grid too large for memory.
+GridFrame lay_grid_frame(const BathyRequest& request, const ChartInputs& inputs) {
+  const std::array<double, 4>& data_extent = inputs.extent_lon_lat;
   std::array<double, 4> lon_lat_box = request.bbox_lon_lat.value_or(data_extent);
   if (request.bbox_lon_lat) {
     const auto& b = *request.bbox_lon_lat;
@@ -447,9 +478,8 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   }
   const LonLat centre{0.5 * (lon_lat_box[0] + lon_lat_box[2]), 0.5 * (lon_lat_box[1] + lon_lat_box[3])};
   const MapProjection projection = choose_projection(request.projection, centre);
-  // Default area: where the depth-bearing inputs are (coastline or structure files may reach further).
   std::array<double, 4> data_box_m{INFINITY, INFINITY, -INFINITY, -INFINITY};
-  for (const auto& source : sources) {
+  for (const auto& source : inputs.sources) {
     if (!source.raster && source.soundings.empty() && source.contours.empty()) continue;
     const auto b = projected_extent(source, projection);
     data_box_m = {std::min(data_box_m[0], b[0]), std::min(data_box_m[1], b[1]), std::max(data_box_m[2], b[2]),
@@ -466,17 +496,26 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
                               data_box_m[0], data_box_m[2], data_box_m[1], data_box_m[3], projection.describe()),
                   "give X0,Y0,X1,Y1 in metres overlapping the data");
   }
-  const GridGeometry g = lay_grid(box_m, request.spacing_m, projection, request);
-  const bool area_given = request.bbox_lon_lat || request.bbox_projected_m;  // messages name a box only when given
-  const int columns = g.columns, rows = g.rows;
-  BathyResult result;
-  nlohmann::json inputs_json = nlohmann::json::array();
+  return {projection, lay_grid(box_m, request.spacing_m, projection, request)};
+}
 
-  // 3. Depth per input, merged by priority. 4. Depth-area bounds.
-  Raster<float> depth(columns, rows, kNaNf);
-  Raster<std::uint8_t> source_of_cell(columns, rows, kNoSource);
-  Raster<float> lower(columns, rows, kNaNf), upper(columns, rows, kNaNf);
-  Raster<std::uint8_t> chart_water(columns, rows, 0);  // inside a depth area that is never dry
+// What the chart's depth areas say per cell: DRVAL1 <= d <= DRVAL2 (NaN where no area says), and
+// whether the cell lies in an area that is wet at the datum.
+struct DepthAreaBounds {
+  Raster<float> lower_m, upper_m;
+  Raster<std::uint8_t> chart_water;  // inside a depth area that is never dry
+};
+
+// The depth-area and dredged-area bounds of every input rasterised on the grid (step 4 applies them;
+// leave-one-out cross-validation bounds its estimates by them too). Overlapping areas narrow the band:
+// the deepest DRVAL1 and the shallowest DRVAL2. Dredged areas are dredged to at least DRVAL1.
+DepthAreaBounds rasterise_depth_area_bounds(const std::vector<SourceData>& sources, const GridGeometry& g,
+                                            const MapProjection& projection) {
+  DepthAreaBounds bounds{Raster<float>(g.columns, g.rows, kNaNf), Raster<float>(g.columns, g.rows, kNaNf),
+                         Raster<std::uint8_t>(g.columns, g.rows, 0)};
+  Raster<float>& lower = bounds.lower_m;
+  Raster<float>& upper = bounds.upper_m;
+  Raster<std::uint8_t>& chart_water = bounds.chart_water;
   for (const auto& source : sources) {
     for (const auto& area : source.depth_areas) {
       const auto rings = project_polygon(area.polygon, projection);
@@ -487,7 +526,7 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
         if (area.shallowest_m >= 0.0) chart_water(c, r) = 1;
       });
     }
-    for (const auto& area : source.dredged_areas) {  // dredged to at least DRVAL1
+    for (const auto& area : source.dredged_areas) {
       const auto rings = project_polygon(area.polygon, projection);
       for_each_cell_in_polygon(g, rings, [&](int c, int r) {
         lower(c, r) = std::isnan(lower(c, r)) ? float(area.shallowest_m) : std::max(lower(c, r), float(area.shallowest_m));
@@ -495,11 +534,104 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
       });
     }
   }
-  // Land polygons first: scattered interpolation skips them (and cells outside a chart's coverage).
-  Raster<std::uint8_t> land_polygons(columns, rows, 0);
+  return bounds;
+}
+
+// The land polygons of every input rasterised (1 = land). They come before the depth: scattered
+// interpolation skips them, and they start the land mask of step 6.
+Raster<std::uint8_t> rasterise_land_polygons(const std::vector<SourceData>& sources, const GridGeometry& g,
+                                             const MapProjection& projection) {
+  Raster<std::uint8_t> land_polygons(g.columns, g.rows, 0);
   for (const auto& source : sources)
     for (const auto& polygon : source.land)
       for_each_cell_in_polygon(g, project_polygon(polygon, projection), [&](int c, int r) { land_polygons(c, r) = 1; });
+  return land_polygons;
+}
+
+// Leave-one-out cross-validation of a chart's soundings: each removed in turn, interpolated from the
+// rest and bounded by the depth areas as the grid is. Appends estimate - charted depth per sounding
+// to `errors_m` (BathyResult::leave_one_out_error_m); gives the input's summary entry.
+nlohmann::json cross_validate_soundings(NaturalNeighbourSurface& surface, const ScatteredInput& scattered,
+                                        const GridGeometry& g, const DepthAreaBounds& bounds,
+                                        std::vector<double>& errors_m) {
+  ProgressBar progress("leave-one-out", static_cast<double>(scattered.sounding_count), "soundings");
+  std::vector<double> absolute;
+  for (std::size_t k = 0; k < scattered.sounding_count; ++k) {
+    const ScatteredDepth& s = scattered.points[k];
+    double estimate = surface.leave_one_out(k);
+    const int c = static_cast<int>(std::floor((s.x_m - g.origin_x_m) / g.spacing_m));
+    const int r = static_cast<int>(std::floor((s.y_m - g.origin_y_m) / g.spacing_m));
+    if (!std::isfinite(estimate) || c < 0 || r < 0 || c >= g.columns || r >= g.rows) continue;
+    if (std::isfinite(bounds.lower_m(c, r))) estimate = std::max<double>(estimate, bounds.lower_m(c, r));
+    if (std::isfinite(bounds.upper_m(c, r))) estimate = std::min<double>(estimate, bounds.upper_m(c, r));
+    errors_m.push_back(estimate - s.depth_m);
+    absolute.push_back(std::abs(estimate - s.depth_m));
+    if (k % 64 == 0) progress.update(static_cast<double>(k));
+  }
+  progress.finish();
+  return {{"soundings", absolute.size()},
+          {"median_absolute_error_m", median(absolute)},
+          {"p90_absolute_error_m", percentile(absolute, 0.9)}};
+}
+
+// Step 3 for a chart or soundings file: its soundings, contour vertices, depth-area boundaries and
+// every input's coastline at 0 m (gather_scattered) interpolated by Sibson natural neighbours on the
+// grid's cells, except land polygons and cells outside the input's coverage (M_COVR). Records the
+// counts in `info` (the input's summary entry); with leave_one_out also cross-validates the
+// soundings. Gives the input's depth layer (NaN where it says nothing). Throws when the input has no
+// sounding or contour inside the grid's area.
+Raster<float> interpolate_scattered_depth(const SourceData& source, const std::vector<SourceData>& sources,
+                                          const GridGeometry& g, const MapProjection& projection,
+                                          const Raster<std::uint8_t>& land_polygons, const DepthAreaBounds& bounds,
+                                          const BathyRequest& request, nlohmann::json& info,
+                                          std::vector<double>& leave_one_out_error_m) {
+  const bool area_given = request.bbox_lon_lat || request.bbox_projected_m;  // messages name a box only when given
+  ScatteredInput scattered = gather_scattered(source, sources, projection, g);
+  info["soundings_used"] = scattered.sounding_count;
+  info["contour_vertices"] = scattered.contour_vertices;
+  info["depth_area_vertices"] = scattered.depth_area_vertices;
+  info["coastline_vertices"] = scattered.coastline_vertices;
+  if (scattered.sounding_count == 0 && scattered.contour_vertices == 0)
+    throw Error(source.path.string(), "has no soundings or contours inside the grid's area",
+                area_given ? "widen BathyRequest::bbox_lon_lat (or BathyRequest::bbox_projected_m), or drop this input"
+                           : "drop this input, or give soundings inside the area the other inputs cover");
+  NaturalNeighbourSurface surface(scattered.points);
+  info["triangulation_vertices"] = surface.vertex_count();
+  Raster<float> layer;
+  {
+    ProgressBar progress("gridding " + source.path.filename().string(), g.rows, "rows");
+    Raster<std::uint8_t> skip = land_polygons;
+    if (!source.coverage.empty()) {
+      Raster<std::uint8_t> inside(g.columns, g.rows, 0);
+      for (const auto& polygon : source.coverage)
+        for_each_cell_in_polygon(g, project_polygon(polygon, projection), [&](int c, int r) { inside(c, r) = 1; });
+      for (std::size_t i = 0; i < skip.size(); ++i) skip.values()[i] |= !inside.values()[i];
+    }
+    layer = surface.sample(g, &skip, &progress);
+  }
+  if (request.leave_one_out)
+    info["leave_one_out"] = cross_validate_soundings(surface, scattered, g, bounds, leave_one_out_error_m);
+  return layer;
+}
+
+// The gridded depth before conditioning, and which input gave each cell's depth (kNoSource: none).
+struct MergedDepth {
+  Raster<float> depth_m;
+  Raster<std::uint8_t> source_of_cell;
+};
+
+// Step 3: depth per input, merged by priority: the first input (in the caller's order) that gives a
+// cell a depth wins it. Rasters are resampled (bilinear, nearest at their edges), charts and soundings
+// interpolated; inputs with coastlines, land or structures only give no depth. Appends each input's
+// summary entry to `inputs_json` and leave-one-out errors to `leave_one_out_error_m`.
+MergedDepth grid_depth_by_priority(const std::vector<SourceData>& sources, const GridFrame& frame,
+                                   const Raster<std::uint8_t>& land_polygons, const DepthAreaBounds& bounds,
+                                   const BathyRequest& request, nlohmann::json& inputs_json,
+                                   std::vector<double>& leave_one_out_error_m) {
+  const GridGeometry& g = frame.geometry;
+  MergedDepth merged{Raster<float>(g.columns, g.rows, kNaNf), Raster<std::uint8_t>(g.columns, g.rows, kNoSource)};
+  Raster<float>& depth = merged.depth_m;
+  Raster<std::uint8_t>& source_of_cell = merged.source_of_cell;
   for (std::size_t index = 0; index < sources.size(); ++index) {
     const SourceData& source = sources[index];
     nlohmann::json info{{"path", source.path.string()}, {"format", source.format}, {"priority", index + 1}};
@@ -507,51 +639,10 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
     Raster<float> layer;
     if (source.raster) {
       info["raster_size"] = {source.raster->columns, source.raster->rows};
-      layer = resample_raster(*source.raster, g, projection);
+      layer = resample_raster(*source.raster, g, frame.projection);
     } else if (!source.soundings.empty() || !source.contours.empty()) {
-      ScatteredInput scattered = gather_scattered(source, sources, projection, g);
-      info["soundings_used"] = scattered.sounding_count;
-      info["contour_vertices"] = scattered.contour_vertices;
-      info["depth_area_vertices"] = scattered.depth_area_vertices;
-      info["coastline_vertices"] = scattered.coastline_vertices;
-      if (scattered.sounding_count == 0 && scattered.contour_vertices == 0)
-        throw Error(source.path.string(), "has no soundings or contours inside the grid's area",
-                    area_given ? "widen BathyRequest::bbox_lon_lat (or BathyRequest::bbox_projected_m), or drop this input"
-                               : "drop this input, or give soundings inside the area the other inputs cover");
-      NaturalNeighbourSurface surface(scattered.points);
-      info["triangulation_vertices"] = surface.vertex_count();
-      {
-        ProgressBar progress("gridding " + source.path.filename().string(), rows, "rows");
-        Raster<std::uint8_t> skip = land_polygons;
-        if (!source.coverage.empty()) {
-          Raster<std::uint8_t> inside(columns, rows, 0);
-          for (const auto& polygon : source.coverage)
-            for_each_cell_in_polygon(g, project_polygon(polygon, projection), [&](int c, int r) { inside(c, r) = 1; });
-          for (std::size_t i = 0; i < skip.size(); ++i) skip.values()[i] |= !inside.values()[i];
-        }
-        layer = surface.sample(g, &skip, &progress);
-      }
-      if (request.leave_one_out) {
-        // Each sounding removed in turn, interpolated from the rest, bounded like the grid is.
-        ProgressBar progress("leave-one-out", static_cast<double>(scattered.sounding_count), "soundings");
-        std::vector<double> absolute;
-        for (std::size_t k = 0; k < scattered.sounding_count; ++k) {
-          const ScatteredDepth& s = scattered.points[k];
-          double estimate = surface.leave_one_out(k);
-          const int c = static_cast<int>(std::floor((s.x_m - g.origin_x_m) / g.spacing_m));
-          const int r = static_cast<int>(std::floor((s.y_m - g.origin_y_m) / g.spacing_m));
-          if (!std::isfinite(estimate) || c < 0 || r < 0 || c >= columns || r >= rows) continue;
-          if (std::isfinite(lower(c, r))) estimate = std::max<double>(estimate, lower(c, r));
-          if (std::isfinite(upper(c, r))) estimate = std::min<double>(estimate, upper(c, r));
-          result.leave_one_out_error_m.push_back(estimate - s.depth_m);
-          absolute.push_back(std::abs(estimate - s.depth_m));
-          if (k % 64 == 0) progress.update(static_cast<double>(k));
-        }
-        progress.finish();
-        info["leave_one_out"] = {{"soundings", absolute.size()},
-                                 {"median_absolute_error_m", median(absolute)},
-                                 {"p90_absolute_error_m", percentile(absolute, 0.9)}};
-      }
+      layer = interpolate_scattered_depth(source, sources, g, frame.projection, land_polygons, bounds, request, info,
+                                          leave_one_out_error_m);
     } else {
       inputs_json.push_back(info);
       continue;  // coastlines, land and structures only
@@ -566,13 +657,21 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
     info["cells_taken"] = covered;
     inputs_json.push_back(info);
   }
-  // Bounds apply to chart-interpolated and uncovered cells; a survey raster is measured, not bounded.
+  return merged;
+}
+
+// Step 4: the chart's depth areas bound the gridded depth, DRVAL1 <= d <= DRVAL2; a cell no input
+// covered but an area bounds takes the middle of its band. Chart-interpolated and uncovered cells
+// only: a survey raster is measured, not bounded. Gives the report of the cells changed.
+ChangeReport bound_by_depth_areas(const std::vector<SourceData>& sources, const DepthAreaBounds& bounds,
+                                  MergedDepth& merged) {
+  Raster<float>& depth = merged.depth_m;
   ChangeReport bounded;
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < columns; ++c) {
-      const std::uint8_t s = source_of_cell(c, r);
+  for (int r = 0; r < depth.rows(); ++r)
+    for (int c = 0; c < depth.columns(); ++c) {
+      const std::uint8_t s = merged.source_of_cell(c, r);
       if (s != kNoSource && sources[s].raster) continue;
-      const float lo = lower(c, r), hi = upper(c, r), d = depth(c, r);
+      const float lo = bounds.lower_m(c, r), hi = bounds.upper_m(c, r), d = depth(c, r);
       if (std::isnan(lo) && std::isnan(hi)) continue;
       float bounded_depth = d;
       if (std::isnan(d)) bounded_depth = std::isnan(hi) ? lo : std::isnan(lo) ? hi : 0.5f * (lo + hi);  // no data: mid-band
@@ -583,12 +682,23 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
         depth(c, r) = bounded_depth;
       }
     }
-  // 5. Cells no input covers (land polygons aside): nearest covered cell, or land.
-  Raster<std::uint8_t> covered(columns, rows, 0);
+  return bounded;
+}
+
+// Step 5: cells no input covers (land polygons aside). With fill_uncovered_from_nearest they take the
+// depth of the nearest covered cell (the report's change: how far it was carried); otherwise they are
+// no data (issue 14 item 3): not land, but outside what the chart says, kept apart in the land
+// channel (kOutsideChartCell) so the bake decides ([bathymetry] outside_chart) and the preview shows
+// them; a reader that knows only land and water sees land, as before. Throws when no cell is covered.
+ChangeReport fill_uncovered_cells(const BathyRequest& request, const GridFrame& frame, Raster<float>& depth,
+                                  Raster<std::uint8_t>& land_polygons) {
+  const GridGeometry& g = frame.geometry;
+  const bool area_given = request.bbox_lon_lat || request.bbox_projected_m;  // messages name a box only when given
+  Raster<std::uint8_t> covered(g.columns, g.rows, 0);
   std::size_t covered_cells = 0;
   for (std::size_t i = 0; i < depth.size(); ++i) covered_cells += covered.values()[i] = std::isfinite(depth.values()[i]);
   if (covered_cells == 0)
-    throw Error("grid " + projection.describe(), "no input covers any cell of the grid",
+    throw Error("grid " + frame.projection.describe(), "no input covers any cell of the grid",
                 area_given ? "check BathyRequest::bbox_lon_lat or BathyRequest::bbox_projected_m against the inputs' "
                              "extent (gdalinfo / ogrinfo)"
                            : "check that the inputs hold depths where they claim to (gdalinfo / ogrinfo): their "
@@ -597,151 +707,205 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   if (covered_cells < depth.size()) {
     std::optional<NearestSeed> nearest;
     if (request.fill_uncovered_from_nearest) nearest = nearest_seed_transform(covered, g.spacing_m);
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < columns; ++c) {
+    for (int r = 0; r < g.rows; ++r)
+      for (int c = 0; c < g.columns; ++c) {
         if (covered(c, r) || land_polygons(c, r)) continue;
         if (nearest) {
           depth(c, r) = depth(nearest->nearest_column(c, r), nearest->nearest_row(c, r));
-          uncovered.record(c, r, nearest->distance_m(c, r));  // "change" = how far the value was carried
+          uncovered.record(c, r, nearest->distance_m(c, r));
         } else {
-          // No data (issue 14 item 3): not land, but outside what the chart says. Kept apart in the
-          // land channel so the bake decides ([bathymetry] outside_chart) and the preview shows it;
-          // a reader that knows only land and water sees land, as before.
           land_polygons(c, r) = kOutsideChartCell;
           uncovered.record(c, r, 0.0);
         }
       }
   }
-  // 6. Still water at water_level_m above the sounding datum: every depth (and land elevation)
-  //    is measured from it. Then land: land polygons, and cells at or above still water unless a
-  //    depth area that never dries says water.
+  return uncovered;
+}
+
+// Step 6: still water at water_level_m above the sounding datum, from which every depth (and land
+// elevation) is then measured; then the land mask: land polygons, and cells at or above still water
+// unless a depth area that never dries says water (a depth area with DRVAL1 >= 0 is wet at the
+// datum, so wet at any still water above it). Land cells without an elevation from the inputs stand
+// land_elevation_m above still water. Takes the land polygons (with step 5's outside-chart cells) in
+// `land`; gives the number of land cells. Throws when every cell is land.
+std::size_t lay_land_mask(const BathyRequest& request, const std::vector<SourceData>& sources,
+                          const GridFrame& frame, const Raster<std::uint8_t>& chart_water, Raster<float>& depth,
+                          Raster<std::uint8_t>& land) {
   if (request.water_level_m != 0.0)
     for (float& d : depth.values()) d += static_cast<float>(request.water_level_m);
-  HarbourGrid& grid = result.grid;
-  grid.geometry = g;
-  grid.land = std::move(land_polygons);
   std::size_t land_cells = 0;
   for (std::size_t i = 0; i < depth.size(); ++i) {
-    std::uint8_t& land = grid.land.values()[i];
+    std::uint8_t& is_land = land.values()[i];
     float& d = depth.values()[i];
-    // A depth area with DRVAL1 >= 0 is wet at the datum, so wet at any still water above it.
-    if (!land && d <= 0.0f && !(chart_water.values()[i] && request.water_level_m >= 0.0)) land = 1;
-    if (land) {
+    if (!is_land && d <= 0.0f && !(chart_water.values()[i] && request.water_level_m >= 0.0)) is_land = 1;
+    if (is_land) {
       land_cells++;
       if (!(d < 0.0f)) d = -static_cast<float>(request.land_elevation_m);
     }
   }
   if (land_cells == depth.size())
-    throw Error("grid " + projection.describe(), "every cell is land", every_cell_land_fix(sources, request));
-  // 7. Conditioning: minimum depth, then optional slope limiting (water cells only).
-  ChangeReport clamped, smoothed;
+    throw Error("grid " + frame.projection.describe(), "every cell is land", every_cell_land_fix(sources, request));
+  return land_cells;
+}
+
+// Step 7a, conditioning for the Boussinesq solver: water cells shallower than minimum_depth_m are
+// deepened to it (the solver's total depth must stay positive under the waves). Adds a warning to
+// `warnings` when any cell was raised (issue 19); gives the report of the cells changed.
+ChangeReport clamp_minimum_depth(const BathyRequest& request, const Raster<std::uint8_t>& land, std::size_t land_cells,
+                                 Raster<float>& depth, std::vector<std::string>& warnings) {
+  ChangeReport clamped;
   double shallowest_water_m = INFINITY;
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < columns; ++c)
-      if (!grid.land(c, r) && depth(c, r) < request.minimum_depth_m) {
+  for (int r = 0; r < depth.rows(); ++r)
+    for (int c = 0; c < depth.columns(); ++c)
+      if (!land(c, r) && depth(c, r) < request.minimum_depth_m) {
         shallowest_water_m = std::min<double>(shallowest_water_m, depth(c, r));
         clamped.record(c, r, request.minimum_depth_m - depth(c, r));
         depth(c, r) = static_cast<float>(request.minimum_depth_m);
       }
   if (clamped.cells > 0)
-    result.warnings.push_back(minimum_depth_warning(clamped.cells, depth.size() - land_cells, shallowest_water_m,
-                                                    clamped.max_change_m, request.minimum_depth_m));
-  int slope_iterations = 0;
-  if (request.maximum_slope > 0) {
-    const Raster<float> before = depth;
-    const double max_step = request.maximum_slope * g.spacing_m;
-    // Jacobi relaxation of the steep cells towards their water neighbours' mean until no step
-    // between water neighbours exceeds the limit (or 200 sweeps).
-    for (; slope_iterations < 200; ++slope_iterations) {
-      Raster<float> next = depth;
-      std::size_t steep = 0;
-      for (int r = 0; r < rows; ++r)
-        for (int c = 0; c < columns; ++c) {
-          if (grid.land(c, r)) continue;
-          double sum = 0, worst = 0;
-          int n = 0;
-          for (auto [dc, dr] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-            const int cc = c + dc, rr = r + dr;
-            if (cc < 0 || rr < 0 || cc >= columns || rr >= rows || grid.land(cc, rr)) continue;
-            sum += depth(cc, rr), ++n;
-            worst = std::max(worst, std::abs(double(depth(cc, rr)) - depth(c, r)));
-          }
-          if (n > 0 && worst > max_step) {
-            next(c, r) = static_cast<float>(0.5 * depth(c, r) + 0.5 * sum / n);
-            ++steep;
-          }
+    warnings.push_back(minimum_depth_warning(clamped.cells, depth.size() - land_cells, shallowest_water_m,
+                                             clamped.max_change_m, request.minimum_depth_m));
+  return clamped;
+}
+
+// The cells the slope limiting changed, and the sweeps it took.
+struct SlopeLimiting {
+  ChangeReport smoothed;
+  int sweeps = 0;
+};
+
+// Step 7b, optional (maximum_slope > 0): the sea bed smoothed where |grad d| exceeds maximum_slope,
+// water cells only. Jacobi relaxation of the steep cells towards their water neighbours' mean until
+// no step between water neighbours exceeds the limit (or 200 sweeps).
+SlopeLimiting limit_bed_slope(const BathyRequest& request, const GridGeometry& g, const Raster<std::uint8_t>& land,
+                              Raster<float>& depth) {
+  SlopeLimiting limiting;
+  if (!(request.maximum_slope > 0)) return limiting;
+  int& slope_iterations = limiting.sweeps;
+  const Raster<float> before = depth;
+  const double max_step = request.maximum_slope * g.spacing_m;
+  for (; slope_iterations < 200; ++slope_iterations) {
+    Raster<float> next = depth;
+    std::size_t steep = 0;
+    for (int r = 0; r < g.rows; ++r)
+      for (int c = 0; c < g.columns; ++c) {
+        if (land(c, r)) continue;
+        double sum = 0, worst = 0;
+        int n = 0;
+        for (auto [dc, dr] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          const int cc = c + dc, rr = r + dr;
+          if (cc < 0 || rr < 0 || cc >= g.columns || rr >= g.rows || land(cc, rr)) continue;
+          sum += depth(cc, rr), ++n;
+          worst = std::max(worst, std::abs(double(depth(cc, rr)) - depth(c, r)));
         }
-      depth = std::move(next);
-      if (steep == 0) break;
-    }
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < columns; ++c)
-        if (depth(c, r) != before(c, r)) smoothed.record(c, r, depth(c, r) - before(c, r));
+        if (n > 0 && worst > max_step) {
+          next(c, r) = static_cast<float>(0.5 * depth(c, r) + 0.5 * sum / n);
+          ++steep;
+        }
+      }
+    depth = std::move(next);
+    if (steep == 0) break;
   }
-  grid.still_water_depth_m = std::move(depth);
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.columns; ++c)
+      if (depth(c, r) != before(c, r)) limiting.smoothed.record(c, r, depth(c, r) - before(c, r));
+  return limiting;
+}
+
+// One structure of an input as the harbour grid carries it (core/coastal_structure.hpp): the style
+// of its category (BathyRequest::structure_styles) overridden by the feature's own properties, its
+// lines and polygons in grid metres. Gives nothing for a structure that passes waves unchanged
+// (porosity 1, or a style that is fully open and transmits everything): it is not an obstacle. Throws
+// for a category without a style when the feature lacks width or porosity, and for coefficients
+// outside 0 .. 1. `ordinal` names a structure that has no name ("breakwater 3").
+struct LaidStructure {
+  CoastalStructure structure;
+  float face_porosity = 1.0f;  // nominal porosity of the faces beyond the solid core, 0 .. 1
+};
+std::optional<LaidStructure> lay_structure(const SourceData& source, const ShoreStructure& structure,
+                                           const BathyRequest& request, const MapProjection& projection,
+                                           std::size_t ordinal) {
+  auto style_it = request.structure_styles.find(structure.category);
+  if (style_it == request.structure_styles.end() && (structure.porosity < 0 || structure.crest_width_m <= 0))
+    throw Error(source.path.string(), "structure category '" + structure.category + "' has no width and porosity",
+                "give the feature crest_width_m and porosity properties, or add '" + structure.category +
+                    "' with a crest width and porosity to BathyRequest::structure_styles");
+  StructureStyle style = style_it != request.structure_styles.end() ? style_it->second : StructureStyle{};
+  auto in_unit_range = [&](const char* key, double value) {
+    if (!(value >= 0.0 && value <= 1.0))
+      throw Error(source.path.string(), fmt::format("structure '{}' ({}): {} = {} is outside 0 .. 1", structure.name,
+                                                    structure.category, key, value),
+                  fmt::format("give {} as a fraction of the incident wave height, 0 .. 1", key));
+  };
+  if (structure.crest_width_m > 0) style.crest_width_m = structure.crest_width_m;
+  if (std::isfinite(structure.crest_elevation_m)) style.crest_elevation_m = structure.crest_elevation_m;
+  if (structure.reflection_coefficient >= 0) in_unit_range("reflection_coefficient", style.reflection_coefficient = structure.reflection_coefficient);
+  if (structure.transmission_coefficient >= 0) in_unit_range("transmission_coefficient", style.transmission_coefficient = structure.transmission_coefficient);
+  if (structure.porosity >= 0) in_unit_range("porosity", structure.porosity);
+  if (structure.porosity >= 1.0 || (structure.porosity < 0 && style.porosity >= 1.0 && style.transmission_coefficient >= 1.0)) return std::nullopt;
+  LaidStructure result;
+  CoastalStructure& laid = result.structure;
+  laid.name = structure.name.empty() ? fmt::format("{} {}", structure.category, ordinal) : structure.name;
+  laid.kind = structure.category;
+  for (const auto& line : structure.lines) {
+    StructureLine plane;
+    for (const ProjectedPoint& p : project_line(line, projection)) plane.push_back({p.x_m, p.y_m});
+    laid.lines.push_back(std::move(plane));
+  }
+  for (const auto& polygon : structure.polygons) {
+    std::vector<StructureLine> rings;
+    for (const PlaneLine& ring : project_polygon(polygon, projection)) {
+      StructureLine plane;
+      for (const ProjectedPoint& p : ring) plane.push_back({p.x_m, p.y_m});
+      rings.push_back(std::move(plane));
+    }
+    laid.polygons.push_back(std::move(rings));
+  }
+  laid.crest_width_m = style.crest_width_m;
+  laid.crest_elevation_m = style.crest_elevation_m;
+  laid.side_slope = style.side_slope;
+  laid.reflection_coefficient = style.reflection_coefficient;
+  laid.roughness_factor = style.roughness_factor;
+  laid.transmission_coefficient = style.transmission_coefficient;
+  laid.porosity = structure.porosity;
+  result.face_porosity = static_cast<float>(std::clamp(structure.porosity >= 0 ? structure.porosity : style.porosity, 0.0, 1.0));
+  return result;
+}
+
+// Structures' footprints: every input's structures laid (lay_structure) and burnt into the grid's
+// porosity, the core solid (n = 0) and the faces at the nominal porosity of their kind (the bake fits
+// it), over the final still-water depth (structure_footprint.hpp). A structure whose footprint misses
+// the grid (a chart's structures beyond the box asked for) is left out. Fills grid.porosity and
+// grid.structures; gives the footprint cells per category (summary "structure_cells").
+std::map<std::string, std::size_t> lay_structure_footprints(const BathyRequest& request,
+                                                            const std::vector<SourceData>& sources,
+                                                            const MapProjection& projection, HarbourGrid& grid) {
+  const GridGeometry& g = grid.geometry;
   const Raster<float>& depth_of_structures = grid.still_water_depth_m;
-  // Structures: each as the harbour grid carries it (core/coastal_structure.hpp), its footprint
-  // burnt into the porosity with the nominal porosity of its kind (the bake fits it).
-  grid.porosity = Raster<float>(columns, rows, 1.0f);
+  grid.porosity = Raster<float>(g.columns, g.rows, 1.0f);
   std::map<std::string, std::size_t> structure_cells;
   for (const auto& source : sources)
     for (const auto& structure : source.structures) {
-      auto style_it = request.structure_styles.find(structure.category);
-      if (style_it == request.structure_styles.end() && (structure.porosity < 0 || structure.crest_width_m <= 0))
-        throw Error(source.path.string(), "structure category '" + structure.category + "' has no width and porosity",
-                    "give the feature crest_width_m and porosity properties, or add '" + structure.category +
-                        "' with a crest width and porosity to BathyRequest::structure_styles");
-      StructureStyle style = style_it != request.structure_styles.end() ? style_it->second : StructureStyle{};
-      auto in_unit_range = [&](const char* key, double value) {
-        if (!(value >= 0.0 && value <= 1.0))
-          throw Error(source.path.string(), fmt::format("structure '{}' ({}): {} = {} is outside 0 .. 1", structure.name,
-                                                        structure.category, key, value),
-                      fmt::format("give {} as a fraction of the incident wave height, 0 .. 1", key));
-      };
-      if (structure.crest_width_m > 0) style.crest_width_m = structure.crest_width_m;
-      if (std::isfinite(structure.crest_elevation_m)) style.crest_elevation_m = structure.crest_elevation_m;
-      if (structure.reflection_coefficient >= 0) in_unit_range("reflection_coefficient", style.reflection_coefficient = structure.reflection_coefficient);
-      if (structure.transmission_coefficient >= 0) in_unit_range("transmission_coefficient", style.transmission_coefficient = structure.transmission_coefficient);
-      if (structure.porosity >= 0) in_unit_range("porosity", structure.porosity);
-      if (structure.porosity >= 1.0 || (structure.porosity < 0 && style.porosity >= 1.0 && style.transmission_coefficient >= 1.0)) continue;
-      CoastalStructure laid;
-      laid.name = structure.name.empty() ? fmt::format("{} {}", structure.category, grid.structures.size() + 1) : structure.name;
-      laid.kind = structure.category;
-      for (const auto& line : structure.lines) {
-        StructureLine plane;
-        for (const ProjectedPoint& p : project_line(line, projection)) plane.push_back({p.x_m, p.y_m});
-        laid.lines.push_back(std::move(plane));
-      }
-      for (const auto& polygon : structure.polygons) {
-        std::vector<StructureLine> rings;
-        for (const PlaneLine& ring : project_polygon(polygon, projection)) {
-          StructureLine plane;
-          for (const ProjectedPoint& p : ring) plane.push_back({p.x_m, p.y_m});
-          rings.push_back(std::move(plane));
-        }
-        laid.polygons.push_back(std::move(rings));
-      }
-      laid.crest_width_m = style.crest_width_m;
-      laid.crest_elevation_m = style.crest_elevation_m;
-      laid.side_slope = style.side_slope;
-      laid.reflection_coefficient = style.reflection_coefficient;
-      laid.roughness_factor = style.roughness_factor;
-      laid.transmission_coefficient = style.transmission_coefficient;
-      laid.porosity = structure.porosity;
-      const float face_porosity = static_cast<float>(std::clamp(structure.porosity >= 0 ? structure.porosity : style.porosity, 0.0, 1.0));
+      std::optional<LaidStructure> laid = lay_structure(source, structure, request, projection, grid.structures.size() + 1);
+      if (!laid) continue;
       std::unordered_set<std::size_t> footprint;
-      for_each_footprint_cell(g, depth_of_structures, laid, kMinimumStructureFaceCells, [&](int c, int r, FootprintPart part) {
-        const float n = part == FootprintPart::kCore ? 0.0f : face_porosity;
+      for_each_footprint_cell(g, depth_of_structures, laid->structure, kMinimumStructureFaceCells, [&](int c, int r, FootprintPart part) {
+        const float n = part == FootprintPart::kCore ? 0.0f : laid->face_porosity;
         if (grid.porosity(c, r) > n) grid.porosity(c, r) = n;
-        footprint.insert(static_cast<std::size_t>(r) * columns + c);
+        footprint.insert(static_cast<std::size_t>(r) * g.columns + c);
       });
-      if (footprint.empty()) continue;  // off this grid (a chart's structures beyond the box asked for)
+      if (footprint.empty()) continue;
       structure_cells[structure.category] += footprint.size();
-      grid.structures.push_back(std::move(laid));
+      grid.structures.push_back(std::move(laid->structure));
     }
-  grid.coast_distance_m = signed_coast_distance(grid.land, g.spacing_m);
-  // Preview coastline: the inputs' coastlines, else the outlines of their land polygons, else (raster
-  // or XYZ inputs alone) the gridded depth's still-water line (docs/formats/harbour-grid.md).
+  return structure_cells;
+}
+
+// The preview's coastline (docs/formats/harbour-grid.md): the inputs' coastlines, else the outlines of
+// their land polygons, else (raster or XYZ inputs alone) the gridded depth's still-water line. Fills
+// result.coastline_m and result.coastline_from_depth; needs result.grid's depth and land.
+void trace_preview_coastline(const std::vector<SourceData>& sources, const MapProjection& projection,
+                             BathyResult& result) {
   for (const auto& source : sources) {
     for (const auto& line : source.coastlines) result.coastline_m.push_back(project_line(line, projection));
     if (source.coastlines.empty())
@@ -749,10 +913,30 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
         for (const auto& ring : polygon.rings) result.coastline_m.push_back(project_line(ring, projection));
   }
   if (result.coastline_m.empty()) {
-    result.coastline_m = trace_still_water_line(grid);
+    result.coastline_m = trace_still_water_line(result.grid);
     result.coastline_from_depth = true;
   }
-  // Summary.
+}
+
+// What each step reported, for the summary.
+struct StepReports {
+  nlohmann::json inputs = nlohmann::json::array();  // step 3, one entry per input
+  ChangeReport bounded;                             // step 4
+  ChangeReport uncovered;                           // step 5
+  std::size_t land_cells = 0;                       // step 6 (outside-chart cells included)
+  ChangeReport clamped;                             // step 7a
+  SlopeLimiting slope;                              // step 7b
+  std::map<std::string, std::size_t> structure_cells;
+};
+
+// The summary (summary.json, docs/formats/harbour-grid.md): the inputs, the grid and where it lies,
+// the water's depth range, the cell counts, and what each step changed where. Takes the finished
+// result (grid, warnings, leave-one-out errors) and the steps' reports; gives the summary.
+nlohmann::json summarise_harbour_grid(const BathyRequest& request, const MapProjection& projection,
+                                      const BathyResult& result, const StepReports& reports) {
+  const HarbourGrid& grid = result.grid;
+  const GridGeometry& g = grid.geometry;
+  const ChangeReport& uncovered = reports.uncovered;
   float depth_min = INFINITY, depth_max = -INFINITY;
   for (std::size_t i = 0; i < grid.still_water_depth_m.size(); ++i)
     if (!grid.land.values()[i])
@@ -760,36 +944,36 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
       depth_max = std::max(depth_max, grid.still_water_depth_m.values()[i]);
   const LonLat south_west = projection.reverse({g.origin_x_m, g.origin_y_m});
   const LonLat north_east = projection.reverse({g.origin_x_m + g.width_m(), g.origin_y_m + g.height_m()});
-  nlohmann::json& summary = result.summary;
+  nlohmann::json summary;
   summary["format"] = "nearshore bathymetry summary 1";
-  summary["inputs"] = inputs_json;
+  summary["inputs"] = reports.inputs;
   summary["projection"] = projection.to_json();
   summary["crs"] = projection.describe();
   summary["spacing_m"] = g.spacing_m;
-  summary["columns"] = columns;
-  summary["rows"] = rows;
+  summary["columns"] = g.columns;
+  summary["rows"] = g.rows;
   summary["extent_m"] = {{"x_min", g.origin_x_m}, {"y_min", g.origin_y_m}, {"x_max", g.origin_x_m + g.width_m()},
                          {"y_max", g.origin_y_m + g.height_m()}};
   summary["extent_lon_lat"] = {{"south_west", {south_west.longitude_deg, south_west.latitude_deg}},
                                {"north_east", {north_east.longitude_deg, north_east.latitude_deg}}};
   summary["water_depth_m"] = {{"min", depth_min}, {"max", depth_max}};
   const std::size_t outside_chart_cells = request.fill_uncovered_from_nearest ? 0 : uncovered.cells;
-  summary["cells"] = {{"total", g.cell_count()}, {"land", land_cells - outside_chart_cells}, {"water", g.cell_count() - land_cells},
-                      {"outside_chart", outside_chart_cells},
-                      {"uncovered", uncovered.cells}, {"bounded_by_depth_areas", bounded.cells}};
-  summary["structure_cells"] = structure_cells;
+  summary["cells"] = {{"total", g.cell_count()}, {"land", reports.land_cells - outside_chart_cells},
+                      {"water", g.cell_count() - reports.land_cells}, {"outside_chart", outside_chart_cells},
+                      {"uncovered", uncovered.cells}, {"bounded_by_depth_areas", reports.bounded.cells}};
+  summary["structure_cells"] = reports.structure_cells;
   summary["uncovered"] = uncovered.to_json(g, projection);
   summary["uncovered"]["treatment"] = request.fill_uncovered_from_nearest
                                           ? "depth of the nearest covered cell (max_change_m: farthest carried, metres)"
                                           : "no data: land channel 2 in depth.exr (a land/water reader sees land), nodata in "
                                             "depth.tif; the bake treats them as its case says (bathymetry.outside_chart)";
-  summary["bounded_by_depth_areas"] = bounded.to_json(g, projection);
+  summary["bounded_by_depth_areas"] = reports.bounded.to_json(g, projection);
   summary["water_level_m"] = request.water_level_m;
   summary["conditioning"] = {{"minimum_depth_m", request.minimum_depth_m},
-                             {"minimum_depth_clamp", clamped.to_json(g, projection)},
+                             {"minimum_depth_clamp", reports.clamped.to_json(g, projection)},
                              {"maximum_slope", request.maximum_slope},
-                             {"slope_smoothing", smoothed.to_json(g, projection)},
-                             {"slope_smoothing_sweeps", slope_iterations},
+                             {"slope_smoothing", reports.slope.smoothed.to_json(g, projection)},
+                             {"slope_smoothing_sweeps", reports.slope.sweeps},
                              {"land_elevation_m_where_unknown", request.land_elevation_m}};
   summary["warnings"] = result.warnings;
   if (request.leave_one_out && !result.leave_one_out_error_m.empty()) {
@@ -799,6 +983,44 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
                                 {"p90_absolute_error_m", percentile(absolute, 0.9)},
                                 {"median_error_m", median(result.leave_one_out_error_m)}};
   }
+  return summary;
+}
+
+}  // namespace
+
+// The steps in order (harbour_builder.hpp numbers them; each function above says what it takes and
+// gives). Each step reports what it changed where, for the summary.
+BathyResult build_harbour_grid(const BathyRequest& request) {
+  check_request(request);
+  const ChartInputs inputs = read_chart_inputs(request);  // 1
+  const std::vector<SourceData>& sources = inputs.sources;
+  const GridFrame frame = lay_grid_frame(request, inputs);  // 2
+  const GridGeometry& g = frame.geometry;
+  BathyResult result;
+  StepReports reports;
+  // 3. Depth per input, merged by priority; 4. bounded by the chart's depth areas.
+  const DepthAreaBounds bounds = rasterise_depth_area_bounds(sources, g, frame.projection);
+  Raster<std::uint8_t> land = rasterise_land_polygons(sources, g, frame.projection);
+  MergedDepth merged = grid_depth_by_priority(sources, frame, land, bounds, request, reports.inputs,
+                                              result.leave_one_out_error_m);
+  reports.bounded = bound_by_depth_areas(sources, bounds, merged);
+  Raster<float> depth = std::move(merged.depth_m);
+  // 5. Cells no input covers; 6. still water and the land mask.
+  reports.uncovered = fill_uncovered_cells(request, frame, depth, land);
+  reports.land_cells = lay_land_mask(request, sources, frame, bounds.chart_water, depth, land);
+  HarbourGrid& grid = result.grid;
+  grid.geometry = g;
+  grid.land = std::move(land);
+  // 7. Conditioning for the solver.
+  reports.clamped = clamp_minimum_depth(request, grid.land, reports.land_cells, depth, result.warnings);
+  reports.slope = limit_bed_slope(request, g, grid.land, depth);
+  grid.still_water_depth_m = std::move(depth);
+  // Structures' footprints on the conditioned depth, the coast distance from the final land mask,
+  // the preview's coastline and the summary.
+  reports.structure_cells = lay_structure_footprints(request, sources, frame.projection, grid);
+  grid.coast_distance_m = signed_coast_distance(grid.land, g.spacing_m);
+  trace_preview_coastline(sources, frame.projection, result);
+  result.summary = summarise_harbour_grid(request, frame.projection, result, reports);
   return result;
 }
 
