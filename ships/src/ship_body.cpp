@@ -427,13 +427,30 @@ void ShipBody::step(const ShipEnvironment& environment, const ShipControls& cont
 
 void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& controls, const ExternalLoad& external,
                        double dt_s) {
-  const ShipParticulars& p = particulars_;
   const WaterProperties& water = environment.water_properties;
-  const double rho = water.density_kg_m3, g = water.gravity_m_s2;
   const Eigen::Matrix3d rotation = state_.orientation.toRotationMatrix();
-  const std::size_t n = arm_m_.size();
+  sample_water(environment, rotation);
+  BodyReport report;
+  Loads loads;
+  double bottom_area_m2 = 0.0, bottom_area_depth_m3 = 0.0;
+  add_pressure_and_seabed(environment, rotation, loads, report, bottom_area_m2, bottom_area_depth_m3);
+  add_structure_contact(environment, loads, report);
+  // 3. Gravity at G.
+  loads.force.z() -= particulars_.mass_kg * water.gravity_m_s2;
+  const WaterMotion motion = water_motion(environment, rotation, report);
+  add_restricted_water_and_drag(motion, rotation, bottom_area_m2, bottom_area_depth_m3, water, loads, report);
+  const double thrust = add_engine_and_rudder(controls, motion, rotation, water.density_kg_m3, dt_s, loads);
+  loads.force += external.force_N;
+  loads.torque += external.torque_N_m;
+  integrate(loads, motion, rotation, report, dt_s);
+  report.rudder_angle_rad = rudder_angle_rad_;
+  report.thrust_N = thrust;
+  report_ = report;
+}
 
-  // 1. Where the hull points are and the water over them.
+// 1. Where the hull points are and the water over them.
+void ShipBody::sample_water(const ShipEnvironment& environment, const Eigen::Matrix3d& rotation) {
+  const std::size_t n = arm_m_.size();
   for (std::size_t i = 0; i < n; ++i) {
     world_arm_m_[i] = rotation * arm_m_[i];
     query_points_[i] = {state_.position_m.x() + world_arm_m_[i].x(), state_.position_m.y() + world_arm_m_[i].y()};
@@ -444,13 +461,15 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
     std::fill(elevations_m_.begin(), elevations_m_.end(), 0.0);
   if (environment.extra_elevation_m)
     for (std::size_t i = 0; i < n; ++i) elevations_m_[i] += environment.extra_elevation_m(query_points_[i].x_m, query_points_[i].y_m);
+}
 
-  // 2. Pressure (eq. 4.21-4.22) and seabed contact, point by point.
-  BodyReport report;
-  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+// 2. Pressure (eq. 4.21-4.22) and seabed contact, point by point; the wet bottom's area and its
+//    area-weighted depth for the restricted-water terms (step 4a).
+void ShipBody::add_pressure_and_seabed(const ShipEnvironment& environment, const Eigen::Matrix3d& rotation, Loads& loads,
+                                       BodyReport& report, double& bottom_area_m2, double& bottom_area_depth_m3) const {
+  const double rho = environment.water_properties.density_kg_m3, g = environment.water_properties.gravity_m_s2;
   const double bed_stiffness = kSeabedStiffnessRatio * rho * g;
-  double bottom_weight = 0.0, bottom_depth = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < arm_m_.size(); ++i) {
     const Eigen::Vector3d& arm = world_arm_m_[i];
     const double z = state_.position_m.z() + arm.z();
     // The piece's pressure head eta - z, linear over it (eta: the surface over its centroid).
@@ -466,8 +485,8 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
       wet_moments(r, f, m0, m1);
       const Eigen::Vector3d normal = rotation * samples_.normal[i];
       const Eigen::Vector3d f_piece = -(rho * g * m0) * normal;
-      force += f_piece;
-      torque += -(rho * g) * m1.cross(normal);
+      loads.force += f_piece;
+      loads.torque += -(rho * g) * m1.cross(normal);
       report.pressure_force_N += f_piece;
       if (elevations_m_[i] > z) {
         ++report.wet_points;
@@ -480,8 +499,8 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
       // depth below still water, weighted by the wet bottom's horizontal projection.
       const double bottom = samples_.area_m2[i] * std::max(0.0, -(rotation * samples_.normal[i]).z());
       if (bottom > 0.0 && elevations_m_[i] > z && std::isfinite(bed_z)) {
-        bottom_weight += bottom;
-        bottom_depth += bottom * -bed_z;
+        bottom_area_m2 += bottom;
+        bottom_area_depth_m3 += bottom * -bed_z;
       }
       const double penetration = bed_z - z;
       if (penetration > 0.0) {
@@ -492,8 +511,8 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
         const Eigen::Vector2d friction =
             -kSeabedFriction * normal * slip / std::sqrt(slip.squaredNorm() + kFrictionVelocity_m_s * kFrictionVelocity_m_s);
         const Eigen::Vector3d f(friction.x(), friction.y(), normal);
-        force += f;
-        torque += arm.cross(f);
+        loads.force += f;
+        loads.torque += arm.cross(f);
         ++report.contact_points;
         report.max_penetration_m = std::max(report.max_penetration_m, penetration);
         report.contact_position_m += state_.position_m + arm;
@@ -501,60 +520,75 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
     }
   }
   if (report.contact_points > 0) report.contact_position_m /= report.contact_points;
+}
 
-  // 2b. Structures and land: every hull point (wet or dry: a bow flare meets a quay above water)
-  //     inside a solid (phi < 0) and below its top. Skipped while the hull's centre is farther from
-  //     every face than half the hull's diagonal.
+// 2b. Structures and land: every hull point (wet or dry: a bow flare meets a quay above water)
+//     inside a solid (phi < 0) and below its top. Skipped while the hull's centre is farther from
+//     every face than half the hull's diagonal.
+void ShipBody::add_structure_contact(const ShipEnvironment& environment, Loads& loads, BodyReport& report) const {
+  const ShipParticulars& p = particulars_;
   const HarbourObstacles* obstacles = environment.seabed != nullptr ? environment.seabed->obstacles() : nullptr;
-  if (obstacles != nullptr &&
-      obstacles->signed_distance_m(state_.position_m.x(), state_.position_m.y()) <
-          0.5 * std::hypot(p.length_m, p.beam_m) + 1.0) {
-    const double face_stiffness = kStructureStiffnessRatio * rho * g;
-    for (std::size_t i = 0; i < n; ++i) {
-      const ObstacleSample o = obstacles->sample(query_points_[i].x_m, query_points_[i].y_m);
-      if (!(o.signed_distance_m < 0.0) || o.normal.isZero()) continue;
-      const Eigen::Vector3d& arm = world_arm_m_[i];
-      const double z = state_.position_m.z() + arm.z();
-      if (z > o.top_m) continue;
-      const double depth = -o.signed_distance_m;
-      const Eigen::Vector3d point_velocity = state_.velocity_m_s + state_.angular_velocity_rad_s.cross(arm);
-      const Eigen::Vector3d normal(o.normal.x(), o.normal.y(), 0.0);
-      const double outward = point_velocity.dot(normal);
-      const double push =
-          std::max(0.0, face_stiffness * samples_.area_m2[i] * (depth - kStructureDampingTime_s * outward));
-      const Eigen::Vector3d slip = point_velocity - outward * normal;
-      const Eigen::Vector3d f =
-          push * normal - kStructureFriction * push * slip / std::sqrt(slip.squaredNorm() + kFrictionVelocity_m_s * kFrictionVelocity_m_s);
-      force += f;
-      torque += arm.cross(f);
-      ++report.structure_contact_points;
-      report.structure_force_N += push;
-      report.structure_closing_speed_m_s = std::max(report.structure_closing_speed_m_s, -outward);
-      if (depth > report.structure_penetration_m) {
-        report.structure_penetration_m = depth;
-        report.structure = o.structure;
-        report.structure_contact_m = state_.position_m + arm;
-        report.structure_normal = o.normal;
-      }
+  if (obstacles == nullptr ||
+      !(obstacles->signed_distance_m(state_.position_m.x(), state_.position_m.y()) < 0.5 * std::hypot(p.length_m, p.beam_m) + 1.0))
+    return;
+  const double face_stiffness =
+      kStructureStiffnessRatio * environment.water_properties.density_kg_m3 * environment.water_properties.gravity_m_s2;
+  for (std::size_t i = 0; i < arm_m_.size(); ++i) {
+    const ObstacleSample o = obstacles->sample(query_points_[i].x_m, query_points_[i].y_m);
+    if (!(o.signed_distance_m < 0.0) || o.normal.isZero()) continue;
+    const Eigen::Vector3d& arm = world_arm_m_[i];
+    const double z = state_.position_m.z() + arm.z();
+    if (z > o.top_m) continue;
+    const double depth = -o.signed_distance_m;
+    const Eigen::Vector3d point_velocity = state_.velocity_m_s + state_.angular_velocity_rad_s.cross(arm);
+    const Eigen::Vector3d normal(o.normal.x(), o.normal.y(), 0.0);
+    const double outward = point_velocity.dot(normal);
+    const double push = std::max(0.0, face_stiffness * samples_.area_m2[i] * (depth - kStructureDampingTime_s * outward));
+    const Eigen::Vector3d slip = point_velocity - outward * normal;
+    const Eigen::Vector3d f =
+        push * normal - kStructureFriction * push * slip / std::sqrt(slip.squaredNorm() + kFrictionVelocity_m_s * kFrictionVelocity_m_s);
+    loads.force += f;
+    loads.torque += arm.cross(f);
+    ++report.structure_contact_points;
+    report.structure_force_N += push;
+    report.structure_closing_speed_m_s = std::max(report.structure_closing_speed_m_s, -outward);
+    if (depth > report.structure_penetration_m) {
+      report.structure_penetration_m = depth;
+      report.structure = o.structure;
+      report.structure_contact_m = state_.position_m + arm;
+      report.structure_normal = o.normal;
     }
   }
+}
 
-  // 3. Gravity at G.
-  force.z() -= p.mass_kg * g;
-
-  // 4. Drag relative to the water, in body axes, scaled by the wetted fraction.
-  const double wet_fraction = std::min(1.0, report.wetted_area_m2 / p.design_wetted_area_m2);
-  Eigen::Vector3d current = Eigen::Vector3d::Zero();
-  if (environment.water != nullptr && wet_fraction > 0.0) {
+// 4. The hull's motion relative to the water (the current under G), in body axes, and how much of
+//    the hull is wet (the drag, engine and rudder scale with it).
+ShipBody::WaterMotion ShipBody::water_motion(const ShipEnvironment& environment, const Eigen::Matrix3d& rotation,
+                                             const BodyReport& report) const {
+  WaterMotion motion;
+  motion.wet_fraction = std::min(1.0, report.wetted_area_m2 / particulars_.design_wetted_area_m2);
+  motion.current_m_s = Eigen::Vector3d::Zero();
+  if (environment.water != nullptr && motion.wet_fraction > 0.0) {
     const runtime::SurfaceState s = environment.water->state(state_.position_m.x(), state_.position_m.y());
-    current = {s.velocity_x_m_s, s.velocity_y_m_s, 0.0};
+    motion.current_m_s = {s.velocity_x_m_s, s.velocity_y_m_s, 0.0};
   }
-  const Eigen::Vector3d v_body = rotation.transpose() * (state_.velocity_m_s - current);
-  const Eigen::Vector3d w_body = rotation.transpose() * state_.angular_velocity_rad_s;
-  // 4a. Restricted water (restricted_water.hpp) over the mean depth under the hull's bottom.
-  report.depth_under_hull_m = bottom_weight > 0.0 ? bottom_depth / bottom_weight : std::nan("");
+  motion.velocity_m_s = rotation.transpose() * (state_.velocity_m_s - motion.current_m_s);
+  motion.angular_velocity_rad_s = rotation.transpose() * state_.angular_velocity_rad_s;
+  return motion;
+}
+
+// 4a. Restricted water (restricted_water.hpp) over the mean depth under the hull's bottom, then the
+//     drag relative to the water, in body axes, scaled by the wetted fraction.
+void ShipBody::add_restricted_water_and_drag(const WaterMotion& motion, const Eigen::Matrix3d& rotation, double bottom_area_m2,
+                                             double bottom_area_depth_m3, const WaterProperties& water, Loads& loads,
+                                             BodyReport& report) const {
+  const ShipParticulars& p = particulars_;
+  const double rho = water.density_kg_m3, g = water.gravity_m_s2;
+  const Eigen::Vector3d& v_body = motion.velocity_m_s;
+  const double wet_fraction = motion.wet_fraction;
+  report.depth_under_hull_m = bottom_area_m2 > 0.0 ? bottom_area_depth_m3 / bottom_area_m2 : std::nan("");
   Eigen::Vector3d drag_velocity = v_body;  // surge at Lackenby's equivalent deep-water speed
-  if (bottom_weight > 0.0) {
+  if (bottom_area_m2 > 0.0) {
     const double depth = report.depth_under_hull_m;
     if (p.midship_area_m2 > 0.0) {
       const double deep = deep_water_equivalent_speed_m_s(p.midship_area_m2, depth, p.squat.draft_m, v_body.x(), g);
@@ -573,18 +607,19 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
       const Eigen::Vector3d flotation_arm =
           rotation * (Eigen::Vector3d(p.flotation_centre_x_m, p.centre_of_gravity_m.y(), p.centre_of_gravity_m.z()) -
                       p.centre_of_gravity_m);
-      force += down;
-      torque += flotation_arm.cross(down);
-      torque += rotation * Eigen::Vector3d(0.0, afloat * p.pitch_stiffness_N_m_rad * report.squat.trim_rad, 0.0);
+      loads.force += down;
+      loads.torque += flotation_arm.cross(down);
+      loads.torque += rotation * Eigen::Vector3d(0.0, afloat * p.pitch_stiffness_N_m_rad * report.squat.trim_rad, 0.0);
     }
   }
+  const Eigen::Vector3d& w_body = motion.angular_velocity_rad_s;
   const Eigen::Vector3d drag_body =
       -wet_fraction * (p.linear_damping_N_s_m.cwiseProduct(drag_velocity) +
                        p.quadratic_drag_N_s2_m2.cwiseProduct(drag_velocity.cwiseAbs()).cwiseProduct(drag_velocity));
   const Eigen::Vector3d drag_moment_body =
       -wet_fraction * (p.linear_damping_N_m_s.cwiseProduct(w_body) +
                        p.quadratic_drag_N_m_s2.cwiseProduct(w_body.cwiseAbs()).cwiseProduct(w_body));
-  force += rotation * drag_body;
+  loads.force += rotation * drag_body;
   // The surge and sway drag at their heights (ship_body.hpp): their moments about G.
   auto drag_arm = [&](double z_m) {
     return Eigen::Vector3d(0.0, 0.0, std::isfinite(z_m) ? z_m - p.centre_of_gravity_m.z() : 0.0);
@@ -592,31 +627,41 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   const Eigen::Vector3d drag_arm_surge = drag_arm(p.surge_drag_z_m), drag_arm_sway = drag_arm(p.sway_drag_z_m);
   const Eigen::Vector3d drag_lever_moment_body = drag_arm_surge.cross(Eigen::Vector3d(drag_body.x(), 0.0, 0.0)) +
                                                  drag_arm_sway.cross(Eigen::Vector3d(0.0, drag_body.y(), 0.0));
-  torque += rotation * (drag_moment_body + drag_lever_moment_body);
+  loads.torque += rotation * (drag_moment_body + drag_lever_moment_body);
+}
 
-  // 5. Engine (seed 002 eq. 3, F_e along the hull) and rudder, at their body points.
+// 5. Engine (seed 002 eq. 3, F_e along the hull) and rudder, at their body points; the rudder
+//    turns towards its order at its rate. Returns the thrust.
+double ShipBody::add_engine_and_rudder(const ShipControls& controls, const WaterMotion& motion, const Eigen::Matrix3d& rotation,
+                                       double density_kg_m3, double dt_s, Loads& loads) {
+  const ShipParticulars& p = particulars_;
+  const double rho = density_kg_m3, wet_fraction = motion.wet_fraction;
   const double order = std::clamp(controls.engine_order, -1.0, 1.0);
   const double thrust = wet_fraction * (order >= 0.0 ? order * p.max_thrust_N : order * p.max_astern_thrust_N);
   const Eigen::Vector3d thrust_world = rotation * Eigen::Vector3d(thrust, 0.0, 0.0);
   const Eigen::Vector3d propeller_arm = rotation * (p.propeller_position_m - p.centre_of_gravity_m);
-  force += thrust_world;
-  torque += propeller_arm.cross(thrust_world);
+  loads.force += thrust_world;
+  loads.torque += propeller_arm.cross(thrust_world);
 
   const double rudder_order = std::clamp(controls.rudder_order_rad, -p.max_rudder_angle_rad, p.max_rudder_angle_rad);
   const double max_move = p.rudder_rate_rad_s * dt_s;
   rudder_angle_rad_ += std::clamp(rudder_order - rudder_angle_rad_, -max_move, max_move);
-  const double forward = std::max(v_body.x(), 0.0);
+  const double forward = std::max(motion.velocity_m_s.x(), 0.0);
   const double slipstream = std::max(thrust, 0.0) * 8.0 / (kPi * rho * p.propeller_diameter_m * p.propeller_diameter_m);
   const double lift = wet_fraction * 0.5 * rho * p.rudder_area_m2 * p.rudder_lift_slope_per_rad * rudder_angle_rad_ *
                       (forward * forward + slipstream);
   const Eigen::Vector3d lift_world = rotation * Eigen::Vector3d(0.0, -lift, 0.0);
   const Eigen::Vector3d rudder_arm = rotation * (p.rudder_position_m - p.centre_of_gravity_m);
-  force += lift_world;
-  torque += rudder_arm.cross(lift_world);
+  loads.force += lift_world;
+  loads.torque += rudder_arm.cross(lift_world);
+  return thrust;
+}
 
-  force += external.force_N;
-  torque += external.torque_N_m;
-
+void ShipBody::integrate(const Loads& loads, const WaterMotion& motion, const Eigen::Matrix3d& rotation, const BodyReport& report,
+                         double dt_s) {
+  const ShipParticulars& p = particulars_;
+  Eigen::Vector3d force = loads.force;
+  const Eigen::Vector3d& torque = loads.torque;
   // 6. Semi-implicit Euler: Newton with the world-frame mass matrix, Euler's equations with the
   //    world-frame inertia tensor (eq. 4.19-4.20), then positions with the new velocities.
   const Eigen::Matrix3d mass_world =
@@ -631,7 +676,7 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
   //    moment -v_r x (A v_r) that completes the pair is left out (ship_body.hpp): this body has no
   //    linear hull lift to balance its yaw, and with it the launch ran into a spin at 0.1 rad of rudder.
   {
-    const Eigen::Vector3d v_r = state_.velocity_m_s - current;
+    const Eigen::Vector3d v_r = state_.velocity_m_s - motion.current_m_s;
     const Eigen::Matrix3d added_world = rotation * p.added_mass_kg.asDiagonal().toDenseMatrix() * rotation.transpose();
     const Eigen::Vector3d& w_now = state_.angular_velocity_rad_s;
     force += added_world * w_now.cross(v_r) - w_now.cross(added_world * v_r);
@@ -684,10 +729,6 @@ void ShipBody::substep(const ShipEnvironment& environment, const ShipControls& c
     state_.orientation =
         Eigen::Quaterniond(Eigen::AngleAxisd(turn, state_.angular_velocity_rad_s.normalized())) * state_.orientation;
   state_.orientation.normalize();
-
-  report.rudder_angle_rad = rudder_angle_rad_;
-  report.thrust_N = thrust;
-  report_ = report;
 }
 
 }  // namespace nearshore::ships

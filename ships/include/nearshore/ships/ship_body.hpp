@@ -245,6 +245,25 @@ class ShipBody {
  private:
   void substep(const ShipEnvironment& environment, const ShipControls& controls, const ExternalLoad& external,
                double dt_s);
+  // A substep's steps (ship_body.cpp), in the order it takes them; the loads about G in the site
+  // frame are summed in that order, so the result does not depend on how they are split.
+  struct Loads {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+  };
+  struct WaterMotion {  // the hull's motion relative to the water, body axes
+    Eigen::Vector3d current_m_s, velocity_m_s, angular_velocity_rad_s;
+    double wet_fraction = 0.0;
+  };
+  void sample_water(const ShipEnvironment& environment, const Eigen::Matrix3d& rotation);
+  void add_pressure_and_seabed(const ShipEnvironment& environment, const Eigen::Matrix3d& rotation, Loads& loads, BodyReport& report,
+                               double& bottom_area_m2, double& bottom_area_depth_m3) const;
+  void add_structure_contact(const ShipEnvironment& environment, Loads& loads, BodyReport& report) const;
+  WaterMotion water_motion(const ShipEnvironment& environment, const Eigen::Matrix3d& rotation, const BodyReport& report) const;
+  void add_restricted_water_and_drag(const WaterMotion& motion, const Eigen::Matrix3d& rotation, double bottom_area_m2,
+                                     double bottom_area_depth_m3, const WaterProperties& water, Loads& loads, BodyReport& report) const;
+  double add_engine_and_rudder(const ShipControls& controls, const WaterMotion& motion, const Eigen::Matrix3d& rotation, double density_kg_m3,
+                               double dt_s, Loads& loads);
+  void integrate(const Loads& loads, const WaterMotion& motion, const Eigen::Matrix3d& rotation, const BodyReport& report, double dt_s);
 
   HullSamples samples_;
   std::vector<Eigen::Vector3d> arm_m_;  ///< sample positions relative to G, body frame
