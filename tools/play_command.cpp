@@ -307,6 +307,122 @@ playback::Lighting scene_lighting(const PlayOptions& o, const runtime::Streaming
   return lighting;
 }
 
+// The panel's figures before the first frame: the options, the sea and the lighting as opened.
+ViewerPanelModel panel_model_at_start(const PlayOptions& o, const std::string& plan, const playback::RendererSettings& settings,
+                                      runtime::PlayedSea& sea, const playback::GlWindow& window, const playback::Lighting& lighting,
+                                      const SiteFrame& frame, const CameraControl& control) {
+  ViewerPanelModel model;
+  model.grid = static_cast<int>(settings.grid);
+  model.plan = static_cast<int>(std::find(std::begin(kPlanNames), std::end(kPlanNames), plan) - std::begin(kPlanNames));
+  model.time_scale = o.time_scale;
+  model.beaufort_force = o.beaufort_force;
+  model.wind_from_deg = o.wind_from_deg;
+  model.deep_water_from_bake = sea.engine().deep_water_is_bakes();
+  model.gl_description = window.gl_description();
+  model.sun_azimuth_deg = lighting.sun_azimuth_deg, model.sun_elevation_deg = lighting.sun_elevation_deg;
+  model.haze = lighting.atmospheric_turbidity, model.turbidity_ntu = lighting.water.turbidity_ntu;
+  model.chlorophyll_mg_m3 = lighting.water.chlorophyll_mg_m3, model.exposure = lighting.exposure_compensation;
+  const LonLat looked_at = frame.lat_lon_of(control.camera.target_m[0], control.camera.target_m[1]);
+  model.jump_lat_lon_deg = {looked_at.latitude_deg, looked_at.longitude_deg};
+  return model;
+}
+
+// One step of the fleet over `ship_dt_s`: ship 0 steered from the arrow keys of `keys_window`
+// (null: no keys), the events said, the camera carried along with --follow-ship.
+void step_fleet(ViewerShips& ships, runtime::PlayedSea& sea, const PlayOptions& o, GLFWwindow* keys_window, double display_time_s,
+                double ship_dt_s, CameraControl& control, ShipsSummary& ships_summary) {
+  if (keys_window != nullptr) {
+    auto key = [&](int k) { return glfwGetKey(keys_window, k) == GLFW_PRESS ? 1 : 0; };
+    ships.steer_first_ship(key(GLFW_KEY_UP) - key(GLFW_KEY_DOWN), key(GLFW_KEY_LEFT) - key(GLFW_KEY_RIGHT),
+                           key(GLFW_KEY_ENTER) != 0, ship_dt_s);
+  }
+  const Eigen::Vector3d before = o.follow_ship >= 0 ? ships.fleet().ship(std::size_t(o.follow_ship)).body().state().position_m
+                                                    : Eigen::Vector3d::Zero();
+  ships.step(sea.snapshot(), ship_dt_s);
+  for (const std::string& event : ships.take_events()) {
+    ++ships_summary.events;
+    if (!o.quiet) std::fprintf(stderr, "t = %.2f s: %s\n", display_time_s, event.c_str());
+  }
+  if (o.follow_ship >= 0) {  // the camera moves with the ship, keeping its view of it
+    const Eigen::Vector3d moved = ships.fleet().ship(std::size_t(o.follow_ship)).body().state().position_m - before;
+    for (int axis = 0; axis < 2; ++axis) control.camera.eye_m[axis] += moved[axis], control.camera.target_m[axis] += moved[axis];
+  }
+}
+
+// The panel: this frame's figures in, then what the user changed on it applied (grid, plan, wind,
+// lighting, a jump to a position).
+void show_panel(ViewerPanel& panel, ViewerPanelModel& model, const PlayOptions& o, double dt_s, double main_ms, double display_time_s,
+                const ViewerShips* ships, const SiteFrame& frame, std::string& plan, runtime::PlayedSea& sea,
+                playback::WaterRenderer& renderer, playback::Lighting& lighting, CameraControl& control) {
+  const runtime::StreamingStats s = sea.engine().stats();
+  model.frames_per_s = dt_s > 0 ? 1.0 / dt_s : 0.0;
+  model.frame_time_ms = 1e3 * dt_s;
+  model.main_thread_ms = main_ms;
+  model.display_time_s = display_time_s;
+  model.ring_filled = s.ring_fill, model.ring_capacity = s.ring_capacity;
+  model.underruns = static_cast<unsigned long long>(s.underruns);
+  model.bad_frames_held = static_cast<unsigned long long>(s.bad_frames_held);
+  model.transitions_taken = static_cast<unsigned long long>(s.transitions_taken);
+  model.decode_real_time_multiple = s.decode_real_time_multiple();
+  model.plan_step = s.plan_step;
+  model.crossfading = s.in_crossfade;
+  model.plan_name = sea.library() ? fmt::format("sea state {} (crossfade {:.0f} %): {}", sea.library()->state_id(),
+                                              100.0 * sea.library()->crossfade_weight(), s.plan)
+                                : s.plan;
+  model.message = s.last_message;
+  const LonLat place = frame.lat_lon_of(control.camera.eye_m[0], control.camera.eye_m[1]);
+  model.camera_latitude_deg = place.latitude_deg, model.camera_longitude_deg = place.longitude_deg;
+  model.camera_height_m = control.camera.eye_m[2];
+  if (ships) model.ships = ships->readouts(), model.ships_ms = ships->last_step_ms();
+  const ViewerPanelModel before = model;
+  if (panel.draw(model)) {
+    if (model.grid != before.grid) renderer.settings().grid = static_cast<playback::GridKind>(model.grid);
+    if (model.plan != before.plan) {  // a new plan restarts the stream on it, at the same time
+      plan = kPlanNames[model.plan];
+      sea = open_sea(o, plan);
+    }
+    if (!model.deep_water_from_bake &&
+        (model.beaufort_force != before.beaufort_force || model.wind_from_deg != before.wind_from_deg)) {
+      runtime::BeaufortSea beaufort;
+      beaufort.force = model.beaufort_force;
+      beaufort.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
+      sea.engine().set_beaufort(beaufort);
+    }
+    lighting.sun_azimuth_deg = model.sun_azimuth_deg, lighting.sun_elevation_deg = model.sun_elevation_deg;
+    lighting.atmospheric_turbidity = model.haze, lighting.water.turbidity_ntu = model.turbidity_ntu;
+    lighting.water.chlorophyll_mg_m3 = model.chlorophyll_mg_m3, lighting.exposure_compensation = model.exposure;
+    if (model.beaufort_force != before.beaufort_force || model.wind_from_deg != before.wind_from_deg) {
+      lighting.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
+      lighting.wind_speed_m_s = ocean::beaufort_preset(model.beaufort_force).wind_speed_10_m_s;
+    }
+    if (model.jump_requested) {
+      model.jump_requested = false;
+      const auto xy = frame.from_lat_lon(model.jump_lat_lon_deg[0], model.jump_lat_lon_deg[1], "the panel's position");
+      control.camera.eye_m = {xy[0] - 0.5 * control.camera.eye_m[2], xy[1] - 0.5 * control.camera.eye_m[2],
+                              control.camera.eye_m[2]};
+      control.camera.target_m = {xy[0], xy[1], 0.0};
+    }
+  }
+}
+
+// What a run printed at its end: the JSON summary (--json) or the lines a user reads.
+void print_play_results(const PlayOptions& o, const runtime::StreamingStats& s, const playback::WaterRenderer& renderer, int frames_drawn,
+                        double wall_s, double display_time_s, const ShipsSummary& ships_summary) {
+  if (o.quiet) {
+  } else if (o.json) {
+    std::printf("%s\n", stats_json(s, renderer.last_frame(), frames_drawn, wall_s, ships_summary).dump(1).c_str());
+  } else {
+    std::printf("played %.1f s of display time in %.1f s, %d frames drawn (%.1f fps); %lld underruns, %lld frames held, "
+                "%lld transitions\n",
+                display_time_s - o.time_s, wall_s, frames_drawn, frames_drawn / std::max(wall_s, 1e-9), s.underruns,
+                s.bad_frames_held, s.transitions_taken);
+    if (!s.last_message.empty()) std::printf("note: %s\n", s.last_message.c_str());
+    for (const ShipReadout& r : ships_summary.ships)
+      std::printf("ship '%s' at (%.1f, %.1f) m, %.1f kn, heading %03.0f deg, %s\n", r.name.c_str(), r.x_m, r.y_m, r.speed_kn,
+                  r.heading_deg, r.aground ? "aground" : "afloat");
+  }
+}
+
 std::string play(const PlayOptions& o) {
   const bool headless = !o.screenshot.empty() || o.frames > 0;
   std::string plan = o.plan;
@@ -349,19 +465,7 @@ std::string play(const PlayOptions& o) {
     draw_options.sky = false;
     draw_options.background = {0.6f, 0.7f, 0.8f};
   }
-  ViewerPanelModel model;
-  model.grid = static_cast<int>(settings.grid);
-  model.plan = static_cast<int>(std::find(std::begin(kPlanNames), std::end(kPlanNames), plan) - std::begin(kPlanNames));
-  model.time_scale = o.time_scale;
-  model.beaufort_force = o.beaufort_force;
-  model.wind_from_deg = o.wind_from_deg;
-  model.deep_water_from_bake = sea.engine().deep_water_is_bakes();
-  model.gl_description = window.gl_description();
-  model.sun_azimuth_deg = lighting.sun_azimuth_deg, model.sun_elevation_deg = lighting.sun_elevation_deg;
-  model.haze = lighting.atmospheric_turbidity, model.turbidity_ntu = lighting.water.turbidity_ntu;
-  model.chlorophyll_mg_m3 = lighting.water.chlorophyll_mg_m3, model.exposure = lighting.exposure_compensation;
-  const LonLat looked_at = frame.lat_lon_of(control.camera.target_m[0], control.camera.target_m[1]);
-  model.jump_lat_lon_deg = {looked_at.latitude_deg, looked_at.longitude_deg};
+  ViewerPanelModel model = panel_model_at_start(o, plan, settings, sea, window, lighting, frame, control);
   if (!o.quiet) {
     std::fprintf(stderr, "OpenGL %s\nplaying %s%s; %s\n", window.gl_description().c_str(),
                  sea.library() ? ("sea state " + sea.library()->state_id() + ": ").c_str() : "",
@@ -417,80 +521,16 @@ std::string play(const PlayOptions& o) {
       // throw the ships forward); ship 0 from the arrow keys in a window.
       const double ship_dt_s = std::clamp(display_time_s - ships_time_s, 0.0, 0.1);
       ships_time_s = display_time_s;
-      if (!headless && !(panel && panel->wants_input())) {
-        auto key = [&](int k) { return glfwGetKey(window.glfw_window(), k) == GLFW_PRESS ? 1 : 0; };
-        ships->steer_first_ship(key(GLFW_KEY_UP) - key(GLFW_KEY_DOWN), key(GLFW_KEY_LEFT) - key(GLFW_KEY_RIGHT),
-                                key(GLFW_KEY_ENTER) != 0, ship_dt_s);
-      }
-      const Eigen::Vector3d before = o.follow_ship >= 0 ? ships->fleet().ship(std::size_t(o.follow_ship)).body().state().position_m
-                                                        : Eigen::Vector3d::Zero();
-      ships->step(sea.snapshot(), ship_dt_s);
+      const bool keys = !headless && !(panel && panel->wants_input());
+      step_fleet(*ships, sea, o, keys ? window.glfw_window() : nullptr, display_time_s, ship_dt_s, control, ships_summary);
       ships_ms_sum += ships->last_step_ms();
-      for (const std::string& event : ships->take_events()) {
-        ++ships_summary.events;
-        if (!o.quiet) std::fprintf(stderr, "t = %.2f s: %s\n", display_time_s, event.c_str());
-      }
-      if (o.follow_ship >= 0) {  // the camera moves with the ship, keeping its view of it
-        const Eigen::Vector3d moved = ships->fleet().ship(std::size_t(o.follow_ship)).body().state().position_m - before;
-        for (int axis = 0; axis < 2; ++axis) control.camera.eye_m[axis] += moved[axis], control.camera.target_m[axis] += moved[axis];
-      }
     }
     renderer.render(sea.snapshot(), control.camera, lighting, window.framebuffer_width_px(),
                     window.framebuffer_height_px(), draw_options, ships ? &ships->layers() : nullptr);
     renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
     const double main_ms = 1e3 * seconds_since(main_start);
     main_ms_sum += main_ms;
-    if (panel) {
-      const runtime::StreamingStats s = sea.engine().stats();
-      model.frames_per_s = dt_s > 0 ? 1.0 / dt_s : 0.0;
-      model.frame_time_ms = 1e3 * dt_s;
-      model.main_thread_ms = main_ms;
-      model.display_time_s = display_time_s;
-      model.ring_filled = s.ring_fill, model.ring_capacity = s.ring_capacity;
-      model.underruns = static_cast<unsigned long long>(s.underruns);
-      model.bad_frames_held = static_cast<unsigned long long>(s.bad_frames_held);
-      model.transitions_taken = static_cast<unsigned long long>(s.transitions_taken);
-      model.decode_real_time_multiple = s.decode_real_time_multiple();
-      model.plan_step = s.plan_step;
-      model.crossfading = s.in_crossfade;
-      model.plan_name = sea.library() ? fmt::format("sea state {} (crossfade {:.0f} %): {}", sea.library()->state_id(),
-                                                  100.0 * sea.library()->crossfade_weight(), s.plan)
-                                    : s.plan;
-      model.message = s.last_message;
-      const LonLat place = frame.lat_lon_of(control.camera.eye_m[0], control.camera.eye_m[1]);
-      model.camera_latitude_deg = place.latitude_deg, model.camera_longitude_deg = place.longitude_deg;
-      model.camera_height_m = control.camera.eye_m[2];
-      if (ships) model.ships = ships->readouts(), model.ships_ms = ships->last_step_ms();
-      const ViewerPanelModel before = model;
-      if (panel->draw(model)) {
-        if (model.grid != before.grid) renderer.settings().grid = static_cast<playback::GridKind>(model.grid);
-        if (model.plan != before.plan) {  // a new plan restarts the stream on it, at the same time
-          plan = kPlanNames[model.plan];
-          sea = open_sea(o, plan);
-        }
-        if (!model.deep_water_from_bake &&
-            (model.beaufort_force != before.beaufort_force || model.wind_from_deg != before.wind_from_deg)) {
-          runtime::BeaufortSea beaufort;
-          beaufort.force = model.beaufort_force;
-          beaufort.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
-          sea.engine().set_beaufort(beaufort);
-        }
-        lighting.sun_azimuth_deg = model.sun_azimuth_deg, lighting.sun_elevation_deg = model.sun_elevation_deg;
-        lighting.atmospheric_turbidity = model.haze, lighting.water.turbidity_ntu = model.turbidity_ntu;
-        lighting.water.chlorophyll_mg_m3 = model.chlorophyll_mg_m3, lighting.exposure_compensation = model.exposure;
-        if (model.beaufort_force != before.beaufort_force || model.wind_from_deg != before.wind_from_deg) {
-          lighting.wind_direction_rad = travel_direction_rad(model.wind_from_deg);
-          lighting.wind_speed_m_s = ocean::beaufort_preset(model.beaufort_force).wind_speed_10_m_s;
-        }
-        if (model.jump_requested) {
-          model.jump_requested = false;
-          const auto xy = frame.from_lat_lon(model.jump_lat_lon_deg[0], model.jump_lat_lon_deg[1], "the panel's position");
-          control.camera.eye_m = {xy[0] - 0.5 * control.camera.eye_m[2], xy[1] - 0.5 * control.camera.eye_m[2],
-                                  control.camera.eye_m[2]};
-          control.camera.target_m = {xy[0], xy[1], 0.0};
-        }
-      }
-    }
+    if (panel) show_panel(*panel, model, o, dt_s, main_ms, display_time_s, ships.get(), frame, plan, sea, renderer, lighting, control);
     ++frames_drawn;
     if (headless && frames_drawn >= std::max(o.frames, 1)) break;  // keep the last picture in the back buffer
     window.present();
@@ -510,19 +550,7 @@ std::string play(const PlayOptions& o) {
       std::fprintf(o.json ? stderr : stdout, "screenshot: %s (%d x %d, t = %.2f s, %s grid)\n", o.screenshot.c_str(),
                    width, height, display_time_s, o.grid.c_str());
   }
-  if (o.quiet) {
-  } else if (o.json) {
-    std::printf("%s\n", stats_json(s, renderer.last_frame(), frames_drawn, wall_s, ships_summary).dump(1).c_str());
-  } else {
-    std::printf("played %.1f s of display time in %.1f s, %d frames drawn (%.1f fps); %lld underruns, %lld frames held, "
-                "%lld transitions\n",
-                display_time_s - o.time_s, wall_s, frames_drawn, frames_drawn / std::max(wall_s, 1e-9), s.underruns,
-                s.bad_frames_held, s.transitions_taken);
-    if (!s.last_message.empty()) std::printf("note: %s\n", s.last_message.c_str());
-    for (const ShipReadout& r : ships_summary.ships)
-      std::printf("ship '%s' at (%.1f, %.1f) m, %.1f kn, heading %03.0f deg, %s\n", r.name.c_str(), r.x_m, r.y_m, r.speed_kn,
-                  r.heading_deg, r.aground ? "aground" : "afloat");
-  }
+  print_play_results(o, s, renderer, frames_drawn, wall_s, display_time_s, ships_summary);
   g_camera_control = nullptr;
   return summary;
 }
