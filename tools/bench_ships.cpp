@@ -10,7 +10,12 @@
 //  3. one step of the dispersive wake layer (dispersive_wake.hpp) on --grid x --grid nodes: two
 //     forward and two inverse float FFTs, the exact rotation of every mode, the absorbing layer and
 //     the drawn heights.
+//  4. a fleet (issue 42: eight ships at 30 Hz on one core): --fleet ships as a host would make them
+//     (ShipFleet, every default: bow-wave grid, stern wake, restricted water; tugs, Wigley launches and
+//     barges in turn, 150 m apart, ordered ahead at 3 m/s) on the same Beaufort sea, one 30 Hz
+//     frame (fleet.step) at a time; the whole frame's CPU time against the frame's 33.3 ms.
 // CPU time of the calling thread, median (and fastest) of --repeats; the load average is printed with it.
+// Everything runs on the calling thread: the ships' code uses no worker threads.
 #include <time.h>
 
 #include <algorithm>
@@ -33,6 +38,7 @@
 #include "nearshore/ships/generic_hulls.hpp"
 #include "nearshore/ships/shallow_water.hpp"
 #include "nearshore/ships/ship_body.hpp"
+#include "nearshore/ships/ship_fleet.hpp"
 
 namespace nearshore::tools {
 namespace {
@@ -69,7 +75,7 @@ Timing time_ms(int repeats, F&& f) {
 }
 
 struct Options {
-  int points = 1000, grid = 256, repeats = 200, beaufort = 5;
+  int points = 1000, grid = 256, repeats = 200, beaufort = 5, fleet = 8;
   bool json = false;
 };
 
@@ -82,8 +88,10 @@ void add_bench_ships(CLI::App& bench) {
   command->add_option("--grid", o->grid, "Cells per side of the shallow-water grid")->check(number_in(at_least(16), at_most(2048)));
   command->add_option("--repeats", o->repeats, "Timed repetitions (the median is reported)")->check(number_in(at_least(1), at_most(1e6)));
   command->add_option("--beaufort", o->beaufort, "Beaufort force of the deep sea the hull samples (1-12)")->check(number_in(at_least(1), at_most(12)));
+  command->add_option("--fleet", o->fleet, "Ships of the fleet stepped together at 30 Hz (0: no fleet line)")
+      ->check(number_in(at_least(0), at_most(64)));
   command->add_flag("--json", o->json, "Print the results as JSON");
-  set_example(*command, "nearshore bench ships --points 1000 --grid 256");
+  set_example(*command, "nearshore bench ships --points 1000 --grid 256 --fleet 8");
   command->callback([o]() {
     // 1. Rigid body.
     const ships::HullMesh hull = ships::box_barge(24.0, 9.0, 4.5);
@@ -164,6 +172,29 @@ void add_bench_ships(CLI::App& bench) {
             0.5 * std::exp(-(std::pow(i - o->grid / 2.0, 2) + std::pow(j - o->grid / 2.0, 2)) / 50.0));
     dispersive.advance(frame_s, 50.0);  // plans the rotation for this step and depth once
     const Timing dispersive_step = time_ms(swe_repeats, [&] { dispersive.advance(frame_s, 50.0); });
+
+    // 5. The fleet: what a host's frame costs with --fleet ships, every default of ShipDefinition.
+    ships::ShipFleet fleet;
+    for (int k = 0; k < o->fleet; ++k) {
+      ships::ShipDefinition ship;
+      ship.name = fmt::format("ship {}", k + 1);
+      switch (k % 3) {
+        case 0: ship.hull = ships::harbour_tug(); break;
+        case 1: ship.hull = ships::wigley_hull(12.0, 3.0, 0.9, 2.0); ship.loading.draft_m = 0.9; break;
+        default: ship.hull = ships::box_barge(24.0, 9.0, 4.5); ship.loading.draft_m = 3.0; break;
+      }
+      if (k % 3 == 0) ship.loading.draft_m = 3.0;
+      ship.x_m = 150.0 * (k % 4);
+      ship.y_m = 150.0 * (k / 4);
+      ship.initial_speed_m_s = 3.0;
+      ship.orders.speed_m_s = 3.0;
+      fleet.add_ship(ship);
+    }
+    Timing fleet_frame;
+    if (o->fleet > 0) {
+      for (int k = 0; k < 30; ++k) fleet.step(&water, frame_s);  // the bow waves' start-up
+      fleet_frame = time_ms(swe_repeats, [&] { fleet.step(&water, frame_s); });
+    }
     const std::string load = load_average();
 
     if (o->json) {
@@ -181,6 +212,10 @@ void add_bench_ships(CLI::App& bench) {
                           {"bow_wave_spacing_m", wave.field().spacing_m},
                           {"dispersive_wake_step_ms", dispersive_step.median_ms},
                           {"dispersive_wake_step_fastest_ms", dispersive_step.fastest_ms},
+                          {"fleet_ships", o->fleet},
+                          {"fleet_frame_ms", fleet_frame.median_ms},
+                          {"fleet_frame_fastest_ms", fleet_frame.fastest_ms},
+                          {"fleet_frame_budget_ms", 1e3 * frame_s},
                           {"load_average", load}};
       std::puts(j.dump(2).c_str());
       return;
@@ -198,6 +233,10 @@ void add_bench_ships(CLI::App& bench) {
     std::printf("  dispersive wake layer, %d x %d nodes, one step (4 float FFTs, rotation, absorbing layer, heights): "
                 "%.3f ms (fastest %.3f ms)\n",
                 o->grid, o->grid, dispersive_step.median_ms, dispersive_step.fastest_ms);
+    if (o->fleet > 0)
+      std::printf("  a fleet of %d ships (tugs, launches, barges; every default: bow-wave grid, stern wake, restricted water) at "
+                  "3 m/s on the Beaufort %d sea, one 30 Hz frame: %.3f ms (fastest %.3f ms) of the frame's %.1f ms\n",
+                  o->fleet, o->beaufort, fleet_frame.median_ms, fleet_frame.fastest_ms, 1e3 * frame_s);
     std::printf("  load average (/proc/loadavg): %s\n", load.c_str());
   });
 }
