@@ -23,6 +23,19 @@ constexpr const char* kSamplerUnits[] = {
     "u_harbour_eta_rate_to", "u_relative_wave_height"};
 static_assert(std::size(kSamplerUnits) == kRelativeWaveHeight + 1, "one name per SamplerUnit, in order");
 
+// Empty when `status` (GL_COMPILE_STATUS of a shader, GL_LINK_STATUS of a program) is true; else
+// the driver's log, which names the line that failed (or a placeholder when the driver gives none,
+// so the result still says it failed).
+template <class GetStatus, class GetLog>
+std::string failure_log(GLuint object, GLenum status, GetStatus get_status, GetLog get_log) {
+  GLint ok = 0;
+  get_status(object, status, &ok);
+  if (ok) return {};
+  char log[4096] = {};
+  get_log(object, sizeof log, nullptr, log);
+  return log[0] ? log : "(the driver gives no log)";
+}
+
 // A stage is `#version`, then the shared files in order (common.glsl first), then its own file.
 GLuint compile_stage(GLenum stage, std::initializer_list<const char*> prefixes, const std::string& name) {
   std::string source = "#version 330 core\n";
@@ -32,17 +45,12 @@ GLuint compile_stage(GLenum stage, std::initializer_list<const char*> prefixes, 
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+  if (const std::string log = failure_log(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog); !log.empty()) {
     glDeleteShader(shader);
-    throw Error("shaders/" + name, std::string("does not compile: ") + log, "fix the GLSL");
+    throw Error("shaders/" + name, "does not compile: " + log, "fix the GLSL");
   }
   return shader;
 }
-
 
 }  // namespace
 
@@ -56,13 +64,9 @@ GLuint link_program(std::initializer_list<const char*> vertex_prefixes, const st
   glLinkProgram(program);
   glDeleteShader(vertex);
   glDeleteShader(fragment);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+  if (const std::string log = failure_log(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog); !log.empty()) {
     glDeleteProgram(program);
-    throw Error("shaders/" + vertex_name + " + " + fragment_name, std::string("do not link: ") + log, "fix the GLSL");
+    throw Error("shaders/" + vertex_name + " + " + fragment_name, "do not link: " + log, "fix the GLSL");
   }
   glUseProgram(program);
   for (int unit = 0; unit < int(std::size(kSamplerUnits)); ++unit)
