@@ -8,7 +8,8 @@
 namespace nearshore::playback {
 
 DeepFoamPass::DeepFoamPass() {
-  program_ = link_program({"common.glsl"}, "sky.vert.glsl", {"common.glsl", "surface.glsl"}, "foam_decay.frag.glsl");
+  program_ =
+      link_program({"common.glsl"}, "sky.vert.glsl", {"common.glsl", "surface.glsl"}, "foam_decay.frag.glsl");
   glGenVertexArrays(1, &empty_vertex_array_);
 }
 
@@ -26,7 +27,8 @@ void DeepFoamPass::resize(int texels, float tile_length_m) {
     texture_[k] = new_texture(GL_TEXTURE_2D, GL_LINEAR, GL_REPEAT);  // the tile repeats
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, texels, texels, 0, GL_RED, GL_FLOAT, nullptr);
     framebuffer_[k] = Framebuffer::with_texture(
-        texture_[k], texels, texels, false, {"the deep-water foam framebuffer is incomplete", "set Lighting::foam_decay_time_s = 0"});
+        texture_[k], texels, texels, false,
+        {"the deep-water foam framebuffer is incomplete", "set Lighting::foam_decay_time_s = 0"});
   }
   size_ = texels;
   tile_length_m_ = tile_length_m;

@@ -6,10 +6,10 @@
 #include <glad/gl.h>
 
 #include "gl_framebuffer.hpp"
-#include "pass_timer.hpp"
-#include "surface_uniforms.hpp"
 #include "nearshore/core/raster.hpp"
 #include "nearshore/playback/lighting.hpp"
+#include "pass_timer.hpp"
+#include "surface_uniforms.hpp"
 
 namespace nearshore::playback {
 

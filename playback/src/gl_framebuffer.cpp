@@ -24,17 +24,18 @@ GLuint attach_renderbuffer(GLenum attachment, GLenum format, int width, int heig
 
 }  // namespace
 
-Framebuffer Framebuffer::with_renderbuffer(int width, int height, GLenum colour_format, int samples, bool depth,
-                                           const FramebufferRefusal& refusal) {
+Framebuffer Framebuffer::with_renderbuffer(int width, int height, GLenum colour_format, int samples,
+                                           bool depth, const FramebufferRefusal& refusal) {
   return create(width, height, colour_format, 0, samples, depth, refusal);
 }
 
-Framebuffer Framebuffer::with_texture(GLuint texture, int width, int height, bool depth, const FramebufferRefusal& refusal) {
+Framebuffer Framebuffer::with_texture(GLuint texture, int width, int height, bool depth,
+                                      const FramebufferRefusal& refusal) {
   return create(width, height, 0, texture, 1, depth, refusal);
 }
 
-Framebuffer Framebuffer::create(int width, int height, GLenum colour_format, GLuint colour_texture, int samples, bool depth,
-                                const FramebufferRefusal& refusal) {
+Framebuffer Framebuffer::create(int width, int height, GLenum colour_format, GLuint colour_texture,
+                                int samples, bool depth, const FramebufferRefusal& refusal) {
   Framebuffer made;
   made.width_ = width;
   made.height_ = height;
@@ -45,8 +46,10 @@ Framebuffer Framebuffer::create(int width, int height, GLenum colour_format, GLu
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_texture, 0);
   else
     made.colour_ = attach_renderbuffer(GL_COLOR_ATTACHMENT0, colour_format, width, height, samples);
-  // Float depth (GL_DEPTH_COMPONENT32F) in every target: the format the renderer's pictures are made with.
-  if (depth) made.depth_ = attach_renderbuffer(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT32F, width, height, samples);
+  // GL_DEPTH_COMPONENT32F in every target, as the renderer has always drawn: another depth format
+  // changes which of two nearly coincident surfaces (a quay face and the sea) wins a pixel.
+  if (depth)
+    made.depth_ = attach_renderbuffer(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT32F, width, height, samples);
   glBindRenderbuffer(GL_RENDERBUFFER, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     made.release();
@@ -73,9 +76,9 @@ void RenderTarget::resize(int width, int height, GLenum colour_format, int sampl
       {"the framebuffer object (" + std::to_string(samples) + " samples) is incomplete",
        samples > 1 ? "set RendererSettings::msaa_samples = 1" : "update the GPU driver"});
   if (samples > 1)
-    resolved_ = Framebuffer::with_renderbuffer(width, height, colour_format, 1, false,
-                                               {"the resolve framebuffer object is incomplete",
-                                                "set RendererSettings::msaa_samples = 1"});
+    resolved_ = Framebuffer::with_renderbuffer(
+        width, height, colour_format, 1, false,
+        {"the resolve framebuffer object is incomplete", "set RendererSettings::msaa_samples = 1"});
   colour_format_ = colour_format;
 }
 

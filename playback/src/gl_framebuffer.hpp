@@ -22,7 +22,8 @@ class Framebuffer {
                                        const FramebufferRefusal& refusal);
   /// Colour: level 0 of `texture` (its storage already `width` x `height`), which stays the
   /// caller's: release() does not delete it.
-  static Framebuffer with_texture(GLuint texture, int width, int height, bool depth, const FramebufferRefusal& refusal);
+  static Framebuffer with_texture(GLuint texture, int width, int height, bool depth,
+                                  const FramebufferRefusal& refusal);
 
   GLuint id() const { return framebuffer_; }
   GLuint colour_renderbuffer() const { return colour_; }
@@ -34,8 +35,8 @@ class Framebuffer {
 
  private:
   // Leaves the new framebuffer bound to GL_FRAMEBUFFER and no renderbuffer bound.
-  static Framebuffer create(int width, int height, GLenum colour_format, GLuint colour_texture, int samples, bool depth,
-                            const FramebufferRefusal& refusal);
+  static Framebuffer create(int width, int height, GLenum colour_format, GLuint colour_texture, int samples,
+                            bool depth, const FramebufferRefusal& refusal);
   GLuint framebuffer_ = 0, colour_ = 0, depth_ = 0;  // colour_: 0 when the colour is a texture
   int width_ = 0, height_ = 0, samples_ = 0;
 };

@@ -23,7 +23,8 @@ Mesh upload_mesh(const std::vector<float>& vertices, const std::vector<GLuint>& 
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
   glGenBuffers(1, &mesh.index_buffer);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(),
+               GL_STATIC_DRAW);
   mesh.index_count = GLsizei(indices.size());
   mesh.vertex_count = static_cast<long long>(vertices.size() / 2);
   glBindVertexArray(0);
@@ -34,7 +35,8 @@ Mesh lattice_mesh(int columns, int rows, float scale_x, float scale_y) {
   std::vector<float> vertices;
   vertices.reserve(std::size_t(columns) * rows * 2);
   for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < columns; ++i) vertices.insert(vertices.end(), {float(i) * scale_x, float(j) * scale_y});
+    for (int i = 0; i < columns; ++i)
+      vertices.insert(vertices.end(), {float(i) * scale_x, float(j) * scale_y});
   std::vector<GLuint> indices;
   indices.reserve(std::size_t(columns - 1) * (rows - 1) * 6);
   for (int j = 0; j + 1 < rows; ++j)

@@ -17,8 +17,19 @@ namespace nearshore::playback {
 /// The texture unit of each sampler of surface.glsl (link_program assigns them in this order):
 /// two sampler types on one unit is an error at draw time, and every sampler starts on unit 0.
 enum SamplerUnit {
-  kHarbourEta = 0, kHarbourBreaking = 2, kDepth = 4, kPorosity = 5, kLand = 6, kDeepFirst = 7, kCoast = 17,
-  kReflection = 18, kPatches = 19, kDecalFoam = 20, kDeepFoam = 21, kPreviousFoam = 22, kHarbourEtaRate = 23,
+  kHarbourEta = 0,
+  kHarbourBreaking = 2,
+  kDepth = 4,
+  kPorosity = 5,
+  kLand = 6,
+  kDeepFirst = 7,
+  kCoast = 17,
+  kReflection = 18,
+  kPatches = 19,
+  kDecalFoam = 20,
+  kDeepFoam = 21,
+  kPreviousFoam = 22,
+  kHarbourEtaRate = 23,
   kRelativeWaveHeight = 25
 };
 
@@ -29,7 +40,9 @@ enum SamplerUnit {
 GLuint link_program(std::initializer_list<const char*> vertex_prefixes, const std::string& vertex_name,
                     std::initializer_list<const char*> fragment_prefixes, const std::string& fragment_name);
 
-inline GLint at(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
+inline GLint at(GLuint program, const char* name) {
+  return glGetUniformLocation(program, name);
+}
 void set_uniform(GLuint program, const char* name, const std::array<double, 3>& value);
 void set_uniform(GLuint program, const char* name, const Rgb& value);
 void set_uniform(GLuint program, const char* name, float value);

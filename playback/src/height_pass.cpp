@@ -43,11 +43,12 @@ Raster<float> HeightPass::render(const SurfaceFormula& formula, const SiteRectan
   glDepthFunc(GL_LESS);  // the highest surface where folds overlap
   glDisable(GL_CULL_FACE);
   glUseProgram(program_);
-  set_uniform(program_, "u_view_projection", orthographic_top_down(r.x0_m, r.y0_m, r.x1_m, r.y1_m, -1000.0, 1000.0));
+  set_uniform(program_, "u_view_projection",
+              orthographic_top_down(r.x0_m, r.y0_m, r.x1_m, r.y1_m, -1000.0, 1000.0));
   const Vector3 eye = {0.5 * (r.x0_m + r.x1_m), 0.5 * (r.y0_m + r.y1_m), 1000.0};
   set_surface_uniforms(program_, formula, eye, 0.0);
-  glUniform4f(at(program_, "u_lattice_m"), float(r.x0_m + (0.5 - margin) * dx), float(r.y0_m + (0.5 - margin) * dy),
-              float(dx), float(dy));
+  glUniform4f(at(program_, "u_lattice_m"), float(r.x0_m + (0.5 - margin) * dx),
+              float(r.y0_m + (0.5 - margin) * dy), float(dx), float(dy));
   glBindVertexArray(lattice_.vertex_array);
   glDrawElements(GL_TRIANGLES, lattice_.index_count, GL_UNSIGNED_INT, nullptr);
   glBindVertexArray(0);

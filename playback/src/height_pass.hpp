@@ -7,9 +7,9 @@
 
 #include "gl_framebuffer.hpp"
 #include "gl_mesh.hpp"
-#include "surface_uniforms.hpp"
 #include "nearshore/core/raster.hpp"
 #include "nearshore/playback/water_renderer.hpp"
+#include "surface_uniforms.hpp"
 
 namespace nearshore::playback {
 

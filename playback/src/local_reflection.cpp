@@ -12,7 +12,8 @@ void LocalReflection::resize(int width, int height) {
   colour_ = new_texture(GL_TEXTURE_2D, GL_LINEAR, GL_CLAMP_TO_EDGE);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
   framebuffer_ = Framebuffer::with_texture(
-      colour_, width, height, true, {"the reflection framebuffer is incomplete", "set RendererSettings::local_reflections = false"});
+      colour_, width, height, true,
+      {"the reflection framebuffer is incomplete", "set RendererSettings::local_reflections = false"});
 }
 
 void LocalReflection::release() {

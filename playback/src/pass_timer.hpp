@@ -78,7 +78,8 @@ class PassTimer {
       if (!set.pending) continue;
       GLuint available_all = 1;
       for (int pass = 0; pass < kGpuPassCount && available_all; ++pass)
-        if (set.used[pass]) glGetQueryObjectuiv(queries_[slot][pass], GL_QUERY_RESULT_AVAILABLE, &available_all);
+        if (set.used[pass])
+          glGetQueryObjectuiv(queries_[slot][pass], GL_QUERY_RESULT_AVAILABLE, &available_all);
       if (!available_all) break;  // a later set cannot be done before this one
       GpuPassTimes read;
       read.measured = true;

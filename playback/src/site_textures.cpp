@@ -14,7 +14,8 @@ namespace nearshore::playback {
 namespace {
 
 // One R channel raster, rows packed (GL_UNPACK_ALIGNMENT 1: an R8 row need not be 4-byte aligned).
-GLuint site_texture(GLenum internal_format, GLenum type, int columns, int rows, const void* data, GLint filter) {
+GLuint site_texture(GLenum internal_format, GLenum type, int columns, int rows, const void* data,
+                    GLint filter) {
   const GLuint texture = new_texture(GL_TEXTURE_2D, filter, GL_CLAMP_TO_EDGE);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GLint(internal_format), columns, rows, 0, GL_RED, type, data);
@@ -56,8 +57,9 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
   if (columns < 2 || rows < 2 || h.still_water_depth_m.columns() != columns || h.land.columns() != columns ||
       h.porosity.columns() != columns || h.still_water_depth_m.rows() != rows || h.land.rows() != rows ||
       h.porosity.rows() != rows)
-    throw Error("harbour site", "its grid is " + std::to_string(columns) + " x " + std::to_string(rows) +
-                                    " cells but its depth, land or porosity raster has another size",
+    throw Error("harbour site",
+                "its grid is " + std::to_string(columns) + " x " + std::to_string(rows) +
+                    " cells but its depth, land or porosity raster has another size",
                 "build the HarbourSite from one HarbourGrid of at least 2 x 2 cells");
   depth_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.still_water_depth_m.data(), GL_LINEAR);
   porosity_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.porosity.data(), GL_LINEAR);
@@ -66,7 +68,9 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
   std::vector<float> coast(std::size_t(columns) * rows, 1e4f);
   if (h.coast_distance_m.columns() == columns && h.coast_distance_m.rows() == rows)
     for (std::size_t k = 0; k < coast.size(); ++k)
-      coast[k] = std::isfinite(h.coast_distance_m.data()[k]) ? std::clamp(h.coast_distance_m.data()[k], -1e4f, 1e4f) : 1e4f;
+      coast[k] = std::isfinite(h.coast_distance_m.data()[k])
+                     ? std::clamp(h.coast_distance_m.data()[k], -1e4f, 1e4f)
+                     : 1e4f;
   coast_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, coast.data(), GL_LINEAR);
   std::size_t bytes = std::size_t(columns) * rows * 9;
   const Raster<float>& k = site_->relative_wave_height;

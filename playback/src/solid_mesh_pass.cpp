@@ -9,15 +9,18 @@ SolidMeshPass::SolidMeshPass() {
   program_ = link_program(surface, "mesh.vert.glsl", surface, "mesh.frag.glsl");
 }
 
-SolidMeshPass::~SolidMeshPass() { glDeleteProgram(program_); }
+SolidMeshPass::~SolidMeshPass() {
+  glDeleteProgram(program_);
+}
 
-void SolidMeshPass::draw(const SurfaceLayers& layers, SurfaceLayerGpu& layer_gpu, const SurfaceFormula& formula,
-                         const LightingFrame& light, const CameraView& view, double earth_radius_m,
-                         FrameStatistics& statistics, const Matrix4* mirror) const {
+void SolidMeshPass::draw(const SurfaceLayers& layers, SurfaceLayerGpu& layer_gpu,
+                         const SurfaceFormula& formula, const LightingFrame& light, const CameraView& view,
+                         double earth_radius_m, FrameStatistics& statistics, const Matrix4* mirror) const {
   if (layers.meshes.empty()) return;
   glUseProgram(program_);
   set_lighting_uniforms(program_, light);
-  set_uniform(program_, "u_view_projection", mirror ? multiply(view.view_projection, *mirror) : view.view_projection);
+  set_uniform(program_, "u_view_projection",
+              mirror ? multiply(view.view_projection, *mirror) : view.view_projection);
   const Vector3 eye = mirror ? Vector3{view.eye_m[0], view.eye_m[1], -view.eye_m[2]} : view.eye_m;
   set_surface_uniforms(program_, formula, eye, earth_radius_m);
   set_uniform(program_, "u_mirror", mirror ? 1 : 0);

@@ -4,11 +4,11 @@
 // what is under water, and again mirrored for the local reflection.
 #include <glad/gl.h>
 
-#include "surface_layer_gpu.hpp"
-#include "surface_uniforms.hpp"
 #include "nearshore/playback/camera.hpp"
 #include "nearshore/playback/lighting.hpp"
 #include "nearshore/playback/water_renderer.hpp"
+#include "surface_layer_gpu.hpp"
+#include "surface_uniforms.hpp"
 
 namespace nearshore::playback {
 
@@ -23,8 +23,9 @@ class SolidMeshPass {
   /// bytes added to statistics.layer_upload_bytes). `mirror` (the reflection pass): z -> -z, the
   /// eye mirrored too so each face turns towards the eye that sees its image; only what stands
   /// above still water, as linear radiance. Without a mirror statistics.meshes counts them.
-  void draw(const SurfaceLayers& layers, SurfaceLayerGpu& layer_gpu, const SurfaceFormula& formula, const LightingFrame& light,
-            const CameraView& view, double earth_radius_m, FrameStatistics& statistics, const Matrix4* mirror = nullptr) const;
+  void draw(const SurfaceLayers& layers, SurfaceLayerGpu& layer_gpu, const SurfaceFormula& formula,
+            const LightingFrame& light, const CameraView& view, double earth_radius_m,
+            FrameStatistics& statistics, const Matrix4* mirror = nullptr) const;
 
  private:
   GLuint program_ = 0;

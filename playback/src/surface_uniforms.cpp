@@ -6,7 +6,8 @@
 
 namespace nearshore::playback {
 
-void set_surface_uniforms(GLuint program, const SurfaceFormula& formula, const Vector3& eye, double earth_radius_m) {
+void set_surface_uniforms(GLuint program, const SurfaceFormula& formula, const Vector3& eye,
+                          double earth_radius_m) {
   const runtime::SurfaceSnapshot& snapshot = formula.snapshot;
   const KeyframeTextures::Bound& bound = formula.bound;
   const runtime::HarbourSite* site = formula.site;
@@ -44,7 +45,8 @@ void set_surface_uniforms(GLuint program, const SurfaceFormula& formula, const V
   set_uniform(program, "u_deep_size", std::max(bound.deep_size, 1));
   set_uniform(program, "u_deep_fraction", float(snapshot.deep_fraction));
   if (!bound.tile_lengths_m.empty())
-    glUniform1fv(at(program, "u_tile_length_m"), GLsizei(bound.tile_lengths_m.size()), bound.tile_lengths_m.data());
+    glUniform1fv(at(program, "u_tile_length_m"), GLsizei(bound.tile_lengths_m.size()),
+                 bound.tile_lengths_m.data());
   const PatchUniforms& patches = formula.patches;
   const int patch_count = formula.patch_count;
   set_uniform(program, "u_patch_count", patch_count);

@@ -6,9 +6,9 @@
 #include <glad/gl.h>
 
 #include "keyframe_textures.hpp"
-#include "surface_layer_gpu.hpp"
 #include "nearshore/playback/vector3.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
+#include "surface_layer_gpu.hpp"
 
 namespace nearshore::playback {
 
@@ -26,6 +26,7 @@ struct SurfaceFormula {
 
 /// The uniforms of surface.glsl for `program` (in use), seen from `eye_m` on an earth of
 /// `earth_radius_m` (0: flat).
-void set_surface_uniforms(GLuint program, const SurfaceFormula& formula, const Vector3& eye_m, double earth_radius_m);
+void set_surface_uniforms(GLuint program, const SurfaceFormula& formula, const Vector3& eye_m,
+                          double earth_radius_m);
 
 }  // namespace nearshore::playback

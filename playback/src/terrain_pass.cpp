@@ -5,13 +5,16 @@
 namespace nearshore::playback {
 
 TerrainPass::TerrainPass() {
-  program_ = link_program({"common.glsl", "surface.glsl"}, "terrain.vert.glsl", {"common.glsl"}, "terrain.frag.glsl");
+  program_ = link_program({"common.glsl", "surface.glsl"}, "terrain.vert.glsl", {"common.glsl"},
+                          "terrain.frag.glsl");
 }
 
-TerrainPass::~TerrainPass() { glDeleteProgram(program_); }
+TerrainPass::~TerrainPass() {
+  glDeleteProgram(program_);
+}
 
-void TerrainPass::draw(const Mesh& terrain, const SurfaceFormula& formula, const LightingFrame& light, const CameraView& view,
-                       double earth_radius_m, float structure_crest_m) const {
+void TerrainPass::draw(const Mesh& terrain, const SurfaceFormula& formula, const LightingFrame& light,
+                       const CameraView& view, double earth_radius_m, float structure_crest_m) const {
   glUseProgram(program_);
   set_lighting_uniforms(program_, light);
   set_uniform(program_, "u_view_projection", view.view_projection);

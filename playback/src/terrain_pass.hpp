@@ -5,9 +5,9 @@
 #include <glad/gl.h>
 
 #include "gl_mesh.hpp"
-#include "surface_uniforms.hpp"
 #include "nearshore/playback/camera.hpp"
 #include "nearshore/playback/lighting.hpp"
+#include "surface_uniforms.hpp"
 
 namespace nearshore::playback {
 
@@ -19,8 +19,8 @@ class TerrainPass {
   TerrainPass& operator=(const TerrainPass&) = delete;
 
   /// The terrain seen from `view` into the bound framebuffer.
-  void draw(const Mesh& terrain, const SurfaceFormula& formula, const LightingFrame& light, const CameraView& view,
-            double earth_radius_m, float structure_crest_m) const;
+  void draw(const Mesh& terrain, const SurfaceFormula& formula, const LightingFrame& light,
+            const CameraView& view, double earth_radius_m, float structure_crest_m) const;
   /// The terrain again through `mirrored_view_projection` (view_projection * diag(1, 1, -1, 1)),
   /// only what stands above still water; after draw(), whose uniforms it keeps.
   void draw_mirrored(const Mesh& terrain, const Matrix4& mirrored_view_projection) const;

@@ -13,6 +13,7 @@
 #include "height_pass.hpp"
 #include "keyframe_textures.hpp"
 #include "local_reflection.hpp"
+#include "nearshore/core/error.hpp"
 #include "pass_timer.hpp"
 #include "site_textures.hpp"
 #include "sky_pass.hpp"
@@ -21,7 +22,6 @@
 #include "surface_uniforms.hpp"
 #include "terrain_pass.hpp"
 #include "water_surface_pass.hpp"
-#include "nearshore/core/error.hpp"
 
 namespace nearshore::playback {
 
@@ -31,10 +31,10 @@ struct WaterRenderer::Impl {
   RendererSettings settings;
   KeyframeTextures keyframes;
   FrameStatistics statistics;
-  GpuTextures textures;  // of the last render or upload
-  SiteTextures site_textures;  // the site (static for a sequence): uploaded when the snapshot's site changes
-  SurfaceLayerGpu layer_gpu;  // the SurfaceLayers' patches, decal foam map and meshes
-  GLuint decal_program = 0;  // decal.vert/frag, for layer_gpu.draw_decals
+  GpuTextures textures;         // of the last render or upload
+  SiteTextures site_textures;   // the site (static for a sequence): uploaded when the snapshot's site changes
+  SurfaceLayerGpu layer_gpu;    // the SurfaceLayers' patches, decal foam map and meshes
+  GLuint decal_program = 0;     // decal.vert/frag, for layer_gpu.draw_decals
   bool patches_active = false;  // this draw adds the patches uploaded last
   DeepFoamPass deep_foam;
   SkyPass sky;
@@ -45,10 +45,11 @@ struct WaterRenderer::Impl {
   HeightPass height;
   RenderTarget target;
   PassTimer timer;
-  int max_samples = 0;  // GL_MAX_SAMPLES, asked on the first frame
+  int max_samples = 0;               // GL_MAX_SAMPLES, asked on the first frame
   bool software_rasteriser = false;  // GL_RENDERER names Mesa's llvmpipe, softpipe or swrast
 
-  explicit Impl(const RendererSettings& s) : settings(s), keyframes(s.harbour_texture_slots, s.deep_texture_slots) {
+  explicit Impl(const RendererSettings& s)
+      : settings(s), keyframes(s.harbour_texture_slots, s.deep_texture_slots) {
     decal_program = link_program({}, "decal.vert.glsl", {}, "decal.frag.glsl");
   }
 
@@ -66,7 +67,8 @@ struct WaterRenderer::Impl {
       max_samples = std::max(max_samples, 1);
       const char* renderer_name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
       const std::string name = renderer_name ? renderer_name : "";
-      software_rasteriser = name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
+      software_rasteriser = name.find("llvmpipe") != std::string::npos ||
+                            name.find("softpipe") != std::string::npos ||
                             name.find("swrast") != std::string::npos;
     }
     const int asked = settings.msaa_samples > 0 ? settings.msaa_samples : software_rasteriser ? 1 : 4;
@@ -74,7 +76,8 @@ struct WaterRenderer::Impl {
   }
 
   // The snapshot's formula as every pass sets it (after prepare_patches: it counts the patches).
-  SurfaceFormula formula(const runtime::SurfaceSnapshot& snapshot, const KeyframeTextures::Bound& bound) const {
+  SurfaceFormula formula(const runtime::SurfaceSnapshot& snapshot,
+                         const KeyframeTextures::Bound& bound) const {
     const PatchUniforms& patches = layer_gpu.patch_uniforms();
     return SurfaceFormula{snapshot,
                           bound,
@@ -88,7 +91,8 @@ struct WaterRenderer::Impl {
   // The layers' height patches onto their unit (before any surface uniforms are set).
   void prepare_patches(const SurfaceLayers* layers) {
     patches_active = layers && !layers->height_patches.empty();
-    if (patches_active) statistics.layer_upload_bytes += layer_gpu.upload_patches(layers->height_patches, kPatches);
+    if (patches_active)
+      statistics.layer_upload_bytes += layer_gpu.upload_patches(layers->height_patches, kPatches);
     statistics.height_patches = patches_active ? int(layers->height_patches.size()) : 0;
     glActiveTexture(GLenum(GL_TEXTURE0 + kPatches));
     glBindTexture(GL_TEXTURE_2D, patches_active ? layer_gpu.patch_atlas() : 0);
@@ -117,13 +121,16 @@ struct WaterRenderer::Impl {
     for (const auto* keyframe : {snapshot.harbour_from.get(), snapshot.harbour_to.get()}) {
       if (!keyframe) continue;
       if (!site)
-        throw Error("surface snapshot", "holds harbour keyframes but no site", "give the snapshot its HarbourSite");
+        throw Error("surface snapshot", "holds harbour keyframes but no site",
+                    "give the snapshot its HarbourSite");
       const GridGeometry& g = site->harbour.geometry;
-      if (keyframe->surface_elevation_m.columns() != g.columns || keyframe->surface_elevation_m.rows() != g.rows)
+      if (keyframe->surface_elevation_m.columns() != g.columns ||
+          keyframe->surface_elevation_m.rows() != g.rows)
         throw Error("harbour keyframe " + std::to_string(keyframe->serial),
                     "is " + std::to_string(keyframe->surface_elevation_m.columns()) + " x " +
-                        std::to_string(keyframe->surface_elevation_m.rows()) + " cells but the site's grid is " +
-                        std::to_string(g.columns) + " x " + std::to_string(g.rows),
+                        std::to_string(keyframe->surface_elevation_m.rows()) +
+                        " cells but the site's grid is " + std::to_string(g.columns) + " x " +
+                        std::to_string(g.rows),
                     "play a sequence baked on this harbour grid");
     }
   }
@@ -156,13 +163,13 @@ struct WaterRenderer::Impl {
     statistics.upload_bytes += site_textures.bind_site(snapshot.site);
     check_snapshot(snapshot);
     UploadCounters counters;
-    KeyframeTextures::Bound bound = keyframes.prepare(snapshot, settings.upload_budget_bytes_per_frame, counters);
+    KeyframeTextures::Bound bound =
+        keyframes.prepare(snapshot, settings.upload_budget_bytes_per_frame, counters);
     statistics.upload_bytes += counters.bytes;
     statistics.forced_upload_bytes = counters.forced_bytes;
     remember_textures(snapshot, bound);
     return bound;
   }
-
 
   // Clip distances: near from the eye's height; far where the grid ends (or beyond the site).
   CameraView frame_view(const Camera& camera, int width, int height, double earth_radius_m) {
@@ -213,8 +220,8 @@ struct WaterRenderer::Impl {
     glActiveTexture(GL_TEXTURE0);
   }
 
-  void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width,
-              int height, const DrawOptions& options, const SurfaceLayers* layers) {
+  void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting,
+              int width, int height, const DrawOptions& options, const SurfaceLayers* layers) {
     const KeyframeTextures::Bound bound = upload(snapshot);
     timer.begin_frame(settings.gpu_timing, statistics.gpu);  // and what an earlier frame measured
     const LightingFrame light = prepare_lighting(lighting);
@@ -224,12 +231,13 @@ struct WaterRenderer::Impl {
     // The wakes' foam map first: it draws into its own framebuffer.
     if (layers && lit && !layers->foam_decals.empty()) timer.begin_pass(GpuPass::decal_foam);
     const bool decal_foam = layers && lit &&
-                            layer_gpu.draw_decals(layers->foam_decals, decal_program, settings.decal_foam_texels,
-                                                  settings.decal_foam_finest_m);
+                            layer_gpu.draw_decals(layers->foam_decals, decal_program,
+                                                  settings.decal_foam_texels, settings.decal_foam_finest_m);
     timer.end_pass();
     statistics.foam_decals = decal_foam ? int(layers->foam_decals.size()) : 0;
 
-    const double earth_radius = settings.grid == GridKind::projected ? settings.projected.earth_radius_m : 0.0;
+    const double earth_radius =
+        settings.grid == GridKind::projected ? settings.projected.earth_radius_m : 0.0;
     const CameraView view = frame_view(camera, width, height, earth_radius);
     bind_textures(bound);
     const bool deep_foam_drawn = lit && deep_foam.update(surface, light, timer);
@@ -286,15 +294,17 @@ struct WaterRenderer::Impl {
     }
     timer.end_pass();
     if (GLenum error = glGetError(); error != GL_NO_ERROR)
-      throw Error("water renderer", "OpenGL error " + std::to_string(error) + " while drawing", "report this bug");
+      throw Error("water renderer", "OpenGL error " + std::to_string(error) + " while drawing",
+                  "report this bug");
   }
 
-  Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& r, int columns, int rows,
-                                  const SurfaceLayers* layers) {
+  Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& r,
+                                  int columns, int rows, const SurfaceLayers* layers) {
     if (columns < 1 || rows < 1 || columns > 8192 || rows > 8192 || !(r.x1_m > r.x0_m) || !(r.y1_m > r.y0_m))
-      throw Error("height map", std::to_string(columns) + " x " + std::to_string(rows) + " cells over x " +
-                                    std::to_string(r.x0_m) + ".." + std::to_string(r.x1_m) + ", y " +
-                                    std::to_string(r.y0_m) + ".." + std::to_string(r.y1_m) + " m",
+      throw Error("height map",
+                  std::to_string(columns) + " x " + std::to_string(rows) + " cells over x " +
+                      std::to_string(r.x0_m) + ".." + std::to_string(r.x1_m) + ", y " +
+                      std::to_string(r.y0_m) + ".." + std::to_string(r.y1_m) + " m",
                   "ask for 1..8192 cells each way over a rectangle with x1 > x0 and y1 > y0");
     statistics.upload_bytes += site_textures.bind_site(snapshot.site);
     check_snapshot(snapshot);
@@ -305,7 +315,8 @@ struct WaterRenderer::Impl {
     Raster<float> heights =
         height.render(formula(snapshot, bound), r, columns, rows, settings.quadtree.displacement_bound_m);
     if (GLenum error = glGetError(); error != GL_NO_ERROR)
-      throw Error("water renderer", "OpenGL error " + std::to_string(error) + " in the height pass", "report this bug");
+      throw Error("water renderer", "OpenGL error " + std::to_string(error) + " in the height pass",
+                  "report this bug");
     return heights;
   }
 };
@@ -313,12 +324,19 @@ struct WaterRenderer::Impl {
 WaterRenderer::WaterRenderer(RendererSettings settings) : impl_(new Impl(settings)) {}
 WaterRenderer::~WaterRenderer() = default;
 
-RendererSettings& WaterRenderer::settings() { return impl_->settings; }
-bool WaterRenderer::stage(std::shared_ptr<const runtime::HarbourKeyframe> k) { return impl_->keyframes.stage(std::move(k)); }
-bool WaterRenderer::stage(std::shared_ptr<const runtime::DeepWaterKeyframe> k) { return impl_->keyframes.stage(std::move(k)); }
+RendererSettings& WaterRenderer::settings() {
+  return impl_->settings;
+}
+bool WaterRenderer::stage(std::shared_ptr<const runtime::HarbourKeyframe> k) {
+  return impl_->keyframes.stage(std::move(k));
+}
+bool WaterRenderer::stage(std::shared_ptr<const runtime::DeepWaterKeyframe> k) {
+  return impl_->keyframes.stage(std::move(k));
+}
 
-void WaterRenderer::render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting,
-                           int width_px, int height_px, const DrawOptions& options, const SurfaceLayers* layers) {
+void WaterRenderer::render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera,
+                           const Lighting& lighting, int width_px, int height_px, const DrawOptions& options,
+                           const SurfaceLayers* layers) {
   impl_->render(snapshot, camera, lighting, width_px, height_px, options, layers);
 }
 
@@ -332,14 +350,21 @@ const GpuTextures& WaterRenderer::upload(const runtime::SurfaceSnapshot& snapsho
   return impl_->textures;
 }
 
-const GpuTextures& WaterRenderer::textures() const { return impl_->textures; }
+const GpuTextures& WaterRenderer::textures() const {
+  return impl_->textures;
+}
 
-const FrameStatistics& WaterRenderer::last_frame() const { return impl_->statistics; }
+const FrameStatistics& WaterRenderer::last_frame() const {
+  return impl_->statistics;
+}
 
-Raster<float> WaterRenderer::deep_foam_map() const { return impl_->deep_foam.read_map(); }
+Raster<float> WaterRenderer::deep_foam_map() const {
+  return impl_->deep_foam.read_map();
+}
 
-Raster<float> WaterRenderer::render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& rectangle,
-                                               int columns, int rows, const SurfaceLayers* layers) {
+Raster<float> WaterRenderer::render_height_map(const runtime::SurfaceSnapshot& snapshot,
+                                               const SiteRectangle& rectangle, int columns, int rows,
+                                               const SurfaceLayers* layers) {
   return impl_->render_height_map(snapshot, rectangle, columns, rows, layers);
 }
 
@@ -353,8 +378,8 @@ const char* gpu_pass_name(GpuPass pass) {
 void WaterRenderer::blit_to_window(int window_width_px, int window_height_px) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->target.read_framebuffer());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glBlitFramebuffer(0, 0, impl_->target.width(), impl_->target.height(), 0, 0, window_width_px, window_height_px,
-                    GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  glBlitFramebuffer(0, 0, impl_->target.width(), impl_->target.height(), 0, 0, window_width_px,
+                    window_height_px, GL_COLOR_BUFFER_BIT, GL_LINEAR);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -11,13 +11,15 @@ namespace nearshore::playback {
 namespace {
 
 bool same(const RadialGridSettings& a, const RadialGridSettings& b) {
-  return a.segment_count == b.segment_count && a.inner_spacing_m == b.inner_spacing_m && a.outer_radius_m == b.outer_radius_m;
+  return a.segment_count == b.segment_count && a.inner_spacing_m == b.inner_spacing_m &&
+         a.outer_radius_m == b.outer_radius_m;
 }
 
 }  // namespace
 
 WaterSurfacePass::WaterSurfacePass() {
-  const std::initializer_list<const char*> water_vertex = {"common.glsl", "surface.glsl", "water_vertex.glsl"};
+  const std::initializer_list<const char*> water_vertex = {"common.glsl", "surface.glsl",
+                                                           "water_vertex.glsl"};
   const std::initializer_list<const char*> surface = {"common.glsl", "surface.glsl"};
   radial_program_ = link_program(water_vertex, "water_radial.vert.glsl", surface, "water.frag.glsl");
   quadtree_program_ = link_program(water_vertex, "water_quadtree.vert.glsl", surface, "water.frag.glsl");
@@ -30,7 +32,9 @@ WaterSurfacePass::~WaterSurfacePass() {
 }
 
 GLuint WaterSurfacePass::program(GridKind kind) const {
-  return kind == GridKind::radial ? radial_program_ : kind == GridKind::quadtree ? quadtree_program_ : projected_program_;
+  return kind == GridKind::radial     ? radial_program_
+         : kind == GridKind::quadtree ? quadtree_program_
+                                      : projected_program_;
 }
 
 void WaterSurfacePass::draw(const SeaDraw& sea, PassTimer& timer, FrameStatistics& statistics) {
@@ -89,7 +93,8 @@ void WaterSurfacePass::draw_grid(GLuint program, const SeaDraw& sea, const Quadt
                             GLsizei(selection.patches.size()));
     if (count) {
       statistics.vertices_drawn = selection.vertex_count();
-      statistics.triangles_drawn = static_cast<long long>(selection.patches.size()) * quadtree_patch_.index_count / 3;
+      statistics.triangles_drawn =
+          static_cast<long long>(selection.patches.size()) * quadtree_patch_.index_count / 3;
     }
   } else {
     if (layout.vertex_count() == 0) return;
@@ -106,8 +111,9 @@ void WaterSurfacePass::draw_grid(GLuint program, const SeaDraw& sea, const Quadt
   glBindVertexArray(0);
 }
 
-void WaterSurfacePass::prepare_grid(const RendererSettings& settings, const CameraView& view, QuadtreeSelection& selection,
-                                    ProjectedGridLayout& layout, FrameStatistics& statistics) {
+void WaterSurfacePass::prepare_grid(const RendererSettings& settings, const CameraView& view,
+                                    QuadtreeSelection& selection, ProjectedGridLayout& layout,
+                                    FrameStatistics& statistics) {
   const GridKind kind = settings.grid;
   if (kind == GridKind::radial && (!radial_.vertex_array || !same(radial_built_, settings.radial))) {
     radial_.release();
@@ -136,15 +142,18 @@ void WaterSurfacePass::prepare_grid(const RendererSettings& settings, const Came
                                          float(selection.levels[std::size_t(patch.level)].vertex_spacing_m),
                                          float(patch.level)});
     glBindBuffer(GL_ARRAY_BUFFER, quadtree_patch_.instance_buffer);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(float)), instances.data(), GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(float)), instances.data(),
+                 GL_STREAM_DRAW);
     statistics.geometry_upload_bytes += instances.size() * sizeof(float);
     statistics.quadtree_patches = int(selection.patches.size());
     statistics.quadtree_levels = int(selection.levels.size());
   } else if (kind == GridKind::projected) {
     layout = layout_projected_grid(settings.projected, view);
-    if (layout.vertex_count() > 0 && (layout.columns != projected_columns_ || layout.rows != projected_rows_)) {
+    if (layout.vertex_count() > 0 &&
+        (layout.columns != projected_columns_ || layout.rows != projected_rows_)) {
       projected_.release();
-      projected_ = lattice_mesh(layout.columns, layout.rows, 1.f / float(layout.columns - 1), 1.f / float(layout.rows - 1));
+      projected_ = lattice_mesh(layout.columns, layout.rows, 1.f / float(layout.columns - 1),
+                                1.f / float(layout.rows - 1));
       projected_columns_ = layout.columns;
       projected_rows_ = layout.rows;
     }
@@ -160,16 +169,20 @@ void WaterSurfacePass::set_water_lighting_uniforms(GLuint program, const runtime
     for (const ocean::DeepWaterFrame& cascade : snapshot.deep_from->cascades) {
       double sum = 0.0;
       for (std::size_t k = 0; k < cascade.slope_x.size(); ++k)
-        sum += double(cascade.slope_x[k]) * cascade.slope_x[k] + double(cascade.slope_y[k]) * cascade.slope_y[k];
-      cascade_slope_variance_.push_back(cascade.slope_x.empty() ? 0.f : float(0.5 * sum / double(cascade.slope_x.size())));
+        sum +=
+            double(cascade.slope_x[k]) * cascade.slope_x[k] + double(cascade.slope_y[k]) * cascade.slope_y[k];
+      cascade_slope_variance_.push_back(
+          cascade.slope_x.empty() ? 0.f : float(0.5 * sum / double(cascade.slope_x.size())));
     }
   }
   std::vector<float> variances(8, 0.f);
-  std::copy_n(cascade_slope_variance_.begin(), std::min<std::size_t>(cascade_slope_variance_.size(), 8), variances.begin());
+  std::copy_n(cascade_slope_variance_.begin(), std::min<std::size_t>(cascade_slope_variance_.size(), 8),
+              variances.begin());
   glUniform1fv(at(program, "u_cascade_slope_variance"), 8, variances.data());
   set_uniform(program, "u_jacobian_foam_onset", float(light.jacobian_foam_onset));
   set_uniform(program, "u_time_s", float(std::fmod(snapshot.display_time_s, 3600.0)));
-  glUniform2f(at(program, "u_wind_toward"), float(std::cos(light.wind_direction_rad)), float(std::sin(light.wind_direction_rad)));
+  glUniform2f(at(program, "u_wind_toward"), float(std::cos(light.wind_direction_rad)),
+              float(std::sin(light.wind_direction_rad)));
   set_uniform(program, "u_shore_amplitude_m", float(light.shore_wave_amplitude_m));
   set_uniform(program, "u_shore_band_m", float(light.shore_band_m));
 }

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "gl_mesh.hpp"
-#include "pass_timer.hpp"
-#include "surface_uniforms.hpp"
 #include "nearshore/playback/camera.hpp"
 #include "nearshore/playback/lighting.hpp"
 #include "nearshore/playback/surface_grids.hpp"
 #include "nearshore/playback/water_renderer.hpp"
+#include "pass_timer.hpp"
+#include "surface_uniforms.hpp"
 
 namespace nearshore::playback {
 
@@ -27,10 +27,10 @@ struct SeaDraw {
   double earth_radius_m = 0.0;
   const DrawOptions& options;
   int width_px = 0, height_px = 0;
-  bool reflection = false;  ///< LocalReflection's texture on unit kReflection
-  bool decal_foam = false;  ///< the decals' foam map on unit kDecalFoam
+  bool reflection = false;                   ///< LocalReflection's texture on unit kReflection
+  bool decal_foam = false;                   ///< the decals' foam map on unit kDecalFoam
   std::array<float, 4> decal_foam_rect_m{};  ///< x0, y0, width, height of that map
-  bool deep_foam = false;   ///< DeepFoamPass's map on unit kDeepFoam
+  bool deep_foam = false;                    ///< DeepFoamPass's map on unit kDeepFoam
 };
 
 class WaterSurfacePass {
@@ -49,10 +49,11 @@ class WaterSurfacePass {
   // The meshes the grid needs this frame (rebuilt only when their settings change).
   void prepare_grid(const RendererSettings& settings, const CameraView& view, QuadtreeSelection& selection,
                     ProjectedGridLayout& layout, FrameStatistics& statistics);
-  void set_water_lighting_uniforms(GLuint program, const runtime::SurfaceSnapshot& snapshot, const LightingFrame& light);
+  void set_water_lighting_uniforms(GLuint program, const runtime::SurfaceSnapshot& snapshot,
+                                   const LightingFrame& light);
   // One draw of the grid (`count`: the fill pass, whose vertices the statistics count).
-  void draw_grid(GLuint program, const SeaDraw& sea, const QuadtreeSelection& selection, const ProjectedGridLayout& layout,
-                 bool count, FrameStatistics& statistics);
+  void draw_grid(GLuint program, const SeaDraw& sea, const QuadtreeSelection& selection,
+                 const ProjectedGridLayout& layout, bool count, FrameStatistics& statistics);
 
   GLuint radial_program_ = 0, quadtree_program_ = 0, projected_program_ = 0;
   Mesh radial_, quadtree_patch_, projected_;
