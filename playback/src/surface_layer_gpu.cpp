@@ -14,7 +14,7 @@ SurfaceLayerGpu::SurfaceLayerGpu() = default;
 SurfaceLayerGpu::~SurfaceLayerGpu() {
   if (atlas_) glDeleteTextures(1, &atlas_);
   if (foam_texture_) glDeleteTextures(1, &foam_texture_);
-  if (foam_framebuffer_) glDeleteFramebuffers(1, &foam_framebuffer_);
+  foam_framebuffer_.release();
   if (decal_instances_) glDeleteBuffers(1, &decal_instances_);
   auto release = [](GpuMesh& m) {
     if (m.vertex_array) glDeleteVertexArrays(1, &m.vertex_array);
@@ -102,11 +102,9 @@ bool SurfaceLayerGpu::draw_decals(const std::vector<FoamDecal>& decals, GLuint p
     else
       glBindTexture(GL_TEXTURE_2D, foam_texture_);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, texels, texels, 0, GL_RED, GL_UNSIGNED_BYTE, nullptr);
-    if (!foam_framebuffer_) glGenFramebuffers(1, &foam_framebuffer_);
-    glBindFramebuffer(GL_FRAMEBUFFER, foam_framebuffer_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, foam_texture_, 0);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error("water renderer", "the decal foam framebuffer (R8) is incomplete", "draw without foam decals");
+    foam_framebuffer_.release();
+    foam_framebuffer_ = Framebuffer::with_texture(foam_texture_, texels, texels, false,
+                                                  {"the decal foam framebuffer (R8) is incomplete", "draw without foam decals"});
     foam_texels_ = texels;
   }
   // 3. A unit quad, one instance per decal.
@@ -132,7 +130,7 @@ bool SurfaceLayerGpu::draw_decals(const std::vector<FoamDecal>& decals, GLuint p
   glBindBuffer(GL_ARRAY_BUFFER, decal_instances_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(float)), instances.data(), GL_STREAM_DRAW);
   // 4. Where decals overlap the larger cover wins (GL_MAX): a wake crossing itself does not build up.
-  glBindFramebuffer(GL_FRAMEBUFFER, foam_framebuffer_);
+  glBindFramebuffer(GL_FRAMEBUFFER, foam_framebuffer_.id());
   glViewport(0, 0, texels, texels);
   const float none[4] = {0.f, 0.f, 0.f, 0.f};
   glClearBufferfv(GL_COLOR, 0, none);

@@ -10,6 +10,7 @@
 #include <map>
 #include <vector>
 
+#include "gl_framebuffer.hpp"
 #include "nearshore/playback/surface_layers.hpp"
 
 namespace nearshore::playback {
@@ -56,7 +57,8 @@ class SurfaceLayerGpu {
   int atlas_columns_ = 0, atlas_rows_ = 0;
   std::vector<std::array<unsigned long long, 3>> atlas_layout_;  // columns, rows, serial per patch
   PatchUniforms uniforms_;
-  GLuint foam_framebuffer_ = 0, foam_texture_ = 0;
+  Framebuffer foam_framebuffer_;
+  GLuint foam_texture_ = 0;
   int foam_texels_ = 0;
   std::array<float, 4> foam_rect_m_{};
   GpuMesh decal_quad_;

@@ -1,0 +1,115 @@
+#include "site_textures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gl_program.hpp"
+#include "gl_texture.hpp"
+#include "nearshore/core/error.hpp"
+
+namespace nearshore::playback {
+
+namespace {
+
+// One R channel raster, rows packed (GL_UNPACK_ALIGNMENT 1: an R8 row need not be 4-byte aligned).
+GLuint site_texture(GLenum internal_format, GLenum type, int columns, int rows, const void* data,
+                    GLint filter) {
+  const GLuint texture = new_texture(GL_TEXTURE_2D, filter, GL_CLAMP_TO_EDGE);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GLint(internal_format), columns, rows, 0, GL_RED, type, data);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  return texture;
+}
+
+// K of the site with land and structure cells (NaN) given their water neighbours' mean, so the
+// bilinear filter brings no NaN to the water beside a quay (and no unsheltered halo).
+std::vector<float> relative_wave_height_filled(const Raster<float>& k) {
+  const int columns = k.columns(), rows = k.rows();
+  std::vector<float> filled(k.values());
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i) {
+      if (std::isfinite(k(i, j))) continue;
+      double sum = 0.0;
+      int count = 0;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int ii = i + di, jj = j + dj;
+          if (ii < 0 || jj < 0 || ii >= columns || jj >= rows || !std::isfinite(k(ii, jj))) continue;
+          sum += k(ii, jj);
+          ++count;
+        }
+      filled[std::size_t(j) * columns + i] = count > 0 ? float(sum / count) : 1.f;
+    }
+  return filled;
+}
+
+}  // namespace
+
+std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::HarbourSite>& site) {
+  if (site == site_) return 0;
+  release();
+  site_ = site;
+  if (!site_) return 0;
+  const HarbourGrid& h = site_->harbour;
+  const int columns = h.geometry.columns, rows = h.geometry.rows;
+  if (columns < 2 || rows < 2 || h.still_water_depth_m.columns() != columns || h.land.columns() != columns ||
+      h.porosity.columns() != columns || h.still_water_depth_m.rows() != rows || h.land.rows() != rows ||
+      h.porosity.rows() != rows)
+    throw Error("harbour site",
+                "its grid is " + std::to_string(columns) + " x " + std::to_string(rows) +
+                    " cells but its depth, land or porosity raster has another size",
+                "build the HarbourSite from one HarbourGrid of at least 2 x 2 cells");
+  depth_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.still_water_depth_m.data(), GL_LINEAR);
+  porosity_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.porosity.data(), GL_LINEAR);
+  land_ = site_texture(GL_R8, GL_UNSIGNED_BYTE, columns, rows, h.land.data(), GL_NEAREST);
+  // The coastline's distance field for the shoreline waves; infinite (no coast) becomes far.
+  std::vector<float> coast(std::size_t(columns) * rows, 1e4f);
+  if (h.coast_distance_m.columns() == columns && h.coast_distance_m.rows() == rows)
+    for (std::size_t k = 0; k < coast.size(); ++k)
+      coast[k] = std::isfinite(h.coast_distance_m.data()[k])
+                     ? std::clamp(h.coast_distance_m.data()[k], -1e4f, 1e4f)
+                     : 1e4f;
+  coast_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, coast.data(), GL_LINEAR);
+  std::size_t bytes = std::size_t(columns) * rows * 9;
+  const Raster<float>& k = site_->relative_wave_height;
+  if (k.columns() == columns && k.rows() == rows) {
+    const std::vector<float> filled = relative_wave_height_filled(k);
+    glActiveTexture(GLenum(GL_TEXTURE0 + kRelativeWaveHeight));
+    relative_wave_height_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, filled.data(), GL_LINEAR);
+    glActiveTexture(GL_TEXTURE0);
+    bytes += std::size_t(columns) * rows * 4;
+  }
+  // The sea beyond the grid takes the deepest depth found on its edges (lighting only).
+  float edge_depth = 0.f;
+  for (int i = 0; i < columns; ++i)
+    edge_depth = std::max({edge_depth, h.still_water_depth_m(i, 0), h.still_water_depth_m(i, rows - 1)});
+  for (int j = 0; j < rows; ++j)
+    edge_depth = std::max({edge_depth, h.still_water_depth_m(0, j), h.still_water_depth_m(columns - 1, j)});
+  open_sea_depth_m_ = std::max(edge_depth, 5.f);
+  const int tc = std::min(columns, 768), tr = std::min(rows, 768);
+  terrain_ = lattice_mesh(tc, tr, 1.f / float(tc - 1), 1.f / float(tr - 1));
+  return bytes;
+}
+
+void SiteTextures::bind_units() const {
+  const auto bind = [](int unit, GLuint texture) {
+    glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, texture);
+  };
+  bind(kDepth, depth_);
+  bind(kPorosity, porosity_);
+  bind(kLand, land_);
+  bind(kCoast, coast_);
+  bind(kRelativeWaveHeight, relative_wave_height_);
+}
+
+void SiteTextures::release() {
+  for (GLuint* texture : {&depth_, &porosity_, &land_, &coast_, &relative_wave_height_})
+    if (*texture) glDeleteTextures(1, texture), *texture = 0;
+  terrain_.release();
+  site_.reset();
+}
+
+}  // namespace nearshore::playback
