@@ -1,5 +1,7 @@
 #include "nearshore/ocean/spectrum_files.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -9,8 +11,6 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
-
-#include <fmt/format.h>
 
 #include "nearshore/core/error.hpp"
 #include "nearshore/ocean/linear_waves.hpp"
@@ -23,7 +23,9 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kDegree = kPi / 180.0;
 
 /// Nautical "coming from, clockwise from north" (deg) -> travel direction CCW from east (rad).
-double nautical_from_to_travel_rad(double nautical_deg) { return wrap_angle_rad((270.0 - nautical_deg) * kDegree); }
+double nautical_from_to_travel_rad(double nautical_deg) {
+  return wrap_angle_rad((270.0 - nautical_deg) * kDegree);
+}
 
 std::vector<std::string> split_tokens(std::string_view line) {
   std::vector<std::string> tokens;
@@ -41,7 +43,8 @@ std::optional<double> parse_number(std::string_view token) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   double value = 0.0;
   const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (error != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) return std::nullopt;
+  if (error != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
+    return std::nullopt;
   return value;
 }
 
@@ -95,8 +98,9 @@ class SwanLines {
     const std::size_t index = require_line("the " + block_meaning + " block");
     const std::string& word = tokens_.front();
     if (std::find(keywords.begin(), keywords.end(), word) == keywords.end())
-      fail(index, fmt::format("reads '{}' where the {} block ({}) was expected", word, block_meaning,
-                              fmt::join(keywords, " or ")),
+      fail(index,
+           fmt::format("reads '{}' where the {} block ({}) was expected", word, block_meaning,
+                       fmt::join(keywords, " or ")),
            fmt::format("add the {} block (keyword, count, values) in SWAN's order", block_meaning));
     last_line_ = index;
     return word;
@@ -130,15 +134,18 @@ class SwanLines {
 
 }  // namespace
 
-SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path, const SwanSpectrumSelection& selection) {
+SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
+                                              const SwanSpectrumSelection& selection) {
   SwanLines in(path, read_lines(path, "a SWAN 2-D spectral file (.sp2)"));
 
   // 1. The header: SWAN, [TIME + coding option], LONLAT/LOCATIONS + count + one line each.
   {
     const auto first = in.next();
     if (!first || in.tokens().front() != "SWAN")
-      throw Error(in.path(), first ? fmt::format("line {}: starts with '{}', not 'SWAN'", *first + 1, in.tokens().front())
-                                   : std::string("is empty"),
+      throw Error(in.path(),
+                  first
+                      ? fmt::format("line {}: starts with '{}', not 'SWAN'", *first + 1, in.tokens().front())
+                      : std::string("is empty"),
                   "give a SWAN spectral output file (SPECOUT ... SPEC2D in the SWAN command file)");
   }
   std::string word = in.keyword({"TIME", "LONLAT", "LOCATIONS"}, "TIME or locations");
@@ -151,7 +158,8 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
   for (int i = 0; i < location_count; ++i) {
     in.number(fmt::format("location {} of {}", i + 1, location_count));
     if (in.tokens().size() < 2 || !parse_number(in.tokens()[1]))
-      in.fail(in.last_line(), fmt::format("location {} of {} has no second coordinate", i + 1, location_count),
+      in.fail(in.last_line(),
+              fmt::format("location {} of {} has no second coordinate", i + 1, location_count),
               "give two coordinates (x y or lon lat) per location");
   }
   if (selection.location_index >= static_cast<std::size_t>(location_count))
@@ -168,9 +176,10 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
   for (int i = 0; i < frequency_count; ++i) {
     const double f = in.number(fmt::format("frequency {} of {} (Hz)", i + 1, frequency_count));
     if (!(f > 0.0) || (!result.frequencies_hz.empty() && !(f > result.frequencies_hz.back())))
-      in.fail(in.last_line(), fmt::format("frequency {} of {} is {} Hz: not positive and increasing", i + 1,
-                                          frequency_count, f),
-              "list the frequencies in Hz from the lowest up");
+      in.fail(
+          in.last_line(),
+          fmt::format("frequency {} of {} is {} Hz: not positive and increasing", i + 1, frequency_count, f),
+          "list the frequencies in Hz from the lowest up");
     result.frequencies_hz.push_back(f);
   }
 
@@ -183,7 +192,8 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
       in.fail(index, "has no directions block: this is a 1-D spectrum file (.sp1)",
               "write the 2-D spectrum (SPECOUT ... SPEC2D in the SWAN command file)");
     if (keyword != "NDIR" && keyword != "CDIR")
-      in.fail(index, fmt::format("reads '{}' where the directions block (NDIR or CDIR) was expected", keyword),
+      in.fail(index,
+              fmt::format("reads '{}' where the directions block (NDIR or CDIR) was expected", keyword),
               "add the directions block (NDIR or CDIR, count, one direction in degrees per line)");
   }
   const bool nautical = in.tokens().front() == "NDIR";
@@ -208,11 +218,12 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
   in.require_line("the quantity's unit");
   const double exception_value = in.number("the exception value");
   if (!(selection.water_density_kg_m3 > 0.0))
-    throw Error("SWAN spectrum selection", fmt::format("water density {} kg/m3", selection.water_density_kg_m3),
+    throw Error("SWAN spectrum selection",
+                fmt::format("water density {} kg/m3", selection.water_density_kg_m3),
                 "give the density of the water (1025 kg/m3, SWAN's default)");
   // Per degree -> per radian; energy -> variance by 1 / (rho g) (SWAN's EnDens = rho g VaDens).
-  const double to_m2_hz_rad = (1.0 / kDegree) /
-                              (quantity == "EnDens" ? selection.water_density_kg_m3 * kGravity_m_s2 : 1.0);
+  const double to_m2_hz_rad =
+      (1.0 / kDegree) / (quantity == "EnDens" ? selection.water_density_kg_m3 * kGravity_m_s2 : 1.0);
 
   // 5. The blocks: per time (a date line when TIME) and per location FACTOR + matrix, NODATA or ZERO.
   std::vector<std::string> times_seen;
@@ -228,15 +239,16 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
     }
     const bool wanted_time = selection.time.empty() || selection.time == time_label || !timed;
     for (int location = 0; location < location_count; ++location) {
-      const std::string block = in.keyword({"FACTOR", "NODATA", "ZERO"},
-                                           fmt::format("location {} at time {} (FACTOR, NODATA or ZERO)",
-                                                       location + 1, time_label));
+      const std::string block = in.keyword(
+          {"FACTOR", "NODATA", "ZERO"},
+          fmt::format("location {} at time {} (FACTOR, NODATA or ZERO)", location + 1, time_label));
       const bool wanted = wanted_time && static_cast<std::size_t>(location) == selection.location_index;
       const std::size_t block_line = in.last_line();
       if (block == "NODATA") {
         if (wanted)
-          in.fail(block_line, fmt::format("location {} at time {} is NODATA (dry or outside SWAN's grid)",
-                                          location + 1, time_label),
+          in.fail(block_line,
+                  fmt::format("location {} at time {} is NODATA (dry or outside SWAN's grid)", location + 1,
+                              time_label),
                   "choose another location or time");
         continue;
       }
@@ -244,27 +256,32 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
       if (block == "FACTOR") {
         const double factor = in.number("the FACTOR value");
         if (!(factor >= 0.0))
-          in.fail(in.last_line(), fmt::format("FACTOR is {}, not a number >= 0", factor), "write FACTOR >= 0");
+          in.fail(in.last_line(), fmt::format("FACTOR is {}, not a number >= 0", factor),
+                  "write FACTOR >= 0");
         // The matrix: frequency_count rows of direction_count integers, read as a stream of words
         // so a row wrapped over lines is still read; counts are checked row by row.
         for (int row = 0; row < frequency_count; ++row) {
           int column = 0;
           while (column < direction_count) {
-            const std::size_t line = in.require_line(fmt::format("row {} of {} of the matrix", row + 1, frequency_count));
+            const std::size_t line =
+                in.require_line(fmt::format("row {} of {} of the matrix", row + 1, frequency_count));
             for (const std::string& token : in.tokens()) {
               const auto value = parse_number(token);
               if (!value || *value != std::floor(*value))
-                in.fail(line, fmt::format("reads '{}' in row {} (frequency {} Hz) of the matrix, not an integer",
-                                          token, row + 1, result.frequencies_hz[row]),
+                in.fail(line,
+                        fmt::format("reads '{}' in row {} (frequency {} Hz) of the matrix, not an integer",
+                                    token, row + 1, result.frequencies_hz[row]),
                         fmt::format("write {} integers per frequency row after FACTOR", direction_count));
               if (column >= direction_count)
-                in.fail(line, fmt::format("row {} of the matrix has more than {} values", row + 1, direction_count),
+                in.fail(line,
+                        fmt::format("row {} of the matrix has more than {} values", row + 1, direction_count),
                         fmt::format("write {} values per row, as NDIR/CDIR says", direction_count));
               const double v = *value * factor;
               if (*value < 0.0)
-                in.fail(line, fmt::format("row {} column {} is {} (the file's exception value is {}): a negative "
-                                          "or missing density",
-                                          row + 1, column + 1, v, exception_value),
+                in.fail(line,
+                        fmt::format("row {} column {} is {} (the file's exception value is {}): a negative "
+                                    "or missing density",
+                                    row + 1, column + 1, v, exception_value),
                         "write the spectrum of a location that SWAN computed, or choose another location");
               density[static_cast<std::size_t>(row) * direction_count + column] = v * to_m2_hz_rad;
               ++column;
@@ -276,8 +293,9 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
         // Sort the directions into increasing travel direction, carrying the columns.
         std::vector<std::size_t> order(direction_count);
         std::iota(order.begin(), order.end(), 0);
-        std::sort(order.begin(), order.end(),
-                  [&](std::size_t a, std::size_t b) { return file_directions_rad[a] < file_directions_rad[b]; });
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+          return file_directions_rad[a] < file_directions_rad[b];
+        });
         for (std::size_t k : order) result.directions_rad.push_back(file_directions_rad[k]);
         result.density_m2_hz_rad.resize(density.size());
         for (int row = 0; row < frequency_count; ++row)
@@ -290,10 +308,11 @@ SampledDirectionalSpectrum read_swan_spectrum(const std::filesystem::path& path,
       }
     }
   }
-  throw Error(in.path(),
-              fmt::format("has no time '{}' (times in the file: {})", selection.time,
-                          times_seen.empty() ? std::string("none") : fmt::format("{}", fmt::join(times_seen, ", "))),
-              "name a time the file holds, as it writes it (e.g. 20020101.000000), or none for the first");
+  throw Error(
+      in.path(),
+      fmt::format("has no time '{}' (times in the file: {})", selection.time,
+                  times_seen.empty() ? std::string("none") : fmt::format("{}", fmt::join(times_seen, ", "))),
+      "name a time the file holds, as it writes it (e.g. 20020101.000000), or none for the first");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -309,8 +328,9 @@ struct NdbcRow {
   std::string time;
 };
 
-NdbcRow read_ndbc_row(const std::filesystem::path& path, const std::string& what, bool has_separation_frequency,
-                      const std::string& wanted_time, std::string* first_time) {
+NdbcRow read_ndbc_row(const std::filesystem::path& path, const std::string& what,
+                      bool has_separation_frequency, const std::string& wanted_time,
+                      std::string* first_time) {
   const auto lines = read_lines(path, what);
   std::vector<std::string> times;
   for (std::size_t index = 0; index < lines.size(); ++index) {
@@ -319,20 +339,24 @@ NdbcRow read_ndbc_row(const std::filesystem::path& path, const std::string& what
     auto fail = [&](const std::string& problem, const std::string& fix) {
       throw Error(path.string(), fmt::format("line {}: {}", index + 1, problem), fix);
     };
-    if (tokens.size() < 5) fail("has fewer than the 5 date words YYYY MM DD hh mm", "write the date first on each row");
+    if (tokens.size() < 5)
+      fail("has fewer than the 5 date words YYYY MM DD hh mm", "write the date first on each row");
     for (int i = 0; i < 5; ++i)
       if (!parse_number(tokens[i]))
-        fail(fmt::format("date word {} is '{}', not a number", i + 1, tokens[i]), "write the date as YYYY MM DD hh mm");
-    const std::string time = fmt::format("{} {} {} {} {}", tokens[0], tokens[1], tokens[2], tokens[3], tokens[4]);
+        fail(fmt::format("date word {} is '{}', not a number", i + 1, tokens[i]),
+             "write the date as YYYY MM DD hh mm");
+    const std::string time =
+        fmt::format("{} {} {} {} {}", tokens[0], tokens[1], tokens[2], tokens[3], tokens[4]);
     times.push_back(time);
-    const std::string target = wanted_time.empty() ? (first_time && !first_time->empty() ? *first_time : time)
-                                                   : wanted_time;
+    const std::string target =
+        wanted_time.empty() ? (first_time && !first_time->empty() ? *first_time : time) : wanted_time;
     if (time != target) continue;
     NdbcRow row;
     row.time = time;
     std::size_t i = 5 + (has_separation_frequency ? 1 : 0);
     if (has_separation_frequency && (tokens.size() < 6 || !parse_number(tokens[5])))
-      fail("has no separation frequency after the date", "write the .data_spec row as NDBC does: date, sep_freq, pairs");
+      fail("has no separation frequency after the date",
+           "write the .data_spec row as NDBC does: date, sep_freq, pairs");
     if ((tokens.size() - i) % 2 != 0 || tokens.size() == i)
       fail(fmt::format("has {} words after the date: not pairs 'value (frequency)'", tokens.size() - i),
            "write each band as 'value (frequency)'");
@@ -346,7 +370,8 @@ NdbcRow read_ndbc_row(const std::filesystem::path& path, const std::string& what
                          tokens[i + 1]),
              "write each band as a number and its frequency in brackets, e.g. 0.512 (0.100)");
       if (!(*frequency > 0.0) || (!row.frequencies_hz.empty() && !(*frequency > row.frequencies_hz.back())))
-        fail(fmt::format("band {} frequency {} Hz is not positive and increasing", row.values.size() + 1, *frequency),
+        fail(fmt::format("band {} frequency {} Hz is not positive and increasing", row.values.size() + 1,
+                         *frequency),
              "list the bands from the lowest frequency up");
       row.values.push_back(*value);
       row.frequencies_hz.push_back(*frequency);
@@ -363,26 +388,31 @@ NdbcRow read_ndbc_row(const std::filesystem::path& path, const std::string& what
 
 }  // namespace
 
-SampledDirectionalSpectrum read_ndbc_spectrum(const NdbcSpectrumFiles& files, const NdbcSpectrumSelection& selection) {
+SampledDirectionalSpectrum read_ndbc_spectrum(const NdbcSpectrumFiles& files,
+                                              const NdbcSpectrumSelection& selection) {
   if (selection.direction_count < 8 || selection.direction_count > 3600)
     throw Error("NDBC spectrum selection", fmt::format("direction_count = {}", selection.direction_count),
                 "use 8 to 3600 directions (72 = 5 degrees apart)");
   // The density file sets the time; the other four must hold the same time and frequencies.
   std::string time = selection.time;
-  const NdbcRow density = read_ndbc_row(files.spectral_density, "an NDBC spectral density file (.data_spec)", true,
-                                        selection.time, &time);
-  const NdbcRow alpha1 = read_ndbc_row(files.mean_direction, "an NDBC mean direction file (.swdir)", false, time, nullptr);
-  const NdbcRow alpha2 = read_ndbc_row(files.principal_direction, "an NDBC principal direction file (.swdir2)", false,
-                                       time, nullptr);
+  const NdbcRow density = read_ndbc_row(files.spectral_density, "an NDBC spectral density file (.data_spec)",
+                                        true, selection.time, &time);
+  const NdbcRow alpha1 =
+      read_ndbc_row(files.mean_direction, "an NDBC mean direction file (.swdir)", false, time, nullptr);
+  const NdbcRow alpha2 = read_ndbc_row(files.principal_direction,
+                                       "an NDBC principal direction file (.swdir2)", false, time, nullptr);
   const NdbcRow r1 = read_ndbc_row(files.first_coefficient, "an NDBC r1 file (.swr1)", false, time, nullptr);
   const NdbcRow r2 = read_ndbc_row(files.second_coefficient, "an NDBC r2 file (.swr2)", false, time, nullptr);
   const std::vector<std::pair<const NdbcRow*, const std::filesystem::path*>> others = {
-      {&alpha1, &files.mean_direction}, {&alpha2, &files.principal_direction},
-      {&r1, &files.first_coefficient}, {&r2, &files.second_coefficient}};
+      {&alpha1, &files.mean_direction},
+      {&alpha2, &files.principal_direction},
+      {&r1, &files.first_coefficient},
+      {&r2, &files.second_coefficient}};
   for (const auto& [row, path] : others) {
     bool same = row->frequencies_hz.size() == density.frequencies_hz.size();
     for (std::size_t i = 0; same && i < row->frequencies_hz.size(); ++i)
-      same = std::abs(row->frequencies_hz[i] - density.frequencies_hz[i]) <= 1e-6 + 1e-4 * density.frequencies_hz[i];
+      same = std::abs(row->frequencies_hz[i] - density.frequencies_hz[i]) <=
+             1e-6 + 1e-4 * density.frequencies_hz[i];
     if (!same)
       throw Error(path->string(),
                   fmt::format("time {}: its {} bands' frequencies differ from the {} bands of {}", time,
@@ -403,18 +433,20 @@ SampledDirectionalSpectrum read_ndbc_spectrum(const NdbcSpectrumFiles& files, co
     const double f = result.frequencies_hz[i];
     if (!(e >= 0.0) || e >= 999.0)
       throw Error(files.spectral_density.string(),
-                  fmt::format("time {}: band {} ({} Hz) density is {} m2/Hz: negative or missing (999)", time, i + 1, f, e),
+                  fmt::format("time {}: band {} ({} Hz) density is {} m2/Hz: negative or missing (999)", time,
+                              i + 1, f, e),
                   "choose a time whose spectrum the buoy measured");
     if (e == 0.0) continue;  // no energy: its direction values (often 999) do not matter
-    const auto check_value = [&](const NdbcRow& row, const std::filesystem::path& path, double low, double high,
-                                 const char* meaning) {
+    const auto check_value = [&](const NdbcRow& row, const std::filesystem::path& path, double low,
+                                 double high, const char* meaning) {
       const double v = row.values[i];
       if (!(v >= low && v <= high))
-        throw Error(path.string(),
-                    fmt::format("time {}: band {} ({} Hz) {} is {}, outside [{}, {}] (999 = missing) where the "
-                                "density is {} m2/Hz",
-                                time, i + 1, f, meaning, v, low, high, e),
-                    "choose a time whose directional moments the buoy measured");
+        throw Error(
+            path.string(),
+            fmt::format("time {}: band {} ({} Hz) {} is {}, outside [{}, {}] (999 = missing) where the "
+                        "density is {} m2/Hz",
+                        time, i + 1, f, meaning, v, low, high, e),
+            "choose a time whose directional moments the buoy measured");
       return v;
     };
     const double a1 = check_value(alpha1, files.mean_direction, 0.0, 360.0, "alpha1 (degrees)");
@@ -430,17 +462,20 @@ SampledDirectionalSpectrum read_ndbc_spectrum(const NdbcSpectrumFiles& files, co
     double sum = 0.0;
     for (int k = 0; k < n; ++k) {
       const double theta = result.directions_rad[k];
-      spreading[k] = std::max(0.0, (0.5 + c1 * std::cos(theta - t1) + c2 * std::cos(2.0 * (theta - t2))) / kPi);
+      spreading[k] =
+          std::max(0.0, (0.5 + c1 * std::cos(theta - t1) + c2 * std::cos(2.0 * (theta - t2))) / kPi);
       sum += spreading[k] * direction_step_rad;
     }
     // Cut at zero and scaled back to a unit integral (on the grid: the periodic trapezoid rule),
     // so E(f) = the measured density exactly.
     if (!(sum > 0.0))
-      throw Error(files.spectral_density.string(), fmt::format("time {}: band {} spreads to nothing", time, i + 1),
+      throw Error(files.spectral_density.string(),
+                  fmt::format("time {}: band {} spreads to nothing", time, i + 1),
                   "check r1, r2 and the directions of that band");
     for (int k = 0; k < n; ++k) result.density_m2_hz_rad[i * n + k] = e * spreading[k] / sum;
   }
-  result.source = fmt::format("{} (with .swdir/.swdir2/.swr1/.swr2), time {}", files.spectral_density.string(), time);
+  result.source =
+      fmt::format("{} (with .swdir/.swdir2/.swr1/.swr2), time {}", files.spectral_density.string(), time);
   check_sampled_spectrum(result);
   return result;
 }
@@ -482,7 +517,8 @@ class SampledFrequencySpectrum : public FrequencySpectrum {
     const auto& f = sampled_->frequencies_hz;
     const double fw = w / (2.0 * kPi);
     if (!(fw >= f.front() && fw <= f.back())) return 0.0;
-    const std::size_t i = std::min<std::size_t>(std::upper_bound(f.begin(), f.end(), fw) - f.begin(), f.size() - 1);
+    const std::size_t i =
+        std::min<std::size_t>(std::upper_bound(f.begin(), f.end(), fw) - f.begin(), f.size() - 1);
     const double t = (fw - f[i - 1]) / (f[i] - f[i - 1]);
     return ((1.0 - t) * e_[i - 1] + t * e_[i]) / (2.0 * kPi);
   }
@@ -498,13 +534,16 @@ class SampledFrequencySpectrum : public FrequencySpectrum {
 class SampledSpreading : public DirectionalSpreading {
  public:
   explicit SampledSpreading(std::shared_ptr<const SampledDirectionalSpectrum> s)
-      : sampled_(std::move(s)), e_(frequency_density_m2_hz(*sampled_)), mean_(ocean::mean_direction_rad(*sampled_)) {}
+      : sampled_(std::move(s)),
+        e_(frequency_density_m2_hz(*sampled_)),
+        mean_(ocean::mean_direction_rad(*sampled_)) {}
   /// D(theta; w) = E(f, theta) / E(f), both linear in f between the file's frequencies and E(f,
   /// theta) linear in theta between its directions (periodic), so D integrates to 1 exactly.
   double density_per_rad(double theta, double w) const override {
     const auto& f = sampled_->frequencies_hz;
     const double fw = std::clamp(w / (2.0 * kPi), f.front(), f.back());
-    const std::size_t i = std::clamp<std::size_t>(std::upper_bound(f.begin(), f.end(), fw) - f.begin(), 1, f.size() - 1);
+    const std::size_t i =
+        std::clamp<std::size_t>(std::upper_bound(f.begin(), f.end(), fw) - f.begin(), 1, f.size() - 1);
     const double t = (fw - f[i - 1]) / (f[i] - f[i - 1]);
     const double e = (1.0 - t) * e_[i - 1] + t * e_[i];
     if (!(e > 0.0)) return 1.0 / (2.0 * kPi);  // no energy here: any unit spreading will do
@@ -539,12 +578,16 @@ void check_sampled_spectrum(const SampledDirectionalSpectrum& s) {
   const std::string subject = s.source.empty() ? std::string("sampled spectrum") : s.source;
   const std::size_t nf = s.frequencies_hz.size(), nd = s.directions_rad.size();
   if (nf < 2 || nd < 2 || s.density_m2_hz_rad.size() != nf * nd)
-    throw Error(subject, fmt::format("has {} frequencies, {} directions and {} densities", nf, nd, s.density_m2_hz_rad.size()),
-                "give at least 2 frequencies and 2 directions and one density for each pair");
+    throw Error(
+        subject,
+        fmt::format("has {} frequencies, {} directions and {} densities", nf, nd, s.density_m2_hz_rad.size()),
+        "give at least 2 frequencies and 2 directions and one density for each pair");
   for (std::size_t i = 0; i < nf; ++i)
     if (!(s.frequencies_hz[i] > 0.0) || (i > 0 && !(s.frequencies_hz[i] > s.frequencies_hz[i - 1])))
-      throw Error(subject, fmt::format("frequency {} ({} Hz) is not positive and increasing", i + 1, s.frequencies_hz[i]),
-                  "list distinct frequencies from the lowest up");
+      throw Error(
+          subject,
+          fmt::format("frequency {} ({} Hz) is not positive and increasing", i + 1, s.frequencies_hz[i]),
+          "list distinct frequencies from the lowest up");
   double largest_gap = 0.0;
   for (std::size_t k = 0; k < nd; ++k) {
     const double next = k + 1 < nd ? s.directions_rad[k + 1] : s.directions_rad[0] + 2.0 * kPi;
@@ -556,8 +599,9 @@ void check_sampled_spectrum(const SampledDirectionalSpectrum& s) {
   // The bilinear interpolation is periodic in direction: a sector (SWAN's SECTOR grids) would
   // have its energy smeared across the missing arc. 3 x the mean spacing allows uneven grids.
   if (largest_gap > 3.0 * 2.0 * kPi / nd)
-    throw Error(subject, fmt::format("directions leave a gap of {:.1f} degrees: they do not go round the circle",
-                                     largest_gap / kDegree),
+    throw Error(subject,
+                fmt::format("directions leave a gap of {:.1f} degrees: they do not go round the circle",
+                            largest_gap / kDegree),
                 "write the spectrum on the whole circle (SWAN: CGRID ... CIRCLE)");
   double total = 0.0;
   for (double v : s.density_m2_hz_rad) {
@@ -578,7 +622,9 @@ double zeroth_moment_m2(const SampledDirectionalSpectrum& s) {
   return m0;
 }
 
-double significant_wave_height_m(const SampledDirectionalSpectrum& s) { return 4.0 * std::sqrt(zeroth_moment_m2(s)); }
+double significant_wave_height_m(const SampledDirectionalSpectrum& s) {
+  return 4.0 * std::sqrt(zeroth_moment_m2(s));
+}
 
 double peak_period_s(const SampledDirectionalSpectrum& s) {
   const auto e = frequency_density_m2_hz(s);
@@ -601,8 +647,10 @@ double mean_direction_rad(const SampledDirectionalSpectrum& s) {
   return std::atan2(sn, c);
 }
 
-DirectionalSeaSpecification sea_specification_from_sampled(std::shared_ptr<const SampledDirectionalSpectrum> s) {
-  if (!s) throw Error("sampled spectrum", "is missing", "read one with read_swan_spectrum or read_ndbc_spectrum");
+DirectionalSeaSpecification sea_specification_from_sampled(
+    std::shared_ptr<const SampledDirectionalSpectrum> s) {
+  if (!s)
+    throw Error("sampled spectrum", "is missing", "read one with read_swan_spectrum or read_ndbc_spectrum");
   check_sampled_spectrum(*s);
   DirectionalSeaSpecification spec;
   spec.spectrum = std::make_shared<SampledFrequencySpectrum>(s);
@@ -620,8 +668,8 @@ DirectionalSeaSpecification sea_specification_from_sampled(std::shared_ptr<const
       const double df = 0.5 * ((i + 1 < f.size() ? f[i + 1] : f[i]) - (i > 0 ? f[i - 1] : f[i]));
       const double w = 2.0 * kPi * f[i];
       sum += df * spec.spectrum->density_m2_s_rad(w) * 2.0 * kPi *
-             integrate_gauss_legendre([&](double th) { return spreading->density_per_rad(th, w); }, mean - half_width,
-                                      mean + half_width, 64);
+             integrate_gauss_legendre([&](double th) { return spreading->density_per_rad(th, w); },
+                                      mean - half_width, mean + half_width, 64);
     }
     return sum;
   };

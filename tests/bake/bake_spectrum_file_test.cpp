@@ -1,6 +1,7 @@
 // [wave_maker] kind = "irregular" with spectrum_file (issue 46): a case driven by a SWAN .sp2 of a
 // JONSWAP makes components whose Hs is the JONSWAP case's, within the file's discretisation bound
 // (tests/ocean/spectrum_files_test.cpp); bad keys and bad files are refused naming the case's key.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,8 +9,6 @@
 #include <numbers>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "bake_test_support.hpp"
 #include "nearshore/ocean/sea_state_builder.hpp"
@@ -35,7 +34,8 @@ std::string swan_jonswap_text() {
   const JonswapSpectrum spectrum(1.0, 8.0, 3.3);
   const CosineSquaredSpreading spreading(0.0, 15.0);
   const auto f = swan_frequencies_hz();
-  std::string text = "SWAN   1\n$ written by nearshore's bake test\nLONLAT\n     1\n  -122.40  47.30\nAFREQ\n";
+  std::string text =
+      "SWAN   1\n$ written by nearshore's bake test\nLONLAT\n     1\n  -122.40  47.30\nAFREQ\n";
   text += fmt::format("{:6d}\n", f.size());
   for (double v : f) text += fmt::format("{:10.4f}\n", v);
   text += "NDIR\n    36\n";
@@ -66,7 +66,8 @@ std::string channel_case(const std::string& maker) {
          "profile = [[0.0, 20.0], [600.0, 20.0]]\n"
          "[time]\nduration_s = 24.0\nspin_up_s = 16.0\noutput_interval_s = 4.0\n"
          "[wave_maker]\nkind = \"irregular\"\nfacing = \"west\"\nsource_line_m = 100.0\nramp_time_s = 8.0\n"
-         "frequency_count = 64\ndirection_count = 8\nseed = 5\n" + maker +
+         "frequency_count = 64\ndirection_count = 8\nseed = 5\n" +
+         maker +
          "[[sponges]]\nside = \"west\"\nwidth_m = 80.0\n[[sponges]]\nside = \"east\"\nwidth_m = 150.0\n";
 }
 
@@ -89,8 +90,9 @@ TEST(BakeSpectrumFile, SwanFileOfAJonswapGivesTheJonswapCasesHs) {
       channel_case(fmt::format("significant_height_m = 1.0\npeak_period_s = 8.0\nspreading_s = 15.0\n"
                                "min_frequency_hz = 0.04\nmax_frequency_hz = {:.6f}\n",
                                swan_frequencies_hz().back()))));
-  const BakeCase from_file = read_bake_case(write_text(
-      folder / "file.toml", channel_case("spectrum_file = \"offshore.sp2\"\nspectrum_format = \"swan_sp2\"\n")));
+  const BakeCase from_file = read_bake_case(
+      write_text(folder / "file.toml",
+                 channel_case("spectrum_file = \"offshore.sp2\"\nspectrum_format = \"swan_sp2\"\n")));
   // The bound of tests/ocean (SwanSpectrumFile.RoundTripsAJonswapSea): 0.5 % of Hs for the file's
   // 10 % frequency steps, plus 0.5 % for the builder's quadrature of the interpolated file.
   const double hs_parametric = total_hs_m(parametric), hs_file = total_hs_m(from_file);
@@ -100,7 +102,8 @@ TEST(BakeSpectrumFile, SwanFileOfAJonswapGivesTheJonswapCasesHs) {
   // The direction: the file's sea travels east, as the parametric one does.
   double c = 0.0, s = 0.0;
   for (const auto& w : from_file.wave_maker.sea_state.components)
-    c += w.amplitude_m * w.amplitude_m * std::cos(w.direction_rad), s += w.amplitude_m * w.amplitude_m * std::sin(w.direction_rad);
+    c += w.amplitude_m * w.amplitude_m * std::cos(w.direction_rad),
+        s += w.amplitude_m * w.amplitude_m * std::sin(w.direction_rad);
   EXPECT_NEAR(std::atan2(s, c), 0.0, 0.5 * kPi / 180.0);
 }
 
@@ -116,5 +119,6 @@ TEST(BakeSpectrumFile, BadKeysAndFilesAreRefused) {
   std::string broken = swan_jonswap_text();
   broken.replace(broken.find("AFREQ"), 5, "BFREQ");
   write_text(folder / "broken.sp2", broken);
-  expect_case_error(channel_case("spectrum_file = \"broken.sp2\"\n"), {"`wave_maker.spectrum_file`", "line 6", "AFREQ"});
+  expect_case_error(channel_case("spectrum_file = \"broken.sp2\"\n"),
+                    {"`wave_maker.spectrum_file`", "line 6", "AFREQ"});
 }

@@ -2,7 +2,11 @@
 // format from a synthetic JONSWAP (Hasselmann et al. 1973) with cos^2s spreading (Longuet-Higgins
 // et al. 1963), reads it back and checks Hs, Tp and the mean direction against the spectrum it was
 // written from; bad files must be refused naming the line.
+#include "nearshore/ocean/spectrum_files.hpp"
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,13 +17,9 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-#include <unistd.h>
-
 #include "nearshore/core/error.hpp"
 #include "nearshore/ocean/sea_state_builder.hpp"
 #include "nearshore/ocean/spectrum.hpp"
-#include "nearshore/ocean/spectrum_files.hpp"
 
 using namespace nearshore::ocean;
 namespace fs = std::filesystem;
@@ -54,9 +54,9 @@ fs::path scratch_directory() {
   };
   static Removed removed;
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() /
-                       fmt::format("nearshore_spectrum_files_{}_{}_{}", info->test_suite_name(), info->name(),
-                                   static_cast<long>(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / fmt::format("nearshore_spectrum_files_{}_{}_{}", info->test_suite_name(),
+                                              info->name(), static_cast<long>(::getpid()));
   fs::create_directories(dir);
   if (std::find(removed.directories.begin(), removed.directories.end(), dir) == removed.directories.end())
     removed.directories.push_back(dir);
@@ -94,14 +94,16 @@ std::string swan_file_text(const Sea& sea, bool energy_density = false) {
       "AFREQ                                   absolute frequencies in Hz\n";
   text += fmt::format("{:6d}                                  number of frequencies\n", f.size());
   for (double v : f) text += fmt::format("{:10.4f}\n", v);
-  text += "NDIR                                    spectral nautical directions in degr\n"
-          "    36                                  number of directions\n";
+  text +=
+      "NDIR                                    spectral nautical directions in degr\n"
+      "    36                                  number of directions\n";
   std::vector<double> nautical_deg;
   for (int k = 0; k < 36; ++k) nautical_deg.push_back(5.0 + 10.0 * k);
   for (double d : nautical_deg) text += fmt::format("{:10.4f}\n", d);
   text += "QUANT\n     1                                  number of quantities in table\n";
-  text += energy_density ? "EnDens                                  energy densities in J/m2/Hz/degr\nJ/m2/Hz/degr\n"
-                         : "VaDens                                  variance densities in m2/Hz/degr\nm2/Hz/degr\n";
+  text += energy_density
+              ? "EnDens                                  energy densities in J/m2/Hz/degr\nJ/m2/Hz/degr\n"
+              : "VaDens                                  variance densities in m2/Hz/degr\nm2/Hz/degr\n";
   text += "   -0.9900E+02                           exception value\n";
   text += "20261130.030000                         date and time\n";
   text += "ZERO\n";
@@ -118,7 +120,8 @@ std::string swan_file_text(const Sea& sea, bool energy_density = false) {
   const double factor = largest / 99999.0;  // SWAN scales its integers to at most 5 digits
   text += fmt::format("FACTOR\n  {:.6E}\n", factor);
   for (std::size_t i = 0; i < f.size(); ++i) {
-    for (std::size_t k = 0; k < 36; ++k) text += fmt::format(" {:6d}", std::lround(values[i * 36 + k] / factor));
+    for (std::size_t k = 0; k < 36; ++k)
+      text += fmt::format(" {:6d}", std::lround(values[i * 36 + k] / factor));
     text += "\n";
   }
   return text;
@@ -206,7 +209,8 @@ TEST(SwanSpectrumFile, EnergyDensityIsDividedByRhoG) {
 namespace {
 
 /// The message of the nearshore::Error that reading `text` as an .sp2 throws ("" when none).
-std::string swan_error(const std::string& text, const std::string& name, SwanSpectrumSelection selection = {1, "", 1025.0}) {
+std::string swan_error(const std::string& text, const std::string& name,
+                       SwanSpectrumSelection selection = {1, "", 1025.0}) {
   const fs::path path = scratch_directory() / name;
   write_text(path, text);
   try {
@@ -247,8 +251,9 @@ TEST(SwanSpectrumFile, BadFilesAreRefusedNamingTheLine) {
   }
   // A wrong count: 36 frequencies announced, 35 listed, so the NDIR line is read as a frequency.
   {
-    const std::string text = replace_once(good, "    35                                  number of frequencies",
-                                          "    36                                  number of frequencies");
+    const std::string text =
+        replace_once(good, "    35                                  number of frequencies",
+                     "    36                                  number of frequencies");
     const std::string message = swan_error(text, "wrong_count.sp2");
     EXPECT_NE(message.find(fmt::format("line {}", line_of(text, "NDIR"))), std::string::npos) << message;
     EXPECT_NE(message.find("count"), std::string::npos) << message;
@@ -296,8 +301,10 @@ TEST(SwanSpectrumFile, BadFilesAreRefusedNamingTheLine) {
     EXPECT_NE(swan_error(text, "one_d.sp1").find("1-D"), std::string::npos);
   }
   EXPECT_NE(swan_error(good, "zero.sp2", {0, "", 1025.0}).find("no energy"), std::string::npos);
-  EXPECT_NE(swan_error(good, "time.sp2", {1, "20270101.000000", 1025.0}).find("20261130.030000"), std::string::npos);
-  EXPECT_NE(swan_error(good.substr(0, good.find("FACTOR") + 20), "short.sp2").find("ends"), std::string::npos);
+  EXPECT_NE(swan_error(good, "time.sp2", {1, "20270101.000000", 1025.0}).find("20261130.030000"),
+            std::string::npos);
+  EXPECT_NE(swan_error(good.substr(0, good.find("FACTOR") + 20), "short.sp2").find("ends"),
+            std::string::npos);
   EXPECT_NE(swan_error("SWAN 1\nLONLAT\n", "header.sp2").find("after line 2"), std::string::npos);
   EXPECT_NE(swan_error("NOT SWAN\n", "not_swan.sp2").find("line 1"), std::string::npos);
 }
@@ -334,19 +341,26 @@ NdbcSpectrumFiles write_ndbc_files(const Sea& sea, const fs::path& dir) {
     for (double fi : f) text += fmt::format(" {} ({:.4f})", missing, fi);
     return text + "\n";
   };
-  NdbcSpectrumFiles files{dir / "46087.data_spec", dir / "46087.swdir", dir / "46087.swdir2", dir / "46087.swr1",
-                          dir / "46087.swr2"};
+  NdbcSpectrumFiles files{dir / "46087.data_spec", dir / "46087.swdir", dir / "46087.swdir2",
+                          dir / "46087.swr1", dir / "46087.swr2"};
   write_text(files.spectral_density,
-             file("Sep_Freq  < spec_1 (freq_1) spec_2 (freq_2) ... >", true,
-                  [&](double fi) { return fmt::format("{:.3f}", sea.density_m2_hz(fi)); }, "0.000"));
-  write_text(files.mean_direction, file("alpha1_1 (freq_1) ...", false,
-                                        [&](double) { return fmt::format("{:.1f}", nautical_from_deg); }, "999.0"));
-  write_text(files.principal_direction, file("alpha2_1 (freq_1) ...", false,
-                                             [&](double) { return fmt::format("{:.1f}", nautical_from_deg); }, "999.0"));
+             file(
+                 "Sep_Freq  < spec_1 (freq_1) spec_2 (freq_2) ... >", true,
+                 [&](double fi) { return fmt::format("{:.3f}", sea.density_m2_hz(fi)); }, "0.000"));
+  write_text(files.mean_direction,
+             file(
+                 "alpha1_1 (freq_1) ...", false,
+                 [&](double) { return fmt::format("{:.1f}", nautical_from_deg); }, "999.0"));
+  write_text(files.principal_direction,
+             file(
+                 "alpha2_1 (freq_1) ...", false,
+                 [&](double) { return fmt::format("{:.1f}", nautical_from_deg); }, "999.0"));
   write_text(files.first_coefficient,
-             file("r1_1 (freq_1) ...", false, [&](double) { return fmt::format("{:.2f}", r1); }, "999.00"));
+             file(
+                 "r1_1 (freq_1) ...", false, [&](double) { return fmt::format("{:.2f}", r1); }, "999.00"));
   write_text(files.second_coefficient,
-             file("r2_1 (freq_1) ...", false, [&](double) { return fmt::format("{:.2f}", r2); }, "999.00"));
+             file(
+                 "r2_1 (freq_1) ...", false, [&](double) { return fmt::format("{:.2f}", r2); }, "999.00"));
   return files;
 }
 
@@ -436,7 +450,8 @@ TEST(NdbcSpectrumFiles, BadFilesAreRefusedNamingTheLine) {
   }
   // A row that is not pairs.
   {
-    write_text(files.spectral_density, "#YY  MM DD hh mm Sep_Freq ...\n2026 11 30 03 00 0.180 1.0 (0.05) 2.0\n");
+    write_text(files.spectral_density,
+               "#YY  MM DD hh mm Sep_Freq ...\n2026 11 30 03 00 0.180 1.0 (0.05) 2.0\n");
     const std::string message = error_of(files);
     EXPECT_NE(message.find("line 2"), std::string::npos) << message;
     EXPECT_NE(message.find("pairs"), std::string::npos) << message;

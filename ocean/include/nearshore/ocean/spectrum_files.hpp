@@ -47,8 +47,8 @@ struct SampledDirectionalSpectrum {
 
 /// What to take from a SWAN `.sp2` file.
 struct SwanSpectrumSelection {
-  std::size_t location_index = 0;  ///< 0-based, in the order of the LONLAT / LOCATIONS block
-  std::string time;                ///< "20020101.000000" as the file writes it; empty = the first time
+  std::size_t location_index = 0;       ///< 0-based, in the order of the LONLAT / LOCATIONS block
+  std::string time;                     ///< "20020101.000000" as the file writes it; empty = the first time
   double water_density_kg_m3 = 1025.0;  ///< rho, to turn EnDens (J/m2/Hz/degr) into variance
 };
 
@@ -79,7 +79,8 @@ struct NdbcSpectrumSelection {
 /// its measured density and Hs stays the buoy's. Throws nearshore::Error naming the file, the line
 /// and the fix for a missing time, frequencies that differ between the files, missing values (999)
 /// where there is energy, r outside [0, 1], or a non-number.
-SampledDirectionalSpectrum read_ndbc_spectrum(const NdbcSpectrumFiles& files, const NdbcSpectrumSelection& selection = {});
+SampledDirectionalSpectrum read_ndbc_spectrum(const NdbcSpectrumFiles& files,
+                                              const NdbcSpectrumSelection& selection = {});
 
 /// m0 = integral E df dtheta (m^2): trapezoids in frequency over the file's band (nothing outside
 /// it) and the periodic trapezoid rule in direction, i.e. the exact integral of the bilinear
@@ -105,6 +106,7 @@ void check_sampled_spectrum(const SampledDirectionalSpectrum& spectrum);
 ///   the components carry its m0 (Hs = 4 sqrt(m0) kept, not the 99.5 % of a parametric band);
 ///   the half-width around the mean that holds all but 1e-4 of m0.
 /// The caller sets the counts, the loop period and the seed as for a parametric sea.
-DirectionalSeaSpecification sea_specification_from_sampled(std::shared_ptr<const SampledDirectionalSpectrum> spectrum);
+DirectionalSeaSpecification sea_specification_from_sampled(
+    std::shared_ptr<const SampledDirectionalSpectrum> spectrum);
 
 }  // namespace nearshore::ocean
