@@ -122,3 +122,16 @@ TEST(BakeSpectrumFile, BadKeysAndFilesAreRefused) {
   expect_case_error(channel_case("spectrum_file = \"broken.sp2\"\n"),
                     {"`wave_maker.spectrum_file`", "line 6", "AFREQ"});
 }
+
+// [deep_water] shares an irregular maker's sea: with a spectrum file it is the file's spectrum
+// (DirectionalWavenumberSpectrum over the interpolated file), whose Hs is the file's.
+TEST(BakeSpectrumFile, DeepWaterFieldSharesTheFilesSea) {
+  const auto folder = scratch_folder();
+  write_text(folder / "offshore.sp2", swan_jonswap_text());
+  const BakeCase c = read_bake_case(
+      write_text(folder / "file.toml", channel_case("spectrum_file = \"offshore.sp2\"\n") +
+                                           "[deep_water]\ngrid_size = 64\ncascade_count = 1\n"));
+  ASSERT_TRUE(c.deep_water.has_value());
+  // 1 %: the bound of the Hs test above (the field integrates the same interpolated spectrum).
+  EXPECT_NEAR(c.deep_water->spectrum->significant_wave_height_m(), 1.0, 0.01);
+}
