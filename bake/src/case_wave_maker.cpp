@@ -2,6 +2,7 @@
 // grid carries the waves asked for.
 #include "nearshore/bake/bake_time_series.hpp"
 #include "nearshore/ocean/sea_state_builder.hpp"
+#include "nearshore/ocean/spectrum_files.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -233,6 +234,30 @@ WaveComponent component_from(TableReader& reader, const std::string& amplitude_k
   return component;
 }
 
+/// [wave_maker] spectrum_file (+ spectrum_format, spectrum_location, spectrum_time): the sea of a
+/// SWAN .sp2 or of an NDBC buoy's five spectral files, as the builder's specification (the file's
+/// band; the counts, loop and seed are read as for a parametric sea).
+DirectionalSeaSpecification read_spectrum_file(TableReader& maker, const fs::path& base) {
+  const fs::path file = maker.path("spectrum_file", base);
+  const std::size_t format = maker.choice("spectrum_format", "swan_sp2", {"swan_sp2", "ndbc"});
+  const std::string time = maker.string("spectrum_time", std::string(),
+                                        "time as the file writes it: \"20020101.000000\" (SWAN), \"YYYY MM DD hh mm\" (NDBC)");
+  SwanSpectrumSelection swan;
+  swan.time = time;
+  if (format == 0)
+    swan.location_index = static_cast<std::size_t>(
+        maker.integer("spectrum_location", 1, 1, 10000000, "location in the SWAN file, 1 = the first")) - 1;
+  auto sampled = std::make_shared<SampledDirectionalSpectrum>(maker.reading_file("spectrum_file", [&] {
+    if (format == 0) return read_swan_spectrum(file, swan);
+    // NDBC's realtime2 files of one buoy share their name: 46087.data_spec, .swdir, .swdir2, .swr1, .swr2.
+    const auto sibling = [&](const char* extension) { return fs::path(file).replace_extension(extension); };
+    NdbcSpectrumSelection ndbc;
+    ndbc.time = time;
+    return read_ndbc_spectrum({file, sibling(".swdir"), sibling(".swdir2"), sibling(".swr1"), sibling(".swr2")}, ndbc);
+  }));
+  return sea_specification_from_sampled(sampled);
+}
+
 }  // namespace
 
 WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
@@ -304,13 +329,26 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   } else if (kind == MakerKind::kIrregular) {
     wave_maker.kind = WaveMaker::Kind::kComponents;
     DirectionalSeaSpecification specification;
-    specification.spectrum = read_frequency_spectrum(maker, "spectrum", "jonswap");
-    const double mean_direction_rad = kDegree * maker.number("mean_direction_deg", default_direction_rad / kDegree, -360.0, 360.0,
-                                                             false, "mean direction of travel in degrees counter-clockwise from +x");
-    const double spreading_s = maker.non_negative("spreading_s", 0.0, "cos^2s exponent s (0 = long-crested)");
-    specification.spreading = std::make_shared<CosineSquaredSpreading>(mean_direction_rad, std::max(spreading_s, 1.0));
+    const bool from_file = maker.has("spectrum_file");
+    double spreading_s = 0.0;
+    if (from_file) {
+      // A wave model's or a buoy's spectrum (ocean/spectrum_files.hpp): it sets the shape, the
+      // directions and the band; the parametric keys would contradict it.
+      for (const char* key : {"spectrum", "mean_direction_deg", "spreading_s", "significant_height_m", "peak_period_s"})
+        if (maker.has(key))
+          maker.fail(maker.full(key), "is given with spectrum_file, whose spectrum sets the sea",
+                     "remove it, or remove spectrum_file to use a parametric spectrum");
+      specification = read_spectrum_file(maker, base);
+    } else {
+      specification.spectrum = read_frequency_spectrum(maker, "spectrum", "jonswap");
+      const double mean_direction_rad = kDegree * maker.number("mean_direction_deg", default_direction_rad / kDegree, -360.0, 360.0,
+                                                               false, "mean direction of travel in degrees counter-clockwise from +x");
+      spreading_s = maker.non_negative("spreading_s", 0.0, "cos^2s exponent s (0 = long-crested)");
+      specification.spreading = std::make_shared<CosineSquaredSpreading>(mean_direction_rad, std::max(spreading_s, 1.0));
+    }
     specification.frequency_count = maker.integer("frequency_count", 64, 1, 100000, "number of frequency components");
-    specification.direction_count = maker.integer("direction_count", spreading_s > 0 ? 16 : 1, 1, 10000, "number of directions");
+    specification.direction_count =
+        maker.integer("direction_count", from_file || spreading_s > 0 ? 16 : 1, 1, 10000, "number of directions");
     // The source function sums every component at every source cell every step: 1e5 components
     // on a 1000-cell source line are 1e8 evaluations a step, far beyond what a bake can afford.
     constexpr long kMostComponents = 100000;
@@ -321,7 +359,7 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
                              specification.frequency_count, specification.direction_count,
                              static_cast<long>(specification.frequency_count) * specification.direction_count, kMostComponents),
                  "use fewer frequencies or directions (64 x 16 is plenty for a short-crested sea)");
-    if (spreading_s == 0 && specification.direction_count != 1)
+    if (!from_file && spreading_s == 0 && specification.direction_count != 1)
       maker.fail(maker.full("direction_count"), "is above 1 for a long-crested sea (spreading_s = 0)", "set spreading_s > 0 or direction_count = 1");
     specification.loop_period_s = read_loop_period_s(maker);
     specification.seed = maker.unsigned_integer("seed", 1, "phase seed");
@@ -338,7 +376,7 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     }
     request.spectrum = specification.spectrum;
     request.spreading = specification.spreading;
-    request.long_crested = spreading_s == 0;
+    request.long_crested = from_file ? specification.direction_count == 1 : spreading_s == 0;
     const int cells_per_wavelength = maker.integer("min_cells_per_wavelength", 8, 2, 1000, "cells per wavelength the grid must give every component");
     try {
       sea = build_sea_state(specification);
