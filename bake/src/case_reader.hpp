@@ -22,6 +22,7 @@
 #include "nearshore/bake/bake_case.hpp"
 #include "nearshore/bake/deep_water_coupling.hpp"
 #include "nearshore/boussinesq/initial_conditions.hpp"
+#include "nearshore/boussinesq/solver_parameters.hpp"  // kMaxCourantNumber, Side, WaveMaker, SolverParameters
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/ocean/spectrum_registry.hpp"

@@ -6,8 +6,9 @@
 // back cross the line unhindered.
 #include <vector>
 
-#include "nearshore/boussinesq/boussinesq_solver.hpp"
 #include "nearshore/boussinesq/model_dispersion.hpp"
+#include "nearshore/boussinesq/solver_parameters.hpp"
+#include "nearshore/core/raster.hpp"  // GridGeometry
 
 namespace nearshore::boussinesq::detail {
 

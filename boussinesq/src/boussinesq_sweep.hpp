@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "nearshore/boussinesq/boussinesq_solver.hpp"
+#include "nearshore/boussinesq/solver_parameters.hpp"
 
 namespace nearshore::boussinesq::detail {
 

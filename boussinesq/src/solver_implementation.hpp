@@ -1,6 +1,7 @@
 #pragma once
-// The solver's state and work arrays, shared by its translation units (boussinesq_solver.cpp: the
-// step; boussinesq_state.cpp: save and load). Private to boussinesq/.
+// The solver's state and work arrays, shared by its translation units (solver_setup.cpp: the
+// construction; boussinesq_solver.cpp: the step; boussinesq_state.cpp: save and load). Private to
+// boussinesq/.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -112,6 +113,26 @@ struct BoussinesqSolver::Implementation {
         },
         tbb::simple_partitioner());
   }
+
+  // Construction (solver_setup.cpp), in the order the constructor runs the steps: each checks what
+  // it takes (the errors come in this order) and fills its part of the members above.
+  // The harbour grid's cells as the solver takes them, only while it is built (natural layout).
+  struct CellFields {
+    std::vector<float> depth_m, porosity, stone_diameter_ratio;  // depth capped at the effective depth
+    double max_depth_m = 0.0;                                    // the deepest cell, metres
+  };
+  void take_grid(const HarbourGrid& harbour, const SolverParameters& solver_parameters);
+  CellFields read_cell_fields(const HarbourGrid& harbour) const;
+  std::vector<float> read_stone_diameter_ratios(const HarbourGrid& harbour) const;
+  void choose_time_step(double max_depth_m);
+  void check_scheme_parameters() const;
+  void take_fingerprint(const std::vector<float>& depth_m);
+  void set_sweep_constants();
+  void build_frames(CellFields cells, double peak_w);
+  void build_sponges();
+  void allocate_state_and_work_arrays();
+  void set_up_fully_nonlinear_terms();
+  void set_up_surface_roller(const WaveMaker& wave_maker, double peak_w);
 
   void mark_dispersive(const StaticFrame& frame, const double* eta_frame, unsigned char* mask);
   void step();
