@@ -179,11 +179,10 @@ void add_bench_ships(CLI::App& bench) {
       ships::ShipDefinition ship;
       ship.name = fmt::format("ship {}", k + 1);
       switch (k % 3) {
-        case 0: ship.hull = ships::harbour_tug(); break;
+        case 0: ship.hull = ships::harbour_tug(); ship.loading.draft_m = 3.0; break;
         case 1: ship.hull = ships::wigley_hull(12.0, 3.0, 0.9, 2.0); ship.loading.draft_m = 0.9; break;
         default: ship.hull = ships::box_barge(24.0, 9.0, 4.5); ship.loading.draft_m = 3.0; break;
       }
-      if (k % 3 == 0) ship.loading.draft_m = 3.0;
       ship.x_m = 150.0 * (k % 4);
       ship.y_m = 150.0 * (k / 4);
       ship.initial_speed_m_s = 3.0;
