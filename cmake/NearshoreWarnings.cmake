@@ -19,6 +19,12 @@ function(nearshore_add_test name)
   # batch instead of once per file (the CI machine has 2 cores). Helpers in a test file's anonymous
   # namespace must therefore have names no other file of the suite uses.
   set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 4)
+  # Test code compiles at -O1 in a Release build: the libraries under test keep -O3 (their speed
+  # is what the physics tests spend), while GoogleTest's expanded assertions cost about 30 % less
+  # to compile (bake_tests' first batch: 15.2 s against 22.0 s of CPU), the CI budget's largest share.
+  if(CMAKE_BUILD_TYPE STREQUAL "Release")
+    target_compile_options(${name} PRIVATE -O1)
+  endif()
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
     NEARSHORE_SHARED_DIR="${NEARSHORE_SHARED_DIR}"
