@@ -48,7 +48,7 @@ extern "C" {
  * 7: weather: nearshore_lighting.cloud_cover, visibility_m, fog_top_m (a version 6 struct is
  *    still taken, with clear air).
  * 8: every wave layer of a ship listed (nearshore_fleet_wave_layer_count, nearshore_fleet_wave_layer:
- *    each field with its kind and shown weight); nearshore_ship_options.dispersive_wake on by default.
+ *    each field with its kind and shown weight).
  * A host built against version N runs on a library of version >= N. */
 #define NEARSHORE_API_VERSION 8
 
@@ -386,13 +386,13 @@ typedef struct nearshore_ship_options {
   int hull_points;               /* pressure points sampled on the hull; 0: 2000 */
   int bow_wave;                  /* 1 (default): a bow-wave grid; 0: none */
   int bow_wave_cells;            /* N of its N x N grid; 0: 128 */
-  int dispersive_wake;           /* 1 (default since version 8): also a dispersive linear wave layer (Kelvin's
-                                    wake; docs/ships.md), shown instead of the bow-wave grid below depth
-                                    Froude number 0.7; 0: the bow-wave grid alone (the default of versions
-                                    4-7). Both layers: nearshore_fleet_wave_layer */
+  int dispersive_wake;           /* 1: also a dispersive linear wave layer (Kelvin's wake; docs/ships.md),
+                                    shown instead of the bow-wave grid below depth Froude number 0.7;
+                                    0 (default): the bow-wave grid alone (API version 4). Both layers:
+                                    nearshore_fleet_wave_layer (version 8) */
 } nearshore_ship_options;
 
-/* Fills the defaults: a tug at draft 3 m, manual orders, bow wave and dispersive wake on. Any thread. */
+/* Fills the defaults: a tug at draft 3 m, manual orders, bow wave on. Any thread. */
 NEARSHORE_API void nearshore_ship_options_init(nearshore_ship_options* options);
 
 /* A fleet on `sea` (grounding and bow-wave bottoms from its harbour depth). Render thread. */
@@ -496,10 +496,9 @@ typedef struct nearshore_bow_wave_field {
 } nearshore_bow_wave_field;
 /* Fills `field` with the ship's shallow-water bow-wave grid (wave layer 0, below); copies the heights
  * into `heights_m` when it is not NULL (`capacity` floats, at least columns x rows). The heights carry
- * the grid's shown weight: since version 8 a ship has the dispersive layer by default, and in water
- * where that layer is shown (depth Froude number below 0.7) the grid's weight, and so its heights,
- * are 0. A host that draws the fields itself draws every layer of nearshore_fleet_wave_layer (or sets
- * nearshore_ship_options.dispersive_wake = 0 for the grid alone, as in versions 2-7). */
+ * the grid's shown weight: 1 for a ship without a dispersive wake; for a ship with one, 0 where that
+ * layer is shown (depth Froude number below 0.7), so a host that draws the fields itself draws every
+ * layer of nearshore_fleet_wave_layer. */
 NEARSHORE_API nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* fleet, int ship,
                                                         nearshore_bow_wave_field* field, float* heights_m,
                                                         size_t capacity);
