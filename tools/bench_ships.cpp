@@ -14,6 +14,8 @@
 //     (ShipFleet, every default: bow-wave grid, stern wake, restricted water; tugs, Wigley launches and
 //     barges in turn, 150 m apart, ordered ahead at 3 m/s) on the same Beaufort sea, one 30 Hz
 //     frame (fleet.step) at a time; the whole frame's CPU time against the frame's 33.3 ms.
+//     --dispersive-wake gives every ship the dispersive layer too (ShipDefinition::dispersive_wake):
+//     with no seabed each is at Fr_d 0.07 and shows that layer alone (ship_fleet.hpp WakeLayerChoice).
 // CPU time of the calling thread, median (and fastest) of --repeats; the load average is printed with it.
 // Everything runs on the calling thread: the ships' code uses no worker threads.
 #include <time.h>
@@ -77,6 +79,7 @@ Timing time_ms(int repeats, F&& f) {
 struct Options {
   int points = 1000, grid = 256, repeats = 200, beaufort = 5, fleet = 8;
   bool json = false;
+  bool dispersive_wake = false;
 };
 
 }  // namespace
@@ -90,6 +93,9 @@ void add_bench_ships(CLI::App& bench) {
   command->add_option("--beaufort", o->beaufort, "Beaufort force of the deep sea the hull samples (1-12)")->check(number_in(at_least(1), at_most(12)));
   command->add_option("--fleet", o->fleet, "Ships of the fleet stepped together at 30 Hz (0: no fleet line)")
       ->check(number_in(at_least(0), at_most(64)));
+  command->add_flag("--dispersive-wake", o->dispersive_wake,
+                   "Give the fleet's ships the dispersive (Kelvin) wake layer too; below depth Froude number 0.7 it is "
+                   "shown and stepped instead of the bow-wave grid");
   command->add_flag("--json", o->json, "Print the results as JSON");
   set_example(*command, "nearshore bench ships --points 1000 --grid 256 --fleet 8");
   command->callback([o]() {
@@ -187,6 +193,7 @@ void add_bench_ships(CLI::App& bench) {
       ship.y_m = 150.0 * (k / 4);
       ship.initial_speed_m_s = 3.0;
       ship.orders.speed_m_s = 3.0;
+      ship.dispersive_wake = o->dispersive_wake;
       fleet.add_ship(ship);
     }
     Timing fleet_frame;
@@ -212,6 +219,7 @@ void add_bench_ships(CLI::App& bench) {
                           {"dispersive_wake_step_ms", dispersive_step.median_ms},
                           {"dispersive_wake_step_fastest_ms", dispersive_step.fastest_ms},
                           {"fleet_ships", o->fleet},
+                          {"fleet_dispersive_wake", o->dispersive_wake},
                           {"fleet_frame_ms", fleet_frame.median_ms},
                           {"fleet_frame_fastest_ms", fleet_frame.fastest_ms},
                           {"fleet_frame_budget_ms", 1e3 * frame_s},
@@ -233,9 +241,10 @@ void add_bench_ships(CLI::App& bench) {
                 "%.3f ms (fastest %.3f ms)\n",
                 o->grid, o->grid, dispersive_step.median_ms, dispersive_step.fastest_ms);
     if (o->fleet > 0)
-      std::printf("  a fleet of %d ships (tugs, launches, barges; every default: bow-wave grid, stern wake, restricted water) at "
+      std::printf("  a fleet of %d ships (tugs, launches, barges; every default: bow-wave grid, stern wake, restricted water%s) at "
                   "3 m/s on the Beaufort %d sea, one 30 Hz frame: %.3f ms (fastest %.3f ms) of the frame's %.1f ms\n",
-                  o->fleet, o->beaufort, fleet_frame.median_ms, fleet_frame.fastest_ms, 1e3 * frame_s);
+                  o->fleet, o->dispersive_wake ? "; and the dispersive wake layer, shown instead of the grid" : "",
+                  o->beaufort, fleet_frame.median_ms, fleet_frame.fastest_ms, 1e3 * frame_s);
     std::printf("  load average (/proc/loadavg): %s\n", load.c_str());
   });
 }

@@ -47,8 +47,10 @@ extern "C" {
  *    nearshore_sea_query_vertical_velocity, the rate textures of nearshore_gl_textures.
  * 7: weather: nearshore_lighting.cloud_cover, visibility_m, fog_top_m (a version 6 struct is
  *    still taken, with clear air).
+ * 8: every wave layer of a ship listed (nearshore_fleet_wave_layer_count, nearshore_fleet_wave_layer:
+ *    each field with its kind and shown weight).
  * A host built against version N runs on a library of version >= N. */
-#define NEARSHORE_API_VERSION 7
+#define NEARSHORE_API_VERSION 8
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -386,7 +388,8 @@ typedef struct nearshore_ship_options {
   int bow_wave_cells;            /* N of its N x N grid; 0: 128 */
   int dispersive_wake;           /* 1: also a dispersive linear wave layer (Kelvin's wake; docs/ships.md),
                                     shown instead of the bow-wave grid below depth Froude number 0.7;
-                                    0 (default): the bow-wave grid alone (API version 4) */
+                                    0 (default): the bow-wave grid alone (API version 4). Both layers:
+                                    nearshore_fleet_wave_layer (version 8) */
 } nearshore_ship_options;
 
 /* Fills the defaults: a tug at draft 3 m, manual orders, bow wave on. Any thread. */
@@ -491,8 +494,11 @@ typedef struct nearshore_bow_wave_field {
   double origin_x_m, origin_y_m, spacing_m;
   uint64_t serial;
 } nearshore_bow_wave_field;
-/* Fills `field`; copies the heights into `heights_m` when it is not NULL (`capacity` floats, at
- * least columns x rows). */
+/* Fills `field` with the ship's shallow-water bow-wave grid (wave layer 0, below); copies the heights
+ * into `heights_m` when it is not NULL (`capacity` floats, at least columns x rows). The heights carry
+ * the grid's shown weight: 1 for a ship without a dispersive wake; for a ship with one, 0 where that
+ * layer is shown (depth Froude number below 0.7), so a host that draws the fields itself draws every
+ * layer of nearshore_fleet_wave_layer. */
 NEARSHORE_API nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* fleet, int ship,
                                                         nearshore_bow_wave_field* field, float* heights_m,
                                                         size_t capacity);
@@ -504,6 +510,34 @@ NEARSHORE_API nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* f
 NEARSHORE_API nearshore_status nearshore_fleet_dispersive_wake(const nearshore_fleet* fleet, int ship,
                                                                nearshore_bow_wave_field* field, float* heights_m,
                                                                size_t capacity);
+
+/* Since version 8. A ship's wave layers, for hosts that draw them themselves: layer 0 is the
+ * shallow-water bow-wave grid, layer 1 (a ship with dispersive_wake) the dispersive layer; a ship
+ * without a bow wave has none. The list is fixed when the ship is added; which layer is shown changes
+ * with the ship's depth Froude number (docs/ships.md "Which layer a ship shows"), and the shown weights
+ * of a ship's layers sum to 1. Drawing every layer's field added to the sea draws what the fleet
+ * queries below and nearshore's renderer show. */
+typedef enum nearshore_wave_layer_kind {
+  NEARSHORE_WAVE_LAYER_SHALLOW_WATER = 0, /* the nonlinear shallow-water grid (nearshore_fleet_bow_wave):
+                                             shown near and above depth Froude number 0.8 */
+  NEARSHORE_WAVE_LAYER_DISPERSIVE = 1     /* the linear layer with exact dispersion (Kelvin's pattern;
+                                             nearshore_fleet_dispersive_wake): shown below 0.7 */
+} nearshore_wave_layer_kind;
+typedef struct nearshore_wave_layer {
+  uint32_t struct_size;
+  nearshore_wave_layer_kind kind;
+  double shown_weight;  /* 0-1, already in the layer's heights; a layer at 0 has zero heights and is
+                           not stepped (it restarts from rest when chosen again) */
+} nearshore_wave_layer;
+/* How many wave layers ship `ship` has (0, 1 or 2) into *count. */
+NEARSHORE_API nearshore_status nearshore_fleet_wave_layer_count(const nearshore_fleet* fleet, int ship, int* count);
+/* Layer `layer` (0 .. count - 1) of ship `ship`: its kind and shown weight into `info` and its height
+ * field into `field` (as nearshore_fleet_bow_wave); the heights into `heights_m` when it is not NULL
+ * (`capacity` floats, at least columns x rows). A layer outside the list is NEARSHORE_INVALID_ARGUMENT
+ * naming `layer` and the ship's count. */
+NEARSHORE_API nearshore_status nearshore_fleet_wave_layer(const nearshore_fleet* fleet, int ship, int layer,
+                                                          nearshore_wave_layer* info, nearshore_bow_wave_field* field,
+                                                          float* heights_m, size_t capacity);
 
 /* nearshore_sea_query / nearshore_sea_query_at with the fleet's bow waves added: elevation and
  * normal include every ship's bow wave as of its last step (the velocity is the sea's). For buoys,

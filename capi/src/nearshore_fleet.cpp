@@ -192,6 +192,30 @@ void copy_height_field(const std::optional<ships::BowWaveField>& f, nearshore_bo
   std::copy(f->heights_m->begin(), f->heights_m->begin() + static_cast<std::ptrdiff_t>(cells), heights_m);
 }
 
+// A ship's wave layers in the order of nearshore_fleet_wave_layer: 0 the shallow-water grid, 1 the
+// dispersive layer (ShipFleet makes the second only with the first). The shown weights come from the
+// fleet's blend (Ship::dispersive_weight, 0 before the first step), so they sum to 1 from the start;
+// after a step they are the weights already in each layer's heights.
+int wave_layer_count(const ships::Ship& s) { return s.bow_wave() == nullptr ? 0 : s.dispersive_wake() == nullptr ? 1 : 2; }
+
+struct WaveLayer {
+  nearshore_wave_layer_kind kind;
+  double shown_weight;
+  ships::BowWaveField field;
+};
+
+WaveLayer wave_layer_of(const ships::Ship& s, int ship, int layer) {
+  const int count = wave_layer_count(s);
+  if (layer < 0 || layer >= count)
+    fail(NEARSHORE_INVALID_ARGUMENT, "layer = " + std::to_string(layer) + " is not a wave layer of ship " +
+                                         std::to_string(ship) + " ('" + s.name() + "' has " + std::to_string(count) +
+                                         "; nearshore_fleet_wave_layer_count gives it); layers are numbered from 0");
+  if (s.dispersive_wake() == nullptr) return {NEARSHORE_WAVE_LAYER_SHALLOW_WATER, 1.0, s.bow_wave()->field()};
+  const double dispersive = s.dispersive_weight();
+  if (layer == 0) return {NEARSHORE_WAVE_LAYER_SHALLOW_WATER, 1.0 - dispersive, s.bow_wave()->field()};
+  return {NEARSHORE_WAVE_LAYER_DISPERSIVE, dispersive, s.dispersive_wake()->field()};
+}
+
 // The fleet's bow waves added to sea samples: elevation, and the normal tilted by the bow wave's
 // slope (central differences over 0.25 m, below a bow-wave cell: 4 ship lengths / 128 cells is
 // 0.6 m even for a 20 m hull, so the difference sees the bilinear field's own slope).
@@ -420,6 +444,27 @@ nearshore_status nearshore_fleet_dispersive_wake(const nearshore_fleet* fleet, i
     const ships::Ship& s = ship_of(fleet, ship);
     copy_height_field(s.dispersive_wake() ? std::optional<ships::BowWaveField>(s.dispersive_wake()->field()) : std::nullopt,
                       field, heights_m, capacity);
+  });
+}
+
+nearshore_status nearshore_fleet_wave_layer_count(const nearshore_fleet* fleet, int ship, int* count) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    const ships::Ship& s = ship_of(fleet, ship);
+    *require(count, "count") = wave_layer_count(s);
+  });
+}
+
+nearshore_status nearshore_fleet_wave_layer(const nearshore_fleet* fleet, int ship, int layer, nearshore_wave_layer* info,
+                                            nearshore_bow_wave_field* field, float* heights_m, size_t capacity) {
+  return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
+    const ships::Ship& s = ship_of(fleet, ship);
+    require(info, "info");
+    if (info->struct_size != sizeof(nearshore_wave_layer))
+      fail(NEARSHORE_INVALID_ARGUMENT, "nearshore_wave_layer.struct_size must be sizeof(nearshore_wave_layer)");
+    const WaveLayer chosen = wave_layer_of(s, ship, layer);
+    copy_height_field(chosen.field, field, heights_m, capacity);  // checks field before info is written
+    info->kind = chosen.kind;
+    info->shown_weight = chosen.shown_weight;
   });
 }
 

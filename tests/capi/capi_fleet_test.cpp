@@ -280,6 +280,119 @@ TEST(CApiFleet, ADispersiveWakeIsShownBelowFroudeSevenTenthsAndQueriedLikeABowWa
   nearshore_sea_close(sea);
 }
 
+// Version 8: every wave layer of a ship is listed (nearshore_fleet_wave_layer_count / _wave_layer),
+// each with its kind and shown weight, its field the same as the single-layer calls give: layer 0
+// is the grid of nearshore_fleet_bow_wave, layer 1 the layer of nearshore_fleet_dispersive_wake.
+// The weights sum to 1 before the first step and after (the fleet counts the displacement once).
+TEST(CApiFleet, EveryWaveLayerOfAShipIsListedWithItsKindAndShownWeight) {
+  nearshore_sea* sea = open_calm(write_sequence("fleet_layers", 0.0));
+  ASSERT_NE(sea, nullptr);
+  nearshore_fleet* fleet = nullptr;
+  ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << error();
+  nearshore_ship_options options;
+  nearshore_ship_options_init(&options);
+  options.x_m = 30.0;
+  options.heading_deg = 90.0;
+  options.order = NEARSHORE_ORDER_SPEED;
+  options.speed_m_s = 3.0;
+  options.initial_speed_m_s = 3.0;
+  options.bow_wave_cells = 64;
+  options.name = "Both";
+  options.y_m = 25.0;
+  options.dispersive_wake = 1;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
+  options.name = "Grid";
+  options.y_m = 60.0;
+  options.dispersive_wake = 0;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
+  options.name = "None";
+  options.y_m = 95.0;
+  options.bow_wave = 0;
+  ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
+
+  int counts[3] = {-1, -1, -1};
+  for (int ship = 0; ship < 3; ++ship)
+    ASSERT_EQ(nearshore_fleet_wave_layer_count(fleet, ship, &counts[ship]), NEARSHORE_OK) << error();
+  EXPECT_EQ(counts[0], 2);
+  EXPECT_EQ(counts[1], 1);
+  EXPECT_EQ(counts[2], 0);
+
+  nearshore_wave_layer info;
+  info.struct_size = sizeof info;
+  nearshore_bow_wave_field field;
+  field.struct_size = sizeof field;
+  auto weight_sum = [&](int ship) {
+    double sum = 0.0;
+    for (int layer = 0; layer < counts[ship]; ++layer) {
+      EXPECT_EQ(nearshore_fleet_wave_layer(fleet, ship, layer, &info, &field, nullptr, 0), NEARSHORE_OK) << error();
+      EXPECT_GE(info.shown_weight, 0.0);
+      EXPECT_LE(info.shown_weight, 1.0);
+      sum += info.shown_weight;
+    }
+    return sum;
+  };
+  EXPECT_DOUBLE_EQ(weight_sum(0), 1.0);  // before the first step too
+  EXPECT_DOUBLE_EQ(weight_sum(1), 1.0);
+
+  for (int frame = 1; frame <= 90; ++frame) {
+    ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
+    ASSERT_EQ(nearshore_fleet_step(fleet, 1.0 / 30.0), NEARSHORE_OK) << error();
+  }
+  EXPECT_DOUBLE_EQ(weight_sum(0), 1.0);
+  EXPECT_DOUBLE_EQ(weight_sum(1), 1.0);
+  // The kinds in their order, and each layer's field and heights as the single-layer calls give them.
+  for (int layer = 0; layer < 2; ++layer) {
+    nearshore_bow_wave_field single;
+    single.struct_size = sizeof single;
+    ASSERT_EQ(nearshore_fleet_wave_layer(fleet, 0, layer, &info, &field, nullptr, 0), NEARSHORE_OK) << error();
+    EXPECT_EQ(info.kind, layer == 0 ? NEARSHORE_WAVE_LAYER_SHALLOW_WATER : NEARSHORE_WAVE_LAYER_DISPERSIVE);
+    ASSERT_EQ(layer == 0 ? nearshore_fleet_bow_wave(fleet, 0, &single, nullptr, 0)
+                         : nearshore_fleet_dispersive_wake(fleet, 0, &single, nullptr, 0),
+              NEARSHORE_OK);
+    ASSERT_GT(field.columns, 0);
+    EXPECT_EQ(field.columns, single.columns);
+    EXPECT_EQ(field.rows, single.rows);
+    EXPECT_EQ(field.origin_x_m, single.origin_x_m);
+    EXPECT_EQ(field.origin_y_m, single.origin_y_m);
+    EXPECT_EQ(field.spacing_m, single.spacing_m);
+    EXPECT_EQ(field.serial, single.serial);
+    std::vector<float> listed(static_cast<std::size_t>(field.columns) * field.rows), alone(listed.size());
+    ASSERT_EQ(nearshore_fleet_wave_layer(fleet, 0, layer, &info, &field, listed.data(), listed.size()), NEARSHORE_OK);
+    ASSERT_EQ(layer == 0 ? nearshore_fleet_bow_wave(fleet, 0, &single, alone.data(), alone.size())
+                         : nearshore_fleet_dispersive_wake(fleet, 0, &single, alone.data(), alone.size()),
+              NEARSHORE_OK);
+    EXPECT_EQ(listed, alone);
+    // Too small a buffer is refused naming capacity.
+    EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 0, layer, &info, &field, listed.data(), 10), NEARSHORE_INVALID_ARGUMENT);
+    EXPECT_NE(error().find("capacity"), std::string::npos) << error();
+  }
+  ASSERT_EQ(nearshore_fleet_wave_layer(fleet, 1, 0, &info, &field, nullptr, 0), NEARSHORE_OK) << error();
+  EXPECT_EQ(info.kind, NEARSHORE_WAVE_LAYER_SHALLOW_WATER);
+  EXPECT_EQ(info.shown_weight, 1.0);
+
+  // Refusals name what is wrong.
+  EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 0, 2, &info, &field, nullptr, 0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("layer = 2"), std::string::npos) << error();
+  EXPECT_NE(error().find("has 2"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 2, 0, &info, &field, nullptr, 0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("layer = 0"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 0, -1, &info, &field, nullptr, 0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 3, 0, &info, &field, nullptr, 0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("ship = 3"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 0, 0, nullptr, &field, nullptr, 0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("info"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 0, 0, &info, nullptr, nullptr, 0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("field"), std::string::npos) << error();
+  info.struct_size = 4;
+  EXPECT_EQ(nearshore_fleet_wave_layer(fleet, 0, 0, &info, &field, nullptr, 0), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("nearshore_wave_layer.struct_size"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_wave_layer_count(fleet, 0, nullptr), NEARSHORE_INVALID_ARGUMENT);
+  EXPECT_NE(error().find("count"), std::string::npos) << error();
+  EXPECT_EQ(nearshore_fleet_wave_layer_count(nullptr, 0, &counts[0]), NEARSHORE_INVALID_ARGUMENT);
+  nearshore_fleet_destroy(fleet);
+  nearshore_sea_close(sea);
+}
+
 // The basin's land (x > 128 m, 2 m high) rises from 10 m of water in one cell: a quay face. Since
 // API version 5 it stops the hull sideways (before, the hull ran on until its keel met the bed's
 // interpolated slope and grounded): the ship strikes it, stays there with its engine pushing, and

@@ -3,7 +3,7 @@
 
 The examples are fragments a host pastes into its own frame loop, so each ```c block becomes the
 body of a function whose parameters are the host's handles the block uses without declaring
-(sea, renderer, camera, width_px, height_px, dt), compiled with -Wall -Werror as C11.
+(sea, renderer, camera, width_px, height_px, dt, fleet), compiled with -Wall -Werror as C11.
 Usage: compile_c_examples.py <c compiler> <repository root> <work folder>
 """
 import re
@@ -19,6 +19,7 @@ HOST_VARIABLES = {
     "width_px": "int",
     "height_px": "int",
     "dt": "double",
+    "fleet": "nearshore_fleet*",
 }
 
 
