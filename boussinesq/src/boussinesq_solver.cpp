@@ -200,9 +200,10 @@ void BoussinesqSolver::Implementation::step() {
   const float* fade_natural = nonlinear ? (fade_nonlinear ? breaking_output.values().data() : breaking_strength_t.data()) : nullptr;
   mark_dispersive(frame_x, eta_t.data(), dispersive_t.data());
   mark_dispersive(frame_y, eta.data(), dispersive.data());
-  // The fully nonlinear terms' subcritical factors of this step, from the state at t^n (eta_next as scratch)
-  // and the masks of this step.
-  if (nonlinear) nonlinear->update_subcritical(eta.data(), flux_x.data(), flux_y.data(), dispersive.data(), eta_next.data());
+  // The fully nonlinear terms' subcritical factors of this step, from the state at t^n and the masks
+  // of this step (eta_next and eta_base as scratch: the sweeps write both before reading them).
+  if (nonlinear)
+    nonlinear->update_subcritical(eta.data(), flux_x.data(), flux_y.data(), dispersive.data(), eta_next.data(), eta_base.data());
 
   // The normal flux's first guess: last step's increment on pass 0 (the state array itself), this
   // step's previous pass afterwards. The sweep takes the flux at t^{n+1/2} as old + guess / 2.
@@ -254,7 +255,9 @@ void BoussinesqSolver::Implementation::step() {
     const double* partner = eta_base.data();
     bool extrapolates = false;
     if (first) {
-      explicit_base(eta_t.data(), eta_base.data(), true);
+      // E depends on the state at t^n alone: the same on every pass. With x first no sweep between
+      // two passes writes eta_base (the y sweep's E is eta*), so later passes keep the first's.
+      if (pass == 0) explicit_base(eta_t.data(), eta_base.data(), true);
       if (pass == 0) {
         partner = eta_previous_t.data();
         extrapolates = true;

@@ -1,7 +1,11 @@
 // The explicit remainder of the fully nonlinear dispersive terms (nonlinear_dispersion.hpp; docs/solver.md
-// "Fully nonlinear dispersion"). Four passes over the grid, each element-wise (the result does not
-// depend on the thread count): kinematics per cell, Gamma per cell, the shallow-water residual's
-// divergence per cell, the remainder per face with its extrapolation to the next step.
+// "Fully nonlinear dispersion"). Five passes over the grid, each element-wise (the result does not
+// depend on the thread count): eta and h at t^{n+1/2} per cell, kinematics per cell, Gamma per cell,
+// the shallow-water residual's divergence per cell, the remainder on the x and y faces together
+// (one pass over the rows) with its extrapolation to the next step. A value two rows share (a y
+// face's velocity, Q^2/h of a cell, PQ/h of a corner, a cell's stencil mask) is computed once per
+// chunk of rows and handed to the next row, by the same expression: the same bits as computing it
+// for each row (issue 43: the remainder was 21 % of a default step).
 //
 // Each cell quantity comes twice: "for x" leaves out what the x sweep holds implicitly (the rate of
 // the x-face fluxes P_t), "for y" what the y sweep holds (Q_t); the x faces take the first, the y
@@ -67,7 +71,7 @@ __attribute__((always_inline)) inline Neighbours neighbours(bool mirror_walls, c
 }  // namespace
 
 void NonlinearDispersion::update_subcritical(const double* eta, const double* flux_x, const double* flux_y,
-                                             const unsigned char* dispersive, double* scratch) {
+                                             const unsigned char* dispersive, double* scratch, double* scratch_around) {
   const int nx = grid_.nx, ny = grid_.ny;
   const double dry = grid_.dry_depth_m;
   auto cell = [nx](int c, int r) { return static_cast<std::size_t>(r) * nx + c; };
@@ -85,21 +89,25 @@ void NonlinearDispersion::update_subcritical(const double* eta, const double* fl
       scratch[i] = weight;
     }
   });
-  // A face: the least over its two cells and their neighbours (beyond the grid edge or a wall, the
-  // cell itself).
-  auto around = [&](int c, int r) {
-    const Neighbours n = neighbours(grid_.mirror_walls, dispersive, nx, ny, c, r);
-    return std::min({scratch[cell(c, r)], scratch[cell(n.west, r)], scratch[cell(n.east, r)], scratch[cell(c, n.south)],
-                     scratch[cell(c, n.north)]});
-  };
+  // The least over each cell and its neighbours (beyond the grid edge or a wall, the cell itself),
+  // once per cell: each serves the four faces around the cell.
+  tbb::parallel_for(0, ny, [&](int r) {
+    for (int c = 0; c < nx; ++c) {
+      const Neighbours n = neighbours(grid_.mirror_walls, dispersive, nx, ny, c, r);
+      scratch_around[cell(c, r)] = std::min({scratch[cell(c, r)], scratch[cell(n.west, r)], scratch[cell(n.east, r)],
+                                             scratch[cell(c, n.south)], scratch[cell(c, n.north)]});
+    }
+  });
+  // A face: the least over its two cells' values.
+  const double* around = scratch_around;
   tbb::parallel_for(0, ny, [&](int r) {
     for (int f = 0; f <= nx; ++f)
       subcritical_x_[static_cast<std::size_t>(f) * ny + r] =
-          f == 0 || f == nx ? 0.0f : static_cast<float>(std::min(around(f - 1, r), around(f, r)));
+          f == 0 || f == nx ? 0.0f : static_cast<float>(std::min(around[cell(f - 1, r)], around[cell(f, r)]));
   });
   tbb::parallel_for(0, ny + 1, [&](int k) {
     for (int c = 0; c < nx; ++c)
-      subcritical_y_[cell(c, k)] = k == 0 || k == ny ? 0.0f : static_cast<float>(std::min(around(c, k - 1), around(c, k)));
+      subcritical_y_[cell(c, k)] = k == 0 || k == ny ? 0.0f : static_cast<float>(std::min(around[cell(c, k - 1)], around[cell(c, k)]));
   });
 }
 
@@ -123,12 +131,15 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   // The still-water and total depth of the face between cells a and b (the sweep's definitions).
   auto face_still = [&](std::size_t a, std::size_t b) { return 0.5 * (static_cast<double>(depth[a]) + static_cast<double>(depth[b])); };
   auto face_total = [&](std::size_t a, std::size_t b) { return std::max(face_still(a, b) + 0.5 * (eta[a] + eta[b]), dry); };
-  // Rows go in chunks with their own row buffers (face values computed once per row).
+  // Rows go in chunks with their own row buffers (face values computed once per row). body(r, first,
+  // buffers): `first` when r opens its chunk; a row after it finds in the buffers what the row before
+  // left there (the values of the faces and cells the two rows share, computed once, by the same
+  // expression as for the first row: the same bits).
   auto for_rows = [&](const auto& body) {
     tbb::parallel_for(tbb::blocked_range<int>(0, ny, 8), [&](const tbb::blocked_range<int>& rows) {
       std::vector<double> buffers[8];
       for (auto& buffer : buffers) buffer.resize(nx + 1);
-      for (int r = rows.begin(); r < rows.end(); ++r) body(r, buffers);
+      for (int r = rows.begin(); r < rows.end(); ++r) body(r, r == rows.begin(), buffers);
     });
   };
 
@@ -142,7 +153,7 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
   // 1. Per cell: div u, the cell velocities, and the part of div u_t - (div u)^2 without the flux
   // rates (the sweeps hold those: along their lines implicitly, across them with the seed's across
   // estimates): u_t = (P_t - u h_t)/h leaves -u h_t / h. Walls (the grid edges) carry nothing.
-  for_rows([&](int r, std::vector<double>* b) {
+  for_rows([&](int r, bool first_row, std::vector<double>* b) {
     std::vector<double>&u = b[0], &u_rate = b[1], &v_south = b[2], &v_rate_south = b[3], &v_north = b[4], &v_rate_north = b[5];
     auto face = [&](std::size_t a, std::size_t c, double flux, double& velocity, double& rate) {
       const double inv_h = 1.0 / face_total(a, c);
@@ -151,9 +162,18 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     };
     u[0] = u_rate[0] = u[nx] = u_rate[nx] = 0.0;
     for (int f = 1; f < nx; ++f) face(cell(f - 1, r), cell(f, r), flux_x(f, r), u[f], u_rate[f]);
+    // The y faces south of the row are the ones north of the row before (its buffers, swapped in).
+    if (first_row)
+      for (int c = 0; c < nx; ++c) {
+        v_south[c] = v_rate_south[c] = 0.0;
+        if (r > 0) face(cell(c, r - 1), cell(c, r), flux_y(c, r), v_south[c], v_rate_south[c]);
+      }
+    else {
+      v_south.swap(v_north);
+      v_rate_south.swap(v_rate_north);
+    }
     for (int c = 0; c < nx; ++c) {
-      v_south[c] = v_rate_south[c] = v_north[c] = v_rate_north[c] = 0.0;
-      if (r > 0) face(cell(c, r - 1), cell(c, r), flux_y(c, r), v_south[c], v_rate_south[c]);
+      v_north[c] = v_rate_north[c] = 0.0;
       if (r + 1 < ny) face(cell(c, r), cell(c, r + 1), flux_y(c, r + 1), v_north[c], v_rate_north[c]);
     }
     for (int c = 0; c < nx; ++c) {
@@ -194,22 +214,31 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     const double P = 0.5 * (flux_x(f, k - 1) + flux_x(f, k)), Q = 0.5 * (flux_y(f - 1, k) + flux_y(f, k));
     return 4.0 * P * Q / (h[cell(f - 1, k - 1)] + h[cell(f, k - 1)] + h[cell(f - 1, k)] + h[cell(f, k)]);
   };
-  for_rows([&](int r, std::vector<double>* b) {
+  for_rows([&](int r, bool first_row, std::vector<double>* b) {
     // Row buffers: P^2/h of this row's cells, Q^2/h of the rows below, here and above, the corners
-    // south (k = r) and north (k = r + 1) of the row, S and S_linear on the row's x faces.
+    // south (k = r) and north (k = r + 1) of the row, S and S_linear on the row's x faces. After the
+    // first row of a chunk, the row before's Q^2/h here and above and its north corners are this
+    // row's below and here and its south corners (rotated, not recomputed).
     std::vector<double>&along = b[0], &along_south = b[1], &along_here = b[2], &along_north = b[3], &corner_south = b[4],
                         &corner_north = b[5], &residual = b[6], &residual_linear = b[7];
-    for (int c = 0; c < nx; ++c) {
-      along[c] = along_x(c, r);
-      along_here[c] = along_y(c, r);
-      along_south[c] = r > 0 ? along_y(c, r - 1) : 0.0;
-      along_north[c] = r + 1 < ny ? along_y(c, r + 1) : 0.0;
+    for (int c = 0; c < nx; ++c) along[c] = along_x(c, r);
+    if (first_row) {
+      for (int c = 0; c < nx; ++c) {
+        along_here[c] = along_y(c, r);
+        along_south[c] = r > 0 ? along_y(c, r - 1) : 0.0;
+      }
+      for (int f = 0; f <= nx; ++f) corner_south[f] = 0.0;
+      if (r > 0)
+        for (int f = 1; f < nx; ++f) corner_south[f] = corner(f, r);
+    } else {
+      along_south.swap(along_here);  // along_south = the row before's here
+      along_here.swap(along_north);  // along_here = the row before's north; along_north: free
+      corner_south.swap(corner_north);
     }
-    for (int f = 0; f <= nx; ++f) corner_south[f] = corner_north[f] = 0.0;
-    for (int f = 1; f < nx; ++f) {
-      if (r > 0) corner_south[f] = corner(f, r);
-      if (r + 1 < ny) corner_north[f] = corner(f, r + 1);
-    }
+    for (int c = 0; c < nx; ++c) along_north[c] = r + 1 < ny ? along_y(c, r + 1) : 0.0;
+    for (int f = 0; f <= nx; ++f) corner_north[f] = 0.0;
+    if (r + 1 < ny)
+      for (int f = 1; f < nx; ++f) corner_north[f] = corner(f, r + 1);
     residual[0] = residual[nx] = residual_linear[0] = residual_linear[nx] = 0.0;  // the walls: nothing
     const unsigned char* mask = s.dispersive;
     const bool mirror_walls = grid_.mirror_walls;
@@ -269,22 +298,35 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     force[i] = static_cast<float>(first ? now : 2.0 * now - static_cast<double>(last[i]));
     last[i] = static_cast<float>(now);
   };
-  tbb::parallel_for(0, ny, [&](int r) {
-    for (int f = 0; f <= nx; ++f) {
-      double now = 0.0;
-      if (f > 0 && f < nx)
-        now = remainder(cell(f - 1, r), cell(f, r), inv_dx, grid_.face_weight_x[face_x(f, r)], wide_mask(f - 1, r) & wide_mask(f, r),
-                        subcritical_x_[face_x(f, r)]);
-      advance(face_x(f, r), now, force_x_, last_x_);
-    }
-  });
-  tbb::parallel_for(0, ny + 1, [&](int k) {
-    for (int c = 0; c < nx; ++c) {
-      double now = 0.0;
-      if (k > 0 && k < ny)
-        now = remainder(cell(c, k - 1), cell(c, k), inv_dy, grid_.face_weight_y[face_y(c, k)], wide_mask(c, k - 1) & wide_mask(c, k),
-                        subcritical_y_[face_y(c, k)]);
-      advance(face_y(c, k), now, force_y_, last_y_);
+  // One pass over the rows for both kinds of face: row r's x faces and the y faces south of it
+  // (k = r; the last chunk also takes k = ny), each cell's wide mask formed once per row (a chunk's
+  // later rows find the row before's in the other buffer).
+  tbb::parallel_for(tbb::blocked_range<int>(0, ny, 8), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<unsigned char> wide_here(nx), wide_before(nx);
+    for (int r = rows.begin(); r < rows.end(); ++r) {
+      if (r == rows.begin()) {
+        if (r > 0)
+          for (int c = 0; c < nx; ++c) wide_before[c] = static_cast<unsigned char>(wide_mask(c, r - 1));
+      } else {
+        wide_before.swap(wide_here);
+      }
+      for (int c = 0; c < nx; ++c) wide_here[c] = static_cast<unsigned char>(wide_mask(c, r));
+      for (int f = 0; f <= nx; ++f) {
+        double now = 0.0;
+        if (f > 0 && f < nx)
+          now = remainder(cell(f - 1, r), cell(f, r), inv_dx, grid_.face_weight_x[face_x(f, r)], wide_here[f - 1] & wide_here[f],
+                          subcritical_x_[face_x(f, r)]);
+        advance(face_x(f, r), now, force_x_, last_x_);
+      }
+      for (int c = 0; c < nx; ++c) {
+        double now = 0.0;
+        if (r > 0)
+          now = remainder(cell(c, r - 1), cell(c, r), inv_dy, grid_.face_weight_y[face_y(c, r)], wide_before[c] & wide_here[c],
+                          subcritical_y_[face_y(c, r)]);
+        advance(face_y(c, r), now, force_y_, last_y_);
+      }
+      if (r + 1 == ny)
+        for (int c = 0; c < nx; ++c) advance(face_y(c, ny), 0.0, force_y_, last_y_);
     }
   });
   evaluations_ = std::min(evaluations_ + 1, 2);

@@ -104,9 +104,10 @@ class NonlinearDispersion {
   /// cell, and a face weight that flips with it switches the terms on amid cells where they are off,
   /// with differences taken across the switch. A wall beside a cell (`dispersive`, the solver's mask
   /// of this step: boussinesq_sweep.hpp, kMirror*) is read as the cell itself, as the grid's edges
-  /// are. `scratch`: nx * ny values.
+  /// are. `scratch`, `scratch_around`: nx * ny values each (the cells' own factors, and each cell's
+  /// least over itself and its neighbours).
   void update_subcritical(const double* eta, const double* flux_x, const double* flux_y, const unsigned char* dispersive,
-                          double* scratch);
+                          double* scratch, double* scratch_around);
   const float* subcritical_x() const { return subcritical_x_.data(); }
   const float* subcritical_y() const { return subcritical_y_.data(); }
 
