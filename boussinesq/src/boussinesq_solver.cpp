@@ -255,10 +255,10 @@ void BoussinesqSolver::Implementation::step() {
     const double* partner = eta_base.data();
     bool extrapolates = false;
     if (first) {
-      // E depends on the state at t^n alone: the same on every pass. With x first no sweep between
-      // two passes writes eta_base (the y sweep's E is eta*), so later passes keep the first's.
-      if (pass == 0) explicit_base(eta_t.data(), eta_base.data(), true);
       if (pass == 0) {
+        // E depends on the state at t^n alone: the same on every pass. With x first no sweep between
+        // two passes writes eta_base (the y sweep's E is eta*), so later passes keep the first's.
+        explicit_base(eta_t.data(), eta_base.data(), true);
         partner = eta_previous_t.data();
         extrapolates = true;
       } else {  // the previous pass's eta^{n+1}, transposed
