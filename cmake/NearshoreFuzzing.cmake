@@ -52,7 +52,7 @@ function(nearshore_add_libfuzzer)
       else()
         # A library source: one object per optimisation level for every fuzzer that links it
         # (the core's files, checksums and sequence readers were compiled up to five times). The
-        # flags only name include folders, so the first fuzzer's build it as well as any other's.
+        # flags only name include folders, so the first fuzzer's flags build it as well as any other's.
         set(object "${CMAKE_BINARY_DIR}/fuzz_objects/${stem}${optimisation}.o")
         set(owner "fuzz_object_${stem}${optimisation}")
         list(APPEND shared_objects "${owner}")
