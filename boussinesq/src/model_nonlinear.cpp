@@ -2,8 +2,13 @@
 // the second-order transfer function is in docs/validation.md ("Nonlinear checks").
 #include "nearshore/boussinesq/model_nonlinear.hpp"
 
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <mutex>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -23,22 +28,29 @@ double linear_phase_speed_squared(double k, double d, double B) {
   return g * d * (1.0 + B * kd2) / (1.0 + (B + 1.0 / 3.0) * kd2);
 }
 
+// cos and sin of 2 pi q / M, q = 0..M-1: every product m theta_j of the quadrature is one of these
+// (cos(m theta_j) = cos(2 pi ((m j) mod M) / M)), made once per steady wave, not once per derivative.
+struct QuadratureAngles {
+  explicit QuadratureAngles(int M) : cos_q(M), sin_q(M) {
+    for (int q = 0; q < M; ++q) {
+      cos_q[q] = std::cos(2.0 * std::numbers::pi * q / M);
+      sin_q[q] = std::sin(2.0 * std::numbers::pi * q / M);
+    }
+  }
+  std::vector<double> cos_q, sin_q;
+};
+
 // d^order/dtheta^order of a 2 pi-periodic function given by its samples at theta_j = 2 pi j / M, by
 // the discrete Fourier series (exact for trigonometric polynomials of degree < M/2; the quadrature
 // of boussinesq_steady_wave has 8 points per retained harmonic, so the products stay resolved).
-std::vector<double> periodic_derivative(const std::vector<double>& samples, int order) {
+std::vector<double> periodic_derivative(const std::vector<double>& samples, int order, const QuadratureAngles& angles) {
   const int M = static_cast<int>(samples.size());
-  // cos(m theta_j) = cos(2 pi ((m j) mod M) / M): M angles serve all M^2 products.
-  std::vector<double> cos_q(M), sin_q(M);
-  for (int q = 0; q < M; ++q) {
-    cos_q[q] = std::cos(2.0 * std::numbers::pi * q / M);
-    sin_q[q] = std::sin(2.0 * std::numbers::pi * q / M);
-  }
+  const std::vector<double>&cos_q = angles.cos_q, &sin_q = angles.sin_q;
   std::vector<double> out(M, 0.0);
   for (int m = 1; m < M / 2; ++m) {
     double a = 0.0, b = 0.0;  // samples ~ a cos(m theta) + b sin(m theta)
-    for (int j = 0; j < M; ++j) {
-      const int q = (m * j) % M;
+    // q = (m j) mod M, stepped by m (0 < m < M): no integer division in the loop.
+    for (int j = 0, q = 0; j < M; ++j, q = q + m >= M ? q + m - M : q + m) {
       a += 2.0 / M * samples[j] * cos_q[q];
       b += 2.0 / M * samples[j] * sin_q[q];
     }
@@ -48,20 +60,18 @@ std::vector<double> periodic_derivative(const std::vector<double>& samples, int 
       a = a_next;
       b = b_next;
     }
-    for (int j = 0; j < M; ++j) {
-      const int q = (m * j) % M;
-      out[j] += a * cos_q[q] + b * sin_q[q];
-    }
+    for (int j = 0, q = 0; j < M; ++j, q = q + m >= M ? q + m - M : q + m) out[j] += a * cos_q[q] + b * sin_q[q];
   }
   return out;
 }
 
 // The momentum residual of Equations::kFullyNonlinear for a steady wave eta(theta), P = c eta,
 // theta = k x - w t (so d/dx = k d/dtheta, d/dt = -c k d/dtheta), at the M quadrature points.
-std::vector<double> fully_nonlinear_residual(const std::vector<double>& eta, double c, double k, double d, double B) {
+std::vector<double> fully_nonlinear_residual(const std::vector<double>& eta, double c, double k, double d, double B,
+                                             const QuadratureAngles& angles) {
   const std::size_t M = eta.size();
   auto dx = [&](const std::vector<double>& f) {
-    std::vector<double> out = periodic_derivative(f, 1);
+    std::vector<double> out = periodic_derivative(f, 1, angles);
     for (double& v : out) v *= k;
     return out;
   };
@@ -123,8 +133,11 @@ double stokes_frequency_increase(double a, double k, double d) {
   return ka * ka * ((9.0 - 10.0 * s * s + 9.0 * s4) / (16.0 * s4) - 1.0 / (2.0 * s * k * d));
 }
 
-SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, DispersionDepth depth_kind,
-                                  int harmonic_count, Equations equations) {
+namespace {
+
+// The Newton solve behind boussinesq_steady_wave (uncached).
+SteadyWave solve_steady_wave(double a, double k, double d, double B, DispersionDepth depth_kind, int harmonic_count,
+                             Equations equations) {
   const int N = std::max(2, harmonic_count), M = 8 * N;  // quadrature points: products de-aliased
   const double B3 = B + 1.0 / 3.0;
   // cos(n theta_j) and sin(n theta_j) once: Newton evaluates the residual (N + 1) times an
@@ -138,6 +151,7 @@ SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, Disper
     }
   auto cos_of = [&](int n, int j) { return cos_nj[static_cast<std::size_t>(n - 1) * M + j]; };
   auto sin_of = [&](int n, int j) { return sin_nj[static_cast<std::size_t>(n - 1) * M + j]; };
+  const QuadratureAngles angles(M);
   // Unknowns x = (c, a_2 .. a_N); residual R_m = projection of r(theta) on sin(m theta), m = 1..N
   // (r is odd in theta for a wave symmetric about its crest, so these are all its components).
   auto residual = [&](const Eigen::VectorXd& x, double a1) {
@@ -147,7 +161,7 @@ SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, Disper
       std::vector<double> eta(M, 0.0);
       for (int j = 0; j < M; ++j)
         for (int n = 1; n <= N; ++n) eta[j] += (n == 1 ? a1 : x[n - 1]) * cos_of(n, j);
-      const std::vector<double> r = fully_nonlinear_residual(eta, c, k, d, B);
+      const std::vector<double> r = fully_nonlinear_residual(eta, c, k, d, B, angles);
       for (int j = 0; j < M; ++j)
         for (int m = 1; m <= N; ++m) R[m - 1] += 2.0 / M * r[j] * sin_of(m, j) / k;
       return R;
@@ -198,6 +212,40 @@ SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, Disper
   wave.harmonics_m.assign(N, 0.0);
   wave.harmonics_m[0] = a;
   for (int n = 2; n <= N; ++n) wave.harmonics_m[n - 1] = x[n - 1];
+  return wave;
+}
+
+// The arguments of one solve, bit for bit (a cached wave is the wave those exact doubles give).
+struct SteadyWaveKey {
+  std::array<std::uint64_t, 4> values{};
+  int depth_kind = 0, harmonic_count = 0, equations = 0;
+  bool operator==(const SteadyWaveKey&) const = default;
+};
+
+}  // namespace
+
+SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, DispersionDepth depth_kind,
+                                  int harmonic_count, Equations equations) {
+  // One solve is 0.1-0.5 s of CPU (a few hundred residuals of 10 spectral derivatives each), and a
+  // bake asks for the same waves again and again: the wave maker's height iteration (WaveMaker::
+  // second_order) each time a source is made, reading the case, the structure flume's runs, every
+  // state of a library at the same depth. A pure function of its arguments, so a process-wide memo
+  // of the last solves returns exactly what a new solve would (failures are not kept: they throw).
+  const SteadyWaveKey key{{std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(k),
+                           std::bit_cast<std::uint64_t>(d), std::bit_cast<std::uint64_t>(B)},
+                          static_cast<int>(depth_kind), harmonic_count, static_cast<int>(equations)};
+  constexpr std::size_t kKept = 256;
+  static std::mutex mutex;
+  static std::vector<std::pair<SteadyWaveKey, SteadyWave>> solved;  // oldest first
+  {
+    const std::lock_guard lock(mutex);
+    for (const auto& [known, wave] : solved)
+      if (known == key) return wave;
+  }
+  SteadyWave wave = solve_steady_wave(a, k, d, B, depth_kind, harmonic_count, equations);
+  const std::lock_guard lock(mutex);
+  if (solved.size() == kKept) solved.erase(solved.begin());
+  solved.emplace_back(key, wave);
   return wave;
 }
 

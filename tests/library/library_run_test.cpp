@@ -302,7 +302,10 @@ TEST_F(LibraryRun, KillOfTheWholeJobThenRerunFinishesWithoutBakingFinishedStates
   if (!mpi_built()) GTEST_SKIP() << "this build has no MPI (nearshore_library_mpi was not built)";
   const fs::path folder = root_ / "mpi", pause = root_ / "pause";
   // Rank 1 stops as it takes up its second state; then kill -9 of mpirun and every rank at once.
-  const pid_t job = start(library_, folder, 2, "pause-at-start:1:2:" + pause.string());
+  // Rank 0 waits at its own second state, so rank 1 always gets a second one (as in the test above:
+  // with states of a fraction of a second, rank 0 could otherwise bake the other three first).
+  const pid_t job =
+      start(library_, folder, 2, "pause-at-start:1:2:" + pause.string() + ",pause-at-start:0:2:" + (root_ / "rank0_paused").string());
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!fs::exists(pause.string() + ".waiting") && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));

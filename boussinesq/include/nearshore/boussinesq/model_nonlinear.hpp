@@ -77,6 +77,8 @@ struct SteadyWave {
 /// momentum residual, Newton, continued in amplitude from the linear wave). This is the reference
 /// for the discrete solver's amplitude dispersion and bound harmonics at every order the equations
 /// carry. Throws nearshore::Error when Newton does not converge (a wave beyond the equations' reach).
+/// The last 256 solves are kept process-wide (thread-safe): the same arguments, bit for bit, return
+/// the same wave without solving again (a bake asks for its wave maker's wave many times).
 SteadyWave boussinesq_steady_wave(double amplitude_m, double wavenumber_rad_m, double depth_m,
                                   double dispersion_coefficient, DispersionDepth depth_kind, int harmonic_count = 8,
                                   Equations equations = Equations::kWeaklyNonlinear);
