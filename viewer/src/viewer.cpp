@@ -38,10 +38,6 @@
 namespace nearshore::viewer {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 const char* const kPlanNames[] = {"auto", "period", "loop", "random", "order"};
 
 runtime::PlanKind plan_kind_of(const std::string& name) {
@@ -422,7 +418,7 @@ ViewerRun run_viewer(const ViewerOptions& o) {
     renderer.render(sea.snapshot(), control.camera, lighting, window.framebuffer_width_px(),
                     window.framebuffer_height_px(), draw_options, ships ? &ships->layers() : nullptr);
     renderer.blit_to_window(window.framebuffer_width_px(), window.framebuffer_height_px());
-    const double main_ms = 1e3 * seconds_since(main_start);
+    const double main_ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - main_start).count();
     main_ms_sum += main_ms;
     if (panel) show_panel(*panel, model, o, dt_s, main_ms, display_time_s, ships.get(), frame, plan, sea, renderer, lighting, control);
     ++frames_drawn;
