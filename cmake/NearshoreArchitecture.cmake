@@ -11,6 +11,9 @@
 #   ships -> runtime, ocean (CPU only: hulls, rigid bodies, bow-wave grids on the runtime's queries);
 #   ships_mesh (hull files, assimp) -> ships; ships_scenario (TOML) -> ships, ships_mesh;
 #   ships_layers (a fleet as the renderer's SurfaceLayers) -> ships, playback.
+#   viewer (the application behind `nearshore play`: window, panel, ships on the shown sea) ->
+#   playback, runtime, ships, ships_scenario, ships_layers and what they stand on; never the bake
+#   side (bathymetry, bake, boussinesq, loops, plot, library, export): positions through core.
 #   export (sequence -> NetCDF, GeoTIFF, EXR, VDB files) -> sequence, plot (the GeoTIFF's Hs map).
 #   library (the sea-state library) -> bake, loops, sequence, export (berth agitation for the
 #   operability of a library), plot (its bar chart); library_mpi -> library (built only
@@ -36,6 +39,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_ships_scenario:nearshore_ships,nearshore_ships_mesh,nearshore_core"
   "nearshore_ships_layers:nearshore_ships,nearshore_playback,nearshore_core"
   "nearshore_playback:nearshore_runtime,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad"
+  "nearshore_viewer:nearshore_playback,nearshore_runtime,nearshore_ships,nearshore_ships_scenario,nearshore_ships_layers,nearshore_sequence,nearshore_ocean,nearshore_core"
   "nearshore_library:nearshore_bake,nearshore_loops,nearshore_export,nearshore_plot,nearshore_sequence,nearshore_core"
   "nearshore_library_mpi?:nearshore_library,nearshore_core"
   "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core"

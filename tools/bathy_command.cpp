@@ -10,9 +10,9 @@
 #include <fmt/core.h>
 
 #include "command_support.hpp"
-#include "nearshore/bathymetry/geo_position.hpp"
 #include "nearshore/bathymetry/harbour_builder.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/geo_position.hpp"
 #include "nearshore/core/progress.hpp"
 
 namespace nearshore::tools {
@@ -186,16 +186,16 @@ void add_bathy_command(CLI::App& app) {
     request.fill_uncovered_from_nearest = options->fill_uncovered;
     if (options->json) ProgressBar::set_quiet(true);
     const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
-    // Marks are placed through the one position parser (bathymetry/geo_position.hpp), as the bake
+    // Marks are placed through the one position parser (core/geo_position.hpp), as the bake
     // places a case's gauges, so the preview shows where the bake will put them.
     std::vector<bathymetry::PreviewMark> marks;
     for (const std::string& text : options->marks) {
       const auto colon = text.find(':');
       if (colon == std::string::npos || colon == 0)
         throw Error("--mark " + text, "has no name", "write NAME:POSITION, e.g. thea_foss:lat=47.2620,lon=-122.4383");
-      const bathymetry::GeoPosition position = bathymetry::parse_geo_position(text.substr(colon + 1), "--mark " + text);
+      const GeoPosition position = parse_geo_position(text.substr(colon + 1), "--mark " + text);
       marks.push_back({text.substr(0, colon),
-                       bathymetry::place_in_grid(position, result.grid.geometry, "--mark " + text, "the mark")});
+                       place_in_grid(position, result.grid.geometry, "--mark " + text, "the mark")});
     }
     const nlohmann::json summary = bathymetry::write_bathymetry_outputs(options->output, result, options->band_m, marks);
     if (summary.contains("marks"))

@@ -136,8 +136,7 @@ void add_bench_library(CLI::App& bench) {
     const char* mpi_note = "this nearshore was built without MPI: only the serial run was measured\n";
 #endif
 
-    std::string load;
-    std::getline(std::ifstream("/proc/loadavg"), load);
+    const std::string load = proc_loadavg_line();
     const double serial_rate = runs.front().summary["states_per_hour"].get<double>();
     if (options->json) {
       nlohmann::json rows = nlohmann::json::array();

@@ -38,12 +38,6 @@ namespace nearshore::tools {
 namespace {
 namespace fs = std::filesystem;
 
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
 std::string load_average() {
   double one = 0, five = 0, fifteen = 0;
   if (FILE* f = std::fopen("/proc/loadavg", "r")) {
@@ -53,7 +47,7 @@ std::string load_average() {
   return fmt::format("{:.2f} {:.2f} {:.2f}", one, five, fifteen);
 }
 
-struct Options {
+struct PlayBenchOptions {
   fs::path sequence, work = "nearshore-bench-play";
   int size = 1024, frames = 40;
   double seconds = 20.0, screen_error_px = 4.0;
@@ -62,7 +56,7 @@ struct Options {
   bool json = false;
 };
 
-fs::path synthetic_sequence(const Options& o) {
+fs::path synthetic_sequence(const PlayBenchOptions& o) {
   const fs::path folder = o.work / fmt::format("sea_{}", o.size);
   if (fs::exists(folder / "manifest.json")) return folder;
   fs::remove_all(folder);
@@ -115,7 +109,7 @@ FrameCost measure_frames(playback::WaterRenderer& renderer, const runtime::Surfa
   return cost;
 }
 
-void bench_play(const Options& o) {
+void bench_play(const PlayBenchOptions& o) {
   ProgressBar::set_quiet(true);
   const fs::path folder = o.sequence.empty() ? synthetic_sequence(o) : o.sequence;
   nlohmann::json report = {{"sequence", folder.string()}, {"load_average_before", load_average()}};
@@ -310,7 +304,7 @@ void bench_play(const Options& o) {
 }  // namespace
 
 void add_bench_play(CLI::App& bench) {
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<PlayBenchOptions>();
   CLI::App* command = bench.add_subcommand("play", "Runtime cost: main-thread CPU per frame, decode, uploads, CPU queries, grids, GPU ms per pass");
   command->add_option("sequence", o->sequence, "Baked sequence (default: a synthetic --size x --size one in --work)");
   command->add_option("--size", o->size, "Grid side of the synthetic sequence (cells)")->capture_default_str()

@@ -45,18 +45,6 @@
 namespace nearshore::tools {
 namespace {
 
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-std::string load_average() {
-  std::string line;
-  std::getline(std::ifstream("/proc/loadavg"), line);
-  return line;
-}
-
 // Median and fastest of `repeats` timings (ms). On a shared machine the CPU time of a thread also
 // counts what a sibling hyperthread or the host takes from it, so the median is what a loaded
 // frame costs and the fastest repeat is close to the uncontended cost; both are reported.
@@ -76,7 +64,7 @@ Timing time_ms(int repeats, F&& f) {
   return {ms[ms.size() / 2], *std::min_element(ms.begin(), ms.end())};
 }
 
-struct Options {
+struct ShipsBenchOptions {
   int points = 1000, grid = 256, repeats = 200, beaufort = 5, fleet = 8;
   bool json = false;
   bool dispersive_wake = false;
@@ -85,7 +73,7 @@ struct Options {
 }  // namespace
 
 void add_bench_ships(CLI::App& bench) {
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<ShipsBenchOptions>();
   CLI::App* command = bench.add_subcommand("ships", "Per-ship cost of the rigid body and of a bow-wave step, one core");
   command->add_option("--points", o->points, "Hull feature points of the rigid body")->check(number_in(at_least(16), at_most(1e6)));
   command->add_option("--grid", o->grid, "Cells per side of the shallow-water grid")->check(number_in(at_least(16), at_most(2048)));
@@ -201,7 +189,7 @@ void add_bench_ships(CLI::App& bench) {
       for (int k = 0; k < 30; ++k) fleet.step(&water, frame_s);  // the bow waves' start-up
       fleet_frame = time_ms(swe_repeats, [&] { fleet.step(&water, frame_s); });
     }
-    const std::string load = load_average();
+    const std::string load = proc_loadavg_line();
 
     if (o->json) {
       nlohmann::json j = {{"hull_points", point_count},

@@ -51,6 +51,13 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// CPU seconds of the calling thread (CLOCK_THREAD_CPUTIME_ID): the timer of the per-frame benchmarks,
+/// which wall time on a shared machine would blur.
+double thread_cpu_s();
+
+/// The first line of /proc/loadavg as it stands ("1.02 0.87 0.66 2/345 6789"), for a benchmark's report.
+std::string proc_loadavg_line();
+
 /// The example line shown at the end of a subcommand's --help.
 void set_example(CLI::App& command, const std::string& example);
 

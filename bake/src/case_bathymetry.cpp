@@ -12,9 +12,9 @@
 
 #include <fmt/core.h>
 
-#include "nearshore/bathymetry/geo_position.hpp"
 #include "nearshore/bathymetry/local_grid.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/geo_position.hpp"
 #include "case_reader.hpp"
 
 namespace nearshore::bake::detail {
@@ -219,13 +219,13 @@ static HarbourGrid read_grid_at_datum(TableReader& bathymetry, std::size_t kind,
 ProjectedPoint read_case_position(TableReader& table, const HarbourGrid& grid, const std::string& entry,
                                   std::vector<std::string>& warnings) {
   // Every position key present, read as a number through the table (so it counts as known); the
-  // pairing rules and the frames are bathymetry/geo_position.hpp's, the one parser of positions.
+  // pairing rules and the frames are core/geo_position.hpp's, the one parser of positions.
   // Metres from the south-west corner are bounded by the grid here, so such an error names the key
   // (`gauges[0].x_m` = 50 is out of range) as it always has; the other frames are bounded by
   // place_in_grid, which names the grid's extent in lat/lon.
   const GridGeometry& g = grid.geometry;
   std::map<std::string, double> keys;
-  for (const auto& [first, second] : nearshore::bathymetry::geo_position_keys())
+  for (const auto& [first, second] : nearshore::geo_position_keys())
     for (const std::string& key : {first, second}) {
       if (!table.has(key)) continue;
       if (key == "x_m" || key == "y_m")
@@ -235,19 +235,19 @@ ProjectedPoint read_case_position(TableReader& table, const HarbourGrid& grid, c
         keys[key] = table.number(key, std::nullopt, -std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity(), false, "a coordinate (docs/commands/bake.md, \"Positions\")");
     }
-  const nearshore::bathymetry::GeoPosition position =
-      nearshore::bathymetry::geo_position_from_keys(keys, table.subject(), entry);
+  const nearshore::GeoPosition position =
+      nearshore::geo_position_from_keys(keys, table.subject(), entry);
   ProjectedPoint point;
   try {
-    point = nearshore::bathymetry::place_in_grid(position, grid.geometry, table.subject(), entry);
+    point = nearshore::place_in_grid(position, grid.geometry, table.subject(), entry);
   } catch (const Error& error) {
     if (error.subject() == table.subject()) throw;  // already names the case file and the entry
     // The projection's own failure (lat 0, lon 0 for a grid in zone 10N): named by its entry.
     throw Error(table.subject(),
                 fmt::format("{} lies where the grid's projection cannot reach: {} ({})", entry, error.problem(), error.subject()),
-                "give a position inside the grid, which covers " + nearshore::bathymetry::describe_grid_extent(grid.geometry));
+                "give a position inside the grid, which covers " + nearshore::describe_grid_extent(grid.geometry));
   }
-  if (auto warning = nearshore::bathymetry::land_warning(grid, point, table.subject(), entry)) warnings.push_back(*warning);
+  if (auto warning = nearshore::land_warning(grid, point, table.subject(), entry)) warnings.push_back(*warning);
   return point;
 }
 

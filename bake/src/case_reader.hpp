@@ -263,7 +263,7 @@ double deepest_still_water_m(const HarbourGrid& grid);
 HarbourGrid read_bathymetry(TableReader& bathymetry, const fs::path& base, const CaseReadOptions& options);
 /// [[porous_blocks]]: rectangles of porous structure (rubble mounds) or walls over any bathymetry.
 void apply_porous_blocks(std::vector<TableReader> blocks, HarbourGrid& grid);
-/// A position given in `table` by one pair of bathymetry::geo_position_keys() (x_m/y_m from the
+/// A position given in `table` by one pair of geo_position_keys() (x_m/y_m from the
 /// south-west corner, easting_m/northing_m in the grid's CRS, or lat/lon; case_bathymetry.cpp): the
 /// point in the solver's frame (GridGeometry origin included). Outside the grid it fails naming
 /// `entry` and the grid's extent; on land or outside the chart it appends a warning naming `entry`

@@ -272,7 +272,7 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   const std::string where = kind == MakerKind::kSolitary ? "crest_position_m" : "source_line_m";
   // Case positions are metres from the grid's south-west corner; the solver's frame includes the origin.
   // Or a point the source line passes through, [wave_maker.source_line] in any frame of
-  // bathymetry/geo_position.hpp (lat/lon, the grid's CRS): the line runs parallel to the `facing` side.
+  // core/geo_position.hpp (lat/lon, the grid's CRS): the line runs parallel to the `facing` side.
   double position_m = 0.0;
   if (kind != MakerKind::kSolitary && maker.has("source_line")) {
     if (maker.has("source_line_m"))

@@ -1,5 +1,4 @@
 #include "nearshore/bathymetry/harbour_builder.hpp"
-#include "nearshore/bathymetry/geo_position.hpp"
 
 #include <ogr_spatialref.h>
 
@@ -24,6 +23,7 @@
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/output_folder.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/geo_position.hpp"
 #include "nearshore/core/map_projection.hpp"
 #include "nearshore/plot/plot.hpp"
 #include "nearshore/core/progress.hpp"

@@ -1,5 +1,5 @@
 // Positions in the three frames a person gives them (issue 14 item 2), and cells outside a chart's
-// coverage kept as no data (item 3): bathymetry/geo_position.hpp and build_harbour_grid.
+// coverage kept as no data (item 3): core/geo_position.hpp and build_harbour_grid.
 #include <gtest/gtest.h>
 
 #include <gdal_priv.h>
@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "nearshore/bathymetry/demo_harbour.hpp"
-#include "nearshore/bathymetry/geo_position.hpp"
 #include "nearshore/bathymetry/harbour_builder.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/geo_position.hpp"
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/progress.hpp"
 #include "test_folder.hpp"
@@ -60,39 +60,39 @@ TEST(GeoPosition, TheThreeFramesPlaceTheSamePoint) {
   // A point 123.4 m east and 234.5 m north of the south-west corner, given three ways.
   const ProjectedPoint expected{g.origin_x_m + 123.4, g.origin_y_m + 234.5};
   const LonLat place = MapProjection::utm(10, true).reverse(expected);
-  const nb::GeoPosition metres = nb::geo_position_from_keys({{"x_m", 123.4}, {"y_m", 234.5}}, "case.toml", "gauges[0]");
-  const nb::GeoPosition crs =
-      nb::geo_position_from_keys({{"easting_m", expected.x_m}, {"northing_m", expected.y_m}}, "case.toml", "gauges[0]");
-  const nb::GeoPosition lat_lon =
-      nb::geo_position_from_keys({{"lat", place.latitude_deg}, {"lon", place.longitude_deg}}, "case.toml", "gauges[0]");
-  for (const nb::GeoPosition& position : {metres, crs, lat_lon}) {
-    const ProjectedPoint point = nb::place_in_grid(position, g, "case.toml", "gauges[0]");
+  const nearshore::GeoPosition metres = nearshore::geo_position_from_keys({{"x_m", 123.4}, {"y_m", 234.5}}, "case.toml", "gauges[0]");
+  const nearshore::GeoPosition crs =
+      nearshore::geo_position_from_keys({{"easting_m", expected.x_m}, {"northing_m", expected.y_m}}, "case.toml", "gauges[0]");
+  const nearshore::GeoPosition lat_lon =
+      nearshore::geo_position_from_keys({{"lat", place.latitude_deg}, {"lon", place.longitude_deg}}, "case.toml", "gauges[0]");
+  for (const nearshore::GeoPosition& position : {metres, crs, lat_lon}) {
+    const ProjectedPoint point = nearshore::place_in_grid(position, g, "case.toml", "gauges[0]");
     // GeographicLib's UTM round trip is exact to nanometres (Karney 2011); 1 mm leaves room for the
     // double printing of nothing here and is far below a cell.
     EXPECT_NEAR(point.x_m, expected.x_m, 1e-3);
     EXPECT_NEAR(point.y_m, expected.y_m, 1e-3);
   }
   // 0..360 longitudes (NOAA grids) are the same place.
-  const nb::GeoPosition wrapped =
-      nb::geo_position_from_keys({{"lat", place.latitude_deg}, {"lon", place.longitude_deg + 360.0}}, "case.toml", "gauges[0]");
-  EXPECT_NEAR(nb::place_in_grid(wrapped, g, "case.toml", "gauges[0]").x_m, expected.x_m, 1e-3);
+  const nearshore::GeoPosition wrapped =
+      nearshore::geo_position_from_keys({{"lat", place.latitude_deg}, {"lon", place.longitude_deg + 360.0}}, "case.toml", "gauges[0]");
+  EXPECT_NEAR(nearshore::place_in_grid(wrapped, g, "case.toml", "gauges[0]").x_m, expected.x_m, 1e-3);
 }
 
 TEST(GeoPosition, TextFormsAreTheSameParser) {
   std::map<std::string, double> extras;
-  const nb::GeoPosition plain = nb::parse_geo_position("800,300,30", "--eye", {"z_m"}, &extras);
-  EXPECT_EQ(plain.frame, nb::GeoPosition::Frame::kFromSouthWestCorner);
+  const nearshore::GeoPosition plain = nearshore::parse_geo_position("800,300,30", "--eye", {"z_m"}, &extras);
+  EXPECT_EQ(plain.frame, nearshore::GeoPosition::Frame::kFromSouthWestCorner);
   EXPECT_EQ(plain.first, 800.0);
   EXPECT_EQ(plain.second, 300.0);
   EXPECT_EQ(extras.at("z_m"), 30.0);
   extras.clear();
-  const nb::GeoPosition named = nb::parse_geo_position("lat=47.2706, lon=-122.4345, z_m=12", "--eye", {"z_m"}, &extras);
-  EXPECT_EQ(named.frame, nb::GeoPosition::Frame::kLatLon);
+  const nearshore::GeoPosition named = nearshore::parse_geo_position("lat=47.2706, lon=-122.4345, z_m=12", "--eye", {"z_m"}, &extras);
+  EXPECT_EQ(named.frame, nearshore::GeoPosition::Frame::kLatLon);
   EXPECT_DOUBLE_EQ(named.first, 47.2706);
   EXPECT_DOUBLE_EQ(named.second, -122.4345);
   EXPECT_EQ(extras.at("z_m"), 12.0);
-  const nb::GeoPosition crs = nb::parse_geo_position("easting_m=541200,northing_m=5236100", "--target");
-  EXPECT_EQ(crs.frame, nb::GeoPosition::Frame::kGridCrs);
+  const nearshore::GeoPosition crs = nearshore::parse_geo_position("easting_m=541200,northing_m=5236100", "--target");
+  EXPECT_EQ(crs.frame, nearshore::GeoPosition::Frame::kGridCrs);
   // Each malformed form is one message naming the flag and the forms it takes.
   for (const auto& [text, fragment] : std::vector<std::pair<std::string, std::string>>{
            {"lat=47.27", "gives lat without lon"},
@@ -101,7 +101,7 @@ TEST(GeoPosition, TextFormsAreTheSameParser) {
            {"north=3,east=4", "not a position key"},
            {"800", "one number"},
            {"800,abc", "is not a number"}}) {
-    const std::string message = message_of([&] { nb::parse_geo_position(text, "--target"); });
+    const std::string message = message_of([&] { nearshore::parse_geo_position(text, "--target"); });
     EXPECT_NE(message.find("--target"), std::string::npos) << message;
     EXPECT_NE(message.find(fragment), std::string::npos) << text << ": " << message;
   }
@@ -110,7 +110,7 @@ TEST(GeoPosition, TextFormsAreTheSameParser) {
 TEST(GeoPosition, OutsideTheGridNamesTheEntryAndTheExtentInLatLon) {
   const GridGeometry g = tacoma_geometry();
   const std::string message = message_of([&] {
-    nb::place_in_grid(nb::geo_position_from_keys({{"lat", 47.30}, {"lon", -122.52}}, "tacoma.toml", "gauge \"defiance\""), g,
+    nearshore::place_in_grid(nearshore::geo_position_from_keys({{"lat", 47.30}, {"lon", -122.52}}, "tacoma.toml", "gauge \"defiance\""), g,
                       "tacoma.toml", "gauge \"defiance\"");
   });
   EXPECT_NE(message.find("tacoma.toml"), std::string::npos) << message;
@@ -122,13 +122,13 @@ TEST(GeoPosition, OutsideTheGridNamesTheEntryAndTheExtentInLatLon) {
   EXPECT_NE(message.find("lat 47."), std::string::npos) << message;
   EXPECT_NE(message.find("lon -122."), std::string::npos) << message;
   // A camera may look in from beyond the grid.
-  EXPECT_NO_THROW(nb::place_in_grid(nb::geo_position_from_keys({{"lat", 47.30}, {"lon", -122.52}}, "--eye", "the camera"), g,
+  EXPECT_NO_THROW(nearshore::place_in_grid(nearshore::geo_position_from_keys({{"lat", 47.30}, {"lon", -122.52}}, "--eye", "the camera"), g,
                                     "--eye", "the camera", false));
   // lat/lon on a laboratory grid (no projection) is refused with the metres form as the fix.
   GridGeometry flume = g;
   flume.projection = nullptr;
   const std::string local = message_of([&] {
-    nb::place_in_grid(nb::geo_position_from_keys({{"lat", 47.2}, {"lon", -122.4}}, "flume.toml", "gauges[1]"), flume,
+    nearshore::place_in_grid(nearshore::geo_position_from_keys({{"lat", 47.2}, {"lon", -122.4}}, "flume.toml", "gauges[1]"), flume,
                       "flume.toml", "gauges[1]");
   });
   EXPECT_NE(local.find("no map projection"), std::string::npos) << local;
@@ -143,13 +143,13 @@ TEST(GeoPosition, LandAndNoDataCellsWarnWithTheirDepth) {
   const auto centre = [&](int column, int row) {
     return ProjectedPoint{grid.geometry.cell_centre_x_m(column), grid.geometry.cell_centre_y_m(row)};
   };
-  EXPECT_FALSE(nb::land_warning(grid, centre(5, 5), "case.toml", "gauge \"a\""));
-  const auto on_land = nb::land_warning(grid, centre(20, 10), "case.toml", "gauge \"quay\"");
+  EXPECT_FALSE(nearshore::land_warning(grid, centre(5, 5), "case.toml", "gauge \"a\""));
+  const auto on_land = nearshore::land_warning(grid, centre(20, 10), "case.toml", "gauge \"quay\"");
   ASSERT_TRUE(on_land);
   EXPECT_NE(on_land->find("gauge \"quay\""), std::string::npos) << *on_land;
   EXPECT_NE(on_land->find("lies on land"), std::string::npos) << *on_land;
   EXPECT_NE(on_land->find("3.50 m above still water"), std::string::npos) << *on_land;
-  const auto outside = nb::land_warning(grid, centre(0, 0), "case.toml", "gauge \"b\"");
+  const auto outside = nearshore::land_warning(grid, centre(0, 0), "case.toml", "gauge \"b\"");
   ASSERT_TRUE(outside);
   EXPECT_NE(outside->find("outside the chart's coverage"), std::string::npos) << *outside;
 }

@@ -2,7 +2,7 @@
 // FleetLayers: a ships::ShipFleet as the generic layers a playback::WaterRenderer draws
 // (playback/surface_layers.hpp, docs/ships.md "What a renderer needs"): each ship's bow wave as a
 // height patch added to the sea, its stern-wake decals as foam, its hull mesh at its pose. The one
-// place that turns ships into layers: the viewer (tools/viewer_ships.cpp) and the C API's renderer
+// place that turns ships into layers: the viewer (viewer/src/viewer_ships.cpp) and the C API's renderer
 // (nearshore_renderer_set_fleet) both use it.
 //
 // Library nearshore_ships_layers (ships/layers): links nearshore_ships and nearshore_playback, so

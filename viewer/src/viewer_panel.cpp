@@ -8,7 +8,7 @@
 
 #include "nearshore/core/error.hpp"
 
-namespace nearshore::tools {
+namespace nearshore::viewer {
 
 ViewerPanel::ViewerPanel(GLFWwindow* window) {
   IMGUI_CHECKVERSION();
@@ -119,4 +119,4 @@ bool ViewerPanel::draw(ViewerPanelModel& m) {
   return changed;
 }
 
-}  // namespace nearshore::tools
+}  // namespace nearshore::viewer

@@ -1,8 +1,10 @@
 #pragma once
 // GeoPosition: a place as a person gives it (issue 14 item 2), in one of three frames, and the one
-// road from it to the harbour grid. A case file's gauge or source line, and `nearshore play
-// --eye/--target`, all read their positions through parse_geo_position and place them with
-// place_in_grid, so the three accept the same forms and fail with the same messages:
+// road from it to the harbour grid. A case file's gauge or source line, `nearshore bathy --mark`
+// and the viewer's --eye/--target (viewer/) all read their positions through parse_geo_position and
+// place them with place_in_grid, so they accept the same forms and fail with the same messages. It
+// lives in core, beside the grid and the projection it stands on, because both sides use it: the
+// bake side (bathymetry/, bake/) and the runtime side (viewer/), which never links bathymetry.
 //   x_m, y_m                 metres from the grid's south-west corner (the bake's historic frame);
 //   easting_m, northing_m    the grid's own CRS (GridGeometry::crs_wkt: UTM eastings, or the local
 //                            transverse Mercator's), as a chart plotter or GIS shows them;
@@ -21,7 +23,7 @@
 #include "nearshore/core/harbour_grid.hpp"
 #include "nearshore/core/map_projection.hpp"
 
-namespace nearshore::bathymetry {
+namespace nearshore {
 
 struct GeoPosition {
   enum class Frame {
@@ -75,4 +77,4 @@ std::string describe_grid_extent(const GridGeometry& geometry);
 std::optional<std::string> land_warning(const HarbourGrid& grid, ProjectedPoint point, const std::string& subject,
                                         const std::string& entry);
 
-}  // namespace nearshore::bathymetry
+}  // namespace nearshore

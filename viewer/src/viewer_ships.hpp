@@ -15,7 +15,7 @@
 #include "nearshore/ships/ship_fleet.hpp"
 #include "viewer_panel.hpp"
 
-namespace nearshore::tools {
+namespace nearshore::viewer {
 
 class ViewerShips {
  public:
@@ -50,4 +50,4 @@ class ViewerShips {
   double last_step_ms_ = 0;
 };
 
-}  // namespace nearshore::tools
+}  // namespace nearshore::viewer

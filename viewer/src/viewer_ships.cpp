@@ -7,7 +7,7 @@
 
 #include "nearshore/ships/scenario.hpp"
 
-namespace nearshore::tools {
+namespace nearshore::viewer {
 
 ViewerShips::ViewerShips(const std::filesystem::path& scenario_toml, std::shared_ptr<const runtime::HarbourSite> site) {
   fleet_.set_site(std::move(site));
@@ -66,9 +66,9 @@ std::vector<ShipReadout> ViewerShips::readouts() const {
   return rows;
 }
 
-}  // namespace nearshore::tools
+}  // namespace nearshore::viewer
 
-namespace nearshore::tools {
+namespace nearshore::viewer {
 
 ships::WakeAngle ViewerShips::wake_angle(std::size_t i) const {
   const ships::Ship& ship = fleet_.ship(i);
@@ -83,4 +83,4 @@ ships::WakeAngle ViewerShips::wake_angle(std::size_t i) const {
   return ships::measure_wake_envelope_angle(*ship.bow_wave(), ship.body().state(), p.length_m, 1.0, 0.5 * p.beam_m);
 }
 
-}  // namespace nearshore::tools
+}  // namespace nearshore::viewer

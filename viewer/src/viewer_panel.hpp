@@ -3,22 +3,17 @@
 // OpenGL 3 backends) over the rendered sea. It shows what an operator watching a simulator needs
 // to trust the picture (frame rate, frame time, the streaming ring, underruns, held frames, the
 // loop step) and the controls of the issue (grid, plan, time scale, wind, jump to a position).
-// The panel knows nothing of the runtime: play_command.cpp fills ViewerPanelModel from the
-// engine's statistics and applies the controls it returns.
+// The panel knows nothing of the runtime: viewer.cpp fills ViewerPanelModel from the engine's
+// statistics and applies the controls it returns.
 #include <array>
 #include <string>
 #include <vector>
 
+#include "nearshore/viewer/ship_readout.hpp"
+
 struct GLFWwindow;
 
-namespace nearshore::tools {
-
-/// One row of the panel's ship table (`nearshore play --ships`, tools/viewer_ships.hpp).
-struct ShipReadout {
-  std::string name;
-  double x_m = 0, y_m = 0, speed_kn = 0, heading_deg = 0, engine_order = 0, rudder_deg = 0, heel_deg = 0;
-  bool aground = false, manual = false;  ///< manual: steered from the keyboard
-};
+namespace nearshore::viewer {
 
 struct ViewerPanelModel {
   // ---- shown ----
@@ -64,4 +59,4 @@ class ViewerPanel {
   bool wants_input() const;
 };
 
-}  // namespace nearshore::tools
+}  // namespace nearshore::viewer

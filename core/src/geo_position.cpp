@@ -1,4 +1,4 @@
-#include "nearshore/bathymetry/geo_position.hpp"
+#include "nearshore/core/geo_position.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "nearshore/core/error.hpp"
 
-namespace nearshore::bathymetry {
+namespace nearshore {
 namespace {
 
 std::string key_list() {
@@ -224,4 +224,4 @@ std::optional<std::string> land_warning(const HarbourGrid& grid, ProjectedPoint 
                      subject, entry, where, column, row, depth_m, -depth_m);
 }
 
-}  // namespace nearshore::bathymetry
+}  // namespace nearshore
