@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -297,13 +298,25 @@ py::dict analyse_loops(const fs::path& sequence_folder, double loop_s, std::vect
 
 PYBIND11_MODULE(_nearshore, m) {
   m.doc() = "nearshore's library calls for Python; use the package `nearshore` (docs/python.md)";
-  // Every library error keeps its message (the file or object at fault, the problem, the fix).
+  // Every library error keeps its message (the file or object at fault, the problem, the fix). The
+  // library names its options structs' fields; here they are the keyword arguments that set them,
+  // as tools/ puts its flags in their place (command_support.hpp naming_flags_in_errors).
   static py::exception<Error> error_type(m, "Error", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const Error& error) {
-      PyErr_SetString(error_type.ptr(), error.what());
+      static const std::pair<const char*, const char*> kKeywords[] = {
+          {"BakeOptions::resume", "resume=True"},
+          {"BakeOptions::overwrite", "overwrite=True"},
+          {"BakeOptions::allow_over_budget", "allow_over_budget=True"},
+          {"CaseReadOptions::allow_over_budget", "allow_over_budget=True"},
+          {"BakeOptions::output_folder", "output_folder"}};
+      std::string message = error.what();
+      for (const auto& [field, keyword] : kKeywords)
+        for (std::size_t at = message.find(field); at != std::string::npos; at = message.find(field, at))
+          message.replace(at, std::string_view(field).size(), keyword);
+      PyErr_SetString(error_type.ptr(), message.c_str());
     }
   });
 

@@ -80,14 +80,32 @@ def test_loop_plans_are_read_back(baked):
 
 def test_library_errors_carry_the_library_message(baked, tmp_path, case_file):
     folder, _, _ = baked
-    with pytest.raises(nearshore.Error, match="manifest.json"):
+    # The library's message, its option named as the keyword that sets it (BakeOptions::resume).
+    with pytest.raises(nearshore.Error, match=r"manifest.json: does not exist.*resume=True"):
         nearshore.Sequence(tmp_path)
     with pytest.raises(nearshore.Error, match="frame_000999.exr|999"):
         nearshore.Sequence(folder).frame(999)
     with pytest.raises(nearshore.Error, match="no_such_case.toml"):
         nearshore.bake(tmp_path / "no_such_case.toml", tmp_path / "out")
     # A complete sequence is not replaced without overwrite=True (the CLI's --overwrite).
-    with pytest.raises(nearshore.Error, match="overwrite"):
+    with pytest.raises(nearshore.Error, match="overwrite=True"):
         nearshore.bake(case_file, folder)
     with pytest.raises(nearshore.Error, match="not a frame channel"):
         nearshore.Sequence(folder).frame(0, channels=["height"])
+
+
+def test_bake_equals_the_command_line_bake(baked, case_file, tmp_path):
+    """nearshore.bake makes the calls `nearshore bake` makes: the same frames and gauge records."""
+    import json
+    import os
+    import subprocess
+    cli = os.environ.get("NEARSHORE_CLI")
+    if not cli or not os.path.exists(cli):
+        pytest.skip("NEARSHORE_CLI is not the built `nearshore` executable (ctest sets it)")
+    folder, _, _ = baked
+    subprocess.run([cli, "bake", str(case_file), "-o", str(tmp_path / "cli"), "--json"], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    ours = json.loads((folder / "manifest.json").read_text())
+    theirs = json.loads((tmp_path / "cli" / "manifest.json").read_text())
+    assert [f["checksum"] for f in ours["frames"]] == [f["checksum"] for f in theirs["frames"]]
+    assert (folder / "gauges.csv").read_bytes() == (tmp_path / "cli" / "gauges.csv").read_bytes()
