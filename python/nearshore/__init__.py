@@ -57,7 +57,12 @@ class Geometry:
 
 
 def _geometry(raw: dict) -> Geometry:
-    return Geometry(**raw)
+    """GridGeometry as core's to_json writes it (one "spacing_m" for square cells)."""
+    return Geometry(columns=raw["columns"], rows=raw["rows"],
+                    spacing_x_m=raw.get("spacing_x_m", raw.get("spacing_m")),
+                    spacing_y_m=raw.get("spacing_y_m", raw.get("spacing_m")),
+                    origin_x_m=raw["origin_x_m"], origin_y_m=raw["origin_y_m"],
+                    crs_wkt=raw["crs_wkt"], projection=raw["projection"])
 
 
 @dataclasses.dataclass(frozen=True)

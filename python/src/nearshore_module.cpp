@@ -64,18 +64,9 @@ py::object raster_view(const std::shared_ptr<Owner>& owner, const Raster<T>& ras
   return view_of(owner, raster.data(), raster.columns(), raster.rows());
 }
 
-py::dict geometry_of(const GridGeometry& geometry) {
-  py::dict out;
-  out["columns"] = geometry.columns;
-  out["rows"] = geometry.rows;
-  out["spacing_x_m"] = geometry.spacing_x_m();
-  out["spacing_y_m"] = geometry.spacing_y_m();
-  out["origin_x_m"] = geometry.origin_x_m;
-  out["origin_y_m"] = geometry.origin_y_m;
-  out["crs_wkt"] = geometry.crs_wkt;
-  out["projection"] = python_of(geometry.projection);
-  return out;
-}
+// The geometry as the manifest and depth.exr store it (core's to_json: spacing_m for square cells,
+// spacing_x_m and spacing_y_m otherwise); nearshore.Geometry reads either.
+py::object geometry_of(const GridGeometry& geometry) { return python_of(nlohmann::json(geometry)); }
 
 py::dict frame_of(sequence::Frame decoded) {
   auto frame = std::make_shared<sequence::Frame>(std::move(decoded));
@@ -133,6 +124,13 @@ sequence::ChannelSelection channels_of(const std::vector<std::string>& names) {
   return selected;
 }
 
+// The C API's own limits on a display time (nearshore_c.cpp checked_time).
+void checked_time(double time_s) {
+  if (!std::isfinite(time_s) || time_s < 0.0 || time_s > 1e9)
+    throw Error("time_s", fmt::format("{:.6g} is outside 0 - 1e9 s", time_s),
+                "give a display time of the sea's timeline (time 0 is the first step of its plan)");
+}
+
 // A streamed sea: what nearshore_sea_open opens (runtime::PlayedSea), with the C API's defaults
 // for everything Python does not set (nearshore_sea_options_init: StreamingOptions' defaults).
 class Sea {
@@ -155,10 +153,7 @@ class Sea {
   // The SurfaceState of every point at display time `time_s` (nearshore_sea_query_at's road).
   std::vector<runtime::SurfaceState> states_at(double time_s, const InputArray& x_m, const InputArray& y_m,
                                                bool lattice) const {
-    // The C API's own limits on a display time (nearshore_c.cpp checked_time).
-    if (!std::isfinite(time_s) || time_s < 0.0 || time_s > 1e9)
-      throw Error("time_s", fmt::format("{:.6g} is outside 0 - 1e9 s", time_s),
-                  "give a display time of the sea's timeline (time 0 is the first step of its plan)");
+    checked_time(time_s);
     if (x_m.size() != y_m.size())
       throw Error("x_m, y_m", fmt::format("{} x values but {} y values", x_m.size(), y_m.size()),
                   "give one y per x (site metres)");
@@ -358,6 +353,7 @@ PYBIND11_MODULE(_nearshore, m) {
       .def(
           "harbour_elevation_at",
           [](const Sea& sea, double time_s) {
+            checked_time(time_s);
             const GridGeometry& geometry = sea.engine().manifest().geometry;
             py::array_t<float> out({static_cast<py::ssize_t>(geometry.rows), static_cast<py::ssize_t>(geometry.columns)});
             float* values = out.mutable_data();

@@ -90,5 +90,7 @@ def test_query_shapes_and_errors(baked):
         sea.query([np.nan], [1.0], 0.0)
     with pytest.raises(nearshore.Error, match="time_s"):
         sea.query([1.0], [1.0], -2.0)
+    with pytest.raises(nearshore.Error, match="time_s"):
+        sea.harbour_elevation(float("inf"))
     with pytest.raises(nearshore.Error, match="plan"):
         nearshore.Sea(folder, plan="sideways")
