@@ -77,6 +77,50 @@ def test_python_queries_equal_the_c_api_bit_for_bit(baked, c_library):
         c.nearshore_sea_close(c_sea)
 
 
+class SeaOptions(ctypes.Structure):  # nearshore_sea_options (API version 5 and later)
+    _fields_ = [("struct_size", ctypes.c_uint32), ("plan", ctypes.c_int), ("seed", ctypes.c_uint64),
+                ("ring_keyframes", ctypes.c_int), ("deep_water_interval_s", ctypes.c_double),
+                ("beaufort_force", ctypes.c_int), ("wind_direction_deg", ctypes.c_double),
+                ("verify_checksums", ctypes.c_int), ("time_mode", ctypes.c_int), ("ready_timeout_s", ctypes.c_double)]
+
+
+def test_vertical_velocity_equals_the_c_api_in_lockstep(baked, c_library):
+    """d eta / dt from Python equals nearshore_sea_query_vertical_velocity of a lockstep sea advanced
+    to the same time (which shows exactly the keyframes of that time)."""
+    folder, _, _ = baked
+    c = ctypes.CDLL(c_library)
+    c.nearshore_last_error.restype = ctypes.c_char_p
+    c.nearshore_sea_options_init.argtypes = [ctypes.POINTER(SeaOptions)]
+    c.nearshore_sea_open.argtypes = [ctypes.c_char_p, ctypes.POINTER(SeaOptions), ctypes.POINTER(ctypes.c_void_p)]
+    c.nearshore_sea_advance.argtypes = [ctypes.c_void_p, ctypes.c_double]
+    c.nearshore_sea_query_vertical_velocity.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double),
+                                                        ctypes.c_size_t, ctypes.POINTER(ctypes.c_float)]
+    c.nearshore_sea_close.argtypes = [ctypes.c_void_p]
+    options = SeaOptions()
+    c.nearshore_sea_options_init(ctypes.byref(options))
+    assert options.struct_size == ctypes.sizeof(SeaOptions)  # the layout above is the header's
+    options.time_mode = 1  # NEARSHORE_TIME_LOCKSTEP
+    c_sea = ctypes.c_void_p()
+    assert c.nearshore_sea_open(str(folder).encode(), ctypes.byref(options), ctypes.byref(c_sea)) == 0, \
+        c.nearshore_last_error().decode()
+    try:
+        sea = nearshore.Sea(folder)
+        rng = np.random.default_rng(6)
+        x, y = rng.uniform(0.0, 400.0, 200), rng.uniform(0.0, 200.0, 200)
+        xy = np.ascontiguousarray(np.stack([x, y], axis=1))
+        for time_s in (2.25, 9.1):
+            assert c.nearshore_sea_advance(c_sea, time_s) == 0, c.nearshore_last_error().decode()
+            theirs = (ctypes.c_float * len(x))()
+            status = c.nearshore_sea_query_vertical_velocity(
+                c_sea, xy.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), len(x), theirs)
+            assert status == 0, c.nearshore_last_error().decode()
+            ours = sea.query(x, y, time_s).vertical_velocity_m_s
+            np.testing.assert_array_equal(bits(ours), np.array(theirs, np.float32).view(np.uint32))
+            assert np.abs(ours).max() > 0.01
+    finally:
+        c.nearshore_sea_close(c_sea)
+
+
 def test_query_shapes_and_errors(baked):
     folder, _, _ = baked
     sea = nearshore.Sea(folder)
