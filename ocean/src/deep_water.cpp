@@ -18,19 +18,22 @@
 
 #include "nearshore/ocean/sea_state_builder.hpp"
 #include "nearshore/core/error.hpp"
+#include "fftw_planner.hpp"
 
 namespace nearshore::ocean {
-namespace {
 
-constexpr double kPi = std::numbers::pi;
-const char* const kSubject = "deep-water specification";
-
-// FFTW's planner and plan destruction are not thread-safe (only fftwf_execute* is, FFTW manual
-// section 5.4); a runtime builds a new field on one thread while another synthesises from its own.
-std::mutex& fftw_planner_mutex() {
+// A runtime builds a new field on one thread while another synthesises from its own.
+std::mutex& detail::fftw_planner_mutex() {
   static std::mutex mutex;
   return mutex;
 }
+
+namespace {
+
+using detail::fftw_planner_mutex;
+
+constexpr double kPi = std::numbers::pi;
+const char* const kSubject = "deep-water specification";
 
 
 /// The channels one synthesis fills, each the real field Re sum_k m(k) c_k e^{ik.x} of one

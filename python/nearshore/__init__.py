@@ -20,7 +20,7 @@ from . import _nearshore
 from ._nearshore import Error
 
 __all__ = ["Error", "Geometry", "Frame", "HarbourGrid", "Gauges", "SurfaceQuery", "Sequence", "Sea",
-           "bake", "loops", "read_case", "CHANNELS"]
+           "RecordSpectrum", "record_spectrum", "bake", "loops", "read_case", "CHANNELS"]
 
 CHANNELS = ("surface_elevation", "flux_x", "flux_y", "breaking")
 
@@ -89,6 +89,32 @@ class HarbourGrid:
 
 
 @dataclasses.dataclass(frozen=True)
+class RecordSpectrum:
+    """Welch's spectrum of an elevation record and the sea state read from it (ocean/record_spectrum.hpp):
+    one-sided variance density (m^2/Hz) at frequency_hz, Hm0 = 4 sqrt(m0), Tp, Tm01 = m0/m1,
+    Tm02 = sqrt(m0/m2)."""
+    frequency_hz: np.ndarray
+    variance_density_m2_hz: np.ndarray
+    frequency_resolution_hz: float
+    segment_samples: int
+    segment_count: int
+    significant_height_hm0_m: float
+    peak_period_s: float
+    mean_period_tm01_s: float
+    zero_crossing_period_tm02_s: float
+
+
+def record_spectrum(elevation_m, sample_interval_s: float, segment_samples: int = 0,
+                    min_frequency_hz: float = 0.0, max_frequency_hz: float = 0.0) -> RecordSpectrum:
+    """Welch's spectrum (Hann, half-overlapping segments of segment_samples; 0: a quarter of the
+    record) of evenly spaced elevations (m) and its Hm0, Tp, Tm01, Tm02 over the band
+    [min_frequency_hz, max_frequency_hz] (0: the first bin above 0, the Nyquist frequency)."""
+    raw = _nearshore.record_spectrum(np.ascontiguousarray(elevation_m, dtype=np.float64), float(sample_interval_s),
+                                     int(segment_samples), float(min_frequency_hz), float(max_frequency_hz))
+    return RecordSpectrum(**raw)
+
+
+@dataclasses.dataclass(frozen=True)
 class Gauges:
     """gauges.csv: elevation_m[g, k] at gauge names[g] and time time_s[k] (s, m)."""
     names: list
@@ -99,6 +125,20 @@ class Gauges:
         if name not in self.names:
             raise KeyError(f"no gauge {name!r}; the gauges are {', '.join(self.names)}")
         return self.elevation_m[self.names.index(name)]
+
+    def statistics(self, from_time_s: float = 0.0, segment_samples: int = 0) -> dict:
+        """{gauge name: RecordSpectrum} of each record from from_time_s on (leave out the spin-up)."""
+        keep = self.time_s >= from_time_s
+        times = self.time_s[keep]
+        if times.size < 2:
+            raise Error(f"gauges: fewer than 2 samples from t = {from_time_s} s (from_time_s); "
+                        "give an earlier time")
+        steps = np.diff(times)
+        if np.max(np.abs(steps - steps[0])) > 1e-6 * steps[0]:
+            raise Error("gauges: the samples are not evenly spaced in time; a spectrum needs even spacing")
+        interval_s = float((times[-1] - times[0]) / (times.size - 1))
+        return {name: record_spectrum(self.elevation_m[g][keep], interval_s, segment_samples)
+                for g, name in enumerate(self.names)}
 
 
 @dataclasses.dataclass(frozen=True)

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -30,6 +31,7 @@
 #include "nearshore/core/error.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/inspector.hpp"
+#include "nearshore/ocean/record_spectrum.hpp"
 #include "nearshore/runtime/library_player.hpp"
 #include "nearshore/runtime/streaming_engine.hpp"
 #include "nearshore/runtime/surface_sampler.hpp"
@@ -341,6 +343,32 @@ PYBIND11_MODULE(_nearshore, m) {
 
   m.def("read_loops_file", [](const fs::path& folder) { return python_of(sequence::loops_file_to_json(sequence::read_loops_file(folder))); },
         py::arg("folder"));
+  m.def(
+      "record_spectrum",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> elevation_m, double sample_interval_s,
+         int segment_samples, double min_frequency_hz, double max_frequency_hz) {
+        if (elevation_m.ndim() != 1) throw Error("record spectrum", "elevation_m is not one-dimensional", "pass one record");
+        ocean::RecordSpectrumOptions options;
+        options.segment_samples = segment_samples;
+        options.min_frequency_hz = min_frequency_hz;
+        options.max_frequency_hz = max_frequency_hz;
+        const ocean::RecordSpectrum s = ocean::record_spectrum(
+            std::span<const double>(elevation_m.data(), static_cast<std::size_t>(elevation_m.size())), sample_interval_s,
+            options);
+        py::dict out;
+        out["frequency_hz"] = py::array_t<double>(s.frequency_hz.size(), s.frequency_hz.data());
+        out["variance_density_m2_hz"] = py::array_t<double>(s.variance_density_m2_hz.size(), s.variance_density_m2_hz.data());
+        out["frequency_resolution_hz"] = s.frequency_resolution_hz;
+        out["segment_samples"] = s.segment_samples;
+        out["segment_count"] = s.segment_count;
+        out["significant_height_hm0_m"] = s.significant_height_hm0_m;
+        out["peak_period_s"] = s.peak_period_s;
+        out["mean_period_tm01_s"] = s.mean_period_tm01_s;
+        out["zero_crossing_period_tm02_s"] = s.zero_crossing_period_tm02_s;
+        return out;
+      },
+      py::arg("elevation_m"), py::arg("sample_interval_s"), py::arg("segment_samples") = 0,
+      py::arg("min_frequency_hz") = 0.0, py::arg("max_frequency_hz") = 0.0);
   m.def("read_gauges_csv", [](const fs::path& file) { return gauges_of(bake::read_gauges_csv(file)); }, py::arg("file"));
 
   py::class_<Sea>(m, "Sea")
