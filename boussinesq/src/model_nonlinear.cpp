@@ -226,10 +226,11 @@ struct SteadyWaveKey {
 
 SteadyWave boussinesq_steady_wave(double a, double k, double d, double B, DispersionDepth depth_kind,
                                   int harmonic_count, Equations equations) {
-  // One solve is 0.1-0.5 s of CPU (a few hundred residuals of 10 spectral derivatives each), and a
-  // bake asks for the same waves again and again: the wave maker's height iteration (WaveMaker::
-  // second_order) each time a source is made, reading the case, the structure flume's runs, every
-  // state of a library at the same depth. A pure function of its arguments, so a process-wide memo
+  // A solve of the fully nonlinear equations is about 11 ms of CPU (a few hundred residuals of ten
+  // spectral derivatives each; 0.5 ms for the weakly nonlinear ones), and a bake asks for the same
+  // waves hundreds of times: the wave maker's height iteration (WaveMaker::second_order, seven
+  // solves) each time a source is made, reading the case, every run of every structure's flume,
+  // every state of a library at the same depth. A pure function of its arguments, so a process-wide memo
   // of the last solves returns exactly what a new solve would (failures are not kept: they throw).
   const SteadyWaveKey key{{std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(k),
                            std::bit_cast<std::uint64_t>(d), std::bit_cast<std::uint64_t>(B)},
