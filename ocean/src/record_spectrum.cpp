@@ -51,10 +51,13 @@ class SegmentTransform {
 
 RecordSpectrum record_spectrum(std::span<const double> elevation_m, double sample_interval_s,
                                const RecordSpectrumOptions& options) {
-  const int n = static_cast<int>(std::min<std::size_t>(elevation_m.size(), 1u << 30));
-  if (n < 16)
+  if (elevation_m.size() < 16)
     throw Error(kSubject, fmt::format("elevation_m holds {} samples", elevation_m.size()),
                 "give a record of at least 16 samples (a spectrum needs several waves: minutes of a sea)");
+  if (elevation_m.size() > (std::size_t{1} << 30))
+    throw Error(kSubject, fmt::format("elevation_m holds {} samples", elevation_m.size()),
+                "give at most 2^30 samples (cut the record into parts and take each part's spectrum)");
+  const int n = static_cast<int>(elevation_m.size());
   if (!(sample_interval_s > 0.0) || !std::isfinite(sample_interval_s))
     throw Error(kSubject, fmt::format("sample_interval_s is {}", sample_interval_s), "give the record's positive sample interval");
   for (int j = 0; j < n; ++j)

@@ -48,7 +48,8 @@ struct RecordSpectrum {
 };
 
 /// Welch's spectrum of `elevation_m` sampled every `sample_interval_s` and its parameters. Throws
-/// nearshore::Error naming the parameter when the record is shorter than 16 samples, the interval
+/// nearshore::Error naming the parameter when the record is shorter than 16 samples or longer
+/// than 2^30, the interval
 /// is not positive and finite, a sample is not finite, or the band holds no bin.
 RecordSpectrum record_spectrum(std::span<const double> elevation_m, double sample_interval_s,
                                const RecordSpectrumOptions& options = {});
