@@ -111,62 +111,79 @@ void NonlinearDispersion::update_subcritical(const double* eta, const double* fl
   });
 }
 
-void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
-  const int nx = grid_.nx, ny = grid_.ny;
-  const double dx = grid_.dx, dy = grid_.dy, dt = s.time_step_s, g = ocean::kGravity_m_s2;
-  const double inv_dx = 1.0 / dx, inv_dy = 1.0 / dy, inv_dt = 1.0 / dt;
-  const double B = grid_.dispersion_coefficient, dry = grid_.dry_depth_m;
-  const float* depth = grid_.depth_m;
-  // Cell arrays (the caller's scratch): eta and h = d + eta (at least dry) at t^{n+1/2}, the cell
-  // velocities, div u, Gamma; then div S and div S_linear reuse div u's and u's storage.
-  double *divergence = scratch[0], *gamma = scratch[1], *eta = scratch[2], *h = scratch[3], *u_cell = scratch[4],
-         *v_cell = scratch[5];
-  double *div_S = divergence, *div_S_linear = u_cell;
-  auto cell = [nx](int c, int r) { return static_cast<std::size_t>(r) * nx + c; };
-  auto face_x = [ny](int f, int r) { return static_cast<std::size_t>(f) * ny + r; };
-  auto face_y = [nx](int c, int k) { return static_cast<std::size_t>(k) * nx + c; };
-  auto flux_x = [&](int f, int r) { const std::size_t i = face_x(f, r); return s.flux_x_new[i] - 0.5 * s.flux_x_change[i]; };
-  auto flux_y = [&](int c, int k) { const std::size_t i = face_y(c, k); return s.flux_y_new[i] - 0.5 * s.flux_y_change[i]; };
-  auto eta_rate = [&](std::size_t i) { return (s.eta_new[i] - s.eta_old[i]) * inv_dt; };
+namespace {
+
+// What the passes of NonlinearDispersion::update share: the step, the grid and the cell arrays at
+// t^{n+1/2} (the caller's scratch), with the definitions every pass uses (the sweep's).
+struct RemainderStep {
+  const StepPair& s;
+  const NonlinearDispersionGrid& grid;
+  int nx, ny;
+  double inv_dx, inv_dy, inv_dt, g, B, dry;
+  const float* depth;
+  // eta and h = d + eta (at least dry) at t^{n+1/2}, the cell velocities, div u, Gamma; then div S
+  // and div S_linear reuse div u's and u's storage.
+  double *divergence, *gamma, *eta, *h, *u_cell, *v_cell, *div_S, *div_S_linear;
+
+  RemainderStep(const StepPair& pair, const NonlinearDispersionGrid& g_, double* const scratch[6])
+      : s(pair), grid(g_), nx(g_.nx), ny(g_.ny), inv_dx(1.0 / g_.dx), inv_dy(1.0 / g_.dy), inv_dt(1.0 / pair.time_step_s),
+        g(ocean::kGravity_m_s2), B(g_.dispersion_coefficient), dry(g_.dry_depth_m), depth(g_.depth_m), divergence(scratch[0]),
+        gamma(scratch[1]), eta(scratch[2]), h(scratch[3]), u_cell(scratch[4]), v_cell(scratch[5]), div_S(scratch[0]),
+        div_S_linear(scratch[4]) {}
+
+  std::size_t cell(int c, int r) const { return static_cast<std::size_t>(r) * nx + c; }
+  std::size_t face_x(int f, int r) const { return static_cast<std::size_t>(f) * ny + r; }
+  std::size_t face_y(int c, int k) const { return static_cast<std::size_t>(k) * nx + c; }
+  double flux_x(int f, int r) const { const std::size_t i = face_x(f, r); return s.flux_x_new[i] - 0.5 * s.flux_x_change[i]; }
+  double flux_y(int c, int k) const { const std::size_t i = face_y(c, k); return s.flux_y_new[i] - 0.5 * s.flux_y_change[i]; }
+  double eta_rate(std::size_t i) const { return (s.eta_new[i] - s.eta_old[i]) * inv_dt; }
   // The still-water and total depth of the face between cells a and b (the sweep's definitions).
-  auto face_still = [&](std::size_t a, std::size_t b) { return 0.5 * (static_cast<double>(depth[a]) + static_cast<double>(depth[b])); };
-  auto face_total = [&](std::size_t a, std::size_t b) { return std::max(face_still(a, b) + 0.5 * (eta[a] + eta[b]), dry); };
+  double face_still(std::size_t a, std::size_t b) const { return 0.5 * (static_cast<double>(depth[a]) + static_cast<double>(depth[b])); }
+  double face_total(std::size_t a, std::size_t b) const { return std::max(face_still(a, b) + 0.5 * (eta[a] + eta[b]), dry); }
   // Rows go in chunks with their own row buffers (face values computed once per row). body(r, first,
   // buffers): `first` when r opens its chunk; a row after it finds in the buffers what the row before
   // left there (the values of the faces and cells the two rows share, computed once, by the same
   // expression as for the first row: the same bits).
-  auto for_rows = [&](const auto& body) {
+  template <class Body>
+  void for_rows(const Body& body) const {
     tbb::parallel_for(tbb::blocked_range<int>(0, ny, 8), [&](const tbb::blocked_range<int>& rows) {
       std::vector<double> buffers[8];
       for (auto& buffer : buffers) buffer.resize(nx + 1);
       for (int r = rows.begin(); r < rows.end(); ++r) body(r, r == rows.begin(), buffers);
     });
-  };
+  }
+};
 
-  // 0. Per cell: eta and the total depth at t^{n+1/2}.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, static_cast<std::size_t>(nx) * ny, 16384), [&](const tbb::blocked_range<std::size_t>& range) {
+// 0. Per cell: eta and the total depth at t^{n+1/2}.
+void half_step_depths(const RemainderStep& t) {
+  const StepPair& s = t.s;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, static_cast<std::size_t>(t.nx) * t.ny, 16384), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      eta[i] = 0.5 * (s.eta_old[i] + s.eta_new[i]);
-      h[i] = std::max(static_cast<double>(depth[i]) + eta[i], dry);
+      t.eta[i] = 0.5 * (s.eta_old[i] + s.eta_new[i]);
+      t.h[i] = std::max(static_cast<double>(t.depth[i]) + t.eta[i], t.dry);
     }
   });
-  // 1. Per cell: div u, the cell velocities, and the part of div u_t - (div u)^2 without the flux
-  // rates (the sweeps hold those: along their lines implicitly, across them with the seed's across
-  // estimates): u_t = (P_t - u h_t)/h leaves -u h_t / h. Walls (the grid edges) carry nothing.
-  for_rows([&](int r, bool first_row, std::vector<double>* b) {
+}
+
+// 1. Per cell: div u, the cell velocities, and the part of div u_t - (div u)^2 without the flux
+// rates (the sweeps hold those: along their lines implicitly, across them with the seed's across
+// estimates): u_t = (P_t - u h_t)/h leaves -u h_t / h. Walls (the grid edges) carry nothing.
+void cell_kinematics(const RemainderStep& t) {
+  const int nx = t.nx, ny = t.ny;
+  t.for_rows([&](int r, bool first_row, std::vector<double>* b) {
     std::vector<double>&u = b[0], &u_rate = b[1], &v_south = b[2], &v_rate_south = b[3], &v_north = b[4], &v_rate_north = b[5];
     auto face = [&](std::size_t a, std::size_t c, double flux, double& velocity, double& rate) {
-      const double inv_h = 1.0 / face_total(a, c);
+      const double inv_h = 1.0 / t.face_total(a, c);
       velocity = flux * inv_h;
-      rate = -velocity * 0.5 * (eta_rate(a) + eta_rate(c)) * inv_h;
+      rate = -velocity * 0.5 * (t.eta_rate(a) + t.eta_rate(c)) * inv_h;
     };
     u[0] = u_rate[0] = u[nx] = u_rate[nx] = 0.0;
-    for (int f = 1; f < nx; ++f) face(cell(f - 1, r), cell(f, r), flux_x(f, r), u[f], u_rate[f]);
+    for (int f = 1; f < nx; ++f) face(t.cell(f - 1, r), t.cell(f, r), t.flux_x(f, r), u[f], u_rate[f]);
     // The y faces south of the row are the ones north of the row before (its buffers, swapped in).
     if (first_row)
       for (int c = 0; c < nx; ++c) {
         v_south[c] = v_rate_south[c] = 0.0;
-        if (r > 0) face(cell(c, r - 1), cell(c, r), flux_y(c, r), v_south[c], v_rate_south[c]);
+        if (r > 0) face(t.cell(c, r - 1), t.cell(c, r), t.flux_y(c, r), v_south[c], v_rate_south[c]);
       }
     else {
       v_south.swap(v_north);
@@ -174,47 +191,59 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     }
     for (int c = 0; c < nx; ++c) {
       v_north[c] = v_rate_north[c] = 0.0;
-      if (r + 1 < ny) face(cell(c, r), cell(c, r + 1), flux_y(c, r + 1), v_north[c], v_rate_north[c]);
+      if (r + 1 < ny) face(t.cell(c, r), t.cell(c, r + 1), t.flux_y(c, r + 1), v_north[c], v_rate_north[c]);
     }
     for (int c = 0; c < nx; ++c) {
-      const double div = (u[c + 1] - u[c]) * inv_dx + (v_north[c] - v_south[c]) * inv_dy;
-      const std::size_t i = cell(c, r);
-      divergence[i] = div;
-      gamma[i] = (u_rate[c + 1] - u_rate[c]) * inv_dx + (v_rate_north[c] - v_rate_south[c]) * inv_dy - div * div;
-      u_cell[i] = 0.5 * (u[c] + u[c + 1]);
-      v_cell[i] = 0.5 * (v_south[c] + v_north[c]);
+      const double div = (u[c + 1] - u[c]) * t.inv_dx + (v_north[c] - v_south[c]) * t.inv_dy;
+      const std::size_t i = t.cell(c, r);
+      t.divergence[i] = div;
+      t.gamma[i] = (u_rate[c + 1] - u_rate[c]) * t.inv_dx + (v_rate_north[c] - v_rate_south[c]) * t.inv_dy - div * div;
+      t.u_cell[i] = 0.5 * (u[c] + u[c + 1]);
+      t.v_cell[i] = 0.5 * (v_south[c] + v_north[c]);
     }
   });
-  // 2. Per cell: h^3 Gamma, Gamma = (div u_t without the rates) + u . grad(div u) - (div u)^2 (the
-  // gradient central; beyond a grid edge, a wall, the cell mirrors itself). Linearised it is 0.
+}
+
+// 2. Per cell: h^3 Gamma, Gamma = (div u_t without the rates) + u . grad(div u) - (div u)^2 (the
+// gradient central; beyond a grid edge, a wall, the cell mirrors itself). Linearised it is 0.
+void cell_serre_term(const RemainderStep& t) {
+  const int nx = t.nx, ny = t.ny;
+  const StepPair& s = t.s;
   tbb::parallel_for(0, ny, [&](int r) {
     for (int c = 0; c < nx; ++c) {
-      const auto [west, east, south, north] = neighbours(grid_.mirror_walls, s.dispersive, nx, ny, c, r);
-      const std::size_t i = cell(c, r);
-      const double advection = u_cell[i] * (divergence[cell(east, r)] - divergence[cell(west, r)]) * (0.5 * inv_dx) +
-                               v_cell[i] * (divergence[cell(c, north)] - divergence[cell(c, south)]) * (0.5 * inv_dy);
+      const auto [west, east, south, north] = neighbours(t.grid.mirror_walls, s.dispersive, nx, ny, c, r);
+      const std::size_t i = t.cell(c, r);
+      const double advection = t.u_cell[i] * (t.divergence[t.cell(east, r)] - t.divergence[t.cell(west, r)]) * (0.5 * t.inv_dx) +
+                               t.v_cell[i] * (t.divergence[t.cell(c, north)] - t.divergence[t.cell(c, south)]) * (0.5 * t.inv_dy);
       // Where waves break the cell's share fades by 1 - B, inside the derivative of step 4
       // (conservation form: the fade adds no force of its own).
       const double keep = s.breaking_strength ? 1.0 - static_cast<double>(s.breaking_strength[i]) : 1.0;
-      gamma[i] = keep * h[i] * h[i] * h[i] * (gamma[i] + advection);
+      t.gamma[i] = keep * t.h[i] * t.h[i] * t.h[i] * (t.gamma[i] + advection);
     }
   });
-  // 3. Per cell: div S and its linearisation without the rates, S = div((P, Q)(P, Q)/h) + g h grad(eta)
-  // at the faces (S_linear = g d grad(eta)). The momentum fluxes as the sweep's central scheme
-  // builds them: P^2/h at the cell centres, PQ/h at the corners (zero on a wall).
+}
+
+// 3. Per cell: div S and its linearisation without the rates, S = div((P, Q)(P, Q)/h) + g h grad(eta)
+// at the faces (S_linear = g d grad(eta)). The momentum fluxes as the sweep's central scheme
+// builds them: P^2/h at the cell centres, PQ/h at the corners (zero on a wall).
+void cell_residual_divergence(const RemainderStep& t) {
+  const int nx = t.nx, ny = t.ny;
+  const double inv_dx = t.inv_dx, inv_dy = t.inv_dy, g = t.g;
+  const double* eta = t.eta;
+  const double* h = t.h;
   auto along_x = [&](int c, int r) {  // P^2/h at cell (c, r)
-    const double P = 0.5 * (flux_x(c, r) + flux_x(c + 1, r));
-    return P * P / h[cell(c, r)];
+    const double P = 0.5 * (t.flux_x(c, r) + t.flux_x(c + 1, r));
+    return P * P / h[t.cell(c, r)];
   };
   auto along_y = [&](int c, int r) {  // Q^2/h
-    const double Q = 0.5 * (flux_y(c, r) + flux_y(c, r + 1));
-    return Q * Q / h[cell(c, r)];
+    const double Q = 0.5 * (t.flux_y(c, r) + t.flux_y(c, r + 1));
+    return Q * Q / h[t.cell(c, r)];
   };
   auto corner = [&](int f, int k) {  // PQ/h at the corner between cells (f-1..f, k-1..k), inside the grid
-    const double P = 0.5 * (flux_x(f, k - 1) + flux_x(f, k)), Q = 0.5 * (flux_y(f - 1, k) + flux_y(f, k));
-    return 4.0 * P * Q / (h[cell(f - 1, k - 1)] + h[cell(f, k - 1)] + h[cell(f - 1, k)] + h[cell(f, k)]);
+    const double P = 0.5 * (t.flux_x(f, k - 1) + t.flux_x(f, k)), Q = 0.5 * (t.flux_y(f - 1, k) + t.flux_y(f, k));
+    return 4.0 * P * Q / (h[t.cell(f - 1, k - 1)] + h[t.cell(f, k - 1)] + h[t.cell(f - 1, k)] + h[t.cell(f, k)]);
   };
-  for_rows([&](int r, bool first_row, std::vector<double>* b) {
+  t.for_rows([&](int r, bool first_row, std::vector<double>* b) {
     // Row buffers: P^2/h of this row's cells, Q^2/h of the rows below, here and above, the corners
     // south (k = r) and north (k = r + 1) of the row, S and S_linear on the row's x faces. After the
     // first row of a chunk, the row before's Q^2/h here and above and its north corners are this
@@ -240,38 +269,55 @@ void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
     if (r + 1 < ny)
       for (int f = 1; f < nx; ++f) corner_north[f] = corner(f, r + 1);
     residual[0] = residual[nx] = residual_linear[0] = residual_linear[nx] = 0.0;  // the walls: nothing
-    const unsigned char* mask = s.dispersive;
-    const bool mirror_walls = grid_.mirror_walls;
+    const unsigned char* mask = t.s.dispersive;
+    const bool mirror_walls = t.grid.mirror_walls;
     for (int f = 1; f < nx; ++f) {
-      const std::size_t L = cell(f - 1, r), R = cell(f, r);
+      const std::size_t L = t.cell(f - 1, r), R = t.cell(f, r);
       if (mirror_walls && ((mask[L] & kMirrorNorth) | (mask[R] & kMirrorSouth))) {  // a wall inside the grid: nothing either
         residual[f] = residual_linear[f] = 0.0;
         continue;
       }
       const double slope = (eta[R] - eta[L]) * inv_dx;
-      residual[f] = (along[f] - along[f - 1]) * inv_dx + (corner_north[f] - corner_south[f]) * inv_dy + g * face_total(L, R) * slope;
-      residual_linear[f] = g * face_still(L, R) * slope;
+      residual[f] = (along[f] - along[f - 1]) * inv_dx + (corner_north[f] - corner_south[f]) * inv_dy + g * t.face_total(L, R) * slope;
+      residual_linear[f] = g * t.face_still(L, R) * slope;
     }
     for (int c = 0; c < nx; ++c) {
-      const std::size_t i = cell(c, r);
+      const std::size_t i = t.cell(c, r);
       // S on the y faces south (k = r) and north (k = r + 1) of the cell; a wall carries nothing.
       double south = 0.0, north = 0.0, south_linear = 0.0, north_linear = 0.0;
-      if (r > 0 && !(mirror_walls && ((mask[i] & kMirrorBefore) | (mask[cell(c, r - 1)] & kMirrorAfter)))) {
-        const std::size_t below = cell(c, r - 1);
+      if (r > 0 && !(mirror_walls && ((mask[i] & kMirrorBefore) | (mask[t.cell(c, r - 1)] & kMirrorAfter)))) {
+        const std::size_t below = t.cell(c, r - 1);
         const double slope = (eta[i] - eta[below]) * inv_dy;
-        south = (corner_south[c + 1] - corner_south[c]) * inv_dx + (along_here[c] - along_south[c]) * inv_dy + g * face_total(below, i) * slope;
-        south_linear = g * face_still(below, i) * slope;
+        south = (corner_south[c + 1] - corner_south[c]) * inv_dx + (along_here[c] - along_south[c]) * inv_dy + g * t.face_total(below, i) * slope;
+        south_linear = g * t.face_still(below, i) * slope;
       }
-      if (r + 1 < ny && !(mirror_walls && ((mask[i] & kMirrorAfter) | (mask[cell(c, r + 1)] & kMirrorBefore)))) {
-        const std::size_t above = cell(c, r + 1);
+      if (r + 1 < ny && !(mirror_walls && ((mask[i] & kMirrorAfter) | (mask[t.cell(c, r + 1)] & kMirrorBefore)))) {
+        const std::size_t above = t.cell(c, r + 1);
         const double slope = (eta[above] - eta[i]) * inv_dy;
-        north = (corner_north[c + 1] - corner_north[c]) * inv_dx + (along_north[c] - along_here[c]) * inv_dy + g * face_total(i, above) * slope;
-        north_linear = g * face_still(i, above) * slope;
+        north = (corner_north[c + 1] - corner_north[c]) * inv_dx + (along_north[c] - along_here[c]) * inv_dy + g * t.face_total(i, above) * slope;
+        north_linear = g * t.face_still(i, above) * slope;
       }
-      div_S[i] = (residual[c + 1] - residual[c]) * inv_dx + (north - south) * inv_dy;
-      div_S_linear[i] = (residual_linear[c + 1] - residual_linear[c]) * inv_dx + (north_linear - south_linear) * inv_dy;
+      t.div_S[i] = (residual[c + 1] - residual[c]) * inv_dx + (north - south) * inv_dy;
+      t.div_S_linear[i] = (residual_linear[c + 1] - residual_linear[c]) * inv_dx + (north_linear - south_linear) * inv_dy;
     }
   });
+}
+
+}  // namespace
+
+void NonlinearDispersion::update(const StepPair& s, double* const scratch[6]) {
+  const RemainderStep t(s, grid_, scratch);
+  half_step_depths(t);
+  cell_kinematics(t);
+  cell_serre_term(t);
+  cell_residual_divergence(t);
+  const int nx = t.nx, ny = t.ny;
+  const double inv_dx = t.inv_dx, inv_dy = t.inv_dy, B = t.B, dry = t.dry;
+  const double *eta = t.eta, *gamma = t.gamma, *div_S = t.div_S, *div_S_linear = t.div_S_linear;
+  auto cell = [&t](int c, int r) { return t.cell(c, r); };
+  auto face_x = [&t](int f, int r) { return t.face_x(f, r); };
+  auto face_y = [&t](int c, int k) { return t.face_y(c, k); };
+  auto face_still = [&t](std::size_t a, std::size_t b) { return t.face_still(a, b); };
   // 4. Per face: R = w [-(1/3) d(k h^3 Gamma) - k_face B (h^2 d(div S) - d^2 d(div S_linear))], k = 1 minus
   // the cell's breaking strength (1 without the fade), k_face the mean of the face's two, w = the taper
   // times fully_nonlinear_weight times the face's subcritical factor of this step (update_subcritical)
