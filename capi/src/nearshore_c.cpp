@@ -123,12 +123,12 @@ void open_sea(nearshore_sea** sea, const fs::path& folder, const nearshore::sequ
   *sea = opened.release();
 }
 
-// A display time: finite, >= 0, and below 1e9 s (32 years: past it a double keeps under a
-// microsecond of the fraction between frames, and no exercise runs that long).
+// A display time (runtime::is_display_time: finite, 0 - 1e9 s).
 void checked_time(double time_s, const char* field) {
-  if (!std::isfinite(time_s) || time_s < 0.0 || time_s > 1e9)
-    fail(NEARSHORE_INVALID_ARGUMENT, fmt::format("{} = {:.6g} is outside 0 - 1e9 s: a display time of the sea's timeline "
-                                                 "(time 0 is the first step of its plan)", field, time_s));
+  if (!nearshore::runtime::is_display_time(time_s))
+    fail(NEARSHORE_INVALID_ARGUMENT, fmt::format("{} = {:.6g} is outside 0 - {:g} s: a display time of the sea's timeline "
+                                                 "(time 0 is the first step of its plan)",
+                                                 field, time_s, nearshore::runtime::kLatestDisplayTime_s));
 }
 
 // Points of one query call: at most 2^26 (64 Mi points, 1.5 GiB of input and output), so a

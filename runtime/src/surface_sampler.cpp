@@ -103,6 +103,11 @@ inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int
 // The helpers pass 32-byte vectors by value; inlined into the solve, so the ABI of such calls
 // without AVX (GCC's -Wpsabi note) never applies.
 #pragma GCC diagnostic ignored "-Wpsabi"
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define NEARSHORE_SOLVE_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define NEARSHORE_SOLVE_CLONES
+#endif
 typedef float Float4 __attribute__((vector_size(16)));
 typedef float Float8 __attribute__((vector_size(32)));
 typedef std::int16_t Short8 __attribute__((vector_size(16)));
@@ -148,8 +153,8 @@ inline double texel_of_fraction(double p_m, double inverse_tile_length, int n) {
   cycles -= std::floor(cycles);
   return cycles * n;
 }
-struct PackedSum {
-  Float4 value = {0, 0, 0, 0}, d_dx = {0, 0, 0, 0}, d_dy = {0, 0, 0, 0};  // per metre
+struct PackedSum {  // no initialisers: a block's array of them is zeroed for its active points only
+  Float4 value, d_dx, d_dy, d_dxdy;  // per metre (d_dxdy per m^2: the bilinear's cross term)
 };
 
 const float* data_or_null(const Raster<float>& raster, int columns, int rows) {
@@ -332,6 +337,10 @@ SurfaceSampler::CascadeSum SurfaceSampler::cascades_sum(const std::vector<Cascad
           (1.0 - f) * from.flux_y + f * to.flux_y, (to.eta - from.eta) * inverse_deep_interval_};
 }
 
+// One clone per instruction set (the sweep's practice, boussinesq_sweep.cpp): with AVX2 and FMA a
+// row's sign extension is one instruction, a Float8 one register, and the bilinear's multiply-adds
+// fused, about 1.25 x the portable code's rate on the open sea (docs/runtime.md "Query speed").
+NEARSHORE_SOLVE_CLONES
 void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) const {
   // Formula 4: solve F(p) = p + (1 - w(p)) lambda D(p) - q = 0 from p = q. Newton's method with
   // the exact Jacobian of what is sampled (D bilinear in each cascade tile: its derivative comes
@@ -343,7 +352,15 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
   // The points of a block iterate side by side: each sweep first finds every point's taps and
   // asks for their cache lines, then sums them, so the memory latencies of up to kSolveBlock
   // points overlap (one point's solve is a dependent chain: alone it waits on every miss).
-  for (int i = 0; i < count; ++i) out[i] = {q[i]};
+  // Field by field: a whole Solution written from a temporary is copied through the stack in
+  // overlapping pieces, which stalls the store forwarding (measured: 9 % of the solve).
+  const auto set = [out](int i, SitePoint lattice, double deep_eta, double weight, bool has_deep_eta) {
+    out[i].lattice = lattice;
+    out[i].deep_eta = deep_eta;
+    out[i].harbour_weight = weight;
+    out[i].has_deep_eta = has_deep_eta;
+  };
+  for (int i = 0; i < count; ++i) set(i, q[i], 0.0, 0.0, false);
   if (!has_deep_ || choppiness_ == 0.0) return;
   const double lambda = choppiness_;
   const std::size_t cascade_count = packed_.size();
@@ -370,6 +387,35 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
                              texel_of_fraction(p[i].y_m, cascade.inverse_tile_length, cascade.n)},
                      cascade.n);
   };
+  // A step that stays inside the cell of every cascade lands where the sampled field is the same
+  // bilinear polynomial as at the sample just taken, so F and D_eta at the new p follow from that
+  // sample exactly (f(p + s) = f + f_x s_x + f_y s_y + f_xy s_x s_y, each cascade bilinear in its
+  // cell): the check costs no new sample. True when that check passes (out[i] set).
+  const auto checked_in_cells = [&](int i, double step_x, double step_y, const PackedSum& sum) {
+    if (stored != cascade_count) return false;
+    bool inside = true;  // every cascade, without a branch per cascade
+    for (std::size_t c = 0; c < stored; ++c) {
+      const double a = static_cast<double>(taps[i][c].a) + step_x * packed_[c].texels_per_m_d;
+      const double b = static_cast<double>(taps[i][c].b) + step_y * packed_[c].texels_per_m_d;
+      inside &= (a >= 0.0) & (a < 1.0) & (b >= 0.0) & (b < 1.0);
+    }
+    if (!inside) return false;
+    double weight = 0.0;
+    if (has_harbour_) {
+      if (in_full_box(p[i].x_m, p[i].y_m)) return false;
+      if (in_site(p[i].x_m, p[i].y_m)) weight = harbour_weight(*snapshot_.site, p[i].x_m, p[i].y_m);
+      if (1.0 - weight <= 0.0) return false;
+    }
+    const double fade = 1.0 - weight;
+    const double cross = step_x * step_y;
+    const auto at_step = [&](int channel) {
+      return sum.value[channel] + sum.d_dx[channel] * step_x + sum.d_dy[channel] * step_y + sum.d_dxdy[channel] * cross;
+    };
+    const double fx = p[i].x_m + fade * lambda * at_step(0) - q[i].x_m, fy = p[i].y_m + fade * lambda * at_step(1) - q[i].y_m;
+    if (fx * fx + fy * fy > kDisplacementTolerance_m * kDisplacementTolerance_m) return false;
+    set(i, p[i], at_step(2), weight, true);
+    return true;
+  };
   for (int iteration = 0; iteration <= kDisplacementIterations && active_count > 0; ++iteration) {
     int kept = 0;
     for (int k = 0; k < active_count; ++k) {
@@ -378,13 +424,13 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
       if (has_harbour_) {
         // Inside the full-weight box, or wherever w reaches 1, nothing moves: p = q.
         if (in_full_box(p[i].x_m, p[i].y_m)) {
-          out[i] = {q[i]};
+          set(i, q[i], 0.0, 0.0, false);
           continue;
         }
         // Off the site w = 0 (surface_snapshot.cpp site_ramps): no call for the open sea's points.
         if (in_site(p[i].x_m, p[i].y_m)) w[i] = harbour_weight_and_gradient(*snapshot_.site, p[i].x_m, p[i].y_m);
         if (1.0 - w[i].weight <= 0.0) {
-          out[i] = {q[i]};
+          set(i, q[i], 0.0, 0.0, false);
           continue;
         }
       }
@@ -400,34 +446,46 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
     }
     active_count = kept;
     kept = 0;
-    for (int k = 0; k < active_count; ++k) {
-      const int i = active[k];
-      // D, its gradient and D_eta in one pass over the cascades (both keyframes, blended in time).
-      PackedSum sum;
-      for (std::size_t c = 0; c < cascade_count; ++c) {
-        const PackedCascade& cascade = packed_[c];
+    PackedSum sums[kSolveBlock];
+    for (int k = 0; k < active_count; ++k) sums[k].value = sums[k].d_dx = sums[k].d_dy = sums[k].d_dxdy = Float4{0, 0, 0, 0};
+    // Cascade by cascade across the block: each iteration of the inner loop is independent of the
+    // others, so the processor overlaps several points' loads and arithmetic (one point's sample
+    // is a dependent chain).
+    for (std::size_t c = 0; c < cascade_count; ++c) {
+      const PackedCascade& cascade = packed_[c];
+      const Float8 wf = load_weights(cascade.from_weight), wt = load_weights(cascade.to_weight);
+      const float texels_per_m_squared = cascade.texels_per_m * cascade.texels_per_m;
+      for (int k = 0; k < active_count; ++k) {
+        const int i = active[k];
+        PackedSum& sum = sums[k];
         const BlockTap t = c < stored ? taps[i][c] : tap_of(i, c);
-        const Float8 wf = load_weights(cascade.from_weight), wt = load_weights(cascade.to_weight);
         const Float8 south = load_row(cascade.from, t.row0) * wf + load_row(cascade.to, t.row0) * wt;  // (i0, j0), (i1, j0)
         const Float8 north = load_row(cascade.from, t.row1) * wf + load_row(cascade.to, t.row1) * wt;  // (i0, j1), (i1, j1)
-        // Along y first, both columns at once: C = (c0 | c1) with c_k = (1 - b) n_k0 + b n_k1; then
-        // the value (1 - a) c0 + a c1 and d/dx = (c1 - c0) N / L; d/dy from the rows' difference.
-        const Float8 along_y = (1.0f - t.b) * south + t.b * north;
+        // Along y first, both columns at once: C = (c0 | c1) = south + b (north - south); then the
+        // value c0 + a (c1 - c0), d/dx = (c1 - c0) N / L, d/dy from the rise north - south taken
+        // across x the same way, and the cross term d2/dxdy from the two columns' rises.
         const Float8 rise = north - south;
-        const Float4 c0 = low_half(along_y), c1 = high_half(along_y);
-        sum.value += (1.0f - t.a) * c0 + t.a * c1;
-        sum.d_dx += (c1 - c0) * cascade.texels_per_m;
-        sum.d_dy += ((1.0f - t.a) * low_half(rise) + t.a * high_half(rise)) * cascade.texels_per_m;
+        const Float8 along_y = south + t.b * rise;
+        const Float4 c0 = low_half(along_y), across = high_half(along_y) - c0;
+        const Float4 rise0 = low_half(rise), rise_across = high_half(rise) - rise0;
+        sum.value += c0 + t.a * across;
+        sum.d_dx += across * cascade.texels_per_m;
+        sum.d_dy += (rise0 + t.a * rise_across) * cascade.texels_per_m;
+        sum.d_dxdy += rise_across * texels_per_m_squared;
       }
+    }
+    for (int k = 0; k < active_count; ++k) {
+      const int i = active[k];
+      const PackedSum& sum = sums[k];
       const double fade = 1.0 - w[i].weight;
       const double dx = sum.value[0], dy = sum.value[1];
       const double fx = p[i].x_m + fade * lambda * dx - q[i].x_m, fy = p[i].y_m + fade * lambda * dy - q[i].y_m;
       if (fx * fx + fy * fy <= kDisplacementTolerance_m * kDisplacementTolerance_m) {
-        out[i] = {p[i], sum.value[2], true};
+        set(i, p[i], sum.value[2], w[i].weight, true);
         continue;
       }
       if (iteration == kDisplacementIterations) {
-        out[i] = {p[i], 0.0, false};
+        set(i, p[i], 0.0, 0.0, false);
         continue;
       }
       const double dxx = sum.d_dx[0], dxy = sum.d_dy[0], dyx = sum.d_dx[1], dyy = sum.d_dy[1];
@@ -435,13 +493,19 @@ void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) c
       const double jxx = 1.0 + lambda * (fade * dxx - dx * wi.d_dx_per_m), jxy = lambda * (fade * dxy - dx * wi.d_dy_per_m);
       const double jyx = lambda * (fade * dyx - dy * wi.d_dx_per_m), jyy = 1.0 + lambda * (fade * dyy - dy * wi.d_dy_per_m);
       const double det = jxx * jyy - jxy * jyx;
+      double step_x, step_y;
       if (det > 0.2) {
-        p[i].x_m -= (jyy * fx - jxy * fy) / det;
-        p[i].y_m -= (-jyx * fx + jxx * fy) / det;
+        step_x = -(jyy * fx - jxy * fy) / det;
+        step_y = -(-jyx * fx + jxx * fy) / det;
       } else {
-        p[i].x_m -= fx;
-        p[i].y_m -= fy;
+        step_x = -fx;
+        step_y = -fy;
       }
+      p[i].x_m += step_x;
+      p[i].y_m += step_y;
+      // After the first step (a jump across many cells of the finest cascade) the next usually
+      // stays in every cell: checked without a new sample.
+      if (iteration > 0 && checked_in_cells(i, step_x, step_y, sum)) continue;
       active[kept++] = i;
     }
     active_count = kept;
@@ -476,8 +540,9 @@ double SurfaceSampler::elevation_at_solution(const Solution& solution) const {
   if (!solution.has_deep_eta) return elevation_at_lattice(solution.lattice);
   // elevation_at_lattice with D_eta from the solve's last sample (the query layout: equal to
   // the float channels' sum within its int16 rounding, surface_sampler.hpp formula 4).
+  // w at p too, from the solve (what weight(p) gives: p lies off the full-weight box).
   const SitePoint p = solution.lattice;
-  const double w = weight(p.x_m, p.y_m);
+  const double w = solution.harbour_weight;
   double eta = 0.0;
   if (w > 0.0) eta += w * harbour_eta(p.x_m, p.y_m);
   if (w > 0.0 && has_inside_) eta += w * cascades_eta(inside_, p.x_m, p.y_m);

@@ -35,6 +35,7 @@
 // snapshot(), stats(), site() and set_beaufort() may be called from any thread. The only lock the
 // render thread takes is held by the worker for pointer moves, never across decoding or I/O.
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -113,6 +114,15 @@ struct StreamingStats {
   double decode_frames_per_s() const { return decode_seconds > 0 ? keyframes_decoded / decode_seconds : 0.0; }
   double decode_real_time_multiple() const { return decode_frames_per_s() * frame_interval_s; }
 };
+
+/// The display times a sea's timeline accepts (s): finite, from 0 (the first step of its plan) to
+/// 1e9 s (32 years: past it a double keeps under a microsecond of the fraction between frames,
+/// and no exercise runs that long). The one rule the public faces (the C API, Python) check a
+/// host's time against before it reaches an engine.
+inline constexpr double kLatestDisplayTime_s = 1e9;
+inline bool is_display_time(double display_time_s) {
+  return std::isfinite(display_time_s) && display_time_s >= 0.0 && display_time_s <= kLatestDisplayTime_s;
+}
 
 class StreamingEngine {
  public:
