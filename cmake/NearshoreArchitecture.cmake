@@ -21,6 +21,10 @@
 #   shared (libnearshore.so, the C API: capi/) -> the runtime side only: runtime, playback, ships,
 #   ships_mesh, ships_layers and what they stand on; never the bake side (bathymetry, boussinesq,
 #   bake, loops, library, export).
+#   bench_runtime (bench/runtime: the runtime side's benchmarks, play and ships) -> playback, runtime,
+#   ships and what they stand on; never the bake side. bench (bench/: the bake side's benchmarks,
+#   bake, bathy, deepwater, loops, library) -> bake, bathymetry, loops, sequence, ocean, core: like
+#   tools/, the top of the graph; no library links either (the runtime rules above list neither).
 #   python (the module `_nearshore`, python/; built where pybind11 is found) -> runtime, sequence,
 #   core and, being a tool like the CLI and never linked by a host, bake and loops (`nearshore.bake`,
 #   `nearshore.loops`). No runtime library links it.
@@ -46,6 +50,8 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_library:nearshore_bake,nearshore_loops,nearshore_export,nearshore_plot,nearshore_sequence,nearshore_core"
   "nearshore_library_mpi?:nearshore_library,nearshore_core"
   "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core"
+  "nearshore_bench_runtime:nearshore_playback,nearshore_runtime,nearshore_ships,nearshore_sequence,nearshore_ocean,nearshore_core"
+  "nearshore_bench:nearshore_bake,nearshore_bathymetry,nearshore_loops,nearshore_sequence,nearshore_ocean,nearshore_core"
   "nearshore_python?:nearshore_runtime,nearshore_bake,nearshore_loops,nearshore_sequence,nearshore_core"
   "nearshore_shared:nearshore_runtime,nearshore_playback,nearshore_ships,nearshore_ships_mesh,nearshore_ships_layers,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
 

@@ -1,243 +1,15 @@
-// `nearshore bench bake`: whole bakes as users run them (issue 15): real case files through
-// run_bake() with their outputs (frames, gauges, checkpoints), each cut to a fixed number of time
-// steps, at one thread and at every thread. Reports cell-updates/s per core from wall time and from
-// CPU time, the load average seen, simulated seconds per wall second, the peak resident set and
-// bytes per cell, and a roofline line: the bytes a step moves per cell (the solver's model,
-// boussinesq::streamed_bytes_per_cell_step) against this machine's memory bandwidth, measured here
-// by a STREAM triad. docs/commands/bench.md ("bench bake") shows the output.
-#include <malloc.h>
-#include <sys/resource.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
+// `nearshore bench bake`: the flags of the whole-bake benchmark (bench/bake_bench.hpp);
+// docs/commands/bench.md ("bench bake") shows the output.
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <functional>
 #include <memory>
-#include <numbers>
 #include <string>
-#include <thread>
-#include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
-#include <tbb/global_control.h>
-#include <tbb/info.h>
-#include <tbb/parallel_for.h>
 
 #include "command_support.hpp"
-#include "nearshore/bake/bake_case.hpp"
-#include "nearshore/bake/bake_estimate.hpp"
-#include "nearshore/bake/bake_run.hpp"
-#include "nearshore/bathymetry/demo_harbour.hpp"
-#include "nearshore/bathymetry/harbour_builder.hpp"
-#include "nearshore/boussinesq/boussinesq_solver.hpp"
-#include "nearshore/core/error.hpp"
+#include "nearshore/bench/bake_bench.hpp"
 
 namespace nearshore::tools {
-namespace {
-
-namespace fs = std::filesystem;
-
-// ---- What the process uses (Linux /proc) ----
-
-double load_average_1min() {
-  std::ifstream file("/proc/loadavg");
-  double load = -1.0;
-  file >> load;
-  return load;
-}
-
-// VmRSS and VmHWM (peak) of /proc/self/status, bytes.
-double status_bytes(const std::string& key) {
-  std::ifstream file("/proc/self/status");
-  std::string name;
-  while (file >> name) {
-    double kib = 0.0;
-    if (name == key + ":" && file >> kib) return kib * 1024.0;
-    std::getline(file, name);
-  }
-  return 0.0;
-}
-
-// Resets the peak resident set (VmHWM) to the current one (Linux >= 4.0, proc(5) clear_refs "5"),
-// so each bake's peak is its own. Returns false where the kernel does not allow it.
-bool reset_peak_resident() {
-  std::ofstream file("/proc/self/clear_refs");
-  file << "5";
-  return static_cast<bool>(file);
-}
-
-double cpu_seconds() {  // user + system time of every thread of the process
-  struct rusage usage {};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-// ---- Memory bandwidth: the STREAM triad a[i] = b[i] + s c[i] (McCalpin 1995) ----
-
-struct Bandwidth {
-  int threads = 0;
-  double bytes_per_s = 0.0;  // STREAM's count: 24 bytes per element (2 reads, 1 write)
-};
-
-// Arrays of 3 x 128 MiB, far beyond any cache; the best of `repeats` passes. Static chunks so each
-// thread touches (first) and streams the same pages.
-Bandwidth measure_triad(int threads, int repeats) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-  const std::size_t n = std::size_t{16} << 20;
-  std::unique_ptr<double[]> a(new double[n]), b(new double[n]), c(new double[n]);
-  const auto chunks = [&](const auto& body) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, n / (4 * static_cast<std::size_t>(threads))),
-                      [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); }, tbb::static_partitioner());
-  };
-  chunks([&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) a[i] = 0.0, b[i] = 1.0, c[i] = 2.0;
-  });
-  double best_s = 1e300;
-  for (int repeat = 0; repeat < repeats; ++repeat) {
-    const auto start = std::chrono::steady_clock::now();
-    chunks([&](std::size_t begin, std::size_t end) {
-      double* __restrict out = a.get();
-      const double* __restrict x = b.get();
-      const double* __restrict y = c.get();
-      for (std::size_t i = begin; i < end; ++i) out[i] = x[i] + 3.0 * y[i];
-    });
-    best_s = std::min(best_s, seconds_since(start));
-  }
-  if (a[n / 2] != 7.0) throw Error("nearshore bench bake", "the STREAM triad computed a wrong value", "report this as a bug");
-  return {threads, 24.0 * static_cast<double>(n) / best_s};
-}
-
-// ---- The cases ----
-
-// A case as users run it: read from its file (inside the measurement: the harbour grid it holds
-// is part of a bake's memory), then cut to `steps` time steps from t = 0 with frames from the
-// start (its own output and checkpoint intervals), so a short run writes what a long one writes.
-struct BenchCase {
-  std::string name;
-  std::function<bake::BakeCase()> read;
-  int steps = 0;
-};
-
-bake::BakeCase shortened(bake::BakeCase bake_case, int steps) {
-  bake_case.timing.duration_s = steps * bake_case.solver.time_step_s;
-  bake_case.timing.spin_up_s = 0.0;
-  return bake_case;
-}
-
-// data/cases/harbour.toml on the generated demo harbour (`nearshore demo`'s chart and bathy
-// stages, run here once into the scratch folder) at the case's own 8 m.
-std::function<bake::BakeCase()> demo_harbour_case(const fs::path& case_file, const fs::path& scratch) {
-  const bathymetry::DemoHarbourFiles chart = bathymetry::write_demo_harbour(scratch / "demo-chart");
-  bathymetry::BathyRequest request;
-  request.inputs = {chart.depth_geotiff, chart.structures_geojson, chart.land_geojson, chart.coastline_geojson};
-  request.spacing_m = 8.0;
-  bathymetry::write_bathymetry_outputs(scratch / "demo-harbour", bathymetry::build_harbour_grid(request));
-  const std::string grid = fs::absolute(scratch / "demo-harbour" / "depth.exr").string();
-  return [case_file, grid] {
-    nlohmann::json document = bake::read_case_document(case_file);
-    document["bathymetry"]["file"] = grid;
-    return bake::parse_bake_case(document, case_file);
-  };
-}
-
-// A 1000 x 900 harbour at 9 m (the size of seed 003's Dalian bay grid): 20 m offshore in the
-// south shoaling to a beach in the north, a sinuous bed, a porous breakwater (n = 0.4) with an
-// entrance; 40 directional components from the south, sponges on three sides. Written as a harbour
-// grid and a case file, and read back through the case reader like any other case.
-fs::path large_harbour_case(const fs::path& scratch) {
-  GridGeometry geometry;
-  geometry.columns = 1000;
-  geometry.rows = 900;
-  geometry.spacing_m = 9.0;
-  HarbourGrid harbour = HarbourGrid::open_water(geometry, 20.0f);
-  for (int r = 0; r < geometry.rows; ++r)
-    for (int c = 0; c < geometry.columns; ++c) {
-      const double x = geometry.cell_centre_x_m(c), y = geometry.cell_centre_y_m(r);
-      const double depth = 20.0 - 24.0 * y / geometry.height_m() + 2.0 * std::sin(x / 300.0);
-      harbour.still_water_depth_m(c, r) = static_cast<float>(depth);
-      harbour.land(c, r) = depth < 0.0;
-      if (r >= 600 && r < 604 && (c < 450 || c >= 520)) harbour.porosity(c, r) = 0.4f;
-    }
-  fs::create_directories(scratch / "large-harbour");
-  const fs::path depth_exr = scratch / "large-harbour" / "depth.exr", case_file = scratch / "large_harbour.toml";
-  write_harbour_grid(depth_exr, harbour);
-  std::ofstream(case_file) << fmt::format(
-      "title = \"bench: 1000 x 900 harbour at 9 m\"\n"
-      "[bathymetry]\nkind = \"harbour_grid\"\nfile = \"{}\"\n"
-      "[time]\nduration_s = 600.0\nspin_up_s = 0.0\noutput_interval_s = 2.0\ncourant_number = 0.5\ncheckpoint_interval_s = 60.0\n"
-      "[wave_maker]\nkind = \"irregular\"\nfacing = \"south\"\nsource_line_m = 300.0\nspectrum = \"jonswap\"\n"
-      "significant_height_m = 1.5\npeak_period_s = 10.0\nfrequency_count = 10\nmin_frequency_hz = 0.06\nmax_frequency_hz = 0.14\n"
-      "direction_count = 4\nspreading_s = 20.0\nseed = 3\nramp_time_s = 30.0\n"
-      "[solver]\ndispersion_cutoff_depth_m = 0.5\n"
-      "[[sponges]]\nside = \"south\"\nwidth_m = 200.0\n[[sponges]]\nside = \"west\"\nwidth_m = 200.0\n"
-      "[[sponges]]\nside = \"east\"\nwidth_m = 200.0\n"
-      "[[gauges]]\nname = \"entrance\"\nx_m = 4450.0\ny_m = 5420.0\n",
-      fs::absolute(depth_exr).string());
-  return case_file;
-}
-
-// ---- One timed bake ----
-
-struct Measurement {
-  std::string name;
-  int threads = 0, columns = 0, rows = 0, steps = 0, frames = 0;
-  double time_step_s = 0.0, wall_s = 0.0, cpu_s = 0.0, output_wall_s = 0.0, load_before = 0.0, load_after = 0.0;
-  double updates_per_s_per_core = 0.0, updates_per_cpu_s = 0.0, simulated_s_per_wall_s = 0.0;
-  double peak_resident_bytes = 0.0, bytes_per_cell = 0.0, streamed_bytes_per_cell_step = 0.0;
-};
-
-Measurement measure(const BenchCase& bench, int threads, const fs::path& output) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-  Measurement m;
-  // Freed heap goes back to the system first, so the resident set before is what is in use and
-  // the bake's peak counts every page it needs (reading its case included).
-  malloc_trim(0);
-  const bool peak_reset = reset_peak_resident();
-  const double resident_before = status_bytes("VmRSS");
-  const bake::BakeCase bake_case = shortened(bench.read(), bench.steps);
-  m.name = bench.name;
-  m.threads = threads;
-  m.columns = bake_case.harbour.geometry.columns;
-  m.rows = bake_case.harbour.geometry.rows;
-  m.steps = bench.steps;
-  m.time_step_s = bake_case.solver.time_step_s;
-  const double cells = static_cast<double>(bake_case.harbour.geometry.cell_count());
-  bake::BakeOptions options;
-  options.output_folder = output;
-  options.overwrite = true;
-  m.load_before = load_average_1min();
-  const double cpu_start = cpu_seconds();
-  const auto start = std::chrono::steady_clock::now();
-  const bake::BakeSummary summary = bake::run_bake(bake_case, options);
-  m.wall_s = seconds_since(start);
-  m.cpu_s = cpu_seconds() - cpu_start;
-  m.load_after = load_average_1min();
-  m.peak_resident_bytes = peak_reset ? status_bytes("VmHWM") : summary.peak_resident_bytes;
-  m.bytes_per_cell = peak_reset ? (m.peak_resident_bytes - resident_before) / cells : std::nan("");
-  m.frames = summary.frames;
-  m.output_wall_s = summary.output_wall_time_s;
-  const double updates = cells * static_cast<double>(summary.steps_this_run);
-  m.updates_per_s_per_core = updates / m.wall_s / threads;
-  m.updates_per_cpu_s = updates / m.cpu_s;
-  m.simulated_s_per_wall_s = static_cast<double>(summary.steps_this_run) * summary.time_step_s / m.wall_s;
-  m.streamed_bytes_per_cell_step = boussinesq::streamed_bytes_per_cell_step(bake_case.solver, false);
-  return m;
-}
-
-std::string today_utc() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-  return text;
-}
-
-}  // namespace
 
 void add_bench_bake(CLI::App& bench) {
   CLI::App* command = bench.add_subcommand(
@@ -245,104 +17,37 @@ void add_bench_bake(CLI::App& bench) {
               "(wall and CPU time), simulated s per wall s, peak memory, bytes per cell, a roofline line");
   set_example(*command, "nearshore bench bake --steps 200 --harbour-steps 10");
   struct Options {
-    int steps = 200, harbour_steps = 10, triad_repeats = 10;
+    bench::BakeBenchOptions measure;
     std::string cases_folder = "data/cases", scratch;
-    bool json = false, keep = false, skip_demo = false, skip_large = false, one_thread_only = false;
+    bool json = false;
   };
   auto options = std::make_shared<Options>();
-  command->add_option("--steps", options->steps, "time steps of the Berkhoff and demo harbour bakes")
+  bench::BakeBenchOptions& m = options->measure;
+  command->add_option("--steps", m.steps, "time steps of the Berkhoff and demo harbour bakes")
       ->capture_default_str()
       ->check(number_in(at_least(1), at_most(1000000)));
-  command->add_option("--harbour-steps", options->harbour_steps, "time steps of the 1000 x 900 harbour bake")
+  command->add_option("--harbour-steps", m.harbour_steps, "time steps of the 1000 x 900 harbour bake")
       ->capture_default_str()
       ->check(number_in(at_least(1), at_most(1000000)));
   command->add_option("--cases", options->cases_folder, "folder holding berkhoff.toml and harbour.toml")->capture_default_str();
   command->add_option("--scratch", options->scratch,
                       "folder for the generated grids and the baked outputs (default: a new folder in the system's temporary folder)");
-  command->add_option("--triad-repeats", options->triad_repeats, "passes of the STREAM triad; the fastest is reported")
+  command->add_option("--triad-repeats", m.triad_repeats, "passes of the STREAM triad; the fastest is reported")
       ->capture_default_str()
       ->check(number_in(at_least(1), at_most(1000)));
-  command->add_flag("--skip-demo", options->skip_demo, "leave out the demo harbour (its chart and gridding take a while)");
-  command->add_flag("--skip-large", options->skip_large, "leave out the 1000 x 900 harbour");
-  command->add_flag("--one-thread", options->one_thread_only, "time one thread only (not also every thread)");
-  command->add_flag("--keep", options->keep, "keep the scratch folder (the baked sequences) afterwards");
+  command->add_flag("--skip-demo", m.skip_demo, "leave out the demo harbour (its chart and gridding take a while)");
+  command->add_flag("--skip-large", m.skip_large, "leave out the 1000 x 900 harbour");
+  command->add_flag("--one-thread", m.one_thread_only, "time one thread only (not also every thread)");
+  command->add_flag("--keep", m.keep_scratch, "keep the scratch folder (the baked sequences) afterwards");
   command->add_flag("--json", options->json, "print the results as JSON");
   command->callback([options]() {
-    const fs::path scratch = options->scratch.empty()
-                                 ? fs::temp_directory_path() / fmt::format("nearshore-bench-bake-{}", ::getpid())
-                                 : fs::path(options->scratch);
-    fs::create_directories(scratch);
-    const std::string date = today_utc();
-    const int all_threads = tbb::info::default_concurrency();
-
-    std::vector<BenchCase> cases;
-    const fs::path berkhoff = fs::path(options->cases_folder) / "berkhoff.toml";
-    cases.push_back({"Berkhoff case", [berkhoff] { return bake::read_bake_case(berkhoff); }, options->steps});
-    if (!options->skip_demo)
-      cases.push_back({"demo harbour", demo_harbour_case(fs::path(options->cases_folder) / "harbour.toml", scratch), options->steps});
-    if (!options->skip_large) {
-      const fs::path large = large_harbour_case(scratch);
-      cases.push_back({"harbour 1000x900", [large] { return bake::read_bake_case(large); }, options->harbour_steps});
-    }
-
-    std::vector<Bandwidth> bandwidth = {measure_triad(1, options->triad_repeats)};
-    if (all_threads > 1 && !options->one_thread_only) bandwidth.push_back(measure_triad(all_threads, options->triad_repeats));
-    std::vector<Measurement> results;
-    for (const BenchCase& bench : cases) {
-      results.push_back(measure(bench, 1, scratch / "bake"));
-      if (all_threads > 1 && !options->one_thread_only) results.push_back(measure(bench, all_threads, scratch / "bake"));
-    }
-    if (!options->keep) fs::remove_all(scratch);
-
-    const auto bandwidth_for = [&](int threads) {
-      for (const Bandwidth& b : bandwidth)
-        if (b.threads == threads) return b.bytes_per_s;
-      return bandwidth.front().bytes_per_s;
-    };
-    if (options->json) {
-      nlohmann::json out;
-      out["date"] = date;
-      out["bake_bytes_per_cell_estimate"] = bake::kBakeBytesPerCell;
-      for (const Bandwidth& b : bandwidth) out["triad_bytes_per_s"].push_back({{"threads", b.threads}, {"bytes_per_s", b.bytes_per_s}});
-      for (const Measurement& m : results) {
-        const double streamed = m.streamed_bytes_per_cell_step * m.updates_per_s_per_core * m.threads;
-        out["bakes"].push_back({{"case", m.name}, {"columns", m.columns}, {"rows", m.rows}, {"threads", m.threads},
-                                {"steps", m.steps}, {"frames", m.frames}, {"time_step_s", m.time_step_s}, {"wall_s", m.wall_s},
-                                {"cpu_s", m.cpu_s}, {"output_wall_s", m.output_wall_s},
-                                {"cell_updates_per_s_per_core", m.updates_per_s_per_core},
-                                {"cell_updates_per_cpu_s", m.updates_per_cpu_s},
-                                {"simulated_s_per_wall_s", m.simulated_s_per_wall_s}, {"load_average_before", m.load_before},
-                                {"load_average_after", m.load_after}, {"peak_resident_bytes", m.peak_resident_bytes},
-                                {"bytes_per_cell", m.bytes_per_cell},
-                                {"streamed_bytes_per_cell_step", m.streamed_bytes_per_cell_step},
-                                {"streamed_bytes_per_s", streamed}, {"fraction_of_triad_bandwidth", streamed / bandwidth_for(m.threads)}});
-      }
-      fmt::print("{}\n", out.dump(2));
-      return;
-    }
-    fmt::print("nearshore bench bake, {}, {} hardware threads\n", date, all_threads);
-    fmt::print("{:<17} {:>9} {:>3} {:>5} {:>8} {:>7} {:>14} {:>14} {:>9} {:>10} {:>8} {:>8} {:>11}\n", "case", "grid", "thr",
-               "steps", "dt (s)", "wall(s)", "updates/s/core", "updates/CPU-s", "sim s/s", "load", "peak MiB", "B/cell",
-               "roofline");
-    for (const Measurement& m : results) {
-      const double streamed = m.streamed_bytes_per_cell_step * m.updates_per_s_per_core * m.threads;
-      fmt::print("{:<17} {:>9} {:>3} {:>5} {:>8.4f} {:>7.2f} {:>14.3e} {:>14.3e} {:>9.3f} {:>4.2f}-{:<4.2f} {:>8.0f} {:>8.0f} {:>10.0f}%\n",
-                 m.name, fmt::format("{}x{}", m.columns, m.rows), m.threads, m.steps, m.time_step_s, m.wall_s,
-                 m.updates_per_s_per_core, m.updates_per_cpu_s, m.simulated_s_per_wall_s, m.load_before, m.load_after,
-                 m.peak_resident_bytes / (1024.0 * 1024.0), m.bytes_per_cell, 100.0 * streamed / bandwidth_for(m.threads));
-    }
-    for (const Bandwidth& b : bandwidth)
-      fmt::print("memory bandwidth (STREAM triad, {} thread{}): {:.2f} GB/s\n", b.threads, b.threads == 1 ? "" : "s", b.bytes_per_s * 1e-9);
-    if (!results.empty())
-      fmt::print("a step streams about {:.0f} bytes per cell (boussinesq::streamed_bytes_per_cell_step, the open-water count)\n",
-                 results.front().streamed_bytes_per_cell_step);
-    fmt::print(
-        "updates/s/core = cells x steps / wall time of the whole bake (case read excluded; frames, gauges, checkpoints\n"
-        "included) / threads; updates/CPU-s uses the CPU time of all threads (less sensitive to other processes);\n"
-        "sim s/s = simulated seconds per wall second; load = 1-minute load average before-after; peak MiB = the\n"
-        "process's peak resident set during the bake; B/cell = (that peak - the resident set before the bake) / cells\n"
-        "(the bake's estimate uses {:.0f}); roofline = bytes streamed per second by the model / the triad bandwidth.\n",
-        bake::kBakeBytesPerCell);
+    options->measure.cases_folder = options->cases_folder;
+    options->measure.scratch_folder = options->scratch;
+    const bench::BakeBenchResult result = bench::run_bake_bench(options->measure);
+    if (options->json)
+      fmt::print("{}\n", bench::bake_bench_json(result).dump(2));
+    else
+      fmt::print("{}", bench::bake_bench_text(result));
   });
 }
 

@@ -2,7 +2,8 @@
 
 namespace nearshore::tools {
 
-// `nearshore bench <stage>`: each stage's benchmark lives beside its command (bench_<stage>.cpp).
+// `nearshore bench <stage>`: each stage's flags in bench_<stage>.cpp, its measurement in bench/
+// (nearshore/bench/<stage>_bench.hpp).
 void add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Measure throughput of a stage and print a table");
   set_example(*bench, "nearshore bench bake");

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
-#include <fstream>
 #include <limits>
 
 #include <fmt/core.h>
@@ -101,18 +99,6 @@ std::function<void()> naming_flags_in_errors(FlagTable flags, std::function<void
       throw Error(name_flags(e.subject(), flags), name_flags(e.problem(), flags), name_flags(e.fix(), flags));
     }
   };
-}
-
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-std::string proc_loadavg_line() {
-  std::string line;
-  std::getline(std::ifstream("/proc/loadavg"), line);
-  return line;
 }
 
 }  // namespace nearshore::tools

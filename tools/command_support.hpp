@@ -2,7 +2,6 @@
 // What every subcommand of `nearshore` shares: its registration function, the plain "not built
 // yet" answer for a subcommand whose issue is still open, the range every number on the command
 // line is checked against, and the translation of library errors into the command's own flags.
-#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -22,7 +21,8 @@ void add_demo_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_library_command(CLI::App& app);
 void add_export_command(CLI::App& app);
-/// `nearshore bench <stage>` subcommands, one file each (bench_<stage>.cpp).
+/// `nearshore bench <stage>` subcommands, one file each (bench_<stage>.cpp): their flags; the
+/// measurements are bench/'s (nearshore/bench/*_bench.hpp).
 void add_bench_bathy(CLI::App& bench);
 void add_bench_bake(CLI::App& bench);
 void add_bench_deepwater(CLI::App& bench);
@@ -45,18 +45,6 @@ struct ExitStatus {
 /// prints results it did not compute.
 CLI::App* add_unbuilt_command(CLI::App& app, const std::string& name, const std::string& description,
                               const std::string& example, const std::string& tracking_issue);
-
-/// Wall seconds from `start` to now (the timer of the benchmarks and the commands that report their time).
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// CPU seconds of the calling thread (CLOCK_THREAD_CPUTIME_ID): the timer of the per-frame benchmarks,
-/// which wall time on a shared machine would blur.
-double thread_cpu_s();
-
-/// The first line of /proc/loadavg as it stands ("1.02 0.87 0.66 2/345 6789"), for a benchmark's report.
-std::string proc_loadavg_line();
 
 /// The example line shown at the end of a subcommand's --help.
 void set_example(CLI::App& command, const std::string& example);

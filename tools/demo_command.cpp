@@ -26,6 +26,7 @@
 #include "nearshore/bathymetry/harbour_builder.hpp"
 #include "nearshore/core/atomic_file.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/process_usage.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/inspector.hpp"
 #include "nearshore/plot/plot.hpp"

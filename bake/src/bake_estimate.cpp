@@ -202,4 +202,8 @@ void check_bake_resources(const BakeCase& bake_case, const BakeResourceEstimate&
               "anyway (the estimate is an upper bound)");
 }
 
+double streamed_bytes_per_cell_step(const BakeCase& bake_case) {
+  return boussinesq::streamed_bytes_per_cell_step(bake_case.solver, false);
+}
+
 }  // namespace nearshore::bake

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <functional>
 #include <cmath>
 
 #include <tbb/global_control.h>
 
+#include "nearshore/core/process_usage.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/distance.hpp"
 #include "nearshore/loops/synthetic_sea.hpp"
@@ -16,17 +16,6 @@
 namespace nearshore::loops {
 namespace fs = std::filesystem;
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// CPU time of the calling thread: what one core spends, whatever else the machine is running.
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return now.tv_sec + 1e-9 * now.tv_nsec;
-}
 
 GridGeometry bench_geometry(int columns, int rows) {
   GridGeometry geometry;
@@ -96,17 +85,17 @@ CompressionMeasurement measure_frames(const fs::path& work_folder, sequence::Com
   // Decode speed: files are in the page cache after the pass above, as in steady playback.
   const int passes = std::max(1, 48 / frames);
   auto start = std::chrono::steady_clock::now();
-  double cpu = thread_cpu_seconds();
+  double cpu = thread_cpu_s();
   for (int pass = 0; pass < passes; ++pass)
     for (int k = 0; k < frames; ++k) reader.read_frame_into(k, frame);
   result.decode_frames_per_s = passes * frames / seconds_since(start);
-  result.decode_frames_per_cpu_s = passes * frames / (thread_cpu_seconds() - cpu);
+  result.decode_frames_per_cpu_s = passes * frames / (thread_cpu_s() - cpu);
   start = std::chrono::steady_clock::now();
-  cpu = thread_cpu_seconds();
+  cpu = thread_cpu_s();
   for (int pass = 0; pass < passes; ++pass)
     for (int k = 0; k < frames; ++k) reader.read_frame_into(k, frame, sequence::ChannelSelection::display());
   result.decode_display_frames_per_s = passes * frames / seconds_since(start);
-  result.decode_display_frames_per_cpu_s = passes * frames / (thread_cpu_seconds() - cpu);
+  result.decode_display_frames_per_cpu_s = passes * frames / (thread_cpu_s() - cpu);
   fs::remove_all(work_folder);
   return result;
 }

@@ -1,7 +1,5 @@
 #include "nearshore/runtime/streaming_engine.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -17,17 +15,12 @@
 
 #include "keyframe_pool.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/process_usage.hpp"
 #include "nearshore/runtime/harbour_site.hpp"
 
 namespace nearshore::runtime {
 
 namespace {
-
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
 
 double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -447,7 +440,7 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
     if (harbour) {
       const long long index = harbour_ring.next, generation = harbour_ring.generation;
       lock.unlock();
-      const double wall0 = wall_seconds(), cpu0 = thread_cpu_seconds();
+      const double wall0 = wall_seconds(), cpu0 = thread_cpu_s();
       const PlanStep step = harbour_plan.step(index);
       std::unique_ptr<HarbourKeyframe> keyframe = harbour_pool.acquire();
       std::string message;
@@ -455,7 +448,7 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
       const bool held = keyframe->held;
       std::shared_ptr<const HarbourKeyframe> published = harbour_pool.publish(std::move(keyframe));
       if (!held) last_good = published;
-      const double wall1 = wall_seconds(), cpu1 = thread_cpu_seconds();
+      const double wall1 = wall_seconds(), cpu1 = thread_cpu_s();
       lock.lock();
       counters.decode_seconds += wall1 - wall0;
       counters.decode_cpu_seconds += cpu1 - cpu0;
@@ -469,7 +462,7 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
       const long long index = deep_ring.next, generation = deep_ring.generation;
       ocean::DeepWaterField* deep_field = field.get();
       lock.unlock();
-      const double wall0 = wall_seconds(), cpu0 = thread_cpu_seconds();
+      const double wall0 = wall_seconds(), cpu0 = thread_cpu_s();
       std::unique_ptr<DeepWaterKeyframe> keyframe = deep_pool.acquire();
       std::string message;
       try {
@@ -482,7 +475,7 @@ void StreamingEngine::Impl::run_worker(bool harbour) {
         message = fmt::format("deep water at {} s: {}; a calm sea is shown", keyframe->display_time_s, error.what());
       }
       std::shared_ptr<const DeepWaterKeyframe> published = deep_pool.publish(std::move(keyframe));
-      const double wall1 = wall_seconds(), cpu1 = thread_cpu_seconds();
+      const double wall1 = wall_seconds(), cpu1 = thread_cpu_s();
       lock.lock();
       counters.deep_seconds += wall1 - wall0;
       counters.deep_cpu_seconds += cpu1 - cpu0;

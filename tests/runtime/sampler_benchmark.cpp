@@ -4,8 +4,6 @@
 // are (1000 points on a 200 m x 40 m hull moving along a track) and scattered uniformly over the
 // harbour and the sea around it, at lattice points and at displaced points, and the full state.
 //   build/<dir>/tests/runtime/runtime_sampler_benchmark [seconds per figure, default 1]
-#include <time.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "nearshore/core/process_usage.hpp"
 #include "nearshore/runtime/deep_water_source.hpp"
 #include "nearshore/runtime/surface_sampler.hpp"
 
@@ -21,23 +20,18 @@ using namespace nearshore::runtime;
 
 namespace {
 
-// Per core: counted against this thread's CPU time, not the wall clock, so other jobs on a shared
-// machine do not lower the figure (they still cost caches and memory bandwidth).
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
+// Per core: counted against this thread's CPU time (thread_cpu_s, core/process_usage.hpp), not the
+// wall clock, so other jobs on a shared machine do not lower the figure (they still cost caches and
+// memory bandwidth).
 template <class Work>
 double rate_per_s(double seconds, std::size_t per_round, Work work) {
-  const double start = thread_cpu_seconds();
+  const double start = thread_cpu_s();
   long long rounds = 0;
   do {
     work(rounds);
     ++rounds;
-  } while (thread_cpu_seconds() - start < seconds);
-  return static_cast<double>(rounds) * static_cast<double>(per_round) / (thread_cpu_seconds() - start);
+  } while (thread_cpu_s() - start < seconds);
+  return static_cast<double>(rounds) * static_cast<double>(per_round) / (thread_cpu_s() - start);
 }
 
 }  // namespace
@@ -103,10 +97,10 @@ int main(int argc, char** argv) {
   }
   snapshot.deep_fraction = 0.25;
   // What the engine's worker adds per deep keyframe: the CPU queries' layout (QueryTile).
-  const double pack0 = thread_cpu_seconds();
+  const double pack0 = thread_cpu_s();
   constexpr int kPacks = 20;
   for (int i = 0; i < kPacks; ++i) pack_query_tiles(*first_deep);
-  const double pack_ms = 1e3 * (thread_cpu_seconds() - pack0) / kPacks;
+  const double pack_ms = 1e3 * (thread_cpu_s() - pack0) / kPacks;
   const SurfaceSampler sampler(snapshot);
 
   // Hull points: 1000 on a 200 m x 40 m hull, placed in turn at 100 positions along a track

@@ -71,6 +71,12 @@ struct BakeResourceEstimate {
 /// The estimate for `bake_case`; `resume` adds what reading a checkpoint holds for a moment.
 BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool resume = false);
 
+/// Bytes one time step of `bake_case`'s solver moves through main memory per grid cell where no
+/// wave breaks: the open-water count of boussinesq::streamed_bytes_per_cell_step (docs/solver.md
+/// "Memory traffic") for the case's solver parameters. A model, not a measurement: the traffic side
+/// of the roofline line of `nearshore bench bake` (bench/bake_bench.hpp).
+double streamed_bytes_per_cell_step(const BakeCase& bake_case);
+
 /// MemAvailable of /proc/meminfo, bytes; nullopt where the system does not say.
 std::optional<double> available_memory_bytes();
 /// Space an unprivileged writer may use on the file system that holds `folder` (statvfs f_bavail),
