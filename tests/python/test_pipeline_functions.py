@@ -17,14 +17,6 @@ import nearshore
 from test_queries_match_c_api import SurfaceSample, bits, c_query
 
 
-@pytest.fixture(scope="module")
-def cli():
-    path = os.environ.get("NEARSHORE_CLI")
-    if not path:
-        pytest.skip("NEARSHORE_CLI is not set (ctest sets it to the built nearshore)")
-    return path
-
-
 def run_cli(cli, *arguments):
     done = subprocess.run([cli, *map(str, arguments)], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
