@@ -43,6 +43,7 @@ namespace {
 // maps the whole run.
 // Version 4: the solver's physics revision (kSolverPhysicsRevision) follows the fingerprint, so a bake
 // is only resumed by a solver that computes what its first part was computed with.
+// Version 5: the gauges' fluxes (P, Q) follow their elevations (gauge_fluxes.csv, the directions).
 constexpr char kCheckpointMagic[16] = "nearshore-ckpt5";
 // The stability guard looks at the whole field after every step: a scan costs a few per cent of a
 // step, and a blow-up caught in its first step names the cell where it starts, before the implicit
