@@ -140,3 +140,20 @@ def test_a_library_sea_equals_the_c_api_bit_for_bit(small_library, c_library):
     # The two states are different seas: the same point and time differ between them.
     veered, west = nearshore.Sea(folder, conditions="wind_direction_deg=30"), nearshore.Sea(folder)
     assert not np.array_equal(veered.query(x, y, 5.0).elevation_m, west.query(x, y, 5.0).elevation_m)
+
+
+def test_operability_writes_what_the_cli_writes(small_library, cli):
+    root, _ = small_library
+    (root / "occurrence.csv").write_text("hs_m,tp_s,direction_deg,probability\n0.5,6,0,0.5\n1.0,6,30,0.3\n1.5,6,10,0.2\n")
+    (root / "berths.csv").write_text("name,x_m,y_m\nquay,300,100\nbeach,360,60\n")
+    result = nearshore.operability(root / "out", root / "occurrence.csv", root / "berths.csv", 0.5, root / "ops-py")
+    printed = json.loads(run_cli(cli, "library", "operability", root / "out", "--occurrence", root / "occurrence.csv",
+                                 "--berths", root / "berths.csv", "--threshold-hs", 0.5, "-o", root / "ops-cli", "--json"))
+    files = result.pop("files")
+    assert sorted(os.path.basename(f) for f in files) == sorted(os.listdir(root / "ops-cli"))
+    same_files(root / "ops-py", root / "ops-cli", [n for n in os.listdir(root / "ops-cli") if n.endswith(".csv")])
+    assert result == printed
+    assert [b["name"] for b in result["berths"]] == ["quay", "beach"]
+    assert all(0.0 <= b["exceedance_percent"] <= 100.0 for b in result["berths"])
+    with pytest.raises(nearshore.Error, match="threshold_hs_m"):
+        nearshore.operability(root / "out", root / "occurrence.csv", root / "berths.csv", -1.0)
