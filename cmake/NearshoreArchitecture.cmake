@@ -26,8 +26,8 @@
 #   bake, bathy, deepwater, loops, library) -> bake, bathymetry, loops, sequence, ocean, core: like
 #   tools/, the top of the graph; no library links either (the runtime rules above list neither).
 #   python (the module `_nearshore`, python/; built where pybind11 is found) -> runtime, sequence,
-#   core and, being a tool like the CLI and never linked by a host, bake and loops (`nearshore.bake`,
-#   `nearshore.loops`). No runtime library links it.
+#   core and, being a tool like the CLI and never linked by a host, bathymetry, bake, loops, library
+#   and export (`nearshore.bathy`, `.bake`, `.loops`, `.library`, `.export`). No runtime library links it.
 set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core:"
   "nearshore_core_vdb:nearshore_core"
@@ -52,7 +52,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_export:nearshore_sequence,nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core"
   "nearshore_bench_runtime:nearshore_playback,nearshore_runtime,nearshore_ships,nearshore_sequence,nearshore_ocean,nearshore_core"
   "nearshore_bench:nearshore_bake,nearshore_bathymetry,nearshore_loops,nearshore_sequence,nearshore_ocean,nearshore_core"
-  "nearshore_python?:nearshore_runtime,nearshore_bake,nearshore_loops,nearshore_sequence,nearshore_core"
+  "nearshore_python?:nearshore_runtime,nearshore_bake,nearshore_bathymetry,nearshore_loops,nearshore_library,nearshore_export,nearshore_sequence,nearshore_core"
   "nearshore_shared:nearshore_runtime,nearshore_playback,nearshore_ships,nearshore_ships_mesh,nearshore_ships_layers,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
 
 function(nearshore_check_architecture)

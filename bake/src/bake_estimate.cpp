@@ -105,7 +105,8 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
   const double per_gauge = timing.gauge_interval_s > 0 ? std::max(1.0, std::round(timing.gauge_interval_s / dt)) : 1.0;
   estimate.frames = estimate.steps >= first_frame ? std::floor((estimate.steps - first_frame) / per_frame) + 1 : 0;
   estimate.gauge_samples = std::floor(estimate.steps / per_gauge) + 1;
-  const double gauge_values = estimate.gauge_samples * (1.0 + static_cast<double>(bake_case.gauges.size()));
+  // Per sample: the time, and each gauge's elevation and flux (P, Q): gauges.csv and gauge_fluxes.csv.
+  const double gauge_values = estimate.gauge_samples * (1.0 + 3.0 * static_cast<double>(bake_case.gauges.size()));
 
   const sequence::FrameEncoding& encoding = bake_case.output.frame_encoding;  // [output] frame_precision
   const double frame_bytes_per_cell = channel_bytes(encoding.surface_elevation) + 2 * channel_bytes(encoding.flux) +
@@ -145,7 +146,7 @@ BakeResourceEstimate estimate_bake_resources(const BakeCase& bake_case, bool res
                           (resume ? kStateArrays * cells * 8 : 0.0);
   const double harbour_grid_bytes = cells * 16 + kFrameHeaderBytes;  // depth.exr: 4 float channels, ZIP at most that
   const double gauges_csv_bytes = gauge_values * kGaugeValueTextBytes;
-  // While under way, the checkpoint and gauges.csv are rewritten beside their last copies.
+  // While under way, the checkpoint, gauges.csv and gauge_fluxes.csv are rewritten beside their last copies.
   const double statistics_file_bytes = bake_case.output.wave_statistics ? cells * 16 + kFrameHeaderBytes : 0.0;  // 4 float bands, DEFLATE at most that
   estimate.disk_bytes = estimate.frames * estimate.frame_bytes + harbour_grid_bytes + 2 * gauges_csv_bytes +
                         2 * estimate.checkpoint_bytes + statistics_file_bytes;

@@ -1,6 +1,8 @@
 #include "nearshore/bake/bake_gauges.hpp"
 
+#include <cmath>
 #include <cstdint>
+#include <span>
 #include <fstream>
 #include <istream>
 #include <ostream>
@@ -45,12 +47,31 @@ std::vector<std::string> split_csv(const std::string& line) {
 GaugeRecorder::GaugeRecorder(std::vector<GaugeSpec> gauges) : gauges_(std::move(gauges)) {
   for (const GaugeSpec& gauge : gauges_) table_.names.push_back(gauge.name);
   table_.elevation_m.resize(gauges_.size());
+  table_.flux_x_m2_s.resize(gauges_.size());
+  table_.flux_y_m2_s.resize(gauges_.size());
 }
 
 void GaugeRecorder::record(double time_s, const BoussinesqSolver& solver) {
   table_.time_s.push_back(time_s);
-  for (std::size_t i = 0; i < gauges_.size(); ++i)
+  for (std::size_t i = 0; i < gauges_.size(); ++i) {
     table_.elevation_m[i].push_back(solver.surface_elevation_at(gauges_[i].x_m, gauges_[i].y_m));
+    const auto [flux_x, flux_y] = solver.flux_at(gauges_[i].x_m, gauges_[i].y_m);
+    table_.flux_x_m2_s[i].push_back(flux_x);
+    table_.flux_y_m2_s[i].push_back(flux_y);
+  }
+}
+
+void GaugeRecorder::write_fluxes_csv(const std::filesystem::path& file) const {
+  std::string text = "t";
+  for (const std::string& name : table_.names) text += fmt::format(",{0}.flux_x_m2_s,{0}.flux_y_m2_s", name);
+  text += "\n";
+  for (std::size_t sample = 0; sample < table_.time_s.size(); ++sample) {
+    text += fmt::format("{:.9g}", table_.time_s[sample]);
+    for (std::size_t g = 0; g < table_.names.size(); ++g)
+      text += fmt::format(",{:.9g},{:.9g}", table_.flux_x_m2_s[g][sample], table_.flux_y_m2_s[g][sample]);
+    text += "\n";
+  }
+  write_text_atomically(file, text);
 }
 
 void GaugeRecorder::write_csv(const std::filesystem::path& file) const {
@@ -73,8 +94,9 @@ void GaugeRecorder::save(std::ostream& out) const {
   }
   put<std::uint64_t>(out, table_.time_s.size());
   out.write(reinterpret_cast<const char*>(table_.time_s.data()), static_cast<std::streamsize>(table_.time_s.size() * sizeof(double)));
-  for (const auto& column : table_.elevation_m)
-    out.write(reinterpret_cast<const char*>(column.data()), static_cast<std::streamsize>(column.size() * sizeof(double)));
+  for (const auto* columns : {&table_.elevation_m, &table_.flux_x_m2_s, &table_.flux_y_m2_s})
+    for (const auto& column : *columns)
+      out.write(reinterpret_cast<const char*>(column.data()), static_cast<std::streamsize>(column.size() * sizeof(double)));
 }
 
 void GaugeRecorder::load(std::istream& in, const std::string& subject) {
@@ -100,7 +122,8 @@ void GaugeRecorder::load(std::istream& in, const std::string& subject) {
       throw Error(subject, "ends inside the gauge samples (truncated checkpoint)", "bake again from the start with BakeOptions::overwrite instead of BakeOptions::resume");
   };
   read_doubles(table_.time_s);
-  for (auto& column : table_.elevation_m) read_doubles(column);
+  for (auto* columns : {&table_.elevation_m, &table_.flux_x_m2_s, &table_.flux_y_m2_s})
+    for (auto& column : *columns) read_doubles(column);
 }
 
 GaugeTable read_gauges_csv(const std::filesystem::path& file) {
@@ -130,6 +153,86 @@ GaugeTable read_gauges_csv(const std::filesystem::path& file) {
     }
   }
   return table;
+}
+
+void read_gauge_fluxes_csv(const std::filesystem::path& file, GaugeTable& table) {
+  GaugeTable read = read_gauges_csv(file);
+  std::vector<std::string> expected;
+  for (const std::string& name : table.names) {
+    expected.push_back(name + ".flux_x_m2_s");
+    expected.push_back(name + ".flux_y_m2_s");
+  }
+  if (read.names != expected)
+    throw Error(file.string(), "does not hold the flux_x_m2_s and flux_y_m2_s columns of the gauges of the gauges.csv beside it",
+                "give the gauge_fluxes.csv the same bake wrote with that gauges.csv");
+  if (read.time_s != table.time_s)
+    throw Error(file.string(), "holds other sample times than the gauges.csv beside it",
+                "give the gauge_fluxes.csv the same bake wrote with that gauges.csv");
+  table.flux_x_m2_s.clear();
+  table.flux_y_m2_s.clear();
+  for (std::size_t g = 0; g < table.names.size(); ++g) {
+    table.flux_x_m2_s.push_back(std::move(read.elevation_m[2 * g]));
+    table.flux_y_m2_s.push_back(std::move(read.elevation_m[2 * g + 1]));
+  }
+}
+
+std::size_t gauge_sample_count_from(const GaugeTable& table, double from_time_s) {
+  std::size_t first = 0;
+  while (first < table.time_s.size() && table.time_s[first] < from_time_s - 1e-9) ++first;
+  return table.time_s.size() - first;
+}
+
+std::vector<GaugeStatistics> gauge_statistics(const GaugeTable& table, const std::vector<GaugeSpec>& gauges,
+                                              double from_time_s) {
+  const char* const subject = "gauge statistics";
+  const std::size_t samples = gauge_sample_count_from(table, from_time_s);
+  const std::size_t first = table.time_s.size() - samples;
+  if (samples < 16)
+    throw Error(subject, fmt::format("the gauges hold {} samples from t = {} s on (from_time_s)", samples, from_time_s),
+                "record at least 16 samples after the spin-up (time.gauge_interval_s, time.duration_s)");
+  const double interval_s = (table.time_s.back() - table.time_s[first]) / static_cast<double>(samples - 1);
+  for (std::size_t k = first + 1; k < table.time_s.size(); ++k)
+    if (std::abs(table.time_s[k] - table.time_s[k - 1] - interval_s) > 1e-6 * interval_s)
+      throw Error(subject, fmt::format("the samples at {} s and {} s are not {} s apart", table.time_s[k - 1], table.time_s[k], interval_s),
+                  "give evenly spaced records (a spectrum needs them)");
+  if (table.flux_x_m2_s.size() != table.names.size() || table.flux_y_m2_s.size() != table.names.size())
+    throw Error(subject, "the gauge table holds no fluxes", "read gauge_fluxes.csv with the gauges (read_gauge_fluxes_csv)");
+  std::vector<GaugeStatistics> out;
+  for (std::size_t g = 0; g < table.names.size(); ++g) {
+    GaugeStatistics row;
+    row.name = table.names[g];
+    for (const GaugeSpec& spec : gauges)
+      if (spec.name == row.name) row.x_m = spec.x_m, row.y_m = spec.y_m;
+    row.from_time_s = table.time_s[first];
+    row.to_time_s = table.time_s.back();
+    row.samples = static_cast<int>(samples);
+    const auto tail = [&](const std::vector<double>& column) { return std::span<const double>(column).subspan(first); };
+    row.spectrum = ocean::directional_record_spectrum(tail(table.elevation_m[g]), tail(table.flux_x_m2_s[g]),
+                                                      tail(table.flux_y_m2_s[g]), interval_s);
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
+void write_gauge_statistics_csv(const std::filesystem::path& file, const std::vector<GaugeStatistics>& statistics) {
+  // Compass "from" = 270 - "towards" (counter-clockwise from east), in [0, 360).
+  const auto from_deg = [](double towards_deg) {
+    const double from = std::fmod(270.0 - towards_deg, 360.0);
+    return from < 0.0 ? from + 360.0 : from;
+  };
+  std::string text =
+      "gauge,x_m,y_m,from_time_s,to_time_s,samples,segment_samples,significant_height_hm0_m,peak_period_s,"
+      "mean_period_tm01_s,zero_crossing_period_tm02_s,peak_direction_deg,mean_direction_deg,directional_spread_deg,"
+      "peak_direction_from_deg,mean_direction_from_deg\n";
+  for (const GaugeStatistics& row : statistics) {
+    const ocean::DirectionalRecordSpectrum& s = row.spectrum;
+    text += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                        row.name, row.x_m, row.y_m, row.from_time_s, row.to_time_s, row.samples, s.elevation.segment_samples,
+                        s.elevation.significant_height_hm0_m, s.elevation.peak_period_s, s.elevation.mean_period_tm01_s,
+                        s.elevation.zero_crossing_period_tm02_s, s.peak_direction_deg, s.mean_direction_deg,
+                        s.directional_spread_deg, from_deg(s.peak_direction_deg), from_deg(s.mean_direction_deg));
+  }
+  write_text_atomically(file, text);
 }
 
 const std::vector<double>& gauge_column(const GaugeTable& table, const std::string& name) {

@@ -43,7 +43,8 @@ namespace {
 // maps the whole run.
 // Version 4: the solver's physics revision (kSolverPhysicsRevision) follows the fingerprint, so a bake
 // is only resumed by a solver that computes what its first part was computed with.
-constexpr char kCheckpointMagic[16] = "nearshore-ckpt4";
+// Version 5: the gauges' fluxes (P, Q) follow their elevations (gauge_fluxes.csv, the directions).
+constexpr char kCheckpointMagic[16] = "nearshore-ckpt5";
 // The stability guard looks at the whole field after every step: a scan costs a few per cent of a
 // step, and a blow-up caught in its first step names the cell where it starts, before the implicit
 // sweeps have carried NaN along the whole row.
@@ -157,7 +158,8 @@ double replaced_bytes(const fs::path& folder) {
   for (const auto& item : fs::directory_iterator(folder, ec)) {
     const std::string name = item.path().filename().string();
     const bool replaced = (name.starts_with("frame_") && name.ends_with(".exr")) ||
-                          item.path() == checkpoint_path(folder) || name == "gauges.csv" || name == kWaveStatisticsFile ||
+                          item.path() == checkpoint_path(folder) || name == "gauges.csv" || name == kGaugeFluxesFile ||
+                          name == kGaugeStatisticsFile || name == kWaveStatisticsFile ||
                           name == std::string(sequence::kHarbourGridFile);
     std::error_code size_error;
     if (replaced && item.is_regular_file(size_error)) bytes += static_cast<double>(item.file_size(size_error));
@@ -269,6 +271,9 @@ std::ifstream open_checkpoint(const fs::path& file, std::uint64_t fingerprint) {
                 "its solver may have computed other physics than this one, and a bake continued from it would change "
                 "physics part-way through its sequence",
                 start_again + ", or resume with the nearshore build that wrote it");
+  if (magic_read && std::string(magic) == "nearshore-ckpt4")
+    throw Error(subject, "is a checkpoint of an older nearshore (version 4, before the gauges recorded the flux for their directions)",
+                start_again + ", or resume with the nearshore build that wrote it");
   if (!magic_read || std::string(magic, sizeof magic) != std::string(kCheckpointMagic, sizeof magic))
     throw Error(subject, "is not a nearshore bake checkpoint", start_again);
   if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != fingerprint)
@@ -362,6 +367,7 @@ nlohmann::json BakeSummary::to_json() const {
             {"first_frame_time_s", first_frame_time_s},
             {"frame_interval_s", frame_interval_s},
             {"gauges_csv", gauges_csv.string()},
+            {"gauge_statistics_csv", gauge_statistics_csv.empty() ? nlohmann::json() : nlohmann::json(gauge_statistics_csv.string())},
             {"wave_statistics", wave_statistics}}},
           {"deep_water", deep_water}};
 }
@@ -471,6 +477,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     if (checkpoint_due) {
       timed([&] {
         gauges.write_csv(folder / "gauges.csv");  // a killed run still leaves the gauges up to here
+        gauges.write_fluxes_csv(folder / kGaugeFluxesFile);
         write_checkpoint(checkpoint, fingerprint, solver, gauges, statistics_or_null);
       });
       checkpoint_time_s = solver.time_s();
@@ -489,6 +496,19 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   const double stepping_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - stepping_start).count();
   summary.frames = static_cast<int>(plan.frames);
   gauges.write_csv(folder / "gauges.csv");
+  gauges.write_fluxes_csv(folder / kGaugeFluxesFile);
+  // The sea state at each gauge over the frames' span (from the spin-up on); a bake whose gauges
+  // hold too short a record for a spectrum (16 samples) writes none, rather than failing at its end.
+  fs::path gauge_statistics_csv;
+  if (!bake_case.gauges.empty() && gauge_sample_count_from(gauges.table(), bake_case.timing.spin_up_s) >= 16) {
+    gauge_statistics_csv = folder / kGaugeStatisticsFile;
+    timed([&] {
+      write_gauge_statistics_csv(gauge_statistics_csv,
+                                 gauge_statistics(gauges.table(), bake_case.gauges, bake_case.timing.spin_up_s));
+    });
+  } else {
+    fs::remove(folder / kGaugeStatisticsFile, ignored);  // one of an earlier bake would describe another sea
+  }
   nlohmann::json statistics_json;
   if (statistics) {
     timed([&] {
@@ -523,6 +543,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   summary.loop_period_s = description.loop_period_s;
   summary.output_folder = folder;
   summary.gauges_csv = folder / "gauges.csv";
+  summary.gauge_statistics_csv = gauge_statistics_csv;
   summary.deep_water = std::move(deep_water_summary_json);
   summary.wave_statistics = std::move(statistics_json);
   summary.estimated_memory_bytes = estimate.memory_bytes;

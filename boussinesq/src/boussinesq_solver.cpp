@@ -662,29 +662,53 @@ void BoussinesqSolver::cell_centred_fluxes(Raster<float>& flux_x_m2_s, Raster<fl
     }
 }
 
-double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
-  const Implementation& s = *implementation_;
+namespace {
+
+// The value of `value_at(cell index)` at a point: bilinear between the four cell centres around it,
+// over those that hold water now (wet, porosity > 0; their weights renormalised). A dry cell's eta
+// is its ground (h = 0) and a wall's is 0, and neither is the water a gauge beside a quay or in the
+// swash should read (its mean level would take the ground's height with the cell's weight); where
+// none of the four is wet the gauge reads the nearest cell: the ground it stands on.
+template <class Implementation, class ValueAt>
+auto wet_bilinear_at(const Implementation& s, double x_m, double y_m, const ValueAt& value_at) {
   const double u = std::clamp((x_m - s.geometry.origin_x_m) / s.dx - 0.5, 0.0, s.nx - 1.0);
   const double v = std::clamp((y_m - s.geometry.origin_y_m) / s.dy - 0.5, 0.0, s.ny - 1.0);
   const int c0 = std::min(static_cast<int>(u), s.nx - 1), r0 = std::min(static_cast<int>(v), s.ny - 1);
   const int c1 = std::min(c0 + 1, s.nx - 1), r1 = std::min(r0 + 1, s.ny - 1);
   const double a = u - c0, b = v - r0;
-  // Only cells that hold water now: a dry cell's eta is its ground (h = 0) and a wall's is 0, and
-  // neither is the water surface a gauge beside a quay or in the swash should read (its mean level
-  // would take the ground's height with the cell's weight). The wet cells' weights are renormalised;
-  // where none of the four is wet the gauge reads the nearest cell: the ground it stands on.
   const int columns[4] = {c0, c1, c0, c1}, rows[4] = {r0, r0, r1, r1};
   const double weights[4] = {(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
-  double weighted = 0.0, wet_weight = 0.0;
+  decltype(value_at(std::size_t{0}, 0, 0)) weighted{};
+  double wet_weight = 0.0;
   for (int k = 0; k < 4; ++k) {
     const std::size_t i = index(columns[k], rows[k], s.nx);
     if (holds_water(s.frame_y.inverse_porosity[i], s.frame_y.depth_m[i], s.eta[i], s.parameters.dry_depth_m)) {
-      weighted += weights[k] * s.eta[i];
+      const auto value = value_at(i, columns[k], rows[k]);
+      for (std::size_t n = 0; n < value.size(); ++n) weighted[n] += weights[k] * value[n];
       wet_weight += weights[k];
     }
   }
-  if (wet_weight > 0.0) return weighted / wet_weight;
-  return s.eta[index(a < 0.5 ? c0 : c1, b < 0.5 ? r0 : r1, s.nx)];
+  if (wet_weight > 0.0) {
+    for (auto& component : weighted) component /= wet_weight;
+    return weighted;
+  }
+  const int c = a < 0.5 ? c0 : c1, r = b < 0.5 ? r0 : r1;
+  return value_at(index(c, r, s.nx), c, r);
+}
+
+}  // namespace
+
+double BoussinesqSolver::surface_elevation_at(double x_m, double y_m) const {
+  const Implementation& s = *implementation_;
+  return wet_bilinear_at(s, x_m, y_m, [&](std::size_t i, int, int) { return std::array<double, 1>{s.eta[i]}; })[0];
+}
+
+std::array<double, 2> BoussinesqSolver::flux_at(double x_m, double y_m) const {
+  const Implementation& s = *implementation_;
+  return wet_bilinear_at(s, x_m, y_m, [&](std::size_t, int c, int r) {
+    return std::array<double, 2>{0.5 * (s.flux_x[s.px(c, r)] + s.flux_x[s.px(c + 1, r)]),
+                                 0.5 * (s.flux_y[index(c, r, s.nx)] + s.flux_y[index(c, r + 1, s.nx)])};
+  });
 }
 
 std::optional<InstabilityReport> BoussinesqSolver::check_stability() const {

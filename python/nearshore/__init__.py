@@ -20,7 +20,8 @@ from . import _nearshore
 from ._nearshore import Error
 
 __all__ = ["Error", "Geometry", "Frame", "HarbourGrid", "Gauges", "SurfaceQuery", "Sequence", "Sea",
-           "RecordSpectrum", "record_spectrum", "bake", "loops", "read_case", "CHANNELS"]
+           "RecordSpectrum", "DirectionalRecordSpectrum", "record_spectrum", "directional_record_spectrum", "direction_from_deg",
+           "bake", "loops", "read_case", "bathy", "library", "operability", "export", "EXPORT_FORMATS", "CHANNELS"]
 
 CHANNELS = ("surface_elevation", "flux_x", "flux_y", "breaking")
 
@@ -115,11 +116,49 @@ def record_spectrum(elevation_m, sample_interval_s: float, segment_samples: int 
 
 
 @dataclasses.dataclass(frozen=True)
+class DirectionalRecordSpectrum(RecordSpectrum):
+    """A RecordSpectrum with the sea's directions from the flux (or velocity) recorded with the
+    elevation, the PUV method (ocean/record_spectrum.hpp): per bin the first-order coefficients a1,
+    b1, the direction atan2(b1, a1) and Kuik's spread; the direction at the peak bin, and the mean
+    direction and spread over the band weighted by the elevation's spectrum. Directions are those
+    the waves travel TOWARDS, degrees counter-clockwise from east (the grid's x axis), in
+    (-180, 180]; :func:`direction_from_deg` gives the compass direction they come from. NaN where
+    there is no variance."""
+    a1: np.ndarray
+    b1: np.ndarray
+    direction_deg: np.ndarray
+    spread_deg: np.ndarray
+    peak_direction_deg: float
+    mean_direction_deg: float
+    directional_spread_deg: float
+
+
+def directional_record_spectrum(elevation_m, flux_x, flux_y, sample_interval_s: float, segment_samples: int = 0,
+                                min_frequency_hz: float = 0.0, max_frequency_hz: float = 0.0) -> DirectionalRecordSpectrum:
+    """:func:`record_spectrum` of the elevation and the directions from the east and north
+    components of the flux (m^2/s) or velocity (m/s) sampled with it (the PUV method)."""
+    records = [np.ascontiguousarray(r, dtype=np.float64) for r in (elevation_m, flux_x, flux_y)]
+    raw = _nearshore.directional_record_spectrum(*records, float(sample_interval_s), int(segment_samples),
+                                                 float(min_frequency_hz), float(max_frequency_hz))
+    return DirectionalRecordSpectrum(**raw)
+
+
+def direction_from_deg(towards_deg):
+    """The compass direction waves come FROM (degrees clockwise from north, [0, 360)) of a
+    direction of travel counter-clockwise from east: 270 - towards, modulo 360."""
+    return np.mod(270.0 - np.asarray(towards_deg, dtype=float), 360.0)
+
+
+@dataclasses.dataclass(frozen=True)
 class Gauges:
-    """gauges.csv: elevation_m[g, k] at gauge names[g] and time time_s[k] (s, m)."""
+    """gauges.csv: elevation_m[g, k] at gauge names[g] and time time_s[k] (s, m); with the
+    gauge_fluxes.csv beside it, the depth-integrated flux flux_x_m2_s[g, k], flux_y_m2_s[g, k]
+    (east, north; m^2/s), else None."""
     names: list
     time_s: np.ndarray
     elevation_m: np.ndarray
+    flux_x_m2_s: Optional[np.ndarray] = None
+    flux_y_m2_s: Optional[np.ndarray] = None
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name not in self.names:
@@ -127,7 +166,8 @@ class Gauges:
         return self.elevation_m[self.names.index(name)]
 
     def statistics(self, from_time_s: float = 0.0, segment_samples: int = 0) -> dict:
-        """{gauge name: RecordSpectrum} of each record from from_time_s on (leave out the spin-up)."""
+        """{gauge name: spectrum} of each record from from_time_s on (leave out the spin-up): a
+        DirectionalRecordSpectrum where the fluxes were read (a bake's gauges), else a RecordSpectrum."""
         keep = self.time_s >= from_time_s
         times = self.time_s[keep]
         if times.size < 2:
@@ -137,7 +177,11 @@ class Gauges:
         if np.max(np.abs(steps - steps[0])) > 1e-6 * steps[0]:
             raise Error("gauges: the samples are not evenly spaced in time; a spectrum needs even spacing")
         interval_s = float((times[-1] - times[0]) / (times.size - 1))
-        return {name: record_spectrum(self.elevation_m[g][keep], interval_s, segment_samples)
+        if self.flux_x_m2_s is None:
+            return {name: record_spectrum(self.elevation_m[g][keep], interval_s, segment_samples)
+                    for g, name in enumerate(self.names)}
+        return {name: directional_record_spectrum(self.elevation_m[g][keep], self.flux_x_m2_s[g][keep],
+                                                  self.flux_y_m2_s[g][keep], interval_s, segment_samples)
                 for g, name in enumerate(self.names)}
 
 
@@ -186,8 +230,20 @@ class Sequence:
         return HarbourGrid(**raw)
 
     def gauges(self) -> Gauges:
-        """The bake's gauge records (DIR/gauges.csv)."""
-        return Gauges(**_nearshore.read_gauges_csv(os.path.join(self.folder, "gauges.csv")))
+        """The bake's gauge records (DIR/gauges.csv, with DIR/gauge_fluxes.csv where it is there)."""
+        fluxes = os.path.join(self.folder, "gauge_fluxes.csv")
+        return Gauges(**_nearshore.read_gauges_csv(os.path.join(self.folder, "gauges.csv"),
+                                                   fluxes if os.path.exists(fluxes) else ""))
+
+    def gauge_statistics(self) -> Optional[dict]:
+        """DIR/gauge_statistics.csv as the bake wrote it: {gauge name: {column: value}} (numbers as
+        floats, "gauge" left out; columns in docs/formats/sequence.md); None when there is none."""
+        path = os.path.join(self.folder, "gauge_statistics.csv")
+        if not os.path.exists(path):
+            return None
+        import csv
+        with open(path, newline="") as file:
+            return {row.pop("gauge"): {key: float(value) for key, value in row.items()} for row in csv.DictReader(file)}
 
     def loops_file(self) -> Optional[dict]:
         """loops.json (written by `nearshore loops` or :func:`loops`) as validated by the library:
@@ -199,6 +255,54 @@ class Sequence:
 
     def verify_checksums(self) -> None:
         self._reader.verify_checksums()
+
+    def to_xarray(self, frames=None, channels: _Seq[str] = CHANNELS):
+        """The frames as an xarray Dataset (needs python3-xarray; ImportError without it): variables
+        surface_elevation_m, flux_x_m2_s, flux_y_m2_s, breaking on (time, y, x) for the `channels`
+        read, and the harbour grid's still_water_depth_m and land on (y, x). Coordinates: x and y
+        the cell centres in site metres (row 0 south, so y increases with the index), easting_m
+        and northing_m the same in the grid's CRS (x + origin_x_m, y + origin_y_m), time the bake's
+        simulated time of each frame (s). Attributes: the georeference (crs_wkt, origin_x_m,
+        origin_y_m, spacing_x_m, spacing_y_m, projection as JSON) and the manifest's seed,
+        loop_period_s and frame_interval_s. `frames`: a slice or a list of indices (default all).
+        The frames are read into memory (frames x cells x 4 bytes per channel)."""
+        import json
+
+        import xarray as xr
+
+        indices = list(range(self.frame_count))
+        if frames is not None:
+            indices = indices[frames] if isinstance(frames, slice) else [int(k) for k in frames]
+        g = self.geometry
+        names = {"surface_elevation": "surface_elevation_m", "flux_x": "flux_x_m2_s", "flux_y": "flux_y_m2_s",
+                 "breaking": "breaking"}
+        units = {"surface_elevation": "m", "flux_x": "m2 s-1", "flux_y": "m2 s-1", "breaking": "1"}
+        meaning = {"surface_elevation": "surface elevation above still water",
+                   "flux_x": "depth-integrated flux P along +x (east)",
+                   "flux_y": "depth-integrated flux Q along +y (north)", "breaking": "breaking indicator 0..1"}
+        stacks = {c: np.empty((len(indices), g.rows, g.columns), np.float32) for c in channels}
+        times = np.empty(len(indices))
+        for n, k in enumerate(indices):
+            frame = self.frame(k, channels=list(channels))
+            times[n] = frame.time_s
+            for c in channels:
+                stacks[c][n] = getattr(frame, names[c])
+        grid = self.harbour_grid()
+        variables = {names[c]: (("time", "y", "x"), stacks[c], {"units": units[c], "long_name": meaning[c]})
+                     for c in channels}
+        variables["still_water_depth_m"] = (("y", "x"), np.asarray(grid.still_water_depth_m),
+                                            {"units": "m", "long_name": "still-water depth, positive down"})
+        variables["land"] = (("y", "x"), np.asarray(grid.land), {"long_name": "0 water, 1 land, 2 outside the chart"})
+        coords = {"time": ("time", times, {"units": "s", "long_name": "simulated time of the bake"}),
+                  "x": ("x", g.x_m, {"units": "m", "long_name": "x east of the grid's south-west corner"}),
+                  "y": ("y", g.y_m, {"units": "m", "long_name": "y north of the grid's south-west corner"}),
+                  "easting_m": ("x", g.x_m + g.origin_x_m, {"units": "m", "long_name": "x in the grid's CRS"}),
+                  "northing_m": ("y", g.y_m + g.origin_y_m, {"units": "m", "long_name": "y in the grid's CRS"})}
+        attrs = {"crs_wkt": g.crs_wkt, "origin_x_m": g.origin_x_m, "origin_y_m": g.origin_y_m,
+                 "spacing_x_m": g.spacing_x_m, "spacing_y_m": g.spacing_y_m, "projection": json.dumps(g.projection),
+                 "seed": str(self.manifest.get("seed")), "loop_period_s": self.manifest.get("loop_period_s", 0.0),
+                 "frame_interval_s": self.frame_interval_s, "source": os.path.abspath(self.folder)}
+        return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
 class Sea:
@@ -255,7 +359,7 @@ def bake(case_file, output_folder, resume: bool = False, overwrite: bool = False
     summary = _nearshore.bake(os.fspath(case_file), os.fspath(output_folder), resume, overwrite,
                               allow_over_budget, progress)
     for warning in summary.get("warnings", []):
-        warnings.warn(warning, stacklevel=2)
+        warnings.warn(_nearshore.with_keywords(warning), stacklevel=2)
     return summary
 
 
@@ -276,3 +380,94 @@ def read_case(case_file, allow_over_budget: bool = False) -> dict:
     case = _nearshore.read_case(os.fspath(case_file), allow_over_budget)
     case["geometry"] = _geometry(case["geometry"])
     return case
+
+
+def _box(value, name: str):
+    """A bounding box as four finite numbers, the first corner south-west of the second (as the
+    CLI's --bbox and --bbox-m are checked)."""
+    if value is None:
+        return None
+    box = [float(v) for v in value]
+    if len(box) != 4 or not all(np.isfinite(box)) or not (box[0] < box[2] and box[1] < box[3]):
+        raise Error(f"{name}: {value!r} is not (x0, y0, x1, y1) with x0 < x1 and y0 < y1; "
+                    "give four finite numbers, the south-west corner first")
+    return box
+
+
+def bathy(inputs, output_folder, spacing_m: float, bbox=None, bbox_m=None, sign: str = "auto",
+          projection: str = "utm", xyz_crs: str = "", structures: Optional[dict] = None,
+          water_level_m: float = 0.0, min_depth_m: float = 0.5, max_slope: float = 0.0,
+          land_elevation_m: float = 2.0, coastline_band_m: float = 200.0, fill_uncovered: bool = False,
+          leave_one_out: bool = False, marks: Optional[dict] = None, progress: bool = False) -> dict:
+    """`nearshore bathy INPUTS --spacing S -o DIR` with its options (docs/commands/bathy.md):
+    `bbox` (lon0, lat0, lon1, lat1) is --bbox, `bbox_m` (x0, y0, x1, y1) --bbox-m, `sign`,
+    `projection`, `xyz_crs` --xyz-crs, `structures` {name: (crest_width_m, porosity)} the repeated
+    --structure NAME=WIDTH_M:POROSITY, `water_level_m` --water-level, `min_depth_m` --min-depth,
+    `max_slope` --max-slope, `land_elevation_m` --land-elevation, `coastline_band_m`
+    --coastline-band, `fill_uncovered` --fill-uncovered, `leave_one_out` --leave-one-out and
+    `marks` {name: position} the repeated --mark NAME:POSITION. Writes depth.tif, depth.exr,
+    coastline.vdb, preview.png and summary.json into output_folder and returns the summary
+    `--json` prints; its warnings also go through :mod:`warnings`."""
+    if isinstance(inputs, (str, os.PathLike)):
+        inputs = [inputs]
+    styles = {}
+    for name, (width_m, porosity) in (structures or {}).items():
+        if not (np.isfinite(width_m) and width_m > 0):
+            raise Error(f"structures[{name!r}]: the crest width {width_m} m is not a finite number > 0; give metres")
+        if not 0 <= porosity <= 1:
+            raise Error(f"structures[{name!r}]: the porosity {porosity} is outside [0, 1]; "
+                        "give 0 (a vertical wall) to 1 (transparent), 0.3-0.5 for a rubble mound")
+        styles[str(name)] = (float(width_m), float(porosity))
+    summary = _nearshore.bathy([os.fspath(p) for p in inputs], os.fspath(output_folder), float(spacing_m),
+                               _box(bbox, "bbox"), _box(bbox_m, "bbox_m"), sign, projection, xyz_crs, styles,
+                               float(water_level_m), float(min_depth_m), float(max_slope), float(land_elevation_m),
+                               float(coastline_band_m), bool(fill_uncovered), bool(leave_one_out),
+                               [(str(k), str(v)) for k, v in (marks or {}).items()], bool(progress))
+    for warning in summary.get("warnings", []):
+        warnings.warn(_nearshore.with_keywords(warning), stacklevel=2)
+    return summary
+
+
+def library(library_file, output_folder, overwrite: bool = False, threads: int = 0, progress: bool = False) -> dict:
+    """`nearshore library LIBRARY.toml -o DIR [--overwrite] [--threads N]` (docs/library.md): one
+    looping sequence per state of the sweep and the index library.json, serially (an MPI run is
+    the CLI's, under mpirun or srun). Returns the summary `--json` prints. A state that failed
+    raises :class:`Error` naming it (the others are baked and kept), as the CLI exits 2.
+    `progress`: a line on stderr per state."""
+    return _nearshore.library(os.fspath(library_file), os.fspath(output_folder), bool(overwrite), int(threads),
+                              bool(progress))
+
+
+def operability(library_folder, occurrence, berths, threshold_hs_m: float, output_folder=None, hold: str = "") -> dict:
+    """`nearshore library operability LIB --occurrence F --berths F --threshold-hs H [-o DIR]
+    [--hold C]` (docs/port-study.md): each berth's downtime over an occurrence table. Returns what
+    `--json` prints, with "files" (operability.csv, operability_conditions.csv, operability.png)
+    when output_folder is given."""
+    return _nearshore.operability(os.fspath(library_folder), os.fspath(occurrence), os.fspath(berths),
+                                  float(threshold_hs_m), os.fspath(output_folder) if output_folder else "", hold)
+
+
+EXPORT_FORMATS = ("netcdf", "geotiff", "exr-displacement", "vdb", "agitation")
+
+
+def export(sequence_folder, to: str, output_folder, frames=None, incident_hs_m: float = 0.0, berths=None,
+           progress: bool = False) -> dict:
+    """`nearshore export SEQ --to FORMAT -o DIR [--frames A:B] [--incident-hs H] [--berths F]`
+    (docs/commands/export.md): `to` one of EXPORT_FORMATS; `frames` a slice, a (first, end) pair
+    (end None or -1: to the last frame) or one frame index; `incident_hs_m` and `berths` for
+    "agitation" only. Returns the summary `--json` prints (files and sizes)."""
+    if frames is None:
+        first, end = 0, -1
+    elif isinstance(frames, slice):
+        if frames.step not in (None, 1):
+            raise Error(f"frames: {frames!r} has a step; give consecutive frames (first:end)")
+        first, end = frames.start or 0, -1 if frames.stop is None else frames.stop
+    elif isinstance(frames, (int, np.integer)):
+        first, end = int(frames), int(frames) + 1
+    else:
+        first, end = frames
+        end = -1 if end is None else end
+    if int(first) < 0 or (int(end) < -1):
+        raise Error(f"frames: {frames!r} holds a negative frame; give frames counted from 0 (end -1: the last)")
+    return _nearshore.export(os.fspath(sequence_folder), to, os.fspath(output_folder), (int(first), int(end)),
+                             float(incident_hs_m), os.fspath(berths) if berths else "", bool(progress))

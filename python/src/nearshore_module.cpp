@@ -6,10 +6,12 @@
 // Surface queries take the road of the C API's nearshore_sea_query_at (capi/src/nearshore_c.cpp,
 // c_boundary.hpp): StreamingEngine::snapshot_at(t), then SurfaceSampler::states at the points,
 // so the values equal the C API's (which rounds them to float) bit for bit: tests/python holds it.
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -28,7 +30,12 @@
 #include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/bake/bake_run.hpp"
 #include "nearshore/bake/structure_layers.hpp"
+#include "nearshore/bathymetry/harbour_builder.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/core/geo_position.hpp"
+#include "nearshore/export/export_sequence.hpp"
+#include "nearshore/library/library_run.hpp"
+#include "nearshore/library/operability.hpp"
 #include "nearshore/core/progress.hpp"
 #include "nearshore/loops/inspector.hpp"
 #include "nearshore/ocean/record_spectrum.hpp"
@@ -94,22 +101,62 @@ py::dict harbour_grid_of(HarbourGrid read) {
   return out;
 }
 
-// gauges.csv (bake_gauges.hpp): the times without a copy, the elevations as one (gauges, samples)
-// array (the table holds one vector per gauge, so that is the one copy).
+// A (gauges, samples) array of per-gauge columns (the table holds one vector per gauge, so that is
+// the one copy); None when the table holds no such columns (fluxes not read).
+py::object gauge_columns_of(const std::vector<std::vector<double>>& columns, std::size_t gauges, py::ssize_t samples) {
+  if (columns.size() != gauges) return py::none();
+  py::array_t<double> out({static_cast<py::ssize_t>(gauges), samples});
+  auto rows = out.mutable_unchecked<2>();
+  for (std::size_t g = 0; g < gauges; ++g)
+    for (py::ssize_t k = 0; k < samples; ++k) rows(static_cast<py::ssize_t>(g), k) = columns[g][k];
+  return out;
+}
+
+// gauges.csv and, where given, gauge_fluxes.csv (bake_gauges.hpp): the times without a copy, the
+// elevations and fluxes as (gauges, samples) arrays.
 py::dict gauges_of(bake::GaugeTable read) {
   auto table = std::make_shared<bake::GaugeTable>(std::move(read));
   const auto samples = static_cast<py::ssize_t>(table->time_s.size());
-  py::array_t<double> elevation({static_cast<py::ssize_t>(table->names.size()), samples});
-  auto rows = elevation.mutable_unchecked<2>();
-  for (std::size_t g = 0; g < table->names.size(); ++g)
-    for (py::ssize_t k = 0; k < samples; ++k) rows(static_cast<py::ssize_t>(g), k) = table->elevation_m[g][k];
+  const std::size_t gauges = table->names.size();
   auto* kept = new std::shared_ptr<bake::GaugeTable>(table);
   py::capsule base(kept, [](void* pointer) { delete static_cast<std::shared_ptr<bake::GaugeTable>*>(pointer); });
   py::dict out;
   out["names"] = table->names;
   out["time_s"] = py::array_t<double>({samples}, {static_cast<py::ssize_t>(sizeof(double))}, table->time_s.data(), base);
-  out["elevation_m"] = elevation;
+  out["elevation_m"] = gauge_columns_of(table->elevation_m, gauges, samples);
+  out["flux_x_m2_s"] = gauge_columns_of(table->flux_x_m2_s, gauges, samples);
+  out["flux_y_m2_s"] = gauge_columns_of(table->flux_y_m2_s, gauges, samples);
   return out;
+}
+
+py::array_t<double> array_of(const std::vector<double>& values) { return py::array_t<double>(values.size(), values.data()); }
+
+py::dict spectrum_of(const ocean::RecordSpectrum& s) {
+  py::dict out;
+  out["frequency_hz"] = array_of(s.frequency_hz);
+  out["variance_density_m2_hz"] = array_of(s.variance_density_m2_hz);
+  out["frequency_resolution_hz"] = s.frequency_resolution_hz;
+  out["segment_samples"] = s.segment_samples;
+  out["segment_count"] = s.segment_count;
+  out["significant_height_hm0_m"] = s.significant_height_hm0_m;
+  out["peak_period_s"] = s.peak_period_s;
+  out["mean_period_tm01_s"] = s.mean_period_tm01_s;
+  out["zero_crossing_period_tm02_s"] = s.zero_crossing_period_tm02_s;
+  return out;
+}
+
+
+std::span<const double> record_of(const InputArray& record, const char* name) {
+  if (record.ndim() != 1) throw Error("record spectrum", fmt::format("{} is not one-dimensional", name), "pass one record");
+  return {record.data(), static_cast<std::size_t>(record.size())};
+}
+
+ocean::RecordSpectrumOptions spectrum_options(int segment_samples, double min_frequency_hz, double max_frequency_hz) {
+  ocean::RecordSpectrumOptions options;
+  options.segment_samples = segment_samples;
+  options.min_frequency_hz = min_frequency_hz;
+  options.max_frequency_hz = max_frequency_hz;
+  return options;
 }
 
 sequence::ChannelSelection channels_of(const std::vector<std::string>& names) {
@@ -291,29 +338,188 @@ py::dict analyse_loops(const fs::path& sequence_folder, double loop_s, std::vect
   return python_of(report);
 }
 
+
+// The library names its options structs' fields in errors and warnings; Python users set them as
+// the keyword arguments below, as tools/ puts its flags in their place (command_support.hpp
+// naming_flags_in_errors).
+std::string with_keywords(std::string message) {
+  static const std::pair<const char*, const char*> kKeywords[] = {
+      {"BakeOptions::resume", "resume=True"},
+      {"BakeOptions::overwrite", "overwrite=True"},
+      {"BakeOptions::allow_over_budget", "allow_over_budget=True"},
+      {"CaseReadOptions::allow_over_budget", "allow_over_budget=True"},
+      {"BakeOptions::output_folder", "output_folder"},
+      // nearshore.bathy's keywords for BathyRequest's fields (tools/bathy_command.cpp names its flags)
+      {"BathyRequest::spacing_m", "spacing_m"},
+      {"BathyRequest::bbox_lon_lat", "bbox"},
+      {"BathyRequest::bbox_projected_m", "bbox_m"},
+      {"BathyRequest::sign", "sign"},
+      {"ReadOptions::sign", "sign"},
+      {"DepthSign::kPositiveDown", "sign=\"depth\""},
+      {"DepthSign::kPositiveUp", "sign=\"elevation\""},
+      {"BathyRequest::text_crs", "xyz_crs"},
+      {"ReadOptions::text_crs", "xyz_crs"},
+      {"BathyRequest::projection", "projection"},
+      {"BathyRequest::structure_styles", "structures"},
+      {"BathyRequest::water_level_m", "water_level_m"},
+      {"BathyRequest::minimum_depth_m", "min_depth_m"},
+      {"BathyRequest::maximum_slope", "max_slope"},
+      {"BathyRequest::land_elevation_m", "land_elevation_m"},
+      {"BathyRequest::fill_uncovered_from_nearest", "fill_uncovered=True"},
+      {"BathyRequest::coastline_band_m", "coastline_band_m"},
+      {"BathyRequest::leave_one_out", "leave_one_out=True"},
+      {"write_bathymetry_outputs(folder)", "output_folder"},
+      {"LibraryOptions::output_folder", "output_folder"},
+      {"LibraryOptions::overwrite", "overwrite=True"},
+      {"LibraryOptions::threads_per_rank", "threads"},
+      {"OperabilityRequest::limit_significant_wave_height_m", "threshold_hs_m"},
+      {"ExportRequest::frames", "frames"},
+      {"ExportRequest::format", "to"},
+      {"ExportRequest::output_folder", "output_folder"},
+      {"ExportRequest::sequence_folder", "sequence_folder"},
+      {"AgitationOptions::incident_significant_wave_height_m", "incident_hs_m"}};
+  for (const auto& [field, keyword] : kKeywords)
+    for (std::size_t at = message.find(field); at != std::string::npos; at = message.find(field, at))
+      message.replace(at, std::string_view(field).size(), keyword);
+  return message;
+}
+
+// `nearshore bathy INPUTS --spacing S -o DIR` (tools/bathy_command.cpp) with its options as keyword
+// arguments: the same library calls (build_harbour_grid, write_bathymetry_outputs, the marks placed
+// by core's position parser). Returns summary.json as `--json` prints it; the warnings are in it.
+py::dict bathy_grid(const std::vector<fs::path>& inputs, const fs::path& output_folder, double spacing_m,
+                    std::optional<std::array<double, 4>> bbox, std::optional<std::array<double, 4>> bbox_m,
+                    const std::string& sign, const std::string& projection, const std::string& xyz_crs,
+                    const std::map<std::string, std::pair<double, double>>& structures, double water_level_m,
+                    double min_depth_m, double max_slope, double land_elevation_m, double coastline_band_m,
+                    bool fill_uncovered, bool leave_one_out, const std::vector<std::pair<std::string, std::string>>& marks,
+                    bool progress) {
+  ProgressBar::set_quiet(!progress);
+  bathymetry::BathyRequest request;
+  request.inputs = inputs;
+  request.spacing_m = spacing_m;
+  request.bbox_lon_lat = bbox;
+  request.bbox_projected_m = bbox_m;
+  if (sign == "depth") request.sign = bathymetry::DepthSign::kPositiveDown;
+  else if (sign == "elevation") request.sign = bathymetry::DepthSign::kPositiveUp;
+  else if (sign != "auto")
+    throw Error("sign", fmt::format("\"{}\" is not a sign convention", sign),
+                "give \"auto\" (from the files' metadata), \"depth\" (positive down) or \"elevation\" (positive up)");
+  request.projection = projection;
+  request.text_crs = xyz_crs;
+  for (const auto& [name, width_and_porosity] : structures) {  // as --structure NAME=WIDTH_M:POROSITY sets it
+    bathymetry::StructureStyle style;
+    style.crest_width_m = width_and_porosity.first;
+    style.porosity = width_and_porosity.second;
+    request.structure_styles[name] = style;
+  }
+  request.water_level_m = water_level_m;
+  request.minimum_depth_m = min_depth_m;
+  request.maximum_slope = max_slope;
+  request.land_elevation_m = land_elevation_m;
+  request.coastline_band_m = coastline_band_m;
+  request.leave_one_out = leave_one_out;
+  request.fill_uncovered_from_nearest = fill_uncovered;
+  nlohmann::json summary;
+  {
+    py::gil_scoped_release unlocked;
+    const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
+    std::vector<bathymetry::PreviewMark> placed;
+    for (const auto& [name, position] : marks) {
+      const std::string subject = fmt::format("marks[\"{}\"]", name);
+      placed.push_back({name, place_in_grid(parse_geo_position(position, subject), result.grid.geometry, subject, "the mark")});
+    }
+    summary = bathymetry::write_bathymetry_outputs(output_folder, result, coastline_band_m, placed);
+  }
+  return python_of(summary);
+}
+
+// `nearshore library LIBRARY.toml -o DIR [--overwrite] [--threads N]` (tools/library_command.cpp),
+// serial (an MPI run is the CLI's, under mpirun). Returns the summary `--json` prints; a state that
+// failed (the others are baked) raises, as the CLI exits 2, naming the states and their errors.
+py::dict library_run(const fs::path& library_file, const fs::path& output_folder, bool overwrite, int threads,
+                     bool progress) {
+  library::LibraryOptions options;
+  options.output_folder = output_folder;
+  options.overwrite = overwrite;
+  options.threads_per_rank = threads;
+  options.progress = progress;
+  ProgressBar::set_quiet(!progress);
+  library::LibrarySummary summary;
+  {
+    py::gil_scoped_release unlocked;
+    summary = library::run_library(library_file, options);
+  }
+  if (summary.failed > 0) {
+    std::string failed;
+    for (const sequence::LibraryIndex::State& state : sequence::read_library_index(summary.output_folder).states)
+      if (state.status == sequence::LibraryStateStatus::kFailed) failed += fmt::format("; {}: {}", state.id, state.error);
+    throw Error(summary.index_file.string(),
+                fmt::format("{} of {} states failed (the others are baked){}", summary.failed, summary.states, failed),
+                "fix what each error names and run the library again (finished states are kept)");
+  }
+  return python_of(summary.to_json());
+}
+
+// `nearshore library operability LIB --occurrence F --berths F --threshold-hs H [-o DIR] [--hold C]`.
+py::dict library_operability(const fs::path& library_folder, const fs::path& occurrence, const fs::path& berths,
+                             double threshold_hs_m, const fs::path& output_folder, const std::string& hold) {
+  library::OperabilityRequest request;
+  request.library_folder = library_folder;
+  request.occurrence_file = occurrence;
+  request.berths_file = berths;
+  request.limit_significant_wave_height_m = threshold_hs_m;
+  request.held = sequence::parse_sea_conditions(hold, "hold");
+  nlohmann::json out;
+  {
+    py::gil_scoped_release unlocked;
+    const library::OperabilityResult result = library::compute_operability(request);
+    out = result.to_json();
+    if (!output_folder.empty()) {
+      nlohmann::json files = nlohmann::json::array();
+      for (const fs::path& file : library::write_operability(result, output_folder)) files.push_back(file.string());
+      out["files"] = files;
+    }
+  }
+  return python_of(out);
+}
+
+// `nearshore export SEQ --to FORMAT -o DIR [--frames A:B] [--incident-hs H] [--berths F]`
+// (tools/export_command.cpp). `frames` is (first, end) with end -1 for the last; the summary as
+// `--json` prints it.
+py::dict export_run(const fs::path& sequence_folder, const std::string& to, const fs::path& output_folder,
+                    std::pair<int, int> frames, double incident_hs_m, const fs::path& berths, bool progress) {
+  ProgressBar::set_quiet(!progress);
+  exports::ExportRequest request;
+  request.sequence_folder = sequence_folder;
+  request.output_folder = output_folder;
+  request.format = exports::parse_export_format(to);
+  request.frames = {frames.first, frames.second};
+  if (incident_hs_m > 0.0) request.agitation.incident_significant_wave_height_m = incident_hs_m;
+  request.agitation.berths_file = berths;
+  if (request.format != exports::ExportFormat::kAgitation && (incident_hs_m > 0.0 || !berths.empty()))
+    throw Error("incident_hs_m, berths", "belong to to=\"agitation\"", "leave them out for this format");
+  nlohmann::json summary;
+  {
+    py::gil_scoped_release unlocked;
+    summary = exports::export_sequence(request).to_json();
+  }
+  return python_of(summary);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_nearshore, m) {
   m.doc() = "nearshore's library calls for Python; use the package `nearshore` (docs/python.md)";
-  // Every library error keeps its message (the file or object at fault, the problem, the fix). The
-  // library names its options structs' fields; here they are the keyword arguments that set them,
-  // as tools/ puts its flags in their place (command_support.hpp naming_flags_in_errors).
+  // Every library error keeps its message (the file or object at fault, the problem, the fix), with
+  // the options' fields named as the keyword arguments that set them (with_keywords).
   static py::exception<Error> error_type(m, "Error", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const Error& error) {
-      static const std::pair<const char*, const char*> kKeywords[] = {
-          {"BakeOptions::resume", "resume=True"},
-          {"BakeOptions::overwrite", "overwrite=True"},
-          {"BakeOptions::allow_over_budget", "allow_over_budget=True"},
-          {"CaseReadOptions::allow_over_budget", "allow_over_budget=True"},
-          {"BakeOptions::output_folder", "output_folder"}};
-      std::string message = error.what();
-      for (const auto& [field, keyword] : kKeywords)
-        for (std::size_t at = message.find(field); at != std::string::npos; at = message.find(field, at))
-          message.replace(at, std::string_view(field).size(), keyword);
-      PyErr_SetString(error_type.ptr(), message.c_str());
+
+      PyErr_SetString(error_type.ptr(), with_keywords(error.what()).c_str());
     }
   });
 
@@ -345,31 +551,40 @@ PYBIND11_MODULE(_nearshore, m) {
         py::arg("folder"));
   m.def(
       "record_spectrum",
-      [](py::array_t<double, py::array::c_style | py::array::forcecast> elevation_m, double sample_interval_s,
-         int segment_samples, double min_frequency_hz, double max_frequency_hz) {
-        if (elevation_m.ndim() != 1) throw Error("record spectrum", "elevation_m is not one-dimensional", "pass one record");
-        ocean::RecordSpectrumOptions options;
-        options.segment_samples = segment_samples;
-        options.min_frequency_hz = min_frequency_hz;
-        options.max_frequency_hz = max_frequency_hz;
-        const ocean::RecordSpectrum s = ocean::record_spectrum(
-            std::span<const double>(elevation_m.data(), static_cast<std::size_t>(elevation_m.size())), sample_interval_s,
-            options);
-        py::dict out;
-        out["frequency_hz"] = py::array_t<double>(s.frequency_hz.size(), s.frequency_hz.data());
-        out["variance_density_m2_hz"] = py::array_t<double>(s.variance_density_m2_hz.size(), s.variance_density_m2_hz.data());
-        out["frequency_resolution_hz"] = s.frequency_resolution_hz;
-        out["segment_samples"] = s.segment_samples;
-        out["segment_count"] = s.segment_count;
-        out["significant_height_hm0_m"] = s.significant_height_hm0_m;
-        out["peak_period_s"] = s.peak_period_s;
-        out["mean_period_tm01_s"] = s.mean_period_tm01_s;
-        out["zero_crossing_period_tm02_s"] = s.zero_crossing_period_tm02_s;
-        return out;
+      [](const InputArray& elevation_m, double sample_interval_s, int segment_samples, double min_frequency_hz,
+         double max_frequency_hz) {
+        return spectrum_of(ocean::record_spectrum(record_of(elevation_m, "elevation_m"), sample_interval_s,
+                                                  spectrum_options(segment_samples, min_frequency_hz, max_frequency_hz)));
       },
       py::arg("elevation_m"), py::arg("sample_interval_s"), py::arg("segment_samples") = 0,
       py::arg("min_frequency_hz") = 0.0, py::arg("max_frequency_hz") = 0.0);
-  m.def("read_gauges_csv", [](const fs::path& file) { return gauges_of(bake::read_gauges_csv(file)); }, py::arg("file"));
+  m.def(
+      "directional_record_spectrum",
+      [](const InputArray& elevation_m, const InputArray& flux_x, const InputArray& flux_y, double sample_interval_s,
+         int segment_samples, double min_frequency_hz, double max_frequency_hz) {
+        const ocean::DirectionalRecordSpectrum s = ocean::directional_record_spectrum(
+            record_of(elevation_m, "elevation_m"), record_of(flux_x, "flux_x"), record_of(flux_y, "flux_y"),
+            sample_interval_s, spectrum_options(segment_samples, min_frequency_hz, max_frequency_hz));
+        py::dict out = spectrum_of(s.elevation);
+        out["a1"] = array_of(s.a1);
+        out["b1"] = array_of(s.b1);
+        out["direction_deg"] = array_of(s.direction_deg);
+        out["spread_deg"] = array_of(s.spread_deg);
+        out["peak_direction_deg"] = s.peak_direction_deg;
+        out["mean_direction_deg"] = s.mean_direction_deg;
+        out["directional_spread_deg"] = s.directional_spread_deg;
+        return out;
+      },
+      py::arg("elevation_m"), py::arg("flux_x"), py::arg("flux_y"), py::arg("sample_interval_s"),
+      py::arg("segment_samples") = 0, py::arg("min_frequency_hz") = 0.0, py::arg("max_frequency_hz") = 0.0);
+  m.def(
+      "read_gauges_csv",
+      [](const fs::path& file, const fs::path& fluxes_file) {
+        bake::GaugeTable table = bake::read_gauges_csv(file);
+        if (!fluxes_file.empty()) bake::read_gauge_fluxes_csv(fluxes_file, table);
+        return gauges_of(std::move(table));
+      },
+      py::arg("file"), py::arg("fluxes_file") = fs::path());
 
   py::class_<Sea>(m, "Sea")
       .def(py::init<const fs::path&, const std::string&, const std::string&, std::uint64_t>(), py::arg("folder"),
@@ -395,6 +610,18 @@ PYBIND11_MODULE(_nearshore, m) {
 
   m.def("bake", &bake_case, py::arg("case_file"), py::arg("output_folder"), py::arg("resume") = false,
         py::arg("overwrite") = false, py::arg("allow_over_budget") = false, py::arg("progress") = false);
+  m.def("bathy", &bathy_grid, py::arg("inputs"), py::arg("output_folder"), py::arg("spacing_m"), py::arg("bbox"),
+        py::arg("bbox_m"), py::arg("sign"), py::arg("projection"), py::arg("xyz_crs"), py::arg("structures"),
+        py::arg("water_level_m"), py::arg("min_depth_m"), py::arg("max_slope"), py::arg("land_elevation_m"),
+        py::arg("coastline_band_m"), py::arg("fill_uncovered"), py::arg("leave_one_out"), py::arg("marks"),
+        py::arg("progress"));
+  m.def("library", &library_run, py::arg("library_file"), py::arg("output_folder"), py::arg("overwrite"),
+        py::arg("threads"), py::arg("progress"));
+  m.def("operability", &library_operability, py::arg("library_folder"), py::arg("occurrence"), py::arg("berths"),
+        py::arg("threshold_hs_m"), py::arg("output_folder"), py::arg("hold"));
+  m.def("export", &export_run, py::arg("sequence_folder"), py::arg("to"), py::arg("output_folder"), py::arg("frames"),
+        py::arg("incident_hs_m"), py::arg("berths"), py::arg("progress"));
+  m.def("with_keywords", &with_keywords, py::arg("message"));
   m.def("read_case", &read_case, py::arg("case_file"), py::arg("allow_over_budget") = false);
   m.def("loops", &analyse_loops, py::arg("sequence_folder"), py::arg("loop_s") = 0.0,
         py::arg("lengths_s") = std::vector<double>{10, 20, 30, 60, 120, 300}, py::arg("max_crossfade_s") = 2.0,

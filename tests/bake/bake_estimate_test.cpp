@@ -85,7 +85,7 @@ TEST(BakeEstimate, ADeepWaterLayerAddsItsLatticesToTheMemory) {
   EXPECT_DOUBLE_EQ(plain_estimate.memory_bytes, kBakeFixedBytes +
                                                     plain_estimate.cells * (kBakeBytesPerCell + kFullyNonlinearBytesPerCell + kAdiPassesBytesPerCell) +
                                                     plain_estimate.line_bytes +
-                                                    plain_estimate.gauge_samples * (1.0 + plain.gauges.size()) * 32.0);
+                                                    plain_estimate.gauge_samples * (1.0 + 3.0 * plain.gauges.size()) * 32.0);  // t, eta, P, Q
   EXPECT_NE(deep_estimate.describe().find("1.2 MiB deep water"), std::string::npos) << deep_estimate.describe();
   EXPECT_EQ(plain_estimate.describe().find("deep water"), std::string::npos) << plain_estimate.describe();
 }

@@ -141,12 +141,27 @@ TEST(Gauges, CsvRoundTripAndCheckpointState) {
       state.write(name.data(), static_cast<std::streamsize>(length));
     }
     state.write(reinterpret_cast<const char*>(&samples), 8);
-    const double values[9] = {0.0, 0.025, 0.05, 0.1234567891234, -1e-7, 0.0, 1.0 / 3.0, 2.5e-3, -0.75};
+    // times, then each gauge's elevations, then each gauge's P, then each gauge's Q (bake_gauges.cpp)
+    const double values[21] = {0.0, 0.025, 0.05, 0.1234567891234, -1e-7, 0.0, 1.0 / 3.0, 2.5e-3, -0.75,
+                               0.5,  -0.5,  1.5,  2.0,             2.5,   3.0, -1.0,      -2.0,   -3.0,
+                               4.0,  5.0,   6.0};
     state.write(reinterpret_cast<const char*>(values), sizeof values);
   }
   recorder.load(state, "state");
   recorder.write_csv(folder / "gauges.csv");
-  const GaugeTable read = read_gauges_csv(folder / "gauges.csv");
+  recorder.write_fluxes_csv(folder / "gauge_fluxes.csv");
+  GaugeTable read = read_gauges_csv(folder / "gauges.csv");
+  EXPECT_TRUE(read.flux_x_m2_s.empty());  // gauges.csv alone holds no fluxes
+  read_gauge_fluxes_csv(folder / "gauge_fluxes.csv", read);
+  EXPECT_EQ(read.flux_x_m2_s, (std::vector<std::vector<double>>{{0.5, -0.5, 1.5}, {2.0, 2.5, 3.0}}));
+  EXPECT_EQ(read.flux_y_m2_s, (std::vector<std::vector<double>>{{-1.0, -2.0, -3.0}, {4.0, 5.0, 6.0}}));
+  // A fluxes file of other gauges, or of other times, is refused naming the file.
+  GaugeTable other_gauges = read;
+  other_gauges.names = {"north", "east"};
+  EXPECT_THROW(read_gauge_fluxes_csv(folder / "gauge_fluxes.csv", other_gauges), Error);
+  GaugeTable other_times = read;
+  other_times.time_s[2] = 0.075;
+  EXPECT_THROW(read_gauge_fluxes_csv(folder / "gauge_fluxes.csv", other_times), Error);
   ASSERT_EQ(read.names, (std::vector<std::string>{"north", "south"}));
   ASSERT_EQ(read.time_s.size(), 3u);
   EXPECT_DOUBLE_EQ(read.time_s[1], 0.025);
@@ -160,13 +175,16 @@ TEST(Gauges, CsvRoundTripAndCheckpointState) {
   GaugeRecorder copy({{"north", 1.0, 2.0}, {"south", 3.0, 4.0}});
   copy.load(again, "again");
   EXPECT_EQ(copy.table().elevation_m, recorder.table().elevation_m);
+  EXPECT_EQ(copy.table().flux_x_m2_s, recorder.table().flux_x_m2_s);
+  EXPECT_EQ(copy.table().flux_y_m2_s, recorder.table().flux_y_m2_s);
   // A recorder for other gauges refuses the state.
   std::stringstream other;
   recorder.save(other);
   GaugeRecorder different({{"east", 1.0, 2.0}});
   EXPECT_THROW(different.load(other, "other"), Error);
   // No temporary file is left beside the output.
-  for (const auto& entry : std::filesystem::directory_iterator(folder)) EXPECT_EQ(entry.path().filename(), "gauges.csv");
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    EXPECT_TRUE(entry.path().filename() == "gauges.csv" || entry.path().filename() == "gauge_fluxes.csv") << entry.path();
 }
 
 TEST(Gauges, DamagedCsvIsNamed) {

@@ -215,7 +215,7 @@ TEST_F(BakeRun, ResumeRefusesAnotherCaseOrAMissingCheckpoint) {
     }
     return "resumed";
   };
-  with_header("nearshore-ckpt4", boussinesq::kSolverPhysicsRevision + 1);
+  with_header("nearshore-ckpt5", boussinesq::kSolverPhysicsRevision + 1);
   const auto size_before = fs::file_size(checkpoint);
   std::string message = refusal();
   EXPECT_NE(message.find(fmt::format("physics revision {}, and this nearshore's solver is revision {}",
@@ -227,8 +227,11 @@ TEST_F(BakeRun, ResumeRefusesAnotherCaseOrAMissingCheckpoint) {
   with_header("nearshore-ckpt3", boussinesq::kSolverPhysicsRevision);
   message = refusal();
   EXPECT_NE(message.find("older nearshore (version 3"), std::string::npos) << message;
-  // Its own revision again: the same checkpoint resumes and the bake completes.
   with_header("nearshore-ckpt4", boussinesq::kSolverPhysicsRevision);
+  message = refusal();
+  EXPECT_NE(message.find("older nearshore (version 4, before the gauges recorded the flux"), std::string::npos) << message;
+  // Its own revision again: the same checkpoint resumes and the bake completes.
+  with_header("nearshore-ckpt5", boussinesq::kSolverPhysicsRevision);
   EXPECT_NO_THROW(run_bake(c, options));
   // The manifest's solver record says which physics baked the sequence.
   const auto manifest = nlohmann::json::parse(std::ifstream(first.output_folder / "manifest.json"));

@@ -25,10 +25,21 @@ def baked(tmp_path_factory):
     return folder, summary, report
 
 
+def built_file(variable, what):
+    """The path ctest puts in `variable`; the test is skipped where it is not set or not there."""
+    path = os.environ.get(variable)
+    if not path or not os.path.exists(path):
+        pytest.skip(f"{variable} is not {what} (ctest sets it)")
+    return path
+
+
 @pytest.fixture(scope="session")
 def c_library():
-    """libnearshore.so, the C API the queries are compared with (its path from ctest)."""
-    path = os.environ.get("NEARSHORE_C_LIBRARY")
-    if not path:
-        pytest.skip("NEARSHORE_C_LIBRARY is not set (ctest sets it to the built libnearshore.so)")
-    return path
+    """libnearshore.so, the C API the queries are compared with."""
+    return built_file("NEARSHORE_C_LIBRARY", "the built libnearshore.so")
+
+
+@pytest.fixture(scope="session")
+def cli():
+    """The built `nearshore` executable, whose outputs the functions' are compared with."""
+    return built_file("NEARSHORE_CLI", "the built `nearshore` executable")

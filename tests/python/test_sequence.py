@@ -94,18 +94,15 @@ def test_library_errors_carry_the_library_message(baked, tmp_path, case_file):
         nearshore.Sequence(folder).frame(0, channels=["height"])
 
 
-def test_bake_equals_the_command_line_bake(baked, case_file, tmp_path):
+def test_bake_equals_the_command_line_bake(baked, case_file, tmp_path, cli):
     """nearshore.bake makes the calls `nearshore bake` makes: the same frames and gauge records."""
     import json
-    import os
     import subprocess
-    cli = os.environ.get("NEARSHORE_CLI")
-    if not cli or not os.path.exists(cli):
-        pytest.skip("NEARSHORE_CLI is not the built `nearshore` executable (ctest sets it)")
     folder, _, _ = baked
     subprocess.run([cli, "bake", str(case_file), "-o", str(tmp_path / "cli"), "--json"], check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     ours = json.loads((folder / "manifest.json").read_text())
     theirs = json.loads((tmp_path / "cli" / "manifest.json").read_text())
     assert [f["checksum"] for f in ours["frames"]] == [f["checksum"] for f in theirs["frames"]]
-    assert (folder / "gauges.csv").read_bytes() == (tmp_path / "cli" / "gauges.csv").read_bytes()
+    for name in ("gauges.csv", "gauge_fluxes.csv", "gauge_statistics.csv"):
+        assert (folder / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name

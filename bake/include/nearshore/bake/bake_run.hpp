@@ -2,7 +2,8 @@
 // The bake run: a BakeCase through the Boussinesq solver into a sequence folder (seed 003 section
 // 3: solve, keep every frame's height and flux fields). In the output folder:
 //   the frame sequence (sequence::SequenceWriter: frames every output interval after spin-up, the
-//   manifest written LAST by finish()), gauges.csv (bake_gauges.hpp), wave_statistics.tif (the
+//   manifest written LAST by finish()), gauges.csv, gauge_fluxes.csv and gauge_statistics.csv
+//   (bake_gauges.hpp), wave_statistics.tif (the
 //   envelope, Hs, mean level and run-up line over every step after spin-up; wave_statistics.hpp)
 //   with wave_statistics_runup.geojson (the run-up line as lines; runup_line.hpp), and
 //   checkpoint.bin while the run is under way (removed when it completes).
@@ -43,6 +44,9 @@ struct BakeSummary {
   std::uint64_t seed = 0;
   double loop_period_s = 0.0;
   std::filesystem::path output_folder, gauges_csv;
+  /// gauge_statistics.csv (bake_gauges.hpp); empty when the case has no gauges or they hold fewer
+  /// than 16 samples after the spin-up.
+  std::filesystem::path gauge_statistics_csv;
   double estimated_memory_bytes = 0.0;  ///< what the bake expected to need (bake_estimate.hpp)
   double estimated_disk_bytes = 0.0;
   double peak_resident_bytes = 0.0;     ///< the whole process's peak resident set (getrusage), its code and libraries included

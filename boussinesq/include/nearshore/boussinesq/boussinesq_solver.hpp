@@ -18,6 +18,7 @@
 //
 // Units: metres, seconds, radians throughout. x = 0 is the west edge of the grid, y = 0 the south
 // edge (GridGeometry origin); x_m, y_m arguments are in the grid's own frame (origin included).
+#include <array>
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -79,6 +80,11 @@ class BoussinesqSolver {
   /// beside a quay, a wall or a dry beach reads the water and not the ground; where none of the four
   /// holds water, the nearest cell's eta (on dry land: the ground's height).
   double surface_elevation_at(double x_m, double y_m) const;
+  /// Depth-integrated flux (P, Q) at a point, m^2/s, for gauges (the direction of the waves there,
+  /// ocean/record_spectrum.hpp): the faces' fluxes averaged to the cell centres as
+  /// cell_centred_fluxes does, then bilinear over the same wet cells as surface_elevation_at; where
+  /// none of the four holds water, the nearest cell's.
+  std::array<double, 2> flux_at(double x_m, double y_m) const;
   std::optional<InstabilityReport> check_stability() const;         ///< NaN or |eta| too large
   double water_volume_m3() const;            ///< sum of n * h * area over wet cells (for mass tests)
   /// Bytes of every grid-sized array the solver holds (state, work, static coefficients, sponge

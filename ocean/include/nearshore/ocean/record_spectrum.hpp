@@ -47,11 +47,46 @@ struct RecordSpectrum {
   double zero_crossing_period_tm02_s = 0.0;
 };
 
+/// The directions of a sea at one point from its elevation and its horizontal flux (or velocity)
+/// recorded together: the PUV method (a pressure gauge and a current meter, or a gauge of a bake
+/// with its P and Q). Welch's cross-spectra (the same segments and window as record_spectrum) of
+/// eta with the flux's components give the first-order directional Fourier coefficients of the
+/// directional spectrum D(f, theta) (Longuet-Higgins, Cartwright & Smith 1963; Kuik, van Vledder &
+/// Holthuijsen 1988, J. Phys. Oceanogr. 18, eq. 2-6):
+///   a1(f) = C_eu(f) / sqrt(S_ee(f) (S_uu(f) + S_vv(f))),   b1(f) = C_ev(f) / sqrt(S_ee (S_uu + S_vv))
+/// with C the co-spectrum (the real part of the cross-spectrum). Linear waves travelling towards
+/// theta carry u = G(f) eta cos(theta), v = G(f) eta sin(theta) in phase with eta, so a1 = cos(theta),
+/// b1 = sin(theta) whatever the transfer G (a flux or a velocity, any depth). Then
+///   direction(f) = atan2(b1, a1),   spread(f) = sqrt(2 (1 - sqrt(a1^2 + b1^2)))   (radians)
+/// and over the band (the moments' band of record_spectrum), weighting by S_ee:
+///   mean direction = atan2(sum b1 S_ee, sum a1 S_ee),  spread from the weighted a1, b1 alike;
+///   peak direction = direction(f) at the peak bin.
+/// Directions are those the waves travel TOWARDS, degrees counter-clockwise from the +x axis (east
+/// of the grid), in (-180, 180]: the convention of the case files' direction_deg (docs/commands/
+/// bake.md). Where the flux or the elevation holds no variance at a bin, its direction is NaN.
+struct DirectionalRecordSpectrum {
+  RecordSpectrum elevation;              ///< record_spectrum of the elevation alone, bit for bit
+  std::vector<double> a1, b1;            ///< per bin of elevation.frequency_hz
+  std::vector<double> direction_deg;     ///< per bin: atan2(b1, a1), travel, counter-clockwise from east
+  std::vector<double> spread_deg;        ///< per bin: Kuik's circular spread
+  double peak_direction_deg = 0.0;       ///< at the peak bin (the largest S_ee in the band)
+  double mean_direction_deg = 0.0;       ///< over the band, S_ee-weighted
+  double directional_spread_deg = 0.0;   ///< over the band, S_ee-weighted
+};
+
 /// Welch's spectrum of `elevation_m` sampled every `sample_interval_s` and its parameters. Throws
 /// nearshore::Error naming the parameter when the record is shorter than 16 samples or longer
 /// than 2^30, the interval
 /// is not positive and finite, a sample is not finite, or the band holds no bin.
 RecordSpectrum record_spectrum(std::span<const double> elevation_m, double sample_interval_s,
                                const RecordSpectrumOptions& options = {});
+
+/// record_spectrum of `elevation_m` and the directions of the sea from `flux_x` and `flux_y` (east
+/// and north components of a depth-integrated flux in m^2/s or of a velocity in m/s, sampled with
+/// the elevation). Throws nearshore::Error as record_spectrum does, and naming flux_x or flux_y when
+/// their lengths differ from the elevation's or a sample is not finite.
+DirectionalRecordSpectrum directional_record_spectrum(std::span<const double> elevation_m, std::span<const double> flux_x,
+                                                      std::span<const double> flux_y, double sample_interval_s,
+                                                      const RecordSpectrumOptions& options = {});
 
 }  // namespace nearshore::ocean
