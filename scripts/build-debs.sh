@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-build/release/debs}"
 bash scripts/build.sh release nearshore_packaged_targets
-rm -rf "$out"
+mkdir -p "$out"
+rm -f "$out"/*.deb "$out"/*.ddeb
 cpack --config build/release/CPackConfig.cmake -B "$out"
 rm -rf "$out/_CPack_Packages"
 for deb in "$out"/*.deb; do

@@ -9,7 +9,7 @@
 #  4. From that root alone: nearshore.h compiles with nothing but the C library beside it; the C
 #     samples build by pkg-config and by find_package (a C host without Eigen and nlohmann_json),
 #     the C++ sample by find_package; the packaged `nearshore` bakes the small bay; query_track
-#     plays it; `import nearshore` finds the packaged module and reads the bake.
+#     plays it; `import nearshore` finds the packaged module and queries the bake along its track.
 set -euo pipefail
 build_dir=$1 source_dir=$2 work=$3
 here=$(cd "$(dirname "$0")" && pwd)
