@@ -173,10 +173,10 @@ sequence::ChannelSelection channels_of(const std::vector<std::string>& names) {
   return selected;
 }
 
-// The C API's own limits on a display time (nearshore_c.cpp checked_time).
+// A display time (runtime::is_display_time, the C API's rule too).
 void checked_time(double time_s) {
-  if (!std::isfinite(time_s) || time_s < 0.0 || time_s > 1e9)
-    throw Error("time_s", fmt::format("{:.6g} is outside 0 - 1e9 s", time_s),
+  if (!runtime::is_display_time(time_s))
+    throw Error("time_s", fmt::format("{:.6g} is outside 0 - {:g} s", time_s, runtime::kLatestDisplayTime_s),
                 "give a display time of the sea's timeline (time 0 is the first step of its plan)");
 }
 

@@ -104,7 +104,7 @@ inline Gradient bilinear_gradient(const float* f, const Tap& t, int columns, int
 // without AVX (GCC's -Wpsabi note) never applies.
 #pragma GCC diagnostic ignored "-Wpsabi"
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-#define NEARSHORE_SOLVE_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define NEARSHORE_SOLVE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 #else
 #define NEARSHORE_SOLVE_CLONES
 #endif
@@ -339,7 +339,10 @@ SurfaceSampler::CascadeSum SurfaceSampler::cascades_sum(const std::vector<Cascad
 
 // One clone per instruction set (the sweep's practice, boussinesq_sweep.cpp): with AVX2 and FMA a
 // row's sign extension is one instruction, a Float8 one register, and the bilinear's multiply-adds
-// fused, about 1.25 x the portable code's rate on the open sea (docs/runtime.md "Query speed").
+// fused, about 1.25 x the portable code's rate on the open sea (docs/runtime.md "Measured"). The
+// fused clones round differently from the portable one (by float round-off, 1e-7 of a metre): two
+// processes on one machine give the same bits; machines of different instruction sets need not
+// (the deep water's FFTs already differ there: FFTW picks its kernels per machine).
 NEARSHORE_SOLVE_CLONES
 void SurfaceSampler::solve_block(const SitePoint* q, int count, Solution* out) const {
   // Formula 4: solve F(p) = p + (1 - w(p)) lambda D(p) - q = 0 from p = q. Newton's method with
