@@ -94,7 +94,7 @@ struct WaveMaker {
   double source_line_m = 0.0;         ///< position of the source line along the axis normal to `facing`
                                       ///< (x for kWest/kEast, y for kSouth/kNorth), metres, grid frame
   Side facing = Side::kSouth;         ///< waves are generated travelling AWAY from this side
-  double ramp_time_s = 0.0;           ///< smooth (tanh-like) start over this time, seconds
+  double ramp_time_s = 0.0;           ///< smooth start over this time, seconds: (1 - cos(pi t / T)) / 2
   /// Second-order generation of a regular wave (kComponents with one component): the line also
   /// radiates, as a free wave at 2w, the bound second harmonic of the equations' own steady wave
   /// (model_nonlinear.hpp) in phase with it at the line. A source of the first harmonic alone sheds
