@@ -16,11 +16,10 @@
 // Since 2026-11-24 (issue 15, scale) the estimate splits the two: kBakeBytesPerCell = 250 B per
 // cell and kBakeBytesPerLinePerThread = 3.5 kB per cell of the longest side per thread (the
 // sweep's 19 scratch arrays of 16 lanes and the filter's 128-line block; 4 kB since the sweep's four
-// wall arrays of 2026-11-28). Measured on 4000 x 4000
-// (the Berkhoff basin at 7.5 x 5 mm, 5 steps, two frames, a checkpoint, two threads; docs/solver.md
-// "Scale"): peak 4.29e9 B, 262 B per cell above the 73 MB of code and libraries, of which 41 B are
-// the wave statistics; the single 300 B figure estimated 5.46e9 B (27 % over), this one 4.70e9 B
-// (+10 %). BakeEstimate.CoversTheMeasuredPeakOfARealBake checks the narrow flume against the
+// wall arrays of 2026-11-28). Measured on 4000 x 4000 with the defaults
+// (the Berkhoff basin at 7.5 x 5 mm, 12 steps, three frames, a checkpoint, two threads; docs/solver.md
+// "A whole bake", 2026-11-30): peak 4.33e9 B, 266 B per cell above the 73 MB of code and libraries;
+// the estimate gives 4.75e9 B (+9.8 %). BakeEstimate.CoversTheMeasuredPeakOfARealBake checks the narrow flume against the
 // estimate's growth per added cell (per-line buffers included).
 //
 // The FFT deep-water layer ([deep_water], issue 5) is not per cell of the harbour grid: its cost is
