@@ -7,7 +7,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 APT=(apt-get -y -o DPkg::Lock::Timeout=300)
 packages=(
-  build-essential cmake ninja-build pkg-config ccache git dpkg-dev file
+  build-essential cmake ninja-build pkg-config ccache git dpkg-dev file help2man
   libgeographiclib-dev
   libopenexr-dev libimath-dev
   libopenvdb-dev libblosc-dev libboost-iostreams-dev libboost-dev
