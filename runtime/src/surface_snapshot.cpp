@@ -1,6 +1,7 @@
 #include "nearshore/runtime/surface_snapshot.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -16,69 +17,86 @@ namespace {
 struct Ramp {
   double value = 0.0, slope = 0.0;
 };
+// sin^2(pi u / 2) on u in [0, 1] and its derivative (pi / 2) sin(pi u) at 257 nodes, read by a cubic
+// Hermite in each interval (value and slope exact at the nodes, so the ramp stays C1): within
+// 3e-11 of sin^2 and 1.5e-8 of its largest slope (the interpolation bounds h^4 / 384 max |f^(4)|
+// and sqrt(3) h^3 / 216 max |f^(4)|, h = 1/256, f^(4) at most pi^4 / 2; measured 2.95e-11 and
+// 1.48e-8 over 2e6 points). A displaced query in the blending zone takes the weight at every
+// Newton step: libm's sin and sincos were a fifth of its time (perf); the table is a few
+// multiply-adds (the zone's hull points 4.6 -> 6.3 M/s).
+struct RampTable {
+  static constexpr int kIntervals = 256;
+  std::array<double, kIntervals + 1> value, slope_per_u;
+};
+const RampTable kRampTable = [] {
+  RampTable t;
+  for (int i = 0; i <= RampTable::kIntervals; ++i) {
+    const double u = static_cast<double>(i) / RampTable::kIntervals;
+    const double r = std::sin(0.5 * std::numbers::pi * u);
+    t.value[i] = r * r;
+    t.slope_per_u[i] = 0.5 * std::numbers::pi * std::sin(std::numbers::pi * u);
+  }
+  t.value[RampTable::kIntervals] = 1.0;
+  return t;
+}();
+
 Ramp sin2_ramp(double s, double width, bool with_slope) {
   if (width <= 0.0) return {s > 0.0 ? 1.0 : 0.0, 0.0};
   if (s <= 0.0) return {0.0, 0.0};
   if (s >= width) return {1.0, 0.0};
-  const double half_angle = 0.5 * std::numbers::pi * s / width;
-  const double r = std::sin(half_angle);
-  // d/ds sin^2(pi s / 2 W) = (pi / 2 W) sin(pi s / W) = (pi / W) sin cos of the half angle.
-  return {r * r, with_slope ? std::numbers::pi / width * r * std::cos(half_angle) : 0.0};
+  constexpr double h = 1.0 / RampTable::kIntervals;
+  const double x = s / width * RampTable::kIntervals;
+  const int i = std::min(static_cast<int>(x), RampTable::kIntervals - 1);
+  const double t = x - i, t2 = t * t, t3 = t2 * t;
+  const double p0 = kRampTable.value[i], p1 = kRampTable.value[i + 1];
+  const double m0 = h * kRampTable.slope_per_u[i], m1 = h * kRampTable.slope_per_u[i + 1];
+  const double value = (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (3 * t2 - 2 * t3) * p1 + (t3 - t2) * m1;
+  if (!with_slope) return {value, 0.0};
+  const double d_dt = (6 * t2 - 6 * t) * (p0 - p1) + (3 * t2 - 4 * t + 1) * m0 + (3 * t2 - 2 * t) * m1;
+  return {value, d_dt * RampTable::kIntervals / width};
 }
 
-// The ramps of a site point: the maker's (along the source axis) and the three other edges'.
-// d_dx[i], d_dy[i]: how ramp i's argument changes with x and y.
-struct Ramps {
-  Ramp ramp[4];
-  double d_dx[4] = {0, 0, 0, 0}, d_dy[4] = {0, 0, 0, 0};
-  int count = 0;
+// The weight of a site point is the product of the maker's ramp (along the source axis, inland of
+// the source line) and the three other edges' fades; the source side's edge takes no fade (it
+// fades by the record). Written as the source ramp times an x pair (west, east) and a y pair
+// (south, north), so the product rule's gradient is three terms, with no arrays to clear (perf:
+// the cleared arrays and loops of the general product cost more than the sines).
+struct SiteRamps {
+  Ramp source, west, east, south, north;
 };
-bool site_ramps(const HarbourSite& site, double x_m, double y_m, bool with_slope, Ramps& ramps) {
+bool site_ramps(const HarbourSite& site, double x_m, double y_m, bool with_slope, SiteRamps& r) {
   if (x_m < 0.0 || y_m < 0.0 || x_m > site.width_m || y_m > site.height_m) return false;
   const double along = site.source_axis == 0 ? x_m : y_m;
   // Distance inland of the source line along the maker's inward normal.
   const double inland = site.inward_sign * (along - site.source_line_m);
-  ramps.ramp[0] = sin2_ramp(inland - site.blend_start_m, site.blend_width_m, with_slope);
-  (site.source_axis == 0 ? ramps.d_dx[0] : ramps.d_dy[0]) = site.inward_sign;
-  ramps.count = 1;
-  // The three other edges fade over edge_fade_m (the source side fades by the record above).
-  const double distances[4] = {x_m, site.width_m - x_m, y_m, site.height_m - y_m};  // west, east, south, north
-  const double along_x[4] = {1.0, -1.0, 0.0, 0.0}, along_y[4] = {0.0, 0.0, 1.0, -1.0};
+  r.source = sin2_ramp(inland - site.blend_start_m, site.blend_width_m, with_slope);
   const int source_edge = site.source_axis == 0 ? (site.inward_sign > 0 ? 0 : 1) : (site.inward_sign > 0 ? 2 : 3);
-  for (int edge = 0; edge < 4; ++edge) {
-    if (edge == source_edge) continue;
-    ramps.ramp[ramps.count] = sin2_ramp(distances[edge], site.edge_fade_m, with_slope);
-    ramps.d_dx[ramps.count] = along_x[edge];
-    ramps.d_dy[ramps.count] = along_y[edge];
-    ++ramps.count;
-  }
+  const Ramp none{1.0, 0.0};
+  r.west = source_edge == 0 ? none : sin2_ramp(x_m, site.edge_fade_m, with_slope);
+  r.east = source_edge == 1 ? none : sin2_ramp(site.width_m - x_m, site.edge_fade_m, with_slope);
+  r.south = source_edge == 2 ? none : sin2_ramp(y_m, site.edge_fade_m, with_slope);
+  r.north = source_edge == 3 ? none : sin2_ramp(site.height_m - y_m, site.edge_fade_m, with_slope);
   return true;
 }
 }  // namespace
 
 double harbour_weight(const HarbourSite& site, double x_m, double y_m) {
-  Ramps ramps;
-  if (!site_ramps(site, x_m, y_m, false, ramps)) return 0.0;
-  double weight = 1.0;
-  for (int i = 0; i < ramps.count; ++i) weight *= ramps.ramp[i].value;
-  return weight;
+  SiteRamps r;
+  if (!site_ramps(site, x_m, y_m, false, r)) return 0.0;
+  return r.source.value * (r.west.value * r.east.value) * (r.south.value * r.north.value);
 }
 
 HarbourWeight harbour_weight_and_gradient(const HarbourSite& site, double x_m, double y_m) {
-  Ramps ramps;
+  SiteRamps r;
   HarbourWeight result;
-  if (!site_ramps(site, x_m, y_m, true, ramps)) return result;
-  result.weight = 1.0;
-  for (int i = 0; i < ramps.count; ++i) result.weight *= ramps.ramp[i].value;
-  // Product rule: d(prod r_i) = sum_i (prod_{j != i} r_j) dr_i.
-  for (int i = 0; i < ramps.count; ++i) {
-    if (ramps.ramp[i].slope == 0.0) continue;
-    double others = 1.0;
-    for (int j = 0; j < ramps.count; ++j)
-      if (j != i) others *= ramps.ramp[j].value;
-    result.d_dx_per_m += others * ramps.ramp[i].slope * ramps.d_dx[i];
-    result.d_dy_per_m += others * ramps.ramp[i].slope * ramps.d_dy[i];
-  }
+  if (!site_ramps(site, x_m, y_m, true, r)) return result;
+  const double across_x = r.west.value * r.east.value, across_y = r.south.value * r.north.value;
+  result.weight = r.source.value * across_x * across_y;
+  // Product rule; the east and north ramps' arguments fall as x and y grow.
+  const double source_slope = r.source.slope * site.inward_sign * across_x * across_y;
+  result.d_dx_per_m = r.source.value * (r.west.slope * r.east.value - r.west.value * r.east.slope) * across_y;
+  result.d_dy_per_m = r.source.value * across_x * (r.south.slope * r.north.value - r.south.value * r.north.slope);
+  (site.source_axis == 0 ? result.d_dx_per_m : result.d_dy_per_m) += source_slope;
   return result;
 }
 
