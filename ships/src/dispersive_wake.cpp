@@ -387,14 +387,19 @@ void DispersiveWake::force_with_thin_ship(const ShipBody& body, double depth_m) 
   for (std::size_t k = 0; k < src.modes; ++k) {
     const double kk = src.wavenumber[k];
     const double r = std::exp(-kk * dz), bed = std::exp(-2.0 * kk * depth), norm = 1.0 / (1.0 + bed);
-    double down = 1.0, up = bed;  // e^{-k z_l} and e^{-2 k d} e^{k z_l}
-    std::complex<double> a(0.0, 0.0);
+    // The bed's image matters only where e^{-2 k d} does (shallow water, long waves).
+    const double up_step = bed > 1e-12 ? std::exp(kk * dz) : 0.0;
+    double down = norm, up = bed * norm;  // e^{-k z_l} and e^{-2 k d} e^{k z_l}, over 1 + e^{-2 k d}
+    double re = 0.0, im = 0.0;
     for (int l = 0; l < levels; ++l) {
       const float* c = src.level_spectra.data() + 2 * (src.modes * l + k);
-      a += (down + up) * norm * std::complex<double>(c[0], c[1]);
+      const double w = down + up;
+      re += w * c[0];
+      im += w * c[1];
       down *= r;
-      if (r > 0.0) up = std::min(up / r, 1.0);
+      up *= up_step;
     }
+    std::complex<double> a(re, im);
     if (passes > 0) {
       const int i = static_cast<int>(k % half), j = static_cast<int>(k / half);
       const double cx = std::cos(0.5 * dk * i * spacing_m_), cy = std::cos(0.5 * dk * (j <= m / 2 ? j : j - m) * spacing_m_);

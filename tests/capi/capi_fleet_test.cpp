@@ -271,16 +271,19 @@ TEST(CApiFleet, ADispersiveWakeIsShownBelowFroudeSevenTenthsAndQueriedLikeABowWa
   ASSERT_EQ(nearshore_fleet_query(fleet, xy, 1, &with_ships), NEARSHORE_OK) << error();
   EXPECT_NEAR(with_ships.elevation_m - sea_only.elevation_m, wake_heights[crest], 1e-5);
   // Since version 9 the decals hold the breaking crests' foam after the stern wake's: the tug's
-  // transverse wave breaks at 3 m/s (docs/ships.md), so some decals lie off its track (y = 60 m).
+  // waves break at 3 m/s (docs/ships.md), so there are more decals than the stern wake's one per
+  // beam (9 m) of travel, 2 in these 5 s, each within the layer's window around the tug.
   size_t decal_count = 0;
   ASSERT_EQ(nearshore_fleet_wake_decals(fleet, 0, nullptr, 0, &decal_count), NEARSHORE_OK);
   std::vector<nearshore_wake_decal> decals(decal_count);
   ASSERT_EQ(nearshore_fleet_wake_decals(fleet, 0, decals.data(), decals.size(), &decal_count), NEARSHORE_OK);
-  const auto off_track = std::count_if(decals.begin(), decals.end(), [](const nearshore_wake_decal& d) {
-    return std::abs(d.y_m - 60.0f) > 5.0f && d.opacity > 0.0f && d.opacity <= 1.0f;
-  });
-  std::printf("tug with its dispersive wake at 3 m/s: %zu decals, %td off its track (crest foam)\n", decal_count, off_track);
-  EXPECT_GT(off_track, 0);
+  std::printf("tug with its dispersive wake at 3 m/s: %zu decals (stern wake and crest foam)\n", decal_count);
+  EXPECT_GT(decal_count, 10u);
+  for (const nearshore_wake_decal& d : decals) {
+    EXPECT_GT(d.opacity, 0.0f);
+    EXPECT_LE(d.opacity, 1.0f);
+    EXPECT_NEAR(d.y_m, 60.0f, 60.0f);  // inside the 120 m window
+  }
   // A ship without one reports none.
   options.name = "Barge";
   options.y_m = 100.0;

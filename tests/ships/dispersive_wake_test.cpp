@@ -385,7 +385,12 @@ TEST(DispersiveWake, TheThinShipWaveResistanceOfTheWigleyHullIsMichellsIntegral)
     std::printf("Wigley 20 m, Fn %.2f (%.2f m/s): layer %.1f N, Michell %.1f N (over the grid's band %.1f N): %+.1f %% "
                 "(%+.1f %% of the band)\n",
                 froude, speed, simulated, michell, band, 100 * (simulated / michell - 1), 100 * (simulated / band - 1));
-    EXPECT_NEAR(simulated, michell, 0.15 * michell);
+    // Against the integral over the grid's band: the layer's own discretisation (8 depth levels,
+    // the sources' splat, the start-up's residual oscillation over the last 7.5 s), measured 2.7 %
+    // and 0.3 %: within 5 %. Against the whole integral, the band's loss adds Michell's integrand
+    // beyond pi / (2 dx) (2.2 % and 1.9 %): within 8 %.
+    EXPECT_NEAR(simulated, band, 0.05 * band);
+    EXPECT_NEAR(simulated, michell, 0.08 * michell);
   }
 }
 
