@@ -512,8 +512,9 @@ NEARSHORE_API nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* f
 
 /* The same for a ship's dispersive wake layer (columns = 0 when the ship has none). Each layer's
  * heights carry the weight the fleet shows it with (the two weights sum to 1 and fade over 2 s when
- * the depth Froude number crosses 0.7 / 0.8), so a host that draws both fields added to the sea draws
- * what the fleet queries below return. */
+ * the depth Froude number crosses 0.7 / 0.8, or the ship's transverse wave 2 pi U^2 / g crosses 8 / 6
+ * of the layer's nodes), so a host that draws both fields added to the sea draws what the fleet
+ * queries below return. */
 NEARSHORE_API nearshore_status nearshore_fleet_dispersive_wake(const nearshore_fleet* fleet, int ship,
                                                                nearshore_bow_wave_field* field, float* heights_m,
                                                                size_t capacity);

@@ -293,7 +293,7 @@ TEST(DispersiveWake, AShipNearTheCriticalSpeedShowsTheShallowWaterGridAndFadesBe
   EXPECT_LT(slowing.ship(0).depth_froude_number(), 0.7);
 }
 
-// Michell's integral (Michell 1898; Wehausen 1973, "The wave resistance of ships", eq. 3.6) for the
+// Michell's integral (Michell 1898; Wehausen 1973, "The wave resistance of ships") for the
 // Wigley hull Y(x, z) = (B / 2)(1 - (2x / L)^2)(1 - (z / T)^2), evaluated here from its own formula:
 //   R = (4 rho g^2 / (pi U^2)) int_0^{pi/2} |I(theta)|^2 sec^3 theta d theta,
 //   I = int int dY/dx exp(k0 z sec^2 theta + i k0 x sec theta) dx dz,  k0 = g / U^2,

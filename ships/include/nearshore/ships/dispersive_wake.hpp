@@ -33,8 +33,8 @@
 // Hull forcing (HullForcing). A pressure patch of the hull's draft (hull_pressure_head) is linear
 // theory's forcing only while k zeta << 1: behind a blunt stern at low speed (a 24 x 9 x 3 m tug at
 // 3 m/s has k zeta = g T / U^2 = 3.3) it makes waves metres high. The default is therefore Michell's
-// thin ship (Michell 1898; Wehausen 1973, "The wave resistance of ships", Adv. Appl. Mech. 13, eq.
-// 3.1-3.6): the hull is a distribution of sources on its centreplane whose strength is the normal
+// thin ship (Michell 1898; Wehausen 1973, "The wave resistance of ships", Adv. Appl. Mech. 13):
+// the hull is a distribution of sources on its centreplane whose strength is the normal
 // velocity of the wet surface, m = (v . n) dA (volume per second) for each wet piece, put at the
 // piece's depth z below the local surface on the body's centreplane: both sides of a thin hull add
 // to 2 U dY/dx per unit area of the centreplane, Michell's source density (Y the half-breadth).
@@ -54,16 +54,17 @@
 // layer's spacing, whose band (waves of 4 nodes and longer) is the filter: no further smoothing by
 // default (source_smoothing_passes), since each pass lowers the wave resistance below Michell's.
 // The Lagally force of phi_w on the same sources is the hull's wave resistance
-// (wave_resistance_force_N: Michell's integral for a steady hull in deep water; tested against it).
+// (wave_force_N: Michell's integral for a steady hull in deep water; tested against it).
 //
 // Breaking (breaking_slope). Linear waves have no height limit; a wave breaks where its steepness
 // passes Michell's limit H / lambda = 0.142 (Michell 1893), a slope a k = pi 0.142 = 0.446 for the
 // linear wave of that height. After each step, where the surface slope |grad eta| (central
 // differences) exceeds breaking_slope, eta + zeta and phi at that node are scaled by
-// breaking_slope / |grad eta|: the excess energy is dissipated there, as the steepness-limited
-// breaking of phase-resolving wave models (e.g. the slope criterion of Kennedy et al. 2000's
-// Boussinesq breaking, Grilli et al. 1997's S_0) does. breaking_nodes() lists where it happened in
-// the last update (the fleet's crest foam, ship_fleet.hpp).
+// breaking_slope / |grad eta|: the excess energy is dissipated there, as phase-resolving wave
+// models dissipate where a local onset criterion is passed (Kennedy et al. 2000's Boussinesq
+// breaking: d eta / dt above a fraction of the wave speed, for a progressive wave a slope times its
+// phase speed). breaking_nodes() lists where it happened in the last update (the fleet's crest
+// foam, ship_fleet.hpp).
 //
 // Drawn height: eta (with the pressure patch: the depression -zeta under the hull, hidden in it)
 // times the layer's shown weight (the fleet's blend between this layer and the shallow-water grid,
@@ -151,6 +152,7 @@ class DispersiveWake {
   /// The Lagally force of the free waves on the hull's sources, -rho sum_p m_p grad phi_w(x_p, z_p)
   /// (horizontal, site frame, N; rho 1025 kg/m^3): the wave resistance is minus its component along
   /// the motion. Michell's integral for a steady thin ship. Zero before the thin-ship forcing.
+  /// Uses the layer's transform buffers: not concurrently with update() or advance().
   Eigen::Vector2d wave_force_N(double density_kg_m3 = 1025.0) const;
   /// Nodes where the last update broke a crest (site frame, m) and by how much the slope exceeded
   /// the limit (|grad eta| / breaking_slope - 1), at most one per 2 x 2 nodes.
