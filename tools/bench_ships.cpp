@@ -23,9 +23,9 @@ void add_bench_ships(CLI::App& bench) {
   command->add_option("--beaufort", m.beaufort, "Beaufort force of the deep sea the hull samples (1-12)")->check(number_in(at_least(1), at_most(12)));
   command->add_option("--fleet", m.fleet_ships, "Ships of the fleet stepped together at 30 Hz (0: no fleet line)")
       ->check(number_in(at_least(0), at_most(64)));
-  command->add_flag("--dispersive-wake", m.dispersive_wake,
-                   "Give the fleet's ships the dispersive (Kelvin) wake layer too; below depth Froude number 0.7 it is "
-                   "shown and stepped instead of the bow-wave grid");
+  command->add_flag("--dispersive-wake,!--no-dispersive-wake", m.dispersive_wake,
+                   "Give the fleet's ships the dispersive (Kelvin) wake layer too (the default; --no-dispersive-wake: "
+                   "the bow-wave grid alone); below depth Froude number 0.7 it is shown and stepped instead of the grid");
   command->add_flag("--json", o->json, "Print the results as JSON");
   set_example(*command, "nearshore bench ships --points 1000 --grid 256 --fleet 8");
   command->callback([o]() {

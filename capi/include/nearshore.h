@@ -49,8 +49,13 @@ extern "C" {
  *    still taken, with clear air).
  * 8: every wave layer of a ship listed (nearshore_fleet_wave_layer_count, nearshore_fleet_wave_layer:
  *    each field with its kind and shown weight).
+ * 9: the dispersive wake on by default (nearshore_ship_options_init sets dispersive_wake = 1; it is
+ *    forced by the hull's thin-ship sources and breaks at Michell's steepness); its breaking crests'
+ *    foam follows the stern wake's decals in nearshore_fleet_wake_decals. A host that draws only
+ *    nearshore_fleet_bow_wave should draw every layer (nearshore_fleet_wave_layer) or set
+ *    dispersive_wake = 0.
  * A host built against version N runs on a library of version >= N. */
-#define NEARSHORE_API_VERSION 8
+#define NEARSHORE_API_VERSION 9
 
 typedef enum nearshore_status {
   NEARSHORE_OK = 0,
@@ -386,13 +391,14 @@ typedef struct nearshore_ship_options {
   int hull_points;               /* pressure points sampled on the hull; 0: 2000 */
   int bow_wave;                  /* 1 (default): a bow-wave grid; 0: none */
   int bow_wave_cells;            /* N of its N x N grid; 0: 128 */
-  int dispersive_wake;           /* 1: also a dispersive linear wave layer (Kelvin's wake; docs/ships.md),
-                                    shown instead of the bow-wave grid below depth Froude number 0.7;
-                                    0 (default): the bow-wave grid alone (API version 4). Both layers:
-                                    nearshore_fleet_wave_layer (version 8) */
+  int dispersive_wake;           /* 1 (default since version 9): also a dispersive linear wave layer
+                                    (Kelvin's wake; docs/ships.md), shown instead of the bow-wave grid
+                                    below depth Froude number 0.7 where its window resolves the ship's
+                                    waves; 0: the bow-wave grid alone (the default before version 9).
+                                    Both layers: nearshore_fleet_wave_layer (version 8) */
 } nearshore_ship_options;
 
-/* Fills the defaults: a tug at draft 3 m, manual orders, bow wave on. Any thread. */
+/* Fills the defaults: a tug at draft 3 m, manual orders, bow wave and dispersive wake on. Any thread. */
 NEARSHORE_API void nearshore_ship_options_init(nearshore_ship_options* options);
 
 /* A fleet on `sea` (grounding and bow-wave bottoms from its harbour depth). Render thread. */
@@ -478,7 +484,8 @@ typedef struct nearshore_wake_decal {
   float x_m, y_m, yaw_rad, width_m, length_m, opacity;
   int variant;
 } nearshore_wake_decal;
-/* Copies up to `capacity` of ship `ship`'s decals, oldest first; *count receives how many it has
+/* Copies up to `capacity` of ship `ship`'s decals: its stern wake's, oldest first, then (since
+ * version 9) the foam of its breaking wave crests, oldest first; *count receives how many it has
  * (call with capacity 0 to size the array). */
 NEARSHORE_API nearshore_status nearshore_fleet_wake_decals(const nearshore_fleet* fleet, int ship,
                                                            nearshore_wake_decal* decals, size_t capacity,
@@ -505,8 +512,9 @@ NEARSHORE_API nearshore_status nearshore_fleet_bow_wave(const nearshore_fleet* f
 
 /* The same for a ship's dispersive wake layer (columns = 0 when the ship has none). Each layer's
  * heights carry the weight the fleet shows it with (the two weights sum to 1 and fade over 2 s when
- * the depth Froude number crosses 0.7 / 0.8), so a host that draws both fields added to the sea draws
- * what the fleet queries below return. */
+ * the depth Froude number crosses 0.7 / 0.8, or the ship's transverse wave 2 pi U^2 / g crosses 8 / 6
+ * of the layer's nodes), so a host that draws both fields added to the sea draws what the fleet
+ * queries below return. */
 NEARSHORE_API nearshore_status nearshore_fleet_dispersive_wake(const nearshore_fleet* fleet, int ship,
                                                                nearshore_bow_wave_field* field, float* heights_m,
                                                                size_t capacity);

@@ -263,6 +263,7 @@ void nearshore_ship_options_init(nearshore_ship_options* options) {
   options->draft_m = 3.0;
   options->order = NEARSHORE_ORDER_MANUAL;
   options->bow_wave = 1;
+  options->dispersive_wake = 1;  // since version 9 (docs/c-api.md)
 }
 
 nearshore_status nearshore_fleet_create(const nearshore_sea* sea, nearshore_fleet** fleet) {
@@ -415,17 +416,20 @@ nearshore_status nearshore_fleet_wake_decals(const nearshore_fleet* fleet, int s
                                              size_t capacity, size_t* count) {
   return guarded(NEARSHORE_INTERNAL_ERROR, [&] {
     const ships::Ship& s = ship_of(fleet, ship);
-    const auto& all = s.wake().decals();
-    *require(count, "count") = all.size();
+    // The stern wake's decals, then (since version 9) the breaking crests' foam (ship_fleet.hpp).
+    const auto& stern = s.wake().decals();
+    const auto& crests = s.crest_foam().decals();
+    *require(count, "count") = stern.size() + crests.size();
     if (capacity == 0) return;
     require(decals, "decals");
     std::size_t k = 0;
-    for (auto it = all.begin(); it != all.end() && k < capacity; ++it, ++k) {
-      decals[k] = {static_cast<float>(it->x_m),      static_cast<float>(it->y_m),
-                   static_cast<float>(it->yaw_rad),  static_cast<float>(it->width_m),
-                   static_cast<float>(it->length_m), static_cast<float>(it->opacity()),
-                   it->variant};
-    }
+    for (const auto* list : {&stern, &crests})
+      for (auto it = list->begin(); it != list->end() && k < capacity; ++it, ++k) {
+        decals[k] = {static_cast<float>(it->x_m),      static_cast<float>(it->y_m),
+                     static_cast<float>(it->yaw_rad),  static_cast<float>(it->width_m),
+                     static_cast<float>(it->length_m), static_cast<float>(it->opacity()),
+                     it->variant};
+      }
   });
 }
 

@@ -28,6 +28,10 @@ void check_options(const DispersiveWakeOptions& o, double spacing_m) {
                 "under half the side and the window's centre within it (|astern_fraction| < 0.5)");
 }
 
+bool thin_ship_options_ok(const DispersiveWakeOptions& o) {
+  return o.source_layers >= 2 && o.source_layers <= 32 && o.breaking_slope >= 0.0 && o.breaking_slope <= 10.0;
+}
+
 }  // namespace
 
 // FFTW's float plans and their buffers (fftwf_malloc: aligned for its SIMD kernels). The plans are
@@ -61,6 +65,62 @@ struct DispersiveWake::Spectral {
   fftwf_plan forward_eta = nullptr, forward_phi = nullptr, inverse_eta = nullptr, inverse_phi = nullptr;
 };
 
+// The thin-ship sources' scratch and their spectrum: M = N / 2 nodes a side at twice the layer's
+// spacing (the band the forcing's smoothing leaves), one splat per depth level.
+struct DispersiveWake::Sources {
+  explicit Sources(int n_full, int levels)
+      : m(n_full / 2), modes(static_cast<std::size_t>(m) * (m / 2 + 1)), levels(levels),
+        splat(static_cast<std::size_t>(levels) * m * m, 0.0f), spectrum(modes, {0.0, 0.0}),
+        level_spectra(2 * modes * levels, 0.0f) {
+    real = fftwf_alloc_real(static_cast<std::size_t>(m) * m);
+    out = fftwf_alloc_complex(modes);
+    forward = fftwf_plan_dft_r2c_2d(m, m, real, out, FFTW_ESTIMATE);
+    if (!real || !out || !forward)
+      throw Error("DispersiveWake", fmt::format("FFTW could not plan a {} x {} float transform", m, m),
+                  "use fewer cells (memory) or check the FFTW installation");
+  }
+  ~Sources() {
+    if (forward) fftwf_destroy_plan(forward);
+    fftwf_free(real);
+    fftwf_free(out);
+  }
+  int m;
+  std::size_t modes;
+  int levels;
+  std::vector<float> splat;                       ///< levels x m x m source amounts (m^3/s)
+  std::vector<std::complex<double>> spectrum;     ///< A(k), smoothed, on the m x (m/2 + 1) band
+  std::vector<float> level_spectra;               ///< each level's transform (re, im per mode)
+  std::vector<double> wavenumber;                 ///< |k| per mode of the band
+  float* real = nullptr;
+  fftwf_complex* out = nullptr;
+  fftwf_plan forward = nullptr;
+  bool valid = false;   ///< spectrum holds the last forcing's sources
+  double depth_m = 0.0;
+};
+
+namespace {
+
+// Fraction of a triangle where a linear function with corner values f0, f1, f2 is positive (the
+// wet part of a piece, f the depth below the surface): exact for a linear f.
+double positive_fraction(double f0, double f1, double f2) {
+  const int wet = (f0 > 0) + (f1 > 0) + (f2 > 0);
+  if (wet == 3) return 1.0;
+  if (wet == 0) return 0.0;
+  // The lone corner on one side, a, and the two others b, c: the sub-triangle at a has the area
+  // fraction a^2 / ((a - b)(a - c)).
+  auto lone = [](double a, double b, double c) { return a * a / ((a - b) * (a - c)); };
+  if (wet == 1) {
+    if (f0 > 0) return lone(f0, f1, f2);
+    if (f1 > 0) return lone(f1, f0, f2);
+    return lone(f2, f0, f1);
+  }
+  if (f0 <= 0) return 1.0 - lone(f0, f1, f2);
+  if (f1 <= 0) return 1.0 - lone(f1, f0, f2);
+  return 1.0 - lone(f2, f0, f1);
+}
+
+}  // namespace
+
 DispersiveWake::DispersiveWake(const ShipParticulars& particulars, DispersiveWakeOptions options)
     : DispersiveWake(options.side_in_lengths * std::max(particulars.length_m, 1e-3) / std::max(options.cells, 2),
                      options) {
@@ -72,7 +132,12 @@ DispersiveWake::DispersiveWake(const ShipParticulars& particulars, DispersiveWak
 DispersiveWake::DispersiveWake(double spacing_m, DispersiveWakeOptions options)
     : options_(options), n_(options.cells), spacing_m_(spacing_m), depth_m_(options.max_depth_m) {
   check_options(options_, spacing_m_);
+  if (!(thin_ship_options_ok(options_)))
+    throw Error("DispersiveWakeOptions",
+                fmt::format("source_layers = {}, breaking_slope = {}", options_.source_layers, options_.breaking_slope),
+                "use 2 to 32 depth levels for the thin-ship sources and a breaking slope of 0 (off) to 10");
   spectral_ = std::make_unique<Spectral>(n_);
+  sources_ = std::make_unique<Sources>(n_, options_.source_layers);
   const std::size_t nodes = static_cast<std::size_t>(n_) * n_;
   eta_.assign(nodes, 0.0f);
   phi_.assign(nodes, 0.0f);
@@ -199,8 +264,201 @@ void DispersiveWake::advance(double dt_s, double depth_m) {
   depth_m_ = std::clamp(depth_m, 1e-3, options_.max_depth_m);
   const int steps = std::max(1, static_cast<int>(std::ceil(dt_s / options_.max_step_s - 1e-9)));
   prepare_rotation(dt_s / steps, depth_m_);
-  for (int s = 0; s < steps; ++s) step();
+  breaking_.clear();
+  for (int s = 0; s < steps; ++s) {
+    step();
+    break_steep_crests(s + 1 == steps ? &breaking_ : nullptr);
+  }
   refresh_heights();
+}
+
+void DispersiveWake::break_steep_crests(std::vector<BreakingNode>* record) {
+  const double limit = options_.breaking_slope;
+  if (!(limit > 0.0)) return;
+  // Central differences see 90 % of the slope of an 8-node wave (sin(k dx) / (k dx)), the shortest
+  // the forcing's smoothing leaves with much energy; the limit is applied to what they see.
+  const double inv_2dx = 0.5 / spacing_m_, limit2 = limit * limit;
+  const bool patch = options_.forcing == DispersiveWakeOptions::HullForcing::pressure_patch;
+  // The slopes first (the scaling must not feed its neighbours' slopes in the same pass).
+  std::vector<std::pair<std::size_t, float>>& scale = break_scratch_;
+  scale.clear();
+  for (int j = 1; j + 1 < n_; ++j)
+    for (int i = 1; i + 1 < n_; ++i) {
+      const std::size_t c = index(i, j);
+      // Under a pressure-patch hull the depression's sides are the hull, not a wave.
+      if (patch && zeta_[c] > 1e-3f) continue;
+      const double sx = (eta_[c + 1] - eta_[c - 1]) * inv_2dx;
+      const double sy = (eta_[c + n_] - eta_[c - n_]) * inv_2dx;
+      const double s2 = sx * sx + sy * sy;
+      if (s2 > limit2) scale.emplace_back(c, static_cast<float>(limit / std::sqrt(s2)));
+    }
+  for (const auto& [c, r] : scale) {
+    eta_[c] = -zeta_[c] + r * (eta_[c] + zeta_[c]);
+    phi_[c] *= r;
+  }
+  if (record == nullptr) return;
+  // At most one node per 2 x 2 block: the largest excess there.
+  for (const auto& [c, r] : scale) {
+    const int i = static_cast<int>(c % n_), j = static_cast<int>(c / n_);
+    const double x = (static_cast<double>(origin_i_) + i) * spacing_m_, y = (static_cast<double>(origin_j_) + j) * spacing_m_;
+    const double excess = 1.0 / r - 1.0;
+    if (!record->empty()) {
+      BreakingNode& last = record->back();
+      if (std::abs(last.x_m - x) < 1.5 * spacing_m_ && std::abs(last.y_m - y) < 1.5 * spacing_m_) {
+        if (excess > last.excess) last = {x, y, excess};
+        continue;
+      }
+    }
+    record->push_back({x, y, excess});
+  }
+}
+
+void DispersiveWake::force_with_thin_ship(const ShipBody& body, double depth_m) {
+  Sources& src = *sources_;
+  const int m = src.m, levels = src.levels;
+  const double depth = std::clamp(depth_m, 1e-3, options_.max_depth_m);
+  const double coarse = 2.0 * spacing_m_;
+  const HullSamples& samples = body.samples();
+  const std::vector<double>& eta = body.water_elevations_m();
+  const ShipState& state = body.state();
+  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  const Eigen::Vector2d velocity = state.velocity_m_s.head<2>();
+  // 1. Each wet piece's source: m = (v . n) A (wet fraction), at its depth below the local surface,
+  //    on the body's centreplane (Michell). The deepest source sets the depth levels.
+  std::vector<SourcePoint>& sources = source_scratch_;
+  sources.clear();
+  double deepest = 0.0;
+  for (std::size_t p = 0; p < samples.size(); ++p) {
+    const double surface = p < eta.size() ? eta[p] : 0.0;
+    const auto& corners = samples.corner_m[p];
+    const double wet = positive_fraction(surface - body.to_world(corners[0]).z(), surface - body.to_world(corners[1]).z(),
+                                         surface - body.to_world(corners[2]).z());
+    if (wet <= 0.0) continue;
+    const Eigen::Vector3d point = body.to_world(samples.position_m[p]);
+    const Eigen::Vector3d arm = point - state.position_m;
+    const Eigen::Vector3d point_velocity = state.velocity_m_s + state.angular_velocity_rad_s.cross(arm);
+    const double strength = point_velocity.dot(rotation * samples.normal[p]) * samples.area_m2[p] * wet;
+    Eigen::Vector3d on_centreplane = samples.position_m[p];
+    on_centreplane.y() = 0.0;
+    const Eigen::Vector3d centre = body.to_world(on_centreplane);
+    const double below = std::clamp(surface - point.z(), 0.0, depth);
+    deepest = std::max(deepest, below);
+    sources.push_back({centre.x(), centre.y(), below, strength});
+  }
+  // 2. Splat on the coarse grid's levels: bilinear across, linear in depth between levels.
+  const double dz = std::max(deepest, 1e-3) / (levels - 1);
+  std::fill(src.splat.begin(), src.splat.end(), 0.0f);
+  const double x0 = static_cast<double>(origin_i_) * spacing_m_, y0 = static_cast<double>(origin_j_) * spacing_m_;
+  const std::size_t plane = static_cast<std::size_t>(m) * m;
+  for (const SourcePoint& q : sources) {
+    const double u = (q.x - x0) / coarse, v = (q.y - y0) / coarse;
+    const int i0 = static_cast<int>(std::floor(u)), j0 = static_cast<int>(std::floor(v));
+    if (i0 < 0 || j0 < 0 || i0 + 1 >= m || j0 + 1 >= m) continue;
+    const double a = u - i0, b = v - j0;
+    const double level = std::min(q.depth / dz, levels - 1.0);
+    const int l0 = std::min(static_cast<int>(level), levels - 2);
+    const double c = level - l0;
+    for (int l = 0; l < 2; ++l) {
+      const double w = (l == 0 ? 1.0 - c : c) * q.strength;
+      float* s = src.splat.data() + static_cast<std::size_t>(l0 + l) * plane;
+      s[static_cast<std::size_t>(j0) * m + i0] += static_cast<float>((1 - a) * (1 - b) * w);
+      s[static_cast<std::size_t>(j0) * m + i0 + 1] += static_cast<float>(a * (1 - b) * w);
+      s[static_cast<std::size_t>(j0 + 1) * m + i0] += static_cast<float>((1 - a) * b * w);
+      s[static_cast<std::size_t>(j0 + 1) * m + i0 + 1] += static_cast<float>(a * b * w);
+    }
+  }
+  // 3. A(k) = sum over levels of cosh(k (d - z_l)) / cosh(k d) times the level's transform, smoothed
+  //    as the patch's binomial passes smooth (cos^(2P)(k dx / 2) in x and y).
+  const int half = m / 2 + 1;
+  const double dk = 2.0 * std::numbers::pi / (n_ * spacing_m_);
+  if (src.wavenumber.empty()) {
+    src.wavenumber.resize(src.modes);
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < half; ++i)
+        src.wavenumber[static_cast<std::size_t>(j) * half + i] = std::hypot(dk * i, dk * (j <= m / 2 ? j : j - m));
+  }
+  for (int l = 0; l < levels; ++l) {
+    std::copy_n(src.splat.data() + static_cast<std::size_t>(l) * plane, plane, src.real);
+    fftwf_execute(src.forward);
+    std::copy_n(&src.out[0][0], 2 * src.modes, src.level_spectra.data() + 2 * src.modes * l);
+  }
+  // Per mode, e^{-k z_l} = r^l with r = e^{-k dz}; the bed's image e^{-k (2 d - z_l)} = e^{-2 k d} / r^l.
+  const int passes = options_.source_smoothing_passes;
+  for (std::size_t k = 0; k < src.modes; ++k) {
+    const double kk = src.wavenumber[k];
+    const double r = std::exp(-kk * dz), bed = std::exp(-2.0 * kk * depth), norm = 1.0 / (1.0 + bed);
+    // The bed's image matters only where e^{-2 k d} does (shallow water, long waves).
+    const double up_step = bed > 1e-12 ? std::exp(kk * dz) : 0.0;
+    double down = norm, up = bed * norm;  // e^{-k z_l} and e^{-2 k d} e^{k z_l}, over 1 + e^{-2 k d}
+    double re = 0.0, im = 0.0;
+    for (int l = 0; l < levels; ++l) {
+      const float* c = src.level_spectra.data() + 2 * (src.modes * l + k);
+      const double w = down + up;
+      re += w * c[0];
+      im += w * c[1];
+      down *= r;
+      up *= up_step;
+    }
+    std::complex<double> a(re, im);
+    if (passes > 0) {
+      const int i = static_cast<int>(k % half), j = static_cast<int>(k / half);
+      const double cx = std::cos(0.5 * dk * i * spacing_m_), cy = std::cos(0.5 * dk * (j <= m / 2 ? j : j - m) * spacing_m_);
+      a *= std::pow(cx * cx * cy * cy, passes);
+    }
+    src.spectrum[k] = a;
+  }
+  src.valid = true;
+  src.depth_m = depth;
+  // 4. zeta^(k) = i (k . V) A(k) / (g k tanh(k d)) on the band, 0 above it; to space.
+  Spectral& f = *spectral_;
+  const int full_half = n_ / 2 + 1;
+  std::fill(&f.eta_hat[0][0], &f.eta_hat[0][0] + 2 * f.modes, 0.0f);
+  for (int j = 0; j < m; ++j) {
+    const int jj = j <= m / 2 ? j : j - m;
+    if (jj == -m / 2 || jj == m / 2) continue;  // the coarse grid's Nyquist: not a resolved wave
+    const int jf = jj >= 0 ? jj : jj + n_;
+    for (int i = 0; i < m / 2; ++i) {
+      const double kx = dk * i, ky = dk * jj, kk = std::hypot(kx, ky);
+      if (kk == 0.0) continue;  // the sources sum to no volume; the mean head is 0
+      const std::complex<double> a = src.spectrum[static_cast<std::size_t>(j) * half + i];
+      const std::complex<double> head =
+          std::complex<double>(0.0, kx * velocity.x() + ky * velocity.y()) * a / (kGravity * kk * std::tanh(kk * depth));
+      float* out = f.eta_hat[static_cast<std::size_t>(jf) * full_half + i];
+      out[0] = static_cast<float>(head.real());
+      out[1] = static_cast<float>(head.imag());
+    }
+  }
+  fftwf_execute(f.inverse_eta);
+  const double area = std::pow(n_ * spacing_m_, 2);
+  for (std::size_t k = 0; k < zeta_.size(); ++k) zeta_[k] = static_cast<float>(f.real[k] / area);
+}
+
+Eigen::Vector2d DispersiveWake::wave_force_N(double density_kg_m3) const {
+  const Sources& src = *sources_;
+  if (!src.valid) return Eigen::Vector2d::Zero();
+  // sum_p m_p grad phi_w(x_p, z_p) = (1 / N^2) sum_k i k Phi(k) conj(A(k)), Phi = FFT(phi) (FFTW's
+  // unnormalised transform), phi_w continued down by cosh(k (d - z)) / cosh(k d) as A(k) holds it.
+  Spectral& f = *spectral_;
+  std::copy(phi_.begin(), phi_.end(), f.real);
+  fftwf_execute(f.forward_phi);
+  const int m = src.m, half = m / 2 + 1, full_half = n_ / 2 + 1;
+  const double dk = 2.0 * std::numbers::pi / (n_ * spacing_m_);
+  std::complex<double> sx(0.0, 0.0), sy(0.0, 0.0);
+  for (int j = 0; j < m; ++j) {
+    const int jj = j <= m / 2 ? j : j - m;
+    if (jj == -m / 2 || jj == m / 2) continue;
+    const int jf = jj >= 0 ? jj : jj + n_;
+    for (int i = 0; i < m / 2; ++i) {
+      const std::complex<double> phi(f.phi_hat[static_cast<std::size_t>(jf) * full_half + i][0],
+                                     f.phi_hat[static_cast<std::size_t>(jf) * full_half + i][1]);
+      const std::complex<double> term = phi * std::conj(src.spectrum[static_cast<std::size_t>(j) * half + i]);
+      const double twice = i == 0 ? 1.0 : 2.0;  // the half spectrum's mirror modes
+      sx += twice * std::complex<double>(0.0, dk * i) * term;
+      sy += twice * std::complex<double>(0.0, dk * jj) * term;
+    }
+  }
+  const double scale = -density_kg_m3 / (static_cast<double>(n_) * n_);
+  return {scale * sx.real(), scale * sy.real()};
 }
 
 void DispersiveWake::update(const ShipBody& body, const Seabed* seabed, double dt_s) {
@@ -223,16 +481,21 @@ void DispersiveWake::update(const ShipBody& body, const Seabed* seabed, double d
   }
   // 2. The forcing: the hull's pressure head on the nodes (the corners of hull_pressure_head; the
   //    last row and column fall in the absorbing layer's far side and are dropped).
-  hull_pressure_head(body, origin_i_, origin_j_, spacing_m_, n_, options_.smoothing_passes, head_);
-  for (int j = 0; j < n_; ++j)
-    for (int i = 0; i < n_; ++i)
-      zeta_[index(i, j)] = static_cast<float>(head_[static_cast<std::size_t>(j) * (n_ + 1) + i]);
+  //    With the thin ship: the sources' head over the depth under the hull.
+  const double depth = seabed != nullptr ? seabed->depth_m(centre.x(), centre.y()) : options_.max_depth_m;
+  if (options_.forcing == DispersiveWakeOptions::HullForcing::thin_ship) {
+    force_with_thin_ship(body, depth);
+  } else {
+    hull_pressure_head(body, origin_i_, origin_j_, spacing_m_, n_, options_.smoothing_passes, head_);
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i < n_; ++i)
+        zeta_[index(i, j)] = static_cast<float>(head_[static_cast<std::size_t>(j) * (n_ + 1) + i]);
+  }
   if (!started_) {
     rest_in_depression();
     started_ = true;
   }
-  // 3. The depth under the hull.
-  const double depth = seabed != nullptr ? seabed->depth_m(centre.x(), centre.y()) : options_.max_depth_m;
+  // 3. Advance over the depth under the hull.
   advance(dt_s, depth);
   if (!(dt_s > 0.0)) refresh_heights();
 }

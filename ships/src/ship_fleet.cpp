@@ -182,13 +182,15 @@ std::size_t ShipFleet::add_ship(const ShipDefinition& d) {
     const WakeLayerChoice& c = d.wake_layer;
     if (d.dispersive_wake &&
         !(c.dispersive_below_froude > 0.0 && c.shallow_above_froude >= c.dispersive_below_froude &&
-          c.shallow_above_froude < 100.0 && c.fade_s >= 0.0 && c.fade_s <= 3600.0))
+          c.shallow_above_froude < 100.0 && c.fade_s >= 0.0 && c.fade_s <= 3600.0 && c.resolved_wave_nodes >= 0.0 &&
+          c.resolved_wave_nodes <= 1000.0))
       throw Error(subject,
                   fmt::format("has wake_layer thresholds dispersive_below_froude = {}, shallow_above_froude = {}, "
-                              "fade_s = {}",
+                              "fade_s = {}, resolved_wave_nodes = {}",
                               format_value(c.dispersive_below_froude), format_value(c.shallow_above_froude),
-                              format_value(c.fade_s)),
-                  "use 0 < dispersive_below_froude <= shallow_above_froude < 100 and 0 <= fade_s <= 3600");
+                              format_value(c.fade_s), format_value(c.resolved_wave_nodes)),
+                  "use 0 < dispersive_below_froude <= shallow_above_froude < 100, 0 <= fade_s <= 3600 and "
+                  "0 <= resolved_wave_nodes <= 1000");
   }
 
   HullSamples samples = sample_hull(d.hull, d.hull_points, static_cast<std::size_t>(2 * limits::kHullPoints.max));
@@ -430,8 +432,11 @@ void ShipFleet::update_bow_waves(Ship& s, double dt_s) {
   const double speed = std::hypot(state.velocity_m_s.x(), state.velocity_m_s.y());
   s.depth_froude_ = depth > 0.0 ? speed / std::sqrt(options_.water.gravity_m_s2 * depth) : 1e9;
   const WakeLayerChoice& c = s.wake_layer_;
-  if (s.depth_froude_ < c.dispersive_below_froude) s.dispersive_chosen_ = true;
-  if (s.depth_froude_ > c.shallow_above_froude) s.dispersive_chosen_ = false;
+  // The transverse wave 2 pi U^2 / g in nodes of the dispersive layer (its resolution, WakeLayerChoice).
+  const double wave_nodes =
+      2.0 * std::numbers::pi * speed * speed / options_.water.gravity_m_s2 / s.dispersive_wake_->spacing_m();
+  if (s.depth_froude_ < c.dispersive_below_froude && wave_nodes >= c.resolved_wave_nodes) s.dispersive_chosen_ = true;
+  if (s.depth_froude_ > c.shallow_above_froude || wave_nodes < 0.75 * c.resolved_wave_nodes) s.dispersive_chosen_ = false;
   const double target = s.dispersive_chosen_ ? 1.0 : 0.0;
   // The first step shows the chosen layer at once (nothing to fade from).
   const double rate = c.fade_s > 0.0 && s.dispersive_weight_ >= 0.0 ? dt_s / c.fade_s : 1.0;
@@ -450,6 +455,10 @@ void ShipFleet::update_bow_waves(Ship& s, double dt_s) {
   };
   drive(*s.dispersive_wake_, s.dispersive_weight_, s.dispersive_chosen_);
   drive(*s.bow_wave_, 1.0 - s.dispersive_weight_, !s.dispersive_chosen_);
+  // Foam where the shown layer broke: patches of 4 of its nodes (the 2 x 2 blocks it reports).
+  const DispersiveWake& layer = *s.dispersive_wake_;
+  s.crest_foam_.update(s.dispersive_weight_ > 0.0 ? layer.breaking_nodes() : std::vector<BreakingCrest>{},
+                       4.0 * layer.spacing_m(), state.yaw_rad(), s.dispersive_weight_, dt_s);
 }
 
 double ShipFleet::bow_wave_elevation_m(double x_m, double y_m, long exclude) const {

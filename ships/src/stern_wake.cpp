@@ -51,4 +51,36 @@ void SternWake::update(const ShipBody& body, double engine_order, double dt_s) {
   last_y_m_ = stern.y();
 }
 
+CrestFoam::CrestFoam(CrestFoamOptions options, std::uint64_t seed) : options_(options), random_(seed) {}
+
+void CrestFoam::update(const std::vector<BreakingCrest>& crests, double size_m, double yaw_rad, double weight,
+                       double dt_s) {
+  for (WakeDecal& d : decals_) d.age_s += dt_s;
+  decals_.erase(std::remove_if(decals_.begin(), decals_.end(), [](const WakeDecal& d) { return d.age_s >= d.lifetime_s; }),
+                decals_.end());
+  if (weight <= 0.0 || crests.empty()) return;
+  order_.assign(crests.begin(), crests.end());
+  std::sort(order_.begin(), order_.end(), [](const BreakingCrest& a, const BreakingCrest& b) { return a.excess > b.excess; });
+  int added = 0;
+  const double young_s = 0.25 * options_.lifetime_s, near2 = 0.25 * size_m * size_m;
+  for (const BreakingCrest& c : order_) {
+    if (added >= options_.max_new_per_update) break;
+    const bool covered = std::any_of(decals_.begin(), decals_.end(), [&](const WakeDecal& d) {
+      return d.age_s < young_s && (d.x_m - c.x_m) * (d.x_m - c.x_m) + (d.y_m - c.y_m) * (d.y_m - c.y_m) < near2;
+    });
+    if (covered) continue;
+    WakeDecal d;
+    d.x_m = c.x_m;
+    d.y_m = c.y_m;
+    d.yaw_rad = yaw_rad;
+    d.width_m = d.length_m = size_m;
+    d.lifetime_s = options_.lifetime_s;
+    d.intensity = std::min(1.0, 0.3 + 2.0 * c.excess) * std::clamp(weight, 0.0, 1.0);
+    d.variant = static_cast<int>(random_() % 4);
+    decals_.push_back(d);
+    ++added;
+  }
+  while (static_cast<int>(decals_.size()) > options_.max_decals) decals_.pop_front();
+}
+
 }  // namespace nearshore::ships

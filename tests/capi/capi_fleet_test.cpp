@@ -6,6 +6,7 @@
 // from the code.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -167,6 +168,7 @@ TEST(CApiFleet, AShipUnderWayMakesABowWaveThatTheFleetQueriesAddAndAWake) {
   options.speed_m_s = 3.0;
   options.initial_speed_m_s = 3.0;
   options.bow_wave_cells = 64;
+  options.dispersive_wake = 0;  // the grid alone (the default before version 9): its layout contract
   ASSERT_EQ(nearshore_fleet_add_ship(fleet, &options, nullptr), NEARSHORE_OK) << error();
   for (int frame = 1; frame <= 450; ++frame) {
     ASSERT_EQ(nearshore_sea_advance(sea, frame / 30.0), NEARSHORE_OK);
@@ -233,7 +235,7 @@ TEST(CApiFleet, ADispersiveWakeIsShownBelowFroudeSevenTenthsAndQueriedLikeABowWa
   ASSERT_EQ(nearshore_fleet_create(sea, &fleet), NEARSHORE_OK) << error();
   nearshore_ship_options options;
   nearshore_ship_options_init(&options);
-  EXPECT_EQ(options.dispersive_wake, 0);  // off unless asked
+  EXPECT_EQ(options.dispersive_wake, 1);  // on by default since version 9
   options.name = "Tug";
   options.x_m = 30.0;
   options.y_m = 60.0;
@@ -268,6 +270,20 @@ TEST(CApiFleet, ADispersiveWakeIsShownBelowFroudeSevenTenthsAndQueriedLikeABowWa
   ASSERT_EQ(nearshore_sea_query(sea, xy, 1, &sea_only), NEARSHORE_OK);
   ASSERT_EQ(nearshore_fleet_query(fleet, xy, 1, &with_ships), NEARSHORE_OK) << error();
   EXPECT_NEAR(with_ships.elevation_m - sea_only.elevation_m, wake_heights[crest], 1e-5);
+  // Since version 9 the decals hold the breaking crests' foam after the stern wake's: the tug's
+  // waves break at 3 m/s (docs/ships.md), so there are more decals than the stern wake's one per
+  // beam (9 m) of travel, 2 in these 5 s, each within the layer's window around the tug.
+  size_t decal_count = 0;
+  ASSERT_EQ(nearshore_fleet_wake_decals(fleet, 0, nullptr, 0, &decal_count), NEARSHORE_OK);
+  std::vector<nearshore_wake_decal> decals(decal_count);
+  ASSERT_EQ(nearshore_fleet_wake_decals(fleet, 0, decals.data(), decals.size(), &decal_count), NEARSHORE_OK);
+  std::printf("tug with its dispersive wake at 3 m/s: %zu decals (stern wake and crest foam)\n", decal_count);
+  EXPECT_GT(decal_count, 10u);
+  for (const nearshore_wake_decal& d : decals) {
+    EXPECT_GT(d.opacity, 0.0f);
+    EXPECT_LE(d.opacity, 1.0f);
+    EXPECT_NEAR(d.y_m, 60.0f, 60.0f);  // inside the 120 m window
+  }
   // A ship without one reports none.
   options.name = "Barge";
   options.y_m = 100.0;

@@ -38,6 +38,8 @@ const playback::SurfaceLayers& FleetLayers::update(const ShipFleet& fleet) {
     if (ship.dispersive_wake()) add_patch(ship.dispersive_wake()->field(), ship.dispersive_wake()->shown_weight());
     for (const WakeDecal& d : ship.wake().decals())  // oldest first
       layers_.foam_decals.push_back({d.x_m, d.y_m, d.yaw_rad, d.length_m, d.width_m, d.opacity(), d.variant});
+    for (const WakeDecal& d : ship.crest_foam().decals())  // the breaking crests' foam, oldest first
+      layers_.foam_decals.push_back({d.x_m, d.y_m, d.yaw_rad, d.length_m, d.width_m, d.opacity(), d.variant});
     if (i >= hulls_.size() || hulls_[i].triangles.empty()) continue;
     const HullGeometry& hull = hulls_[i];
     const ShipState& state = ship.body().state();

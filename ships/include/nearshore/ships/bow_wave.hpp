@@ -57,7 +57,8 @@ struct BowWaveField {
 /// whose corner (0, 0) is site node (origin_i, origin_j) at spacing_m: the vertical projection of
 /// the displaced volume of the wet samples under the water the body saw in its last step, splatted
 /// bilinearly (so sum zeta dx^2 = the displaced volume) and smoothed by smoothing_passes binomial
-/// passes. The one forcing of both bow-wave layers (BowWave, DispersiveWake).
+/// passes. The forcing of the shallow-water grid (BowWave) and of DispersiveWake with its
+/// pressure_patch option (its default is the thin ship, dispersive_wake.hpp).
 void hull_pressure_head(const ShipBody& body, long long origin_i, long long origin_j, double spacing_m, int n,
                         int smoothing_passes, std::vector<double>& head);
 

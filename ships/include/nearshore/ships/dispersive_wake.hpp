@@ -30,14 +30,55 @@
 // shoaling inside the window are therefore not modelled (the shallow-water grid is the layer for
 // shoaling water, ship_fleet.hpp).
 //
-// Drawn height: eta (the depression -zeta under the hull, hidden in it) times the layer's shown
-// weight (the fleet's blend between this layer and the shallow-water grid, ship_fleet.hpp).
+// Hull forcing (HullForcing). A pressure patch of the hull's draft (hull_pressure_head) is linear
+// theory's forcing only while k zeta << 1: behind a blunt stern at low speed (a 24 x 9 x 3 m tug at
+// 3 m/s has k zeta = g T / U^2 = 3.3) it makes waves metres high. The default is therefore Michell's
+// thin ship (Michell 1898; Wehausen 1973, "The wave resistance of ships", Adv. Appl. Mech. 13):
+// the hull is a distribution of sources on its centreplane whose strength is the normal
+// velocity of the wet surface, m = (v . n) dA (volume per second) for each wet piece, put at the
+// piece's depth z below the local surface on the body's centreplane: both sides of a thin hull add
+// to 2 U dY/dx per unit area of the centreplane, Michell's source density (Y the half-breadth).
+// The sources' potential under a rigid lid and over the bed, phi_0, splits off exactly in linear
+// theory (phi = phi_0 + phi_w, phi_0z = 0 at z = 0): phi_w is a free-surface potential forced
+// by the surface pressure head zeta = (d phi_0 / dt) / g, so the layer above carries it unchanged.
+// Per Fourier mode (FFTW's sign, phi_0^(k) = sum_p m_p G_k(z_p) e^{-i k.x_p},
+// G_k(z) = -cosh(k (d - z)) / (k sinh(k d)), z the depth below the surface; the sources move with
+// the hull's velocity V: d phi_0 / dt = -(V . grad) phi_0):
+//   zeta^(k) = i (k . V) A(k) / (g k tanh(k d)),   A(k) = sum_p m_p cosh(k (d - z_p)) / cosh(k d) e^{-i k.x_p}
+// For a hull in steady motion in deep water, on the ring of the waves it makes ((k . V)^2 = g k)
+// zeta^ is the displaced volume weighted by e^{-k z} per column: the deep parts of a blunt stern
+// are attenuated as Michell's integral attenuates them (exp(k0 z sec^2 theta)), while the pressure
+// patch weights them 1. A hull at rest makes no forcing (no depression of its own: the hull's
+// volume is not a wave). The depth factor is applied on source_layers depth levels (linear in
+// depth between them, a chord error (k dz)^2 / 8 of the exponential) on a grid of twice the
+// layer's spacing, whose band (waves of 4 nodes and longer) is the filter: no further smoothing by
+// default (source_smoothing_passes), since each pass lowers the wave resistance below Michell's.
+// The Lagally force of phi_w on the same sources is the hull's wave resistance
+// (wave_force_N: Michell's integral for a steady hull in deep water; tested against it).
+//
+// Breaking (breaking_slope). Linear waves have no height limit; a wave breaks where its steepness
+// passes Michell's limit H / lambda = 0.142 (Michell 1893), a slope a k = pi 0.142 = 0.446 for the
+// linear wave of that height. After each step, where the surface slope |grad eta| (central
+// differences) exceeds breaking_slope, eta + zeta and phi at that node are scaled by
+// breaking_slope / |grad eta|: the excess energy is dissipated there, as phase-resolving wave
+// models dissipate where a local onset criterion is passed (Kennedy et al. 2000's Boussinesq
+// breaking: d eta / dt above a fraction of the wave speed, for a progressive wave a slope times its
+// phase speed). breaking_nodes() lists where it happened in the last update (the fleet's crest
+// foam, ship_fleet.hpp).
+//
+// Drawn height: eta (with the pressure patch: the depression -zeta under the hull, hidden in it)
+// times the layer's shown weight (the fleet's blend between this layer and the shallow-water grid,
+// ship_fleet.hpp).
 #include <memory>
+#include <utility>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "nearshore/ships/bow_wave.hpp"
 #include "nearshore/ships/seabed.hpp"
 #include "nearshore/ships/ship_body.hpp"
+#include "nearshore/ships/stern_wake.hpp"
 
 namespace nearshore::ships {
 
@@ -52,6 +93,18 @@ struct DispersiveWakeOptions {
   /// Binomial passes over the pressure head: each keeps cos^2(k dx / 2) of a wave, so 6 passes leave
   /// 2 % of the 4-node waves a sharp hull would excite unresolved and 39 % of 8-node waves.
   int smoothing_passes = 6;
+  /// How a hull forces the layer (header): Michell's thin-ship sources or the draft's pressure patch.
+  enum class HullForcing { thin_ship, pressure_patch };
+  HullForcing forcing = HullForcing::thin_ship;
+  int source_layers = 8;              ///< depth levels of the thin-ship sources' attenuation (2-32)
+  /// Binomial passes (as cos^(2P)(k dx / 2) per mode) over the thin-ship head: 0, because the
+  /// sources are splatted on a grid of twice the spacing, whose band (waves of 4 nodes and longer)
+  /// is the filter; each pass takes Michell's wave resistance further below the integral's value
+  /// (the Wigley hull at Fn 0.3: -5 % with 0 passes, -12 % with 1, -34 % with 6; docs/ships.md).
+  int source_smoothing_passes = 0;
+  /// Largest surface slope |grad eta| before the wave breaks (header); 0: no breaking. 0.446 is
+  /// Michell's H / lambda = 0.142 as the slope a k of a linear wave.
+  double breaking_slope = 0.446;
 };
 
 class DispersiveWake {
@@ -92,6 +145,20 @@ class DispersiveWake {
   void set_shown_weight(double weight);
   double shown_weight() const { return shown_weight_; }
 
+  /// The hull's thin-ship sources (header) for the next advance(): sets the pressure head from the
+  /// wet pieces of `body` (their velocities from its state) over depth_m, in the current window.
+  /// Public for towed hulls (tests); update() calls it with the forcing option thin_ship.
+  void force_with_thin_ship(const ShipBody& body, double depth_m);
+  /// The Lagally force of the free waves on the hull's sources, -rho sum_p m_p grad phi_w(x_p, z_p)
+  /// (horizontal, site frame, N; rho 1025 kg/m^3): the wave resistance is minus its component along
+  /// the motion. Michell's integral for a steady thin ship. Zero before the thin-ship forcing.
+  /// Uses the layer's transform buffers: not concurrently with update() or advance().
+  Eigen::Vector2d wave_force_N(double density_kg_m3 = 1025.0) const;
+  /// Nodes where the last update broke a crest (site frame, m) and by how much the slope exceeded
+  /// the limit (|grad eta| / breaking_slope - 1), at most one per 2 x 2 nodes.
+  using BreakingNode = BreakingCrest;
+  const std::vector<BreakingNode>& breaking_nodes() const { return breaking_; }
+
   int cells() const { return n_; }
   double spacing_m() const { return spacing_m_; }
   double depth_m() const { return depth_m_; }
@@ -106,6 +173,7 @@ class DispersiveWake {
   void step();
   void absorb();
   void refresh_heights();
+  void break_steep_crests(std::vector<BreakingNode>* record);
 
   DispersiveWakeOptions options_;
   int n_;
@@ -123,6 +191,16 @@ class DispersiveWake {
   std::vector<float> heights_m_;
   double shown_weight_ = 1.0;
   unsigned long long serial_ = 0;
+  // Thin-ship sources: their depth-attenuated spectrum A(k) on the half-resolution band (kept for
+  // the Lagally force), the layers' splats (scratch), the grid's depth when they were made.
+  struct Sources;
+  std::unique_ptr<Sources> sources_;
+  std::vector<BreakingNode> breaking_;
+  std::vector<std::pair<std::size_t, float>> break_scratch_;
+  struct SourcePoint {
+    double x, y, depth, strength;
+  };
+  std::vector<SourcePoint> source_scratch_;
 };
 
 /// The envelope ray of a dispersive wake (measure_wake_envelope_angle of bow_wave.hpp on this

@@ -22,7 +22,8 @@
 //      v_0 = 3 m/s: the barrier stops a closing speed of 7 m/s before contact), plus a damping of
 //      the closing speed, at the closest points, with their torques.
 //   3. each body steps on the sampled surface plus the OTHER ships' bow waves, over the seabed.
-//   4. each bow wave moves and steps with its hull; each wake ages and drops decals. A ship with a
+//   4. each bow wave moves and steps with its hull; each wake ages and drops decals, and foam is
+//      dropped where the shown dispersive layer broke (CrestFoam, stern_wake.hpp). A ship with a
 //      dispersive wake (dispersive_wake.hpp) has two bow-wave layers and shows one, chosen by its
 //      depth Froude number Fr_d = U / sqrt(g d) (WakeLayerChoice below), so that the hull's
 //      displacement is counted once: the shown weights of the two layers sum to 1.
@@ -71,9 +72,16 @@ struct ShipOrders {
 /// on the shallow-water grid; a layer whose weight reaches 0 stops and restarts from rest when
 /// it is chosen again. The depth d is the seabed's under the hull's centre (without a seabed:
 /// the dispersive layer's max_depth_m).
+/// The dispersive layer is also chosen only when its window resolves the ship's waves: the
+/// transverse wavelength 2 pi U^2 / g (deep water; longer in finite depth) at least
+/// resolved_wave_nodes of the layer's spacing (8: the forcing's smoothing keeps 39 % of an 8-node
+/// wave, 2 % of a 4-node one). Slower, the Kelvin waves are shorter than the window can draw, and
+/// the shallow-water grid (the hull's depression and push) is shown; the choice goes back below
+/// 3/4 of that length (hysteresis). A ship at rest or creeping therefore shows the grid.
 struct WakeLayerChoice {
   double dispersive_below_froude = 0.7;
   double shallow_above_froude = 0.8;
+  double resolved_wave_nodes = 8.0;
   double fade_s = 2.0;
 };
 
@@ -89,8 +97,9 @@ struct ShipDefinition {
   bool bow_wave = true;
   BowWaveOptions bow_wave_options;
   /// A dispersive linear wave layer besides the shallow-water grid (Kelvin's pattern; needs
-  /// bow_wave). Off by default: the C API's nearshore_fleet_bow_wave hands out one field per ship.
-  bool dispersive_wake = false;
+  /// bow_wave), forced by the hull's thin-ship sources and limited by breaking (dispersive_wake.hpp);
+  /// shown where WakeLayerChoice calls for it. On by default.
+  bool dispersive_wake = true;
   DispersiveWakeOptions dispersive_wake_options;
   /// Squat and the shallow-water resistance (restricted_water.hpp) from the depth under the hull.
   /// On by default; off gives the hull its deep-water behaviour in any depth (comparisons, tests of
@@ -137,6 +146,8 @@ class Ship {
   double depth_froude_number() const { return depth_froude_; }
   double dispersive_weight() const { return std::max(dispersive_weight_, 0.0); }
   const SternWake& wake() const { return wake_; }
+  /// Foam where the ship's shown dispersive layer broke (its crests past the breaking limit).
+  const CrestFoam& crest_foam() const { return crest_foam_; }
   const ShipStatus& status() const { return status_; }
   const ShipOrders& orders() const { return orders_; }
   /// Replaces the orders (a host's engine telegraph and helm): clears the route unless given.
@@ -158,6 +169,7 @@ class Ship {
   double depth_froude_ = 0.0, dispersive_weight_ = -1.0;  // < 0: no step yet
   bool dispersive_chosen_ = false;
   SternWake wake_;
+  CrestFoam crest_foam_;
   ShipStatus status_;
   ShipControls manual_, controls_;
   ExternalLoad external_;

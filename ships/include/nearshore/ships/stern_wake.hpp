@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <random>
+#include <vector>
 
 #include "nearshore/ships/ship_body.hpp"
 
@@ -46,6 +47,36 @@ class SternWake {
   std::deque<WakeDecal> decals_;
   bool has_last_ = false;
   double last_x_m_ = 0.0, last_y_m_ = 0.0;
+};
+
+/// A point where a ship's wave broke (dispersive_wake.hpp's breaking limit): site frame, and how
+/// far its slope passed the limit (|grad eta| / limit - 1).
+struct BreakingCrest {
+  double x_m = 0.0, y_m = 0.0, excess = 0.0;
+};
+
+struct CrestFoamOptions {
+  double lifetime_s = 5.0;       ///< a spilling crest's foam patch fades over a few wave periods
+  int max_decals = 256;          ///< the oldest go first beyond this
+  int max_new_per_update = 32;   ///< the strongest breaking points first
+};
+
+/// Foam on breaking crests: a decal (the same WakeDecal a renderer draws for the stern wake) at each
+/// point where the ship's wave layer broke, size_m square, along the ship's heading, its intensity
+/// 0.3 + 2 excess (at most 1) times the layer's shown weight, fading over the lifetime. A point within
+/// half a decal of a decal younger than a quarter of the lifetime adds none (a steady pattern breaks
+/// at the same place in the ship's frame every step).
+class CrestFoam {
+ public:
+  explicit CrestFoam(CrestFoamOptions options = {}, std::uint64_t seed = 2);
+  void update(const std::vector<BreakingCrest>& crests, double size_m, double yaw_rad, double weight, double dt_s);
+  const std::deque<WakeDecal>& decals() const { return decals_; }
+
+ private:
+  CrestFoamOptions options_;
+  std::mt19937_64 random_;
+  std::deque<WakeDecal> decals_;
+  std::vector<BreakingCrest> order_;  ///< scratch
 };
 
 }  // namespace nearshore::ships

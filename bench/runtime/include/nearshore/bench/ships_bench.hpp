@@ -16,8 +16,9 @@
 //     them (ShipFleet, every default: bow-wave grid, stern wake, restricted water; tugs, Wigley
 //     launches and barges in turn, 150 m apart, ordered ahead at 3 m/s) on the same Beaufort sea,
 //     one 30 Hz frame (fleet.step) at a time; the whole frame's CPU time against the frame's 33.3 ms.
-//     `dispersive_wake` gives every ship the dispersive layer too (ShipDefinition::dispersive_wake):
-//     with no seabed each is at Fr_d 0.07 and shows that layer alone (ship_fleet.hpp WakeLayerChoice).
+//     `dispersive_wake` (ShipDefinition's default, on) gives every ship the dispersive layer too,
+//     forced by its thin-ship sources: with no seabed each is at Fr_d 0.07 and, its 3 m/s waves
+//     resolved by every hull's window, shows that layer alone (ship_fleet.hpp WakeLayerChoice).
 // CPU time of the calling thread, median (and fastest) of `repeats`; the load average is reported
 // with it. Everything runs on the calling thread: the ships' code uses no worker threads.
 #include <string>
@@ -32,7 +33,7 @@ struct ShipsBenchOptions {
   int repeats = 200;       ///< timed repetitions of the rigid body (a tenth, at least 5, of the grids)
   int beaufort = 5;        ///< Beaufort force of the deep sea the hull samples (1-12)
   int fleet_ships = 8;     ///< ships of the fleet stepped together at 30 Hz (0: no fleet)
-  bool dispersive_wake = false;  ///< the fleet's ships with the dispersive wake layer too
+  bool dispersive_wake = true;  ///< the fleet's ships with the dispersive wake layer (the default)
 };
 
 /// Median and fastest of a number of timings (ms). On a shared machine the CPU time of a thread also
