@@ -20,7 +20,7 @@ enum SamplerUnit {
   kHarbourEta = 0,
   kHarbourBreaking = 2,
   kDepth = 4,
-  kPorosity = 5,
+  kStructureMask = 5,
   kLand = 6,
   kDeepFirst = 7,
   kCoast = 17,

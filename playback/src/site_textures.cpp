@@ -8,6 +8,7 @@
 #include "gl_program.hpp"
 #include "gl_texture.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/playback/site_terrain.hpp"
 
 namespace nearshore::playback {
 
@@ -47,7 +48,8 @@ std::vector<float> relative_wave_height_filled(const Raster<float>& k) {
 
 }  // namespace
 
-std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::HarbourSite>& site) {
+std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::HarbourSite>& site,
+                                   float cell_structure_crest_m) {
   if (site == site_) return 0;
   release();
   site_ = site;
@@ -62,7 +64,6 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
                     " cells but its depth, land or porosity raster has another size",
                 "build the HarbourSite from one HarbourGrid of at least 2 x 2 cells");
   depth_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.still_water_depth_m.data(), GL_LINEAR);
-  porosity_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.porosity.data(), GL_LINEAR);
   land_ = site_texture(GL_R8, GL_UNSIGNED_BYTE, columns, rows, h.land.data(), GL_NEAREST);
   // The coastline's distance field for the shoreline waves; infinite (no coast) becomes far.
   std::vector<float> coast(std::size_t(columns) * rows, 1e4f);
@@ -72,7 +73,7 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
                      ? std::clamp(h.coast_distance_m.data()[k], -1e4f, 1e4f)
                      : 1e4f;
   coast_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, coast.data(), GL_LINEAR);
-  std::size_t bytes = std::size_t(columns) * rows * 9;
+  std::size_t bytes = std::size_t(columns) * rows * 5;
   const Raster<float>& k = site_->relative_wave_height;
   if (k.columns() == columns && k.rows() == rows) {
     const std::vector<float> filled = relative_wave_height_filled(k);
@@ -88,9 +89,16 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
   for (int j = 0; j < rows; ++j)
     edge_depth = std::max({edge_depth, h.still_water_depth_m(0, j), h.still_water_depth_m(columns - 1, j)});
   open_sea_depth_m_ = std::max(edge_depth, 5.f);
-  const int tc = std::min(columns, 768), tr = std::min(rows, 768);
-  terrain_ = lattice_mesh(tc, tr, 1.f / float(tc - 1), 1.f / float(tr - 1));
-  return bytes;
+  // The ground, skirt and structures (site_terrain.hpp), and the structures' outline at still
+  // water that the water's mask reads (surface.glsl, is_dry).
+  TerrainOptions options;
+  options.cell_structure_crest_m = cell_structure_crest_m;
+  options.open_sea_depth_m = open_sea_depth_m_;
+  const TerrainMesh mesh = build_site_terrain(h, options);
+  const Raster<float>& mask = mesh.structure_mask;
+  structure_mask_ = site_texture(GL_R8, GL_FLOAT, mask.columns(), mask.rows(), mask.data(), GL_LINEAR);
+  terrain_ = upload_mesh(mesh.vertices, mesh.indices, {3, 1, 1});
+  return bytes + mask.size();  // texture bytes (FrameStatistics::upload_bytes)
 }
 
 void SiteTextures::bind_units() const {
@@ -99,14 +107,14 @@ void SiteTextures::bind_units() const {
     glBindTexture(GL_TEXTURE_2D, texture);
   };
   bind(kDepth, depth_);
-  bind(kPorosity, porosity_);
+  bind(kStructureMask, structure_mask_);
   bind(kLand, land_);
   bind(kCoast, coast_);
   bind(kRelativeWaveHeight, relative_wave_height_);
 }
 
 void SiteTextures::release() {
-  for (GLuint* texture : {&depth_, &porosity_, &land_, &coast_, &relative_wave_height_})
+  for (GLuint* texture : {&depth_, &structure_mask_, &land_, &coast_, &relative_wave_height_})
     if (*texture) glDeleteTextures(1, texture), *texture = 0;
   terrain_.release();
   site_.reset();
