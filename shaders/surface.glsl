@@ -222,11 +222,14 @@ float still_water_depth_at(vec2 p) {
 
 // Dry: no water is drawn where a structure stands above still water (its outline from the
 // structure's geometry, or the half level of its porous cells read bilinearly: the mask the
-// terrain is built with, SiteTextures), or where the wave leaves no water: d + eta <= the site's
-// dry depth, d bilinear between the cell centres, so land (d < 0) ends at the smooth line the
-// terrain's shore follows, not at the cells' edges (docs/rendering.md, "Terrain").
+// terrain is built with, SiteTextures), on land (d <= 0, d bilinear between the cell centres: the
+// smooth line where the terrain's ground crosses still water, not the cells' edges; as before no
+// water is drawn on land, whatever eta the deep water's blend or the bake's dry cells carry
+// there), or where the wave leaves no water: d + eta <= the site's dry depth
+// (docs/rendering.md, "Terrain").
 bool is_dry(vec2 p, float eta) {
   if (!u_has_site || any(lessThan(p, vec2(0.0))) || any(greaterThanEqual(p, u_site_size_m))) return false;
   if (texture(u_structure_mask, p / u_site_size_m).r > 0.5) return true;
-  return still_water_depth_at(p) + eta <= u_dry_depth_m;
+  float d = still_water_depth_at(p);
+  return d <= 0.0 || d + eta <= u_dry_depth_m;
 }
