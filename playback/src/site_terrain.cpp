@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace nearshore::playback {
 
@@ -84,12 +85,18 @@ struct Builder {
   void quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) { triangle(a, b, c), triangle(a, c, d); }
 
   double ground(double x, double y) const { return ground_elevation_m(harbour, x, y); }
+  // Distance inland of the still-water line: minus the coast distance channel, bilinear; where
+  // that is missing or infinite (a grid whose channel says "no coast"), far inland on ground
+  // above still water and far offshore below it.
   double inland(double x, double y) const {
+    const double far = ground(x, y) > 0 ? 1e4 : -1e4;
     if (harbour.coast_distance_m.columns() != harbour.geometry.columns ||
         harbour.coast_distance_m.rows() != harbour.geometry.rows)
-      return ground(x, y) > 0 ? 1e4 : -1e4;
-    return -cell_bilinear(harbour.coast_distance_m, harbour.geometry, x, y,
-                          [](float d) { return std::isfinite(d) ? std::clamp(double(d), -1e4, 1e4) : 1e4; });
+      return far;
+    const double d = cell_bilinear(harbour.coast_distance_m, harbour.geometry, x, y, [](float c) {
+      return std::isfinite(c) ? std::clamp(double(c), -1e4, 1e4) : std::numeric_limits<double>::quiet_NaN();
+    });
+    return std::isfinite(d) ? -d : far;
   }
   double structure_indicator(double x, double y) const {
     return cell_bilinear(harbour.porosity, harbour.geometry, x, y, [](float n) { return n < 0.99f ? 1.0 : 0.0; });

@@ -49,7 +49,14 @@ struct Picture {
   playback::CameraView view;
 };
 
-Picture render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, int width, int height) {
+// `harbour` still, seen from `eye` towards `target`: the sea flat magenta, no sky (black).
+Picture look(const HarbourGrid& harbour, const playback::Vector3& eye, const playback::Vector3& target,
+             double field_of_view_deg, int width, int height) {
+  const runtime::SurfaceSnapshot snapshot = still_site(harbour);
+  Camera camera;
+  camera.eye_m = eye;
+  camera.target_m = target;
+  camera.vertical_field_of_view_deg = field_of_view_deg;
   playback::WaterRenderer renderer;
   playback::DrawOptions options;
   options.colouring = playback::SurfaceColouring::flat;
@@ -63,15 +70,21 @@ Picture render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, i
 bool is_sea(const Rgb& c) { return c[0] > 0.9f && c[1] < 0.1f && c[2] > 0.9f; }
 bool is_background(const Rgb& c) { return c[0] + c[1] + c[2] < 0.01f; }
 
-// Where the ray through pixel (x + 0.5, y + 0.5) (row 0 at the top) meets the plane z = z_m.
-std::array<double, 2> on_plane(const playback::CameraView& view, double x, double y, double z_m) {
+// Where the ray through the normalised device point (ndc_x, ndc_y) reaches `value` on site axis
+// `axis` (0 x, 1 y, 2 z).
+std::array<double, 3> ray_at(const playback::CameraView& view, double ndc_x, double ndc_y, int axis, double value) {
   const playback::Matrix4 unproject = playback::inverse(view.view_projection);
-  const double ndc_x = (x + 0.5) / view.width_px * 2 - 1, ndc_y = 1 - (y + 0.5) / view.height_px * 2;
   auto a = playback::transform(unproject, {ndc_x, ndc_y, -1, 1}), b = playback::transform(unproject, {ndc_x, ndc_y, 1, 1});
   for (auto* p : {&a, &b})
     for (int k = 0; k < 3; ++k) (*p)[std::size_t(k)] /= (*p)[3];
-  const double s = (a[2] - z_m) / (a[2] - b[2]);
-  return {a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])};
+  const auto k = std::size_t(axis);
+  const double s = (value - a[k]) / (b[k] - a[k]);
+  return {a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])};
+}
+
+// Where the ray through pixel (x + 0.5, y + 0.5) (row 0 at the top) meets the plane z = z_m.
+std::array<double, 3> on_plane(const playback::CameraView& view, double x, double y, double z_m) {
+  return ray_at(view, (x + 0.5) / view.width_px * 2 - 1, 1 - (y + 0.5) / view.height_px * 2, 2, z_m);
 }
 
 // The pixel (column, row from the top) a site point projects to.
@@ -98,13 +111,9 @@ TEST(TerrainRender, ADiagonalShoreIsDrawnStraightNotAsTheCellsStaircase) {
       h.land(i, j) = depth < 0 ? kLandCell : kWaterCell;
       h.coast_distance_m(i, j) = float((258.0 - x - y) / std::sqrt(2.0));
     }
-  const runtime::SurfaceSnapshot snapshot = still_site(h);
-  Camera camera;
-  camera.eye_m = {128.0, 128.0 - 0.01, 3000.0};
-  camera.target_m = {128.0, 128.0, 0.0};
   const int size = 256;  // 128 m across: 0.5 m a pixel
-  camera.vertical_field_of_view_deg = 2.0 * std::atan(64.0 / 3000.0) * 180 / M_PI;
-  const Picture picture = render(snapshot, camera, size, size);
+  const Picture picture = look(h, {128.0, 128.0 - 0.01, 3000.0}, {128.0, 128.0, 0.0},
+                               2.0 * std::atan(64.0 / 3000.0) * 180 / M_PI, size, size);
   std::vector<double> offsets_m;
   for (int y = 8; y < size - 8; ++y) {
     int last_sea = -1;
@@ -143,13 +152,8 @@ TEST(TerrainRender, ABreakwatersCrestIsDrawnAtItsCrestElevation) {
   breakwater.side_slope = 1.5;
   h.structures = {breakwater};
   for (int i = 10; i < 54; ++i) h.porosity(i, 25) = 0.4f;  // what the bake burns (not drawn from)
-  const runtime::SurfaceSnapshot snapshot = still_site(h);
-  Camera camera;
-  camera.eye_m = {128.0, 20.0, 1.0};
-  camera.target_m = {128.0, 100.0, 1.0};
-  camera.vertical_field_of_view_deg = 6.0;
   const int width = 320, height = 480;
-  const Picture picture = render(snapshot, camera, width, height);
+  const Picture picture = look(h, {128.0, 20.0, 1.0}, {128.0, 100.0, 1.0}, 6.0, width, height);
   const int x = width / 2;
   int top = -1;
   for (int y = 0; y < height && top < 0; ++y)
@@ -159,13 +163,7 @@ TEST(TerrainRender, ABreakwatersCrestIsDrawnAtItsCrestElevation) {
   const double expected_row = pixel_of(picture.view, 128.0, 96.0, 3.2)[1];
   // The crest's elevation the top row shows: where the ray through the row's upper edge meets
   // the plane of the near crest edge (y = 96 m).
-  const playback::Matrix4 unproject = playback::inverse(picture.view.view_projection);
-  const double ndc_y = 1 - double(top) / height * 2;
-  auto a = playback::transform(unproject, {0.0, ndc_y, -1, 1}), b = playback::transform(unproject, {0.0, ndc_y, 1, 1});
-  for (auto* p : {&a, &b})
-    for (int k = 0; k < 3; ++k) (*p)[std::size_t(k)] /= (*p)[3];
-  const double s = (96.0 - a[1]) / (b[1] - a[1]);
-  const double crest_seen_m = a[2] + s * (b[2] - a[2]);
+  const double crest_seen_m = ray_at(picture.view, 0.0, 1 - double(top) / height * 2, 1, 96.0)[2];
   EXPECT_NEAR(crest_seen_m, 3.2, 0.03) << "rows: top " << top << ", the crest's " << expected_row;
   std::printf("breakwater crest drawn at %.3f m (3.2 m charted), silhouette row %d, expected %.1f\n", crest_seen_m,
               top, expected_row);
@@ -185,13 +183,8 @@ TEST(TerrainRender, TheLandContinuesPastTheGridsEdge) {
       h.land(i, j) = depth < 0 ? kLandCell : kWaterCell;
       h.coast_distance_m(i, j) = float(150.0 - y);
     }
-  const runtime::SurfaceSnapshot snapshot = still_site(h);
-  Camera camera;
-  camera.eye_m = {128.0, 40.0, 8.0};
-  camera.target_m = {128.0, 400.0, 0.0};
-  camera.vertical_field_of_view_deg = 30.0;
   const int width = 640, height = 360;
-  const Picture picture = render(snapshot, camera, width, height);
+  const Picture picture = look(h, {128.0, 40.0, 8.0}, {128.0, 400.0, 0.0}, 30.0, width, height);
   for (double beyond_m : {10.0, 50.0, 200.0, 800.0})
     for (double x_m : {60.0, 128.0, 200.0}) {
       const auto pixel = pixel_of(picture.view, x_m, 192.0 + beyond_m, 2.5);
