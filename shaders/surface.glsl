@@ -18,8 +18,9 @@ uniform bool u_has_keyframes;      // the snapshot holds harbour keyframes (else
 uniform sampler2D u_harbour_eta_from, u_harbour_eta_to;
 uniform sampler2D u_harbour_breaking_from, u_harbour_breaking_to;
 uniform sampler2D u_still_water_depth;  // d, positive down, land negative
-uniform sampler2D u_structure_mask;  // 1 inside a structure's outline at still water (site_terrain.hpp), over the site
+uniform sampler2D u_porosity;
 uniform sampler2D u_land;          // R8: 1 land
+uniform sampler2D u_structure_mask;  // 1 inside a structure's outline at still water (site_terrain.hpp), over the site
 uniform float u_harbour_fraction;  // f_h
 uniform bool u_harbour_hermite;    // both keyframes carry d eta / dt (R): cubic Hermite in time
 uniform float u_frame_interval_s;  // T: display seconds between the harbour keyframes

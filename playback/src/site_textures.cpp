@@ -64,6 +64,7 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
                     " cells but its depth, land or porosity raster has another size",
                 "build the HarbourSite from one HarbourGrid of at least 2 x 2 cells");
   depth_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.still_water_depth_m.data(), GL_LINEAR);
+  porosity_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, h.porosity.data(), GL_LINEAR);
   land_ = site_texture(GL_R8, GL_UNSIGNED_BYTE, columns, rows, h.land.data(), GL_NEAREST);
   // The coastline's distance field for the shoreline waves; infinite (no coast) becomes far.
   std::vector<float> coast(std::size_t(columns) * rows, 1e4f);
@@ -73,7 +74,7 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
                      ? std::clamp(h.coast_distance_m.data()[k], -1e4f, 1e4f)
                      : 1e4f;
   coast_ = site_texture(GL_R32F, GL_FLOAT, columns, rows, coast.data(), GL_LINEAR);
-  std::size_t bytes = std::size_t(columns) * rows * 5;
+  std::size_t bytes = std::size_t(columns) * rows * 9;
   const Raster<float>& k = site_->relative_wave_height;
   if (k.columns() == columns && k.rows() == rows) {
     const std::vector<float> filled = relative_wave_height_filled(k);
@@ -107,6 +108,7 @@ void SiteTextures::bind_units() const {
     glBindTexture(GL_TEXTURE_2D, texture);
   };
   bind(kDepth, depth_);
+  bind(kPorosity, porosity_);
   bind(kStructureMask, structure_mask_);
   bind(kLand, land_);
   bind(kCoast, coast_);
@@ -114,7 +116,7 @@ void SiteTextures::bind_units() const {
 }
 
 void SiteTextures::release() {
-  for (GLuint* texture : {&depth_, &structure_mask_, &land_, &coast_, &relative_wave_height_})
+  for (GLuint* texture : {&depth_, &porosity_, &structure_mask_, &land_, &coast_, &relative_wave_height_})
     if (*texture) glDeleteTextures(1, texture), *texture = 0;
   terrain_.release();
   site_.reset();

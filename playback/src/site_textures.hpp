@@ -1,6 +1,6 @@
 #pragma once
 // The harbour site's static data on the GPU (private to the water renderer): still-water depth,
-// the structures' outline at still water (site_terrain.hpp), land, the coastline's distance field and the relative wave height K as textures, and
+// porosity, the structures' outline at still water (site_terrain.hpp), land, the coastline's distance field and the relative wave height K as textures, and
 // the terrain lattice the seabed, land and structures are drawn on. Uploaded once per site (a
 // sequence keeps its site). Needs the renderer's current GL context.
 #include <glad/gl.h>
@@ -35,14 +35,14 @@ class SiteTextures {
   /// position (metres, site frame), 1 the distance inland, 2 the TerrainMaterial.
   const Mesh& terrain() const { return terrain_; }
 
-  /// Depth, the structure mask, land, coast distance and K on their SamplerUnits (0 without a site); leaves
+  /// Depth, porosity, the structure mask, land, coast distance and K on their SamplerUnits (0 without a site); leaves
   /// the last of those units active.
   void bind_units() const;
 
  private:
   void release();
   std::shared_ptr<const runtime::HarbourSite> site_;
-  GLuint depth_ = 0, structure_mask_ = 0, land_ = 0, coast_ = 0, relative_wave_height_ = 0;
+  GLuint depth_ = 0, porosity_ = 0, structure_mask_ = 0, land_ = 0, coast_ = 0, relative_wave_height_ = 0;
   Mesh terrain_;
   float open_sea_depth_m_ = 20.f;
 };
