@@ -2,7 +2,7 @@
 // procedural albedo (no texture files; the value noise of common.glsl, deterministic):
 //  - ground: the seabed's sand under water and on the beach (within about 20-35 m of the
 //    still-water line, or less than about a metre above it), wet and darker within 0.4 m of the
-//    water; above the beach grass and scrub in patches; rock where the slope passes 1 in 1.5;
+//    water; above the beach grass and scrub in patches; rock where the slope passes 1 in 1.25 (all rock beyond 1 in 0.75);
 //  - rubble (sloped structure faces and crests): grey stones about a metre and a half across,
 //    darker and greener where the sea wets them;
 //  - concrete (quays, piers, walls): a light grey with faint slabs.
@@ -24,7 +24,7 @@ vec3 ground_albedo(vec3 p, float inland_m, float up) {
   float beach_weight = max(1.0 - smoothstep(0.6 * beach_width_m, beach_width_m, inland_m),
                            1.0 - smoothstep(0.6, 1.4, p.z));
   vec3 rock = vec3(0.36, 0.35, 0.33) * (0.75 + 0.5 * fine);
-  float steep = smoothstep(0.78, 0.6, up);  // the normal's z: 0.83 at 1 in 1.5, 0.55 at 1 in 0.67
+  float steep = smoothstep(0.78, 0.6, up);  // the normal's z: 0.78 at 1 in 1.25, 0.6 at 1 in 0.75
   return mix(mix(vegetation, beach, beach_weight), rock, steep);
 }
 
