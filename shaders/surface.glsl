@@ -20,6 +20,7 @@ uniform sampler2D u_harbour_breaking_from, u_harbour_breaking_to;
 uniform sampler2D u_still_water_depth;  // d, positive down, land negative
 uniform sampler2D u_porosity;
 uniform sampler2D u_land;          // R8: 1 land
+uniform sampler2D u_structure_mask;  // 1 inside a structure's outline at still water (site_terrain.hpp), over the site
 uniform float u_harbour_fraction;  // f_h
 uniform bool u_harbour_hermite;    // both keyframes carry d eta / dt (R): cubic Hermite in time
 uniform float u_frame_interval_s;  // T: display seconds between the harbour keyframes
@@ -220,13 +221,16 @@ float still_water_depth_at(vec2 p) {
   return mix(max(edge, 2.0), u_open_sea_depth_m, smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond));
 }
 
-// Dry: no water is drawn over a land cell, a breakwater or quay cell (porosity < 1), or where
-// the wave leaves no water (d + eta <= the site's dry depth). Land and structures are judged per
-// cell (the cell the point lies in), as the solver masked them.
+// Dry: no water is drawn where a structure stands above still water (its outline from the
+// structure's geometry, or the half level of its porous cells read bilinearly: the mask the
+// terrain is built with, SiteTextures), on land (d <= 0, d bilinear between the cell centres: the
+// smooth line where the terrain's ground crosses still water, not the cells' edges; as before no
+// water is drawn on land, whatever eta the deep water's blend or the bake's dry cells carry
+// there), or where the wave leaves no water: d + eta <= the site's dry depth
+// (docs/rendering.md, "Terrain").
 bool is_dry(vec2 p, float eta) {
   if (!u_has_site || any(lessThan(p, vec2(0.0))) || any(greaterThanEqual(p, u_site_size_m))) return false;
-  ivec2 cell = clamp(ivec2(floor(p / u_spacing_m)), ivec2(0), u_cells - 1);
-  if (texelFetch(u_land, cell, 0).r > 0.0 ||  // R8 holds the mask's 1 as 1/255
-      texelFetch(u_porosity, cell, 0).r < 0.99) return true;
-  return still_water_depth_at(p) + eta <= u_dry_depth_m;
+  if (texture(u_structure_mask, p / u_site_size_m).r > 0.5) return true;
+  float d = still_water_depth_at(p);
+  return d <= 0.0 || d + eta <= u_dry_depth_m;
 }

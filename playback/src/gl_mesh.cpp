@@ -13,20 +13,33 @@ void Mesh::release() {
 }
 
 Mesh upload_mesh(const std::vector<float>& vertices, const std::vector<GLuint>& indices) {
+  return upload_mesh(vertices, indices, {2});
+}
+
+Mesh upload_mesh(const std::vector<float>& vertices, const std::vector<GLuint>& indices,
+                 std::initializer_list<int> attribute_sizes) {
+  int stride = 0;
+  for (int size : attribute_sizes) stride += size;
   Mesh mesh;
   glGenVertexArrays(1, &mesh.vertex_array);
   glBindVertexArray(mesh.vertex_array);
   glGenBuffers(1, &mesh.vertex_buffer);
   glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(float)), vertices.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+  GLuint location = 0;
+  std::size_t offset = 0;
+  for (int size : attribute_sizes) {
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location++, size, GL_FLOAT, GL_FALSE, GLsizei(stride * sizeof(float)),
+                          reinterpret_cast<const void*>(offset * sizeof(float)));
+    offset += std::size_t(size);
+  }
   glGenBuffers(1, &mesh.index_buffer);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)), indices.data(),
                GL_STATIC_DRAW);
   mesh.index_count = GLsizei(indices.size());
-  mesh.vertex_count = static_cast<long long>(vertices.size() / 2);
+  mesh.vertex_count = static_cast<long long>(vertices.size() / std::size_t(stride));
   glBindVertexArray(0);
   return mesh;
 }

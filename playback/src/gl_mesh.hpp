@@ -4,6 +4,7 @@
 // Needs the renderer's current GL context.
 #include <glad/gl.h>
 
+#include <initializer_list>
 #include <vector>
 
 namespace nearshore::playback {
@@ -17,6 +18,11 @@ struct Mesh {
 
 /// `vertices` (x, y pairs) and `indices` (three per triangle) into a new mesh.
 Mesh upload_mesh(const std::vector<float>& vertices, const std::vector<GLuint>& indices);
+
+/// `vertices` of several float attributes each (attribute k on location k, `attribute_sizes[k]`
+/// floats, interleaved in that order) and `indices` (three per triangle) into a new mesh.
+Mesh upload_mesh(const std::vector<float>& vertices, const std::vector<GLuint>& indices,
+                 std::initializer_list<int> attribute_sizes);
 
 /// A lattice of columns x rows vertices at (i, j) * scale, two triangles per quad.
 Mesh lattice_mesh(int columns, int rows, float scale_x, float scale_y);

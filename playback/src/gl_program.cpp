@@ -38,8 +38,9 @@ constexpr const char* kSamplerUnits[] = {"u_harbour_eta_from",
                                          "u_previous_foam",
                                          "u_harbour_eta_rate_from",
                                          "u_harbour_eta_rate_to",
-                                         "u_relative_wave_height"};
-static_assert(std::size(kSamplerUnits) == kRelativeWaveHeight + 1, "one name per SamplerUnit, in order");
+                                         "u_relative_wave_height",
+                                         "u_structure_mask"};
+static_assert(std::size(kSamplerUnits) == kStructureMask + 1, "one name per SamplerUnit, in order");
 
 // Empty when `status` (GL_COMPILE_STATUS of a shader, GL_LINK_STATUS of a program) is true; else
 // the driver's log, which names the line that failed (or a placeholder when the driver gives none,

@@ -30,7 +30,8 @@ enum SamplerUnit {
   kDeepFoam = 21,
   kPreviousFoam = 22,
   kHarbourEtaRate = 23,
-  kRelativeWaveHeight = 25
+  kRelativeWaveHeight = 25,
+  kStructureMask = 26
 };
 
 /// A linked program: its vertex stage is `#version`, then the shared files `vertex_prefixes` in

@@ -8,6 +8,7 @@
 #include "gl_program.hpp"
 #include "gl_texture.hpp"
 #include "nearshore/core/error.hpp"
+#include "nearshore/playback/site_terrain.hpp"
 
 namespace nearshore::playback {
 
@@ -47,7 +48,8 @@ std::vector<float> relative_wave_height_filled(const Raster<float>& k) {
 
 }  // namespace
 
-std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::HarbourSite>& site) {
+std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::HarbourSite>& site,
+                                   float cell_structure_crest_m) {
   if (site == site_) return 0;
   release();
   site_ = site;
@@ -88,9 +90,16 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
   for (int j = 0; j < rows; ++j)
     edge_depth = std::max({edge_depth, h.still_water_depth_m(0, j), h.still_water_depth_m(columns - 1, j)});
   open_sea_depth_m_ = std::max(edge_depth, 5.f);
-  const int tc = std::min(columns, 768), tr = std::min(rows, 768);
-  terrain_ = lattice_mesh(tc, tr, 1.f / float(tc - 1), 1.f / float(tr - 1));
-  return bytes;
+  // The ground, skirt and structures (site_terrain.hpp), and the structures' outline at still
+  // water that the water's mask reads (surface.glsl, is_dry).
+  TerrainOptions options;
+  options.cell_structure_crest_m = cell_structure_crest_m;
+  options.open_sea_depth_m = open_sea_depth_m_;
+  const TerrainMesh mesh = build_site_terrain(h, options);
+  const Raster<float>& mask = mesh.structure_mask;
+  structure_mask_ = site_texture(GL_R8, GL_FLOAT, mask.columns(), mask.rows(), mask.data(), GL_LINEAR);
+  terrain_ = upload_mesh(mesh.vertices, mesh.indices, {3, 1, 1});
+  return bytes + mask.size();  // texture bytes (FrameStatistics::upload_bytes)
 }
 
 void SiteTextures::bind_units() const {
@@ -100,13 +109,14 @@ void SiteTextures::bind_units() const {
   };
   bind(kDepth, depth_);
   bind(kPorosity, porosity_);
+  bind(kStructureMask, structure_mask_);
   bind(kLand, land_);
   bind(kCoast, coast_);
   bind(kRelativeWaveHeight, relative_wave_height_);
 }
 
 void SiteTextures::release() {
-  for (GLuint* texture : {&depth_, &porosity_, &land_, &coast_, &relative_wave_height_})
+  for (GLuint* texture : {&depth_, &porosity_, &structure_mask_, &land_, &coast_, &relative_wave_height_})
     if (*texture) glDeleteTextures(1, texture), *texture = 0;
   terrain_.release();
   site_.reset();

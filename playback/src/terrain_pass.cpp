@@ -14,12 +14,11 @@ TerrainPass::~TerrainPass() {
 }
 
 void TerrainPass::draw(const Mesh& terrain, const SurfaceFormula& formula, const LightingFrame& light,
-                       const CameraView& view, double earth_radius_m, float structure_crest_m) const {
+                       const CameraView& view, double earth_radius_m) const {
   glUseProgram(program_);
   set_lighting_uniforms(program_, light);
   set_uniform(program_, "u_view_projection", view.view_projection);
   set_surface_uniforms(program_, formula, view.eye_m, earth_radius_m);
-  set_uniform(program_, "u_structure_crest_m", structure_crest_m);
   set_uniform(program_, "u_mirror", 0);
   glBindVertexArray(terrain.vertex_array);
   glDrawElements(GL_TRIANGLES, terrain.index_count, GL_UNSIGNED_INT, nullptr);

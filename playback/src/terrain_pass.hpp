@@ -1,7 +1,8 @@
 #pragma once
-// The seabed, land and structures (private to the water renderer): the site's terrain lattice
-// lifted to the still-water depth and the structures' crest, lit as the land; and the same drawn
-// mirrored in still water for the sea's local reflection (LocalReflection).
+// The seabed, land and structures (private to the water renderer): the site's terrain mesh
+// (SiteTextures, built by build_site_terrain: the ground from the grid's depth with its skirt
+// beyond the grid, the structures extruded from their geometry), shaded by height, slope and
+// distance inland; and the same drawn mirrored in still water for the sea's local reflection.
 #include <glad/gl.h>
 
 #include "gl_mesh.hpp"
@@ -20,7 +21,7 @@ class TerrainPass {
 
   /// The terrain seen from `view` into the bound framebuffer.
   void draw(const Mesh& terrain, const SurfaceFormula& formula, const LightingFrame& light,
-            const CameraView& view, double earth_radius_m, float structure_crest_m) const;
+            const CameraView& view, double earth_radius_m) const;
   /// The terrain again through `mirrored_view_projection` (view_projection * diag(1, 1, -1, 1)),
   /// only what stands above still water; after draw(), whose uniforms it keeps.
   void draw_mirrored(const Mesh& terrain, const Matrix4& mirrored_view_projection) const;

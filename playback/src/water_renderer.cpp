@@ -160,7 +160,7 @@ struct WaterRenderer::Impl {
   // does before it draws, and all that a host drawing itself needs.
   KeyframeTextures::Bound upload(const runtime::SurfaceSnapshot& snapshot) {
     statistics = FrameStatistics{};
-    statistics.upload_bytes += site_textures.bind_site(snapshot.site);
+    statistics.upload_bytes += site_textures.bind_site(snapshot.site, settings.structure_crest_m);
     check_snapshot(snapshot);
     UploadCounters counters;
     KeyframeTextures::Bound bound =
@@ -263,7 +263,7 @@ struct WaterRenderer::Impl {
     // 2. Seabed, land and structures.
     if (site_textures.site()) {
       timer.begin_pass(GpuPass::terrain);
-      terrain.draw(site_textures.terrain(), surface, light, view, earth_radius, settings.structure_crest_m);
+      terrain.draw(site_textures.terrain(), surface, light, view, earth_radius);
       timer.end_pass();
     }
     // 2b. Their image in still water, for the sea's local reflection.
@@ -306,7 +306,7 @@ struct WaterRenderer::Impl {
                       std::to_string(r.x0_m) + ".." + std::to_string(r.x1_m) + ", y " +
                       std::to_string(r.y0_m) + ".." + std::to_string(r.y1_m) + " m",
                   "ask for 1..8192 cells each way over a rectangle with x1 > x0 and y1 > y0");
-    statistics.upload_bytes += site_textures.bind_site(snapshot.site);
+    statistics.upload_bytes += site_textures.bind_site(snapshot.site, settings.structure_crest_m);
     check_snapshot(snapshot);
     UploadCounters counters;
     const KeyframeTextures::Bound bound = keyframes.prepare(snapshot, 0, counters);

@@ -40,7 +40,9 @@ struct RendererSettings {
   std::size_t upload_budget_bytes_per_frame = std::size_t(2) << 20;
   int harbour_texture_slots = 6;  ///< keyframes kept on the GPU: the pair on screen + staged ones
   int deep_texture_slots = 6;
-  float structure_crest_m = 2.5f;  ///< breakwaters and quays stand at least this high (drawing only)
+  /// The crest of breakwaters and quays a grid knows only by their porous cells (no CoastalStructure
+  /// geometry: grids written before it), metres above still water (drawing only).
+  float structure_crest_m = 2.5f;
   /// Land, breakwaters and quays mirrored in the sea (planar reflection in still water, one extra
   /// terrain pass into a texture of 1/reflection_downscale the picture's size; docs/lighting.md).
   bool local_reflections = true;
