@@ -113,11 +113,15 @@ GlStateGuard::~GlStateGuard() {
   glPixelStorei(GL_PACK_ALIGNMENT, pack_alignment_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, unpack_alignment_);
   glPixelStorei(GL_UNPACK_ROW_LENGTH, unpack_row_length_);
-  // The context is now as OSG left it. Its record is marked stale as well: OSG applies some state
-  // lazily (modes and attributes pushed but not yet applied when the drawable is drawn), and a
-  // record it trusts blindly is the one failure this guard cannot see.
-  state_.dirtyAllModes();
-  state_.dirtyAllAttributes();
+  // The context is now as OSG left it and OSG's records are true again: they are left alone.
+  // Neither State::dirtyAllModes nor dirtyAllAttributes is called. dirtyAllModes inverts each
+  // mode's last applied value, which after an exact restore makes OSG skip the next change of
+  // every mode (measured: a box with GL_LIGHTING off drawn lit after the sea); dirtyAllAttributes
+  // makes OSG apply every attribute again at the next leaf, positional ones too, so the view's
+  // headlight (osg::Light, GL_POSITION in eye space) was re-issued under the next object's
+  // model-view and lit the ship from above (measured: the coaster's sides black after the sea).
+  // Only the program record is cleared, so a program deleted while current is never taken for
+  // the one in use, and the vertex arrays are marked for re-binding.
   state_.dirtyAllVertexArrays();
   state_.setLastAppliedProgramObject(nullptr);
 }

@@ -3,8 +3,9 @@
 // nearshore_osg; docs/osg.md "The GL-state contract"). osg::State keeps its own record of what it
 // applied and skips calls it thinks redundant, so a foreign draw must leave the context as OSG
 // recorded it: every binding and setting playback::WaterRenderer touches is restored exactly,
-// and the modes, attributes and vertex arrays are then marked dirty in osg::State as well, so
-// nothing OSG applies lazily afterwards is skipped on a stale record.
+// so OSG's own record of what it applied is true again; only its program and vertex-array records
+// are marked stale (State::dirtyAllModes and dirtyAllAttributes would do harm after an exact
+// restore: gl_state_guard.cpp says what was measured).
 #include <osg/GL>
 #include <osg/State>
 
