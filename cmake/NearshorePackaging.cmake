@@ -163,6 +163,10 @@ if(TARGET nearshore_osg)
   # libnearshore_osg.so.0 links libnearshore.so.0 and OSG's libraries: shlibdeps finds libnearshore0
   # (from the shlibs file of the same build) and libopenscenegraph161; the exact version of
   # libnearshore0 is stated, since the node kit uses its C++ API (no stable ABI across versions).
+  # dpkg-shlibdeps looks for libnearshore.so.0 among the installed system's libraries; during the
+  # build it is in libnearshore0's package, not installed: it is found in the build tree instead
+  # (-l), and the dependency on it is the one stated below.
+  set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS "${CMAKE_BINARY_DIR}/capi")
   set(CPACK_DEBIAN_OSG_PACKAGE_NAME libnearshore-osg0)
   set(CPACK_DEBIAN_OSG_PACKAGE_SECTION libs)
   set(CPACK_DEBIAN_OSG_PACKAGE_DEPENDS "libnearshore0 (= ${nearshore_deb_version})")

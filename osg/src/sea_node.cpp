@@ -84,6 +84,8 @@ struct SeaNode::Shared {
   ::osg::observer_ptr<SeaNode> node;
 
   void update_reflection(const SeaNode& sea);
+  // The sampler of the last advance; throws when there was none.
+  std::shared_ptr<const runtime::SurfaceSampler> current_sampler();
 };
 
 namespace {
@@ -234,6 +236,7 @@ class SeaDrawable : public ::osg::Drawable {
   }
 
   void drawImplementation(::osg::RenderInfo& render_info) const override {
+    if (!shared_) return;  // a clone made by cloneType(): no sea
     ::osg::State& state = *render_info.getState();
     SeaNode::Shared& s = *shared_;
     runtime::SurfaceSnapshot snapshot;
@@ -384,28 +387,20 @@ void SeaNode::advance_to(double display_time_s) {
 
 double SeaNode::display_time_s() const { return shared_->advanced_time_s; }
 
-runtime::SurfaceState SeaNode::surface_at(double x_m, double y_m) const {
-  std::shared_ptr<const runtime::SurfaceSampler> sampler;
-  {
-    std::lock_guard lock(shared_->mutex);
-    sampler = shared_->sampler;
-  }
+std::shared_ptr<const runtime::SurfaceSampler> SeaNode::Shared::current_sampler() {
+  std::lock_guard lock(mutex);
   if (!sampler)
     throw Error("SeaNode", "has not advanced yet: no surface to query",
                 "call advance_to (or let one update traversal run) before querying heights");
-  return sampler->state(x_m, y_m);
+  return sampler;
+}
+
+runtime::SurfaceState SeaNode::surface_at(double x_m, double y_m) const {
+  return shared_->current_sampler()->state(x_m, y_m);
 }
 
 double SeaNode::elevation_m(double x_m, double y_m) const {
-  std::shared_ptr<const runtime::SurfaceSampler> sampler;
-  {
-    std::lock_guard lock(shared_->mutex);
-    sampler = shared_->sampler;
-  }
-  if (!sampler)
-    throw Error("SeaNode", "has not advanced yet: no surface to query",
-                "call advance_to (or let one update traversal run) before querying heights");
-  return sampler->elevation_m(x_m, y_m);
+  return shared_->current_sampler()->elevation_m(x_m, y_m);
 }
 
 std::shared_ptr<const runtime::HarbourSite> SeaNode::site() const { return shared_->engine->site(); }

@@ -128,8 +128,9 @@ std::array<int, 3> pixel(const std::vector<unsigned char>& rgb, std::array<int, 
 class SeaNodeInOsg : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(demo_bake() / "manifest.json"))
-      GTEST_SKIP() << demo_bake() << " holds no bake: run the fixture demo_harbour_bake first or set NEARSHORE_DEMO_BAKE";
+    ASSERT_TRUE(fs::exists(demo_bake() / "manifest.json"))
+        << demo_bake() << " holds no bake: ctest runs DemoHarbourLoops.PeriodicBakeRepeatsWithSeamRatioBelowATenth first "
+        << "(fixture demo_harbour_bake), or set NEARSHORE_DEMO_BAKE to a demo bake";
   }
 };
 
