@@ -106,7 +106,7 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME libnearshore0)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SECTION libs)
 # A shlibs file (so a package built against libnearshore.so.0 depends on libnearshore0 >= the version
 # it was built with) and the ldconfig trigger.
-set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)   # only libnearshore0 has a versioned library
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)   # libnearshore0 and libnearshore-osg0 have versioned libraries
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS_POLICY ">=")
 # Debian's way to refresh the loader's cache is the ldconfig trigger (CPack also writes a postinst
 # and postrm that call ldconfig: twice is harmless).
@@ -170,6 +170,8 @@ if(TARGET nearshore_osg)
   set(CPACK_DEBIAN_OSG_PACKAGE_NAME libnearshore-osg0)
   set(CPACK_DEBIAN_OSG_PACKAGE_SECTION libs)
   set(CPACK_DEBIAN_OSG_PACKAGE_DEPENDS "libnearshore0 (= ${nearshore_deb_version})")
+  file(WRITE "${CMAKE_BINARY_DIR}/packaging/libnearshore-osg0/triggers" "activate-noawait ldconfig\n")
+  set(CPACK_DEBIAN_OSG_PACKAGE_CONTROL_EXTRA "${CMAKE_BINARY_DIR}/packaging/libnearshore-osg0/triggers")
   set(CPACK_DEBIAN_OSG_DESCRIPTION "nearshore for OpenSceneGraph: the streamed harbour sea as a scene-graph node
 libnearshore_osg.so.0: a node that draws nearshore's streamed sea (the
 renderer of libnearshore0) inside any OpenSceneGraph scene and camera,
