@@ -49,7 +49,7 @@ add_executable(nearshore_osgviewer /usr/share/doc/libnearshore-osg-dev/nearshore
 target_link_libraries(nearshore_osgviewer PRIVATE nearshore::osg ${OPENSCENEGRAPH_LIBRARIES} OpenGL::GL)
 CMAKE
   cmake -S osg-host -B osg-host/build -DCMAKE_BUILD_TYPE=Release && cmake --build osg-host/build
-  ldd osg-host/build/nearshore_osgviewer | grep -E 'libnearshore(_osg)?\.so\.0 => /usr/lib/'
+  test "$(ldd osg-host/build/nearshore_osgviewer | grep -cE 'libnearshore(_osg)?\.so\.0 => /(usr/)?lib/')" -eq 2
   if ldd osg-host/build/nearshore_osgviewer | grep 'not found'; then exit 1; fi
 fi
 apt-get remove -y -q libeigen3-dev nlohmann-json3-dev
