@@ -28,6 +28,9 @@
 #   python (the module `_nearshore`, python/; built where pybind11 is found) -> runtime, sequence,
 #   core and, being a tool like the CLI and never linked by a host, bathymetry, bake, loops, library
 #   and export (`nearshore.bathy`, `.bake`, `.loops`, `.library`, `.export`). No runtime library links it.
+#   osg (libnearshore_osg.so, the OpenSceneGraph node kit, osg/; built where OpenSceneGraph is found)
+#   -> shared through nearshore_cxx (libnearshore.so with its C++ headers: runtime, playback,
+#   sequence, ocean, core in one copy per process); never the bake side, nor viewer or tools.
 set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core:"
   "nearshore_core_vdb:nearshore_core"
@@ -53,6 +56,7 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_bench_runtime:nearshore_playback,nearshore_runtime,nearshore_ships,nearshore_sequence,nearshore_ocean,nearshore_core"
   "nearshore_bench:nearshore_bake,nearshore_bathymetry,nearshore_loops,nearshore_sequence,nearshore_ocean,nearshore_core"
   "nearshore_python?:nearshore_runtime,nearshore_bake,nearshore_bathymetry,nearshore_loops,nearshore_library,nearshore_export,nearshore_sequence,nearshore_core"
+  "nearshore_osg?:nearshore_cxx,nearshore_shared"
   "nearshore_shared:nearshore_runtime,nearshore_playback,nearshore_ships,nearshore_ships_mesh,nearshore_ships_layers,nearshore_sequence,nearshore_ocean,nearshore_core,nearshore_glad")
 
 function(nearshore_check_architecture)

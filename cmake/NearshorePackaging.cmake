@@ -6,9 +6,10 @@
 #                                 package and nearshore.pc, the C API reference
 #   tools      nearshore-tools    the `nearshore` command line (bake side included) and its pages
 #   python     python3-nearshore  the Python module `nearshore` (built where pybind11 is found)
-#
-# libnearshore-osg0 (issue 45's OpenSceneGraph node kit) is not made: there is no osg/ room yet, and
-# an empty package would claim what is not there.
+#   osg        libnearshore-osg0  libnearshore_osg.so.0, the OpenSceneGraph node kit (osg/, docs/osg.md;
+#                                 built where OpenSceneGraph is found)
+#   osg_dev    libnearshore-osg-dev  its link, header nearshore/osg/sea_node.hpp and CMake package
+#                                 (find_package(nearshore_osg): nearshore::osg)
 #
 # Every installed file belongs to exactly one component (tests/packaging checks it against a plain
 # `cmake --install`). Depends are what dpkg-shlibdeps finds in each package's ELF files (the Debian
@@ -29,10 +30,14 @@ set(nearshore_deb_version "${PROJECT_VERSION}-${NEARSHORE_PACKAGE_RELEASE}")
 # The packages' documentation: /usr/share/doc/<package>/ with the copyright file and the
 # changelog.Debian.gz Debian asks of each; the changelog has one entry for this build, pointing at
 # the project's CHANGELOG.md (dated by SOURCE_DATE_EPOCH where set, else the configure time).
-set(nearshore_package_names runtime libnearshore0 dev libnearshore-dev tools nearshore-tools python python3-nearshore)
+set(nearshore_package_names runtime libnearshore0 dev libnearshore-dev tools nearshore-tools python python3-nearshore
+  osg libnearshore-osg0 osg_dev libnearshore-osg-dev)
 set(nearshore_package_components runtime dev tools)
 if(TARGET nearshore_python)
   list(APPEND nearshore_package_components python)
+endif()
+if(TARGET nearshore_osg)
+  list(APPEND nearshore_package_components osg osg_dev)
 endif()
 string(TIMESTAMP nearshore_package_date "%a, %d %b %Y %H:%M:%S +0000" UTC)
 foreach(component IN LISTS nearshore_package_components)
@@ -70,6 +75,12 @@ add_dependencies(nearshore_packaged_targets nearshore_shared nearshore)
 if(TARGET nearshore_python)
   add_dependencies(nearshore_packaged_targets nearshore_python)
 endif()
+if(TARGET nearshore_osg)
+  add_dependencies(nearshore_packaged_targets nearshore_osg)
+  install(FILES "${CMAKE_SOURCE_DIR}/docs/osg.md" "${CMAKE_SOURCE_DIR}/samples/osg/nearshore_osgviewer.cpp"
+    "${CMAKE_SOURCE_DIR}/data/ships/models/coaster.obj" "${CMAKE_SOURCE_DIR}/data/ships/models/coaster.mtl"
+    DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/libnearshore-osg-dev" COMPONENT osg_dev)
+endif()
 
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME nearshore)
@@ -95,7 +106,7 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME libnearshore0)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SECTION libs)
 # A shlibs file (so a package built against libnearshore.so.0 depends on libnearshore0 >= the version
 # it was built with) and the ldconfig trigger.
-set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)   # only libnearshore0 has a versioned library
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)   # libnearshore0 and libnearshore-osg0 have versioned libraries
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS_POLICY ">=")
 # Debian's way to refresh the loader's cache is the ldconfig trigger (CPack also writes a postinst
 # and postrm that call ldconfig: twice is harmless).
@@ -146,6 +157,35 @@ The Python module nearshore: a baked sequence's frames, harbour grid, gauges
 and loop plans as NumPy arrays sharing the library's memory, the runtime's
 surface queries at arrays of points and times (equal to the C API's), gauge
 statistics, and bake and loops as functions with the command line's options.")
+endif()
+
+if(TARGET nearshore_osg)
+  # libnearshore_osg.so.0 links libnearshore.so.0 and OSG's libraries: shlibdeps finds libnearshore0
+  # (from the shlibs file of the same build) and libopenscenegraph161; the exact version of
+  # libnearshore0 is stated, since the node kit uses its C++ API (no stable ABI across versions).
+  # dpkg-shlibdeps looks for libnearshore.so.0 among the installed system's libraries; during the
+  # build it is in libnearshore0's package, not installed: it is found in the build tree instead
+  # (-l), and the dependency on it is the one stated below.
+  set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS "${CMAKE_BINARY_DIR}/capi")
+  set(CPACK_DEBIAN_OSG_PACKAGE_NAME libnearshore-osg0)
+  set(CPACK_DEBIAN_OSG_PACKAGE_SECTION libs)
+  set(CPACK_DEBIAN_OSG_PACKAGE_DEPENDS "libnearshore0 (= ${nearshore_deb_version})")
+  file(WRITE "${CMAKE_BINARY_DIR}/packaging/libnearshore-osg0/triggers" "activate-noawait ldconfig\n")
+  set(CPACK_DEBIAN_OSG_PACKAGE_CONTROL_EXTRA "${CMAKE_BINARY_DIR}/packaging/libnearshore-osg0/triggers")
+  set(CPACK_DEBIAN_OSG_DESCRIPTION "nearshore for OpenSceneGraph: the streamed harbour sea as a scene-graph node
+libnearshore_osg.so.0: a node that draws nearshore's streamed sea (the
+renderer of libnearshore0) inside any OpenSceneGraph scene and camera,
+depth-sorted against the scene's objects and reflecting them, with height
+queries to float a host's objects. Headers in libnearshore-osg-dev.")
+  set(CPACK_DEBIAN_OSG_DEV_PACKAGE_NAME libnearshore-osg-dev)
+  set(CPACK_DEBIAN_OSG_DEV_PACKAGE_SECTION libdevel)
+  set(CPACK_DEBIAN_OSG_DEV_PACKAGE_DEPENDS
+    "libnearshore-osg0 (= ${nearshore_deb_version}), libnearshore-dev (= ${nearshore_deb_version}), libopenscenegraph-dev (>= 3.6), libeigen3-dev (>= 3.4), nlohmann-json3-dev (>= 3.10)")
+  set(CPACK_DEBIAN_OSG_DEV_DESCRIPTION "nearshore for OpenSceneGraph: development files
+The libnearshore_osg.so link, nearshore/osg/sea_node.hpp, the CMake package
+nearshore_osg (target nearshore::osg) and the sample nearshore_osgviewer with
+a ship model. The node's header uses the C++ API of libnearshore-dev (Eigen,
+nlohmann_json) and OpenSceneGraph's headers.")
 endif()
 
 include(CPack)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the Debian packages of nearshore (docs/packages.md) from a Release build:
-# libnearshore0, libnearshore-dev, nearshore-tools, python3-nearshore -> build/release/debs/*.deb.
+# libnearshore0, libnearshore-dev, nearshore-tools, python3-nearshore (and libnearshore-osg0, libnearshore-osg-dev
+# where OpenSceneGraph is found) -> build/release/debs/*.deb.
 # Usage: scripts/build-debs.sh [OUTPUT_DIR]. Builds only what the packages hold (not the tests),
 # then runs lintian on them where it is installed (its findings are printed, not a failure).
 set -euo pipefail

@@ -5,7 +5,8 @@
 # small bay, and with only a C compiler, pkg-config and CMake added (Eigen and nlohmann_json
 # removed), samples/query_track.c builds by pkg-config and samples/ship_track.c by
 # find_package(nearshore), and both run on the bake; asking for the C++ component fails naming
-# Eigen and nlohmann_json. Needs root, mmdebstrap and the network (not a CI test: the CI test
+# Eigen and nlohmann_json. Where the OSG packages are given, the OpenSceneGraph sample builds by
+# find_package(nearshore_osg) first (with g++) and loads the installed libraries. Needs root, mmdebstrap and the network (not a CI test: the CI test
 # is tests/packaging). 80 s here on 2026-11-30 (load about 3) and 190 MB from the mirror.
 # Usage: scripts/check-debs-on-fresh-debian.sh [DEB_DIR (build/release/debs)] [WORK (/tmp/nearshore-fresh-debian)]
 set -euo pipefail
@@ -34,6 +35,23 @@ nearshore --version
 cd /root
 nearshore bake src/small_bay.toml -o small_bay > bake.log && nearshore loops small_bay > loops.log
 apt-get install -y -q --no-install-recommends gcc libc6-dev pkg-config cmake make
+if [ -e /usr/share/doc/libnearshore-osg-dev/nearshore_osgviewer.cpp ]; then
+  # The OpenSceneGraph sample by find_package(nearshore_osg), with what libnearshore-osg-dev pulled in.
+  apt-get install -y -q --no-install-recommends g++
+  mkdir -p osg-host
+  cat > osg-host/CMakeLists.txt <<'CMAKE'
+cmake_minimum_required(VERSION 3.25)
+project(osg_host CXX)
+set(CMAKE_CXX_STANDARD 20)
+find_package(nearshore_osg REQUIRED CONFIG)
+find_package(OpenGL REQUIRED COMPONENTS OpenGL)
+add_executable(nearshore_osgviewer /usr/share/doc/libnearshore-osg-dev/nearshore_osgviewer.cpp)
+target_link_libraries(nearshore_osgviewer PRIVATE nearshore::osg ${OPENSCENEGRAPH_LIBRARIES} OpenGL::GL)
+CMAKE
+  cmake -S osg-host -B osg-host/build -DCMAKE_BUILD_TYPE=Release && cmake --build osg-host/build
+  test "$(ldd osg-host/build/nearshore_osgviewer | grep -cE 'libnearshore(_osg)?\.so\.0 => /(usr/)?lib/')" -eq 2
+  if ldd osg-host/build/nearshore_osgviewer | grep 'not found'; then exit 1; fi
+fi
 apt-get remove -y -q libeigen3-dev nlohmann-json3-dev
 gcc -std=c11 -Wall -Wextra -Werror src/query_track.c $(pkg-config --cflags --libs nearshore) -lm -o query_track
 ./query_track small_bay 5

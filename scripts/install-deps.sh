@@ -21,6 +21,7 @@ packages=(
   libtbb-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
   libassimp-dev
+  libopenscenegraph-dev openscenegraph
   libopenmpi-dev openmpi-bin
   libspdlog-dev libfmt-dev libxxhash-dev
   libgtest-dev libbenchmark-dev

@@ -14,6 +14,7 @@ uniform sampler2D u_coast_distance;     // signed distance to the coastline (m),
 uniform bool u_has_reflection;          // the terrain mirrored in still water was drawn
 uniform sampler2D u_reflection;         // ... as linear radiance, alpha = covered
 uniform vec2 u_viewport_px;
+uniform vec2 u_viewport_origin_px;      // the viewport's lower-left corner (a host's: nearshore::osg)
 uniform bool u_has_decal_foam;          // playback::SurfaceLayers foam decals were drawn into ...
 uniform sampler2D u_decal_foam;         // ... this foam map (R8, cover 0..1) over ...
 uniform vec4 u_decal_foam_rect_m;       // ... x0, y0, width, height of the site frame
@@ -196,7 +197,7 @@ void main() {
   // Land and structures seen in the water: the mirrored terrain at this pixel, displaced by the
   // surface's slope (a planar reflection's usual distortion, 3 % of the picture per unit slope).
   vec4 local = vec4(0.0);
-  if (u_has_reflection) local = texture(u_reflection, gl_FragCoord.xy / u_viewport_px + 0.03 * normal.xy);
+  if (u_has_reflection) local = texture(u_reflection, (gl_FragCoord.xy - u_viewport_origin_px) / u_viewport_px + 0.03 * normal.xy);
   // The seabed seen through the water where the refracted view meets it (its texture there).
   float seabed = seabed_texture(refracted_seabed_point(p, normal, to_eye, total_depth));
   vec3 radiance = shade_water(normal, to_eye, total_depth, foam, extra_variance, crest_thinness, local, seabed);

@@ -17,6 +17,16 @@ Matrix4 from_eigen(const Eigen::Matrix4d& m) {
   Eigen::Map<Eigen::Matrix4d>(out.data()) = m;
   return out;
 }
+// Gribb & Hartmann: the six clip planes are sums and differences of view_projection's rows.
+void set_frustum_planes(CameraView& v) {
+  const Eigen::Matrix4d m = to_eigen(v.view_projection);
+  const Eigen::RowVector4d planes[6] = {m.row(3) + m.row(0), m.row(3) - m.row(0), m.row(3) + m.row(1),
+                                        m.row(3) - m.row(1), m.row(3) + m.row(2), m.row(3) - m.row(2)};
+  for (int i = 0; i < 6; ++i) {
+    const double length = planes[i].head<3>().norm();
+    for (int c = 0; c < 4; ++c) v.frustum_planes[std::size_t(i)][std::size_t(c)] = planes[i][c] / length;
+  }
+}
 }  // namespace
 
 Camera Camera::overlooking_site(double width_m, double height_m) {
@@ -77,14 +87,44 @@ CameraView camera_view(const Camera& camera, int width_px, int height_px, double
   v.projection = from_eigen(projection);
   v.view_projection = from_eigen(projection * rotation * translation);
   v.rotation_projection = from_eigen(projection * rotation);
-  // Gribb & Hartmann: the planes are sums and differences of the matrix's rows.
-  const Eigen::Matrix4d m = projection * rotation * translation;
-  const Eigen::RowVector4d planes[6] = {m.row(3) + m.row(0), m.row(3) - m.row(0), m.row(3) + m.row(1),
-                                        m.row(3) - m.row(1), m.row(3) + m.row(2), m.row(3) - m.row(2)};
-  for (int i = 0; i < 6; ++i) {
-    const double length = planes[i].head<3>().norm();
-    for (int c = 0; c < 4; ++c) v.frustum_planes[std::size_t(i)][std::size_t(c)] = planes[i][c] / length;
-  }
+  set_frustum_planes(v);
+  return v;
+}
+
+CameraView camera_view_from_matrices(const Matrix4& view, const Matrix4& projection, int width_px, int height_px) {
+  const Eigen::Matrix4d p = to_eigen(projection), w = to_eigen(view);
+  const double near_m = p(2, 3) / (p(2, 2) - 1.0), far_m = p(2, 3) / (p(2, 2) + 1.0);
+  if (width_px <= 0 || height_px <= 0 || p(3, 2) != -1.0 || p(3, 3) != 0.0 || !(near_m > 0.0) || !(far_m > near_m) ||
+      !(p(1, 1) > 0.0))
+    throw Error("host camera", "projection with P[10] = " + std::to_string(p(2, 2)) + ", P[11] = " +
+                                   std::to_string(p(3, 2)) + ", P[14] = " + std::to_string(p(2, 3)) + ", P[15] = " +
+                                   std::to_string(p(3, 3)) + " on a viewport of " + std::to_string(width_px) + " x " +
+                                   std::to_string(height_px) + " px",
+                "give a perspective projection (glFrustum / gluPerspective form) with 0 < near < far and a viewport of "
+                "at least 1 x 1 pixel");
+  const Eigen::Matrix3d rotation = w.topLeftCorner<3, 3>();
+  if (!(rotation * rotation.transpose()).isIdentity(1e-6) || !(rotation.determinant() > 0.0) ||
+      w.row(3) != Eigen::RowVector4d(0, 0, 0, 1))
+    throw Error("host camera", "view matrix is not a rigid motion (it scales, shears or mirrors)",
+                "pass the camera's view matrix alone (no model scaling in it)");
+  CameraView v;
+  const Eigen::Vector3d eye = -rotation.transpose() * w.block<3, 1>(0, 3);
+  v.eye_m = {eye.x(), eye.y(), eye.z()};
+  v.right = {rotation(0, 0), rotation(0, 1), rotation(0, 2)};
+  v.up = {rotation(1, 0), rotation(1, 1), rotation(1, 2)};
+  v.forward = {-rotation(2, 0), -rotation(2, 1), -rotation(2, 2)};
+  v.width_px = width_px;
+  v.height_px = height_px;
+  v.near_m = near_m;
+  v.far_m = far_m;
+  v.focal_length_px = 0.5 * height_px * p(1, 1);  // P[5] = 1 / tan(fov / 2)
+  Eigen::Matrix4d rotation_only = Eigen::Matrix4d::Identity();
+  rotation_only.topLeftCorner<3, 3>() = rotation;
+  v.view = view;
+  v.projection = projection;
+  v.view_projection = from_eigen(p * w);
+  v.rotation_projection = from_eigen(p * rotation_only);
+  set_frustum_planes(v);
   return v;
 }
 

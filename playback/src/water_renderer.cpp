@@ -25,6 +25,20 @@
 
 namespace nearshore::playback {
 
+namespace {
+// Where a frame's picture goes: the renderer's own target (cleared first), or the framebuffer and
+// viewport a host bound (drawn over, depth-tested against the host's depth buffer).
+struct Destination {
+  GLuint framebuffer = 0;
+  int x = 0, y = 0, width = 0, height = 0;
+  bool clear = true;
+  void bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(x, y, width, height);
+  }
+};
+}  // namespace
+
 // The orchestration: what a frame uploads, in which order the passes draw into which target, and
 // which texture units and statistics connect them. The GL objects belong to the passes.
 struct WaterRenderer::Impl {
@@ -192,7 +206,8 @@ struct WaterRenderer::Impl {
   // 2b. Land, structures and hulls mirrored in still water (z -> -z) into the local reflection's
   // texture, then back to the frame's target. After the terrain pass (whose uniforms it keeps).
   void draw_reflection(const SurfaceFormula& surface, const LightingFrame& light, const CameraView& view,
-                       double earth_radius_m, int width, int height, const SurfaceLayers* layers) {
+                       double earth_radius_m, const Destination& destination, const SurfaceLayers* layers) {
+    const int width = destination.width, height = destination.height;
     const int downscale = std::max(settings.reflection_downscale, 1);
     reflection.resize(std::max(width / downscale, 1), std::max(height / downscale, 1));
     glBindFramebuffer(GL_FRAMEBUFFER, reflection.framebuffer());
@@ -205,8 +220,7 @@ struct WaterRenderer::Impl {
     terrain.draw_mirrored(site_textures.terrain(), multiply(view.view_projection, mirror));
     if (layers)  // the hulls mirrored too
       solid_meshes.draw(*layers, layer_gpu, surface, light, view, earth_radius_m, statistics, &mirror);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.draw_framebuffer());
-    glViewport(0, 0, width, height);
+    destination.bind();
   }
 
   // The maps the sea samples, on their units (0: none this frame).
@@ -223,6 +237,49 @@ struct WaterRenderer::Impl {
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting,
               int width, int height, const DrawOptions& options, const SurfaceLayers* layers) {
     const KeyframeTextures::Bound bound = upload(snapshot);
+    const double earth_radius =
+        settings.grid == GridKind::projected ? settings.projected.earth_radius_m : 0.0;
+    const CameraView view = frame_view(camera, width, height, earth_radius);
+    const int samples = sample_count();
+    target.resize(width, height, GL_RGBA8, samples);
+    statistics.msaa_samples = samples;
+    draw_frame(snapshot, bound, view, lighting, options, layers,
+               Destination{target.draw_framebuffer(), 0, 0, width, height, true});
+    // 4. One sample per pixel for read_pixels() and blit_to_window().
+    if (samples > 1) {
+      timer.begin_pass(GpuPass::resolve);
+      target.resolve();
+    }
+    timer.end_pass();
+    check_errors();
+  }
+
+  void render_into_bound_framebuffer(const runtime::SurfaceSnapshot& snapshot, const CameraView& view,
+                                     const Lighting& lighting, const DrawOptions& options,
+                                     const SurfaceLayers* layers) {
+    GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    const KeyframeTextures::Bound bound = upload(snapshot);
+    statistics.near_m = view.near_m;
+    statistics.far_m = view.far_m;
+    statistics.msaa_samples = 1;
+    draw_frame(snapshot, bound, view, lighting, options, layers,
+               Destination{GLuint(framebuffer), viewport[0], viewport[1], viewport[2], viewport[3], false});
+    timer.end_pass();
+    check_errors();
+  }
+
+  void check_errors() const {
+    if (GLenum error = glGetError(); error != GL_NO_ERROR)
+      throw Error("water renderer", "OpenGL error " + std::to_string(error) + " while drawing",
+                  "report this bug");
+  }
+
+  // Passes 0-3 of a frame into `destination` (the renderer's target, or the host's framebuffer).
+  void draw_frame(const runtime::SurfaceSnapshot& snapshot, const KeyframeTextures::Bound& bound,
+                  const CameraView& view, const Lighting& lighting, const DrawOptions& options,
+                  const SurfaceLayers* layers, const Destination& destination) {
     timer.begin_frame(settings.gpu_timing, statistics.gpu);  // and what an earlier frame measured
     const LightingFrame light = prepare_lighting(lighting);
     prepare_patches(layers);
@@ -238,20 +295,19 @@ struct WaterRenderer::Impl {
 
     const double earth_radius =
         settings.grid == GridKind::projected ? settings.projected.earth_radius_m : 0.0;
-    const CameraView view = frame_view(camera, width, height, earth_radius);
     bind_textures(bound);
     const bool deep_foam_drawn = lit && deep_foam.update(surface, light, timer);
-    const int samples = sample_count();
-    target.resize(width, height, GL_RGBA8, samples);
-    statistics.msaa_samples = samples;
-    glBindFramebuffer(GL_FRAMEBUFFER, target.draw_framebuffer());
-    glViewport(0, 0, width, height);
-    glClearColor(options.background[0], options.background[1], options.background[2], 1.f);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    destination.bind();
+    if (destination.clear) {
+      glClearColor(options.background[0], options.background[1], options.background[2], 1.f);
+      glClearDepth(1.0);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
     bind_textures(bound);
 
     // 1. Sky at the far plane.
@@ -270,32 +326,25 @@ struct WaterRenderer::Impl {
     const bool reflect = site_textures.site() && settings.local_reflections && lit;
     if (reflect) {
       timer.begin_pass(GpuPass::reflection);
-      draw_reflection(surface, light, view, earth_radius, width, height, layers);
+      draw_reflection(surface, light, view, earth_radius, destination, layers);
     }
     timer.end_pass();
     bind_sea_maps(reflect, decal_foam, deep_foam_drawn);
     // 2c. Hulls and other solids, before the sea: the sea's depth test then hides what is under water.
-    if (layers && !layers->meshes.empty()) {
+    if (layers && !layers->meshes.empty() && options.draw_meshes) {
       timer.begin_pass(GpuPass::meshes);
       solid_meshes.draw(*layers, layer_gpu, surface, light, view, earth_radius, statistics);
       timer.end_pass();
     }
     // 3. The sea surface, and its grid's edges over it when asked.
-    SeaDraw sea{settings, surface, light, view, earth_radius, options, width, height};
+    SeaDraw sea{settings, surface, light, view, earth_radius, options, destination.width, destination.height};
+    sea.viewport_x_px = destination.x;
+    sea.viewport_y_px = destination.y;
     sea.reflection = reflect;
     sea.decal_foam = decal_foam;
     if (decal_foam) sea.decal_foam_rect_m = layer_gpu.decal_rect_m();
     sea.deep_foam = deep_foam_drawn;
     water.draw(sea, timer, statistics);
-    // 4. One sample per pixel for read_pixels() and blit_to_window().
-    if (samples > 1) {
-      timer.begin_pass(GpuPass::resolve);
-      target.resolve();
-    }
-    timer.end_pass();
-    if (GLenum error = glGetError(); error != GL_NO_ERROR)
-      throw Error("water renderer", "OpenGL error " + std::to_string(error) + " while drawing",
-                  "report this bug");
   }
 
   Raster<float> render_height_map(const runtime::SurfaceSnapshot& snapshot, const SiteRectangle& r,
@@ -352,6 +401,12 @@ const GpuTextures& WaterRenderer::upload(const runtime::SurfaceSnapshot& snapsho
 
 const GpuTextures& WaterRenderer::textures() const {
   return impl_->textures;
+}
+
+void WaterRenderer::render_into_bound_framebuffer(const runtime::SurfaceSnapshot& snapshot, const CameraView& view,
+                                                  const Lighting& lighting, const DrawOptions& options,
+                                                  const SurfaceLayers* layers) {
+  impl_->render_into_bound_framebuffer(snapshot, view, lighting, options, layers);
 }
 
 const FrameStatistics& WaterRenderer::last_frame() const {

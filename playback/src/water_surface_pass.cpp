@@ -54,6 +54,7 @@ void WaterSurfacePass::draw(const SeaDraw& sea, PassTimer& timer, FrameStatistic
     glUniform4f(at(program, "u_decal_foam_rect_m"), rect[0], rect[1], rect[2], rect[3]);
   }
   glUniform2f(at(program, "u_viewport_px"), float(sea.width_px), float(sea.height_px));
+  glUniform2f(at(program, "u_viewport_origin_px"), float(sea.viewport_x_px), float(sea.viewport_y_px));
   timer.begin_pass(GpuPass::water);
   draw_grid(program, sea, selection, layout, true, statistics);
   if (sea.options.wireframe) {

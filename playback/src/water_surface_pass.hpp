@@ -27,6 +27,7 @@ struct SeaDraw {
   double earth_radius_m = 0.0;
   const DrawOptions& options;
   int width_px = 0, height_px = 0;
+  int viewport_x_px = 0, viewport_y_px = 0;  ///< the viewport's lower-left corner (a host's may not be 0, 0)
   bool reflection = false;                   ///< LocalReflection's texture on unit kReflection
   bool decal_foam = false;                   ///< the decals' foam map on unit kDecalFoam
   std::array<float, 4> decal_foam_rect_m{};  ///< x0, y0, width, height of that map

@@ -6,7 +6,11 @@ Usage: check_depends.py DEB...
 - every package with ELF files depends on libc6 and libstdc++6: dpkg-shlibdeps ran;
 - libnearshore-dev depends on libnearshore0 of its own version, and not on Eigen or nlohmann_json
   (a C host needs neither: they are only recommended, for the C++ API);
-- no run-time package (libnearshore0, nearshore-tools, python3-nearshore) depends on a -dev package;
+- no run-time package (libnearshore0, nearshore-tools, python3-nearshore, libnearshore-osg0) depends
+  on a -dev package;
+- libnearshore-osg0 depends on libnearshore0 of its own version and on OpenSceneGraph's library;
+  libnearshore-osg-dev on libnearshore-osg0 and libnearshore-dev of its version and on
+  libopenscenegraph-dev;
 - python3-nearshore depends on the interpreter its extension was built for (a >= and << pair) and
   on python3-numpy;
 - every clause is satisfied by this machine's installed packages (dpkg's status file) or by the
@@ -73,16 +77,27 @@ def main(debs):
     for name, deb in packages.items():
         depends = clauses(field(deb, "Depends"))
         names = {alternative[0] for clause in depends for alternative in clause}
-        has_elf = name != "libnearshore-dev"
+        has_elf = name not in ("libnearshore-dev", "libnearshore-osg-dev")
         if has_elf and not {"libc6", "libstdc++6"} <= names:
             problems.append(f"{name}: no libc6 / libstdc++6 in Depends: dpkg-shlibdeps did not run")
-        if name in ("libnearshore0", "nearshore-tools", "python3-nearshore"):
+        if name in ("libnearshore0", "nearshore-tools", "python3-nearshore", "libnearshore-osg0"):
             problems += [f"{name}: a run-time package depends on {n}" for n in names if n.endswith("-dev")]
         if name == "libnearshore-dev":
             if [("libnearshore0", "=", versions.get("libnearshore0"))] not in depends:
                 problems.append(f"{name}: does not depend on libnearshore0 (= {versions.get('libnearshore0')})")
             problems += [f"{name}: a C host would need {n}" for n in names
                          if n in ("libeigen3-dev", "nlohmann-json3-dev") or n.endswith("-dev")]
+        if name == "libnearshore-osg0":
+            if [("libnearshore0", "=", versions.get("libnearshore0"))] not in depends:
+                problems.append(f"{name}: does not depend on libnearshore0 (= {versions.get('libnearshore0')})")
+            if not any(n.startswith("libopenscenegraph") for n in names):
+                problems.append(f"{name}: no OpenSceneGraph library in Depends: dpkg-shlibdeps did not see it")
+        if name == "libnearshore-osg-dev":
+            for needed in ("libnearshore-osg0", "libnearshore-dev"):
+                if [(needed, "=", versions.get(needed))] not in depends:
+                    problems.append(f"{name}: does not depend on {needed} (= {versions.get(needed)})")
+            if "libopenscenegraph-dev" not in names:
+                problems.append(f"{name}: does not depend on libopenscenegraph-dev (its header includes OSG's)")
         if name == "python3-nearshore":
             ops = {alternative[1] for clause in depends for alternative in clause if alternative[0] == "python3"}
             if not {">=", "<<"} <= ops or "python3-numpy" not in names:

@@ -28,6 +28,7 @@ for deb in "${debs[@]}"; do
 done
 expected=(libnearshore0 libnearshore-dev nearshore-tools)
 if grep -qE '^set\(CPACK_COMPONENTS_ALL ".*python' "$build_dir/CPackConfig.cmake"; then expected+=(python3-nearshore); fi
+if grep -qE '^set\(CPACK_COMPONENTS_ALL ".*osg' "$build_dir/CPackConfig.cmake"; then expected+=(libnearshore-osg0 libnearshore-osg-dev); fi
 test "${#debs[@]}" -eq "${#expected[@]}" || { echo "expected ${#expected[@]} packages (${expected[*]}), cpack made ${#debs[@]}"; exit 1; }
 
 # 2. Their Depends, and every installed file in exactly one package.
@@ -122,6 +123,32 @@ cmake -S "$work/hosts" -B "$work/hosts/cxx" -G Ninja -DCMAKE_BUILD_TYPE=Release 
   -DNEARSHORE_CXX_SAMPLE=ON -DNEARSHORE_COMPONENTS="COMPONENTS;cxx" > "$work/hosts-cxx.log"
 cmake --build "$work/hosts/cxx" >> "$work/hosts-cxx.log"
 say "samples built against the root: query_track and ship_track by pkg-config, query_track (C, no Eigen or nlohmann_json) and own_renderer (C++) by find_package ($(elapsed))"
+
+# 4c'. The OpenSceneGraph sample by find_package(nearshore_osg) from the root (OSG from this
+#      machine, as libnearshore-osg-dev depends on libopenscenegraph-dev), linked against the
+#      root's libnearshore_osg.so.0 and libnearshore.so.0.
+if [[ " ${expected[*]} " == *" libnearshore-osg0 "* ]]; then
+  mkdir -p "$work/osg-host"
+  cat > "$work/osg-host/CMakeLists.txt" <<CMAKE
+cmake_minimum_required(VERSION 3.25)
+project(packaged_osg_host CXX)
+set(CMAKE_CXX_STANDARD 20)
+find_package(nearshore_osg REQUIRED CONFIG)
+find_package(OpenGL REQUIRED COMPONENTS OpenGL)
+add_executable(nearshore_osgviewer "$usr/share/doc/libnearshore-osg-dev/nearshore_osgviewer.cpp")
+target_link_libraries(nearshore_osgviewer PRIVATE nearshore::osg \${OPENSCENEGRAPH_LIBRARIES} OpenGL::GL)
+CMAKE
+  cmake -S "$work/osg-host" -B "$work/osg-host/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$usr" \
+    > "$work/osg-host.log" 2>&1 || { cat "$work/osg-host.log"; exit 1; }
+  grep -q "^nearshore_osg_DIR:PATH=$libdir/cmake/nearshore_osg$" "$work/osg-host/build/CMakeCache.txt" \
+    || { echo "find_package found another nearshore_osg:"; grep nearshore_osg_DIR "$work/osg-host/build/CMakeCache.txt"; exit 1; }
+  cmake --build "$work/osg-host/build" >> "$work/osg-host.log" 2>&1 || { cat "$work/osg-host.log"; exit 1; }
+  links=$(LD_LIBRARY_PATH="$libdir" ldd "$work/osg-host/build/nearshore_osgviewer")
+  grep -q "libnearshore_osg.so.0 => $libdir/libnearshore_osg.so.0" <<< "$links" \
+    && grep -q "libnearshore.so.0 => $libdir/libnearshore.so.0" <<< "$links" \
+    || { echo "nearshore_osgviewer does not load the root's libraries:"; echo "$links"; exit 1; }
+  say "the OpenSceneGraph sample nearshore_osgviewer built by find_package(nearshore_osg) against the root ($(elapsed))"
+fi
 
 # 4d. Run from the root: its library, its tools, its module.
 export LD_LIBRARY_PATH="$libdir"

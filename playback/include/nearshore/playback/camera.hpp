@@ -53,6 +53,16 @@ struct CameraView {
 /// Throws nearshore::Error when the eye and the target coincide or the look is vertical.
 CameraView camera_view(const Camera& camera, int width_px, int height_px, double near_m, double far_m);
 
+/// The view of a host's own camera (a scene graph's: OpenSceneGraph, a game engine), from its
+/// view and perspective projection matrices (column-major, OpenGL's conventions: the view maps
+/// the site frame to eye space, the eye looks down -z; the projection maps depth to [-1, 1]) on a
+/// width_px x height_px viewport. The clip distances are read back from the projection (n =
+/// P[14] / (P[10] - 1), f = P[14] / (P[10] + 1)), so the sea is depth-tested in the host's own
+/// depth range. For the matrices camera_view(camera, ...) makes it returns that view again (to
+/// round-off). Throws nearshore::Error for a projection that is not a perspective one (an
+/// orthographic P[15] = 1, or n, f not 0 < n < f) or a view that is not a rigid motion.
+CameraView camera_view_from_matrices(const Matrix4& view, const Matrix4& projection, int width_px, int height_px);
+
 /// A top-down orthographic view of the site rectangle [x0, x1] x [y0, y1] (row 0 of the viewport
 /// at y0, the south), z in [z_min, z_max]: the height pass.
 Matrix4 orthographic_top_down(double x0_m, double y0_m, double x1_m, double y1_m, double z_min_m, double z_max_m);

@@ -73,6 +73,9 @@ struct DrawOptions {
   bool wireframe = false;             ///< the grid's edges drawn over the sea
   bool sky = true;                    ///< false: a plain background instead of the sky
   Rgb background = {0.f, 0.f, 0.f};
+  /// false: the SurfaceLayers' meshes are not drawn into the picture, only mirrored into the local
+  /// reflection: for a host whose scene graph draws those objects itself (nearshore::osg).
+  bool draw_meshes = true;
 };
 
 /// The passes of render(), in the order drawn, for the GPU time of each (FrameStatistics::gpu).
@@ -169,6 +172,18 @@ class WaterRenderer {
   /// patch or mesh without data.
   void render(const runtime::SurfaceSnapshot& snapshot, const Camera& camera, const Lighting& lighting, int width_px,
               int height_px, const DrawOptions& options = {}, const SurfaceLayers* layers = nullptr);
+  /// Draws `snapshot` into the framebuffer and viewport the HOST has bound (a scene graph's
+  /// window or render target), seen by the host's `view` (camera_view_from_matrices): nothing is
+  /// cleared, the sky, terrain and sea are depth-tested against (and write) the host's depth
+  /// buffer in the host's depth range, so the host's objects drawn before or after are sorted
+  /// against the water per pixel. One sample per pixel as the host's buffer has them
+  /// (RendererSettings::msaa_samples does not apply); read_pixels() and blit_to_window() do not
+  /// see this draw. The GL state it leaves: framebuffer, viewport, program, vertex array and
+  /// texture bindings, depth and blend settings changed (docs/osg.md lists them): a host that
+  /// tracks GL state saves and restores it around the call. Throws as render().
+  void render_into_bound_framebuffer(const runtime::SurfaceSnapshot& snapshot, const CameraView& view,
+                                     const Lighting& lighting, const DrawOptions& options = {},
+                                     const SurfaceLayers* layers = nullptr);
   const FrameStatistics& last_frame() const;
   /// Makes the snapshot's keyframes resident without drawing (and spends the upload budget on
   /// staged ones), for a host that draws them itself; returns what textures() returns after.
