@@ -30,7 +30,9 @@ enum SamplerUnit {
   kDeepFoam = 21,
   kPreviousFoam = 22,
   kHarbourEtaRate = 23,
-  kRelativeWaveHeight = 25
+  kRelativeWaveHeight = 25,
+  kSceneColour = 26,  // the opaque scene the sea refracts (RefractionSource)
+  kSceneDepth = 27
 };
 
 /// A linked program: its vertex stage is `#version`, then the shared files `vertex_prefixes` in

@@ -15,6 +15,7 @@
 #include "local_reflection.hpp"
 #include "nearshore/core/error.hpp"
 #include "pass_timer.hpp"
+#include "refraction_source.hpp"
 #include "site_textures.hpp"
 #include "sky_pass.hpp"
 #include "solid_mesh_pass.hpp"
@@ -40,6 +41,7 @@ struct WaterRenderer::Impl {
   SkyPass sky;
   TerrainPass terrain;
   LocalReflection reflection;
+  RefractionSource refraction;
   SolidMeshPass solid_meshes;
   WaterSurfacePass water;
   HeightPass height;
@@ -210,7 +212,11 @@ struct WaterRenderer::Impl {
   }
 
   // The maps the sea samples, on their units (0: none this frame).
-  void bind_sea_maps(bool reflect, bool decal_foam, bool deep_foam_drawn) const {
+  void bind_sea_maps(bool reflect, bool decal_foam, bool deep_foam_drawn, bool refract) const {
+    glActiveTexture(GLenum(GL_TEXTURE0 + kSceneColour));
+    glBindTexture(GL_TEXTURE_2D, refract ? refraction.colour() : 0);
+    glActiveTexture(GLenum(GL_TEXTURE0 + kSceneDepth));
+    glBindTexture(GL_TEXTURE_2D, refract ? refraction.depth() : 0);
     glActiveTexture(GLenum(GL_TEXTURE0 + kReflection));
     glBindTexture(GL_TEXTURE_2D, reflect ? reflection.colour() : 0);
     glActiveTexture(GLenum(GL_TEXTURE0 + kDecalFoam));
@@ -273,19 +279,28 @@ struct WaterRenderer::Impl {
       draw_reflection(surface, light, view, earth_radius, width, height, layers);
     }
     timer.end_pass();
-    bind_sea_maps(reflect, decal_foam, deep_foam_drawn);
-    // 2c. Hulls and other solids, before the sea: the sea's depth test then hides what is under water.
+    // 2c. Hulls and other solids, before the sea: the sea's depth test hides what is under water,
+    // and the sea shows it through the surface by refraction (2d).
     if (layers && !layers->meshes.empty()) {
       timer.begin_pass(GpuPass::meshes);
       solid_meshes.draw(*layers, layer_gpu, surface, light, view, earth_radius, statistics);
       timer.end_pass();
     }
+    // 2d. The opaque scene so far (colour and depth) copied for the sea's refraction.
+    const bool refract = settings.refraction && lit;
+    if (refract) {
+      timer.begin_pass(GpuPass::refraction);
+      refraction.copy_from(target);
+      timer.end_pass();
+    }
+    bind_sea_maps(reflect, decal_foam, deep_foam_drawn, refract);
     // 3. The sea surface, and its grid's edges over it when asked.
     SeaDraw sea{settings, surface, light, view, earth_radius, options, width, height};
     sea.reflection = reflect;
     sea.decal_foam = decal_foam;
     if (decal_foam) sea.decal_foam_rect_m = layer_gpu.decal_rect_m();
     sea.deep_foam = deep_foam_drawn;
+    sea.refraction = refract;
     water.draw(sea, timer, statistics);
     // 4. One sample per pixel for read_pixels() and blit_to_window().
     if (samples > 1) {
@@ -369,8 +384,8 @@ Raster<float> WaterRenderer::render_height_map(const runtime::SurfaceSnapshot& s
 }
 
 const char* gpu_pass_name(GpuPass pass) {
-  static constexpr const char* kNames[kGpuPassCount] = {"decal_foam", "deep_foam", "sky",   "terrain",
-                                                        "reflection", "meshes",    "water", "resolve"};
+  static constexpr const char* kNames[kGpuPassCount] = {"decal_foam", "deep_foam", "sky",     "terrain",   "reflection",
+                                                        "meshes",     "water",     "resolve", "refraction"};
   const int k = static_cast<int>(pass);
   return k >= 0 && k < kGpuPassCount ? kNames[k] : "unknown";
 }
