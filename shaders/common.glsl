@@ -136,7 +136,7 @@ vec3 refraction_probe_m(vec3 surface_m, vec3 n, vec3 to_eye, float depth_m) {
 // Foam where the sea runs along a structure's face (lighting.cpp structure_foam, the same name).
 uniform float u_structure_foam_onset_m_s;  // Lighting::structure_foam_onset_m_s
 const float kRubbleMoundFaceSine = 0.5547002;  // a 1:1.5 armour slope
-const float kVerticalFacePorosity = 0.65;
+const float kVerticalFacePorosity = 0.88;
 float structure_foam(float rise_rate_m_s, float face_sine, float distance_m, float band_m) {
   float onset = u_structure_foam_onset_m_s;
   if (!(onset > 0.0) || !(band_m > 0.0) || !(face_sine > 0.0)) return 0.0;

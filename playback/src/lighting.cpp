@@ -219,7 +219,7 @@ Radiance submerged_transmittance(const LightingFrame& f, double depth_m, double 
 
 double structure_foam(const LightingFrame& f, double rise_rate_m_s, double face_sine, double distance_m, double band_m) {
   const double onset = f.structure_foam_onset_m_s;
-  if (!(onset > 0.0) || !(band_m > 0.0) || !(face_sine > 0.0)) return 0.0;
+  if (!(onset > 0.0) || !std::isfinite(onset) || !(band_m > 0.0) || !(face_sine > 0.0)) return 0.0;
   const bool vertical = face_sine >= 1.0;
   const double along_face = (vertical ? std::max(rise_rate_m_s, 0.0) : std::abs(rise_rate_m_s)) / face_sine;
   return std::clamp((along_face - onset) / onset, 0.0, 1.0) * std::clamp(1.0 - distance_m / band_m, 0.0, 1.0);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -535,6 +536,30 @@ TEST(Lighting, TheRefractedSceneIsTheFlatSeabedTermForTermAndItsProbeFollowsSnel
     const Radiance back = playback::from_display(frame, playback::to_display(frame, radiance));
     for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(back[k], radiance[k], 1e-9 * radiance[k]);
   }
+}
+
+TEST(Lighting, StructuresFoamFromTheAirEntrainmentOnsetAlongTheirFace) {
+  // structure_foam: the water's speed along the face is |rate| / sin(alpha) on a 1:1.5 rubble slope
+  // (sin 0.555), the rising rate on a vertical wall; foam from the onset (1 m/s), white at twice it,
+  // fading linearly to nothing a band off the face.
+  const playback::LightingFrame frame = playback::prepare_lighting(Lighting{});
+  EXPECT_NEAR(playback::kRubbleMoundFaceSine, std::sin(std::atan(1.0 / 1.5)), 1e-15);
+  const double s = playback::kRubbleMoundFaceSine;
+  EXPECT_EQ(playback::structure_foam(frame, 0.99 * s, s, 0.0, 8.0), 0.0);   // 0.99 m/s up the slope
+  EXPECT_NEAR(playback::structure_foam(frame, 1.5 * s, s, 0.0, 8.0), 0.5, 1e-12);
+  EXPECT_NEAR(playback::structure_foam(frame, -1.5 * s, s, 0.0, 8.0), 0.5, 1e-12);  // the down-rush too
+  EXPECT_EQ(playback::structure_foam(frame, 3.0, s, 0.0, 8.0), 1.0);
+  EXPECT_NEAR(playback::structure_foam(frame, 3.0, s, 6.0, 8.0), 0.25, 1e-12);
+  EXPECT_EQ(playback::structure_foam(frame, 3.0, s, 8.0, 8.0), 0.0);
+  // A vertical wall: the same rate foams less (no slope to run up), and falling water not at all.
+  EXPECT_NEAR(playback::structure_foam(frame, 1.5, 1.0, 0.0, 8.0), 0.5, 1e-12);
+  EXPECT_EQ(playback::structure_foam(frame, 0.9, 1.0, 0.0, 8.0), 0.0);
+  EXPECT_GT(playback::structure_foam(frame, 0.9, s, 0.0, 8.0), 0.0);
+  EXPECT_EQ(playback::structure_foam(frame, -3.0, 1.0, 0.0, 8.0), 0.0);
+  // Off: an infinite onset.
+  Lighting off;
+  off.structure_foam_onset_m_s = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(playback::structure_foam(playback::prepare_lighting(off), 30.0, s, 0.0, 8.0), 0.0);
 }
 
 TEST(Lighting, TheSeabedIsSeenWhereTheRefractedViewMeetsItAndItsTextureAveragesOne) {

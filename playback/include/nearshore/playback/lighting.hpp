@@ -180,10 +180,12 @@ Radiance submerged_transmittance(const LightingFrame& frame, double depth_m, dou
 /// mound's armour slope is 1:1.5 (the bake's style table, bathymetry harbour_builder.cpp; CEM VI-2
 /// gives 1:1.5 - 1:2): sin(atan(1 / 1.5)) = 0.555. A vertical wall (quay, mole, caisson): 1.
 inline constexpr double kRubbleMoundFaceSine = 0.5547001962252291;
-/// A structure face's porosity from which it is a vertical wall: the bake's style table lays a
-/// vertical kind's face as the numerical layer in front of the wall (porosity 0.7-0.9, mostly open
-/// water) and a sloping rock face at 0.45-0.5; the core is 0 for both.
-inline constexpr double kVerticalFacePorosity = 0.65;
+/// A structure face's porosity from which it is a vertical wall. The bake fits each face layer's
+/// porosity to the structure's reflection coefficient: a vertical wall reflects 0.9-1.0 (Goda 2000),
+/// so its layer stays nearly open water (0.966 on the demo's quay, 0.9 nominal in the style table),
+/// a rock slope 0.3-0.6 (Zanuttigh & van der Meer 2008) and its layer is denser (0.711 and 0.845 on
+/// the demo's arms and detached breakwater, 0.45 nominal); the core is 0 for both.
+inline constexpr double kVerticalFacePorosity = 0.88;
 /// How white the water is at a structure's face, 0..1: the water there rises or falls at
 /// `rise_rate_m_s` (the baked d eta / dt), so it runs along a face of sine `face_sine` at
 /// |rate| / sine (up a rubble slope and down through its armour: both churn it; up a vertical wall
