@@ -126,6 +126,23 @@ vec2 refracted_seabed_point(vec2 p, vec3 n, vec3 to_eye, float depth_m) {
   vec3 r = refract(-to_eye, n, 1.0 / kWaterIndex);
   return p + r.xy * (max(depth_m, 0.0) / max(-r.z, 0.1));
 }
+// Screen-space refraction's step (lighting.cpp refraction_probe_m): where the refracted view from
+// the surface point reaches depth_m below it.
+vec3 refraction_probe_m(vec3 surface_m, vec3 n, vec3 to_eye, float depth_m) {
+  vec3 r = refract(-to_eye, n, 1.0 / kWaterIndex);
+  return surface_m + r * (max(depth_m, 0.0) / max(-r.z, 0.1));
+}
+
+// Foam where the sea runs along a structure's face (lighting.cpp structure_foam, the same name).
+uniform float u_structure_foam_onset_m_s;  // Lighting::structure_foam_onset_m_s
+const float kRubbleMoundFaceSine = 0.5547002;  // a 1:1.5 armour slope
+const float kVerticalFacePorosity = 0.88;
+float structure_foam(float rise_rate_m_s, float face_sine, float distance_m, float band_m) {
+  float onset = u_structure_foam_onset_m_s;
+  if (!(onset > 0.0) || !(band_m > 0.0) || !(face_sine > 0.0)) return 0.0;
+  float along_face = (face_sine >= 1.0 ? max(rise_rate_m_s, 0.0) : abs(rise_rate_m_s)) / face_sine;
+  return clamp((along_face - onset) / onset, 0.0, 1.0) * clamp(1.0 - distance_m / band_m, 0.0, 1.0);
+}
 
 // ---- surfaces -----------------------------------------------------------------------------
 vec3 shade_lambertian(vec3 normal, vec3 albedo) {
@@ -150,8 +167,15 @@ float facet_slope_density(float a, float c, float extra) {
   return exp(-0.5 * (a * a / s_u + c * c / s_c)) / (2.0 * kPi * sqrt(s_u * s_c));
 }
 
+// What a submerged object keeps of its light (lighting.cpp submerged_transmittance): down depth / 0.8
+// and back up the path through the water, per band.
+vec3 submerged_transmittance(float depth_m, float path_m) {
+  return exp(-u_water_attenuation * (max(depth_m, 0.0) / 0.8 + max(path_m, 0.0)));
+}
+//   refracted_scene: the opaque scene under the surface (radiance drawn in air, alpha = coverage),
+//   refracted_depth_path: its vertical depth below the surface point and its path along the view.
 vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_slope_variance, float crest_thinness,
-                 vec4 local_reflection, float seabed_scale) {
+                 vec4 local_reflection, float seabed_scale, vec4 refracted_scene, vec2 refracted_depth_path) {
   vec3 l = u_sun_direction;
   float cos_v = max(dot(n, v), 1e-3);
   float extra = max(extra_slope_variance, 0.0);
@@ -184,7 +208,13 @@ vec3 shade_water(vec3 n, vec3 v, float water_depth_m, float foam, float extra_sl
   float crest = u_translucency * clamp(crest_thinness, 0.0, 1.0) * lobe * 0.15;
   float sun_in = 1.0 - fresnel_reflectance(mu_s);
   vec3 e_down = u_sun_illuminance * mu_s * sun_in + u_sky_illuminance * (1.0 - 0.066);
-  vec3 water_leaving = (1.0 - sky_fresnel) / n2 * e_down * reflectance / kPi;
+  // 3b. the opaque scene the refraction found (lit in air by E_air, under water by e_down)
+  vec3 seen_object = submerged_transmittance(refracted_depth_path.x, refracted_depth_path.y);
+  vec3 e_air = u_sun_illuminance * mu_s + u_sky_illuminance;
+  vec3 object = refracted_scene.rgb * e_down / max(e_air, vec3(1e-12));
+  vec3 refracted = e_down * u_deep_reflectance * (1.0 - seen_object) / kPi + object * seen_object;
+  float scene = clamp(refracted_scene.a, 0.0, 1.0);
+  vec3 water_leaving = (1.0 - sky_fresnel) / n2 * ((1.0 - scene) * e_down * reflectance / kPi + scene * refracted);
   vec3 through_crest = crest * u_sun_illuminance * sun_in / kPi * exp(-u_water_attenuation * 4.0);
   vec3 surface = sky_fresnel * sky + u_sun_illuminance * glitter + water_leaving + through_crest;
   // 5. foam, seed 003 eq. (15)
@@ -223,4 +253,12 @@ vec3 to_display(vec3 radiance) {
   float brightest = max(exposed.r, max(exposed.g, exposed.b));
   if (brightest > 1.0) exposed = vec3(Y_display) + (exposed - vec3(Y_display)) * ((1.0 - Y_display) / (brightest - Y_display));
   return pow(clamp(exposed, 0.0, 1.0), vec3(1.0 / 2.2));
+}
+// The inverse of to_display (lighting.cpp from_display): the opaque scene's displayed colour back
+// to radiance for the refraction (luminance exact; a colour desaturated to fit keeps that hue).
+vec3 from_display(vec3 displayed) {
+  vec3 exposed = pow(clamp(displayed, 0.0, 1.0), vec3(2.2));
+  float Y_display = min(dot(exposed, kLuminanceWeights), 0.999);
+  if (!(Y_display > 0.0)) return vec3(0.0);
+  return exposed * (-log(1.0 - Y_display) / u_exposure / Y_display);
 }

@@ -1,7 +1,8 @@
 // Prepended with common.glsl and surface.glsl (u_eye_m). A rigid mesh lit as the land is (common.glsl shade_lambertian: the sun and the sky dome), with
 // its face normal turned towards the eye (a hull is seen from outside; both sides are lit), and
-// the bottom paint below the boot top. The sea, drawn opaque with depth testing, hides what is
-// under the water: the waterline is where they meet.
+// the bottom paint below the boot top. The sea, drawn after it with depth testing, covers what is
+// under the water (the waterline is where they meet) and shows it through its surface by
+// refraction (water.frag.glsl refracted_scene), attenuated by the water.
 in vec3 v_position_m;
 in float v_body_z_m;
 uniform vec3 u_albedo_above, u_albedo_below;

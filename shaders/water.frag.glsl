@@ -21,6 +21,11 @@ uniform vec4 u_decal_foam_rect_m;       // ... x0, y0, width, height of the site
 uniform float u_detail_parallax;        // seed 004 eq. (5) on (1) or off (0): Lighting::detail_parallax
 uniform bool u_has_deep_foam;           // the persistent foam f_t of seed 000 eq. (3.46) (foam_decay.frag.glsl) ...
 uniform sampler2D u_deep_foam;          // ... over the largest cascade's tile, repeating
+uniform bool u_has_scene;               // the opaque scene (sky, seabed, land, structures, hulls) ...
+uniform sampler2D u_scene_colour;       // ... as displayed (to_display of through_air), and ...
+uniform sampler2D u_scene_depth;        // ... its window depth, copied before the sea is drawn
+uniform mat4 u_view_projection;         // water_vertex.glsl's, and its inverse:
+uniform mat4 u_inverse_view_projection;
 uniform bool u_has_relative_wave_height;     // runtime::HarbourSite::relative_wave_height (K) ...
 uniform sampler2D u_relative_wave_height;    // ... over the site, cell centres at texel centres
 in vec2 v_site_m;
@@ -88,6 +93,43 @@ void shoreline_waves(vec2 p, float still_depth_m, float footprint_m, inout vec2 
   }
 }
 
+// d eta / dt of the harbour at p (m/s): the time derivative of harbour_in_time (surface.glsl), the
+// Hermite's basis derivatives over the frame interval, else the keyframes' difference over it.
+float harbour_rate_in_time(vec2 p) {
+  float T = u_frame_interval_s;
+  if (T <= 0.0) return 0.0;
+  float from = harbour_bilinear(u_harbour_eta_from, p), to = harbour_bilinear(u_harbour_eta_to, p);
+  if (!u_harbour_hermite) return (to - from) / T;
+  float f = u_harbour_fraction, f2 = f * f;
+  return ((6.0 * f2 - 6.0 * f) * from + (-6.0 * f2 + 6.0 * f) * to) / T +
+         (3.0 * f2 - 4.0 * f + 1.0) * harbour_bilinear(u_harbour_eta_rate_from, p) +
+         (3.0 * f2 - 2.0 * f) * harbour_bilinear(u_harbour_eta_rate_to, p);
+}
+
+// Foam at the face of a breakwater or quay (docs/lighting.md step 7): the nearest structure cell
+// (porosity < 0.99) among this cell and its eight neighbours, its kind from its porosity (a
+// vertical wall's face layer is mostly open water, a rock face about half), and the baked rise
+// rate here. White within one cell of the face, fading off it.
+float structure_face_foam(vec2 p) {
+  if (!u_has_site || !u_has_keyframes) return 0.0;
+  ivec2 cell = ivec2(floor(p / u_spacing_m));
+  float nearest_m = 1e9, face_porosity = 1.0;
+  for (int dj = -1; dj <= 1; ++dj)
+    for (int di = -1; di <= 1; ++di) {
+      ivec2 c = cell + ivec2(di, dj);
+      if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, u_cells))) continue;
+      float n = texelFetch(u_porosity, c, 0).r;
+      if (n >= 0.99) continue;
+      vec2 low = vec2(c) * u_spacing_m, high = low + u_spacing_m;
+      float d = length(max(max(low - p, p - high), vec2(0.0)));
+      if (d < nearest_m) { nearest_m = d; face_porosity = n; }
+    }
+  float band_m = max(u_spacing_m.x, u_spacing_m.y);
+  if (nearest_m >= band_m) return 0.0;
+  float face_sine = face_porosity >= kVerticalFacePorosity ? 1.0 : kRubbleMoundFaceSine;
+  return structure_foam(harbour_rate_in_time(p), face_sine, nearest_m, band_m);
+}
+
 // How much of cascade c a point of harbour weight w gets (cascade_share, cascade_variance_share:
 // lighting.hpp): all of it beyond the harbour; over the harbour only the finest cascades (tiles
 // under 32 harbour cells), which stand for the short waves a bake's grid is too coarse to carry,
@@ -101,6 +143,81 @@ float cascade_share(int c, float w, float k) { return over_harbour(c) ? (1.0 - w
 float cascade_variance_share(int c, float w, float k) {
   float kc = clamp(k, 0.0, 1.0);
   return over_harbour(c) ? (1.0 - w) + w * kc * kc : 1.0 - w;
+}
+
+// Screen-space refraction (seed 003 eq. 14, seed 001 eq. 30-32, seed 000 section 3.3.2): what the
+// opaque scene drawn before the sea shows under this surface point, looked up where the view
+// refracted at the surface (Snell, the pixel's normal) meets it. The drawn frame (with the Earth's
+// curvature drop) throughout: the depth buffer's points and the water's are in the same one.
+vec3 drawn_point(vec2 uv, float window_depth) {
+  vec4 h = u_inverse_view_projection * vec4(2.0 * vec3(uv, window_depth) - 1.0, 1.0);
+  return h.xyz / h.w;
+}
+vec3 window_point(vec3 point_m) {  // uv and window depth
+  vec4 clip = u_view_projection * vec4(point_m, 1.0);
+  return clip.xyz / max(clip.w, 1e-6) * 0.5 + 0.5;
+}
+bool on_screen(vec3 w) { return all(greaterThanEqual(w.xy, vec2(0.0))) && all(lessThanEqual(w.xy, vec2(1.0))); }
+// Returns the scene's radiance as drawn in air (rgb; alpha 1 where found, 0 where nothing is
+// drawn under the surface here: the procedural seabed stands in) and in depth_path its depth below
+// the surface point and the path to it along the refracted view.
+vec4 refracted_scene(vec3 normal, vec3 to_eye, float water_depth_m, out vec2 depth_path) {
+  depth_path = vec2(0.0);
+  if (!u_has_scene) return vec4(0.0);
+  vec2 uv0 = gl_FragCoord.xy / u_viewport_px;
+  vec3 here = drawn_point(uv0, gl_FragCoord.z);  // this pixel's surface point, as the depth buffer has it
+  float depth0 = texture(u_scene_depth, uv0).r;
+  if (depth0 >= 1.0) return vec4(0.0);  // nothing behind the sea here but the sky
+  vec3 behind = drawn_point(uv0, depth0);  // what the unrefracted view meets
+  float below_m = here.z - behind.z;
+  if (below_m <= 0.0) return vec4(0.0);  // above this point (a crest before a quay's face): nothing submerged
+  // March the refracted ray down (refraction_probe_m at 12 depths) until it passes behind what the
+  // scene shows there, then halve the last step 4 times. As deep as the seabed under this point
+  // and a quarter more (a slope falling away), or twice what the unrefracted view meets.
+  const int kSteps = 12;
+  float reach_m = max(2.0 * below_m, 1.25 * water_depth_m + 1.0), before_m = 0.0, after_m = -1.0;
+  for (int k = 1; k <= kSteps; ++k) {
+    float h = reach_m * float(k) / float(kSteps);
+    vec3 w = window_point(refraction_probe_m(here, normal, to_eye, h));
+    if (!on_screen(w)) break;
+    float d = texture(u_scene_depth, w.xy).r;
+    if (d < 1.0 && w.z >= d) { after_m = h; break; }
+    before_m = h;
+  }
+  // The ray left the picture, or went deeper than the seabed without meeting what is drawn: the
+  // procedural seabed stands in (the same sand at the same refracted point, for a flat bottom).
+  if (after_m <= 0.0) return vec4(0.0);
+  vec2 uv = uv0;
+  vec3 found = behind;
+  {
+    for (int k = 0; k < 4; ++k) {
+      float h = 0.5 * (before_m + after_m);
+      vec3 w = window_point(refraction_probe_m(here, normal, to_eye, h));
+      float d = texture(u_scene_depth, w.xy).r;
+      if (d < 1.0 && w.z >= d) after_m = h; else before_m = h;
+    }
+    vec3 w = window_point(refraction_probe_m(here, normal, to_eye, after_m));
+    float d = texture(u_scene_depth, w.xy).r;
+    vec3 q = drawn_point(w.xy, d);
+    // The usual fix: a refracted sample that lands on what stands in front of the water (nearer
+    // than this surface point, or not under it: a hull or a quay above the surface) is not what
+    // the water shows; the unrefracted sample stands in.
+    if (d > gl_FragCoord.z && d < 1.0 && q.z < here.z) {
+      uv = w.xy;
+      found = q;
+    }
+  }
+  // Undo the display curve and the fog the scene was drawn through (its whole path from the eye:
+  // the water's own through_air adds the air part again); fog too thick to see through: not found.
+  float t = fog_transmittance(u_eye_m, found);
+  if (t < 0.02) return vec4(0.0);
+  vec3 drawn = from_display(texture(u_scene_colour, uv).rgb);
+  vec3 radiance = t >= 1.0 ? drawn : max((drawn - (1.0 - t) * fog_radiance(found - u_eye_m)) / t, vec3(0.0));
+  // The path through the water along the refracted view to the depth of what is seen.
+  vec3 r = refract(-to_eye, normal, 1.0 / kWaterIndex);
+  float depth_m = here.z - found.z;
+  depth_path = vec2(depth_m, depth_m / max(-r.z, 0.1));
+  return vec4(radiance, 1.0);
 }
 
 void main() {
@@ -188,7 +305,11 @@ void main() {
   // limit H / d = 0.78, i.e. a crest eta ~ 0.39 d): a tall swell in deep water does not whitecap.
   float depth_limited = smoothstep(0.25, 0.39, eta / max(still_water_depth_at(p) + eta, 0.05));
   float crest_foam = weight * depth_limited * clamp((eta - u_foam_onset_m) / (u_foam_full_m - u_foam_onset_m), 0.0, 1.0);
-  float foam = max(max(breaking, crest_foam), max(deep_foam, shore_foam));
+  // At breakwaters and quays: where the baked sea runs up and down their faces fast enough to
+  // entrain air, under the foam map (eq. 3.48) as the surf is.
+  float face_foam = weight * structure_face_foam(p);
+  if (face_foam > 0.0) face_foam *= mix(foam_texture(p, footprint_m), 1.0, 0.5 * face_foam);
+  float foam = max(max(max(breaking, crest_foam), max(deep_foam, shore_foam)), face_foam);
   if (u_has_decal_foam) {  // the wakes' decals, shaded as the sea's own foam
     vec2 uv = (p - u_decal_foam_rect_m.xy) / u_decal_foam_rect_m.zw;
     if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)))) foam = max(foam, texture(u_decal_foam, uv).r);
@@ -200,6 +321,9 @@ void main() {
   if (u_has_reflection) local = texture(u_reflection, (gl_FragCoord.xy - u_viewport_origin_px) / u_viewport_px + 0.03 * normal.xy);
   // The seabed seen through the water where the refracted view meets it (its texture there).
   float seabed = seabed_texture(refracted_seabed_point(p, normal, to_eye, total_depth));
-  vec3 radiance = shade_water(normal, to_eye, total_depth, foam, extra_variance, crest_thinness, local, seabed);
+  vec2 scene_depth_path;
+  vec4 scene = refracted_scene(normal, to_eye, total_depth, scene_depth_path);
+  vec3 radiance = shade_water(normal, to_eye, total_depth, foam, extra_variance, crest_thinness, local, seabed,
+                              scene, scene_depth_path);
   fragment_colour = vec4(to_display(through_air(radiance, u_eye_m, v_position_m)), 1.0);
 }

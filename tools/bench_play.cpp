@@ -34,6 +34,9 @@ void add_bench_play(CLI::App& bench) {
   command->add_option("--msaa", m.msaa_samples, "Anti-aliasing samples per pixel of the frame-rate sections (the pass "
                                                 "section also runs at 1)")
       ->capture_default_str()->check(number_in(at_least(1), at_most(32)));
+  command->add_option("--refraction", m.refraction,
+                      "Screen-space refraction of what lies under the water (true/false): its cost is the difference")
+      ->capture_default_str();
   command->add_option("--draws", m.draws, "Frames drawn per frame-rate measurement (after one to warm up)")
       ->capture_default_str()->check(number_in(at_least(2), at_most(1000)));
   command->add_option("--work", o->synthetic.work_folder, "Scratch folder for the synthetic sequence (kept for the next run)")

@@ -208,10 +208,15 @@ void add_play_command(CLI::App& app) {
       ->check(number_in(at_least(0), at_most(4)))->capture_default_str();
   cmd->add_option("--foam-decay", v.foam_decay_s, "Seconds over which the deep water's foam fades by 1/e (0: no lasting foam)")
       ->check(number_in(at_least(0), at_most(60)))->capture_default_str();
+  cmd->add_option("--structure-foam", v.structure_foam_onset_m_s,
+                  "Speed of the water along a breakwater's or quay's face (m/s) from which it foams (air entrainment; 0: no foam there)")
+      ->check(number_in(at_least(0), at_most(100)))->capture_default_str();
   cmd->add_option("--lighting", v.lighting_mode, "full (docs/lighting.md) or off (a flat sea, no sky: the cost baseline)")
       ->check(CLI::IsMember({"full", "off"}))->capture_default_str();
   cmd->add_option("--msaa", v.msaa_samples, "Anti-aliasing: samples per pixel (1: off; more than the GPU offers: its most; 0: 4 on a GPU, 1 on a software renderer such as llvmpipe)")
       ->check(number_in(at_least(0), at_most(32)))->capture_default_str();
+  cmd->add_option("--refraction", v.refraction, "What lies under the water seen through it (screen-space refraction): on, or off (the sea opaque over it)")
+      ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
   cmd->add_option("--frames", v.frames, "Headless: draw this many frames at 30 fps display time, then exit")
       ->check(number_in(at_least(1), at_most(1e6)));
   cmd->add_option("--screenshot", o->screenshot, "Headless: write the last frame to this PNG (hidden window)");

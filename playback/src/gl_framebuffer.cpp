@@ -34,8 +34,13 @@ Framebuffer Framebuffer::with_texture(GLuint texture, int width, int height, boo
   return create(width, height, 0, texture, 1, depth, refusal);
 }
 
+Framebuffer Framebuffer::with_textures(GLuint colour_texture, GLuint depth_texture, int width, int height,
+                                       const FramebufferRefusal& refusal) {
+  return create(width, height, 0, colour_texture, 1, false, refusal, depth_texture);
+}
+
 Framebuffer Framebuffer::create(int width, int height, GLenum colour_format, GLuint colour_texture,
-                                int samples, bool depth, const FramebufferRefusal& refusal) {
+                                int samples, bool depth, const FramebufferRefusal& refusal, GLuint depth_texture) {
   Framebuffer made;
   made.width_ = width;
   made.height_ = height;
@@ -48,7 +53,9 @@ Framebuffer Framebuffer::create(int width, int height, GLenum colour_format, GLu
     made.colour_ = attach_renderbuffer(GL_COLOR_ATTACHMENT0, colour_format, width, height, samples);
   // GL_DEPTH_COMPONENT32F in every target, as the renderer has always drawn: another depth format
   // changes which of two nearly coincident surfaces (a quay face and the sea) wins a pixel.
-  if (depth)
+  if (depth_texture)
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_texture, 0);
+  else if (depth)
     made.depth_ = attach_renderbuffer(GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT32F, width, height, samples);
   glBindRenderbuffer(GL_RENDERBUFFER, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
@@ -88,6 +95,14 @@ void RenderTarget::resolve() const {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved_.id());
   glBlitFramebuffer(0, 0, width(), height(), 0, 0, width(), height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void RenderTarget::copy_to(const Framebuffer& destination) const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_.id());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, destination.id());
+  glBlitFramebuffer(0, 0, width(), height(), 0, 0, width(), height(), GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
+                    GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, draw_.id());
 }
 
 void RenderTarget::release() {

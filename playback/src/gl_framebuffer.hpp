@@ -25,6 +25,12 @@ class Framebuffer {
   static Framebuffer with_texture(GLuint texture, int width, int height, bool depth,
                                   const FramebufferRefusal& refusal);
 
+  /// Colour and depth: level 0 of `colour_texture` and of `depth_texture` (GL_DEPTH_COMPONENT32F,
+  /// the format of every depth buffer here, so a depth blit from another target is allowed), both
+  /// `width` x `height` and the caller's.
+  static Framebuffer with_textures(GLuint colour_texture, GLuint depth_texture, int width, int height,
+                                   const FramebufferRefusal& refusal);
+
   GLuint id() const { return framebuffer_; }
   GLuint colour_renderbuffer() const { return colour_; }
   int width() const { return width_; }
@@ -36,7 +42,7 @@ class Framebuffer {
  private:
   // Leaves the new framebuffer bound to GL_FRAMEBUFFER and no renderbuffer bound.
   static Framebuffer create(int width, int height, GLenum colour_format, GLuint colour_texture, int samples,
-                            bool depth, const FramebufferRefusal& refusal);
+                            bool depth, const FramebufferRefusal& refusal, GLuint depth_texture = 0);
   GLuint framebuffer_ = 0, colour_ = 0, depth_ = 0;  // colour_: 0 when the colour is a texture
   int width_ = 0, height_ = 0, samples_ = 0;
 };
@@ -57,6 +63,10 @@ class RenderTarget {
   int width() const { return draw_.width(); }
   int height() const { return draw_.height(); }
   void release();
+  /// The colour and depth drawn so far copied into `destination` (its colour one sample, depth
+  /// GL_DEPTH_COMPONENT32F, the same size): a multisampled target's samples averaged (colour) or
+  /// one of them taken (depth, GL_NEAREST). Leaves the draw framebuffer bound for drawing on.
+  void copy_to(const Framebuffer& destination) const;
 
  private:
   Framebuffer draw_, resolved_;  // resolved_ empty when draw_ has one sample

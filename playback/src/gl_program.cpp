@@ -1,5 +1,6 @@
 #include "gl_program.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <string_view>
@@ -39,6 +40,8 @@ constexpr const char* kSamplerUnits[] = {"u_harbour_eta_from",
                                          "u_harbour_eta_rate_from",
                                          "u_harbour_eta_rate_to",
                                          "u_relative_wave_height",
+                                         "u_scene_colour",
+                                         "u_scene_depth",
                                          "u_structure_mask"};
 static_assert(std::size(kSamplerUnits) == kStructureMask + 1, "one name per SamplerUnit, in order");
 
@@ -147,6 +150,7 @@ void set_lighting_uniforms(GLuint program, const LightingFrame& f) {
   set_uniform(program, "u_exposure", float(f.exposure));
   set_uniform(program, "u_foam_onset_m", float(f.foam_onset_m));
   set_uniform(program, "u_foam_full_m", float(f.foam_full_m));
+  set_uniform(program, "u_structure_foam_onset_m_s", float(std::min(f.structure_foam_onset_m_s, 1e30)));
 }
 
 }  // namespace nearshore::playback

@@ -31,7 +31,9 @@ enum SamplerUnit {
   kPreviousFoam = 22,
   kHarbourEtaRate = 23,
   kRelativeWaveHeight = 25,
-  kStructureMask = 26
+  kSceneColour = 26,  // the opaque scene the sea refracts (RefractionSource)
+  kSceneDepth = 27,
+  kStructureMask = 28
 };
 
 /// A linked program: its vertex stage is `#version`, then the shared files `vertex_prefixes` in

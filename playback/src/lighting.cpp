@@ -63,6 +63,7 @@ LightingFrame prepare_lighting(const Lighting& l) {
   f.foam_full_m = l.foam_full_m;
   f.translucency = std::max(l.translucency, 0.0);
   f.jacobian_foam_onset = l.jacobian_foam_onset;
+  f.structure_foam_onset_m_s = l.structure_foam_onset_m_s;
   f.wind_direction_rad = l.wind_direction_rad;
   f.shore_wave_amplitude_m = std::max(l.shore_wave_amplitude_m, 0.0) * std::clamp(l.wind_speed_m_s / 10.0, 0.0, 1.0);
   f.shore_band_m = std::max(l.shore_band_m, 1.0);
@@ -171,16 +172,57 @@ double seabed_texture(double x_m, double y_m) {
   return 0.7 + 0.6 * (0.65 * value_noise(x_m / 14.0, y_m / 14.0) + 0.35 * value_noise(x_m / 5.0 + 7.1, y_m / 5.0 + 7.1));
 }
 
-std::array<double, 2> refracted_seabed_point(double x_m, double y_m, const Vector3& n, const Vector3& to_eye, double depth_m) {
+namespace {
+// GLSL refract(-to_eye, n, 1 / n_water): the view's direction in the water (0 at total reflection).
+Vector3 refracted_view(const Vector3& n, const Vector3& to_eye) {
   const double eta = 1.0 / kWaterRefractiveIndex;
   const Vector3 i = {-to_eye[0], -to_eye[1], -to_eye[2]};
   const double n_dot_i = dot(n, i);
   const double k = 1.0 - eta * eta * (1.0 - n_dot_i * n_dot_i);
   Vector3 r = {0, 0, 0};
   if (k >= 0.0)
-    for (int c = 0; c < 3; ++c) r[std::size_t(c)] = eta * i[std::size_t(c)] - (eta * n_dot_i + std::sqrt(k)) * n[std::size_t(c)];
+    for (std::size_t c = 0; c < 3; ++c) r[c] = eta * i[c] - (eta * n_dot_i + std::sqrt(k)) * n[c];
+  return r;
+}
+}  // namespace
+
+std::array<double, 2> refracted_seabed_point(double x_m, double y_m, const Vector3& n, const Vector3& to_eye, double depth_m) {
+  const Vector3 r = refracted_view(n, to_eye);
   const double reach = std::max(depth_m, 0.0) / std::max(-r[2], 0.1);
   return {x_m + r[0] * reach, y_m + r[1] * reach};
+}
+
+Vector3 refraction_probe_m(const Vector3& surface_m, const Vector3& n, const Vector3& to_eye, double depth_m) {
+  const Vector3 r = refracted_view(n, to_eye);
+  const double reach = std::max(depth_m, 0.0) / std::max(-r[2], 0.1);
+  return {surface_m[0] + r[0] * reach, surface_m[1] + r[1] * reach, surface_m[2] + r[2] * reach};
+}
+
+Radiance from_display(const LightingFrame& f, const Radiance& displayed) {
+  Radiance exposed;
+  for (std::size_t i = 0; i < 3; ++i) exposed[i] = std::pow(std::clamp(displayed[i], 0.0, 1.0), 2.2);
+  const double y_display = std::min(luminance(exposed), 0.999);  // 1 - e^-7: the curve's top
+  if (!(y_display > 0.0)) return {0.0, 0.0, 0.0};
+  const double y = -std::log(1.0 - y_display) / f.exposure;
+  Radiance out;
+  for (std::size_t i = 0; i < 3; ++i) out[i] = exposed[i] * y / y_display;
+  return out;
+}
+
+Radiance submerged_transmittance(const LightingFrame& f, double depth_m, double path_m) {
+  Radiance t;
+  for (std::size_t c = 0; c < 3; ++c)
+    t[c] = std::exp(-f.water.diffuse_attenuation_per_m[c] *
+                    (std::max(depth_m, 0.0) / kDownwellingMeanCosine + std::max(path_m, 0.0)));
+  return t;
+}
+
+double structure_foam(const LightingFrame& f, double rise_rate_m_s, double face_sine, double distance_m, double band_m) {
+  const double onset = f.structure_foam_onset_m_s;
+  if (!(onset > 0.0) || !std::isfinite(onset) || !(band_m > 0.0) || !(face_sine > 0.0)) return 0.0;
+  const bool vertical = face_sine >= 1.0;
+  const double along_face = (vertical ? std::max(rise_rate_m_s, 0.0) : std::abs(rise_rate_m_s)) / face_sine;
+  return std::clamp((along_face - onset) / onset, 0.0, 1.0) * std::clamp(1.0 - distance_m / band_m, 0.0, 1.0);
 }
 
 double slope_variance_along(const LightingFrame& f, const Vector3& direction, double extra) {
@@ -239,6 +281,13 @@ Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   const Radiance seabed = {f.seabed_albedo[0] * s.seabed_albedo_scale, f.seabed_albedo[1] * s.seabed_albedo_scale,
                            f.seabed_albedo[2] * s.seabed_albedo_scale};
   const Radiance reflectance = shallow_water_reflectance(f.water, seabed, s.water_depth_m, path_factor);
+  // 3b. What the screen-space refraction found under the surface instead (a hull, a quay's toe,
+  //     the drawn seabed): drawn in air, it is lit by E_air = E_sun mu_s + E_sky; under the water
+  //     by the E_down that crossed the surface, attenuated on the way down and back up
+  //     (submerged_transmittance), over the water body's own R_inf (1 - that). For the flat seabed
+  //     (L = A E_air / pi) this is the reflectance above, term for term.
+  const double scene = std::clamp(s.refracted_scene_coverage, 0.0, 1.0);
+  const Radiance seen_object = submerged_transmittance(f, s.refracted_depth_m, s.refracted_path_m);
   // 4. Thin crests lit from behind, eq. (3.38): (n.l + v.l)^5 mu, v the viewing direction (from
   //    the eye); halved so the lobe peaks at 1 looking straight into the sun through the crest.
   const double lobe = std::pow(std::clamp(0.5 * (cos_l - dot(v, l)), 0.0, 1.0), 5.0);
@@ -249,7 +298,11 @@ Radiance shade_water(const LightingFrame& f, const SurfacePoint& s) {
   for (std::size_t c = 0; c < 3; ++c) {
     const double e_sun = f.sky.sun_illuminance_klx[c], e_sky = f.sky_illuminance_klx[c];
     const double e_down = e_sun * mu_s * sun_in + e_sky * (1.0 - kDiffuseSkyReflectance);
-    const double water_leaving = (1.0 - sky_fresnel) / n2 * e_down * reflectance[c] / kPi;
+    const double e_air = e_sun * mu_s + e_sky;
+    const double object = e_air > 0.0 ? s.refracted_scene[c] * e_down / e_air : 0.0;
+    const double refracted = e_down * f.water.deep_reflectance[c] * (1.0 - seen_object[c]) / kPi + object * seen_object[c];
+    const double water_leaving =
+        (1.0 - sky_fresnel) / n2 * ((1.0 - scene) * e_down * reflectance[c] / kPi + scene * refracted);
     const double through_crest = crest * e_sun * sun_in / kPi * std::exp(-f.water.diffuse_attenuation_per_m[c] * kCrestPathM);
     const double surface = sky_fresnel * sky[c] + e_sun * glitter + water_leaving + through_crest;
     // 5. Foam, seed 003 eq. (15): a Lambertian white over the water.

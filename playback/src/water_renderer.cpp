@@ -15,6 +15,7 @@
 #include "local_reflection.hpp"
 #include "nearshore/core/error.hpp"
 #include "pass_timer.hpp"
+#include "refraction_source.hpp"
 #include "site_textures.hpp"
 #include "sky_pass.hpp"
 #include "solid_mesh_pass.hpp"
@@ -32,6 +33,7 @@ struct Destination {
   GLuint framebuffer = 0;
   int x = 0, y = 0, width = 0, height = 0;
   bool clear = true;
+  bool own_target = true;  // the renderer's target (false: a host's framebuffer)
   void bind() const {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(x, y, width, height);
@@ -54,6 +56,7 @@ struct WaterRenderer::Impl {
   SkyPass sky;
   TerrainPass terrain;
   LocalReflection reflection;
+  RefractionSource refraction;
   SolidMeshPass solid_meshes;
   WaterSurfacePass water;
   HeightPass height;
@@ -224,7 +227,11 @@ struct WaterRenderer::Impl {
   }
 
   // The maps the sea samples, on their units (0: none this frame).
-  void bind_sea_maps(bool reflect, bool decal_foam, bool deep_foam_drawn) const {
+  void bind_sea_maps(bool reflect, bool decal_foam, bool deep_foam_drawn, bool refract) const {
+    glActiveTexture(GLenum(GL_TEXTURE0 + kSceneColour));
+    glBindTexture(GL_TEXTURE_2D, refract ? refraction.colour() : 0);
+    glActiveTexture(GLenum(GL_TEXTURE0 + kSceneDepth));
+    glBindTexture(GL_TEXTURE_2D, refract ? refraction.depth() : 0);
     glActiveTexture(GLenum(GL_TEXTURE0 + kReflection));
     glBindTexture(GL_TEXTURE_2D, reflect ? reflection.colour() : 0);
     glActiveTexture(GLenum(GL_TEXTURE0 + kDecalFoam));
@@ -265,7 +272,7 @@ struct WaterRenderer::Impl {
     statistics.far_m = view.far_m;
     statistics.msaa_samples = 1;
     draw_frame(snapshot, bound, view, lighting, options, layers,
-               Destination{GLuint(framebuffer), viewport[0], viewport[1], viewport[2], viewport[3], false});
+               Destination{GLuint(framebuffer), viewport[0], viewport[1], viewport[2], viewport[3], false, false});
     timer.end_pass();
     check_errors();
   }
@@ -329,13 +336,24 @@ struct WaterRenderer::Impl {
       draw_reflection(surface, light, view, earth_radius, destination, layers);
     }
     timer.end_pass();
-    bind_sea_maps(reflect, decal_foam, deep_foam_drawn);
-    // 2c. Hulls and other solids, before the sea: the sea's depth test then hides what is under water.
+    // 2c. Hulls and other solids, before the sea: the sea's depth test hides what is under water,
+    // and the sea shows it through the surface by refraction (2d).
     if (layers && !layers->meshes.empty() && options.draw_meshes) {
       timer.begin_pass(GpuPass::meshes);
       solid_meshes.draw(*layers, layer_gpu, surface, light, view, earth_radius, statistics);
       timer.end_pass();
     }
+    // 2d. The opaque scene so far (colour and depth) copied for the sea's refraction. Only in the
+    // renderer's own target: a host's framebuffer (render_into_bound_framebuffer) may hold a depth
+    // format the copy cannot blit (a blit of depth needs equal formats) and multisamples of its own,
+    // so a host's sea is drawn without it (docs/osg.md, "Limits").
+    const bool refract = settings.refraction && lit && destination.own_target;
+    if (refract) {
+      timer.begin_pass(GpuPass::refraction);
+      refraction.copy_from(target);
+      timer.end_pass();
+    }
+    bind_sea_maps(reflect, decal_foam, deep_foam_drawn, refract);
     // 3. The sea surface, and its grid's edges over it when asked.
     SeaDraw sea{settings, surface, light, view, earth_radius, options, destination.width, destination.height};
     sea.viewport_x_px = destination.x;
@@ -344,6 +362,7 @@ struct WaterRenderer::Impl {
     sea.decal_foam = decal_foam;
     if (decal_foam) sea.decal_foam_rect_m = layer_gpu.decal_rect_m();
     sea.deep_foam = deep_foam_drawn;
+    sea.refraction = refract;
     water.draw(sea, timer, statistics);
   }
 
@@ -424,8 +443,8 @@ Raster<float> WaterRenderer::render_height_map(const runtime::SurfaceSnapshot& s
 }
 
 const char* gpu_pass_name(GpuPass pass) {
-  static constexpr const char* kNames[kGpuPassCount] = {"decal_foam", "deep_foam", "sky",   "terrain",
-                                                        "reflection", "meshes",    "water", "resolve"};
+  static constexpr const char* kNames[kGpuPassCount] = {"decal_foam", "deep_foam", "sky",     "terrain",   "reflection",
+                                                        "meshes",     "water",     "resolve", "refraction"};
   const int k = static_cast<int>(pass);
   return k >= 0 && k < kGpuPassCount ? kNames[k] : "unknown";
 }

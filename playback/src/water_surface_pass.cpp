@@ -48,6 +48,8 @@ void WaterSurfacePass::draw(const SeaDraw& sea, PassTimer& timer, FrameStatistic
   set_uniform(program, "u_has_reflection", sea.reflection ? 1 : 0);
   set_uniform(program, "u_has_decal_foam", sea.decal_foam ? 1 : 0);
   set_uniform(program, "u_has_deep_foam", sea.deep_foam ? 1 : 0);
+  set_uniform(program, "u_has_scene", sea.refraction ? 1 : 0);
+  if (sea.refraction) set_uniform(program, "u_inverse_view_projection", inverse(sea.view.view_projection));
   set_uniform(program, "u_detail_parallax", float(sea.light.detail_parallax));
   if (sea.decal_foam) {
     const std::array<float, 4>& rect = sea.decal_foam_rect_m;

@@ -32,6 +32,7 @@ struct SeaDraw {
   bool decal_foam = false;                   ///< the decals' foam map on unit kDecalFoam
   std::array<float, 4> decal_foam_rect_m{};  ///< x0, y0, width, height of that map
   bool deep_foam = false;                    ///< DeepFoamPass's map on unit kDeepFoam
+  bool refraction = false;                   ///< RefractionSource's colour and depth on kSceneColour, kSceneDepth
 };
 
 class WaterSurfacePass {

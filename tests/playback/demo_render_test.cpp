@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
+#include <vector>
 
 #include "nearshore/ocean/sea_state_beaufort.hpp"
 #include "nearshore/playback/lighting.hpp"
@@ -161,6 +163,148 @@ TEST(DemoHarbourOnScreen, TheBakedSwellChangesThePictureAndTheBasinLooksCalmerTh
   // smaller than the approach's (K <= 0.5 against >= 0.8: at most 0.6 of the slopes).
   EXPECT_LT(basin.texture / basin.count, approach.texture / approach.count);
   EXPECT_LT(basin.change / basin.count, approach.change / approach.count);
+}
+
+TEST(DemoHarbourOnScreen, StructureFacesFoamWhereTheBakedRunUpPassesTheAirEntrainmentOnset) {
+  // Foam at breakwaters and quays from the baked field (docs/lighting.md step 7): at every water
+  // cell beside a structure, over 48 keyframes, the baked d eta / dt gives the speed of the water
+  // along the face (|w| / 0.555 up and down a 1:1.5 rubble slope, w up a vertical wall) and
+  // playback::structure_foam the white water from the onset of air entrainment (1 m/s). The
+  // exposed rubble faces (the approach's swell, K >= 0.8) must foam at some waves, more often
+  // than the sheltered faces (K <= 0.5); then the picture of the frame with the most face foam,
+  // seen from a low bridge, must turn white next to the structures and nowhere else.
+  const fs::path folder = demo_bake_folder();
+  ASSERT_TRUE(fs::exists(folder / "manifest.json")) << folder << " holds no bake (fixture demo_harbour_bake)";
+  runtime::StreamingOptions options;
+  options.lockstep = true;
+  runtime::StreamingEngine engine(folder, options);
+  engine.advance_to(0.0);
+  const auto site_pointer = engine.snapshot().site;
+  ASSERT_TRUE(site_pointer);
+  const runtime::HarbourSite& site = *site_pointer;
+  const GridGeometry& g = site.harbour.geometry;
+  const double dx = g.spacing_m, interval = site.frame_interval_s;
+  ASSERT_GT(interval, 0.0);
+  playback::Lighting lighting;
+  const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+  const auto is_structure = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < g.columns && j < g.rows && site.harbour.porosity(i, j) < 0.99f;
+  };
+  struct Face {
+    int i, j;
+    double sine, k;
+  };
+  std::vector<Face> faces;  // water cells with a structure among their eight neighbours
+  int rubble = 0, vertical = 0;
+  for (int j = 0; j < g.rows; ++j)
+    for (int i = 0; i < g.columns; ++i) {
+      if (is_structure(i, j) || site.harbour.land(i, j) != 0 || site.harbour.still_water_depth_m(i, j) <= 0.5f) continue;
+      float porosity = 1.f;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di)
+          if ((di == 0) != (dj == 0) && is_structure(i + di, j + dj)) porosity = std::min(porosity, site.harbour.porosity(i + di, j + dj));
+      if (porosity >= 0.99f) continue;  // a face across a corner only: skipped (the shader takes those too)
+      const double sine = porosity >= playback::kVerticalFacePorosity ? 1.0 : playback::kRubbleMoundFaceSine;
+      (sine < 1.0 ? rubble : vertical) += 1;
+      faces.push_back({i, j, sine, site.relative_wave_height.empty() ? 1.0 : double(site.relative_wave_height(i, j))});
+    }
+  ASSERT_GT(rubble, 50) << "rubble faces on the demo's breakwaters";
+  // The keyframes one after another: at a keyframe's own time the shader's rate is its rate.
+  struct Share {
+    int samples = 0, foaming = 0;
+    double peak_speed = 0;
+  } exposed, sheltered, walls;
+  double best_foam = -1, best_time = 0, best_cell_foam = -1;
+  int best_i = 0, best_j = 0;
+  for (int k = 0; k < 48; ++k) {
+    const double t = 60.0 + k * interval;
+    engine.advance_to(t);
+    const runtime::SurfaceSnapshot snapshot = engine.snapshot();
+    ASSERT_TRUE(snapshot.harbour_from);
+    const runtime::HarbourKeyframe& key = snapshot.harbour_fraction < 0.5 ? *snapshot.harbour_from : *snapshot.harbour_to;
+    ASSERT_FALSE(key.surface_elevation_rate_m_s.empty()) << "the bake's keyframes carry d eta / dt";
+    double frame_foam = 0;
+    for (const Face& face : faces) {
+      const double rate = key.surface_elevation_rate_m_s(face.i, face.j);
+      // the pixel at the cell's centre, half a cell from the face, band one cell
+      const double foam = playback::structure_foam(frame, rate, face.sine, 0.5 * dx, dx);
+      Share& share = face.sine >= 1.0 ? walls : face.k >= 0.8 ? exposed : face.k <= 0.5 ? sheltered : walls;
+      if (face.sine < 1.0 && face.k > 0.5 && face.k < 0.8) continue;  // neither
+      ++share.samples;
+      share.foaming += foam > 0.0;
+      share.peak_speed = std::max(share.peak_speed, std::abs(rate) / face.sine);
+      if (face.sine < 1.0) frame_foam += foam;
+      if (foam > best_cell_foam) best_cell_foam = foam, best_i = face.i, best_j = face.j;
+    }
+    if (frame_foam > best_foam) best_foam = frame_foam, best_time = t;
+  }
+  auto report = [](const char* name, const Share& s) {
+    std::printf("%s: %d cell-frames, foaming %.1f %%, fastest along the face %.2f m/s\n", name, s.samples,
+                s.samples ? 100.0 * s.foaming / s.samples : 0.0, s.peak_speed);
+  };
+  std::printf("faces: %d rubble, %d vertical (%.0f m cells), keyframes every %.2f s\n", rubble, vertical, dx, interval);
+  report("exposed rubble faces (K >= 0.8)", exposed);
+  report("sheltered rubble faces (K <= 0.5)", sheltered);
+  report("vertical faces and the rest", walls);
+  ASSERT_GT(exposed.samples, 0);
+  ASSERT_GT(sheltered.samples, 0);
+  const double exposed_share = double(exposed.foaming) / exposed.samples, sheltered_share = double(sheltered.foaming) / sheltered.samples;
+  // What the physics says of the demo's sea (a 1.5 m, 12 s swell): on a 1:1.5 slope its Iribarren
+  // number tan(alpha) / sqrt(H / L0) = 0.667 / sqrt(1.5 / 225) = 8.2 is far into surging (beyond
+  // 3.3: Battjes 1974), the wave runs up and down the armour without breaking, so the faces whiten
+  // only at the biggest waves where the exposed faces' flow passes the onset, and the sheltered
+  // faces (at most half the wave) never; the vertical quay in the basin neither.
+  EXPECT_GT(exposed.foaming, 0) << "no exposed face ever foams";
+  EXPECT_LT(exposed_share, 0.1);
+  EXPECT_LT(sheltered_share, exposed_share);
+  EXPECT_EQ(walls.foaming, 0);
+
+  // On screen: the frame with the most face foam, from a 15 m bridge 120 m south of the face that
+  // foams most, looking at it, with the face foam and without it (onset infinite).
+  engine.advance_to(best_time);
+  const runtime::SurfaceSnapshot snapshot = engine.snapshot();
+  playback::Camera camera;
+  camera.target_m = {(best_i + 0.5) * dx, (best_j + 0.5) * dx, 0.0};
+  camera.eye_m = {camera.target_m[0], camera.target_m[1] - 120.0, 15.0};
+  std::printf("most foam: %.2f at the face cell (%.0f, %.0f) m at t = %.1f s\n", best_cell_foam, camera.target_m[0],
+              camera.target_m[1], best_time);
+  camera.vertical_field_of_view_deg = 45.0;
+  const int width = 480, height = 270;
+  playback::GlWindow window(64, 64, "test", false);
+  playback::WaterRenderer renderer;
+  renderer.render(snapshot, camera, lighting, width, height);
+  const Image foamed = renderer.read_pixels();
+  playback::Lighting without_face_foam = lighting;
+  without_face_foam.structure_foam_onset_m_s = std::numeric_limits<double>::infinity();
+  renderer.render(snapshot, camera, without_face_foam, width, height);
+  const Image plain = renderer.read_pixels();
+  const playback::CameraView view = playback::camera_view(camera, width, height, 1.0, 1e4);
+  const auto inverse = playback::inverse(view.view_projection);
+  int changed = 0, changed_near_structures = 0;
+  double largest = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double difference = display_luminance(foamed.get(x, y)) - display_luminance(plain.get(x, y));
+      largest = std::max(largest, std::abs(difference));
+      if (std::abs(difference) <= 1.0 / 255) continue;
+      ++changed;
+      const double ndc_x = (x + 0.5) / width * 2 - 1, ndc_y = 1 - (y + 0.5) / height * 2;
+      const auto far = playback::transform(inverse, {ndc_x, ndc_y, 1.0, 1.0});
+      const Vector3 ray = unit({far[0] / far[3] - camera.eye_m[0], far[1] / far[3] - camera.eye_m[1], far[2] / far[3] - camera.eye_m[2]});
+      if (ray[2] >= 0) continue;
+      const double t = -camera.eye_m[2] / ray[2];
+      const int i = int((camera.eye_m[0] + t * ray[0]) / dx), j = int((camera.eye_m[1] + t * ray[1]) / dx);
+      bool near = false;  // a structure within two cells (the waves move the drawn point by up to a cell)
+      for (int dj = -2; dj <= 2; ++dj)
+        for (int di = -2; di <= 2; ++di) near = near || is_structure(i + di, j + dj);
+      changed_near_structures += near;
+    }
+  std::printf("on screen: %d pixels changed by the face foam (%d of them within two cells of a structure), at most %.3f in luminance\n",
+              changed, changed_near_structures, largest);
+  // The face foam the bake asks for at that frame is thin (its largest is printed above): it
+  // shows, and only beside the structures.
+  EXPECT_GE(changed, 10) << "the face foam on screen";
+  EXPECT_GE(changed_near_structures, 0.95 * changed) << "face foam away from the structures";
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -494,6 +495,71 @@ TEST(Lighting, GlitterFacetsFollowCoxAndMunksEllipseAlongTheWind) {
   EXPECT_NEAR(playback::slope_variance_along(frame, downwind, 0.0), frame.slope_variance_upwind, 1e-12);
   EXPECT_NEAR(playback::slope_variance_along(frame, crosswind, 0.0), frame.slope_variance_crosswind, 1e-12);
   EXPECT_NEAR(playback::slope_variance_along(frame, {0, 0, 1}, 0.0), frame.slope_variance_per_axis, 1e-12);
+}
+
+TEST(Lighting, TheRefractedSceneIsTheFlatSeabedTermForTermAndItsProbeFollowsSnell) {
+  // Screen-space refraction (docs/lighting.md step 5): the opaque scene's seabed, drawn in air
+  // as L = A t E_air / pi (shade_lambertian facing up), found d below the surface along the
+  // refracted view (path d / cos theta_w) gives the procedural seabed's radiance exactly.
+  Lighting lighting;
+  lighting.water.turbidity_ntu = 2.0;
+  const playback::LightingFrame frame = playback::prepare_lighting(lighting);
+  const double s = std::sin(0.6), c = std::cos(0.6);  // a view 34 degrees from the vertical
+  for (const double depth : {0.5, 3.0, 12.0}) {
+    playback::SurfacePoint procedural;
+    procedural.to_eye = {s, 0.0, c};
+    procedural.water_depth_m = depth;
+    procedural.seabed_albedo_scale = 1.13;
+    playback::SurfacePoint refracted = procedural;
+    const Radiance albedo = {frame.seabed_albedo[0] * 1.13, frame.seabed_albedo[1] * 1.13, frame.seabed_albedo[2] * 1.13};
+    refracted.refracted_scene = playback::shade_lambertian(frame, {0, 0, 1}, albedo);
+    refracted.refracted_scene_coverage = 1.0;
+    const double cos_w = std::sqrt(1.0 - s * s / (1.333 * 1.333));
+    refracted.refracted_depth_m = depth;
+    refracted.refracted_path_m = depth / cos_w;
+    const Radiance a = playback::shade_water(frame, procedural), b = playback::shade_water(frame, refracted);
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(b[k], a[k], 1e-12 * a[k]) << "depth " << depth << " band " << k;
+  }
+  // The probe: d below the point, displaced away from the eye by d tan(theta_w) (Snell); with the
+  // depth the scene shows, it is where the refracted ray meets that depth.
+  const auto probe = playback::refraction_probe_m({10.0, 20.0, 0.5}, {0, 0, 1}, {-s, 0, c}, 4.0);
+  EXPECT_NEAR(probe[2], 0.5 - 4.0, 1e-12);
+  EXPECT_NEAR(probe[0], 10.0 + 4.0 * std::tan(std::asin(s / 1.333)), 1e-9);
+  EXPECT_NEAR(probe[1], 20.0, 1e-12);
+  // What a submerged object keeps: exp(-K (d / 0.8 + path)) per band; nothing lost at the surface.
+  const Radiance kept = playback::submerged_transmittance(frame, 2.0, 3.0);
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(kept[k], std::exp(-frame.water.diffuse_attenuation_per_m[k] * (2.0 / 0.8 + 3.0)), 1e-15);
+  EXPECT_EQ(playback::submerged_transmittance(frame, 0.0, 0.0)[1], 1.0);
+  // from_display undoes to_display (the 8-bit scene copy's colour back to radiance).
+  for (const Radiance& radiance : {Radiance{0.02, 0.03, 0.05}, Radiance{1.0, 0.8, 0.5}, Radiance{3.0, 3.1, 2.5}}) {
+    const Radiance back = playback::from_display(frame, playback::to_display(frame, radiance));
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(back[k], radiance[k], 1e-9 * radiance[k]);
+  }
+}
+
+TEST(Lighting, StructuresFoamFromTheAirEntrainmentOnsetAlongTheirFace) {
+  // structure_foam: the water's speed along the face is |rate| / sin(alpha) on a 1:1.5 rubble slope
+  // (sin 0.555), the rising rate on a vertical wall; foam from the onset (1 m/s), white at twice it,
+  // fading linearly to nothing a band off the face.
+  const playback::LightingFrame frame = playback::prepare_lighting(Lighting{});
+  EXPECT_NEAR(playback::kRubbleMoundFaceSine, std::sin(std::atan(1.0 / 1.5)), 1e-15);
+  const double s = playback::kRubbleMoundFaceSine;
+  EXPECT_EQ(playback::structure_foam(frame, 0.99 * s, s, 0.0, 8.0), 0.0);   // 0.99 m/s up the slope
+  EXPECT_NEAR(playback::structure_foam(frame, 1.5 * s, s, 0.0, 8.0), 0.5, 1e-12);
+  EXPECT_NEAR(playback::structure_foam(frame, -1.5 * s, s, 0.0, 8.0), 0.5, 1e-12);  // the down-rush too
+  EXPECT_EQ(playback::structure_foam(frame, 3.0, s, 0.0, 8.0), 1.0);
+  EXPECT_NEAR(playback::structure_foam(frame, 3.0, s, 6.0, 8.0), 0.25, 1e-12);
+  EXPECT_EQ(playback::structure_foam(frame, 3.0, s, 8.0, 8.0), 0.0);
+  // A vertical wall: the same rate foams less (no slope to run up), and falling water not at all.
+  EXPECT_NEAR(playback::structure_foam(frame, 1.5, 1.0, 0.0, 8.0), 0.5, 1e-12);
+  EXPECT_EQ(playback::structure_foam(frame, 0.9, 1.0, 0.0, 8.0), 0.0);
+  EXPECT_GT(playback::structure_foam(frame, 0.9, s, 0.0, 8.0), 0.0);
+  EXPECT_EQ(playback::structure_foam(frame, -3.0, 1.0, 0.0, 8.0), 0.0);
+  // Off: an infinite onset.
+  Lighting off;
+  off.structure_foam_onset_m_s = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(playback::structure_foam(playback::prepare_lighting(off), 30.0, s, 0.0, 8.0), 0.0);
 }
 
 TEST(Lighting, TheSeabedIsSeenWhereTheRefractedViewMeetsItAndItsTextureAveragesOne) {

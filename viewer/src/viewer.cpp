@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -205,6 +206,8 @@ playback::Lighting scene_lighting(const ViewerOptions& o, const runtime::Streami
   lighting.exposure_compensation = o.exposure;
   lighting.detail_parallax = o.detail_parallax;
   lighting.foam_decay_time_s = o.foam_decay_s;
+  lighting.structure_foam_onset_m_s = o.structure_foam_onset_m_s > 0 ? o.structure_foam_onset_m_s
+                                                                      : std::numeric_limits<double>::infinity();
   lighting.wind_direction_rad = travel_direction_rad(o.wind_from_deg);
   lighting.wind_speed_m_s = ocean::beaufort_preset(o.beaufort_force).wind_speed_10_m_s;
   const auto& deep = engine.manifest().deep_water;
@@ -340,6 +343,7 @@ ViewerRun run_viewer(const ViewerOptions& o) {
   playback::RendererSettings settings;
   settings.grid = playback::grid_kind_from_name(o.grid);
   settings.msaa_samples = o.msaa_samples;
+  settings.refraction = o.refraction != "off";
   playback::WaterRenderer renderer(settings);
   std::unique_ptr<ViewerPanel> panel;
   if (!headless || o.panel) panel = std::make_unique<ViewerPanel>(window.glfw_window());

@@ -155,6 +155,7 @@ PlayBenchResult run_play_bench(const PlayBenchOptions& o) {
       settings.quadtree.screen_error_px = o.screen_error_px;
       settings.projected.vertex_spacing_px = o.screen_error_px;
       settings.msaa_samples = o.msaa_samples;
+      settings.refraction = o.refraction;
       playback::WaterRenderer renderer(settings);
       const auto site = engine.site();
       const playback::Camera camera = playback::Camera::overlooking_site(site->width_m, site->height_m);
@@ -169,6 +170,7 @@ PlayBenchResult run_play_bench(const PlayBenchOptions& o) {
       playback::RendererSettings settings;
       settings.quadtree.screen_error_px = o.screen_error_px;
       settings.msaa_samples = o.msaa_samples;
+      settings.refraction = o.refraction;
       playback::WaterRenderer renderer(settings);
       const auto site = engine.site();
       const playback::Camera camera = playback::Camera::overlooking_site(site->width_m, site->height_m);
@@ -190,6 +192,7 @@ PlayBenchResult run_play_bench(const PlayBenchOptions& o) {
       playback::RendererSettings settings;
       settings.quadtree.screen_error_px = o.screen_error_px;
       settings.msaa_samples = samples;
+      settings.refraction = o.refraction;
       playback::WaterRenderer renderer(settings);
       const auto site = engine.site();
       const playback::Camera camera = playback::Camera::overlooking_site(site->width_m, site->height_m);

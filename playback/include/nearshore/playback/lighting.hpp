@@ -64,6 +64,10 @@ struct Lighting {
   /// Seed 000 eq. (3.46): the deep water's foam fades by 1/e over this time (s) after its crest
   /// stops breaking (whitecap foam lives a few seconds: Callaghan et al. 2012, 1-5 s).
   double foam_decay_time_s = 3.0;
+  /// Foam where the baked sea runs up and down a structure's face (structure_foam): the speed of
+  /// the water along the face (m/s) at which it starts to entrain air and turn white (about 1 m/s
+  /// for a plunging or impinging flow: Ervine, McKeogh & Elsawy 1980; Chanson 1997). Infinite: none.
+  double structure_foam_onset_m_s = 1.0;
 
   /// Unit vector towards the sun in the harbour frame (x east, y north, z up).
   Vector3 sun_direction() const;
@@ -85,6 +89,7 @@ struct LightingFrame {
   double wind_direction_rad = 0.0, shore_wave_amplitude_m = 0.0, shore_band_m = 80.0;
   double exposure = 1.0;        ///< 1 / (kcd/m2): displayed luminance = 1 - exp(-exposure Y)
   double detail_parallax = 1.0, foam_decay_time_s = 3.0;
+  double structure_foam_onset_m_s = 1.0;
   /// Koschmieder (1924): beta = -ln(0.05) / visibility_m, 1/m (0: clear air); the layer's top, m.
   double fog_extinction_per_m = 0.0, fog_top_m = 150.0;
 };
@@ -132,6 +137,16 @@ struct SurfacePoint {
   /// The seabed's texture where the refracted view meets it (seabed_texture at
   /// refracted_seabed_point): a factor on the seabed albedo.
   double seabed_albedo_scale = 1.0;
+  /// What the renderer's screen-space refraction found under the surface (seed 003 eq. 14, seed 001
+  /// eq. 30-32): the radiance the opaque scene (seabed, hull, quay toe) has there as drawn in air,
+  /// lit by the sun and sky above the water, and where it is: `refracted_depth_m` below the surface
+  /// point (vertically) and `refracted_path_m` from it along the refracted view. Where coverage is
+  /// 0 (nothing drawn there: the open sea beyond the site) the flat seabed of the procedural model
+  /// (seabed_albedo_scale at water_depth_m) is seen instead; in between, in proportion.
+  Radiance refracted_scene{};
+  double refracted_scene_coverage = 0.0;
+  double refracted_depth_m = 0.0;
+  double refracted_path_m = 0.0;
 };
 
 /// Value noise in [0, 1] on a unit lattice (shaders/common.glsl value_noise, the same hash).
@@ -142,6 +157,42 @@ double seabed_texture(double x_m, double y_m);
 /// Where the view refracted at a surface point (x, y) with unit normal `normal` (Snell, n = 1.333;
 /// `to_eye` unit, towards the eye) meets a flat seabed `depth_m` below (GLSL refract's formula).
 std::array<double, 2> refracted_seabed_point(double x_m, double y_m, const Vector3& normal, const Vector3& to_eye, double depth_m);
+
+/// Screen-space refraction's step (shaders/common.glsl, the same name): the point the view
+/// refracted at `surface_m` (normal, to_eye unit; Snell with n = 1.333) reaches `depth_m` below the
+/// surface: surface + r depth / max(-r_z, 0.1). The renderer marches it down (12 depths to twice
+/// the depth of what the unrefracted view meets, then 4 halvings), projecting each probe and
+/// comparing it with the depth the opaque scene has there: the first probe behind the scene is
+/// where the refracted ray meets it. Its `refracted_path_m` is then depth / max(-r_z, 0.1).
+Vector3 refraction_probe_m(const Vector3& surface_m, const Vector3& normal, const Vector3& to_eye, double depth_m);
+/// The inverse of to_display where the exposure curve is one to one: the linear radiance whose
+/// displayed colour is `displayed` (luminance exact; a colour to_display desaturated to fit keeps
+/// its displayed hue). What the refraction reads back from the opaque scene's 8-bit colour.
+Radiance from_display(const LightingFrame& frame, const Radiance& displayed);
+/// How much of the light a submerged object (lit in air as `refracted_scene`) sends back through
+/// `depth_m` of water below the surface and `path_m` of water along the view keeps, per band: the
+/// downwelling light crosses the surface and `depth_m / 0.8` of water (the mean cosine of
+/// downwelling light), the reflected light `path_m` back up: exp(-K (depth / 0.8 + path)), the
+/// same attenuation as the flat seabed's e^-KmH of eq. (3.37).
+Radiance submerged_transmittance(const LightingFrame& frame, double depth_m, double path_m);
+
+/// Foam along structures (docs/lighting.md step 7): the sine of the face the sea runs up. A rubble
+/// mound's armour slope is 1:1.5 (the bake's style table, bathymetry harbour_builder.cpp; CEM VI-2
+/// gives 1:1.5 - 1:2): sin(atan(1 / 1.5)) = 0.555. A vertical wall (quay, mole, caisson): 1.
+inline constexpr double kRubbleMoundFaceSine = 0.5547001962252291;
+/// A structure face's porosity from which it is a vertical wall. The bake fits each face layer's
+/// porosity to the structure's reflection coefficient: a vertical wall reflects 0.9-1.0 (Goda 2000),
+/// so its layer stays nearly open water (0.966 on the demo's quay, 0.9 nominal in the style table),
+/// a rock slope 0.3-0.6 (Zanuttigh & van der Meer 2008) and its layer is denser (0.711 and 0.845 on
+/// the demo's arms and detached breakwater, 0.45 nominal); the core is 0 for both.
+inline constexpr double kVerticalFacePorosity = 0.88;
+/// How white the water is at a structure's face, 0..1: the water there rises or falls at
+/// `rise_rate_m_s` (the baked d eta / dt), so it runs along a face of sine `face_sine` at
+/// |rate| / sine (up a rubble slope and down through its armour: both churn it; up a vertical wall
+/// only: the clapotis falls back smoothly, the rising water is what jets and splashes). Foam from
+/// the air-entrainment onset speed (Lighting::structure_foam_onset_m_s) and solid white at twice
+/// it, fading linearly to nothing `band_m` off the face (the pixel is `distance_m` from it).
+double structure_foam(const LightingFrame& frame, double rise_rate_m_s, double face_sine, double distance_m, double band_m);
 
 /// The slope variance (per axis) of the rough surface in the vertical plane of `direction` (its
 /// horizontal part against the wind), plus `extra_slope_variance` (isotropic): what Smith's

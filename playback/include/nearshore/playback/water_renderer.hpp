@@ -47,6 +47,11 @@ struct RendererSettings {
   /// terrain pass into a texture of 1/reflection_downscale the picture's size; docs/lighting.md).
   bool local_reflections = true;
   int reflection_downscale = 2;
+  /// What lies under the water seen through it (screen-space refraction, docs/lighting.md step 5):
+  /// the opaque scene (seabed, hulls, structures) is copied before the sea is drawn and the sea
+  /// samples it where its refracted view meets it, attenuated by the water's optics. false: the
+  /// sea is opaque over them and shows only its procedural seabed.
+  bool refraction = true;
   /// Side of the square foam map the SurfaceLayers' decals are drawn into (texels), over the
   /// decals' bounding box but never finer than decal_foam_finest_m per texel.
   int decal_foam_texels = 1024;
@@ -88,9 +93,10 @@ enum class GpuPass {
   meshes,      ///< hulls and other solids
   water,       ///< the sea surface on its grid (and the wireframe over it when asked)
   resolve,     ///< the multisampled picture averaged into one sample per pixel
+  refraction,  ///< the opaque scene's colour and depth copied for the sea to refract (before the water)
 };
-inline constexpr int kGpuPassCount = 8;
-/// "decal_foam", "deep_foam", "sky", "terrain", "reflection", "meshes", "water", "resolve".
+inline constexpr int kGpuPassCount = 9;
+/// "decal_foam", "deep_foam", "sky", "terrain", "reflection", "meshes", "water", "resolve", "refraction".
 const char* gpu_pass_name(GpuPass pass);
 
 /// GPU time of each pass of one earlier frame (GL_TIME_ELAPSED). Timer queries are read back only

@@ -58,7 +58,9 @@ struct ViewerOptions {
   double exposure = 1.0;               ///< factor on the automatic exposure
   std::string lighting_mode = "full";  ///< full, or off (a flat sea, no sky: the cost baseline)
   double detail_parallax = 1.0, foam_decay_s = 3.0;
+  double structure_foam_onset_m_s = 1.0;  ///< Lighting::structure_foam_onset_m_s (0: no foam at structures)
   int msaa_samples = 0;                ///< RendererSettings::msaa_samples (0: automatic)
+  std::string refraction = "on";       ///< RendererSettings::refraction: "on" or "off" (the sea opaque)
   bool panel = false;                  ///< headless: draw the on-screen panel into the picture too
   bool quiet = false;                  ///< say nothing on stderr while playing
   /// A sea-state library: the conditions to start with (KEY=VALUE,...), scripted switches

@@ -30,6 +30,7 @@ struct PlayBenchOptions {
   int msaa_samples = 4;            ///< of the frame-rate sections (the pass section also runs at 1)
   int draws = 5;                   ///< frames drawn per frame-rate measurement (after one to warm up)
   long long queries = 2'000'000;   ///< CPU queries per measurement
+  bool refraction = true;          ///< RendererSettings::refraction of every renderer measured
 };
 
 /// 1. Streaming, paced at 30 fps.
