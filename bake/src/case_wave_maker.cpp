@@ -633,6 +633,11 @@ json wave_record(const WaveMaker& maker, const json& as_written) {
   json record = {{"case", as_written}, {"components", components}, {"seed", maker.sea_state.seed},
                  {"loop_period_s", maker.sea_state.loop_period_s}};
   if (maker.kind == WaveMaker::Kind::kTimeSeries) record["series_samples"] = maker.series_time_s.size();
+  // Where the source acts (the line and its wet span, chosen by keep_to_wet_span), in the grid frame.
+  if (maker.kind != WaveMaker::Kind::kNone && maker.span_end_cell != std::numeric_limits<int>::max())
+    record["source"] = {{"line_m", maker.source_line_m},
+                        {"facing", side_name(maker.facing)},
+                        {"span_cells", {maker.span_begin_cell, maker.span_end_cell}}};
   return record;
 }
 
