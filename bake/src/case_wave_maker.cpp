@@ -3,6 +3,7 @@
 #include "nearshore/bake/bake_time_series.hpp"
 #include "nearshore/ocean/sea_state_builder.hpp"
 #include "nearshore/ocean/spectrum_files.hpp"
+#include "nearshore/ocean/spectrum_netcdf.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -239,16 +240,34 @@ WaveComponent component_from(TableReader& reader, const std::string& amplitude_k
 /// band; the counts, loop and seed are read as for a parametric sea).
 DirectionalSeaSpecification read_spectrum_file(TableReader& maker, const fs::path& base) {
   const fs::path file = maker.path("spectrum_file", base);
-  const std::size_t format = maker.choice("spectrum_format", "swan_sp2", {"swan_sp2", "ndbc"});
-  const std::string time = maker.string("spectrum_time", std::string(),
-                                        "time as the file writes it: \"20020101.000000\" (SWAN), \"YYYY MM DD hh mm\" (NDBC)");
-  SwanSpectrumSelection swan;
-  swan.time = time;
-  if (format == 0)
-    swan.location_index = static_cast<std::size_t>(
-        maker.integer("spectrum_location", 1, 1, 10000000, "location in the SWAN file, 1 = the first")) - 1;
+  const std::size_t format = maker.choice("spectrum_format", "swan_sp2", {"swan_sp2", "ndbc", "swan_netcdf", "ww3_netcdf"});
+  const bool netcdf = format >= 2;
+  std::string time;
+  std::size_t time_index = 0;
+  if (netcdf) {
+    // A NetCDF file's times are numbers in its own units: chosen by index.
+    if (maker.has("spectrum_time"))
+      maker.fail(maker.full("spectrum_time"), "is for the text formats; a NetCDF file's time is chosen by index",
+                 "give spectrum_time_index (1 = the first time)");
+    time_index = static_cast<std::size_t>(maker.integer("spectrum_time_index", 1, 1, 100000000, "time in the NetCDF file, 1 = the first")) - 1;
+  } else {
+    time = maker.string("spectrum_time", std::string(),
+                        "time as the file writes it: \"20020101.000000\" (SWAN), \"YYYY MM DD hh mm\" (NDBC)");
+  }
+  std::size_t location_index = 0;
+  if (format != 1)
+    location_index = static_cast<std::size_t>(
+        maker.integer("spectrum_location", 1, 1, 10000000, "location in the file (SWAN's points, WW3's stations), 1 = the first")) - 1;
   auto sampled = std::make_shared<SampledDirectionalSpectrum>(maker.reading_file("spectrum_file", [&] {
-    if (format == 0) return read_swan_spectrum(file, swan);
+    if (format == 0) {
+      SwanSpectrumSelection swan;
+      swan.time = time;
+      swan.location_index = location_index;
+      return read_swan_spectrum(file, swan);
+    }
+    if (netcdf)
+      return read_netcdf_spectrum(file, {format == 3 ? NetcdfSpectrumLayout::kWavewatch3 : NetcdfSpectrumLayout::kSwan,
+                                         location_index, time_index});
     // NDBC's realtime2 files of one buoy share their name: 46087.data_spec, .swdir, .swdir2, .swr1, .swr2.
     const auto sibling = [&](const char* extension) { return fs::path(file).replace_extension(extension); };
     NdbcSpectrumSelection ndbc;

@@ -117,6 +117,11 @@ TEST(BakeSpectrumFile, BadKeysAndFilesAreRefused) {
                     {"`wave_maker.spreading_s`", "spectrum_file"});
   expect_case_error(channel_case("spectrum_file = \"offshore.sp2\"\nspectrum_format = \"netcdf\"\n"),
                     {"`wave_maker.spectrum_format`"});
+  // A text file given as NetCDF, and a text time for a NetCDF file (chosen by index).
+  expect_case_error(channel_case("spectrum_file = \"offshore.sp2\"\nspectrum_format = \"ww3_netcdf\"\n"),
+                    {"`wave_maker.spectrum_file`", "NetCDF"});
+  expect_case_error(channel_case("spectrum_file = \"offshore.sp2\"\nspectrum_format = \"swan_netcdf\"\nspectrum_time = \"20020101.000000\"\n"),
+                    {"`wave_maker.spectrum_time`", "spectrum_time_index"});
   expect_case_error(channel_case("spectrum_file = \"offshore.sp2\"\nspectrum_location = 2\n"),
                     {"`wave_maker.spectrum_file`", "location index 1"});
   std::string broken = swan_jonswap_text();
