@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -33,10 +34,20 @@ constexpr double kDegree = kPi / 180.0;
 // harmonic, hence the mean direction, is summed exactly over 36 equally spaced directions).
 constexpr double kHs_m = 2.0, kTp_s = 9.0, kTravel_deg = 23.0;
 
+// A per-test folder under the system's temporary directory, removed when the program ends.
 fs::path scratch_file(const std::string& name) {
+  struct Removed {
+    std::vector<fs::path> directories;
+    ~Removed() {
+      std::error_code ignored;
+      for (const fs::path& d : directories) fs::remove_all(d, ignored);
+    }
+  };
+  static Removed removed;
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const fs::path dir = fs::temp_directory_path() / fmt::format("nearshore_spectrum_netcdf_{}_{}", info->name(), static_cast<long>(::getpid()));
   fs::create_directories(dir);
+  removed.directories.push_back(dir);
   return dir / name;
 }
 
@@ -106,6 +117,8 @@ fs::path write_file(bool ww3) {
 // bound for the .sp2), Tp the file frequency nearest the peak (within the 10 % step), the mean
 // direction within 0.1 degree (exact for s = 15 over 36 directions, float values).
 void expect_the_sea(const SampledDirectionalSpectrum& s) {
+  std::printf("%s: Hs %.4f m, Tp %.3f s, mean direction %.3f deg\n", s.source.c_str(), significant_wave_height_m(s),
+              peak_period_s(s), mean_direction_rad(s) / kDegree);
   EXPECT_NEAR(significant_wave_height_m(s), kHs_m, 0.01 * kHs_m) << s.source;
   EXPECT_NEAR(peak_period_s(s), kTp_s, 0.1 * kTp_s) << s.source;
   EXPECT_NEAR(mean_direction_rad(s) / kDegree, kTravel_deg, 0.1) << s.source;
