@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "nearshore/core/error.hpp"
+#include "spectrum_scratch.hpp"
 #include "nearshore/ocean/spectrum.hpp"
 
 using namespace nearshore::ocean;
@@ -34,22 +35,7 @@ constexpr double kDegree = kPi / 180.0;
 // harmonic, hence the mean direction, is summed exactly over 36 equally spaced directions).
 constexpr double kHs_m = 2.0, kTp_s = 9.0, kTravel_deg = 23.0;
 
-// A per-test folder under the system's temporary directory, removed when the program ends.
-fs::path scratch_file(const std::string& name) {
-  struct Removed {
-    std::vector<fs::path> directories;
-    ~Removed() {
-      std::error_code ignored;
-      for (const fs::path& d : directories) fs::remove_all(d, ignored);
-    }
-  };
-  static Removed removed;
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / fmt::format("nearshore_spectrum_netcdf_{}_{}", info->name(), static_cast<long>(::getpid()));
-  fs::create_directories(dir);
-  removed.directories.push_back(dir);
-  return dir / name;
-}
+fs::path scratch_file(const std::string& name) { return nearshore::ocean::testing::spectrum_scratch_directory() / name; }
 
 void check(int status) { ASSERT_EQ(status, NC_NOERR) << nc_strerror(status); }
 
