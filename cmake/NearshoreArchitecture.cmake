@@ -4,7 +4,8 @@
 #   ocean, sequence, plot, core_vdb and core_geotiff (the one road to an OpenVDB file, to a GeoTIFF)
 #   -> core; boussinesq -> ocean; bathymetry, export and sequence_vdb -> core_vdb; bathymetry, bake
 #   and export -> core_geotiff; bathymetry -> core, plot;
-#   bake -> bathymetry (a case file's grid in local metres), boussinesq, ocean, sequence;
+#   bake -> bathymetry (a case file's grid in local metres), boussinesq, ocean, ocean_netcdf (wave
+#   models' NetCDF spectra: libnetcdf stays off the runtime side), sequence;
 #   loops -> sequence, ocean, plot; playback -> sequence, ocean;
 #   tools -> all. Never: playback to bathymetry, bake, boussinesq, loops or plot; no library to tools.
 #   runtime -> sequence, ocean (GL-free: streaming, deep water, CPU queries); playback -> runtime.
@@ -37,10 +38,11 @@ set(NEARSHORE_ALLOWED_ARROWS
   "nearshore_core_geotiff:nearshore_core"
   "nearshore_plot:nearshore_core"
   "nearshore_ocean:nearshore_core"
+  "nearshore_ocean_netcdf:nearshore_ocean,nearshore_core"
   "nearshore_sequence:nearshore_core"
   "nearshore_boussinesq:nearshore_ocean,nearshore_core"
   "nearshore_bathymetry:nearshore_plot,nearshore_core_vdb,nearshore_core_geotiff,nearshore_core"
-  "nearshore_bake:nearshore_core_geotiff,nearshore_bathymetry,nearshore_boussinesq,nearshore_ocean,nearshore_sequence,nearshore_core"
+  "nearshore_bake:nearshore_core_geotiff,nearshore_bathymetry,nearshore_boussinesq,nearshore_ocean_netcdf,nearshore_ocean,nearshore_sequence,nearshore_core"
   "nearshore_loops:nearshore_sequence,nearshore_ocean,nearshore_plot,nearshore_core"
   "nearshore_sequence_vdb:nearshore_sequence,nearshore_core_vdb,nearshore_core"
   "nearshore_runtime:nearshore_sequence,nearshore_ocean,nearshore_core"

@@ -28,7 +28,7 @@ mkdir -p "$out"
 # 1. The harbour grid over the bay, with the gauges of the case marked on the preview by lat/lon.
 marks=(--mark "thea_foss_mouth:lat=47.2620,lon=-122.4383" --mark "blair_waterway:lat=47.2680,lon=-122.3965"
        --mark "general_anchorage:lat=47.2907,lon=-122.4266" --mark "mid_bay:lat=47.2850,lon=-122.4450"
-       --mark "old_tacoma_offshore:lat=47.2850,lon=-122.4700" --mark "source line:lat=47.298,lon=-122.45")
+       --mark "old_tacoma_offshore:lat=47.2850,lon=-122.4700")
 "$nearshore" bathy "$chart" --bbox -122.475,47.252,-122.385,47.305 --spacing "$spacing" "${marks[@]}" -o "$out/harbour"
 
 # 2. The case, pointed at that grid (and shortened when asked).

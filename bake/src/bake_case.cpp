@@ -227,7 +227,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");
   TableReader maker = root.table("wave_maker");
   MakerRequest maker_request;
-  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, dispersion_bound, maker_request);
+  bake_case.wave_maker = read_wave_maker(maker, bake_case.harbour, base, dispersion_bound, bake_case.solver.sponges, maker_request);
   maker.finish();
   // The effective-depth limit the band needs (docs/solver.md, "Effective depth"), unless [solver]
   // gives one: from the highest frequency the maker makes; 0 (inactive) where the grid is nowhere

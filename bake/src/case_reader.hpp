@@ -315,9 +315,11 @@ struct DispersionBound {
   double effective_depth_limit_m = 0.0;  // when given; 0 = none
 };
 
-/// [wave_maker] (case_wave_maker.cpp).
+/// [wave_maker] (case_wave_maker.cpp). `sponges`: the case's [[sponges]], behind which a source along
+/// an open boundary (`boundary = "north"`) is placed.
 boussinesq::WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
-                                      const DispersionBound& bound, MakerRequest& request);
+                                      const DispersionBound& bound, const std::vector<boussinesq::SpongeLayer>& sponges,
+                                      MakerRequest& request);
 /// The wave maker as recorded in the sequence's wave_conditions.
 json wave_record(const boussinesq::WaveMaker& maker, const json& as_written);
 /// The highest frequency (rad/s) the grid carries in a band starting at `lowest_rad_s` (0 when not

@@ -3,6 +3,7 @@
 #include "nearshore/bake/bake_time_series.hpp"
 #include "nearshore/ocean/sea_state_builder.hpp"
 #include "nearshore/ocean/spectrum_files.hpp"
+#include "nearshore/ocean/spectrum_netcdf.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -239,16 +240,34 @@ WaveComponent component_from(TableReader& reader, const std::string& amplitude_k
 /// band; the counts, loop and seed are read as for a parametric sea).
 DirectionalSeaSpecification read_spectrum_file(TableReader& maker, const fs::path& base) {
   const fs::path file = maker.path("spectrum_file", base);
-  const std::size_t format = maker.choice("spectrum_format", "swan_sp2", {"swan_sp2", "ndbc"});
-  const std::string time = maker.string("spectrum_time", std::string(),
-                                        "time as the file writes it: \"20020101.000000\" (SWAN), \"YYYY MM DD hh mm\" (NDBC)");
-  SwanSpectrumSelection swan;
-  swan.time = time;
-  if (format == 0)
-    swan.location_index = static_cast<std::size_t>(
-        maker.integer("spectrum_location", 1, 1, 10000000, "location in the SWAN file, 1 = the first")) - 1;
+  const std::size_t format = maker.choice("spectrum_format", "swan_sp2", {"swan_sp2", "ndbc", "swan_netcdf", "ww3_netcdf"});
+  const bool netcdf = format >= 2;
+  std::string time;
+  std::size_t time_index = 0;
+  if (netcdf) {
+    // A NetCDF file's times are numbers in its own units: chosen by index.
+    if (maker.has("spectrum_time"))
+      maker.fail(maker.full("spectrum_time"), "is for the text formats; a NetCDF file's time is chosen by index",
+                 "give spectrum_time_index (1 = the first time)");
+    time_index = static_cast<std::size_t>(maker.integer("spectrum_time_index", 1, 1, 100000000, "time in the NetCDF file, 1 = the first")) - 1;
+  } else {
+    time = maker.string("spectrum_time", std::string(),
+                        "time as the file writes it: \"20020101.000000\" (SWAN), \"YYYY MM DD hh mm\" (NDBC)");
+  }
+  std::size_t location_index = 0;
+  if (format != 1)
+    location_index = static_cast<std::size_t>(
+        maker.integer("spectrum_location", 1, 1, 10000000, "location in the file (SWAN's points, WW3's stations), 1 = the first")) - 1;
   auto sampled = std::make_shared<SampledDirectionalSpectrum>(maker.reading_file("spectrum_file", [&] {
-    if (format == 0) return read_swan_spectrum(file, swan);
+    if (format == 0) {
+      SwanSpectrumSelection swan;
+      swan.time = time;
+      swan.location_index = location_index;
+      return read_swan_spectrum(file, swan);
+    }
+    if (netcdf)
+      return read_netcdf_spectrum(file, {format == 3 ? NetcdfSpectrumLayout::kWavewatch3 : NetcdfSpectrumLayout::kSwan,
+                                         location_index, time_index});
     // NDBC's realtime2 files of one buoy share their name: 46087.data_spec, .swdir, .swdir2, .swr1, .swr2.
     const auto sibling = [&](const char* extension) { return fs::path(file).replace_extension(extension); };
     NdbcSpectrumSelection ndbc;
@@ -258,14 +277,191 @@ DirectionalSeaSpecification read_spectrum_file(TableReader& maker, const fs::pat
   return sea_specification_from_sampled(sampled);
 }
 
+// ---- the wet span a source line keeps to (issue 46; docs/solver.md, "Wave maker") ----------------
+// A run of cells along the source line that the solver counts as water (still-water depth above
+// 0 m, boussinesq_source.cpp): cells [begin, end) along the line.
+struct WetSpan {
+  int begin = 0, end = 0;
+};
+
+// The grid line of the source: the solver's cell index round((line - origin) / dx - 0.5).
+int source_line_cell(const HarbourGrid& grid, bool along_x, double position_m) {
+  const GridGeometry& g = grid.geometry;
+  const double origin_m = along_x ? g.origin_x_m : g.origin_y_m, spacing_m = along_x ? g.spacing_x_m() : g.spacing_y_m();
+  return std::clamp(static_cast<int>(std::lround((position_m - origin_m) / spacing_m - 0.5)), 0,
+                    (along_x ? g.columns : g.rows) - 1);
+}
+
+std::vector<WetSpan> wet_spans(const HarbourGrid& grid, bool along_x, int line) {
+  const int count = along_x ? grid.geometry.rows : grid.geometry.columns;
+  std::vector<WetSpan> spans;
+  for (int t = 0; t < count; ++t) {
+    const bool wet = (along_x ? grid.still_water_depth_m(line, t) : grid.still_water_depth_m(t, line)) > 0.0f;
+    if (!wet) continue;
+    if (spans.empty() || spans.back().end != t) spans.push_back({t, t});
+    spans.back().end = t + 1;
+  }
+  return spans;
+}
+
+// "cells 0-636 of the line, x = 0-2930 m from the south-west corner (2930 m)".
+std::string describe_span(const HarbourGrid& grid, bool along_x, const WetSpan& span) {
+  const double spacing_m = along_x ? grid.geometry.spacing_y_m() : grid.geometry.spacing_x_m();
+  return fmt::format("cells {}-{} ({} = {:.0f}-{:.0f} m from the south-west corner, {:.0f} m long)", span.begin, span.end - 1,
+                     along_x ? "y" : "x", span.begin * spacing_m, span.end * spacing_m, (span.end - span.begin) * spacing_m);
+}
+
+std::string describe_spans(const HarbourGrid& grid, bool along_x, const std::vector<WetSpan>& spans) {
+  std::string text;
+  for (std::size_t i = 0; i < spans.size(); ++i)
+    text += fmt::format("{}{}", i == 0 ? "" : "; ", describe_span(grid, along_x, spans[i]));
+  return text;
+}
+
+// Why a line over several wet spans is refused, for the messages.
+constexpr const char* kDisconnectedSpanReason =
+    "a source on water cut off from the rest by land (a cove behind a headland) radiates waves of its own "
+    "that no offshore sea sends there; docs/solver.md, \"Wave maker\"";
+
+// `boundary = "north"`: the line parallel to that side, inside the grid by the side's sponge width and
+// source_offset_m more, so that the source's Gaussian strip (half-width 0.67 L of its peak wave,
+// boussinesq_source.cpp) lies clear of the sponge: the sponge behind the line absorbs the half of
+// the waves the source sends backwards, and the waves reflected in the harbour leave through it.
+void place_along_boundary(TableReader& maker, const HarbourGrid& grid, const std::vector<SpongeLayer>& sponges, WaveMaker& wave_maker) {
+  const Side side = wave_maker.facing;
+  double sponge_width_m = 0.0;
+  for (const SpongeLayer& sponge : sponges)
+    if (sponge.side == side) sponge_width_m = std::max(sponge_width_m, sponge.width_m);
+  if (!(sponge_width_m > 0.0))
+    maker.fail(maker.full("boundary"),
+               fmt::format("= \"{}\" has no sponge behind the source line: the half of the waves the source sends towards "
+                           "the boundary would reflect off the grid's edge back into the harbour",
+                           side_name(side)),
+               fmt::format("add [[sponges]] side = \"{}\" with width_m of a wavelength or more", side_name(side)));
+  // The default offset: the deep-water wavelength g T^2 / (2 pi) of the largest component, the
+  // longest any depth gives that period, so the strip's 0.67 L clears the sponge by a third of a
+  // wavelength or more. Kinds whose components are not known here (deep_water: the field's;
+  // time_series) need it given.
+  double peak_rad_s = 0.0, largest_m = 0.0;
+  for (const WaveComponent& c : wave_maker.sea_state.components)
+    if (c.amplitude_m > largest_m) largest_m = c.amplitude_m, peak_rad_s = c.angular_frequency_rad_s;
+  const bool along_x = side == Side::kWest || side == Side::kEast;
+  const double extent_m = along_x ? grid.geometry.width_m() : grid.geometry.height_m();
+  std::optional<double> fallback_m;
+  if (peak_rad_s > 0.0) fallback_m = 2.0 * std::numbers::pi * kGravity_m_s2 / (peak_rad_s * peak_rad_s);
+  const double offset_m =
+      maker.non_negative("source_offset_m", fallback_m,
+                         "distance of the source line from the sponge's inner edge, metres (default: the peak wave's "
+                         "deep-water wavelength; required for kinds whose waves are not known from [wave_maker])");
+  const double inset_m = sponge_width_m + offset_m;
+  if (inset_m >= extent_m)
+    maker.fail(maker.full("boundary"),
+               fmt::format("= \"{}\" puts the source line {:.1f} m inside the grid (sponge {:.1f} m + source_offset_m {:.1f} m), "
+                           "beyond its {:.1f} m",
+                           side_name(side), inset_m, sponge_width_m, offset_m, extent_m),
+               "give a smaller source_offset_m or a narrower sponge");
+  const GridGeometry& g = grid.geometry;
+  const double origin_m = along_x ? g.origin_x_m : g.origin_y_m;
+  const bool from_low_edge = side == Side::kWest || side == Side::kSouth;
+  wave_maker.source_line_m = from_low_edge ? origin_m + inset_m : origin_m + extent_m - inset_m;
+}
+
+// The source keeps to one wet span of its line (WaveMaker::span_begin_cell): the one holding the
+// source_line point, or the line's only one. A line over several spans without a point to choose
+// is refused, naming them: a span cut off by land radiates a sea of its own (kDisconnectedSpanReason).
+void keep_to_wet_span(TableReader& maker, const HarbourGrid& grid, const std::optional<ProjectedPoint>& point,
+                      bool along_boundary, WaveMaker& wave_maker, std::vector<std::string>& warnings) {
+  const bool along_x = wave_maker.facing == Side::kWest || wave_maker.facing == Side::kEast;
+  const GridGeometry& g = grid.geometry;
+  const int line = source_line_cell(grid, along_x, wave_maker.source_line_m);
+  const double line_from_corner_m = wave_maker.source_line_m - (along_x ? g.origin_x_m : g.origin_y_m);
+  const std::string key = maker.full(along_boundary ? "boundary" : point ? "source_line" : "source_line_m");
+  const std::string where = fmt::format("the source line ({} = {:.1f} m from the south-west corner, grid {} {})", along_x ? "x" : "y",
+                                        line_from_corner_m, along_x ? "column" : "row", line);
+  const std::vector<WetSpan> spans = wet_spans(grid, along_x, line);
+  if (spans.empty())
+    maker.fail(key, fmt::format("puts {} over land or outside the chart along its whole length", where),
+               along_boundary ? "give the side of the grid the sea comes from, or a smaller source_offset_m"
+                              : "move it into open water");
+  WetSpan chosen = spans.front();
+  // The span holding the point; a point on land (read_case_position warned of it) holds none, and
+  // the line's only span is taken, as for source_line_m.
+  std::optional<WetSpan> holding;
+  if (point) {
+    const double spacing_m = along_x ? g.spacing_y_m() : g.spacing_x_m();
+    const int t = static_cast<int>(std::floor(((along_x ? point->y_m - g.origin_y_m : point->x_m - g.origin_x_m)) / spacing_m));
+    for (const WetSpan& s : spans)
+      if (t >= s.begin && t < s.end) holding = s;
+    if (!holding && spans.size() > 1)
+      maker.fail(key,
+                 fmt::format("is a point on land or outside the chart (cell {} along {}), which holds none of the line's {} wet "
+                             "spans ({}): {}",
+                             t, where, spans.size(), kDisconnectedSpanReason, describe_spans(grid, along_x, spans)),
+                 "give a point in the open water the source is meant for");
+  }
+  if (holding) {
+    chosen = *holding;
+    if (spans.size() > 1) {
+      std::vector<WetSpan> others;
+      for (const WetSpan& s : spans)
+        if (s.begin != chosen.begin) others.push_back(s);
+      warnings.push_back(fmt::format(
+          "{}: key `{}`: the source keeps to the wet span holding the point, {}; the line's other wet spans get no source "
+          "({}): {}",
+          maker.subject(), key, describe_span(grid, along_x, chosen), kDisconnectedSpanReason,
+          describe_spans(grid, along_x, others)));
+    }
+  } else if (spans.size() > 1) {
+    maker.fail(key,
+               fmt::format("puts {} over {} wet spans cut off from each other by land ({}): {}", where, spans.size(),
+                           kDisconnectedSpanReason, describe_spans(grid, along_x, spans)),
+               along_boundary
+                   ? "make the boundary one stretch of water: crop the grid (nearshore bathy --bbox) or move the line "
+                     "(sponge width, source_offset_m) to where the water is one span"
+                   : "give source_line = { lat = ..., lon = ... } (or x_m/y_m) at a point of the span to feed, or boundary = "
+                     "\"<side>\" for a source along the open boundary in front of its sponge");
+  }
+  wave_maker.span_begin_cell = chosen.begin;
+  wave_maker.span_end_cell = chosen.end;
+  // A line mostly over land makes its waves on the few wet cells left, which is rarely what was
+  // meant: warn, naming the share and a depth.
+  const int count = along_x ? g.rows : g.columns;
+  int dry = 0;
+  float highest_m = std::numeric_limits<float>::infinity();
+  for (int t = 0; t < count; ++t) {
+    const int column = along_x ? line : t, row = along_x ? t : line;
+    if (grid.land(column, row)) ++dry, highest_m = std::min(highest_m, grid.still_water_depth_m(column, row));
+  }
+  if (2 * dry > count)
+    warnings.push_back(fmt::format(
+        "{}: key `{}` puts {} over land or outside the chart for {} of its {} cells ({:.0f} %; ground up to {:.2f} m above still "
+        "water there): it makes waves only on the {} wet cells of its span, {}; move it into open water",
+        maker.subject(), key, where, dry, count, 100.0 * dry / count, -highest_m, chosen.end - chosen.begin,
+        describe_span(grid, along_x, chosen)));
+}
+
 }  // namespace
 
 WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs::path& base,
-                          const DispersionBound& bound, MakerRequest& request) {
+                          const DispersionBound& bound, const std::vector<SpongeLayer>& sponges, MakerRequest& request) {
   WaveMaker wave_maker;
   const auto kind = static_cast<MakerKind>(maker.choice("kind", std::nullopt, kMakerKindNames));
   if (kind == MakerKind::kNone) return wave_maker;
-  wave_maker.facing = side_from_index(maker.choice("facing", std::nullopt, kSideNames));
+  // `boundary = "north"`: the source along that open boundary, in front of its sponge, over the
+  // boundary's whole wet span (placed once the sea is known, below). It sets `facing`.
+  const bool along_boundary = kind != MakerKind::kSolitary && maker.has("boundary");
+  if (along_boundary) {
+    wave_maker.facing = side_from_index(maker.choice("boundary", std::nullopt, kSideNames));
+    if (maker.has("facing") && side_from_index(maker.choice("facing", std::nullopt, kSideNames)) != wave_maker.facing)
+      maker.fail(maker.full("facing"), "differs from wave_maker.boundary, whose side the waves come from",
+                 "leave facing out (boundary sets it)");
+    for (const char* key : {"source_line", "source_line_m"})
+      if (maker.has(key))
+        maker.fail(maker.full(key), "is given with wave_maker.boundary, which places the source line in front of the sponge",
+                   "give one: boundary, or facing and a source line");
+  } else {
+    wave_maker.facing = side_from_index(maker.choice("facing", std::nullopt, kSideNames));
+  }
   const bool along_x = wave_maker.facing == Side::kWest || wave_maker.facing == Side::kEast;
   const double extent_m = along_x ? grid.geometry.width_m() : grid.geometry.height_m();
   const double origin_m = along_x ? grid.geometry.origin_x_m : grid.geometry.origin_y_m;
@@ -274,7 +470,10 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   // Or a point the source line passes through, [wave_maker.source_line] in any frame of
   // core/geo_position.hpp (lat/lon, the grid's CRS): the line runs parallel to the `facing` side.
   double position_m = 0.0;
-  if (kind != MakerKind::kSolitary && maker.has("source_line")) {
+  std::optional<ProjectedPoint> line_point;  // source_line = { ... }: the point whose wet span the source keeps to
+  if (along_boundary) {
+    // Placed below, once the sea's wavelength is known.
+  } else if (kind != MakerKind::kSolitary && maker.has("source_line")) {
     if (maker.has("source_line_m"))
       maker.fail(maker.full("source_line"), "and source_line_m are both given",
                  "give one: source_line_m (metres from the south-west corner) or source_line = { lat = ..., lon = ... }");
@@ -282,6 +481,7 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
     const ProjectedPoint point = read_case_position(point_table, grid, "key `" + maker.full("source_line") + "`", request.warnings);
     point_table.finish();
     position_m = along_x ? point.x_m : point.y_m;
+    line_point = point;
   } else {
     position_m = origin_m + maker.number(where, std::nullopt, 0.0, extent_m, false,
                                          fmt::format("position along {} from the south-west corner, inside the grid, metres "
@@ -289,28 +489,6 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
                                                      along_x ? "x" : "y"));
   }
   wave_maker.source_line_m = position_m;
-  if (kind != MakerKind::kSolitary) {
-    // A line mostly over land makes its waves on the few wet cells left, which is rarely what was
-    // meant (a line over land only is refused by the solver): warn, naming the share and a depth.
-    const GridGeometry& g = grid.geometry;
-    const double spacing_m = along_x ? g.spacing_x_m() : g.spacing_y_m();
-    const int line = std::clamp(static_cast<int>(std::floor((position_m - origin_m) / spacing_m)), 0,
-                                (along_x ? g.columns : g.rows) - 1);
-    const int count = along_x ? g.rows : g.columns;
-    int dry = 0;
-    float highest_m = std::numeric_limits<float>::infinity();
-    for (int t = 0; t < count; ++t) {
-      const int column = along_x ? line : t, row = along_x ? t : line;
-      if (grid.land(column, row)) ++dry, highest_m = std::min(highest_m, grid.still_water_depth_m(column, row));
-    }
-    if (2 * dry > count)
-      request.warnings.push_back(fmt::format(
-          "{}: key `{}` puts the source line ({} = {:.1f} m from the south-west corner) over land or outside the chart for "
-          "{} of its {} cells ({:.0f} %; ground up to {:.2f} m above still water there): it makes waves only on the {} wet cells; move it "
-          "into open water",
-          maker.subject(), maker.full(maker.has("source_line") ? "source_line" : where), along_x ? "x" : "y", position_m - origin_m,
-          dry, count, 100.0 * dry / count, -highest_m, count - dry));
-  }
   wave_maker.ramp_time_s = read_ramp_time_s(maker);
   const double default_direction_rad = direction_away_from(wave_maker.facing);
   SeaState& sea = wave_maker.sea_state;
@@ -457,6 +635,10 @@ WaveMaker read_wave_maker(TableReader& maker, const HarbourGrid& grid, const fs:
   }
   if (kind != MakerKind::kIrregular && kind != MakerKind::kDeepWater)
     sea.seed = maker.unsigned_integer("seed", 0, "phase seed (recorded; used by irregular seas)");
+  if (kind != MakerKind::kSolitary) {
+    if (along_boundary) place_along_boundary(maker, grid, sponges, wave_maker);
+    keep_to_wet_span(maker, grid, line_point, along_boundary, wave_maker, request.warnings);
+  }
   return wave_maker;
 }
 
@@ -470,6 +652,11 @@ json wave_record(const WaveMaker& maker, const json& as_written) {
   json record = {{"case", as_written}, {"components", components}, {"seed", maker.sea_state.seed},
                  {"loop_period_s", maker.sea_state.loop_period_s}};
   if (maker.kind == WaveMaker::Kind::kTimeSeries) record["series_samples"] = maker.series_time_s.size();
+  // Where the source acts (the line and its wet span, chosen by keep_to_wet_span), in the grid frame.
+  if (maker.kind != WaveMaker::Kind::kNone && maker.span_end_cell != std::numeric_limits<int>::max())
+    record["source"] = {{"line_m", maker.source_line_m},
+                        {"facing", side_name(maker.facing)},
+                        {"span_cells", {maker.span_begin_cell, maker.span_end_cell}}};
   return record;
 }
 

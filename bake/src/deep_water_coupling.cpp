@@ -143,7 +143,7 @@ double seen_depth_m(double depth_m, double effective_depth_limit_m) {
 
 double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid, double effective_depth_limit_m) {
   // As boussinesq_source.cpp: the grid line of cell index round((line - origin) / dx - 0.5), the
-  // mean of its cells deeper than 0 m summed along the line, in double from the float raster.
+  // mean of its cells deeper than 0 m summed along the line's span, in double from the float raster.
   const GridGeometry& g = grid.geometry;
   const bool along_x = normal_is_x(maker.facing);
   const int normal_count = along_x ? g.columns : g.rows, tangential_count = along_x ? g.rows : g.columns;
@@ -152,7 +152,10 @@ double source_line_depth_m(const WaveMaker& maker, const HarbourGrid& grid, doub
   const int line_cell = std::clamp(static_cast<int>(std::lround(line_index)), 0, normal_count - 1);
   double sum_m = 0.0;
   int wet = 0;
-  for (int t = 0; t < tangential_count; ++t) {
+  // Over the maker's span only (WaveMaker::span_begin_cell), as the source function.
+  const int span_begin = std::clamp(maker.span_begin_cell, 0, tangential_count);
+  const int span_end = std::clamp(maker.span_end_cell, span_begin, tangential_count);
+  for (int t = span_begin; t < span_end; ++t) {
     const double d = seen_depth_m(along_x ? grid.still_water_depth_m(line_cell, t) : grid.still_water_depth_m(t, line_cell),
                                   effective_depth_limit_m);
     if (d > 0.0) sum_m += d, ++wet;

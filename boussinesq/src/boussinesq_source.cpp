@@ -84,17 +84,24 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
             << normal_origin + normal_count * spacing_m_ << " m along " << (normal_is_x_ ? "x" : "y") << ")";
     throw Error("wave maker", problem.str(), "put the source line inside the grid, in front of the sponge");
   }
-  // Still-water depth at the source line: the mean over the wet cells of the line.
+  // The span the source acts on (WaveMaker::span_begin_cell; the whole line by default).
+  span_begin_ = std::clamp(maker.span_begin_cell, 0, tangential_count);
+  span_end_ = std::clamp(maker.span_end_cell, span_begin_, tangential_count);
+  // Still-water depth at the source line: the mean over the wet cells of the span.
   double depth_sum = 0.0;
   int wet = 0;
   const int line_cell = static_cast<int>(std::lround(line_index));
-  for (int t = 0; t < tangential_count; ++t) {
+  for (int t = span_begin_; t < span_end_; ++t) {
     const double d = normal_is_x_ ? depth[static_cast<std::size_t>(t) * cols_ + line_cell]
                                   : depth[static_cast<std::size_t>(line_cell) * cols_ + t];
     if (d > 0.0) { depth_sum += d; ++wet; }
   }
   if (wet == 0)
-    throw Error("wave maker", "the source line at " + std::to_string(line_m) + " m runs over land only",
+    throw Error("wave maker",
+                "the source line at " + std::to_string(line_m) + " m runs over land only" +
+                    (span_begin_ > 0 || span_end_ < tangential_count
+                         ? " in its span of cells " + std::to_string(span_begin_) + " to " + std::to_string(span_end_ - 1)
+                         : std::string()),
                 "move source_line_m into open water");
   const double d = depth_sum / wet;
 
@@ -176,10 +183,11 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
     }
   }
   line_.assign(static_cast<std::size_t>(tangential_count), 0.0);
-  // The source acts on water only: cells of the strip on land get none (no water made on land).
+  // The source acts on water only: cells of the strip on land get none (no water made on land),
+  // and on its span only (WaveMaker::span_begin_cell).
   water_.assign(profile_.size() * static_cast<std::size_t>(tangential_count), 0);
   for (int i = strip_begin_; i < strip_end_; ++i)
-    for (int j = 0; j < tangential_count; ++j) {
+    for (int j = span_begin_; j < span_end_; ++j) {
       const std::size_t cell = normal_is_x_ ? static_cast<std::size_t>(j) * cols_ + i : static_cast<std::size_t>(i) * cols_ + j;
       water_[static_cast<std::size_t>(i - strip_begin_) * tangential_count + j] = depth[cell] > 0.0;
     }
@@ -242,10 +250,10 @@ void SourceFunction::add(double time_s, double dt, double* eta_base, std::size_t
   const int tangential_count = static_cast<int>(line_.size());
   // Sum along the line by complex rotation: exp(i (l t_j - w t + psi)) advanced cell by cell.
   for (const Component& c : components_) {
-    const double t0 = tangential_origin_m_ + 0.5 * tangential_spacing_m_;
+    const double t0 = tangential_origin_m_ + (span_begin_ + 0.5) * tangential_spacing_m_;
     std::complex<double> z = std::polar(c.strength_m_s, c.tangential_wavenumber_rad_m * t0 - c.angular_frequency_rad_s * time_s + c.phase_rad);
     const std::complex<double> rotation = std::polar(1.0, c.tangential_wavenumber_rad_m * tangential_spacing_m_);
-    for (int j = 0; j < tangential_count; ++j) {
+    for (int j = span_begin_; j < span_end_; ++j) {
       line_[static_cast<std::size_t>(j)] += z.real();
       z *= rotation;
     }
@@ -253,7 +261,7 @@ void SourceFunction::add(double time_s, double dt, double* eta_base, std::size_t
   const double scale = r * dt;
   for (int i = strip_begin_; i < strip_end_; ++i) {
     const double p = scale * profile_[static_cast<std::size_t>(i - strip_begin_)];
-    for (int j = 0; j < tangential_count; ++j) {
+    for (int j = span_begin_; j < span_end_; ++j) {
       const std::size_t cell = normal_is_x_ ? static_cast<std::size_t>(j) * y_stride + static_cast<std::size_t>(i) * x_stride
                                             : static_cast<std::size_t>(i) * y_stride + static_cast<std::size_t>(j) * x_stride;
       if (water_[static_cast<std::size_t>(i - strip_begin_) * tangential_count + j])

@@ -42,6 +42,7 @@ class SourceFunction {
   double depth_m_ = 0.0, dispersion_coefficient_ = 1.0 / 15.0, line_index_ = 0.0;
   bool normal_is_x_ = true;
   int strip_begin_ = 0, strip_end_ = 0;  // cell indices along the normal axis, [begin, end)
+  int span_begin_ = 0, span_end_ = 0;    // cell indices along the line, [begin, end): WaveMaker's span
   std::vector<double> profile_;          // Gaussian g(s - s_line) per strip index
   int cols_ = 0, rows_ = 0;
   double tangential_origin_m_ = 0.0, ramp_time_s_ = 0.0;

@@ -2,6 +2,8 @@
 // Shared by the bake tests: a scratch folder per test, a small flume case that runs in well under a
 // second, written as TOML text so the tests go through the same parser as a user, and the check
 // that a bad case fails with one message naming the file, the key and the fix.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -10,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "nearshore/bake/bake_case.hpp"
+#include "nearshore/bake/bake_gauges.hpp"
 #include "nearshore/core/error.hpp"
 
 namespace nearshore::bake::testing {
@@ -67,6 +70,21 @@ inline void expect_case_error(const std::string& text, const std::vector<std::st
       EXPECT_NE(message.find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << message;
     EXPECT_NE(message.find("; "), std::string::npos) << "no fix in: " << message;
   }
+}
+
+/// 4 standard deviations of a gauge's eta over from_s < t <= to_s (Hs; for a regular wave,
+/// 2 sqrt(2) sigma is its height H, i.e. half this times sqrt(2)). Fails the test if the window holds
+/// fewer than 20 samples.
+inline double gauge_four_sigma_m(const GaugeTable& table, const std::string& name, double from_s, double to_s) {
+  const std::vector<double>& eta = gauge_column(table, name);
+  double sum = 0.0, sum2 = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < eta.size(); ++i)
+    if (table.time_s[i] > from_s && table.time_s[i] <= to_s) sum += eta[i], sum2 += eta[i] * eta[i], ++n;
+  EXPECT_GT(n, 20) << "gauge " << name << ": too few samples in " << from_s << " .. " << to_s << " s";
+  if (n == 0) return 0.0;
+  const double mean = sum / n;
+  return 4.0 * std::sqrt(std::max(sum2 / n - mean * mean, 0.0));
 }
 
 }  // namespace nearshore::bake::testing

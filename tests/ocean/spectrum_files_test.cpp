@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "nearshore/core/error.hpp"
+#include "spectrum_scratch.hpp"
 #include "nearshore/ocean/sea_state_builder.hpp"
 #include "nearshore/ocean/spectrum.hpp"
 
@@ -43,25 +44,7 @@ struct Sea {
   double density_m2_hz(double f) const { return 2.0 * kPi * spectrum.density_m2_s_rad(2.0 * kPi * f); }
 };
 
-/// A per-test folder under the system's temporary directory, removed when the program ends.
-fs::path scratch_directory() {
-  struct Removed {
-    std::vector<fs::path> directories;
-    ~Removed() {
-      std::error_code ignored;
-      for (const fs::path& d : directories) fs::remove_all(d, ignored);
-    }
-  };
-  static Removed removed;
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::temp_directory_path() / fmt::format("nearshore_spectrum_files_{}_{}_{}", info->test_suite_name(),
-                                              info->name(), static_cast<long>(::getpid()));
-  fs::create_directories(dir);
-  if (std::find(removed.directories.begin(), removed.directories.end(), dir) == removed.directories.end())
-    removed.directories.push_back(dir);
-  return dir;
-}
+fs::path scratch_directory() { return nearshore::ocean::testing::spectrum_scratch_directory(); }
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path);

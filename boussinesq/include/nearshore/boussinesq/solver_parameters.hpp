@@ -8,6 +8,7 @@
 // Units: metres, seconds, radians throughout (angles named _deg are degrees). x = 0 is the west edge
 // of the grid, y = 0 the south edge (GridGeometry origin); positions such as WaveMaker::source_line_m
 // are in the grid's own frame (origin included).
+#include <limits>
 #include <vector>
 
 #include "nearshore/boussinesq/model_nonlinear.hpp"
@@ -95,6 +96,14 @@ struct WaveMaker {
                                       ///< (x for kWest/kEast, y for kSouth/kNorth), metres, grid frame
   Side facing = Side::kSouth;         ///< waves are generated travelling AWAY from this side
   double ramp_time_s = 0.0;           ///< smooth start over this time, seconds: (1 - cos(pi t / T)) / 2
+  /// The stretch of the source line the source acts on: cells [span_begin_cell, span_end_cell) along
+  /// the line (columns for a line facing south or north, rows for west or east), clamped to the grid.
+  /// The default is the whole line; the bake's case reader sets it to the one wet span the source is
+  /// meant for, so that no water cut off from it by land (a cove behind a headland) gets a source of
+  /// its own (docs/solver.md, "Wave maker": what such a span radiates). The line's depth, which sets
+  /// the source's strength, is the mean over this span's wet cells.
+  int span_begin_cell = 0;
+  int span_end_cell = std::numeric_limits<int>::max();
   /// Second-order generation of a regular wave (kComponents with one component): the line also
   /// radiates, as a free wave at 2w, the bound second harmonic of the equations' own steady wave
   /// (model_nonlinear.hpp) in phase with it at the line. A source of the first harmonic alone sheds
