@@ -27,7 +27,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   xvfb xauth mesa-utils libgl1-mesa-dri libegl1-mesa-dev libegl-dev libgl-dev libgles-dev
   python3 python3-glad fonts-dejavu-core
-  python3-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-xarray
+  python3-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-xarray python3-pil
   clang
 )
 missing=()

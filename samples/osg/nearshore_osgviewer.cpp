@@ -5,10 +5,12 @@
 // OSG's trackball or writes one headless screenshot.
 //
 //   nearshore_osgviewer SEQUENCE_FOLDER MODEL [--at X,Y] [--heading DEG] [--time S]
-//                       [--screenshot OUT.png] [--size W,H]
+//                       [--eye X,Y,Z --target X,Y] [--screenshot OUT.png] [--size W,H]
 //
 // The ship stands at site metres (X, Y) (default: the middle of the harbour), bow towards
-// HEADING degrees counter-clockwise from east; the camera looks at it from the starboard quarter.
+// HEADING degrees counter-clockwise from east; the camera looks at it from the starboard quarter,
+// or from --eye at --target (site metres, z up; `nearshore play`'s flags of the same names, its
+// 45-degree field of view and sun: the same picture). MODEL `none` draws the sea alone.
 #include <osg/LightModel>
 #include <osg/MatrixTransform>
 #include <osgDB/ReadFile>
@@ -46,19 +48,35 @@ class FloatOnSea : public osg::NodeCallback {
 };
 
 bool pair_of(const char* text, double& a, double& b) { return std::sscanf(text, "%lf,%lf", &a, &b) == 2; }
+bool triple_of(const char* text, double& a, double& b, double& c) {
+  return std::sscanf(text, "%lf,%lf,%lf", &a, &b, &c) == 3;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s SEQUENCE_FOLDER MODEL [--at X,Y] [--heading DEG] [--time S] [--screenshot OUT.png] [--size W,H]\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s SEQUENCE_FOLDER MODEL|none [--at X,Y] [--heading DEG] [--time S] [--eye X,Y,Z --target X,Y]"
+                 " [--screenshot OUT.png] [--size W,H]\n",
+                 argv[0]);
     return 2;
   }
   double x = -1, y = -1, heading_deg = 60, time_s = -1, width = 960, height = 540;
   std::string screenshot;
+  bool own_camera = false, has_target = false;
+  osg::Vec3d eye_m, target_m;
   for (int k = 3; k + 1 < argc; k += 2) {
     const std::string flag = argv[k];
     if (flag == "--at" && pair_of(argv[k + 1], x, y)) continue;
+    if (flag == "--eye" && triple_of(argv[k + 1], eye_m.x(), eye_m.y(), eye_m.z())) {
+      own_camera = true;
+      continue;
+    }
+    if (flag == "--target" && pair_of(argv[k + 1], target_m.x(), target_m.y())) {
+      has_target = true;
+      continue;
+    }
     if (flag == "--heading") { heading_deg = std::atof(argv[k + 1]); continue; }
     if (flag == "--time") { time_s = std::atof(argv[k + 1]); continue; }
     if (flag == "--screenshot") { screenshot = argv[k + 1]; continue; }
@@ -66,6 +84,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "nearshore_osgviewer: unknown option %s %s\n", argv[k], argv[k + 1]);
     return 2;
   }
+  if (own_camera != has_target) {
+    std::fprintf(stderr, "nearshore_osgviewer: give --eye and --target together\n");
+    return 2;
+  }
+  const bool with_model = std::string(argv[2]) != "none";
   try {
     nearshore::scenegraph::SeaNodeSettings settings;
     settings.streaming.lockstep = !screenshot.empty();  // a screenshot shows exactly its time
@@ -75,7 +98,8 @@ int main(int argc, char** argv) {
     if (time_s >= 0) sea->set_display_time_s(time_s);
     sea->advance_to(time_s >= 0 ? time_s : 0.0);  // heights for the first frame's placement
 
-    osg::ref_ptr<osg::Node> model = osgDB::readRefNodeFile(argv[2]);
+    osg::ref_ptr<osg::Node> model =
+        with_model ? osgDB::readRefNodeFile(argv[2]) : osg::ref_ptr<osg::Node>(new osg::Group);
     if (!model) {
       std::fprintf(stderr, "nearshore_osgviewer: cannot read the model %s (is there an osgDB plugin for it?)\n", argv[2]);
       return 1;
@@ -90,19 +114,20 @@ int main(int argc, char** argv) {
     osg::ref_ptr<osg::MatrixTransform> ship = new osg::MatrixTransform;
     ship->addChild(model.get());
     ship->setUpdateCallback(new FloatOnSea(sea.get(), x, y, heading));
-    sea->set_reflected(ship.get());
+    if (with_model) sea->set_reflected(ship.get());
 
     osg::ref_ptr<osg::Group> root = new osg::Group;
     root->addChild(sea.get());
-    root->addChild(ship.get());
+    if (with_model) root->addChild(ship.get());
     osgViewer::Viewer viewer;
     viewer.setSceneData(root.get());
     viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded);
     const double r = std::max(model->getBound().radius(), 5.0f);
-    const osg::Vec3d target(x, y, 0.0);
     // From the starboard quarter: 130 degrees clockwise from the bow, three radii off, one up.
     const double look_from = heading - 130.0 * M_PI / 180.0;
-    const osg::Vec3d eye = target + osg::Vec3d(std::cos(look_from) * 3 * r, std::sin(look_from) * 3 * r, 0.8 * r);
+    const osg::Vec3d target = own_camera ? target_m : osg::Vec3d(x, y, 0.0);
+    const osg::Vec3d eye =
+        own_camera ? eye_m : target + osg::Vec3d(std::cos(look_from) * 3 * r, std::sin(look_from) * 3 * r, 0.8 * r);
     if (screenshot.empty()) {
       viewer.setUpViewInWindow(50, 50, int(width), int(height));
       auto* manipulator = new osgGA::TrackballManipulator;
