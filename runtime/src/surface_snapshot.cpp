@@ -42,8 +42,10 @@ const RampTable kRampTable = [] {
 
 Ramp sin2_ramp(double s, double width, bool with_slope) {
   if (width <= 0.0) return {s > 0.0 ? 1.0 : 0.0, 0.0};
-  if (s <= 0.0) return {0.0, 0.0};
-  if (s >= width) return {1.0, 0.0};
+  // Written so that a NaN argument or width returns a flat part: the table index below must be in
+  // range whatever a host passes.
+  if (!(s > 0.0)) return {0.0, 0.0};
+  if (!(s < width)) return {1.0, 0.0};
   constexpr double h = 1.0 / RampTable::kIntervals;
   const double x = s / width * RampTable::kIntervals;
   const int i = std::min(static_cast<int>(x), RampTable::kIntervals - 1);

@@ -6,6 +6,7 @@
 #include "nearshore/runtime/surface_sampler.hpp"
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <random>
 
@@ -149,6 +150,10 @@ TEST(SurfaceSampler, IsTheFormulasOfItsHeader) {
   EXPECT_EQ(harbour_weight(*s.site, 7.5, 0.9), 0.0);
   EXPECT_NEAR(harbour_weight(*s.site, 7.5, 3.0), 0.5, 1e-12);
   EXPECT_EQ(harbour_weight(*s.site, 7.5, 7.0), 1.0);
+  // A NaN coordinate gives a weight, not a read outside the table.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(harbour_weight(*s.site, nan, 3.0), 0.0);
+  EXPECT_TRUE(std::isfinite(harbour_weight_and_gradient(*s.site, 7.5, nan).d_dy_per_m));
 }
 
 TEST(SurfaceSampler, HarbourWeightGradientIsItsDerivative) {
