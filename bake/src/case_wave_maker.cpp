@@ -416,7 +416,7 @@ void keep_to_wet_span(TableReader& maker, const HarbourGrid& grid, const std::op
                fmt::format("puts {} over {} wet spans cut off from each other by land ({}): {}", where, spans.size(),
                            kDisconnectedSpanReason, describe_spans(grid, along_x, spans)),
                along_boundary
-                   ? "make the boundary one stretch of water: crop the grid (nearshore bathy --bbox) or move the line "
+                   ? "make the boundary one stretch of water: crop the grid (BathyRequest::bbox_lon_lat) or move the line "
                      "(sponge width, source_offset_m) to where the water is one span"
                    : "give source_line = { lat = ..., lon = ... } (or x_m/y_m) at a point of the span to feed, or boundary = "
                      "\"<side>\" for a source along the open boundary in front of its sponge");
