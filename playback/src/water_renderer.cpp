@@ -32,8 +32,9 @@ namespace {
 struct Destination {
   GLuint framebuffer = 0;
   int x = 0, y = 0, width = 0, height = 0;
-  bool clear = true;
-  bool own_target = true;  // the renderer's target (false: a host's framebuffer)
+  // The renderer's target (cleared first; the refraction copies it), or false: a host's framebuffer
+  // (drawn over as the host left it, no refraction).
+  bool own_target = true;
   void bind() const {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(x, y, width, height);
@@ -272,7 +273,7 @@ struct WaterRenderer::Impl {
     statistics.far_m = view.far_m;
     statistics.msaa_samples = 1;
     draw_frame(snapshot, bound, view, lighting, options, layers,
-               Destination{GLuint(framebuffer), viewport[0], viewport[1], viewport[2], viewport[3], false, false});
+               Destination{GLuint(framebuffer), viewport[0], viewport[1], viewport[2], viewport[3], false});
     timer.end_pass();
     check_errors();
   }
@@ -305,7 +306,7 @@ struct WaterRenderer::Impl {
     bind_textures(bound);
     const bool deep_foam_drawn = lit && deep_foam.update(surface, light, timer);
     destination.bind();
-    if (destination.clear) {
+    if (destination.own_target) {
       glClearColor(options.background[0], options.background[1], options.background[2], 1.f);
       glClearDepth(1.0);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
