@@ -432,7 +432,9 @@ ViewerRun run_viewer(const ViewerOptions& o) {
   run.stats = sea.engine().stats();
   run.last_frame = renderer.last_frame();
   run.frames_drawn = frames_drawn;
-  run.wall_s = wall_s;
+  // Up to now: a headless run leaves the loop right after its last frame, before the loop's clock
+  // reads again (one frame read 0 s and printed millions of frames per second).
+  run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.display_time_s = display_time_s;
   run.gl_description = window.gl_description();
   if (ships) {
