@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 fs::path demo_bake() {
   if (const char* folder = std::getenv("NEARSHORE_DEMO_BAKE")) return folder;
-  return fs::path(NEARSHORE_BINARY_DIR) / "test-output" / "harbour" / "PeriodicBakeRepeatsWithSeamRatioBelowATenth" / "harbour";
+  return NEARSHORE_DEMO_BAKE_DIR;  // tests/CMakeLists.txt: the fixture demo_harbour_bake's output
 }
 
 constexpr int kWidth = 320, kHeight = 180;

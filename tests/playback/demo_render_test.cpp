@@ -26,7 +26,7 @@ using playback::Vector3;
 
 fs::path demo_bake_folder() {
   if (const char* folder = std::getenv("NEARSHORE_DEMO_BAKE")) return folder;
-  return fs::path(NEARSHORE_BINARY_DIR) / "test-output" / "harbour" / "PeriodicBakeRepeatsWithSeamRatioBelowATenth" / "harbour";
+  return NEARSHORE_DEMO_BAKE_DIR;  // tests/CMakeLists.txt: the fixture demo_harbour_bake's output
 }
 
 Vector3 unit(const Vector3& v) {

@@ -59,8 +59,8 @@ grep -q "ship 'Tug 1' ran aground" "$work/ship.err"
 awk -F, 'NR == 11 && !($7 + 0 > 3.0 && $7 + 0 < 5.0) { print "not under way at 4 m/s: " $0; bad = 1 }
          END { if ($8 != 1) { print "not aground at the end: " $0; bad = 1 } exit bad }' "$work/ship.csv"
 
-# 2. and 3. GL hosts under Xvfb (a display number from the pid, as the GL tests do).
-xvfb() { xvfb-run -a -n $((100 + $$ % 800)) -s '-screen 0 1024x768x24 -noreset' "$@"; }
+# 2. and 3. GL hosts under Xvfb (tests/under_xvfb.sh, as the GL tests).
+xvfb() { "${UNDER_XVFB:?the test sets it: tests/under_xvfb.sh}" --screen 1024x768x24 "$@"; }
 xvfb "$work/build/embed_window" "$sequence" 20 "$work/embed.ppm" | tee "$work/embed.log"
 test -s "$work/embed.ppm"
 xvfb "$work/build/own_renderer" "$sequence" 20 | tee "$work/own.log"

@@ -7,7 +7,7 @@ set -euo pipefail
 nearshore=$1 sequence=$2 work=$3
 rm -rf "$work"
 mkdir -p "$work"
-xvfb() { xvfb-run -a -n $((100 + $$ % 800)) -s '-screen 0 1024x768x24 -noreset' "$@"; }
+xvfb() { "${UNDER_XVFB:?the test sets it: tests/under_xvfb.sh}" --screen 1024x768x24 "$@"; }
 json_field() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
 
 # 1. Every grid, twice: the same bytes; no underrun when each frame waits for its keyframes.
