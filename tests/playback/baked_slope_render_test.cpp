@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "nearshore/playback/slope_moments.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
+#include "nearshore/plot/plot.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
 #include "snapshot_fixtures.hpp"
 
@@ -190,6 +192,25 @@ TEST(BakedSlopeRender, AFarSwellShowsTheSupersampledMeanNotAliases) {
       reference_mean += reference;
       ++count;
     }
+  // For docs/rendering.md: the three pictures (the reference box-averaged in linear light).
+  Image reference(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      playback::Radiance sum{};
+      for (int j = 0; j < factor; ++j)
+        for (int i = 0; i < factor; ++i) {
+          const auto c = fine.get(x * factor + i, y * factor + j);
+          const auto radiance = playback::from_display(frame, {c[0], c[1], c[2]});
+          for (std::size_t k = 0; k < 3; ++k) sum[k] += radiance[k] / (factor * factor);
+        }
+      const auto shown = playback::to_display(frame, sum);
+      reference.set(x, y, {float(shown[0]), float(shown[1]), float(shown[2])});
+    }
+  const auto folder = std::filesystem::path(NEARSHORE_BINARY_DIR) / "playback-pictures";
+  std::filesystem::create_directories(folder);
+  write_png(point, folder / "baked_slope_point.png");
+  write_png(filtered, folder / "baked_slope_filtered.png");
+  write_png(reference, folder / "baked_slope_reference.png");
   ASSERT_GT(count, 800);
   // The aliasing: how much the error varies from pixel to pixel (its standard deviation; the mean
   // error is the masking above).
