@@ -161,6 +161,19 @@ TEST(BakedSlopeRender, AFarSwellShowsTheSupersampledMeanNotAliases) {
   const playback::Camera camera = bridge_camera();
   const playback::CameraView view = playback::camera_view(camera, width, height, 1.0, 1000.0);
   const playback::LightingFrame frame = playback::prepare_lighting(quiet_lighting(true));
+  // A reference pixel: the mean radiance of its 64 samples, displayed (the box filter in linear
+  // light; averaging the displayed values would darken it by the display curve's concavity).
+  const auto reference_pixel = [&](int x, int y) {
+    playback::Radiance sum{};
+    for (int j = 0; j < factor; ++j)
+      for (int i = 0; i < factor; ++i) {
+        const auto c = fine.get(x * factor + i, y * factor + j);
+        const auto radiance = playback::from_display(frame, {c[0], c[1], c[2]});
+        for (std::size_t k = 0; k < 3; ++k) sum[k] += radiance[k] / (factor * factor);
+      }
+    const auto shown = playback::to_display(frame, sum);
+    return Rgb{float(shown[0]), float(shown[1]), float(shown[2])};
+  };
   std::vector<double> filtered_error, point_error;  // 1x minus reference, per pixel
   double filtered_mean = 0, point_mean = 0, reference_mean = 0;
   int count = 0;
@@ -173,17 +186,7 @@ TEST(BakedSlopeRender, AFarSwellShowsTheSupersampledMeanNotAliases) {
       if (runtime::harbour_weight(*snapshot.site, px, py) < 1.0) continue;
       const double footprint = std::hypot(t * ray[0] - t_next * next[0], t * ray[1] - t_next * next[1]);
       if (footprint < 4.0 * kCell) continue;
-      // The reference pixel: the mean radiance of its 64 samples (the box filter in linear light;
-      // averaging the displayed values would darken it by the display curve's concavity).
-      playback::Radiance sum{};
-      for (int j = 0; j < factor; ++j)
-        for (int i = 0; i < factor; ++i) {
-          const auto c = fine.get(x * factor + i, y * factor + j);
-          const auto radiance = playback::from_display(frame, {c[0], c[1], c[2]});
-          for (std::size_t k = 0; k < 3; ++k) sum[k] += radiance[k] / (factor * factor);
-        }
-      const auto shown = playback::to_display(frame, sum);
-      const double reference = luminance({float(shown[0]), float(shown[1]), float(shown[2])});
+      const double reference = luminance(reference_pixel(x, y));
       const double a = luminance(filtered.get(x, y)), b = luminance(point.get(x, y));
       filtered_error.push_back(a - reference);
       point_error.push_back(b - reference);
@@ -192,20 +195,10 @@ TEST(BakedSlopeRender, AFarSwellShowsTheSupersampledMeanNotAliases) {
       reference_mean += reference;
       ++count;
     }
-  // For docs/rendering.md: the three pictures (the reference box-averaged in linear light).
+  // For docs/rendering.md: the three pictures.
   Image reference(width, height);
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      playback::Radiance sum{};
-      for (int j = 0; j < factor; ++j)
-        for (int i = 0; i < factor; ++i) {
-          const auto c = fine.get(x * factor + i, y * factor + j);
-          const auto radiance = playback::from_display(frame, {c[0], c[1], c[2]});
-          for (std::size_t k = 0; k < 3; ++k) sum[k] += radiance[k] / (factor * factor);
-        }
-      const auto shown = playback::to_display(frame, sum);
-      reference.set(x, y, {float(shown[0]), float(shown[1]), float(shown[2])});
-    }
+    for (int x = 0; x < width; ++x) reference.set(x, y, reference_pixel(x, y));
   const auto folder = std::filesystem::path(NEARSHORE_BINARY_DIR) / "playback-pictures";
   std::filesystem::create_directories(folder);
   write_png(point, folder / "baked_slope_point.png");
