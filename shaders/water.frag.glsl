@@ -228,7 +228,7 @@ void main() {
   // it fades into the BRDF's slope variance (Bruneton 2010 section 4).
   float footprint_m = max(length(dFdx(p)), length(dFdy(p)));
   float eta = v_eta_m, weight = v_weight;  // interpolated from the vertices (water_vertex.glsl)
-  if (is_dry(p, eta)) discard;  // the terrain shows
+  if (is_dry(p, eta) || on_skirt_land(p)) discard;  // the terrain shows
   if (u_colouring == 1) { fragment_colour = vec4(u_flat_colour, 1.0); return; }
   if (u_colouring == 2) { fragment_colour = vec4(lod_colour(v_lod), 1.0); return; }
   if (u_colouring == 3) { fragment_colour = vec4(0.35 * lod_colour(v_lod), 1.0); return; }
