@@ -12,34 +12,16 @@
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/plot/plot.hpp"
+#include "flat_sea_probes.hpp"
 #include "snapshot_fixtures.hpp"
 
 namespace {
 using namespace nearshore;
 using namespace nearshore::playback;
 
-// Flat magenta sea on black, no sky: every pixel is plainly water or not.
-DrawOptions flat_options() {
-  DrawOptions options;
-  options.colouring = SurfaceColouring::flat;
-  options.flat_colour = {1.f, 0.f, 1.f};
-  options.sky = false;
-  options.background = {0.f, 0.f, 0.f};
-  return options;
-}
-bool is_water(const Rgb& p) { return p[0] > 0.5f && p[1] < 0.5f && p[2] > 0.5f; }
-
-// The first water row (from the top) of each column, -1 where the column has none.
-std::vector<int> first_water_rows(const Image& image) {
-  std::vector<int> rows(std::size_t(image.width()), -1);
-  for (int x = 0; x < image.width(); ++x)
-    for (int y = 0; y < image.height(); ++y)
-      if (is_water(image.get(x, y))) {
-        rows[std::size_t(x)] = y;
-        break;
-      }
-  return rows;
-}
+using test::first_water_rows;
+using test::flat_options;
+using test::is_water;
 
 // Row (from the top, continuous: the edge between rows y-1 and y is y) of a normalised device y.
 double row_of(double ndc_y, int height) { return 0.5 * (1.0 - ndc_y) * height; }

@@ -11,31 +11,16 @@
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/runtime/surface_sampler.hpp"
+#include "flat_sea_probes.hpp"
 #include "snapshot_fixtures.hpp"
 
 namespace nearshore {
 namespace {
 using namespace playback;
 
-bool is_water(const Rgb& p) { return p[0] > 0.5f && p[1] < 0.5f && p[2] > 0.5f; }
-std::vector<int> first_water_rows(const Image& image) {
-  std::vector<int> rows(std::size_t(image.width()), image.height());
-  for (int x = 0; x < image.width(); ++x)
-    for (int y = 0; y < image.height(); ++y)
-      if (is_water(image.get(x, y))) {
-        rows[std::size_t(x)] = y;
-        break;
-      }
-  return rows;
-}
-
 TEST(HorizonSwellRender, TheSeasEdgeIsTheCrestsSilhouetteAndMovesWithThem) {
   GlWindow window(64, 64, "test", false);
-  DrawOptions flat;
-  flat.colouring = SurfaceColouring::flat;
-  flat.flat_colour = {1.f, 0.f, 1.f};
-  flat.sky = false;
-  flat.background = {0.f, 0.f, 0.f};
+  const DrawOptions flat = test::flat_options();
   // A Beaufort 8 sea (Hs about 5.5 m), one 256 m cascade, 4 s apart; from 3 m up looking level,
   // 8 degrees high: one pixel is 0.035 degree.
   const test::DeepPair deep = test::make_deep_pair(8, {256.0}, 128, 10.0, 14.0, 10);
@@ -51,12 +36,13 @@ TEST(HorizonSwellRender, TheSeasEdgeIsTheCrestsSilhouetteAndMovesWithThem) {
     std::vector<int> rows[3];
     runtime::SurfaceSnapshot calm;
     renderer.render(calm, camera, Lighting{}, width, height, flat);
-    rows[0] = first_water_rows(renderer.read_pixels());
+    rows[0] = test::first_water_rows(renderer.read_pixels());
     for (int k = 0; k < 2; ++k) {
       runtime::SurfaceSnapshot snapshot;
       snapshot.deep_from = snapshot.deep_to = k == 0 ? deep.from : deep.to;
       renderer.render(snapshot, camera, Lighting{}, width, height, flat);
-      rows[k + 1] = first_water_rows(renderer.read_pixels());
+      rows[k + 1] = test::first_water_rows(renderer.read_pixels());
+      for (int& row : rows[k + 1]) row = row < 0 ? height : row;  // no water in the column: below the picture
     }
     // The CPU's silhouette: per column, the highest elevation angle of the surface (the CPU
     // sampler's displaced elevation, less the sphere's drop on the projected grid) along the
