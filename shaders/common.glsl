@@ -237,6 +237,21 @@ float unresolved_relief_weight(float texel_m, float footprint_m) {
 // it at to_eye.xy / to_eye.z * relief_m further towards the eye; the normal map is read there.
 vec2 parallax_offset_m(vec3 to_eye, float relief_m) { return to_eye.xy / max(to_eye.z, kParallaxMinViewCosine) * relief_m; }
 
+// ---- the baked field's slopes at distance (slope_moments.hpp, the same names) --------------
+// The keyframes' slope moments (g_x, g_y, g_x^2, g_y^2: rise per cell and its square) are a mip
+// pyramid; a pixel reads the level of its footprint (LEADR, Dupuy et al. 2013): the mean slope
+// there, and Var = E[g^2] - E[g]^2 for the BRDF's roughness.
+float baked_slope_lod(float footprint_m, float cell_m) {
+  return footprint_m > cell_m && cell_m > 0.0 ? log2(footprint_m / cell_m) : 0.0;
+}
+// xy: the mean slope; z: the slope variance per axis, 0.5 (Var s_x + Var s_y), each keyframe's own
+// interpolated in time.
+vec3 filtered_baked_slope(vec4 from, vec4 to, float fraction, vec2 spacing_m) {
+  vec2 mean = mix(from.xy, to.xy, fraction) / spacing_m;
+  vec2 variance = mix(from.zw - from.xy * from.xy, to.zw - to.xy * to.xy, fraction) / (spacing_m * spacing_m);
+  return vec3(mean, max(0.5 * (variance.x + variance.y), 0.0));
+}
+
 // Exposure and display gamma (the default framebuffer is not sRGB). The exposure curve
 // 1 - exp(-k Y) acts on the luminance Y alone and the colour keeps its chromaticity: applied per
 // channel it squeezed the brightest channel most and turned a bright blue sky grey-violet. A

@@ -221,6 +221,55 @@ float still_water_depth_at(vec2 p) {
   return mix(max(edge, 2.0), u_open_sea_depth_m, smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond));
 }
 
+// The skirt's ground beyond the grid (playback::skirt_ground_m, site_terrain.cpp: the same rule):
+// the edge's ground averaged along the edge (9 taps over +-the distance beyond, at most a quarter
+// of the shorter side) stays at that height on land and deepens to the open sea's depth on water.
+vec2 perimeter_point(float s) {
+  float w = u_site_size_m.x, h = u_site_size_m.y, perimeter = 2.0 * (w + h);
+  s = mod(s, perimeter);
+  if (s < w) return vec2(s, 0.0);
+  if ((s -= w) < h) return vec2(w, s);
+  if ((s -= h) < w) return vec2(w - s, h);
+  return vec2(0.0, h - (s - w));
+}
+float perimeter_position(vec2 q) {
+  float w = u_site_size_m.x, h = u_site_size_m.y;
+  if (q.y <= 0.0) return q.x;
+  if (q.x >= w) return w + q.y;
+  if (q.y >= h) return w + h + (w - q.x);
+  return 2.0 * w + h + (h - q.y);
+}
+float skirt_ground_m(vec2 p) {
+  vec2 q = clamp(p, vec2(0.0), u_site_size_m);
+  float beyond = length(p - q);
+  float s0 = perimeter_position(q), reach = min(beyond, 0.25 * min(u_site_size_m.x, u_site_size_m.y));
+  float elevation = 0.0;
+  for (int t = 0; t < 9; ++t)
+    elevation -= harbour_bilinear(u_still_water_depth, perimeter_point(s0 + reach * (2.0 * float(t) / 8.0 - 1.0))) / 9.0;
+  float drop = elevation + u_open_sea_depth_m;
+  float as_water = elevation - drop * smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond);
+  return mix(as_water, elevation, smoothstep(-1.0, 1.0, elevation));
+}
+// Beyond the grid the sea is not drawn where the skirt's ground stands above still water: the land
+// goes on to the horizon (and a sea drawn under it would fight it for depth kilometres off).
+// u_edge_max_ground_m: the highest ground on each edge (south, east, north, west: perimeter
+// order), so the sea off an all-water edge skips the nine taps (their mean is at most their max).
+uniform float u_edge_max_ground_m[4];
+bool on_skirt_land(vec2 p) {
+  if (!u_has_site || all(greaterThanEqual(p, vec2(0.0))) && all(lessThan(p, u_site_size_m))) return false;
+  vec2 q = clamp(p, vec2(0.0), u_site_size_m);
+  float w = u_site_size_m.x, h = u_site_size_m.y, perimeter = 2.0 * (w + h);
+  float reach = min(length(p - q), 0.25 * min(w, h)), s0 = perimeter_position(q);
+  float ends[5] = float[5](0.0, w, w + h, 2.0 * w + h, perimeter);
+  bool land_near = false;
+  for (int side = 0; side < 4; ++side)
+    for (int wrap = -1; wrap <= 1; ++wrap) {
+      float a = s0 - reach + float(wrap) * perimeter, b = s0 + reach + float(wrap) * perimeter;
+      if (b >= ends[side] && a <= ends[side + 1] && u_edge_max_ground_m[side] > 0.0) land_near = true;
+    }
+  return land_near && skirt_ground_m(p) > 0.0;
+}
+
 // Dry: no water is drawn where a structure stands above still water (its outline from the
 // structure's geometry, or the half level of its porous cells read bilinearly: the mask the
 // terrain is built with, SiteTextures), on land (d <= 0, d bilinear between the cell centres: the

@@ -19,6 +19,8 @@ uniform bool u_has_decal_foam;          // playback::SurfaceLayers foam decals w
 uniform sampler2D u_decal_foam;         // ... this foam map (R8, cover 0..1) over ...
 uniform vec4 u_decal_foam_rect_m;       // ... x0, y0, width, height of the site frame
 uniform float u_detail_parallax;        // seed 004 eq. (5) on (1) or off (0): Lighting::detail_parallax
+uniform bool u_filter_baked_slopes;     // Lighting::filter_baked_slopes
+uniform sampler2D u_harbour_slope_moments_from, u_harbour_slope_moments_to;  // slope_moments.hpp, mip-mapped
 uniform bool u_has_deep_foam;           // the persistent foam f_t of seed 000 eq. (3.46) (foam_decay.frag.glsl) ...
 uniform sampler2D u_deep_foam;          // ... over the largest cascade's tile, repeating
 uniform bool u_has_scene;               // the opaque scene (sky, seabed, land, structures, hulls) ...
@@ -226,23 +228,25 @@ void main() {
   // it fades into the BRDF's slope variance (Bruneton 2010 section 4).
   float footprint_m = max(length(dFdx(p)), length(dFdy(p)));
   float eta = v_eta_m, weight = v_weight;  // interpolated from the vertices (water_vertex.glsl)
-  if (is_dry(p, eta)) discard;  // the terrain shows
+  if (is_dry(p, eta) || on_skirt_land(p)) discard;  // the terrain shows
   if (u_colouring == 1) { fragment_colour = vec4(u_flat_colour, 1.0); return; }
   if (u_colouring == 2) { fragment_colour = vec4(lod_colour(v_lod), 1.0); return; }
   if (u_colouring == 3) { fragment_colour = vec4(0.35 * lod_colour(v_lod), 1.0); return; }
-  // The normal: harbour slopes by central differences of its (hardware-filtered) keyframes, deep
-  // slopes from the cascades' slope tiles, blended as the elevations are.
+  // The normal: the harbour's slopes filtered over the pixel's footprint (its slope moments' mip
+  // level: slope_moments.hpp), the variance the footprint holds into the BRDF's; deep slopes from
+  // the cascades' slope tiles, blended as the elevations are. The harbour's slope enters as w s,
+  // so its variance as w^2 Var s.
   vec2 slope = vec2(0.0);
-  float breaking = 0.0;
+  float breaking = 0.0, baked_variance = 0.0;
   if (weight > 0.0 && u_has_keyframes) {
     vec2 size = u_spacing_m * vec2(u_cells);
-    vec2 uv = p / size, du = vec2(1.0 / float(u_cells.x), 0.0), dv = vec2(0.0, 1.0 / float(u_cells.y));
+    vec2 uv = p / size;
     float f = u_harbour_fraction;
-    float ex = mix(texture(u_harbour_eta_from, uv + du).r - texture(u_harbour_eta_from, uv - du).r,
-                   texture(u_harbour_eta_to, uv + du).r - texture(u_harbour_eta_to, uv - du).r, f);
-    float ey = mix(texture(u_harbour_eta_from, uv + dv).r - texture(u_harbour_eta_from, uv - dv).r,
-                   texture(u_harbour_eta_to, uv + dv).r - texture(u_harbour_eta_to, uv - dv).r, f);
-    slope += weight * vec2(ex, ey) / (2.0 * u_spacing_m);
+    float lod = u_filter_baked_slopes ? baked_slope_lod(footprint_m, min(u_spacing_m.x, u_spacing_m.y)) : 0.0;
+    vec3 filtered = filtered_baked_slope(textureLod(u_harbour_slope_moments_from, uv, lod),
+                                         textureLod(u_harbour_slope_moments_to, uv, lod), f, u_spacing_m);
+    slope += weight * filtered.xy;
+    if (u_filter_baked_slopes) baked_variance = weight * weight * filtered.z;
     breaking = weight * mix(texture(u_harbour_breaking_from, uv).r, texture(u_harbour_breaking_to, uv).r, f);
   }
   vec3 to_eye = normalize(u_eye_m - v_position_m);
@@ -266,7 +270,7 @@ void main() {
     relief_m += w * mix(texture(u_deep_eta_from, uvw).r, texture(u_deep_eta_to, uvw).r, u_deep_fraction);
   }
   vec2 p_detail = p + u_detail_parallax * parallax_offset_m(to_eye, relief_m);
-  float extra_variance = 0.0;
+  float extra_variance = baked_variance;
   vec4 gradient = vec4(0.0);  // dDx/dx, dDy/dy, dDx/dy, dDy/dx
   for (int c = 0; c < u_cascade_count; ++c) {
     float texel_m = u_tile_length_m[c] / float(u_deep_size);

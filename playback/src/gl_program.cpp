@@ -42,8 +42,10 @@ constexpr const char* kSamplerUnits[] = {"u_harbour_eta_from",
                                          "u_relative_wave_height",
                                          "u_scene_colour",
                                          "u_scene_depth",
-                                         "u_structure_mask"};
-static_assert(std::size(kSamplerUnits) == kStructureMask + 1, "one name per SamplerUnit, in order");
+                                         "u_structure_mask",
+                                         "u_harbour_slope_moments_from",
+                                         "u_harbour_slope_moments_to"};
+static_assert(std::size(kSamplerUnits) == kSamplerUnitCount, "one name per SamplerUnit, in order");
 
 // Empty when `status` (GL_COMPILE_STATUS of a shader, GL_LINK_STATUS of a program) is true; else
 // the driver's log, which names the line that failed (or a placeholder when the driver gives none,

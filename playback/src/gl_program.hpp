@@ -33,7 +33,9 @@ enum SamplerUnit {
   kRelativeWaveHeight = 25,
   kSceneColour = 26,  // the opaque scene the sea refracts (RefractionSource)
   kSceneDepth = 27,
-  kStructureMask = 28
+  kStructureMask = 28,
+  kHarbourSlopeMoments = 29,  // from, to: the keyframes' slope moments (slope_moments.hpp), 29 and 30
+  kSamplerUnitCount = 31      // within the 32 fragment units of every GL 3.3 driver the project meets
 };
 
 /// A linked program: its vertex stage is `#version`, then the shared files `vertex_prefixes` in

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 #include <string>
 
 #include "nearshore/core/error.hpp"
@@ -102,17 +103,31 @@ void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::
     throw Error("harbour keyframe " + std::to_string(keyframe->serial),
                 "has a breaking raster of another size than its surface elevation",
                 "give both rasters the harbour grid's size");
+  // The slope moments' pyramid (slope_moments.hpp), sent level by level after the rows.
+  slot.moments = slope_moment_pyramid(keyframe->surface_elevation_m);
   if (slot.width != width || slot.height != height || slot.layers != 0 || !slot.textures[0]) {
     for (int field = 0; field < kHarbourFieldCount; ++field) {
       if (!slot.textures[field]) slot.textures[field] = new_texture(GL_TEXTURE_2D);
       glBindTexture(GL_TEXTURE_2D, slot.textures[field]);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, nullptr);
     }
+    // Trilinear between the levels (the shader picks the level itself: textureLod), clamped.
+    if (!slot.textures[kSlopeMomentsTexture]) slot.textures[kSlopeMomentsTexture] = new_texture(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, slot.textures[kSlopeMomentsTexture]);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    for (std::size_t level = 0; level < slot.moments.size(); ++level)
+      glTexImage2D(GL_TEXTURE_2D, GLint(level), GL_RGBA32F, slot.moments[level].columns, slot.moments[level].rows, 0,
+                   GL_RGBA, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(slot.moments.size()) - 1);
     slot.width = width;
     slot.height = height;
     slot.layers = 0;
   }
-  slot.rows_total = static_cast<long long>(kHarbourFieldCount) * height;  // eta rows, breaking rows, rate rows
+  long long moment_rows = 0;
+  for (const SlopeMomentLevel& level : slot.moments) moment_rows += level.rows;
+  // eta rows, breaking rows, rate rows, then the moments' rows level by level
+  slot.rows_total = static_cast<long long>(kHarbourFieldCount) * height + moment_rows;
   slot.harbour = std::move(keyframe);
 }
 
@@ -152,20 +167,42 @@ std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) 
   if (row_bytes == 0 || slot.rows_done >= slot.rows_total) {
     slot.rows_done = slot.rows_total;
     slot.complete = true;
+    slot.moments.clear();
     slot.harbour.reset();
     slot.deep.reset();
     slot.last_used = frame_;
     return 0;
   }
-  long long rows = std::max<long long>(1, static_cast<long long>(std::min<std::size_t>(budget_bytes / row_bytes, 1u << 30)));
-  rows = std::min(rows, slot.rows_total - slot.rows_done);
   std::size_t sent = 0;
+  // How many of `available` rows of `bytes_per_row` the budget left pays for (at least one in a
+  // call that sent nothing yet, so a queue always advances).
+  const auto affordable = [&](std::size_t bytes_per_row, long long available) {
+    const std::size_t left = budget_bytes > sent ? budget_bytes - sent : 0;
+    long long count = std::min<long long>(available, static_cast<long long>(std::min<std::size_t>(left / bytes_per_row, 1u << 30)));
+    return count == 0 && sent == 0 ? 1LL : count;
+  };
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-  while (rows > 0) {
-    if (slot.harbour) {
+  const long long field_rows = static_cast<long long>(kHarbourFieldCount) * slot.height;
+  while (slot.rows_done < slot.rows_total) {
+    if (slot.harbour && slot.rows_done >= field_rows) {
+      // The slope moments' levels after the fields, in rows of RGBA32F.
+      long long row = slot.rows_done - field_rows;
+      std::size_t level = 0;
+      while (row >= slot.moments[level].rows) row -= slot.moments[level++].rows;
+      const SlopeMomentLevel& moments = slot.moments[level];
+      const std::size_t bytes_per_row = std::size_t(moments.columns) * 4 * sizeof(float);
+      const long long count = affordable(bytes_per_row, moments.rows - row);
+      if (count == 0) break;
+      glBindTexture(GL_TEXTURE_2D, slot.textures[kSlopeMomentsTexture]);
+      glTexSubImage2D(GL_TEXTURE_2D, GLint(level), 0, GLint(row), moments.columns, GLsizei(count), GL_RGBA, GL_FLOAT,
+                      moments.texels.data() + std::size_t(row) * moments.columns * 4);
+      slot.rows_done += count;
+      sent += std::size_t(count) * bytes_per_row;
+    } else if (slot.harbour) {
       const int field = static_cast<int>(slot.rows_done / slot.height), row = static_cast<int>(slot.rows_done % slot.height);
-      const int count = static_cast<int>(std::min<long long>(rows, slot.height - row));
+      const int count = static_cast<int>(affordable(row_bytes, slot.height - row));
+      if (count == 0) break;
       glBindTexture(GL_TEXTURE_2D, slot.textures[field]);
       const Raster<float>& raster = field == 0   ? slot.harbour->surface_elevation_m
                                     : field == 1 ? slot.harbour->breaking
@@ -179,25 +216,26 @@ std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) 
                         raster.data() + std::size_t(row) * slot.width);
       }
       slot.rows_done += count;
-      rows -= count;
       sent += std::size_t(count) * row_bytes;
     } else {
       const long long per_field = static_cast<long long>(slot.layers) * slot.height;
       const int field = static_cast<int>(slot.rows_done / per_field);
       const int layer = static_cast<int>((slot.rows_done / slot.height) % slot.layers);
       const int row = static_cast<int>(slot.rows_done % slot.height);
-      const int count = static_cast<int>(std::min<long long>(rows, slot.height - row));
+      const int count = static_cast<int>(affordable(row_bytes, slot.height - row));
+      if (count == 0) break;
       glBindTexture(GL_TEXTURE_2D_ARRAY, slot.textures[field]);
       const std::vector<float>& values = deep_field(deep_layer(*slot.deep, layer), field);
       glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, row, layer, slot.width, count, 1, GL_RED, GL_FLOAT,
                       values.data() + std::size_t(row) * slot.width);
       slot.rows_done += count;
-      rows -= count;
       sent += std::size_t(count) * row_bytes;
     }
   }
   if (slot.rows_done >= slot.rows_total) {
     slot.complete = true;
+    slot.moments.clear();
+    slot.moments.shrink_to_fit();
     slot.harbour.reset();  // the GPU holds it now; the engine may let it go
     slot.deep.reset();
   }
@@ -259,6 +297,8 @@ KeyframeTextures::Bound KeyframeTextures::prepare(const runtime::SurfaceSnapshot
     bound.harbour_breaking[1] = to.textures[1];
     bound.harbour_eta_rate[0] = from.textures[2];
     bound.harbour_eta_rate[1] = to.textures[2];
+    bound.harbour_slope_moments[0] = from.textures[kSlopeMomentsTexture];
+    bound.harbour_slope_moments[1] = to.textures[kSlopeMomentsTexture];
   }
   const auto& deep_from = snapshot.deep_from ? snapshot.deep_from : snapshot.deep_to;
   const auto& deep_to = snapshot.deep_to ? snapshot.deep_to : snapshot.deep_from;

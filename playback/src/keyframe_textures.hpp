@@ -2,7 +2,8 @@
 // The GPU copies of a snapshot's keyframes (private to the renderer). Each harbour and deep-water
 // keyframe is uploaded once, by serial, into a small pool of texture slots. A keyframe the engine
 // says is coming (stage) is uploaded in row chunks within a byte budget per drawn frame, so a
-// 1024 x 1024 keyframe (12 MB: eta, its rate and breaking as R32F) spreads over several frames instead of
+// 1024 x 1024 keyframe (12 MB: eta, its rate and breaking as R32F; then its slope moments' mip
+// levels, 16 bytes a cell and a third more, in rows too) spreads over several frames instead of
 // stalling one; a keyframe a snapshot needs before it is complete is finished at once (counted
 // as forced). Needs a current OpenGL context.
 #include <glad/gl.h>
@@ -13,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "nearshore/playback/slope_moments.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
 
 namespace nearshore::playback {
@@ -24,9 +26,11 @@ struct UploadCounters {
 
 /// The deep-water fields a vertex or fragment shader reads, one R32F array per field.
 enum DeepField { kDeepEta, kDeepDx, kDeepDy, kDeepSlopeX, kDeepSlopeY, kDeepFieldCount };
-/// A harbour keyframe's textures: surface elevation, breaking, d eta / dt (R32F, the grid's size).
+/// A harbour keyframe's textures: surface elevation, breaking, d eta / dt (R32F, the grid's size),
+/// and the slope moments (RGBA32F, mip-mapped: slope_moments.hpp) in the fourth texture.
 inline constexpr int kHarbourFieldCount = 3;
-static_assert(kHarbourFieldCount <= kDeepFieldCount, "a slot's texture array holds either kind");
+inline constexpr int kSlopeMomentsTexture = kHarbourFieldCount;
+static_assert(kSlopeMomentsTexture < kDeepFieldCount, "a slot's texture array holds either kind");
 
 class KeyframeTextures {
  public:
@@ -45,6 +49,7 @@ class KeyframeTextures {
     GLuint harbour_eta[2] = {0, 0}, harbour_breaking[2] = {0, 0};
     GLuint harbour_eta_rate[2] = {0, 0};  ///< d eta / dt (zeros where a keyframe has none; used when
                                           ///< runtime::harbour_joined_by_hermite)
+    GLuint harbour_slope_moments[2] = {0, 0};  ///< RGBA32F mip pyramid (slope_moments.hpp)
     GLuint deep[kDeepFieldCount][2] = {};
     int deep_size = 0, cascade_count = 0;  ///< cascade_count: the field's cascades (layers 0 .. count - 1)
     /// The split's inside layer (runtime/surface_snapshot.hpp): bit c of the mask draws the
@@ -66,6 +71,7 @@ class KeyframeTextures {
     long long rows_done = 0, rows_total = 0;  // progress in rows of one field (of one layer)
     GLuint textures[kDeepFieldCount] = {};
     int width = 0, height = 0, layers = 0;
+    std::vector<SlopeMomentLevel> moments;                    // computed at start, held until sent
     std::shared_ptr<const runtime::HarbourKeyframe> harbour;  // held until complete
     std::shared_ptr<const runtime::DeepWaterKeyframe> deep;
   };

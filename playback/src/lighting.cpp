@@ -74,6 +74,7 @@ LightingFrame prepare_lighting(const Lighting& l) {
       luminance(f.sky.sun_illuminance_klx) * std::max(f.sky.sun_direction[2], 0.0) / kPi + sky_mean, 2.0 * sky_mean);
   f.exposure = std::max(l.exposure_compensation, 0.0) * kExposureKey / std::max(adaptation, kAdaptationFloorKcdM2);
   f.detail_parallax = std::max(l.detail_parallax, 0.0);
+  f.filter_baked_slopes = l.filter_baked_slopes;
   f.foam_decay_time_s = std::max(l.foam_decay_time_s, 0.0);
   // Koschmieder: the contrast of a black object falls as exp(-beta s); the WMO's meteorological
   // optical range is where it reaches 5 %.

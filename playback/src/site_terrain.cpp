@@ -69,6 +69,67 @@ std::vector<double> axis_positions(int cells, double spacing_m, int stride, int 
   return positions;
 }
 
+// The point of a W x H site's edge at arc length s counter-clockwise from the south-west corner,
+// and the inverse for a point on the edge.
+Point perimeter_point(double width_m, double height_m, double s) {
+  const double perimeter = 2 * (width_m + height_m);
+  s = std::fmod(std::fmod(s, perimeter) + perimeter, perimeter);
+  if (s < width_m) return {s, 0.0};
+  if ((s -= width_m) < height_m) return {width_m, s};
+  if ((s -= height_m) < width_m) return {width_m - s, height_m};
+  return {0.0, height_m - (s - width_m)};
+}
+double perimeter_position(double width_m, double height_m, const Point& q) {
+  if (q[1] <= 0) return q[0];
+  if (q[0] >= width_m) return width_m + q[1];
+  if (q[1] >= height_m) return width_m + height_m + (width_m - q[0]);
+  return 2 * width_m + height_m + (height_m - q[1]);
+}
+
+// Beyond the grid (shaders/surface.glsl skirt_ground_m is the twin of the elevation): the edge's
+// ground averaged along the edge (round its corners) over +-`beyond` of the nearest edge point, at
+// most a quarter of the site's shorter side (the further out, the smoother the coast it
+// continues); land (that average above still water) stays at that height out to the skirt's end
+// (the land goes on to the horizon: the sea is not drawn over it, surface.glsl); water deepens to
+// the open sea's depth over the site's extent (as still_water_depth_at in surface.glsl); the two
+// blended by the average from 1 m under to 1 m over still water, so a coast crossing the edge
+// continues without a step. inland_m: the edge's distance inland plus, on land, the way beyond.
+struct SkirtProfile {
+  double elevation_m = 0.0, inland_m = 0.0;
+};
+double inland_of(const HarbourGrid& harbour, double x, double y);
+SkirtProfile skirt_profile(const HarbourGrid& harbour, double open_sea_depth_m, double x, double y, bool with_inland) {
+  const double width_m = harbour.geometry.width_m(), height_m = harbour.geometry.height_m();
+  const Point q{std::clamp(x, 0.0, width_m), std::clamp(y, 0.0, height_m)};
+  const double beyond = std::hypot(x - q[0], y - q[1]);
+  const double s0 = perimeter_position(width_m, height_m, q), reach = std::min(beyond, 0.25 * std::min(width_m, height_m));
+  double elevation = 0, inland_sum = 0;
+  const int taps = 9;
+  for (int t = 0; t < taps; ++t) {
+    const Point e = perimeter_point(width_m, height_m, s0 + reach * (2.0 * t / (taps - 1) - 1.0));
+    elevation += ground_elevation_m(harbour, e[0], e[1]) / taps;
+    if (with_inland) inland_sum += inland_of(harbour, e[0], e[1]) / taps;
+  }
+  const double drop = elevation + open_sea_depth_m;
+  const double as_water = elevation - drop * smoothstep(0.0, std::max(width_m, height_m), beyond);
+  const double landness = smoothstep(-1.0, 1.0, elevation);
+  return {as_water + (elevation - as_water) * landness, inland_sum + landness * beyond};
+}
+
+// Distance inland of the still-water line: minus the coast distance channel, bilinear; where
+// that is missing or infinite (a grid whose channel says "no coast"), far inland on ground
+// above still water and far offshore below it.
+double inland_of(const HarbourGrid& harbour, double x, double y) {
+  const double far = ground_elevation_m(harbour, x, y) > 0 ? 1e4 : -1e4;
+  if (harbour.coast_distance_m.columns() != harbour.geometry.columns ||
+      harbour.coast_distance_m.rows() != harbour.geometry.rows)
+    return far;
+  const double d = cell_bilinear(harbour.coast_distance_m, harbour.geometry, x, y, [](float c) {
+    return std::isfinite(c) ? std::clamp(double(c), -1e4, 1e4) : std::numeric_limits<double>::quiet_NaN();
+  });
+  return std::isfinite(d) ? -d : far;
+}
+
 struct Builder {
   const HarbourGrid& harbour;
   const TerrainOptions& options;
@@ -88,60 +149,16 @@ struct Builder {
   // Distance inland of the still-water line: minus the coast distance channel, bilinear; where
   // that is missing or infinite (a grid whose channel says "no coast"), far inland on ground
   // above still water and far offshore below it.
-  double inland(double x, double y) const {
-    const double far = ground(x, y) > 0 ? 1e4 : -1e4;
-    if (harbour.coast_distance_m.columns() != harbour.geometry.columns ||
-        harbour.coast_distance_m.rows() != harbour.geometry.rows)
-      return far;
-    const double d = cell_bilinear(harbour.coast_distance_m, harbour.geometry, x, y, [](float c) {
-      return std::isfinite(c) ? std::clamp(double(c), -1e4, 1e4) : std::numeric_limits<double>::quiet_NaN();
-    });
-    return std::isfinite(d) ? -d : far;
-  }
+  double inland(double x, double y) const { return inland_of(harbour, x, y); }
   double structure_indicator(double x, double y) const {
     return cell_bilinear(harbour.porosity, harbour.geometry, x, y, [](float n) { return n < 0.99f ? 1.0 : 0.0; });
   }
 
-  // The point of the site's edge at arc length s counter-clockwise from the south-west corner.
-  Point perimeter_point(double s) const {
-    const double perimeter = 2 * (width_m + height_m);
-    s = std::fmod(std::fmod(s, perimeter) + perimeter, perimeter);
-    if (s < width_m) return {s, 0.0};
-    if ((s -= width_m) < height_m) return {width_m, s};
-    if ((s -= height_m) < width_m) return {width_m - s, height_m};
-    return {0.0, height_m - (s - width_m)};
-  }
-  double perimeter_position(const Point& q) const {  // the inverse, for a point on the edge
-    if (q[1] <= 0) return q[0];
-    if (q[0] >= width_m) return width_m + q[1];
-    if (q[1] >= height_m) return width_m + height_m + (width_m - q[0]);
-    return 2 * width_m + height_m + (height_m - q[1]);
-  }
-
-  // Beyond the grid: the edge's elevation averaged along the edge (round its corners) over
-  // +-`beyond` of the nearest edge point, at most a quarter of the site's shorter side (the
-  // further out, the smoother the coast it continues); then as land held at that height to 60 %
-  // of the skirt and lowered under the sea over the rest, as water deepened to the open sea's
-  // depth over the site's extent (as still_water_depth_at in surface.glsl), the two blended by
-  // the edge's elevation from 1 m under to 1 m over still water, so a coast crossing the edge
-  // continues without a step.
+  // Beyond the grid: the skirt's rule (skirt_profile below).
   void skirt_point(double x, double y, double& z, double& land_inland) const {
-    const Point q{std::clamp(x, 0.0, width_m), std::clamp(y, 0.0, height_m)};
-    const double beyond = std::hypot(x - q[0], y - q[1]);
-    const double s0 = perimeter_position(q), reach = std::min(beyond, 0.25 * std::min(width_m, height_m));
-    double elevation = 0, inland_sum = 0;
-    const int taps = 9;
-    for (int t = 0; t < taps; ++t) {
-      const Point e = perimeter_point(s0 + reach * (2.0 * t / (taps - 1) - 1.0));
-      elevation += ground(e[0], e[1]) / taps;
-      inland_sum += inland(e[0], e[1]) / taps;
-    }
-    const double drop = elevation + options.open_sea_depth_m;
-    const double as_land = elevation - drop * smoothstep(0.6 * skirt_m, skirt_m, beyond);
-    const double as_water = elevation - drop * smoothstep(0.0, std::max(width_m, height_m), beyond);
-    const double landness = smoothstep(-1.0, 1.0, elevation);
-    z = as_water + (as_land - as_water) * landness;
-    land_inland = inland_sum + landness * beyond;
+    const SkirtProfile profile = skirt_profile(harbour, options.open_sea_depth_m, x, y, true);
+    z = profile.elevation_m;
+    land_inland = profile.inland_m;
   }
 
   void ground_lattice() {
@@ -398,10 +415,14 @@ double ground_elevation_m(const HarbourGrid& harbour, double x_m, double y_m) {
   return -cell_bilinear(harbour.still_water_depth_m, harbour.geometry, x_m, y_m, [](float d) { return double(d); });
 }
 
+double skirt_ground_m(const HarbourGrid& harbour, double open_sea_depth_m, double x_m, double y_m) {
+  return skirt_profile(harbour, open_sea_depth_m, x_m, y_m, false).elevation_m;
+}
+
 TerrainMesh build_site_terrain(const HarbourGrid& harbour, const TerrainOptions& options) {
   const GridGeometry& g = harbour.geometry;
   const double width = g.width_m(), height = g.height_m();
-  const double skirt = options.skirt_width_m > 0 ? options.skirt_width_m : std::max(3000.0, std::max(width, height));
+  const double skirt = options.skirt_width_m > 0 ? options.skirt_width_m : std::max(kDefaultSkirtWidthM, std::max(width, height));
   bool geometry = false;
   for (const CoastalStructure& s : harbour.structures) geometry = geometry || !s.lines.empty() || !s.polygons.empty();
   Builder builder{harbour, options, width, height, skirt, !geometry, {}};

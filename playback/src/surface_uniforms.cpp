@@ -34,6 +34,19 @@ void set_surface_uniforms(GLuint program, const SurfaceFormula& formula, const V
     set_uniform(program, "u_edge_fade_m", float(site->edge_fade_m));
     set_uniform(program, "u_choppiness", float(site->choppiness));
     set_uniform(program, "u_dry_depth_m", float(site->dry_depth_m));
+    // The highest ground on each edge (surface.glsl on_skirt_land): the edge's cells (the bilinear
+    // ground along an edge lies between their values).
+    const Raster<float>& d = site->harbour.still_water_depth_m;
+    float edge_max[4] = {-1e30f, -1e30f, -1e30f, -1e30f};  // south, east, north, west
+    for (int i = 0; i < g.columns; ++i) {
+      edge_max[0] = std::max(edge_max[0], -d(i, 0));
+      edge_max[2] = std::max(edge_max[2], -d(i, g.rows - 1));
+    }
+    for (int j = 0; j < g.rows; ++j) {
+      edge_max[1] = std::max(edge_max[1], -d(g.columns - 1, j));
+      edge_max[3] = std::max(edge_max[3], -d(0, j));
+    }
+    glUniform1fv(at(program, "u_edge_max_ground_m"), 4, edge_max);
   } else {
     set_uniform(program, "u_choppiness", 1.f);
   }

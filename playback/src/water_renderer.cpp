@@ -127,6 +127,7 @@ struct WaterRenderer::Impl {
       bind(kHarbourEta + k, GL_TEXTURE_2D, bound.harbour_eta[k]);
       bind(kHarbourBreaking + k, GL_TEXTURE_2D, bound.harbour_breaking[k]);
       bind(kHarbourEtaRate + k, GL_TEXTURE_2D, bound.harbour_eta_rate[k]);
+      bind(kHarbourSlopeMoments + k, GL_TEXTURE_2D, bound.harbour_slope_moments[k]);
     }
     site_textures.bind_units();
     for (int field = 0; field < kDeepFieldCount; ++field)

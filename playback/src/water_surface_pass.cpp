@@ -51,6 +51,7 @@ void WaterSurfacePass::draw(const SeaDraw& sea, PassTimer& timer, FrameStatistic
   set_uniform(program, "u_has_scene", sea.refraction ? 1 : 0);
   if (sea.refraction) set_uniform(program, "u_inverse_view_projection", inverse(sea.view.view_projection));
   set_uniform(program, "u_detail_parallax", float(sea.light.detail_parallax));
+  set_uniform(program, "u_filter_baked_slopes", sea.light.filter_baked_slopes ? 1 : 0);
   if (sea.decal_foam) {
     const std::array<float, 4>& rect = sea.decal_foam_rect_m;
     glUniform4f(at(program, "u_decal_foam_rect_m"), rect[0], rect[1], rect[2], rect[3]);

@@ -185,7 +185,10 @@ TEST(TerrainRender, TheLandContinuesPastTheGridsEdge) {
     }
   const int width = 640, height = 360;
   const Picture picture = look(h, {128.0, 40.0, 8.0}, {128.0, 400.0, 0.0}, 30.0, width, height);
-  for (double beyond_m : {10.0, 50.0, 200.0, 800.0})
+  // out to the horizon: 3, 10 and 40 km beyond, where the skirt's land used to sink under a grey
+  // band of sea (docs/images/terrain-tacoma-after.png); the sea is not drawn over it (surface.glsl
+  // on_skirt_land)
+  for (double beyond_m : {10.0, 50.0, 200.0, 800.0, 3000.0, 10000.0, 40000.0})
     for (double x_m : {60.0, 128.0, 200.0}) {
       const auto pixel = pixel_of(picture.view, x_m, 192.0 + beyond_m, 2.5);
       const int px = int(std::lround(pixel[0])), py = int(std::lround(pixel[1]));

@@ -61,6 +61,11 @@ struct Lighting {
   /// Parallax of the detail normals (seed 004 section 1.3, eq. 5): 1 looks each cascade's normal
   /// map up where the eye ray meets the relief the grid does not draw; 0 turns it off.
   double detail_parallax = 1.0;
+  /// The baked field's slopes filtered over each pixel's footprint (slope_moments.hpp): the mean
+  /// slope from the moments' mip level of the footprint and the variance it holds added to the
+  /// BRDF's (a far swell keeps its mean brightness instead of aliasing). false: one point sample
+  /// of the finest level, no variance (what the renderer did before; for comparisons).
+  bool filter_baked_slopes = true;
   /// Seed 000 eq. (3.46): the deep water's foam fades by 1/e over this time (s) after its crest
   /// stops breaking (whitecap foam lives a few seconds: Callaghan et al. 2012, 1-5 s).
   double foam_decay_time_s = 3.0;
@@ -89,6 +94,7 @@ struct LightingFrame {
   double wind_direction_rad = 0.0, shore_wave_amplitude_m = 0.0, shore_band_m = 80.0;
   double exposure = 1.0;        ///< 1 / (kcd/m2): displayed luminance = 1 - exp(-exposure Y)
   double detail_parallax = 1.0, foam_decay_time_s = 3.0;
+  bool filter_baked_slopes = true;  ///< Lighting::filter_baked_slopes
   double structure_foam_onset_m_s = 1.0;
   /// Koschmieder (1924): beta = -ln(0.05) / visibility_m, 1/m (0: clear air); the layer's top, m.
   double fog_extinction_per_m = 0.0, fog_top_m = 150.0;

@@ -7,8 +7,9 @@
 //    through the cell centres with up to 2 vertices per cell, so its still-water line is the
 //    bilinear depth's zero contour: a smooth line, not the cells' staircase;
 //  - the skirt: beyond the grid's edges the ground continues from the edge's elevation (smoothed
-//    along the edge more the further out), land standing at its edge height for 60 % of the skirt
-//    then sloping under the sea, water deepening to the open sea's depth; no cut-off slab;
+//    along the edge more the further out), land standing at its edge height out to the skirt's
+//    end (as far as the sea is drawn: the land meets the sky at the horizon), water deepening to
+//    the open sea's depth; no cut-off slab;
 //  - the structures: extruded from the CoastalStructure geometry the grid carries (centre lines a
 //    crest width wide, polygons' outer rings) up to their crest, with faces sloped at their side
 //    slope (rubble) or vertical (side slope 0: quays, piers, walls) down to the bed. A grid
@@ -29,13 +30,18 @@ namespace nearshore::playback {
 /// by height, slope and distance inland, the two structure kinds as rock and concrete.
 enum class TerrainMaterial : int { ground = 0, rubble = 1, concrete = 2 };
 
+/// The skirt's default reach beyond the grid (m): the water grids' (RadialGridSettings::
+/// outer_radius_m, QuadtreeSettings::reach_m), so land beyond the edge goes on as far as the sea.
+inline constexpr double kDefaultSkirtWidthM = 100000.0;
+
 struct TerrainOptions {
   /// The crest, above still water, of structures known only by their porous cells (metres).
   double cell_structure_crest_m = 2.5;
   /// The ground lattice inside the site holds at most this squared vertices: cells are cut in two
   /// each way when that fits, strided (every 2nd, 3rd.. centre) when even one vertex a cell does not.
   int max_lattice_vertices = 700;
-  /// How far the skirt reaches beyond the grid, metres; <= 0: max(3 km, the site's longer side).
+  /// How far the skirt reaches beyond the grid, metres; <= 0: max(kDefaultSkirtWidthM, the site's
+  /// longer side).
   double skirt_width_m = -1.0;
   /// The depth the ground beyond the grid reaches under water (the renderer's open-sea depth).
   double open_sea_depth_m = 20.0;
@@ -57,6 +63,13 @@ struct TerrainMesh {
 /// The ground's elevation at a site point inside the grid (metres up from still water): minus the
 /// still-water depth interpolated bilinearly between cell centres, clamped to the outer centres.
 double ground_elevation_m(const HarbourGrid& harbour, double x_m, double y_m);
+
+/// The skirt's ground at a site point beyond the grid (metres up from still water): the edge's
+/// ground averaged along the edge over +-the distance beyond (at most a quarter of the shorter
+/// side); land (average above still water) stays at that height, water deepens to
+/// `open_sea_depth_m` over the site's extent, blended by the average from -1 to 1 m. The twin of
+/// shaders/surface.glsl skirt_ground_m, where the sea is not drawn over the skirt's land.
+double skirt_ground_m(const HarbourGrid& harbour, double open_sea_depth_m, double x_m, double y_m);
 
 /// Builds the ground, skirt and structures of `harbour` (see the top of this file).
 TerrainMesh build_site_terrain(const HarbourGrid& harbour, const TerrainOptions& options = {});
