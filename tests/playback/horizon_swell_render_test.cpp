@@ -86,8 +86,11 @@ TEST(HorizonSwellRender, TheSeasEdgeIsTheCrestsSilhouetteAndMovesWithThem) {
     // of their radius apart, miss some crests' tops (196); the projected grid's rows, 4 pixels
     // apart on screen, are kilometres apart near the horizon and miss most (83; not asserted:
     // docs/rendering.md, "The horizon and the swell").
-    if (kind == GridKind::quadtree) EXPECT_GE(agree, width * 95 / 100);
-    if (kind == GridKind::radial) EXPECT_GE(agree, width * 70 / 100);
+    if (kind == GridKind::quadtree) {
+      EXPECT_GE(agree, width * 95 / 100);
+    } else if (kind == GridKind::radial) {
+      EXPECT_GE(agree, width * 70 / 100);
+    }
   }
 }
 
