@@ -6,6 +6,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -152,9 +153,10 @@ void DispersiveWake::move_window(long long origin_i, long long origin_j) {
   origin_i_ = origin_i;
   origin_j_ = origin_j;
   if (di == 0 && dj == 0) return;
-  // Node (i, j) now holds what node (i + di, j + dj) held; nodes that enter are at rest.
-  auto shift = [&](std::vector<float>& a) {
-    std::vector<float> out(a.size(), 0.0f);
+  // Node (i, j) now holds what node (i + di, j + dj) held; nodes that enter hold `entering` (rest,
+  // or a solid mask's "not looked up yet").
+  auto shift = [&](auto& a, auto entering) {
+    std::remove_reference_t<decltype(a)> out(a.size(), entering);
     for (int j = 0; j < n_; ++j) {
       const long long sj = j + dj;
       if (sj < 0 || sj >= n_) continue;
@@ -165,20 +167,9 @@ void DispersiveWake::move_window(long long origin_i, long long origin_j) {
     }
     a.swap(out);
   };
-  shift(eta_);
-  shift(phi_);
-  if (solids_of_ != nullptr) {
-    std::vector<unsigned char> out(solid_.size(), kUnknown);
-    for (int j = 0; j < n_; ++j) {
-      const long long sj = j + dj;
-      if (sj < 0 || sj >= n_) continue;
-      for (int i = 0; i < n_; ++i) {
-        const long long si = i + di;
-        if (si >= 0 && si < n_) out[index(i, j)] = solid_[index(static_cast<int>(si), static_cast<int>(sj))];
-      }
-    }
-    solid_.swap(out);
-  }
+  shift(eta_, 0.0f);
+  shift(phi_, 0.0f);
+  if (solids_of_ != nullptr) shift(solid_, kUnknown);
 }
 
 void DispersiveWake::set_solids(const HarbourObstacles* obstacles, double hull_x_m, double hull_y_m) {

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -216,6 +218,23 @@ double largest_bow_wave_between(const BowWave& wave, double x_ship, double lengt
   return largest;
 }
 
+// The default tug sailing east at 5 m/s from (x_m, y_m), ordered to hold it (the runs along a
+// quay and a breakwater).
+ShipDefinition tug_sailing_east(std::string name, double x_m, double y_m, int bow_wave_cells) {
+  ShipDefinition tug;
+  tug.name = std::move(name);
+  tug.hull = harbour_tug();
+  tug.loading.draft_m = 3.0;
+  tug.hull_points = 800;
+  tug.bow_wave_options.cells = bow_wave_cells;
+  tug.x_m = x_m;
+  tug.y_m = y_m;
+  tug.heading_deg = 90.0;
+  tug.initial_speed_m_s = 5.0;
+  tug.orders.speed_m_s = 5.0;
+  return tug;
+}
+
 // The largest drawn |eta| of the dispersive layer over its nodes between x0 and x1, y0 and y1.
 double largest_kelvin_wave_between(const DispersiveWake& wake, double x0, double x1, double y0, double y1) {
   double largest = 0.0;
@@ -243,17 +262,8 @@ TEST(HarbourObstacles, TheKelvinWakeStopsAtABreakwaterAndDoesNotCrossIt) {
   auto run = [&](bool breakwater) {
     ShipFleet fleet;
     fleet.set_site(basin_with_structure([&](double, double y) { return breakwater && y > kFaceM && y < kBackM; }, 0.4f));
-    ShipDefinition tug;
-    tug.name = breakwater ? "Along the breakwater" : "In open water";
-    tug.hull = harbour_tug();
-    tug.loading.draft_m = 3.0;
-    tug.hull_points = 800;
-    tug.bow_wave_options.cells = 64;
-    tug.x_m = 60.0;
-    tug.y_m = kFaceM - 20.0;
-    tug.heading_deg = 90.0;
-    tug.initial_speed_m_s = 5.0;
-    tug.orders.speed_m_s = 5.0;
+    const ShipDefinition tug =
+        tug_sailing_east(breakwater ? "Along the breakwater" : "In open water", 60.0, kFaceM - 20.0, 64);
     fleet.add_ship(tug);
     const auto start = std::chrono::steady_clock::now();
     for (int k = 0; k < 20 * 30; ++k) fleet.step(nullptr, 1.0 / 30);
@@ -288,20 +298,10 @@ TEST(HarbourObstacles, ABowWaveIsDoubledAtAQuayAsAReflectingWallDoes) {
   auto run = [&](bool quay) {
     ShipFleet fleet;
     fleet.set_site(basin_with_structure([&](double, double y) { return quay && y > kFaceM; }, 0.0f));
-    ShipDefinition tug;
-    tug.name = quay ? "Along the quay" : "In open water";
-    tug.hull = harbour_tug();
-    tug.loading.draft_m = 3.0;
-    tug.hull_points = 800;
-    tug.bow_wave_options.cells = 128;
+    ShipDefinition tug = tug_sailing_east(quay ? "Along the quay" : "In open water", 80.0, kFaceM - 14.0, 128);
     // The shallow-water grid's reflection: at 5 m/s the fleet would show the dispersive layer, which
     // stops its waves at structures but does not reflect them (dispersive_wake.hpp).
     tug.dispersive_wake = false;
-    tug.x_m = 80.0;
-    tug.y_m = kFaceM - 14.0;
-    tug.heading_deg = 90.0;
-    tug.initial_speed_m_s = 5.0;
-    tug.orders.speed_m_s = 5.0;
     fleet.add_ship(tug);
     for (int k = 0; k < 15 * 30; ++k) fleet.step(nullptr, 1.0 / 30);
     const Ship& ship = fleet.ship(0);

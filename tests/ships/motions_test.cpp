@@ -187,8 +187,25 @@ TEST(ShipMotions, ASteadyTurnHeelsOutwardByTheTurningHeelEstimate) {
   }
 }
 
+// The default tug (no bow wave: it does not act on the body) over a flat bed `depth_m` down, at
+// `initial_m_s`, ordered to `order_m_s`: the speed-order runs below.
+ShipFleet tug_under_speed_order(double depth_m, double initial_m_s, double order_m_s) {
+  ShipFleet fleet;
+  fleet.set_seabed(Seabed::flat(depth_m));
+  ShipDefinition d;
+  d.name = "tug";
+  d.hull = harbour_tug();
+  d.loading.draft_m = 3.0;
+  d.hull_points = 800;
+  d.initial_speed_m_s = initial_m_s;
+  d.orders.speed_m_s = order_m_s;
+  d.bow_wave = false;
+  fleet.add_ship(d);
+  return fleet;
+}
+
 TEST(ShipMotions, ASpeedOrderIsReachedWithoutOvershoot) {
-  // A tug (no bow wave: it does not act on the body) ordered to 3 m/s from 2 and from 4 m/s, over
+  // A tug ordered to 3 m/s from 2 and from 4 m/s, over
   // deep water and over 5 m (h / T 1.67: Lackenby's speed loss). The speed order (ship_fleet.cpp) is
   // a feed-forward of the hull's own drag at the order plus a proportional term: surge is then a
   // first-order system (m + A_11) du/dt = F(u), F decreasing through F(order) = 0, whose speed
@@ -198,17 +215,7 @@ TEST(ShipMotions, ASpeedOrderIsReachedWithoutOvershoot) {
   // about 25 s for the tug: 6 time constants leave 0.25 % of a 1 m/s step).
   for (const double depth : {1000.0, 5.0})
     for (const double initial : {2.0, 4.0}) {
-      ShipFleet fleet;
-      fleet.set_seabed(Seabed::flat(depth));
-      ShipDefinition d;
-      d.name = "tug";
-      d.hull = harbour_tug();
-      d.loading.draft_m = 3.0;
-      d.hull_points = 800;
-      d.initial_speed_m_s = initial;
-      d.orders.speed_m_s = 3.0;
-      d.bow_wave = false;
-      fleet.add_ship(d);
+      ShipFleet fleet = tug_under_speed_order(depth, initial, 3.0);
       double low = 1e9, high = 0.0, at5 = 0.0;
       for (int k = 0; k < 150 * 30; ++k) {
         fleet.step(nullptr, 1.0 / 30);
@@ -239,17 +246,7 @@ TEST(ShipMotions, ASpeedOrderFromRestRisesToItWithoutOvershoot) {
   // law's: ShipMotions.AFollowingSeaSurgesTheHullByFroudeKrylov.
   const double order = 6.0 * 1852.0 / 3600.0;
   for (const double depth : {1000.0, 5.0}) {
-    ShipFleet fleet;
-    fleet.set_seabed(Seabed::flat(depth));
-    ShipDefinition d;
-    d.name = "tug";
-    d.hull = harbour_tug();
-    d.loading.draft_m = 3.0;
-    d.hull_points = 800;
-    d.initial_speed_m_s = 0.0;
-    d.orders.speed_m_s = order;
-    d.bow_wave = false;
-    fleet.add_ship(d);
+    ShipFleet fleet = tug_under_speed_order(depth, 0.0, order);
     double high = 0.0, previous = 0.0, at5 = 0.0, t90 = -1.0, largest_drop = 0.0;
     for (int k = 0; k < 200 * 30; ++k) {
       fleet.step(nullptr, 1.0 / 30);
