@@ -6,6 +6,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -152,9 +153,10 @@ void DispersiveWake::move_window(long long origin_i, long long origin_j) {
   origin_i_ = origin_i;
   origin_j_ = origin_j;
   if (di == 0 && dj == 0) return;
-  // Node (i, j) now holds what node (i + di, j + dj) held; nodes that enter are at rest.
-  auto shift = [&](std::vector<float>& a) {
-    std::vector<float> out(a.size(), 0.0f);
+  // Node (i, j) now holds what node (i + di, j + dj) held; nodes that enter hold `entering` (rest,
+  // or a solid mask's "not looked up yet").
+  auto shift = [&](auto& a, auto entering) {
+    std::remove_reference_t<decltype(a)> out(a.size(), entering);
     for (int j = 0; j < n_; ++j) {
       const long long sj = j + dj;
       if (sj < 0 || sj >= n_) continue;
@@ -165,8 +167,80 @@ void DispersiveWake::move_window(long long origin_i, long long origin_j) {
     }
     a.swap(out);
   };
-  shift(eta_);
-  shift(phi_);
+  shift(eta_, 0.0f);
+  shift(phi_, 0.0f);
+  if (solids_of_ != nullptr) shift(solid_, kUnknown);
+}
+
+void DispersiveWake::set_solids(const HarbourObstacles* obstacles, double hull_x_m, double hull_y_m) {
+  if (obstacles == nullptr || !obstacles->any()) {
+    solids_of_ = nullptr;
+    held_.clear();
+    any_solid_ = false;
+    return;
+  }
+  if (obstacles != solids_of_ || solid_.size() != eta_.size()) {
+    solid_.assign(eta_.size(), kUnknown);
+    held_.clear();
+    solids_of_ = obstacles;
+  }
+  // The reach only changes when the window has moved (the hull keeps its node in the window).
+  if (origin_i_ == reach_origin_i_ && origin_j_ == reach_origin_j_ && held_.size() == solid_.size()) return;
+  reach_origin_i_ = origin_i_;
+  reach_origin_j_ = origin_j_;
+  bool any = false;
+  for (int j = 0; j < n_; ++j)
+    for (int i = 0; i < n_; ++i) {
+      unsigned char& s = solid_[index(i, j)];
+      if (s == kUnknown) {
+        const double x = static_cast<double>(origin_i_ + i) * spacing_m_, y = static_cast<double>(origin_j_ + j) * spacing_m_;
+        s = obstacles->signed_distance_m(x, y) < 0.0 ? kSolid : kWater;
+      }
+      any = any || s == kSolid;
+    }
+  any_solid_ = any;
+  if (!any) return;
+  // The hull's reach: a flood fill over water nodes from the hull's node (4-connected, no wrap).
+  held_.assign(solid_.size(), 1);
+  const long long hi = std::llround(hull_x_m / spacing_m_) - origin_i_, hj = std::llround(hull_y_m / spacing_m_) - origin_j_;
+  if (hi < 0 || hj < 0 || hi >= n_ || hj >= n_ || solid_[index(static_cast<int>(hi), static_cast<int>(hj))] != kWater) {
+    for (std::size_t k = 0; k < held_.size(); ++k) held_[k] = solid_[k] == kSolid ? 1 : 0;  // no reach to follow
+    return;
+  }
+  std::vector<int>& stack = fill_scratch_;
+  stack.clear();
+  auto visit = [&](int i, int j) {
+    const std::size_t k = index(i, j);
+    if (held_[k] == 1 && solid_[k] == kWater) {
+      held_[k] = 0;
+      stack.push_back(static_cast<int>(k));
+    }
+  };
+  visit(static_cast<int>(hi), static_cast<int>(hj));
+  while (!stack.empty()) {
+    const int k = stack.back();
+    stack.pop_back();
+    const int i = k % n_, j = k / n_;
+    if (i > 0) visit(i - 1, j);
+    if (i + 1 < n_) visit(i + 1, j);
+    if (j > 0) visit(i, j - 1);
+    if (j + 1 < n_) visit(i, j + 1);
+  }
+}
+
+void DispersiveWake::cut_off_forcing() {
+  if (!any_solid_) return;
+  for (std::size_t k = 0; k < zeta_.size(); ++k)
+    if (held_[k] != 0) zeta_[k] = 0.0f;
+}
+
+void DispersiveWake::hold_solids_at_rest() {
+  if (!any_solid_) return;
+  for (std::size_t k = 0; k < eta_.size(); ++k)
+    if (held_[k] != 0) {
+      eta_[k] = -zeta_[k];
+      phi_[k] = 0.0f;
+    }
 }
 
 void DispersiveWake::rest_in_depression() {
@@ -247,6 +321,7 @@ void DispersiveWake::step() {
   fftwf_execute(f.inverse_phi);
   std::copy(f.real, f.real + nodes, phi_.begin());
   absorb();
+  hold_solids_at_rest();
 }
 
 void DispersiveWake::absorb() {
@@ -479,6 +554,8 @@ void DispersiveWake::update(const ShipBody& body, const Seabed* seabed, double d
   } else {
     move_window(want_i, want_j);
   }
+  if (!started_) solids_of_ = nullptr;  // a restart looks every node up again
+  set_solids(seabed != nullptr ? seabed->obstacles() : nullptr, centre.x(), centre.y());
   // 2. The forcing: the hull's pressure head on the nodes (the corners of hull_pressure_head; the
   //    last row and column fall in the absorbing layer's far side and are dropped).
   //    With the thin ship: the sources' head over the depth under the hull.
@@ -491,6 +568,7 @@ void DispersiveWake::update(const ShipBody& body, const Seabed* seabed, double d
       for (int i = 0; i < n_; ++i)
         zeta_[index(i, j)] = static_cast<float>(head_[static_cast<std::size_t>(j) * (n_ + 1) + i]);
   }
+  cut_off_forcing();
   if (!started_) {
     rest_in_depression();
     started_ = true;

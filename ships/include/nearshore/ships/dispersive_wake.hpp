@@ -66,6 +66,22 @@
 // phase speed). breaking_nodes() lists where it happened in the last update (the fleet's crest
 // foam, ship_fleet.hpp).
 //
+// Structures and land (issue 42). The layer is one depth over a periodic window, so it cannot
+// carry a wall's boundary condition; what it does carry is that no wave crosses a solid. Held at
+// rest after every step (e = eta + zeta = 0, phi = 0) are the window's nodes inside the harbour's
+// structures and land (HarbourObstacles' signed distance < 0, the seabed's obstacles), and the
+// water nodes the hull's node does not reach through water (4-connected, inside the window: the
+// far side of a breakwater that spans the window); on all of them the hull's forcing is also
+// zeroed (the drawn height there is 0), because the sources' head zeta reaches every node of the window (its tails decay as a
+// near field, not at a face) and would make waves there directly. So the wake stops at a
+// breakwater's or quay's face and does not run through it or onto land, and it passes an
+// entrance (a gap joins the two sides). What the face sends back is not a wall's reflection (a
+// node held at rest is a soft boundary, and the spectral step spreads the hold over a node or
+// two), and diffraction through a gap is the layer's own: the shallow-water grid is the layer that
+// reflects (HarbourObstacles.ABowWaveIsDoubledAtAQuayAsAReflectingWallDoes). The solid mask follows
+// the window like the state (only the nodes that enter it are looked up); the reach is a flood
+// fill each update while the window holds a solid.
+//
 // Drawn height: eta (with the pressure patch: the depression -zeta under the hull, hidden in it)
 // times the layer's shown weight (the fleet's blend between this layer and the shallow-water grid,
 // ship_fleet.hpp).
@@ -120,6 +136,7 @@ class DispersiveWake {
   /// Moves the window with the body, takes the depth under the hull from `seabed` (null:
   /// max_depth_m), forces with the hull's displacement and advances dt_s. The first call (and the
   /// first after restart()) starts from rest with the hull in its depression.
+  /// The seabed's structures and land (Seabed::obstacles) stop the waves (header).
   void update(const ShipBody& body, const Seabed* seabed, double dt_s);
   /// Forgets the waves: the next update starts from rest.
   void restart() { started_ = false; }
@@ -134,6 +151,14 @@ class DispersiveWake {
   float& velocity_potential_m2_s(int i, int j) { return phi_[index(i, j)]; }
   /// Sets eta = -zeta everywhere, phi = 0 (the hull in its depression, at rest).
   void rest_in_depression();
+  /// Marks the window's nodes inside the solids of `obstacles` (null: none) and those the hull at
+  /// site point (hull_x_m, hull_y_m) does not reach through water, held at rest by the following
+  /// advances (header). update() calls it with the seabed's obstacles and the hull's centre.
+  void set_solids(const HarbourObstacles* obstacles, double hull_x_m, double hull_y_m);
+  /// Whether node (i, j) is inside a structure or land (the last set_solids).
+  bool solid(int i, int j) const { return any_solid_ && solid_[index(i, j)] == kSolid; }
+  /// Whether node (i, j) is held at rest: solid, or water the hull does not reach (the last set_solids).
+  bool held(int i, int j) const { return any_solid_ && held_[index(i, j)] != 0; }
   /// Advances dt_s over still-water depth depth_m (exact in time, see above), then absorbs.
   void advance(double dt_s, double depth_m);
 
@@ -172,6 +197,8 @@ class DispersiveWake {
   void prepare_rotation(double dt_s, double depth_m);
   void step();
   void absorb();
+  void hold_solids_at_rest();
+  void cut_off_forcing();
   void refresh_heights();
   void break_steep_crests(std::vector<BreakingNode>* record);
 
@@ -183,6 +210,15 @@ class DispersiveWake {
   // Per-mode rotation for the last (dt, depth): cos, sin k tanh(kd) / w, -sin g / w.
   std::vector<float> cos_, eta_from_phi_, phi_from_eta_;
   std::vector<float> keep_;  ///< absorbing layer factor per node for the last dt
+  // Nodes inside structures or land (header): kWater, kSolid, or kUnknown (entered the window since
+  // the last set_solids); for the obstacles of solids_of_.
+  static constexpr unsigned char kWater = 0, kSolid = 1, kUnknown = 2;
+  std::vector<unsigned char> solid_;
+  std::vector<unsigned char> held_;   ///< 1: solid or out of the hull's reach (set_solids)
+  std::vector<int> fill_scratch_;     ///< the flood fill's stack
+  long long reach_origin_i_ = 0, reach_origin_j_ = 0;  ///< the window the reach was filled for
+  const HarbourObstacles* solids_of_ = nullptr;
+  bool any_solid_ = false;
   double rotation_dt_s_ = -1.0, rotation_depth_m_ = -1.0;
   double depth_m_ = 0.0;
   bool started_ = false;
