@@ -63,7 +63,8 @@ class BoussinesqSolver {
   /// Replaces eta on every cell with water (still-water depth > 0) and the fluxes on every open wet
   /// face by the given functions of position (metres, grid frame: cell centres for eta, face centres
   /// for P and Q), and resets the flux rates: an initial condition with motion, such as a solitary
-  /// wave (initial_conditions.hpp). Call it before the first step.
+  /// wave (initial_conditions.hpp). Call it before the first step. With an imposed current the given
+  /// fluxes replace the current's on the interior faces (include it in them); the edges keep theirs.
   void set_initial_condition(const std::function<double(double x_m, double y_m)>& surface_elevation_m,
                              const std::function<double(double x_m, double y_m)>& flux_x_m2_s,
                              const std::function<double(double x_m, double y_m)>& flux_y_m2_s);
