@@ -208,6 +208,34 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
     entry.finish();
     bake_case.solver.sponges.push_back(sponge);
   }
+  // An imposed steady current (docs/solver.md, "Currents"): the flux the waves ride on, held at the
+  // grid's edges and kept by the sponges. Tidal streams reach 5 m/s in the strongest races.
+  if (root.has("current")) {
+    TableReader current = root.table("current");
+    bake_case.solver.current.velocity_x_m_s =
+        current.number("u_m_s", 0.0, -5.0, 5.0, false, "the current's velocity toward the east in m/s");
+    bake_case.solver.current.velocity_y_m_s =
+        current.number("v_m_s", 0.0, -5.0, 5.0, false, "the current's velocity toward the north in m/s");
+    current.finish();
+  }
+  // A tide (docs/solver.md, "Tides"): the still-water level as a series over the bake, above the
+  // level the bathymetry's still_water_level_m put the grid at (the library's fixed tide, the
+  // same key's owner, sets that start).
+  if (root.has("tide")) {
+    TableReader tide = root.table("tide");
+    const std::string meaning = "[[time_s, level_m], ...] with increasing times, levels in metres above the grid's still water";
+    for (const auto& [time_s, level_m] : tide.pairs("level_m", meaning)) {
+      if (!bake_case.tide_level.time_s.empty() && !(time_s > bake_case.tide_level.time_s.back()))
+        tide.fail(tide.full("level_m"), fmt::format("has time {} s after {} s: the times must increase", time_s, bake_case.tide_level.time_s.back()),
+                  "write it as " + meaning);
+      if (!(std::abs(level_m) <= 30.0))
+        tide.fail(tide.full("level_m"), fmt::format("has a level of {} m", level_m),
+                  "give levels within +-30 m of the grid's still water (the largest tidal range is 16 m)");
+      bake_case.tide_level.time_s.push_back(time_s);
+      bake_case.tide_level.elevation_m.push_back(level_m);
+    }
+    tide.finish();
+  }
   bake_case.solver.courant_number = request.courant_number;
   // The step divides the shorter of the output and gauge intervals, and that divides the longer, so
   // frames and gauge samples fall exactly on steps.
@@ -352,6 +380,12 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
       bake_case.wave_conditions["local_seas"] = seas;
     }
   bake_case.solver_record = solver_record(bake_case.solver);
+  if (!bake_case.tide_level.time_s.empty()) {  // only with a tide: a record without one is as before
+    nlohmann::json levels = nlohmann::json::array();
+    for (std::size_t i = 0; i < bake_case.tide_level.time_s.size(); ++i)
+      levels.push_back({bake_case.tide_level.time_s[i], bake_case.tide_level.elevation_m[i]});
+    bake_case.solver_record["tide_level_m"] = levels;
+  }
   if (!bake_case.structure_layers.empty()) bake_case.solver_record["structure_layers"] = structure_layers_record(bake_case.structure_layers);
   return bake_case;
 }

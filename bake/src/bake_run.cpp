@@ -403,12 +403,19 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   WaveStatistics* statistics_or_null = statistics ? &*statistics : nullptr;
   BakeSummary summary;
   summary.time_step_s = solver.time_step_s();
+  // A tide ([tide] level_m, docs/solver.md "Tides"): the still-water level at the end of each step
+  // is set before it; a loaded state already holds its level's water.
+  const bool tide = !bake_case.tide_level.time_s.empty();
   if (options.resume) {
     read_checkpoint(checkpoint, fingerprint, solver, gauges, statistics_or_null);
     summary.resumed_from_s = solver.time_s();
+    if (tide)
+      solver.set_still_water_level(interpolated_elevation_m(bake_case.tide_level, solver.time_s()),
+                                   BoussinesqSolver::LevelChange::kStateHoldsIt);
   } else {
     fs::remove(checkpoint, ignored);  // a stale checkpoint of an earlier run must never be resumed
     if (bake_case.solitary_wave) start_solitary_wave(solver, bake_case.harbour, *bake_case.solitary_wave);
+    if (tide) solver.set_still_water_level(interpolated_elevation_m(bake_case.tide_level, 0.0));
   }
   double checkpoint_time_s = options.resume ? solver.time_s() : -1.0;
 
@@ -489,6 +496,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   if (!options.resume) outputs_at(0);
   const auto stepping_start = std::chrono::steady_clock::now();
   while (solver.step_count() < plan.total) {
+    if (tide) solver.set_still_water_level(interpolated_elevation_m(bake_case.tide_level, solver.time_s() + solver.time_step_s()));
     solver.step();
     outputs_at(solver.step_count());
     progress.update(solver.time_s(), fmt::format("t = {:.2f} s", solver.time_s()));

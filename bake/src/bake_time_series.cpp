@@ -1,5 +1,6 @@
 #include "nearshore/bake/bake_time_series.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <numeric>
@@ -84,6 +85,16 @@ TimeSeries read_time_series(const std::filesystem::path& file, const TimeSeriesL
     for (double& value : series.elevation_m) value -= mean;
   }
   return series;
+}
+
+double interpolated_elevation_m(const TimeSeries& series, double time_s) {
+  const std::vector<double>& t = series.time_s;
+  const std::vector<double>& z = series.elevation_m;
+  if (time_s <= t.front()) return z.front();
+  if (time_s >= t.back()) return z.back();
+  const std::size_t after = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), time_s) - t.begin());
+  const double weight = (time_s - t[after - 1]) / (t[after] - t[after - 1]);
+  return z[after - 1] + weight * (z[after] - z[after - 1]);
 }
 
 }  // namespace nearshore::bake

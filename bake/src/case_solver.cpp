@@ -152,6 +152,9 @@ json solver_record(const SolverParameters& p) {
     breaking["roller_shape_factor"] = p.breaking.roller_shape_factor;
     breaking["roller_filter_order"] = p.breaking.roller_filter_order;
   }
+  // The imposed current only when there is one: a record without it is the record of before.
+  if (p.current.any())
+    record["current"] = {{"u_m_s", p.current.velocity_x_m_s}, {"v_m_s", p.current.velocity_y_m_s}};
   return record;
 }
 

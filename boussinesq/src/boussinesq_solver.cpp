@@ -410,10 +410,13 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
   // and the cells on both sides are wet with every neighbour wet: never across a shoreline or quay.
   const unsigned char* wet_x = dispersive_t.data();  // eta^n masks of this step (mark_dispersive)
   const unsigned char* wet_y = dispersive.data();
+  // The edge faces of an imposed current hold its flux: not filtered, and so no face whose stencil
+  // reaches them (the filter's ghosts beyond a wall are odd, a flux through it would be pulled to 0).
+  const unsigned char edge = parameters.current.any() ? 0 : 1;
   tbb::parallel_for(0, nx + 1, [&](int f) {
     unsigned char* out = filterable_x.data() + px(f, 0);
     if (f == 0 || f == nx) {
-      std::fill(out, out + ny, 1);
+      std::fill(out, out + ny, edge);
       return;
     }
     const float* inverse_porosity = frame_x.inverse_porosity.data();
@@ -424,7 +427,7 @@ void BoussinesqSolver::Implementation::filter_grid_scale_fluxes() {
   tbb::parallel_for(0, ny + 1, [&](int k) {
     unsigned char* out = filterable_y.data() + qy(0, k);
     if (k == 0 || k == ny) {
-      std::fill(out, out + nx, 1);
+      std::fill(out, out + nx, edge);
       return;
     }
     const float* inverse_porosity = frame_y.inverse_porosity.data();
@@ -498,10 +501,34 @@ void BoussinesqSolver::Implementation::apply_sponges() {
       for (std::size_t k = range.begin(); k < range.end(); ++k) body(points[k]);
     });
   };
-  damp(sponge_cells, [&](const SpongePoint& point) {
-    const std::size_t i = point.index;
-    if (depth[i] > 0.0f && depth[i] + eta[i] > dry) eta[i] *= point.factor;
-  });
+  if (still_water_level_m != 0.0) {
+    // Towards the still-water level of a tide (set_still_water_level), not the grid's.
+    const double level = still_water_level_m;
+    damp(sponge_cells, [&](const SpongePoint& point) {
+      const std::size_t i = point.index;
+      if (depth[i] > 0.0f && depth[i] + eta[i] > dry) eta[i] = level + (eta[i] - level) * point.factor;
+    });
+  } else {
+    damp(sponge_cells, [&](const SpongePoint& point) {
+      const std::size_t i = point.index;
+      if (depth[i] > 0.0f && depth[i] + eta[i] > dry) eta[i] *= point.factor;
+    });
+  }
+  if (parameters.current.any()) {
+    // Towards the imposed current's flux, not rest (docs/solver.md, "Currents"): the waves are
+    // absorbed, the current passes through.
+    auto relax = [&](const std::vector<SpongePoint>& points, const std::vector<double>& target, std::vector<double>& flux) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t k = range.begin(); k < range.end(); ++k) {
+          double& value = flux[points[k].index];
+          value = target[k] + (value - target[k]) * points[k].factor;
+        }
+      });
+    };
+    relax(sponge_faces_x, sponge_target_x, flux_x);
+    relax(sponge_faces_y, sponge_target_y, flux_y);
+    return;
+  }
   damp(sponge_faces_x, [&](const SpongePoint& point) { flux_x[point.index] *= point.factor; });
   damp(sponge_faces_y, [&](const SpongePoint& point) { flux_y[point.index] *= point.factor; });
 }
@@ -613,6 +640,7 @@ void BoussinesqSolver::set_surface_elevation(const std::function<double(double, 
     }
   detail::transpose(s.eta.data(), s.eta_previous_t.data(), s.nx, s.ny);
   for (auto* v : {&s.flux_x, &s.flux_y, &s.flux_x_increment, &s.flux_y_increment}) std::fill(v->begin(), v->end(), 0.0);
+  if (s.parameters.current.any()) s.set_current_fluxes();  // "rest" is the imposed current
   if (s.nonlinear) s.nonlinear->reset();
   s.publish();
 }
@@ -642,6 +670,33 @@ void BoussinesqSolver::set_initial_condition(const std::function<double(double, 
   if (s.nonlinear) s.nonlinear->reset();
   s.publish();
 }
+
+void BoussinesqSolver::set_still_water_level(double level_m, LevelChange change) {
+  Implementation& s = *implementation_;
+  if (!std::isfinite(level_m))
+    throw Error("Boussinesq solver", "the still-water level is " + std::to_string(level_m) + " m", "give a finite level in metres");
+  const double change_m = level_m - s.still_water_level_m;
+  s.still_water_level_m = level_m;
+  if (change == LevelChange::kStateHoldsIt || change_m == 0.0) return;
+  // Every cell holding water now (above the dry depth, not a wall) rises or falls by the change, and
+  // eta^{n-1} with it, so that the extrapolation to t^{n+1/2} sees no jump; a falling level leaves a
+  // cell no lower than its bed. A dry beach cell is wetted by the flux from its risen neighbour.
+  const float* depth = s.frame_y.depth_m.data();
+  const float* inverse_porosity = s.frame_y.inverse_porosity.data();
+  const double dry = s.parameters.dry_depth_m;
+  for (int r = 0; r < s.ny; ++r)
+    for (int c = 0; c < s.nx; ++c) {
+      const std::size_t i = index(c, r, s.nx), t = s.px(c, r);
+      const double d = depth[i];
+      if (!(inverse_porosity[i] > 0.0f) || !(d + s.eta[i] > dry)) continue;
+      const double moved = std::max(s.eta[i] + change_m, -d) - s.eta[i];
+      s.eta[i] += moved;
+      s.eta_previous_t[t] += moved;
+    }
+  s.publish();
+}
+
+double BoussinesqSolver::still_water_level_m() const { return implementation_->still_water_level_m; }
 
 void BoussinesqSolver::step() { implementation_->step(); }
 double BoussinesqSolver::time_s() const { return implementation_->time_s; }
@@ -798,6 +853,8 @@ std::size_t BoussinesqSolver::memory_bytes() const {
   add(s.breaking_strength_t);
   for (const auto* v : {&s.dispersive, &s.dispersive_t, &s.wet_cells, &s.filterable_x, &s.filterable_y}) add(*v);
   for (const auto* v : {&s.sponge_cells, &s.sponge_faces_x, &s.sponge_faces_y}) add(*v);
+  add(s.sponge_target_x);
+  add(s.sponge_target_y);
   for (const StaticFrame* frame : {&s.frame_x, &s.frame_y}) {
     add(frame->depth_m);
     add(frame->porosity);

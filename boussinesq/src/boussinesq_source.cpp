@@ -115,7 +115,24 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   // half-width L/4.5 keeps the source compact yet resolved at 20 cells per wavelength).
   const auto peak = std::max_element(waves.begin(), waves.end(),
                                      [](const WaveComponent& a, const WaveComponent& b) { return a.amplitude_m < b.amplitude_m; });
-  const double peak_k = boussinesq_wavenumber(peak->angular_frequency_rad_s, d, B);
+  // On a current (SolverParameters::current) every wave has its Doppler-shifted wavenumber: the
+  // frequency is the absolute one, the one the line's source oscillates at.
+  const ImposedCurrent& current = parameters.current;
+  current_ = current.any();
+  current_normal_m_s_ = travel_sign * (normal_is_x_ ? current.velocity_x_m_s : current.velocity_y_m_s);
+  auto wavenumber = [&](double w, double direction_rad) {
+    if (!current_) return boussinesq_wavenumber(w, d, B);
+    const double along = current.velocity_x_m_s * std::cos(direction_rad) + current.velocity_y_m_s * std::sin(direction_rad);
+    return boussinesq_wavenumber_in_current(w, d, B, along);  // 0: blocked
+  };
+  auto blocked = [&](double w) {
+    std::ostringstream problem;
+    problem << "the current (" << current.velocity_x_m_s << ", " << current.velocity_y_m_s << ") m/s blocks a wave of w=" << w
+            << " rad/s at the source line (depth " << d << " m): its group speed is below the current against it";
+    return Error("wave maker", problem.str(), "weaken the current, or drop the band's highest frequencies (the shortest waves are blocked first)");
+  };
+  const double peak_k = wavenumber(peak->angular_frequency_rad_s, peak->direction_rad);
+  if (current_ && peak_k == 0.0) throw blocked(peak->angular_frequency_rad_s);
   const double peak_length = 2.0 * std::numbers::pi / peak_k;
   const double beta = 20.0 / (peak_length * peak_length);
   const double half_width = 3.0 / std::sqrt(beta);
@@ -134,8 +151,10 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   for (const WaveComponent& wave : waves) {
     if (wave.amplitude_m <= 1e-6 * largest || wave.angular_frequency_rad_s <= 0.0) continue;
     const double w = wave.angular_frequency_rad_s;
-    const double k = boussinesq_wavenumber(w, d, B);
-    if (maker.kind == WaveMaker::Kind::kTimeSeries && k * d > 3.0) continue;  // beyond the equations' range
+    const double k = wavenumber(w, wave.direction_rad);
+    // A time series' harmonics beyond the equations' range, or blocked by a current, are not generated.
+    if (maker.kind == WaveMaker::Kind::kTimeSeries && (k * d > 3.0 || k == 0.0)) continue;
+    if (current_ && k == 0.0) throw blocked(w);
     const double kx = k * std::cos(wave.direction_rad), ky = k * std::sin(wave.direction_rad);
     const double k_normal = normal_is_x_ ? kx : ky, k_tangential = normal_is_x_ ? ky : kx;
     if (k_normal * travel_sign < 0.2 * k) {
@@ -148,7 +167,8 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
     // eta = a cos(kx x + ky y - w t + phi) at the line s = line_m: the source phase at tangential 0.
     const double phase = wave.phase_rad + k_normal * line_m;
     // The strength D needs the time step, which the solver passes to add(): computed there.
-    components_.push_back({wave.amplitude_m, w, k_tangential, phase});
+    const double along = current.velocity_x_m_s * std::cos(wave.direction_rad) + current.velocity_y_m_s * std::sin(wave.direction_rad);
+    components_.push_back({wave.amplitude_m, w, k_tangential, phase, 0.0, along});
   }
   // Nonlinear generation (WaveMaker::second_order): the regular wave's bound harmonics,
   // eta_n = a_n cos n(k.x - w t + phi), each radiated as a free wave at n w with its phase at the
@@ -157,7 +177,11 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   // with the first harmonic chosen so that its crest-to-trough height is the requested 2 a.
   if (maker.second_order && maker.kind == WaveMaker::Kind::kComponents && components_.size() == 1) {
     Component& primary = components_.front();
-    const double w = primary.angular_frequency_rad_s, k = boussinesq_wavenumber(w, d, B);
+    // On a current the steady wave is the same in the frame moving with the water (the equations'
+    // Galilean invariance), at the Doppler-shifted k.
+    const double w = primary.angular_frequency_rad_s,
+                 k = current_ ? boussinesq_wavenumber_in_current(w, d, B, primary.current_along_m_s)
+                              : boussinesq_wavenumber(w, d, B);
     const double height_m = 2.0 * primary.amplitude_m;
     auto steady = [&](double a) {
       return boussinesq_steady_wave(a, k, d, B, parameters.dispersion_depth, 8, parameters.equations).harmonics_m;
@@ -177,7 +201,8 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
       // the bound third harmonic the same way doubled the flat-flume beat instead of removing it.
       // A harmonic beyond the equations' range (k d > 3) is not carried.
       if (boussinesq_wavenumber(2.0 * w, d, B) * d <= 3.0 && harmonics[1] > 0.0)
-        components_.push_back({harmonics[1], 2.0 * w, 2.0 * primary.tangential_wavenumber_rad_m, 2.0 * primary.phase_rad});
+        components_.push_back({harmonics[1], 2.0 * w, 2.0 * primary.tangential_wavenumber_rad_m, 2.0 * primary.phase_rad, 0.0,
+                               primary.current_along_m_s});
     } catch (const Error&) {
       // Steeper than the equations' steady waves reach: the first harmonic alone, as requested.
     }
@@ -220,7 +245,10 @@ double SourceFunction::discrete_strength_m_s(const Component& component, double 
   // continuous transfer is kept for it rather than a tangent near its pole.
   const double w_grid = half_phase_step < 1.0 ? 2.0 * std::tan(half_phase_step) / dt : w;
   const double time_factor = half_phase_step < 1.0 ? std::cos(half_phase_step) : 1.0;
-  const double k = boussinesq_wavenumber(w_grid, d, B);
+  // On a current the pole is the Doppler-shifted wavenumber and the intrinsic frequency w_r = w - k.U
+  // takes w's place in the momentum equation (below).
+  const double k = current_ ? boussinesq_wavenumber_in_current(w_grid, d, B, component.current_along_m_s)
+                            : boussinesq_wavenumber(w_grid, d, B);
   const double s = k * k;
   const double dn = spacing_m_, dl = tangential_spacing_m_;  // cell sizes normal to and along the line
   const double kappa_t = 2.0 * std::sin(0.5 * component.tangential_wavenumber_rad_m * dl) / dl;
@@ -235,7 +263,17 @@ double SourceFunction::discrete_strength_m_s(const Component& component, double 
   double I = 0.0;
   for (int i = strip_begin_; i < strip_end_; ++i)
     I += profile_[static_cast<std::size_t>(i - strip_begin_)] * std::cos(k_n * (i - line_index_) * dn) * dn;
-  return component.amplitude_m * time_factor * 2.0 * kappa_n * slope * F_prime / (w_grid * M * I);
+  if (!current_) return component.amplitude_m * time_factor * 2.0 * kappa_n * slope * F_prime / (w_grid * M * I);
+  // On a current U (docs/solver.md, "Currents"): linearised about P = U d, the flux-form momentum
+  // equation moves with the water, M D u/Dt + grad(G eta / d) ... = -U S / d (the source adds mass
+  // without momentum), so the forced response is eta = i S (w_r M - k.U) / (|k|^2 G - w_r^2 M) and
+  // its residue at the pole k_n is A = D I (w_r M - k.U) / (2 k_n F'_r + 2 U_n w_r M), with
+  // F'_r = F' at w_r and U_n the current along the travel direction normal to the line (the
+  // discrete kappa_n and its slope as above). U = 0 gives the still-water transfer.
+  const double U_along = component.current_along_m_s, w_r = w_grid - k * U_along;
+  const double F_prime_r = g * d * (1.0 + B * d2 * s) + s * g * d * B * d2 - w_r * w_r * B3 * d2;
+  return component.amplitude_m * time_factor * (2.0 * kappa_n * slope * F_prime_r + 2.0 * current_normal_m_s_ * w_r * M) /
+         ((w_r * M - k * U_along) * I);
 }
 
 void SourceFunction::add(double time_s, double dt, double* eta_base, std::size_t x_stride, std::size_t y_stride) {

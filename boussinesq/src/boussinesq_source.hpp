@@ -33,6 +33,7 @@ class SourceFunction {
     double tangential_wavenumber_rad_m;  // l: wavenumber along the source line
     double phase_rad;      // psi: phase of the source at tangential coordinate 0
     double strength_m_s = 0.0;  // D of Wei et al. (1999), metres per second, for time_step_s_
+    double current_along_m_s = 0.0;  // the imposed current's component along the wave (SolverParameters::current)
   };
   /// D for a component on this grid and time step: the discrete transfer of the scheme (docs/solver.md,
   /// "Wave maker"), which tends to the continuous equations' as dx, dt -> 0.
@@ -41,6 +42,8 @@ class SourceFunction {
   double time_step_s_ = 0.0;             // the dt the strengths were computed for (set on first add)
   double depth_m_ = 0.0, dispersion_coefficient_ = 1.0 / 15.0, line_index_ = 0.0;
   bool normal_is_x_ = true;
+  bool current_ = false;                 // an imposed current (SolverParameters::current)
+  double current_normal_m_s_ = 0.0;      // its component along the travel direction normal to the line
   int strip_begin_ = 0, strip_end_ = 0;  // cell indices along the normal axis, [begin, end)
   int span_begin_ = 0, span_end_ = 0;    // cell indices along the line, [begin, end): WaveMaker's span
   std::vector<double> profile_;          // Gaussian g(s - s_line) per strip index

@@ -64,6 +64,25 @@ __attribute__((always_inline)) inline void with_constant(bool flag, const Body& 
 // stencils stay as they were, with no extra array streamed per face (a bake measured 5-8 % slower
 // with the blends always on).
 // Always inlined into sweep_lines, so each of its instruction-set clones gets its own copy.
+// The velocity P/h of the grid's two edge faces of a block's lines when they hold an imposed current
+// (SweepConstants::edges_hold_flux): h is the edge cell's total depth (the ghost beyond it mirrors
+// its level). Out of line and never vectorised: inlined into the vectorised sweep, this loop's
+// max() stopped GCC 12 with an internal error (gimple_expand_vec_cond_expr) in the wall-mirroring
+// clone, and so did the call under a condition in the sweep: the condition is tested in here. It
+// runs over two faces per line.
+__attribute__((noinline, optimize("no-tree-vectorize"))) void edge_face_velocities(
+    const float* depth, const double* eta_half, const double* flux_half, double* face_velocity, int cols, std::size_t stride,
+    int lb, int n, double dry, bool held) {
+  if (!held) return;
+  constexpr int W = kBlockLines;
+  for (int j = 0; j < n; ++j) {
+    const double h_west = std::max(static_cast<double>(depth[lb + j]) + eta_half[j], dry);
+    const double h_east = std::max(static_cast<double>(depth[(cols - 1) * stride + lb + j]) + eta_half[(cols - 1) * W + j], dry);
+    face_velocity[j] = flux_half[j] / h_west;
+    face_velocity[cols * W + j] = flux_half[cols * W + j] / h_east;
+  }
+}
+
 template <bool kFullBlock, bool kOpenWater, bool kMirrorWalls>
 __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame, const SweepConstants& k,
                                                        const SweepInput& in, const SweepOutput& out, const int lb,
@@ -113,10 +132,13 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   const double laminar_factor = frame.porous_laminar_factor, turbulent_factor = frame.porous_turbulent_factor;
   const double stone_diameter = frame.porous_stone_diameter_m;
   const StoneDiameterRatio stone_ratio = StoneDiameterRatio::of(frame);
-  // The face values the frame does not store (boussinesq_sweep.hpp); faces 0 and cols are walls of depth 0.
+  // The face values the frame does not store (boussinesq_sweep.hpp); faces 0 and cols are walls of
+  // depth 0 (with an imposed current the edges' own depth is set apart below, edges_hold_flux).
   auto depth_at_face = [&](int f, std::size_t face) __attribute__((always_inline)) {
     return f == 0 || f == cols ? 0.0 : face_depth(depth, face - stride, face);
   };
+  // With an imposed current the edge faces keep their flux (increment 0, not -P_old).
+  const double edge_release_factor = k.edge_release_factor;
   // eta at t^{n+1/2} for the derivatives across the lines, and the normal flux likewise (SweepInput).
   // `extrapolates`: eta_extrapolates as std::true_type or std::false_type (with_constant).
   auto eta_across = [&](auto extrapolates, std::size_t i) __attribute__((always_inline)) {
@@ -148,9 +170,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
   // dry_depth_m (so water can run up onto a dry cell, and a lake at rest stays at rest).
   #pragma GCC ivdep
   for (int j = 0; j < n; ++j)
-    for (int f : {0, cols}) {  // grid edges: walls
+    for (int f : {0, cols}) {  // grid edges: walls, or holding the imposed current's flux
       active[f * W + j] = 0.0;
-      increment[f * W + j] = -normal_old[f * stride + lb + j];
+      increment[f * W + j] = -normal_old[f * stride + lb + j] * edge_release_factor;
     }
   for (int f = 1; f < cols; ++f)
     #pragma GCC ivdep
@@ -407,6 +429,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
         flux_half[f * W + j] = flux_f;
         face_velocity[f * W + j] = flux_f / h_face;
       }
+    // The edge faces of an imposed current (SweepConstants::edges_hold_flux) carry u d: their depth
+    // is their one cell's (the ghost beyond it mirrors its level), not a wall's 0.
+    edge_face_velocities(depth, eta_half, flux_half, face_velocity, cols, stride, lb, n, dry, k.edges_hold_flux);
     // Upwinding is first order: applied everywhere it damps non-breaking waves ~20 % over the
     // Berkhoff shoal. So it is blended in by the local Froude number Fr = |u| / sqrt(g h): central
     // (second order, no numerical dissipation) below Fr = 0.2, where non-breaking waves live (linear
@@ -430,7 +455,7 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) {
       upper[j] = 0.0;
-      right[j] = -normal_old[lb + j];
+      right[j] = -normal_old[lb + j] * edge_release_factor;
     }
     with_constant(fully_nonlinear_along, [&](auto fully_nonlinear) __attribute__((always_inline)) {
     with_constant(total_depth_dispersion, [&](auto total_depth) __attribute__((always_inline)) {
@@ -552,9 +577,9 @@ __attribute__((always_inline)) inline void sweep_block(const StaticFrame& frame,
     });
     });
     #pragma GCC ivdep
-    for (int j = 0; j < n; ++j) {  // row `cols`, the east grid edge: identity, flux 0
+    for (int j = 0; j < n; ++j) {  // row `cols`, the east grid edge: identity, flux 0 (or held)
       upper[cols * W + j] = 0.0;
-      right[cols * W + j] = -normal_old[cols * stride + lb + j];
+      right[cols * W + j] = -normal_old[cols * stride + lb + j] * edge_release_factor;
     }
     #pragma GCC ivdep
     for (int j = 0; j < n; ++j) increment[(faces - 1) * W + j] = right[(faces - 1) * W + j];

@@ -79,7 +79,7 @@ inline constexpr int kBlockLines = 16;
 inline double clamped(double x, double lo, double hi) { return x < lo ? lo : (hi < x ? hi : x); }
 
 // The face values, from the two cells of normal face `face` (cells L = face - rows, R = face) of a
-// frame; faces 0 and cols (the grid edges) are walls and are never asked. Both cells are read
+// frame; faces 0 and cols (the grid edges) are walls, or hold the imposed current's flux, and are never asked. Both cells are read
 // unconditionally and the result selected by value (`&`, not `&&`): a load under a condition
 // keeps the sweep's loops from vectorising.
 /// 1 when the face can carry flux (neither cell is a solid wall), else 0.
@@ -183,6 +183,13 @@ struct SweepConstants {
   /// SolverParameters::WallDispersion::kMirrorAtWalls: the stencils read the walls the mask marks
   /// (kMirror*) as mirrors; otherwise the mask has no such bits and the reads are left as they are.
   bool mirror_walls = false;
+  /// SolverParameters::current: the grid's edge faces hold the flux they have (the imposed current's
+  /// P = u d through them) instead of being walls (flux 0), and their depth is the edge cell's.
+  bool edges_hold_flux = false;
+  /// The same as the factor of the edge flux's increment -P_old: 1 for walls, 0 when held. A value
+  /// the compiler cannot fold (a select on edges_hold_flux inside the lines' loops stops GCC 12 with
+  /// an internal error vectorising them); times 1 keeps every bit.
+  double edge_release_factor = 1.0;
 };
 
 /// Per-thread scratch of one block (allocated once per thread, reused every step).

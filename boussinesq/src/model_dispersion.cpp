@@ -23,6 +23,16 @@ double boussinesq_wavenumber(double w, double d, double B) {
   return k;
 }
 
+double boussinesq_wavenumber_in_current(double w, double d, double B, double U) {
+  if (w <= 0.0 || d <= 0.0) return 0.0;
+  const double g = ocean::kGravity_m_s2, B3 = B + 1.0 / 3.0, d2 = d * d;
+  // The intrinsic frequency of the still-water equations, sigma(k) = k sqrt(G / M).
+  return ocean::wavenumber_in_current(w, U, [&](double k) {
+    const double s = k * k;
+    return k * std::sqrt(g * d * (1.0 + B * d2 * s) / (1.0 + B3 * d2 * s));
+  });
+}
+
 double phase_speed_error(double w, double model_depth_m, double true_depth_m, double B) {
   // Same frequency, so the ratio of phase speeds w/k is the inverse ratio of the wavenumbers.
   return ocean::wavenumber_from_frequency(w, true_depth_m) / boussinesq_wavenumber(w, model_depth_m, B) - 1.0;

@@ -178,12 +178,20 @@ void cell_kinematics(const RemainderStep& t) {
       rate = -velocity * 0.5 * (t.eta_rate(a) + t.eta_rate(c)) * inv_h;
     };
     u[0] = u_rate[0] = u[nx] = u_rate[nx] = 0.0;
+    // Open edges (an imposed current, NonlinearDispersionGrid::open_edges): the edge face's flux over
+    // its one cell's depth.
+    const bool open = t.grid.open_edges;
+    if (open) {
+      face(t.cell(0, r), t.cell(0, r), t.flux_x(0, r), u[0], u_rate[0]);
+      face(t.cell(nx - 1, r), t.cell(nx - 1, r), t.flux_x(nx, r), u[nx], u_rate[nx]);
+    }
     for (int f = 1; f < nx; ++f) face(t.cell(f - 1, r), t.cell(f, r), t.flux_x(f, r), u[f], u_rate[f]);
     // The y faces south of the row are the ones north of the row before (its buffers, swapped in).
     if (first_row)
       for (int c = 0; c < nx; ++c) {
         v_south[c] = v_rate_south[c] = 0.0;
         if (r > 0) face(t.cell(c, r - 1), t.cell(c, r), t.flux_y(c, r), v_south[c], v_rate_south[c]);
+        else if (open) face(t.cell(c, 0), t.cell(c, 0), t.flux_y(c, 0), v_south[c], v_rate_south[c]);
       }
     else {
       v_south.swap(v_north);
@@ -192,6 +200,7 @@ void cell_kinematics(const RemainderStep& t) {
     for (int c = 0; c < nx; ++c) {
       v_north[c] = v_rate_north[c] = 0.0;
       if (r + 1 < ny) face(t.cell(c, r), t.cell(c, r + 1), t.flux_y(c, r + 1), v_north[c], v_rate_north[c]);
+      else if (open) face(t.cell(c, r), t.cell(c, r), t.flux_y(c, ny), v_north[c], v_rate_north[c]);
     }
     for (int c = 0; c < nx; ++c) {
       const double div = (u[c + 1] - u[c]) * t.inv_dx + (v_north[c] - v_south[c]) * t.inv_dy;

@@ -75,6 +75,9 @@ struct NonlinearDispersionGrid {
   double dry_depth_m = 0.01;
   /// SolverParameters::WallDispersion::kMirrorAtWalls: the walls the mask marks are read as mirrors.
   bool mirror_walls = false;
+  /// SolverParameters::current: the grid's edges hold the imposed current's flux (open), so the
+  /// velocities there are the edge faces' flux over their cell's depth, not a wall's 0.
+  bool open_edges = false;
 };
 
 /// The state of one step, all in the natural layouts.

@@ -89,6 +89,12 @@ struct BoussinesqSolver::Implementation {
     double factor;      // 1 / (1 + sigma dt)
   };
   std::vector<SpongePoint> sponge_cells, sponge_faces_x, sponge_faces_y;
+  // With an imposed current (SolverParameters::current): the flux each sponge face relaxes towards
+  // (parallel to sponge_faces_x / _y); empty without one (the sponges relax towards rest).
+  std::vector<double> sponge_target_x, sponge_target_y;
+  // The still-water level above the grid's (BoussinesqSolver::set_still_water_level), metres: the
+  // sponges' target for eta.
+  double still_water_level_m = 0.0;
   tbb::enumerable_thread_specific<SweepScratch> scratch;
   // Output rasters. breaking_output is also the state's breaking strength B (0..1, float).
   Raster<float> eta_output, breaking_output;
@@ -131,6 +137,12 @@ struct BoussinesqSolver::Implementation {
   void build_frames(CellFields cells, double peak_w);
   void build_sponges();
   void allocate_state_and_work_arrays();
+  void set_up_current();
+  // The imposed current's flux u d (v d) at x face (f, r) (y face (c, k)), m^2/s: 0 unless both cells
+  // of the face are open water; the grid's edge faces take their one cell.
+  double current_flux_x_m2_s(int f, int r) const;
+  double current_flux_y_m2_s(int c, int k) const;
+  void set_current_fluxes();  // every face's flux to the current's (at rest: 0)
   void set_up_fully_nonlinear_terms();
   void set_up_surface_roller(const WaveMaker& wave_maker, double peak_w);
 

@@ -131,6 +131,7 @@ BoussinesqSolver::BoussinesqSolver(const HarbourGrid& harbour, const SolverParam
   s.build_frames(std::move(cells), peak_w);
   s.build_sponges();
   s.allocate_state_and_work_arrays();
+  s.set_up_current();
   s.set_up_fully_nonlinear_terms();
   s.eta_output = Raster<float>(s.nx, s.ny, 0.0f);
   s.breaking_output = Raster<float>(s.nx, s.ny, 0.0f);
@@ -269,6 +270,12 @@ void BoussinesqSolver::Implementation::take_fingerprint(const std::vector<float>
     const char tag[] = "fully nonlinear";
     h = hash_bytes(tag, sizeof tag, h);
   }
+  // An imposed current changes the state's meaning (edges held, sponges towards it); none keeps
+  // the fingerprint, so saved states without one load as before.
+  if (parameters.current.any()) {
+    const double velocity[2] = {parameters.current.velocity_x_m_s, parameters.current.velocity_y_m_s};
+    h = hash_bytes(velocity, sizeof velocity, h);
+  }
   fingerprint = h;
 }
 
@@ -279,7 +286,9 @@ void BoussinesqSolver::Implementation::set_sweep_constants() {
                parameters.dispersion_depth == DispersionDepth::kTotal,
                parameters.face_depth == SolverParameters::FaceDepth::kMeanWhereWet,
                parameters.equations == Equations::kFullyNonlinear,
-               parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls};
+               parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls,
+               parameters.current.any(),
+               parameters.current.any() ? 0.0 : 1.0};
 }
 
 void BoussinesqSolver::Implementation::build_frames(CellFields cells, double peak_w) {
@@ -342,6 +351,75 @@ void BoussinesqSolver::Implementation::build_sponges() {
   for (auto* points : {&sponge_cells, &sponge_faces_x, &sponge_faces_y}) points->shrink_to_fit();
 }
 
+double BoussinesqSolver::Implementation::current_flux_x_m2_s(int f, int r) const {
+  // P = u d on a face between two open water cells; the grid's edge faces take their one cell.
+  const float* depth = frame_x.depth_m.data();
+  const float* inverse_porosity = frame_x.inverse_porosity.data();
+  const std::size_t L = px(std::max(f - 1, 0), r), R = px(std::min(f, nx - 1), r);
+  if (!(depth[L] > 0.0f && depth[R] > 0.0f && inverse_porosity[L] > 0.0f && inverse_porosity[R] > 0.0f)) return 0.0;
+  return parameters.current.velocity_x_m_s * detail::face_depth(depth, L, R);
+}
+
+double BoussinesqSolver::Implementation::current_flux_y_m2_s(int c, int k) const {
+  const float* depth = frame_y.depth_m.data();
+  const float* inverse_porosity = frame_y.inverse_porosity.data();
+  const std::size_t S = index(c, std::max(k - 1, 0), nx), N = index(c, std::min(k, ny - 1), nx);
+  if (!(depth[S] > 0.0f && depth[N] > 0.0f && inverse_porosity[S] > 0.0f && inverse_porosity[N] > 0.0f)) return 0.0;
+  return parameters.current.velocity_y_m_s * detail::face_depth(depth, S, N);
+}
+
+void BoussinesqSolver::Implementation::set_current_fluxes() {
+  for (int f = 0; f <= nx; ++f)
+    for (int r = 0; r < ny; ++r) flux_x[px(f, r)] = current_flux_x_m2_s(f, r);
+  for (int k = 0; k <= ny; ++k)
+    for (int c = 0; c < nx; ++c) flux_y[qy(c, k)] = current_flux_y_m2_s(c, k);
+  // The edges hold their flux for good, so what flows in must flow out, or the level drifts for as
+  // long as the bake runs: u d over a west edge deeper than the east one brings in more than it
+  // takes out. The outgoing edge fluxes are scaled by inflow / outflow (1 over a flat bed, exactly).
+  double inflow_m3_s = 0.0, outflow_m3_s = 0.0;
+  auto tally = [&](double flux_m2_s, double inward_sign, double length_m) {
+    (flux_m2_s * inward_sign > 0.0 ? inflow_m3_s : outflow_m3_s) += std::abs(flux_m2_s) * length_m;
+  };
+  for (int r = 0; r < ny; ++r) {
+    tally(flux_x[px(0, r)], 1.0, dy);
+    tally(flux_x[px(nx, r)], -1.0, dy);
+  }
+  for (int c = 0; c < nx; ++c) {
+    tally(flux_y[qy(c, 0)], 1.0, dx);
+    tally(flux_y[qy(c, ny)], -1.0, dx);
+  }
+  if (!(inflow_m3_s > 0.0 && outflow_m3_s > 0.0))
+    throw Error(kSubject,
+                "the imposed current (" + std::to_string(parameters.current.velocity_x_m_s) + ", " +
+                    std::to_string(parameters.current.velocity_y_m_s) + ") m/s has " +
+                    (inflow_m3_s > 0.0 ? "no water edge to leave the grid by" : "no water edge to enter the grid by"),
+                "give the current a direction that crosses open water at two edges of the grid");
+  const double scale = inflow_m3_s / outflow_m3_s;
+  if (scale == 1.0) return;
+  auto scale_outgoing = [&](double& flux_m2_s, double inward_sign) {
+    if (flux_m2_s * inward_sign < 0.0) flux_m2_s *= scale;
+  };
+  for (int r = 0; r < ny; ++r) {
+    scale_outgoing(flux_x[px(0, r)], 1.0);
+    scale_outgoing(flux_x[px(nx, r)], -1.0);
+  }
+  for (int c = 0; c < nx; ++c) {
+    scale_outgoing(flux_y[qy(c, 0)], 1.0);
+    scale_outgoing(flux_y[qy(c, ny)], -1.0);
+  }
+}
+
+void BoussinesqSolver::Implementation::set_up_current() {
+  // The imposed current (SolverParameters::current, docs/solver.md "Currents"): the flux it starts
+  // from, and the flux the sponges relax towards, at each of their faces.
+  if (!parameters.current.any()) return;
+  set_current_fluxes();
+  sponge_target_x.resize(sponge_faces_x.size());
+  for (std::size_t k = 0; k < sponge_faces_x.size(); ++k) sponge_target_x[k] = flux_x[sponge_faces_x[k].index];
+  sponge_target_y.resize(sponge_faces_y.size());
+  for (std::size_t k = 0; k < sponge_faces_y.size(); ++k) sponge_target_y[k] = flux_y[sponge_faces_y[k].index];
+}
+
 void BoussinesqSolver::Implementation::allocate_state_and_work_arrays() {
   const float* const cell_depth = frame_y.depth_m.data();
   const std::size_t cells = geometry.cell_count();
@@ -379,7 +457,7 @@ void BoussinesqSolver::Implementation::set_up_fully_nonlinear_terms() {
   nonlinear = std::make_unique<detail::NonlinearDispersion>(detail::NonlinearDispersionGrid{
       nx, ny, dx, dy, frame_y.depth_m.data(), frame_y.porosity.data(), frame_x.face_dispersion_weight.data(),
       frame_y.face_dispersion_weight.data(), parameters.dispersion_coefficient, parameters.dry_depth_m,
-      parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls});
+      parameters.wall_dispersion == SolverParameters::WallDispersion::kMirrorAtWalls, parameters.current.any()});
   breaking_strength_t.assign(geometry.cell_count(), 0.0f);
   fade_nonlinear = parameters.breaking.enabled && parameters.breaking.model == BreakingParameters::Model::kEddyViscosity &&
                    parameters.breaking.fade_fully_nonlinear_terms;

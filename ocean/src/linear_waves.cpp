@@ -46,4 +46,33 @@ double group_speed_m_s(double k, double depth_m) {
   return n * c;
 }
 
+double wavenumber_in_current(double w, double U, const std::function<double(double)>& sigma) {
+  if (w <= 0.0) return 0.0;
+  // f(k) = sigma(k) + k U - w is -w at k = 0 and grows while the group speed in the current,
+  // sigma'(k) + U, is positive; against the current it peaks where that speed vanishes (the
+  // blocking point) and falls beyond. Walk k up by 5 % until f > 0 (bracketed) or f falls (blocked).
+  auto f = [&](double k) { return sigma(k) + k * U - w; };
+  double low = 0.0, high = 1e-6 * w;
+  double f_high = f(high), f_low = -w;
+  while (f_high <= 0.0) {
+    const double next = high * 1.05, f_next = f(next);
+    if (f_next < f_high) return 0.0;  // past the blocking point without reaching w
+    low = high;
+    f_low = f_high;
+    high = next;
+    f_high = f_next;
+    if (high > 1e9) return 0.0;
+  }
+  (void)f_low;
+  for (int iteration = 0; iteration < 200 && high - low > 1e-14 * high; ++iteration) {
+    const double middle = 0.5 * (low + high);
+    (f(middle) > 0.0 ? high : low) = middle;
+  }
+  return 0.5 * (low + high);
+}
+
+double wavenumber_in_current(double w, double depth_m, double U) {
+  return wavenumber_in_current(w, U, [depth_m](double k) { return frequency_from_wavenumber(k, depth_m); });
+}
+
 }  // namespace nearshore::ocean

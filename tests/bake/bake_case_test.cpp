@@ -296,5 +296,18 @@ TEST(BakeCase, TheWallDispersionIsReadAndRecorded) {
   expect_case_error(edited(flat, flat) + "[solver]\nwall_dispersion = \"mirror\"\n",
                     {"key `solver.wall_dispersion`", "mirror_at_walls"});
 }
+
+TEST(BakeCase, AnImposedCurrentIsReadAndRecorded) {
+  const auto folder = scratch_folder();
+  const BakeCase still = read_bake_case(write_text(folder / "still.toml", small_flume_case()));
+  EXPECT_FALSE(still.solver.current.any());
+  EXPECT_FALSE(still.solver_record.contains("current"));  // the record of a bake without one is as before
+  const BakeCase against = read_bake_case(write_text(folder / "current.toml", small_flume_case() + "[current]\nu_m_s = -0.5\n"));
+  EXPECT_EQ(against.solver.current.velocity_x_m_s, -0.5);
+  EXPECT_EQ(against.solver.current.velocity_y_m_s, 0.0);
+  EXPECT_EQ(against.solver_record["current"]["u_m_s"].get<double>(), -0.5);
+  expect_case_error(small_flume_case() + "[current]\nu_m_s = 9.0\n", {"key `current.u_m_s`", "out of range"});
+  expect_case_error(small_flume_case() + "[current]\nspeed_m_s = 1.0\n", {"current.speed_m_s"});
+}
 }  // namespace
 }  // namespace nearshore::bake

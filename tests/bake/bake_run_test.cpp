@@ -105,6 +105,54 @@ TEST_F(BakeRun, WritesFramesGaugesAndTheManifestLast) {
   EXPECT_GT(json["cell_updates_per_s"].get<double>(), 0.0);
 }
 
+TEST_F(BakeRun, AnImposedCurrentFlowsThroughTheBakeAndItsOutputs) {
+  // [current] (docs/solver.md, "Currents"): 0.2 m/s toward the west over the 0.5 m flume. The flux
+  // the gauges record (what the frames carry, and the runtime divides by the depth) is the current's
+  // u d = -0.1 m^2/s plus the waves' orbital flux, whose mean over the last wave period is small.
+  const auto folder = scratch_folder();
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", small_flume_case(8.0) + "[current]\nu_m_s = -0.2\n"));
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  run_bake(c, options);
+  GaugeTable gauges = read_gauges_csv(options.output_folder / "gauges.csv");
+  read_gauge_fluxes_csv(options.output_folder / kGaugeFluxesFile, gauges);
+  for (std::size_t g = 0; g < gauges.names.size(); ++g) {
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t i = 0; i < gauges.time_s.size(); ++i)
+      if (gauges.time_s[i] > 6.0) sum += gauges.flux_x_m2_s[g][i], ++count;
+    std::printf("%s: mean flux over 6-8 s %.5f m^2/s (the current's -0.10000)\n", gauges.names[g].c_str(), sum / count);
+    // 5 %: the waves' mean flux (Stokes drift, a 2 cm wave: H^2 w / (8 tanh k d) ~ 1e-4 m^2/s) and
+    // the mean over a period that is not whole at the gauge.
+    EXPECT_NEAR(sum / count, -0.1, 0.005) << gauges.names[g];
+  }
+}
+
+TEST_F(BakeRun, ATideRaisesTheGaugesMeanLevelAlongItsSeries) {
+  // [tide] level_m (docs/solver.md, "Tides"): the level rises 4 cm over the 8 s bake. Over the last
+  // wave period (6-8 s) the gauges' mean is the level's mean there, 3.5 cm, to within the regular
+  // wave's own mean over a period that is not quite whole at the gauge (a few tenths of a mm) and
+  // the sponges' lag behind the level (their relaxation, sigma ~ sqrt(g d)/W, is ~1 s).
+  const auto folder = scratch_folder();
+  const BakeCase c = read_bake_case(write_text(folder / "case.toml", small_flume_case(8.0) + "[tide]\nlevel_m = [[0.0, 0.0], [8.0, 0.04]]\n"));
+  ASSERT_EQ(c.tide_level.time_s.size(), 2u);
+  EXPECT_EQ(c.solver_record["tide_level_m"][1][1].get<double>(), 0.04);
+  BakeOptions options;
+  options.output_folder = folder / "out";
+  run_bake(c, options);
+  const GaugeTable gauges = read_gauges_csv(options.output_folder / "gauges.csv");
+  for (const char* name : {"g1", "g2"}) {
+    const std::vector<double> eta = gauge_column(gauges, name);
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t i = 0; i < eta.size(); ++i)
+      if (gauges.time_s[i] > 6.0) sum += eta[i], ++count;
+    std::printf("%s: mean level over 6-8 s %.5f m (the tide's 0.03500 m)\n", name, sum / count);
+    EXPECT_NEAR(sum / count, 0.035, 0.002) << name;
+  }
+  expect_case_error(small_flume_case() + "[tide]\nlevel_m = [[0.0, 0.0], [0.0, 0.1]]\n", {"key `tide.level_m`", "must increase"});
+}
+
 TEST_F(BakeRun, PeriodicIrregularBakeRecordsLoopPeriodSeedAndComponents) {
   const auto folder = scratch_folder();
   std::string text = small_flume_case(6.0);

@@ -19,6 +19,7 @@
 #include "nearshore/boussinesq/boussinesq_solver.hpp"
 #include "nearshore/boussinesq/initial_conditions.hpp"
 #include "nearshore/ocean/deep_water.hpp"
+#include "nearshore/bake/bake_time_series.hpp"
 #include "nearshore/bake/deep_water_coupling.hpp"
 #include "nearshore/bake/structure_layers.hpp"
 #include "nearshore/core/harbour_grid.hpp"
@@ -65,6 +66,10 @@ struct BakeCase {
   HarbourGrid harbour;              ///< the grid the solver runs on
   boussinesq::SolverParameters solver;          ///< time_step_s is always resolved (> 0): see resolve_time_step()
   boussinesq::WaveMaker wave_maker;
+  /// [tide] level_m: the still-water level over the bake, metres above the grid's (the bathymetry's
+  /// still_water_level_m at the start), linear between the samples; empty for none
+  /// (BoussinesqSolver::set_still_water_level, docs/solver.md "Tides").
+  TimeSeries tide_level;
   /// wave_maker.kind = "solitary": the solver starts from this wave instead of rest (run-up cases).
   std::optional<boussinesq::SolitaryWave> solitary_wave;
   BakeTiming timing;

@@ -20,6 +20,10 @@ struct TimeSeries {
   std::vector<double> time_s, elevation_m;
 };
 
+/// The series at `time_s`, linear between samples and held at the first and last beyond them: the
+/// still-water level of a tide ([tide] level_m). The series must not be empty.
+double interpolated_elevation_m(const TimeSeries& series, double time_s);
+
 /// Reads the table. Throws nearshore::Error(file, "line N: ...", fix) for a short row, a
 /// non-numeric value, time not increasing, or fewer than two samples.
 TimeSeries read_time_series(const std::filesystem::path& file, const TimeSeriesLayout& layout);

@@ -57,15 +57,29 @@ class BoussinesqSolver {
 
   /// Replaces the surface elevation by eta(x, y) at the cell centres (metres, grid frame) on water
   /// cells and sets every flux to rest: an initial condition for tests and hot starts (standing
-  /// waves, humps). Land cells keep h = 0. Values are not checked: check_stability() reports NaN.
+  /// waves, humps); with an imposed current (SolverParameters::current) the fluxes are set to the
+  /// current's instead. Land cells keep h = 0. Values are not checked: check_stability() reports NaN.
   void set_surface_elevation(const std::function<double(double x_m, double y_m)>& surface_elevation_m);
   /// Replaces eta on every cell with water (still-water depth > 0) and the fluxes on every open wet
   /// face by the given functions of position (metres, grid frame: cell centres for eta, face centres
   /// for P and Q), and resets the flux rates: an initial condition with motion, such as a solitary
-  /// wave (initial_conditions.hpp). Call it before the first step.
+  /// wave (initial_conditions.hpp). Call it before the first step. With an imposed current the given
+  /// fluxes replace the current's on the interior faces (include it in them); the edges keep theirs.
   void set_initial_condition(const std::function<double(double x_m, double y_m)>& surface_elevation_m,
                              const std::function<double(double x_m, double y_m)>& flux_x_m2_s,
                              const std::function<double(double x_m, double y_m)>& flux_y_m2_s);
+  /// How set_still_water_level treats the water: kMoveWater adds the change of level to it;
+  /// kStateHoldsIt only takes the level (a state just loaded with load_state, which does not store
+  /// the level, already holds its water).
+  enum class LevelChange { kMoveWater, kStateHoldsIt };
+  /// The still-water level, metres above the level the grid's depths were given at (0 at
+  /// construction): a tide or surge that varies slowly over a run (docs/solver.md, "Tides"). The
+  /// change since the last call is added to the surface elevation of every cell holding water (the
+  /// tidal wave is far longer than a harbour grid, so the basin rises and falls as one: the volume the
+  /// open sea feeds it), never below a cell's bed; the sponges relax eta towards the level instead of
+  /// 0. The depths of the equations' coefficients (dispersion, breaking thresholds) stay the grid's.
+  void set_still_water_level(double level_m, LevelChange change = LevelChange::kMoveWater);
+  double still_water_level_m() const;        ///< the level of the last set_still_water_level, metres
   void step();                               ///< one ADI step of time_step_s()
   double time_s() const;                     ///< simulated time, seconds
   double time_step_s() const;                ///< dt, seconds

@@ -9,6 +9,14 @@ namespace nearshore::boussinesq {
 /// Newton from the Airy wavenumber; 0 for w <= 0 or d <= 0.
 double boussinesq_wavenumber(double angular_frequency_rad_s, double depth_m, double dispersion_coefficient);
 
+/// The model wavenumber (rad/m) of a wave of absolute angular frequency w on a depth-uniform current
+/// whose component along the wave is U (m/s, negative against it): the Doppler-shifted dispersion
+/// relation (w - k U)^2 = g d k^2 (1 + B (kd)^2) / (1 + (B + 1/3) (kd)^2) of the equations on a
+/// current (docs/solver.md, "Currents"); 0 when the current blocks the wave. U = 0 gives
+/// boussinesq_wavenumber() to 1e-14.
+double boussinesq_wavenumber_in_current(double angular_frequency_rad_s, double depth_m, double dispersion_coefficient,
+                                        double current_along_m_s);
+
 /// The largest k d the bake lets the equations carry: B = 1/15 is Madsen & Sorensen's (1992)
 /// choice for k d up to about 3. What that costs is dispersion_phase_speed_error(3, B): +4.11 %
 /// phase speed at a given frequency for B = 1/15 (+2.40 % at a given wavenumber).

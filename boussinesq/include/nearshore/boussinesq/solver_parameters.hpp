@@ -115,6 +115,22 @@ struct WaveMaker {
   std::vector<double> series_time_s, series_elevation_m;  ///< kTimeSeries: eta(t) at the source line
 };
 
+/// A steady current imposed on the whole grid (docs/solver.md, "Currents"): the depth-uniform
+/// velocity (u, v) the wave field rides on, m/s, x east and y north. The solver starts from the
+/// flux P = u d, Q = v d on every open face between two water cells (d the still-water depth of the
+/// face), the grid's edges hold that flux for good (an open boundary feeding and draining the
+/// current; with no current they are walls, flux 0), and the sponges relax the flux towards it
+/// instead of towards rest. Over a flat bed without friction the current is a steady solution of
+/// the equations; over a chart it adjusts to the bed and the coast during the spin-up. The wave
+/// maker generates in the moving water: its frequency is the absolute one, its wavenumber from the
+/// Doppler-shifted dispersion relation (w - k.U)^2 M(k^2) = k^2 G(k^2) of the equations
+/// (model_dispersion.hpp).
+struct ImposedCurrent {
+  double velocity_x_m_s = 0.0;
+  double velocity_y_m_s = 0.0;
+  bool any() const { return velocity_x_m_s != 0.0 || velocity_y_m_s != 0.0; }
+};
+
 /// The stability limit of the Courant number sqrt(g d_max) dt / dx: beyond it the iterated explicit
 /// terms stop converging (docs/solver.md). The solver refuses a larger step; the bake's case reader
 /// checks the same limit first, so that its message names the case file's key.
@@ -192,6 +208,7 @@ struct SolverParameters {
   BreakingParameters breaking;
   PorousResistance porous;
   std::vector<SpongeLayer> sponges;
+  ImposedCurrent current;             ///< none by default: the grid's edges are walls
   int nonlinear_iterations = 2;       ///< passes of the time-centred (Crank-Nicolson) iteration per half step
   /// x + y sweep pairs per step. The first pair's first sweep takes the across terms (the other
   /// flux and its rate at t^{n+1/2}) from last step's increment; the second pair re-solves with this
