@@ -272,6 +272,59 @@ TEST(StructureLayers, AGivenPorosityIsKeptAndNoSeaStateIsSaid) {
   EXPECT_EQ(grid.porosity(37, 5), 0.0f);  // the core is laid all the same
 }
 
+// A pier on piles (Kt 0.9 asked) in 0.5 m of water on 12 m cells under Commencement Bay's carried
+// band (four waves of 7.3-10 s, Hs 0.34 m): there the waves are 1.5-1.8 cells long, which neither the
+// flume nor the bake carries, and a fit in that water measured each wave's transmission as 0.0-33.
+// The fit runs in the shallowest water where the shortest wave is four cells long (docs/structures.md,
+// "Water too shallow for the grid's waves"), so what it measures is a porous layer's: no wave
+// comes through stronger than it went in.
+TEST(StructureLayers, AFitInWaterTooShallowForTheGridsWavesRunsWhereTheyAreCarried) {
+  GridGeometry geometry;
+  geometry.columns = 40;
+  geometry.rows = 6;
+  geometry.spacing_m = 12.0;
+  HarbourGrid grid = HarbourGrid::open_water(geometry, 0.5f);
+  CoastalStructure pier;
+  pier.name = "shallow pier";
+  pier.kind = "pier";
+  pier.lines = {{{240.0, -10.0}, {240.0, 80.0}}};
+  pier.crest_width_m = 6.0;
+  pier.crest_elevation_m = 2.5;
+  pier.side_slope = 0.0;
+  pier.reflection_coefficient = 0.1;
+  pier.transmission_coefficient = 0.9;
+  grid.structures = {pier};
+  boussinesq::SolverParameters solver;
+  solver.dispersion_cutoff_depth_m = 0.5;  // the Tacoma case's
+  solver.shapiro_filter_order = 0;         // as the bake derives it for 12 m cells there
+  StructureSeaState sea;
+  sea.significant_wave_height_m = 0.34;
+  sea.peak_period_s = sea.spectral_period_s = 8.0;
+  sea.longest_period_s = 10.0;
+  sea.shortest_period_s = 7.3;
+  for (double period_s : {10.0, 8.9, 8.0, 7.3}) sea.waves.push_back({period_s, 2.0 * std::sqrt(2.0 * std::pow(0.34 / 4.0, 2) / 4.0)});
+  std::vector<std::string> warnings;
+  const std::vector<StructureLayer> layers = lay_structures(grid, solver, sea, warnings);
+  ASSERT_EQ(layers.size(), 1u);
+  const StructureLayer& layer = layers[0];
+  ASSERT_TRUE(layer.fitted);
+  EXPECT_NEAR(layer.depth_m, 0.5, 1e-6);
+  // Four cells of 12 m for the 7.3 s wave (Airy): tanh(k d) = omega^2 / (g k), k = 2 pi / 48 m.
+  const double k = 2.0 * std::numbers::pi / 48.0, omega = 2.0 * std::numbers::pi / 7.3;
+  const double resolved_m = std::atanh(omega * omega / (9.81 * k)) / k;
+  EXPECT_NEAR(layer.flume_depth_m, resolved_m, 0.01);
+  EXPECT_NEAR(layer.in_the_sea.transmission_coefficient, 0.9, kStructureFitTolerance);
+  ASSERT_EQ(layer.across_band.size(), 4u);
+  for (const auto& wave : layer.across_band) {
+    EXPECT_LE(wave.transmission_coefficient, 1.0 + kStructureFitTolerance) << wave.period_s << " s";
+    EXPECT_GE(wave.transmission_coefficient, 0.7) << wave.period_s << " s";
+  }
+  const std::string report = describe_structure_layers(layers);
+  RecordProperty("report", report);
+  EXPECT_NE(report.find(fmt::format("fitted in {:.1f} m", resolved_m)), std::string::npos) << report;
+  EXPECT_DOUBLE_EQ(structure_layers_record(layers)[0]["flume_depth_m"].get<double>(), layer.flume_depth_m);
+}
+
 TEST(StructureLayers, SurviveResamplingAndTheHarbourGridFile) {
   HarbourGrid grid = basin_with_breakwater();
   const auto file = testing::scratch_folder() / "depth.exr";
