@@ -71,23 +71,29 @@ TEST(StructureSeaState, IsTheMakersSpectrum) {
   EXPECT_EQ(structure_sea_state(boussinesq::WaveMaker{}).significant_wave_height_m, 0.0);
 }
 
+// A flat basin of `columns` x `rows` square cells with one line structure across it at x = `x_m`
+// (from y = -10 m to 10 m beyond the grid's north edge).
+HarbourGrid basin_with(int columns, int rows, double spacing_m, float depth_m, double x_m, CoastalStructure structure) {
+  GridGeometry geometry;
+  geometry.columns = columns;
+  geometry.rows = rows;
+  geometry.spacing_m = spacing_m;
+  HarbourGrid grid = HarbourGrid::open_water(geometry, depth_m);
+  structure.lines = {{{x_m, -10.0}, {x_m, rows * spacing_m + 10.0}}};
+  grid.structures = {structure};
+  return grid;
+}
+
 // A 600 m x 200 m basin 8 m deep in 8 m cells, with a rubble-mound breakwater across it at x = 300 m.
 HarbourGrid basin_with_breakwater() {
-  GridGeometry geometry;
-  geometry.columns = 75;
-  geometry.rows = 25;
-  geometry.spacing_m = 8.0;
-  HarbourGrid grid = HarbourGrid::open_water(geometry, 8.0f);
   CoastalStructure mound;
   mound.name = "test mound";
   mound.kind = "rubble_mound_breakwater";
-  mound.lines = {{{300.0, -10.0}, {300.0, 210.0}}};
   mound.crest_width_m = 10.0;
   mound.crest_elevation_m = 3.0;
   mound.side_slope = 1.5;
   mound.reflection_coefficient = 0.5;
-  grid.structures = {mound};
-  return grid;
+  return basin_with(75, 25, 8.0, 8.0f, 300.0, mound);
 }
 
 TEST(StructureLayers, LayACoreAndFacesFittedToTheRequestedReflection) {
@@ -279,21 +285,15 @@ TEST(StructureLayers, AGivenPorosityIsKeptAndNoSeaStateIsSaid) {
 // "Water too shallow for the grid's waves"), so what it measures is a porous layer's: no wave
 // comes through stronger than it went in.
 TEST(StructureLayers, AFitInWaterTooShallowForTheGridsWavesRunsWhereTheyAreCarried) {
-  GridGeometry geometry;
-  geometry.columns = 40;
-  geometry.rows = 6;
-  geometry.spacing_m = 12.0;
-  HarbourGrid grid = HarbourGrid::open_water(geometry, 0.5f);
   CoastalStructure pier;
   pier.name = "shallow pier";
   pier.kind = "pier";
-  pier.lines = {{{240.0, -10.0}, {240.0, 80.0}}};
   pier.crest_width_m = 6.0;
   pier.crest_elevation_m = 2.5;
   pier.side_slope = 0.0;
   pier.reflection_coefficient = 0.1;
   pier.transmission_coefficient = 0.9;
-  grid.structures = {pier};
+  HarbourGrid grid = basin_with(40, 6, 12.0, 0.5f, 240.0, pier);
   boussinesq::SolverParameters solver;
   solver.dispersion_cutoff_depth_m = 0.5;  // the Tacoma case's
   solver.shapiro_filter_order = 0;         // as the bake derives it for 12 m cells there
