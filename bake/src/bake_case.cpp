@@ -124,13 +124,22 @@ double default_dry_depth_m(const HarbourGrid& harbour) {
 // of half the depth showed it as two-cell stripes in Hs along its breakwaters. So a harbour grid
 // (cells a quarter of the deepest water long or longer) runs without it and a laboratory grid with
 // it; the growth figures were measured 2026-11-28 from still water with noise.
+// The depth is the deepest the equations see: every term runs on min(d, effective_depth_limit_m)
+// (docs/solver.md, "Effective depth"), so water deeper than the limit makes no mode the filter
+// must catch. Measured on the true depth, Commencement Bay's 169 m made its 12 m cells "fine" where
+// the equations see 47.5 m (d/dx 4.0), and the filter's mode grew beside Browns Point's staircase
+// shore to Hs 7.4 m under a 0.34 m swell (docs/solver.md, "The water beside a wall").
 constexpr double kFilteredDepthsPerCell = 4.0;
 
-int default_shapiro_filter_order(const HarbourGrid& harbour) {
-  const int solver_order = boussinesq::SolverParameters{}.shapiro_filter_order;
+double deepest_seen_water_m(const HarbourGrid& harbour, double effective_depth_limit_m) {
   const double deepest_m = deepest_still_water_m(harbour);
+  return effective_depth_limit_m > 0.0 ? std::min(deepest_m, effective_depth_limit_m) : deepest_m;
+}
+
+int default_shapiro_filter_order(const HarbourGrid& harbour, double effective_depth_limit_m) {
+  const int solver_order = boussinesq::SolverParameters{}.shapiro_filter_order;
   const double spacing_m = harbour.geometry.smaller_spacing_m();
-  return deepest_m > kFilteredDepthsPerCell * spacing_m ? solver_order : 0;
+  return deepest_seen_water_m(harbour, effective_depth_limit_m) > kFilteredDepthsPerCell * spacing_m ? solver_order : 0;
 }
 
 }  // namespace
@@ -197,7 +206,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
                 fmt::format("give solver.dry_depth_m <= {:.3g} m (a film of water: millimetres; left out, the bake "
                             "takes a 300th of the deepest water, at most 1 cm)",
                             0.1 * deepest_m));
-  if (!solver.has("shapiro_filter_order")) bake_case.solver.shapiro_filter_order = default_shapiro_filter_order(bake_case.harbour);
+  const bool filter_order_given = solver.has("shapiro_filter_order");  // derived below, from the depth the equations see
   solver.finish();
   for (TableReader& entry : root.tables("sponges")) {
     SpongeLayer sponge;
@@ -267,6 +276,8 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
       highest_rad_s = std::max(highest_rad_s, component.angular_frequency_rad_s);
     bake_case.solver.effective_depth_limit_m = automatic_effective_depth_limit_m(bake_case.harbour, highest_rad_s);
   }
+  if (!filter_order_given)
+    bake_case.solver.shapiro_filter_order = default_shapiro_filter_order(bake_case.harbour, bake_case.solver.effective_depth_limit_m);
   bake_case.solitary_wave = maker_request.solitary_wave;
   bake_case.warnings.insert(bake_case.warnings.end(), maker_request.warnings.begin(), maker_request.warnings.end());
   if (maker_request.from_deep_water && !root.has("deep_water"))
@@ -401,10 +412,13 @@ std::string describe_derived_solver_settings(const BakeCase& bake_case) {
                        1000.0 * bake_case.solver.dry_depth_m, kDepthsPerDryDepth, deepest_still_water_m(bake_case.harbour),
                        kDepthsPerDryDepth * solver_default_m, 100.0 * solver_default_m);
   if (!given("shapiro_filter_order") && bake_case.solver.shapiro_filter_order != SolverParameters{}.shapiro_filter_order)
-    text += fmt::format("{}grid-scale filter: off, the {:.3g} m cells are not finer than 1/{:.0f} of the {:.3g} m deepest water "
+    text += fmt::format("{}grid-scale filter: off, the {:.3g} m cells are not finer than 1/{:.0f} of the {:.3g} m deepest water{} "
                         "(solver.shapiro_filter_order left out; finer grids get order {}; docs/solver.md, \"Grid-scale filter\")",
                         text.empty() ? "" : "\n", bake_case.harbour.geometry.smaller_spacing_m(), kFilteredDepthsPerCell,
-                        deepest_still_water_m(bake_case.harbour), SolverParameters{}.shapiro_filter_order);
+                        deepest_seen_water_m(bake_case.harbour, bake_case.solver.effective_depth_limit_m),
+                        deepest_seen_water_m(bake_case.harbour, bake_case.solver.effective_depth_limit_m) < deepest_still_water_m(bake_case.harbour)
+                            ? " the equations see (the effective depth)" : "",
+                        SolverParameters{}.shapiro_filter_order);
   return text;
 }
 

@@ -190,8 +190,21 @@ StructureLayer plan_structure(const HarbourGrid& grid, std::size_t s, StructureC
   return layer;
 }
 
+// The shallowest still water in which the sea's shortest flume wave is kFlumeCellsPerShortestWave
+// cells long (Airy: tanh k d = omega^2 / (g k) at k = 2 pi / (N dx)); 0 where no depth makes it so
+// long (a wave shorter than that even in deep water, which the bake would not carry) or no sea.
+double shallowest_resolved_depth_m(const StructureSeaState& sea, double cell_m) {
+  double shortest_period_s = INFINITY;
+  for (const auto& wave : sea.waves) shortest_period_s = std::min(shortest_period_s, wave.period_s);
+  if (!std::isfinite(shortest_period_s) || !(cell_m > 0.0)) return 0.0;
+  const double k = 2.0 * std::numbers::pi / (kFlumeCellsPerShortestWave * cell_m);
+  const double omega = 2.0 * std::numbers::pi / shortest_period_s;
+  const double tanh_kd = omega * omega / (ocean::kGravity_m_s2 * k);
+  return tanh_kd < 1.0 ? std::atanh(tanh_kd) / k : 0.0;
+}
+
 // The fit a planned layer asks of the flume (step 3), its faces laid to the fitted count.
-FitRequest request_of_layer(const HarbourGrid& grid, std::size_t s, const StructureLayer& layer) {
+FitRequest request_of_layer(const HarbourGrid& grid, std::size_t s, const StructureLayer& layer, double shallowest_fitted_depth_m) {
   const bool impermeable = bathymetry::has_impermeable_core(grid.structures[s]);
   FitRequest request;
   request.wall_behind = impermeable;
@@ -200,6 +213,8 @@ FitRequest request_of_layer(const HarbourGrid& grid, std::size_t s, const Struct
   // Depths within 10 % share a fit (k h within +- 5 %: the layer's response moves by less than
   // the fit's tolerance; a real chart has hundreds of piers at as many depths).
   request.depth_m = std::exp(std::round(std::log(layer.depth_m) / 0.1) * 0.1);
+  // Water too shallow for the grid to carry the sea's shortest wave: the fit is made where it can.
+  request.depth_m = std::max(request.depth_m, shallowest_fitted_depth_m);
   return request;
 }
 
@@ -322,10 +337,12 @@ std::vector<StructureLayer> lay_structures(HarbourGrid& grid, const boussinesq::
   std::vector<FitRequest> request_of(grid.structures.size());
 
   // Steps 1-3 of the header: coefficients, footprint, the flume each structure needs.
+  const double shallowest_fitted_depth_m = shallowest_resolved_depth_m(sea, g.smaller_spacing_m());
   for (std::size_t s = 0; s < grid.structures.size(); ++s) {
     layers.push_back(plan_structure(grid, s, cells, solver, sea, warnings, fallback_porosity));
     if (!layers.back().fitted) continue;
-    request_of[s] = request_of_layer(grid, s, layers.back());
+    request_of[s] = request_of_layer(grid, s, layers.back(), shallowest_fitted_depth_m);
+    layers.back().flume_depth_m = request_of[s].depth_m;
     fits.emplace(request_of[s], FitResult{});
     if (cells.faces_follow_core(s)) {
       cells.dilate_core(s, request_of[s].layer_cells);

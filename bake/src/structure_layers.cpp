@@ -126,6 +126,7 @@ nlohmann::json structure_layers_record(const std::vector<StructureLayer>& layers
                          {"face_cells", layer.face_cells}};
     if (layer.fitted) {
       entry["peak_period_s"] = layer.wave_period_s;
+      entry["flume_depth_m"] = layer.flume_depth_m;
       entry["in_the_sea"] = response(layer.in_the_sea);
       entry["across_band"] = nlohmann::json::array();
       for (const LayerResponse& r : layer.across_band) entry["across_band"].push_back(response(r));
@@ -161,6 +162,10 @@ std::string describe_structure_layers(const std::vector<StructureLayer>& layers)
                                                           layer.stone_diameter_m)
                                             : std::string(),
                         layer.depth_m, layer.core_cells);
+    // Fitted in deeper water than the layer stands in (beyond the shared fits' 10 % bins): say so.
+    if (layer.flume_depth_m > 1.1 * layer.depth_m)
+      text += fmt::format(" (fitted in {:.1f} m: the shallowest water in which the grid's cells carry the sea's shortest wave)",
+                          layer.flume_depth_m);
   }
   return text;
 }

@@ -68,6 +68,26 @@ TEST(BakeEffectiveDepth, AGivenLimitIsKeptAndZeroTurnsItOff) {
   EXPECT_DOUBLE_EQ(read_bake_case(write_text(folder / "c.toml", text)).solver.effective_depth_limit_m, 40.0);
 }
 
+// The grid-scale filter's default reads the depth the equations see (docs/solver.md, "Grid-scale
+// filter"): 15 m cells over the 74 m channel are finer than a quarter of its true depth but not of
+// the 47.5 m the 8 s wave's limit leaves, so the filter is off, as on a harbour grid; without the
+// limit the equations see 74 m and the filter is on. Measured on the true depth, Commencement Bay's
+// 12 m bake got the filter and its mode beside a staircase shore (Hs 7.4 m under a 0.34 m swell).
+TEST(BakeEffectiveDepth, TheGridScaleFilterFollowsTheDepthTheEquationsSee) {
+  const auto folder = scratch_folder();
+  std::string text = channel_case("kind = \"regular\"\nheight_m = 0.5\nperiod_s = 8.0\n", 15.0);
+  const BakeCase limited = read_bake_case(write_text(folder / "limited.toml", text));
+  ASSERT_NEAR(limited.solver.effective_depth_limit_m, 47.47, 0.01);
+  EXPECT_EQ(limited.solver.shapiro_filter_order, 0);
+  EXPECT_EQ(limited.solver_record["shapiro_filter_order"].get<int>(), 0);
+  const std::string report = describe_derived_solver_settings(limited);
+  RecordProperty("report", report);
+  EXPECT_NE(report.find("not finer than 1/4 of the 47.5 m deepest water the equations see"), std::string::npos) << report;
+  text += "[solver]\neffective_depth_limit_m = 0.0\n";
+  const BakeCase unlimited = read_bake_case(write_text(folder / "unlimited.toml", text));
+  EXPECT_EQ(unlimited.solver.shapiro_filter_order, boussinesq::SolverParameters{}.shapiro_filter_order);
+}
+
 // Where the grid is nowhere deeper than k d = 3 for the band, the limit is inactive: such a case
 // runs exactly as before the limit existed (the shared laboratory cases are all of this kind).
 TEST(BakeEffectiveDepth, InactiveWhereTheBandStaysWithinKdThree) {

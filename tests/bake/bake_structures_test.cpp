@@ -71,23 +71,29 @@ TEST(StructureSeaState, IsTheMakersSpectrum) {
   EXPECT_EQ(structure_sea_state(boussinesq::WaveMaker{}).significant_wave_height_m, 0.0);
 }
 
+// A flat basin of `columns` x `rows` square cells with one line structure across it at x = `x_m`
+// (from y = -10 m to 10 m beyond the grid's north edge).
+HarbourGrid basin_with(int columns, int rows, double spacing_m, float depth_m, double x_m, CoastalStructure structure) {
+  GridGeometry geometry;
+  geometry.columns = columns;
+  geometry.rows = rows;
+  geometry.spacing_m = spacing_m;
+  HarbourGrid grid = HarbourGrid::open_water(geometry, depth_m);
+  structure.lines = {{{x_m, -10.0}, {x_m, rows * spacing_m + 10.0}}};
+  grid.structures = {structure};
+  return grid;
+}
+
 // A 600 m x 200 m basin 8 m deep in 8 m cells, with a rubble-mound breakwater across it at x = 300 m.
 HarbourGrid basin_with_breakwater() {
-  GridGeometry geometry;
-  geometry.columns = 75;
-  geometry.rows = 25;
-  geometry.spacing_m = 8.0;
-  HarbourGrid grid = HarbourGrid::open_water(geometry, 8.0f);
   CoastalStructure mound;
   mound.name = "test mound";
   mound.kind = "rubble_mound_breakwater";
-  mound.lines = {{{300.0, -10.0}, {300.0, 210.0}}};
   mound.crest_width_m = 10.0;
   mound.crest_elevation_m = 3.0;
   mound.side_slope = 1.5;
   mound.reflection_coefficient = 0.5;
-  grid.structures = {mound};
-  return grid;
+  return basin_with(75, 25, 8.0, 8.0f, 300.0, mound);
 }
 
 TEST(StructureLayers, LayACoreAndFacesFittedToTheRequestedReflection) {
@@ -270,6 +276,53 @@ TEST(StructureLayers, AGivenPorosityIsKeptAndNoSeaStateIsSaid) {
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("test mound"), std::string::npos);
   EXPECT_EQ(grid.porosity(37, 5), 0.0f);  // the core is laid all the same
+}
+
+// A pier on piles (Kt 0.9 asked) in 0.5 m of water on 12 m cells under Commencement Bay's carried
+// band (four waves of 7.3-10 s, Hs 0.34 m): there the waves are 1.5-1.8 cells long, which neither the
+// flume nor the bake carries, and a fit in that water measured each wave's transmission as 0.0-33.
+// The fit runs in the shallowest water where the shortest wave is four cells long (docs/structures.md,
+// "Water too shallow for the grid's waves"), so what it measures is a porous layer's: no wave
+// comes through stronger than it went in.
+TEST(StructureLayers, AFitInWaterTooShallowForTheGridsWavesRunsWhereTheyAreCarried) {
+  CoastalStructure pier;
+  pier.name = "shallow pier";
+  pier.kind = "pier";
+  pier.crest_width_m = 6.0;
+  pier.crest_elevation_m = 2.5;
+  pier.side_slope = 0.0;
+  pier.reflection_coefficient = 0.1;
+  pier.transmission_coefficient = 0.9;
+  HarbourGrid grid = basin_with(40, 6, 12.0, 0.5f, 240.0, pier);
+  boussinesq::SolverParameters solver;
+  solver.dispersion_cutoff_depth_m = 0.5;  // the Tacoma case's
+  solver.shapiro_filter_order = 0;         // as the bake derives it for 12 m cells there
+  StructureSeaState sea;
+  sea.significant_wave_height_m = 0.34;
+  sea.peak_period_s = sea.spectral_period_s = 8.0;
+  sea.longest_period_s = 10.0;
+  sea.shortest_period_s = 7.3;
+  for (double period_s : {10.0, 8.9, 8.0, 7.3}) sea.waves.push_back({period_s, 2.0 * std::sqrt(2.0 * std::pow(0.34 / 4.0, 2) / 4.0)});
+  std::vector<std::string> warnings;
+  const std::vector<StructureLayer> layers = lay_structures(grid, solver, sea, warnings);
+  ASSERT_EQ(layers.size(), 1u);
+  const StructureLayer& layer = layers[0];
+  ASSERT_TRUE(layer.fitted);
+  EXPECT_NEAR(layer.depth_m, 0.5, 1e-6);
+  // Four cells of 12 m for the 7.3 s wave (Airy): tanh(k d) = omega^2 / (g k), k = 2 pi / 48 m.
+  const double k = 2.0 * std::numbers::pi / 48.0, omega = 2.0 * std::numbers::pi / 7.3;
+  const double resolved_m = std::atanh(omega * omega / (9.81 * k)) / k;
+  EXPECT_NEAR(layer.flume_depth_m, resolved_m, 0.01);
+  EXPECT_NEAR(layer.in_the_sea.transmission_coefficient, 0.9, kStructureFitTolerance);
+  ASSERT_EQ(layer.across_band.size(), 4u);
+  for (const auto& wave : layer.across_band) {
+    EXPECT_LE(wave.transmission_coefficient, 1.0 + kStructureFitTolerance) << wave.period_s << " s";
+    EXPECT_GE(wave.transmission_coefficient, 0.7) << wave.period_s << " s";
+  }
+  const std::string report = describe_structure_layers(layers);
+  RecordProperty("report", report);
+  EXPECT_NE(report.find(fmt::format("fitted in {:.1f} m", resolved_m)), std::string::npos) << report;
+  EXPECT_DOUBLE_EQ(structure_layers_record(layers)[0]["flume_depth_m"].get<double>(), layer.flume_depth_m);
 }
 
 TEST(StructureLayers, SurviveResamplingAndTheHarbourGridFile) {

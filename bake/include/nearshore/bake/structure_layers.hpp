@@ -11,7 +11,8 @@
 //      Zanuttigh & van der Meer (2008) (reflection_of_slope);
 //   2. its footprint at the grid's cells (bathymetry/structure_footprint.hpp): core cells are
 //      walls (porosity 0), face cells porous;
-//   3. the flume: the still-water depth in front of it (the median depth of its wet face cells),
+//   3. the flume: the still-water depth in front of it (the median depth of its wet face cells; no
+//      shallower than where the sea's shortest wave is kFlumeCellsPerShortestWave cells long),
 //      the faces' depth across (footprint half-width less the core), the sea state as up to five
 //      waves of equal energy spread over its spectrum (StructureSeaState::waves), run together,
 //      wall behind for an impermeable structure (fit Kr), open water behind otherwise (fit Kt); the
@@ -79,6 +80,11 @@ struct StructureLayer {
   double stone_diameter_m = 1.0;
   bool stones_fitted = false;  ///< the fit made the stones finer than the solver's
   double depth_m = 0.0, face_width_m = 0.0;
+  /// The still water the flume ran the fit in: depth_m (to within the shared fits' 10 % bins), or,
+  /// where the sea's shortest flume wave is shorter than kFlumeCellsPerShortestWave cells there, the
+  /// shallowest depth where it is that long (the grid cannot carry the wave in shallower water, and a
+  /// flume of it measures noise: docs/structures.md, "Water too shallow for the grid's waves").
+  double flume_depth_m = 0.0;
   double wave_period_s = 0.0;  ///< the sea's peak period
   /// How far the faces reach beyond the footprint: a layer too thin against the wave to absorb
   /// what the structure does not reflect is widened a cell at a time (up to four cells or half a
@@ -94,6 +100,12 @@ struct StructureLayer {
 /// measurements with three-gauge separation (Mansard & Funke 1980 report a few per cent).
 inline constexpr double kStructureFitTolerance = 0.02;
 
+/// The fewest cells per wavelength of the sea's shortest flume wave at which a layer is fitted: in
+/// shallower water the fit runs at the depth where the wave is this long. Below it the scheme
+/// carries the wave as little more than a two-cell pattern, and the flume's Mansard & Funke
+/// separation gave per-wave coefficients of 1.2-33 (Commencement Bay at 12 m cells: 144 layers, every
+/// one with fewer than 3.4 cells per wavelength, none above 3.5).
+inline constexpr double kFlumeCellsPerShortestWave = 4.0;
 /// Finer effective stones tried, each D / sqrt(10) of the one before, where porosity and widening
 /// alone cannot absorb what a structure does not reflect or transmit: at most a hundredth of the
 /// solver's D (a metre's stones become 1 cm: past that the layer turns into a wall again).
