@@ -120,10 +120,13 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   const ImposedCurrent& current = parameters.current;
   current_ = current.any();
   current_normal_m_s_ = travel_sign * (normal_is_x_ ? current.velocity_x_m_s : current.velocity_y_m_s);
+  // The current's component along a wave's direction of travel (k.U / |k|).
+  auto current_along_m_s = [&](double direction_rad) {
+    return current.velocity_x_m_s * std::cos(direction_rad) + current.velocity_y_m_s * std::sin(direction_rad);
+  };
   auto wavenumber = [&](double w, double direction_rad) {
     if (!current_) return boussinesq_wavenumber(w, d, B);
-    const double along = current.velocity_x_m_s * std::cos(direction_rad) + current.velocity_y_m_s * std::sin(direction_rad);
-    return boussinesq_wavenumber_in_current(w, d, B, along);  // 0: blocked
+    return boussinesq_wavenumber_in_current(w, d, B, current_along_m_s(direction_rad));  // 0: blocked
   };
   auto blocked = [&](double w) {
     std::ostringstream problem;
@@ -167,8 +170,7 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
     // eta = a cos(kx x + ky y - w t + phi) at the line s = line_m: the source phase at tangential 0.
     const double phase = wave.phase_rad + k_normal * line_m;
     // The strength D needs the time step, which the solver passes to add(): computed there.
-    const double along = current.velocity_x_m_s * std::cos(wave.direction_rad) + current.velocity_y_m_s * std::sin(wave.direction_rad);
-    components_.push_back({wave.amplitude_m, w, k_tangential, phase, 0.0, along});
+    components_.push_back({wave.amplitude_m, w, k_tangential, phase, 0.0, current_along_m_s(wave.direction_rad)});
   }
   // Nonlinear generation (WaveMaker::second_order): the regular wave's bound harmonics,
   // eta_n = a_n cos n(k.x - w t + phi), each radiated as a free wave at n w with its phase at the
