@@ -40,14 +40,15 @@ const RampTable kRampTable = [] {
   return t;
 }();
 
-Ramp sin2_ramp(double s, double width, bool with_slope) {
+inline Ramp sin2_ramp(double s, double width, bool with_slope) {
   if (width <= 0.0) return {s > 0.0 ? 1.0 : 0.0, 0.0};
   // Written so that a NaN argument or width returns a flat part: the table index below must be in
   // range whatever a host passes.
   if (!(s > 0.0)) return {0.0, 0.0};
   if (!(s < width)) return {1.0, 0.0};
   constexpr double h = 1.0 / RampTable::kIntervals;
-  const double x = s / width * RampTable::kIntervals;
+  const double per_width = RampTable::kIntervals / width;  // off the chain that s starts
+  const double x = s * per_width;
   const int i = std::min(static_cast<int>(x), RampTable::kIntervals - 1);
   const double t = x - i, t2 = t * t, t3 = t2 * t;
   const double p0 = kRampTable.value[i], p1 = kRampTable.value[i + 1];
@@ -55,7 +56,7 @@ Ramp sin2_ramp(double s, double width, bool with_slope) {
   const double value = (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (3 * t2 - 2 * t3) * p1 + (t3 - t2) * m1;
   if (!with_slope) return {value, 0.0};
   const double d_dt = (6 * t2 - 6 * t) * (p0 - p1) + (3 * t2 - 4 * t + 1) * m0 + (3 * t2 - 2 * t) * m1;
-  return {value, d_dt * RampTable::kIntervals / width};
+  return {value, d_dt * per_width};
 }
 
 // The weight of a site point is the product of the maker's ramp (along the source axis, inland of
@@ -72,8 +73,16 @@ bool site_ramps(const HarbourSite& site, double x_m, double y_m, bool with_slope
   // Distance inland of the source line along the maker's inward normal.
   const double inland = site.inward_sign * (along - site.source_line_m);
   r.source = sin2_ramp(inland - site.blend_start_m, site.blend_width_m, with_slope);
-  const int source_edge = site.source_axis == 0 ? (site.inward_sign > 0 ? 0 : 1) : (site.inward_sign > 0 ? 2 : 3);
   const Ramp none{1.0, 0.0};
+  // Farther than the fade from every edge (most of the site) the four fades are 1: one test
+  // instead of four ramps (sin2_ramp gives 1 exactly where s >= width > 0; a NaN fails the test
+  // and takes the ramps).
+  const double fade = site.edge_fade_m;
+  if (fade > 0.0 && x_m >= fade && y_m >= fade && site.width_m - x_m >= fade && site.height_m - y_m >= fade) {
+    r.west = r.east = r.south = r.north = none;
+    return true;
+  }
+  const int source_edge = site.source_axis == 0 ? (site.inward_sign > 0 ? 0 : 1) : (site.inward_sign > 0 ? 2 : 3);
   r.west = source_edge == 0 ? none : sin2_ramp(x_m, site.edge_fade_m, with_slope);
   r.east = source_edge == 1 ? none : sin2_ramp(site.width_m - x_m, site.edge_fade_m, with_slope);
   r.south = source_edge == 2 ? none : sin2_ramp(y_m, site.edge_fade_m, with_slope);
