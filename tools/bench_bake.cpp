@@ -14,7 +14,8 @@ namespace nearshore::tools {
 void add_bench_bake(CLI::App& bench) {
   CLI::App* command = bench.add_subcommand(
       "bake", "Time whole bakes (run_bake on real case files, frames and gauges written): cell-updates/s per core "
-              "(wall and CPU time), simulated s per wall s, peak memory, bytes per cell, a roofline line");
+              "(wall and CPU time), simulated s per wall s, peak memory, bytes per cell, a roofline line; each case with its "
+              "own solver settings and in the seed configuration (weakly nonlinear, one ADI pass), side by side");
   set_example(*command, "nearshore bench bake --steps 200 --harbour-steps 10");
   struct Options {
     bench::BakeBenchOptions measure;
@@ -38,6 +39,9 @@ void add_bench_bake(CLI::App& bench) {
   command->add_flag("--skip-demo", m.skip_demo, "leave out the demo harbour (its chart and gridding take a while)");
   command->add_flag("--skip-large", m.skip_large, "leave out the 1000 x 900 harbour");
   command->add_flag("--one-thread", m.one_thread_only, "time one thread only (not also every thread)");
+  command->add_flag("--skip-seed", m.skip_seed,
+                    "leave out the seed configuration's bakes (each case again with solver.equations = weakly_nonlinear "
+                    "and adi_passes = 1)");
   command->add_flag("--keep", m.keep_scratch, "keep the scratch folder (the baked sequences) afterwards");
   command->add_flag("--json", options->json, "print the results as JSON");
   command->callback([options]() {

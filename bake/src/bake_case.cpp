@@ -390,15 +390,20 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
       }
       bake_case.wave_conditions["local_seas"] = seas;
     }
-  bake_case.solver_record = solver_record(bake_case.solver);
+  bake_case.solver_record = solver_record_of(bake_case);
+  return bake_case;
+}
+
+nlohmann::json solver_record_of(const BakeCase& bake_case) {
+  nlohmann::json record = solver_record(bake_case.solver);
   if (!bake_case.tide_level.time_s.empty()) {  // only with a tide: a record without one is as before
     nlohmann::json levels = nlohmann::json::array();
     for (std::size_t i = 0; i < bake_case.tide_level.time_s.size(); ++i)
       levels.push_back({bake_case.tide_level.time_s[i], bake_case.tide_level.elevation_m[i]});
-    bake_case.solver_record["tide_level_m"] = levels;
+    record["tide_level_m"] = levels;
   }
-  if (!bake_case.structure_layers.empty()) bake_case.solver_record["structure_layers"] = structure_layers_record(bake_case.structure_layers);
-  return bake_case;
+  if (!bake_case.structure_layers.empty()) record["structure_layers"] = structure_layers_record(bake_case.structure_layers);
+  return record;
 }
 
 std::string describe_derived_solver_settings(const BakeCase& bake_case) {

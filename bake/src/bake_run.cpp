@@ -360,7 +360,8 @@ nlohmann::json BakeSummary::to_json() const {
           {"resources",
            {{"estimated_memory_bytes", estimated_memory_bytes},
             {"estimated_disk_bytes", estimated_disk_bytes},
-            {"peak_resident_bytes", peak_resident_bytes}}},
+            {"peak_resident_bytes", peak_resident_bytes},
+            {"solver_memory_bytes", solver_memory_bytes}}},
           {"outputs",
            {{"folder", output_folder.string()},
             {"frames", frames},
@@ -556,6 +557,7 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
   summary.wave_statistics = std::move(statistics_json);
   summary.estimated_memory_bytes = estimate.memory_bytes;
   summary.estimated_disk_bytes = estimate.disk_bytes;
+  summary.solver_memory_bytes = static_cast<double>(solver.memory_bytes());
   struct rusage usage {};
   if (::getrusage(RUSAGE_SELF, &usage) == 0) summary.peak_resident_bytes = static_cast<double>(usage.ru_maxrss) * 1024;
   return summary;

@@ -10,8 +10,11 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -134,9 +137,28 @@ fs::path large_harbour_case(const fs::path& scratch) {
   return case_file;
 }
 
+// ---- The configurations ----
+
+// The seed configuration of a case as read (docs/solver.md, "Speed"): the seed papers' weakly
+// nonlinear equations and one ADI pass, every other parameter the reader resolved kept (time step,
+// filter, breaking, sponges), and the record the sequence keeps made again from the parameters
+// that run.
+bake::BakeCase seed_configuration(bake::BakeCase bake_case) {
+  bake_case.solver.equations = boussinesq::Equations::kWeaklyNonlinear;
+  bake_case.solver.adi_passes = 1;
+  bake_case.solver_record = bake::solver_record_of(bake_case);
+  return bake_case;
+}
+
+std::string configuration_name(BakeConfiguration configuration, const boussinesq::SolverParameters& solver) {
+  if (configuration == BakeConfiguration::kSeed) return "seed";
+  const boussinesq::SolverParameters defaults;
+  return solver.equations == defaults.equations && solver.adi_passes == defaults.adi_passes ? "defaults" : "case";
+}
+
 // ---- One timed bake ----
 
-BakeMeasurement measure(const BenchCase& bench, int threads, const fs::path& output) {
+BakeMeasurement measure(const BenchCase& bench, BakeConfiguration configuration, int threads, const fs::path& output) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   BakeMeasurement m;
   // Freed heap goes back to the system first, so the resident set before is what is in use and
@@ -144,8 +166,12 @@ BakeMeasurement measure(const BenchCase& bench, int threads, const fs::path& out
   malloc_trim(0);
   const bool peak_reset = reset_peak_resident_set();
   const double resident_before = resident_set_bytes();
-  const bake::BakeCase bake_case = shortened(bench.read(), bench.steps);
+  bake::BakeCase bake_case = shortened(bench.read(), bench.steps);
+  if (configuration == BakeConfiguration::kSeed) bake_case = seed_configuration(std::move(bake_case));
   m.name = bench.name;
+  m.configuration = configuration;
+  m.configuration_name = configuration_name(configuration, bake_case.solver);
+  m.solver_record = bake_case.solver_record;
   m.threads = threads;
   m.columns = bake_case.harbour.geometry.columns;
   m.rows = bake_case.harbour.geometry.rows;
@@ -164,6 +190,7 @@ BakeMeasurement measure(const BenchCase& bench, int threads, const fs::path& out
   m.load_after = load_average_1min();
   m.peak_resident_bytes = peak_reset ? peak_resident_set_bytes() : summary.peak_resident_bytes;
   m.bytes_per_cell = peak_reset ? (m.peak_resident_bytes - resident_before) / cells : std::nan("");
+  m.solver_bytes_per_cell = summary.solver_memory_bytes / cells;
   m.frames = summary.frames;
   m.output_wall_s = summary.output_wall_time_s;
   const double updates = cells * static_cast<double>(summary.steps_this_run);
@@ -215,10 +242,19 @@ BakeBenchResult run_bake_bench(const BakeBenchOptions& options) {
 
   result.bandwidth = {measure_triad(1, options.triad_repeats)};
   if (all_threads > 1 && !options.one_thread_only) result.bandwidth.push_back(measure_triad(all_threads, options.triad_repeats));
-  for (const BenchCase& bench : cases) {
-    result.bakes.push_back(measure(bench, 1, scratch / "bake"));
-    if (all_threads > 1 && !options.one_thread_only) result.bakes.push_back(measure(bench, all_threads, scratch / "bake"));
-  }
+  std::vector<int> thread_counts = {1};
+  if (all_threads > 1 && !options.one_thread_only) thread_counts.push_back(all_threads);
+  for (const BenchCase& bench : cases)
+    for (const int threads : thread_counts) {
+      const BakeMeasurement own = measure(bench, BakeConfiguration::kCase, threads, scratch / "bake");
+      result.bakes.push_back(own);
+      if (options.skip_seed) continue;
+      BakeMeasurement seed = measure(bench, BakeConfiguration::kSeed, threads, scratch / "bake");
+      // Time per update is the inverse of the rate: the case's over the seed's is the seed's rate over the case's.
+      seed.case_to_seed_time_per_update = seed.updates_per_s_per_core / own.updates_per_s_per_core;
+      seed.case_to_seed_cpu_time_per_update = seed.updates_per_cpu_s / own.updates_per_cpu_s;
+      result.bakes.push_back(std::move(seed));
+    }
   if (!options.keep_scratch) fs::remove_all(scratch);
   return result;
 }
@@ -229,16 +265,22 @@ nlohmann::json bake_bench_json(const BakeBenchResult& result) {
   out["bake_bytes_per_cell_estimate"] = bake::kBakeBytesPerCell;
   for (const TriadBandwidth& b : result.bandwidth)
     out["triad_bytes_per_s"].push_back({{"threads", b.threads}, {"bytes_per_s", b.bytes_per_s}});
+  // JSON has no NaN: a ratio not measured (the case's own rows, a run without seed rows) is null.
+  const auto measured_or_null = [](double value) { return std::isnan(value) ? nlohmann::json() : nlohmann::json(value); };
   for (const BakeMeasurement& m : result.bakes) {
     const double streamed = m.streamed_bytes_per_s();
-    out["bakes"].push_back({{"case", m.name}, {"columns", m.columns}, {"rows", m.rows}, {"threads", m.threads},
+    out["bakes"].push_back({{"case", m.name}, {"configuration", m.configuration_name},
+                            {"equations", m.solver_record.value("equations", "weakly_nonlinear")},
+                            {"adi_passes", m.solver_record.value("adi_passes", 0)}, {"columns", m.columns}, {"rows", m.rows}, {"threads", m.threads},
                             {"steps", m.steps}, {"frames", m.frames}, {"time_step_s", m.time_step_s}, {"wall_s", m.wall_s},
                             {"cpu_s", m.cpu_s}, {"output_wall_s", m.output_wall_s},
                             {"cell_updates_per_s_per_core", m.updates_per_s_per_core},
                             {"cell_updates_per_cpu_s", m.updates_per_cpu_s},
                             {"simulated_s_per_wall_s", m.simulated_s_per_wall_s}, {"load_average_before", m.load_before},
                             {"load_average_after", m.load_after}, {"peak_resident_bytes", m.peak_resident_bytes},
-                            {"bytes_per_cell", m.bytes_per_cell},
+                            {"bytes_per_cell", m.bytes_per_cell}, {"solver_bytes_per_cell", m.solver_bytes_per_cell},
+                            {"case_to_seed_time_per_update", measured_or_null(m.case_to_seed_time_per_update)},
+                            {"case_to_seed_cpu_time_per_update", measured_or_null(m.case_to_seed_cpu_time_per_update)},
                             {"streamed_bytes_per_cell_step", m.streamed_bytes_per_cell_step},
                             {"streamed_bytes_per_s", streamed},
                             {"fraction_of_triad_bandwidth", streamed / result.triad_bytes_per_s(m.threads)}});
@@ -248,29 +290,44 @@ nlohmann::json bake_bench_json(const BakeBenchResult& result) {
 
 std::string bake_bench_text(const BakeBenchResult& result) {
   std::string text = fmt::format("nearshore bench bake, {}, {} hardware threads\n", result.date, result.hardware_threads);
-  text += fmt::format("{:<17} {:>9} {:>3} {:>5} {:>8} {:>7} {:>14} {:>14} {:>9} {:>10} {:>8} {:>8} {:>11}\n", "case", "grid",
-                      "thr", "steps", "dt (s)", "wall(s)", "updates/s/core", "updates/CPU-s", "sim s/s", "load", "peak MiB",
-                      "B/cell", "roofline");
-  for (const BakeMeasurement& m : result.bakes)
+  text += fmt::format("{:<17} {:<8} {:>9} {:>3} {:>5} {:>8} {:>7} {:>14} {:>14} {:>9} {:>10} {:>8} {:>6} {:>6} {:>8} {:>10}\n",
+                      "case", "config", "grid", "thr", "steps", "dt (s)", "wall(s)", "updates/s/core", "updates/CPU-s",
+                      "sim s/s", "load", "peak MiB", "B/cell", "solver", "roofline", "case/seed");
+  for (const BakeMeasurement& m : result.bakes) {
+    const std::string ratio = std::isnan(m.case_to_seed_time_per_update)
+                                  ? std::string()
+                                  : fmt::format("{:.2f} ({:.2f})", m.case_to_seed_time_per_update, m.case_to_seed_cpu_time_per_update);
     text += fmt::format(
-        "{:<17} {:>9} {:>3} {:>5} {:>8.4f} {:>7.2f} {:>14.3e} {:>14.3e} {:>9.3f} {:>4.2f}-{:<4.2f} {:>8.0f} {:>8.0f} {:>10.0f}%\n",
-        m.name, fmt::format("{}x{}", m.columns, m.rows), m.threads, m.steps, m.time_step_s, m.wall_s,
+        "{:<17} {:<8} {:>9} {:>3} {:>5} {:>8.4f} {:>7.2f} {:>14.3e} {:>14.3e} {:>9.3f} {:>4.2f}-{:<4.2f} {:>8.0f} {:>6.0f} {:>6.0f} "
+        "{:>7.0f}% {:>10}\n",
+        m.name, m.configuration_name, fmt::format("{}x{}", m.columns, m.rows), m.threads, m.steps, m.time_step_s, m.wall_s,
         m.updates_per_s_per_core, m.updates_per_cpu_s, m.simulated_s_per_wall_s, m.load_before, m.load_after,
-        m.peak_resident_bytes / (1024.0 * 1024.0), m.bytes_per_cell,
-        100.0 * m.streamed_bytes_per_s() / result.triad_bytes_per_s(m.threads));
+        m.peak_resident_bytes / (1024.0 * 1024.0), m.bytes_per_cell, m.solver_bytes_per_cell,
+        100.0 * m.streamed_bytes_per_s() / result.triad_bytes_per_s(m.threads), ratio);
+  }
   for (const TriadBandwidth& b : result.bandwidth)
     text += fmt::format("memory bandwidth (STREAM triad, {} thread{}): {:.2f} GB/s\n", b.threads, b.threads == 1 ? "" : "s",
                         b.bytes_per_s * 1e-9);
-  if (!result.bakes.empty())
-    text += fmt::format("a step streams about {:.0f} bytes per cell (boussinesq::streamed_bytes_per_cell_step, the open-water count)\n",
-                        result.bakes.front().streamed_bytes_per_cell_step);
+  // The traffic model of each configuration (of the first case: the count is per cell, the same for every grid).
+  std::vector<std::string> streamed;
+  for (const BakeMeasurement& m : result.bakes)
+    if (m.name == result.bakes.front().name && m.threads == result.bakes.front().threads)
+      streamed.push_back(fmt::format("{:.0f} ({})", m.streamed_bytes_per_cell_step, m.configuration_name));
+  if (!streamed.empty())
+    text += fmt::format("a step streams about {} bytes per cell (boussinesq::streamed_bytes_per_cell_step, the open-water count)\n",
+                        fmt::join(streamed, ", "));
   text += fmt::format(
+      "config = the case's own solver settings (\"defaults\": the fully nonlinear equations, 2 ADI passes) or \"seed\":\n"
+      "the same case and steps with solver.equations = weakly_nonlinear and adi_passes = 1 (the seed papers' equations);\n"
       "updates/s/core = cells x steps / wall time of the whole bake (case read excluded; frames, gauges, checkpoints\n"
       "included) / threads; updates/CPU-s uses the CPU time of all threads (less sensitive to other processes);\n"
       "sim s/s = simulated seconds per wall second; load = 1-minute load average before-after; peak MiB = the\n"
       "process's peak resident set during the bake; B/cell = (that peak - the resident set before the bake) / cells\n"
-      "(the bake's estimate uses {:.0f}); roofline = bytes streamed per second by the model / the triad bandwidth.\n",
-      bake::kBakeBytesPerCell);
+      "(the bake's estimate uses {:.0f} + {:.0f} fully nonlinear + {:.0f} second ADI pass); solver = the bytes per cell of the\n"
+      "solver's arrays (BoussinesqSolver::memory_bytes(): state, work, coefficients, scratch); roofline = bytes\n"
+      "streamed per second by the model / the triad bandwidth; case/seed = time per cell-update of the case's own\n"
+      "configuration over the seed's, at the same threads, from wall time (from CPU time).\n",
+      bake::kBakeBytesPerCell, bake::kFullyNonlinearBytesPerCell, bake::kAdiPassesBytesPerCell);
   return text;
 }
 

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "nearshore/bench/bake_bench.hpp"
 #include "nearshore/bench/bathy_bench.hpp"
 #include "nearshore/bench/deepwater_bench.hpp"
 #include "nearshore/bench/loops_bench.hpp"
@@ -26,6 +28,77 @@ bool positive_finite(double value) { return std::isfinite(value) && value > 0.0;
 
 fs::path bench_scratch(const std::string& name) {
   return fs::temp_directory_path() / ("nearshore_bench_test_" + name + "_" + std::to_string(::getpid()));
+}
+
+// Two steps of data/cases/berkhoff.toml (600 x 400 cells) at one thread, in the case's own
+// configuration (the defaults) and the seed's: both rows carry positive rates and bytes per cell,
+// the seed's solver holds fewer bytes per cell (no fully nonlinear remainder, no second pass's
+// arrays) and streams fewer per step, and the sequence the seed bake wrote records the equations
+// it ran (the case reader's record made again from the changed parameters).
+TEST(BenchRoom, BakeOfTheBerkhoffCaseWithItsDefaultsAndInTheSeedConfiguration) {
+  ProgressBar::set_quiet(true);
+  BakeBenchOptions options;
+  options.steps = 2;
+  options.triad_repeats = 1;
+  options.skip_demo = options.skip_large = options.one_thread_only = true;
+  options.cases_folder = fs::path(NEARSHORE_SOURCE_DIR) / "data" / "cases";
+  options.scratch_folder = bench_scratch("bake");
+  options.keep_scratch = true;  // to read the seed bake's manifest (the last bake into scratch/bake)
+  const BakeBenchResult result = run_bake_bench(options);
+  ASSERT_EQ(result.bakes.size(), 2u);
+  const BakeMeasurement& own = result.bakes[0];
+  const BakeMeasurement& seed = result.bakes[1];
+  EXPECT_EQ(own.configuration, BakeConfiguration::kCase);
+  EXPECT_EQ(own.configuration_name, "defaults");
+  EXPECT_EQ(own.solver_record.value("equations", ""), "fully_nonlinear");
+  EXPECT_EQ(own.solver_record["adi_passes"], 2);
+  EXPECT_EQ(seed.configuration, BakeConfiguration::kSeed);
+  EXPECT_EQ(seed.configuration_name, "seed");
+  EXPECT_FALSE(seed.solver_record.contains("equations"));  // the record's way of saying weakly nonlinear
+  EXPECT_EQ(seed.solver_record["adi_passes"], 1);
+  for (const BakeMeasurement& m : result.bakes) {
+    EXPECT_EQ(m.name, "Berkhoff case");
+    EXPECT_EQ(m.threads, 1);
+    EXPECT_EQ(m.steps, 2);
+    EXPECT_EQ(m.columns, 600);
+    EXPECT_EQ(m.rows, 400);
+    EXPECT_TRUE(positive_finite(m.updates_per_s_per_core)) << m.configuration_name;
+    EXPECT_TRUE(positive_finite(m.updates_per_cpu_s)) << m.configuration_name;
+    EXPECT_TRUE(positive_finite(m.bytes_per_cell)) << m.configuration_name;
+    EXPECT_TRUE(positive_finite(m.solver_bytes_per_cell)) << m.configuration_name;
+  }
+  EXPECT_EQ(own.time_step_s, seed.time_step_s);  // the same case: only the two keys differ
+  EXPECT_GT(own.solver_bytes_per_cell, seed.solver_bytes_per_cell);
+  EXPECT_GT(own.streamed_bytes_per_cell_step, seed.streamed_bytes_per_cell_step);
+  EXPECT_TRUE(std::isnan(own.case_to_seed_time_per_update));
+  EXPECT_TRUE(positive_finite(seed.case_to_seed_time_per_update));
+  EXPECT_TRUE(positive_finite(seed.case_to_seed_cpu_time_per_update));
+  EXPECT_DOUBLE_EQ(seed.case_to_seed_time_per_update, seed.updates_per_s_per_core / own.updates_per_s_per_core);
+
+  const fs::path manifest = options.scratch_folder / "bake" / "manifest.json";
+  ASSERT_TRUE(fs::exists(manifest)) << manifest;
+  const nlohmann::json recorded = nlohmann::json::parse(std::ifstream(manifest));
+  EXPECT_EQ(recorded["solver"], seed.solver_record);
+  fs::remove_all(options.scratch_folder);
+
+  const nlohmann::json json = bake_bench_json(result);
+  ASSERT_EQ(json["bakes"].size(), 2u);
+  EXPECT_EQ(json["bakes"][0]["configuration"], "defaults");
+  EXPECT_EQ(json["bakes"][0]["equations"], "fully_nonlinear");
+  EXPECT_EQ(json["bakes"][1]["configuration"], "seed");
+  EXPECT_EQ(json["bakes"][1]["equations"], "weakly_nonlinear");
+  EXPECT_EQ(json["bakes"][1]["adi_passes"], 1);
+  for (const nlohmann::json& bake : json["bakes"])
+    for (const char* field : {"cell_updates_per_s_per_core", "cell_updates_per_cpu_s", "bytes_per_cell", "solver_bytes_per_cell"})
+      EXPECT_TRUE(positive_finite(bake.at(field).get<double>())) << field;
+  EXPECT_TRUE(json["bakes"][0]["case_to_seed_time_per_update"].is_null());
+  EXPECT_TRUE(positive_finite(json["bakes"][1]["case_to_seed_time_per_update"].get<double>()));
+  EXPECT_TRUE(positive_finite(json["bakes"][1]["case_to_seed_cpu_time_per_update"].get<double>()));
+
+  const std::string text = bake_bench_text(result);
+  EXPECT_NE(text.find("case/seed"), std::string::npos) << text;
+  EXPECT_NE(text.find("Berkhoff case     defaults"), std::string::npos) << text;
+  EXPECT_NE(text.find("Berkhoff case     seed"), std::string::npos) << text;
 }
 
 TEST(BenchRoom, BathyOnATinyGridInterpolatesEveryCell) {

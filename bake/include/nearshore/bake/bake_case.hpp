@@ -120,6 +120,12 @@ nlohmann::json read_case_document(const std::filesystem::path& case_file);
 BakeCase parse_bake_case(const nlohmann::json& document, const std::filesystem::path& case_file,
                          const CaseReadOptions& options = {});
 
+/// The solver's parameters as the sequence records them (BakeCase::solver_record: the manifest's
+/// `solver`, part of the checkpoint's fingerprint), from bake_case.solver, its tide and its structure
+/// layers. parse_bake_case() sets solver_record from it; a tool that changes bake_case.solver after
+/// reading (`nearshore bench bake`'s seed configuration) sets it again, so the sequence records what ran.
+nlohmann::json solver_record_of(const BakeCase& bake_case);
+
 /// The time step used: the requested one (time_step_s, or courant_number * dx / sqrt(g d_max) with
 /// d_max the deepest wet cell), reduced to the largest value that divides `output_interval_s` into
 /// a whole number of steps, so frames fall exactly on steps and a periodic bake repeats exactly.

@@ -50,6 +50,9 @@ struct BakeSummary {
   double estimated_memory_bytes = 0.0;  ///< what the bake expected to need (bake_estimate.hpp)
   double estimated_disk_bytes = 0.0;
   double peak_resident_bytes = 0.0;     ///< the whole process's peak resident set (getrusage), its code and libraries included
+  /// What the solver's grid-sized arrays hold at the end of the run (BoussinesqSolver::memory_bytes():
+  /// state, work, static coefficients, sponge lists, output rasters, per-thread sweep scratch), bytes.
+  double solver_memory_bytes = 0.0;
   /// null unless the case has [deep_water]: cascades, grid size, Hs, coefficient bytes, and when the
   /// field drives the wave maker its component count, the variance fraction it carries, the carried
   /// Hs and the blending zone (deep_water_coupling.hpp); the tile set when baked.
