@@ -294,16 +294,16 @@ std::string bake_bench_text(const BakeBenchResult& result) {
                       "case", "config", "grid", "thr", "steps", "dt (s)", "wall(s)", "updates/s/core", "updates/CPU-s",
                       "sim s/s", "load", "peak MiB", "B/cell", "solver", "roofline", "case/seed");
   for (const BakeMeasurement& m : result.bakes) {
-    const std::string ratio = std::isnan(m.case_to_seed_time_per_update)
-                                  ? std::string()
-                                  : fmt::format("{:.2f} ({:.2f})", m.case_to_seed_time_per_update, m.case_to_seed_cpu_time_per_update);
     text += fmt::format(
         "{:<17} {:<8} {:>9} {:>3} {:>5} {:>8.4f} {:>7.2f} {:>14.3e} {:>14.3e} {:>9.3f} {:>4.2f}-{:<4.2f} {:>8.0f} {:>6.0f} {:>6.0f} "
-        "{:>7.0f}% {:>10}\n",
+        "{:>7.0f}%",
         m.name, m.configuration_name, fmt::format("{}x{}", m.columns, m.rows), m.threads, m.steps, m.time_step_s, m.wall_s,
         m.updates_per_s_per_core, m.updates_per_cpu_s, m.simulated_s_per_wall_s, m.load_before, m.load_after,
         m.peak_resident_bytes / (1024.0 * 1024.0), m.bytes_per_cell, m.solver_bytes_per_cell,
-        100.0 * m.streamed_bytes_per_s() / result.triad_bytes_per_s(m.threads), ratio);
+        100.0 * m.streamed_bytes_per_s() / result.triad_bytes_per_s(m.threads));
+    if (!std::isnan(m.case_to_seed_time_per_update))
+      text += fmt::format(" {:>10}", fmt::format("{:.2f} ({:.2f})", m.case_to_seed_time_per_update, m.case_to_seed_cpu_time_per_update));
+    text += '\n';
   }
   for (const TriadBandwidth& b : result.bandwidth)
     text += fmt::format("memory bandwidth (STREAM triad, {} thread{}): {:.2f} GB/s\n", b.threads, b.threads == 1 ? "" : "s",
