@@ -66,7 +66,7 @@ SlopeMomentLevel halved(const SlopeMomentLevel& fine, int columns, int rows) {
     if (x_by_means) {
       for (std::size_t k = 0; k < std::size_t(columns); ++k)
         for (std::size_t c = 0; c < 4; ++c) {
-          double sum = 0.0;  // from 0 as the box filter sums: the same bits, -0 included
+          double sum = 0.0;  // from 0, in tap order, as the general filter below sums
           sum += 0.5 * double(row[8 * k + c]);
           sum += 0.5 * double(row[8 * k + 4 + c]);
           out[4 * k + c] = sum;

@@ -61,31 +61,35 @@ SlopeMomentLevel box_halved_before(const SlopeMomentLevel& fine) {
 }
 
 TEST(SlopeMoments, TheHalvingByMeansIsTheBoxFilterBitForBit) {
-  // Even and odd sizes each way, one-texel-wide grids, and the harbour grids' own (571 x 513):
-  // a rough field (noise and swell, some -0 and flat stretches, whose zero slopes must keep
-  // their sign as the box filter's sums from 0 give it), every level against the box filter of
-  // the level before it.
+  // Even and odd sizes each way, one-texel-wide grids, and a harbour grid's own (571 x 513); a
+  // rough field (swell and noise, some -0 and flat stretches) and one of signed zeros, whose zero
+  // slopes must keep the sign the box filter's sums from 0 give them; every level against the
+  // box filter of the level before it.
   std::mt19937 random(41);
   std::uniform_real_distribution<float> noise(-1.f, 1.f);
   for (const auto& [columns, rows] : std::vector<std::pair<int, int>>{
            {16, 12}, {37, 23}, {64, 33}, {33, 64}, {1, 9}, {9, 1}, {2, 1}, {1, 1}, {3, 3}, {134, 120}, {571, 513}}) {
-    Raster<float> eta(columns, rows);
+    Raster<float> rough(columns, rows), zeros(columns, rows);
     for (int j = 0; j < rows; ++j)
-      for (int i = 0; i < columns; ++i)
-        eta(i, j) = (i + j) % 7 == 0 ? -0.f : i % 11 == 0 ? 0.f : float(0.8 * std::sin(0.7 * i + 0.2 * j)) + 0.1f * noise(random);
-    const auto pyramid = playback::slope_moment_pyramid(eta);
-    const auto sizes = playback::slope_moment_level_sizes(columns, rows);
-    ASSERT_EQ(pyramid.size(), sizes.size());
-    for (std::size_t level = 0; level < pyramid.size(); ++level) {
-      EXPECT_EQ(pyramid[level].columns, sizes[level].first);
-      EXPECT_EQ(pyramid[level].rows, sizes[level].second);
-      if (level == 0) continue;
-      const SlopeMomentLevel expected = box_halved_before(pyramid[level - 1]);
-      ASSERT_EQ(pyramid[level].columns, expected.columns);
-      ASSERT_EQ(pyramid[level].rows, expected.rows);
-      ASSERT_EQ(pyramid[level].texels.size(), expected.texels.size());
-      EXPECT_EQ(std::memcmp(pyramid[level].texels.data(), expected.texels.data(), expected.texels.size() * sizeof(float)), 0)
-          << columns << " x " << rows << ", level " << level;
+      for (int i = 0; i < columns; ++i) {
+        rough(i, j) = (i + j) % 7 == 0 ? -0.f : i % 11 == 0 ? 0.f : float(0.8 * std::sin(0.7 * i + 0.2 * j)) + 0.1f * noise(random);
+        // +0, +0, -0, -0 along x (flipped on alternate row pairs): g = (-0) - (+0) = -0 on both
+        // texels of a pair, whose means must come out +0 as the box filter's sums from 0 give them
+        zeros(i, j) = (i % 4 == 1 || i % 4 == 2) != (j % 4 == 1 || j % 4 == 2) ? -0.f : 0.f;
+      }
+    for (const Raster<float>* eta : {&rough, &zeros}) {
+      const auto pyramid = playback::slope_moment_pyramid(*eta);
+      const auto sizes = playback::slope_moment_level_sizes(columns, rows);
+      ASSERT_EQ(pyramid.size(), sizes.size());
+      for (std::size_t level = 0; level < pyramid.size(); ++level) {
+        EXPECT_EQ(pyramid[level].columns, sizes[level].first);
+        EXPECT_EQ(pyramid[level].rows, sizes[level].second);
+        if (level == 0) continue;
+        const SlopeMomentLevel expected = box_halved_before(pyramid[level - 1]);
+        ASSERT_EQ(pyramid[level].texels.size(), expected.texels.size());
+        EXPECT_EQ(std::memcmp(pyramid[level].texels.data(), expected.texels.data(), expected.texels.size() * sizeof(float)), 0)
+            << columns << " x " << rows << ", level " << level << (eta == &zeros ? ", signed zeros" : "");
+      }
     }
   }
 }
