@@ -123,8 +123,10 @@ void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::
   if (computing != moments_computing_.end()) {
     slot.moments_pending = std::move(computing->second);
     moments_computing_.erase(computing);
-  } else {
-    slot.moments = slope_moment_pyramid(keyframe->surface_elevation_m);
+  } else {  // into the last sent pyramid's storage: memory already touched (not faulted in afresh)
+    slope_moment_pyramid(keyframe->surface_elevation_m, spare_moments_);
+    slot.moments = std::move(spare_moments_);
+    spare_moments_.clear();
   }
   const auto moment_sizes = slope_moment_level_sizes(width, height);
   if (slot.width != width || slot.height != height || slot.layers != 0 || !slot.textures[0]) {
@@ -259,8 +261,8 @@ std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) 
   }
   if (slot.rows_done >= slot.rows_total) {
     slot.complete = true;
+    if (!slot.moments.empty()) spare_moments_ = std::move(slot.moments);  // the next computed here reuses it
     slot.moments.clear();
-    slot.moments.shrink_to_fit();
     slot.harbour.reset();  // the GPU holds it now; the engine may let it go
     slot.deep.reset();
   }

@@ -97,6 +97,9 @@ class KeyframeTextures {
   // The slope moments the workers compute for staged harbour keyframes (by serial), taken by
   // start_harbour; a keyframe needed unstaged computes its own on the render thread.
   std::vector<std::pair<std::uint64_t, std::future<std::vector<SlopeMomentLevel>>>> moments_computing_;
+  // The last sent pyramid's storage, for the next one start_harbour computes itself: a keyframe
+  // needed unstaged then writes into memory already touched (one pyramid held: 21 bytes a cell).
+  std::vector<SlopeMomentLevel> spare_moments_;
   std::vector<float> zero_row_;
   long long frame_ = 0;
   std::uint64_t pinned_harbour_[2] = {0, 0}, pinned_deep_[2] = {0, 0};

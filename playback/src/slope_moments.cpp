@@ -51,8 +51,7 @@ AxisTaps halving_taps(int n, int m) {
 // order) weighted along y, in double, then rounds to float: the separable box filter, x first.
 // Row by row, so the x-halved rows stay in cache (no level-sized buffer of doubles); a fine row
 // two coarse rows share (odd heights) is halved once.
-SlopeMomentLevel halved(const SlopeMomentLevel& fine, int columns, int rows) {
-  SlopeMomentLevel coarse;
+void halve(const SlopeMomentLevel& fine, int columns, int rows, SlopeMomentLevel& coarse) {
   coarse.columns = columns;
   coarse.rows = rows;
   coarse.texels.resize(std::size_t(columns) * rows * 4);
@@ -103,7 +102,6 @@ SlopeMomentLevel halved(const SlopeMomentLevel& fine, int columns, int rows) {
     float* out = &coarse.texels[std::size_t(l) * width];
     for (std::size_t e = 0; e < width; ++e) out[e] = float(sums[e]);
   }
-  return coarse;
 }
 
 std::array<double, 4> bilinear(const SlopeMomentLevel& level, double u, double v) {
@@ -127,9 +125,16 @@ std::array<double, 4> bilinear(const SlopeMomentLevel& level, double u, double v
 
 std::vector<SlopeMomentLevel> slope_moment_pyramid(const Raster<float>& eta) {
   std::vector<SlopeMomentLevel> pyramid;
+  slope_moment_pyramid(eta, pyramid);
+  return pyramid;
+}
+
+void slope_moment_pyramid(const Raster<float>& eta, std::vector<SlopeMomentLevel>& pyramid) {
   const int n = eta.columns(), m = eta.rows();
-  if (n <= 0 || m <= 0) return pyramid;
-  SlopeMomentLevel base;
+  const auto sizes = slope_moment_level_sizes(n, m);
+  pyramid.resize(sizes.size());  // the levels' storage kept where it is (resize reuses it)
+  if (sizes.empty()) return;
+  SlopeMomentLevel& base = pyramid.front();
   base.columns = n;
   base.rows = m;
   base.texels.resize(std::size_t(n) * m * 4);
@@ -143,12 +148,8 @@ std::vector<SlopeMomentLevel> slope_moment_pyramid(const Raster<float>& eta) {
       t[2] = gx * gx;
       t[3] = gy * gy;
     }
-  const auto sizes = slope_moment_level_sizes(n, m);
-  pyramid.reserve(sizes.size());
-  pyramid.push_back(std::move(base));
   for (std::size_t level = 1; level < sizes.size(); ++level)
-    pyramid.push_back(halved(pyramid.back(), sizes[level].first, sizes[level].second));
-  return pyramid;
+    halve(pyramid[level - 1], sizes[level].first, sizes[level].second, pyramid[level]);
 }
 
 std::vector<std::pair<int, int>> slope_moment_level_sizes(int columns, int rows) {

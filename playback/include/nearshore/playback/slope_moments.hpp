@@ -35,6 +35,9 @@ struct SlopeMomentLevel {
 /// float once. A pure function of eta (the same bits on any thread): the renderer computes it on a
 /// worker when a keyframe is staged (keyframe_textures.cpp).
 std::vector<SlopeMomentLevel> slope_moment_pyramid(const Raster<float>& surface_elevation_m);
+/// The same into `pyramid`, reusing its levels' storage (no fresh memory to fault in when it holds
+/// a pyramid of the same grid: the render thread's, for keyframes it computes itself).
+void slope_moment_pyramid(const Raster<float>& surface_elevation_m, std::vector<SlopeMomentLevel>& pyramid);
 
 /// The levels' sizes (columns, rows) for a grid of `columns` x `rows`, level 0 first: what
 /// slope_moment_pyramid returns, known before it is computed (the textures are allocated then).
