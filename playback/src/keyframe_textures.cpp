@@ -2,9 +2,11 @@
 #include "gl_texture.hpp"
 
 #include <algorithm>
+#include <future>
 #include <limits>
 #include <utility>
 #include <string>
+#include <system_error>
 
 #include "nearshore/core/error.hpp"
 
@@ -56,6 +58,15 @@ bool KeyframeTextures::stage(std::shared_ptr<const runtime::HarbourKeyframe> key
   if (Slot* slot = find(harbour_slots_, keyframe->serial); slot && slot->complete) return false;
   for (const auto& queued : harbour_queue_)
     if (queued->serial == keyframe->serial) return false;
+  // The slope moments now, on a worker: by the time the upload has sent the three fields (and
+  // whatever is queued before), they are ready, and the render thread only sends them.
+  // Without a thread to spare (std::system_error), start_harbour computes them itself.
+  try {
+    moments_computing_.emplace_back(keyframe->serial, std::async(std::launch::async, [keyframe] {
+                                      return slope_moment_pyramid(keyframe->surface_elevation_m);
+                                    }));
+  } catch (const std::system_error&) {
+  }
   harbour_queue_.push_back(std::move(keyframe));
   return true;
 }
@@ -93,6 +104,8 @@ KeyframeTextures::Slot& KeyframeTextures::claim(std::vector<Slot>& slots, std::u
   best->rows_done = 0;
   best->harbour.reset();
   best->deep.reset();
+  best->moments.clear();
+  best->moments_pending = {};  // (an evicted unfinished slot's worker: waits for it to end)
   return *best;
 }
 
@@ -103,8 +116,19 @@ void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::
     throw Error("harbour keyframe " + std::to_string(keyframe->serial),
                 "has a breaking raster of another size than its surface elevation",
                 "give both rasters the harbour grid's size");
-  // The slope moments' pyramid (slope_moments.hpp), sent level by level after the rows.
-  slot.moments = slope_moment_pyramid(keyframe->surface_elevation_m);
+  // The slope moments' pyramid (slope_moments.hpp), sent level by level after the rows: the
+  // worker's if the keyframe was staged, else computed here (a keyframe needed unstaged).
+  const auto computing = std::find_if(moments_computing_.begin(), moments_computing_.end(),
+                                      [&](const auto& entry) { return entry.first == keyframe->serial; });
+  if (computing != moments_computing_.end()) {
+    slot.moments_pending = std::move(computing->second);
+    moments_computing_.erase(computing);
+  } else {  // into the last sent pyramid's storage: memory already touched (not faulted in afresh)
+    slope_moment_pyramid(keyframe->surface_elevation_m, spare_moments_);
+    slot.moments = std::move(spare_moments_);
+    spare_moments_.clear();
+  }
+  const auto moment_sizes = slope_moment_level_sizes(width, height);
   if (slot.width != width || slot.height != height || slot.layers != 0 || !slot.textures[0]) {
     for (int field = 0; field < kHarbourFieldCount; ++field) {
       if (!slot.textures[field]) slot.textures[field] = new_texture(GL_TEXTURE_2D);
@@ -115,17 +139,17 @@ void KeyframeTextures::start_harbour(Slot& slot, std::shared_ptr<const runtime::
     if (!slot.textures[kSlopeMomentsTexture]) slot.textures[kSlopeMomentsTexture] = new_texture(GL_TEXTURE_2D);
     glBindTexture(GL_TEXTURE_2D, slot.textures[kSlopeMomentsTexture]);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    for (std::size_t level = 0; level < slot.moments.size(); ++level)
-      glTexImage2D(GL_TEXTURE_2D, GLint(level), GL_RGBA32F, slot.moments[level].columns, slot.moments[level].rows, 0,
+    for (std::size_t level = 0; level < moment_sizes.size(); ++level)
+      glTexImage2D(GL_TEXTURE_2D, GLint(level), GL_RGBA32F, moment_sizes[level].first, moment_sizes[level].second, 0,
                    GL_RGBA, GL_FLOAT, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(slot.moments.size()) - 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(moment_sizes.size()) - 1);
     slot.width = width;
     slot.height = height;
     slot.layers = 0;
   }
   long long moment_rows = 0;
-  for (const SlopeMomentLevel& level : slot.moments) moment_rows += level.rows;
+  for (const auto& size : moment_sizes) moment_rows += size.second;
   // eta rows, breaking rows, rate rows, then the moments' rows level by level
   slot.rows_total = static_cast<long long>(kHarbourFieldCount) * height + moment_rows;
   slot.harbour = std::move(keyframe);
@@ -186,7 +210,10 @@ std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) 
   const long long field_rows = static_cast<long long>(kHarbourFieldCount) * slot.height;
   while (slot.rows_done < slot.rows_total) {
     if (slot.harbour && slot.rows_done >= field_rows) {
-      // The slope moments' levels after the fields, in rows of RGBA32F.
+      // The slope moments' levels after the fields, in rows of RGBA32F; the worker's result,
+      // waited for here if it is not ready yet (the same texels either way: the schedule of
+      // bytes per frame does not depend on the threads' timing).
+      if (slot.moments_pending.valid()) slot.moments = slot.moments_pending.get();
       long long row = slot.rows_done - field_rows;
       std::size_t level = 0;
       while (row >= slot.moments[level].rows) row -= slot.moments[level++].rows;
@@ -234,8 +261,8 @@ std::size_t KeyframeTextures::upload_rows(Slot& slot, std::size_t budget_bytes) 
   }
   if (slot.rows_done >= slot.rows_total) {
     slot.complete = true;
+    if (!slot.moments.empty()) spare_moments_ = std::move(slot.moments);  // the next computed here reuses it
     slot.moments.clear();
-    slot.moments.shrink_to_fit();
     slot.harbour.reset();  // the GPU holds it now; the engine may let it go
     slot.deep.reset();
   }

@@ -5,13 +5,18 @@
 // 1024 x 1024 keyframe (12 MB: eta, its rate and breaking as R32F; then its slope moments' mip
 // levels, 16 bytes a cell and a third more, in rows too) spreads over several frames instead of
 // stalling one; a keyframe a snapshot needs before it is complete is finished at once (counted
-// as forced). Needs a current OpenGL context.
+// as forced). A staged harbour keyframe's slope moments are computed on a worker thread from
+// stage() on (std::async: slope_moment_pyramid is a pure function of eta), so the thread that draws
+// only sends them; it waits for them only if its upload reaches them before the worker is done.
+// Needs a current OpenGL context (stage() needs none).
 #include <glad/gl.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <future>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "nearshore/playback/slope_moments.hpp"
@@ -71,7 +76,8 @@ class KeyframeTextures {
     long long rows_done = 0, rows_total = 0;  // progress in rows of one field (of one layer)
     GLuint textures[kDeepFieldCount] = {};
     int width = 0, height = 0, layers = 0;
-    std::vector<SlopeMomentLevel> moments;                    // computed at start, held until sent
+    std::vector<SlopeMomentLevel> moments;                    // held until sent
+    std::future<std::vector<SlopeMomentLevel>> moments_pending;  // the worker's, until the upload needs them
     std::shared_ptr<const runtime::HarbourKeyframe> harbour;  // held until complete
     std::shared_ptr<const runtime::DeepWaterKeyframe> deep;
   };
@@ -88,6 +94,12 @@ class KeyframeTextures {
   std::vector<Slot> harbour_slots_, deep_slots_;
   std::deque<std::shared_ptr<const runtime::HarbourKeyframe>> harbour_queue_;
   std::deque<std::shared_ptr<const runtime::DeepWaterKeyframe>> deep_queue_;
+  // The slope moments the workers compute for staged harbour keyframes (by serial), taken by
+  // start_harbour; a keyframe needed unstaged computes its own on the render thread.
+  std::vector<std::pair<std::uint64_t, std::future<std::vector<SlopeMomentLevel>>>> moments_computing_;
+  // The last sent pyramid's storage, for the next one start_harbour computes itself: a keyframe
+  // needed unstaged then writes into memory already touched (one pyramid held: 21 bytes a cell).
+  std::vector<SlopeMomentLevel> spare_moments_;
   std::vector<float> zero_row_;
   long long frame_ = 0;
   std::uint64_t pinned_harbour_[2] = {0, 0}, pinned_deep_[2] = {0, 0};

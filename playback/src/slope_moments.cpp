@@ -8,42 +8,100 @@ namespace nearshore::playback {
 
 namespace {
 
-// One axis of the box filter: n samples to m, sample k averaging [k n / m, (k + 1) n / m) of
-// the fine ones by overlap. Returns (index, weight) lists per coarse sample.
-std::vector<std::vector<std::pair<int, double>>> box_weights(int n, int m) {
-  std::vector<std::vector<std::pair<int, double>>> weights(static_cast<std::size_t>(m));
+// Per coarse sample of one axis (n fine samples to m = max(1, n / 2)), the fine samples it
+// averages and their weights, in the order they are summed. An even n halves by plain means
+// (samples 2k, 2k + 1, each 1/2); an odd n (m < n / 2) by the exact box filter: sample k
+// averages [k n / m, (k + 1) n / m) of the fine ones weighted by overlap (up to 4 taps: a window
+// of 2 + 1/m samples starting between two). Both give the same weights where both apply (the box
+// of an even n is the 2-tap mean), so the pyramid is the box filter's at every size.
+struct AxisTaps {
+  static constexpr int kMaxTaps = 4;
+  std::vector<int> first;       // per coarse sample: its first fine sample
+  std::vector<int> count;       // how many
+  std::vector<double> weights;  // kMaxTaps per coarse sample
+};
+AxisTaps halving_taps(int n, int m) {
+  AxisTaps taps;
+  taps.first.assign(std::size_t(m), 0);
+  taps.count.assign(std::size_t(m), 0);
+  taps.weights.assign(std::size_t(m) * AxisTaps::kMaxTaps, 0.0);
+  if (n == 2 * m) {
+    for (int k = 0; k < m; ++k) {
+      taps.first[std::size_t(k)] = 2 * k;
+      taps.count[std::size_t(k)] = 2;
+      taps.weights[std::size_t(k) * AxisTaps::kMaxTaps] = taps.weights[std::size_t(k) * AxisTaps::kMaxTaps + 1] = 0.5;
+    }
+    return taps;
+  }
   const double ratio = double(n) / double(m);
   for (int k = 0; k < m; ++k) {
     const double low = k * ratio, high = (k + 1) * ratio;
+    int& count = taps.count[std::size_t(k)];
     for (int i = int(std::floor(low)); i < n && i < high; ++i) {
       const double overlap = std::min(high, double(i + 1)) - std::max(low, double(i));
-      if (overlap > 0.0) weights[std::size_t(k)].emplace_back(i, overlap / ratio);
+      if (overlap <= 0.0) continue;
+      if (count == 0) taps.first[std::size_t(k)] = i;
+      taps.weights[std::size_t(k) * AxisTaps::kMaxTaps + count++] = overlap / ratio;
     }
   }
-  return weights;
+  return taps;
 }
 
-SlopeMomentLevel halved(const SlopeMomentLevel& fine) {
-  SlopeMomentLevel coarse;
-  coarse.columns = std::max(1, fine.columns / 2);
-  coarse.rows = std::max(1, fine.rows / 2);
-  const auto along_x = box_weights(fine.columns, coarse.columns), along_y = box_weights(fine.rows, coarse.rows);
-  // x first (fine rows, coarse columns), then y
-  std::vector<double> rows_done(std::size_t(coarse.columns) * fine.rows * 4, 0.0);
-  for (int j = 0; j < fine.rows; ++j)
-    for (int k = 0; k < coarse.columns; ++k)
-      for (const auto& [i, w] : along_x[std::size_t(k)])
-        for (int c = 0; c < 4; ++c)
-          rows_done[(std::size_t(j) * coarse.columns + k) * 4 + c] += w * fine.texels[(std::size_t(j) * fine.columns + i) * 4 + c];
-  coarse.texels.assign(std::size_t(coarse.columns) * coarse.rows * 4, 0.f);
-  for (int l = 0; l < coarse.rows; ++l)
-    for (int k = 0; k < coarse.columns; ++k) {
-      double sum[4] = {0, 0, 0, 0};
-      for (const auto& [j, w] : along_y[std::size_t(l)])
-        for (int c = 0; c < 4; ++c) sum[c] += w * rows_done[(std::size_t(j) * coarse.columns + k) * 4 + c];
-      for (int c = 0; c < 4; ++c) coarse.texels[(std::size_t(l) * coarse.columns + k) * 4 + c] = float(sum[c]);
+// The next level: coarse row l sums its fine rows' x-halved rows (each summed from 0 in tap
+// order) weighted along y, in double, then rounds to float: the separable box filter, x first.
+// Row by row, so the x-halved rows stay in cache (no level-sized buffer of doubles); a fine row
+// two coarse rows share (odd heights) is halved once.
+void halve(const SlopeMomentLevel& fine, int columns, int rows, SlopeMomentLevel& coarse) {
+  coarse.columns = columns;
+  coarse.rows = rows;
+  coarse.texels.resize(std::size_t(columns) * rows * 4);
+  const AxisTaps along_x = halving_taps(fine.columns, columns), along_y = halving_taps(fine.rows, rows);
+  const bool x_by_means = fine.columns == 2 * columns;
+  const std::size_t width = std::size_t(columns) * 4;
+  std::vector<double> sums(width), halved_row(width), previous_row(width);
+  int previous_j = -1;
+  const auto halve_row = [&](int j, std::vector<double>& out) {
+    const float* row = &fine.texels[std::size_t(j) * fine.columns * 4];
+    if (x_by_means) {
+      for (std::size_t k = 0; k < std::size_t(columns); ++k)
+        for (std::size_t c = 0; c < 4; ++c) {
+          double sum = 0.0;  // from 0, in tap order, as the general filter below sums
+          sum += 0.5 * double(row[8 * k + c]);
+          sum += 0.5 * double(row[8 * k + 4 + c]);
+          out[4 * k + c] = sum;
+        }
+      return;
     }
-  return coarse;
+    for (std::size_t k = 0; k < std::size_t(columns); ++k) {
+      const float* first = row + std::size_t(along_x.first[k]) * 4;
+      const double* weights = &along_x.weights[k * AxisTaps::kMaxTaps];
+      for (std::size_t c = 0; c < 4; ++c) {
+        double sum = 0.0;
+        for (int t = 0; t < along_x.count[k]; ++t) sum += weights[t] * double(first[4 * t + c]);
+        out[4 * k + c] = sum;
+      }
+    }
+  };
+  for (int l = 0; l < rows; ++l) {
+    std::fill(sums.begin(), sums.end(), 0.0);
+    const int taps = along_y.count[std::size_t(l)];
+    for (int t = 0; t < taps; ++t) {
+      const int j = along_y.first[std::size_t(l)] + t;
+      const double weight = along_y.weights[std::size_t(l) * AxisTaps::kMaxTaps + t];
+      const std::vector<double>* row = &previous_row;
+      if (j != previous_j) {
+        halve_row(j, halved_row);
+        row = &halved_row;
+      }
+      for (std::size_t e = 0; e < width; ++e) sums[e] += weight * (*row)[e];
+      if (t == taps - 1 && row == &halved_row) {  // the next coarse row may start on it
+        std::swap(previous_row, halved_row);
+        previous_j = j;
+      }
+    }
+    float* out = &coarse.texels[std::size_t(l) * width];
+    for (std::size_t e = 0; e < width; ++e) out[e] = float(sums[e]);
+  }
 }
 
 std::array<double, 4> bilinear(const SlopeMomentLevel& level, double u, double v) {
@@ -67,9 +125,16 @@ std::array<double, 4> bilinear(const SlopeMomentLevel& level, double u, double v
 
 std::vector<SlopeMomentLevel> slope_moment_pyramid(const Raster<float>& eta) {
   std::vector<SlopeMomentLevel> pyramid;
+  slope_moment_pyramid(eta, pyramid);
+  return pyramid;
+}
+
+void slope_moment_pyramid(const Raster<float>& eta, std::vector<SlopeMomentLevel>& pyramid) {
   const int n = eta.columns(), m = eta.rows();
-  if (n <= 0 || m <= 0) return pyramid;
-  SlopeMomentLevel base;
+  const auto sizes = slope_moment_level_sizes(n, m);
+  pyramid.resize(sizes.size());  // the levels' storage kept where it is (resize reuses it)
+  if (sizes.empty()) return;
+  SlopeMomentLevel& base = pyramid.front();
   base.columns = n;
   base.rows = m;
   base.texels.resize(std::size_t(n) * m * 4);
@@ -83,9 +148,20 @@ std::vector<SlopeMomentLevel> slope_moment_pyramid(const Raster<float>& eta) {
       t[2] = gx * gx;
       t[3] = gy * gy;
     }
-  pyramid.push_back(std::move(base));
-  while (pyramid.back().columns > 1 || pyramid.back().rows > 1) pyramid.push_back(halved(pyramid.back()));
-  return pyramid;
+  for (std::size_t level = 1; level < sizes.size(); ++level)
+    halve(pyramid[level - 1], sizes[level].first, sizes[level].second, pyramid[level]);
+}
+
+std::vector<std::pair<int, int>> slope_moment_level_sizes(int columns, int rows) {
+  std::vector<std::pair<int, int>> sizes;
+  if (columns <= 0 || rows <= 0) return sizes;
+  sizes.emplace_back(columns, rows);
+  while (columns > 1 || rows > 1) {
+    columns = std::max(1, columns / 2);
+    rows = std::max(1, rows / 2);
+    sizes.emplace_back(columns, rows);
+  }
+  return sizes;
 }
 
 double baked_slope_lod(double footprint_m, double cell_m) {

@@ -160,6 +160,7 @@ struct WaterRenderer::Impl {
       textures.harbour_elevation[k] = bound.harbour_eta[k];
       textures.harbour_breaking[k] = bound.harbour_breaking[k];
       textures.harbour_elevation_rate[k] = bound.harbour_eta_rate[k];
+      textures.harbour_slope_moments[k] = bound.harbour_slope_moments[k];
       textures.deep_elevation[k] = bound.deep[kDeepEta][k];
       textures.deep_displacement_x[k] = bound.deep[kDeepDx][k];
       textures.deep_displacement_y[k] = bound.deep[kDeepDy][k];

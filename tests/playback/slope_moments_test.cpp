@@ -4,7 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <random>
+#include <utility>
+#include <vector>
 
 #include "nearshore/playback/slope_moments.hpp"
 
@@ -17,6 +21,77 @@ double level_mean(const SlopeMomentLevel& level, int c) {
   double sum = 0;
   for (int k = 0; k < level.columns * level.rows; ++k) sum += level.texels[std::size_t(k) * 4 + c];
   return sum / (level.columns * level.rows);
+}
+
+// The halving slope_moment_pyramid used before it took plain 2 x 2 means for even sizes (commit
+// ad22e11, playback/src/slope_moments.cpp): the general box weights per axis as lists, a
+// level-sized buffer of doubles, x then y. The reference the faster one must equal bit for bit.
+SlopeMomentLevel box_halved_before(const SlopeMomentLevel& fine) {
+  const auto box_weights = [](int n, int m) {
+    std::vector<std::vector<std::pair<int, double>>> weights(static_cast<std::size_t>(m));
+    const double ratio = double(n) / double(m);
+    for (int k = 0; k < m; ++k) {
+      const double low = k * ratio, high = (k + 1) * ratio;
+      for (int i = int(std::floor(low)); i < n && i < high; ++i) {
+        const double overlap = std::min(high, double(i + 1)) - std::max(low, double(i));
+        if (overlap > 0.0) weights[std::size_t(k)].emplace_back(i, overlap / ratio);
+      }
+    }
+    return weights;
+  };
+  SlopeMomentLevel coarse;
+  coarse.columns = std::max(1, fine.columns / 2);
+  coarse.rows = std::max(1, fine.rows / 2);
+  const auto along_x = box_weights(fine.columns, coarse.columns), along_y = box_weights(fine.rows, coarse.rows);
+  std::vector<double> rows_done(std::size_t(coarse.columns) * fine.rows * 4, 0.0);
+  for (int j = 0; j < fine.rows; ++j)
+    for (int k = 0; k < coarse.columns; ++k)
+      for (const auto& [i, w] : along_x[std::size_t(k)])
+        for (int c = 0; c < 4; ++c)
+          rows_done[(std::size_t(j) * coarse.columns + k) * 4 + c] += w * fine.texels[(std::size_t(j) * fine.columns + i) * 4 + c];
+  coarse.texels.assign(std::size_t(coarse.columns) * coarse.rows * 4, 0.f);
+  for (int l = 0; l < coarse.rows; ++l)
+    for (int k = 0; k < coarse.columns; ++k) {
+      double sum[4] = {0, 0, 0, 0};
+      for (const auto& [j, w] : along_y[std::size_t(l)])
+        for (int c = 0; c < 4; ++c) sum[c] += w * rows_done[(std::size_t(j) * coarse.columns + k) * 4 + c];
+      for (int c = 0; c < 4; ++c) coarse.texels[(std::size_t(l) * coarse.columns + k) * 4 + c] = float(sum[c]);
+    }
+  return coarse;
+}
+
+TEST(SlopeMoments, TheHalvingByMeansIsTheBoxFilterBitForBit) {
+  // Even and odd sizes each way, one-texel-wide grids, and a harbour grid's own (571 x 513); a
+  // rough field (swell and noise, some -0 and flat stretches) and one of signed zeros, whose zero
+  // slopes must keep the sign the box filter's sums from 0 give them; every level against the
+  // box filter of the level before it.
+  std::mt19937 random(41);
+  std::uniform_real_distribution<float> noise(-1.f, 1.f);
+  for (const auto& [columns, rows] : std::vector<std::pair<int, int>>{
+           {16, 12}, {37, 23}, {64, 33}, {33, 64}, {1, 9}, {9, 1}, {2, 1}, {1, 1}, {3, 3}, {134, 120}, {571, 513}}) {
+    Raster<float> rough(columns, rows), zeros(columns, rows);
+    for (int j = 0; j < rows; ++j)
+      for (int i = 0; i < columns; ++i) {
+        rough(i, j) = (i + j) % 7 == 0 ? -0.f : i % 11 == 0 ? 0.f : float(0.8 * std::sin(0.7 * i + 0.2 * j)) + 0.1f * noise(random);
+        // +0, +0, -0, -0 along x (flipped on alternate row pairs): g = (-0) - (+0) = -0 on both
+        // texels of a pair, whose means must come out +0 as the box filter's sums from 0 give them
+        zeros(i, j) = (i % 4 == 1 || i % 4 == 2) != (j % 4 == 1 || j % 4 == 2) ? -0.f : 0.f;
+      }
+    for (const Raster<float>* eta : {&rough, &zeros}) {
+      const auto pyramid = playback::slope_moment_pyramid(*eta);
+      const auto sizes = playback::slope_moment_level_sizes(columns, rows);
+      ASSERT_EQ(pyramid.size(), sizes.size());
+      for (std::size_t level = 0; level < pyramid.size(); ++level) {
+        EXPECT_EQ(pyramid[level].columns, sizes[level].first);
+        EXPECT_EQ(pyramid[level].rows, sizes[level].second);
+        if (level == 0) continue;
+        const SlopeMomentLevel expected = box_halved_before(pyramid[level - 1]);
+        ASSERT_EQ(pyramid[level].texels.size(), expected.texels.size());
+        EXPECT_EQ(std::memcmp(pyramid[level].texels.data(), expected.texels.data(), expected.texels.size() * sizeof(float)), 0)
+            << columns << " x " << rows << ", level " << level << (eta == &zeros ? ", signed zeros" : "");
+      }
+    }
+  }
 }
 
 TEST(SlopeMoments, APlaneHasItsSlopeAndNoVarianceInside) {

@@ -11,6 +11,7 @@
 // GL-free: the renderer uploads these levels as they are (keyframe_textures.cpp), and the CPU
 // sampler below is the twin of the shader's textureLod (shaders/common.glsl, the same names).
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "nearshore/core/raster.hpp"
@@ -29,8 +30,18 @@ struct SlopeMomentLevel {
 /// differences, the neighbour clamped at the grid's edge: what the shader's clamp-to-edge
 /// lookups of eta gave before), and their squares. Each further level halves each axis (floor,
 /// at least 1) until both are 1; texel k of a level of m texels averages the finer level's n texels
-/// over [k n / m, (k + 1) n / m) weighted by overlap (an exact box filter also for odd sizes).
+/// over [k n / m, (k + 1) n / m) weighted by overlap (an exact box filter also for odd sizes; an
+/// even size is the plain mean of texels 2k and 2k + 1), summed in double, x then y, rounded to
+/// float once. A pure function of eta (the same bits on any thread): the renderer computes it on a
+/// worker when a keyframe is staged (keyframe_textures.cpp).
 std::vector<SlopeMomentLevel> slope_moment_pyramid(const Raster<float>& surface_elevation_m);
+/// The same into `pyramid`, reusing its levels' storage (no fresh memory to fault in when it holds
+/// a pyramid of the same grid: the render thread's, for keyframes it computes itself).
+void slope_moment_pyramid(const Raster<float>& surface_elevation_m, std::vector<SlopeMomentLevel>& pyramid);
+
+/// The levels' sizes (columns, rows) for a grid of `columns` x `rows`, level 0 first: what
+/// slope_moment_pyramid returns, known before it is computed (the textures are allocated then).
+std::vector<std::pair<int, int>> slope_moment_level_sizes(int columns, int rows);
 
 /// The mip level a pixel reads (GL's lambda): log2 of its footprint (m; the larger of the two
 /// screen axes, as the detail normals' footprint) over the cell size, at least 0.

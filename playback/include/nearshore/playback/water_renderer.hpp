@@ -148,6 +148,9 @@ struct GpuTextures {
   /// both have one: then the harbour is the cubic Hermite of runtime/surface_snapshot.hpp with
   /// T = frame_interval_s.
   unsigned harbour_elevation_rate[2] = {0, 0};
+  /// The harbour keyframes' slope moments: RGBA32F (g_x, g_y, g_x^2, g_y^2), mip-mapped
+  /// (playback/slope_moments.hpp), for a host filtering the baked slopes itself as the shader does.
+  unsigned harbour_slope_moments[2] = {0, 0};
   bool harbour_has_rates = false;
   double frame_interval_s = 0.0;
 };
