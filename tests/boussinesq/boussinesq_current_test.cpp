@@ -188,6 +188,14 @@ TEST(BoussinesqCurrent, RefusesACurrentThatBlocksTheWaves) {
   SolverParameters parameters = testing::inviscid_parameters();
   parameters.current.velocity_x_m_s = -2.0;  // faster than the group speed of a 1 s wave (0.9 m/s)
   EXPECT_THROW(BoussinesqSolver(harbour, parameters, testing::regular_waves_from_west(3.0, 1.0, 0.005, 1.0)), Error);
+  // Not blocked, but too short for the equations: a 1 s wave against 0.5 m/s over 0.5 m has k d = 5.7
+  // (2.1 in still water); beside a 2 s wave it broke the run within 1.5 s (its twin behind the line).
+  parameters.current.velocity_x_m_s = -0.5;
+  WaveMaker two = testing::regular_waves_from_west(3.0, 4.0, 0.005, kPeriod_s);
+  two.sea_state.components.push_back({0.001, 2.0 * std::numbers::pi / 1.0, 0.0, 0.0});
+  EXPECT_THROW(BoussinesqSolver(harbour, parameters, two), Error);
+  parameters.current = {};
+  EXPECT_NO_THROW(BoussinesqSolver(harbour, parameters, two));
 }
 
 }  // namespace nearshore::boussinesq
