@@ -36,7 +36,7 @@ TimeRequest read_timing(TableReader& time, BakeTiming& timing) {
   if (time.has("time_step_s") && time.has("courant_number"))
     time.fail(time.full("time_step_s"), "and time.courant_number are both given", "give one of them");
   request.time_step_s = time.non_negative("time_step_s", 0.0, "time step in seconds");
-  request.courant_number = time.positive("courant_number", 0.5, "Courant number sqrt(g d_max) dt / dx");
+  request.courant_number = time.positive("courant_number", 0.5, "Courant number (|U| + sqrt(g d_max)) dt / dx, U the [current]");
   if (request.courant_number > kMaxCourantNumber)
     time.fail(time.full("courant_number"),
               fmt::format("= {} is above {}, the solver's stability limit of sqrt(g d_max) dt / dx (docs/solver.md)",
@@ -72,13 +72,20 @@ void check_time_step(TableReader& time, const TimeRequest& request, const BakeCa
                                     ? fmt::format("{} s (reduced to {:.6g} s to divide the output interval)", request.time_step_s, step_s)
                                     : fmt::format("{:.6g} s", step_s);
   if (deepest_m > 0.0) {
-    const double courant = std::sqrt(kGravity_m_s2 * deepest_m) * step_s / spacing_m;
-    const double largest_step_s = kMaxCourantNumber * spacing_m / std::sqrt(kGravity_m_s2 * deepest_m);
+    // With a current the gravity wave it carries (boussinesq::courant_speed_m_s).
+    const boussinesq::ImposedCurrent& current = bake_case.solver.current;
+    const double speed_m_s = boussinesq::courant_speed_m_s(deepest_m, current);
+    const double courant = speed_m_s * step_s / spacing_m;
+    const double largest_step_s = kMaxCourantNumber * spacing_m / speed_m_s;
+    const std::string speed_text =
+        current.any() ? fmt::format("(|U| + sqrt(g d_max)) dt / min(dx, dy) = {:.3g} (|U| {:.3g} m/s, the [current]; ", courant,
+                                    std::hypot(current.velocity_x_m_s, current.velocity_y_m_s))
+                      : fmt::format("sqrt(g d_max) dt / min(dx, dy) = {:.3g} (", courant);
     if (courant > kMaxCourantNumber)  // only a given time step gets here: courant_number is bounded above
       time.fail(time.full("time_step_s"),
-                fmt::format("= {} gives a Courant number sqrt(g d_max) dt / min(dx, dy) = {:.3g} (d_max {} m, the deepest cell; "
+                fmt::format("= {} gives a Courant number {}d_max {} m, the deepest cell; "
                             "min(dx, dy) {} m), above {}, the solver's stability limit (docs/solver.md)",
-                            step_text, courant, deepest_m, spacing_m, kMaxCourantNumber),
+                            step_text, speed_text, deepest_m, spacing_m, kMaxCourantNumber),
                 fmt::format("give time.time_step_s <= {:.4g} s, or leave it out and give time.courant_number "
                             "(0.5 by default)", largest_step_s));
   }
@@ -152,13 +159,14 @@ long whole_steps(double interval_s, double step_s) {
 }
 
 double resolve_time_step(double requested_time_step_s, double courant_number, const HarbourGrid& harbour,
-                         double output_interval_s) {
+                         double output_interval_s, const boussinesq::ImposedCurrent& current) {
   double step_s = requested_time_step_s;
   if (!(step_s > 0.0)) {
     float deepest_m = 0.f;
     for (float depth : harbour.still_water_depth_m.values()) deepest_m = std::max(deepest_m, depth);
-    // Courant number of the shallow-water celerity in the deepest water: sqrt(g d_max) dt / min(dx, dy).
-    step_s = courant_number * harbour.geometry.smaller_spacing_m() / std::sqrt(kGravity_m_s2 * std::max(deepest_m, 0.01f));
+    // Courant number of the shallow-water celerity in the deepest water carried by the current:
+    // (|U| + sqrt(g d_max)) dt / min(dx, dy) (boussinesq::courant_speed_m_s).
+    step_s = courant_number * harbour.geometry.smaller_spacing_m() / boussinesq::courant_speed_m_s(std::max(deepest_m, 0.01f), current);
   }
   const double steps_per_output = std::ceil(output_interval_s / step_s * (1.0 - 1e-12));
   return output_interval_s / std::max(1.0, steps_per_output);
@@ -258,7 +266,7 @@ BakeCase parse_bake_case(const json& document, const fs::path& case_file, const 
                 "choose a gauge interval such as output_interval_s / 10");
   }
   bake_case.solver.time_step_s =
-      resolve_time_step(request.time_step_s, request.courant_number, bake_case.harbour, divided_interval_s);
+      resolve_time_step(request.time_step_s, request.courant_number, bake_case.harbour, divided_interval_s, bake_case.solver.current);
   check_time_step(time, request, bake_case);
 
   if (!root.has("wave_maker")) root.fail("wave_maker", "is missing", "add a [wave_maker] table (kind = \"none\" for a basin at rest)");

@@ -124,6 +124,11 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   auto current_along_m_s = [&](double direction_rad) {
     return current.velocity_x_m_s * std::cos(direction_rad) + current.velocity_y_m_s * std::sin(direction_rad);
   };
+  // The same along a direction mirrored in the line: the source's twin, the wave of the same
+  // frequency and wavenumber along the line that it radiates behind the line.
+  auto twin_current_along = [&](double direction_rad) {
+    return current_along_m_s(normal_is_x_ ? std::numbers::pi - direction_rad : -direction_rad);
+  };
   auto wavenumber = [&](double w, double direction_rad) {
     if (!current_) return boussinesq_wavenumber(w, d, B);
     return boussinesq_wavenumber_in_current(w, d, B, current_along_m_s(direction_rad));  // 0: blocked
@@ -158,6 +163,18 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
     // A time series' harmonics beyond the equations' range, or blocked by a current, are not generated.
     if (maker.kind == WaveMaker::Kind::kTimeSeries && (k * d > 3.0 || k == 0.0)) continue;
     if (current_ && k == 0.0) throw blocked(w);
+    // On a current a wave the still water carries can be too short for the equations: against
+    // 0.5 m/s over 0.5 m the 1 s wave has k d = 5.7 (2.1 in still water). The line then barely
+    // excites it ahead and excites its long twin behind the line in full (twin_amplitude_ratio): a
+    // 1 mm component of 1 s beside a 5 mm one of 2 s broke the run within 1.5 s. Refused like a
+    // blocked one (a time series' such harmonics are dropped above).
+    if (current_ && k * d > kLargestCarriedKd) {
+      std::ostringstream problem;
+      problem << "the current (" << current.velocity_x_m_s << ", " << current.velocity_y_m_s << ") m/s shortens a wave of w=" << w
+              << " rad/s at the source line (depth " << d << " m) to k d = " << k * d << ", beyond the equations' range (k d <= "
+              << kLargestCarriedKd << ")";
+      throw Error("wave maker", problem.str(), "drop the band's highest frequencies, or weaken the current against the waves");
+    }
     const double kx = k * std::cos(wave.direction_rad), ky = k * std::sin(wave.direction_rad);
     const double k_normal = normal_is_x_ ? kx : ky, k_tangential = normal_is_x_ ? ky : kx;
     if (k_normal * travel_sign < 0.2 * k) {
@@ -202,9 +219,27 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
       // one; at third order the free second harmonic interacts with the first too, and radiating
       // the bound third harmonic the same way doubled the flat-flume beat instead of removing it.
       // A harmonic beyond the equations' range (k d > 3) is not carried.
-      if (boussinesq_wavenumber(2.0 * w, d, B) * d <= 3.0 && harmonics[1] > 0.0)
-        components_.push_back({harmonics[1], 2.0 * w, 2.0 * primary.tangential_wavenumber_rad_m, 2.0 * primary.phase_rad, 0.0,
-                               primary.current_along_m_s});
+      // On a current (docs/solver.md, "Currents") the free harmonic at 2 w has its own Doppler-shifted
+      // wavenumber, far from the bound 2 k against the current (k d = 5.7 for T = 2 s against
+      // 0.5 m/s over 0.5 m, where the bound one has 2.3): the range is checked on it. And the line
+      // radiates each component both ways: behind it goes the twin (same frequency, the current
+      // the other way along it), whose amplitude is the component's times the ratio of their
+      // transfers (twin_amplitude_ratio). Against a current the free harmonic is short and the
+      // Gaussian, sized for the first harmonic, barely excites it (its transform ~ e^-12 in that
+      // flume), while the long twin going downstream is excited in full: 5700 times the harmonic,
+      // a 0.33 m wave at 2 w behind the line for a = 5 mm, which broke the run within the ramp. The
+      // correction is radiated only while its twin stays smaller than the wave the line is asked
+      // for (in still water the twin is the harmonic itself, ratio 1).
+      const double l2 = 2.0 * primary.tangential_wavenumber_rad_m;
+      const double k2 = current_ ? boussinesq_wavenumber_in_current(2.0 * w, d, B, primary.current_along_m_s)
+                                 : boussinesq_wavenumber(2.0 * w, d, B);
+      bool radiate = k2 * d <= 3.0 && harmonics[1] > 0.0;
+      if (current_)
+        radiate = radiate && k2 > 0.0 &&
+                  harmonics[1] * twin_amplitude_ratio(2.0 * w, l2, primary.current_along_m_s, twin_current_along(peak->direction_rad)) <=
+                      primary.amplitude_m;
+      if (radiate)
+        components_.push_back({harmonics[1], 2.0 * w, l2, 2.0 * primary.phase_rad, 0.0, primary.current_along_m_s});
     } catch (const Error&) {
       // Steeper than the equations' steady waves reach: the first harmonic alone, as requested.
     }
@@ -240,42 +275,62 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
 //    dispersion relation at w~, and the source acts 1 / cos(w dt / 2) stronger.
 // Both tend to the continuous transfer as dx, dt -> 0.
 double SourceFunction::discrete_strength_m_s(const Component& component, double dt) const {
-  const double g = kGravity_m_s2, B = dispersion_coefficient_, B3 = B + 1.0 / 3.0, d = depth_m_, d2 = d * d;
   const double w = component.angular_frequency_rad_s;
   const double half_phase_step = 0.5 * w * dt;
   // Fewer than pi steps per period (w dt / 2 >= 1): the grid resolves no such wave in time; the
   // continuous transfer is kept for it rather than a tangent near its pole.
   const double w_grid = half_phase_step < 1.0 ? 2.0 * std::tan(half_phase_step) / dt : w;
   const double time_factor = half_phase_step < 1.0 ? std::cos(half_phase_step) : 1.0;
-  // On a current the pole is the Doppler-shifted wavenumber and the intrinsic frequency w_r = w - k.U
-  // takes w's place in the momentum equation (below).
-  const double k = current_ ? boussinesq_wavenumber_in_current(w_grid, d, B, component.current_along_m_s)
-                            : boussinesq_wavenumber(w_grid, d, B);
+  if (current_)
+    return component.amplitude_m * time_factor *
+           strength_per_amplitude_in_current(w_grid, component.tangential_wavenumber_rad_m, component.current_along_m_s,
+                                             current_normal_m_s_);
+  const double g = kGravity_m_s2, B = dispersion_coefficient_, d = depth_m_, d2 = d * d;
+  const Pole p = pole(boussinesq_wavenumber(w_grid, d, B), component.tangential_wavenumber_rad_m);
+  const double s = p.wavenumber_rad_m * p.wavenumber_rad_m;
+  const double F_prime = g * d * (1.0 + B * d2 * s) + s * g * d * B * d2 - w_grid * w_grid * (B + 1.0 / 3.0) * d2;
+  return component.amplitude_m * time_factor * 2.0 * p.kappa_n * p.slope * F_prime / (w_grid * p.M * p.I);
+}
+
+SourceFunction::Pole SourceFunction::pole(double k, double l) const {
+  const double B3 = dispersion_coefficient_ + 1.0 / 3.0, d2 = depth_m_ * depth_m_;
   const double s = k * k;
   const double dn = spacing_m_, dl = tangential_spacing_m_;  // cell sizes normal to and along the line
-  const double kappa_t = 2.0 * std::sin(0.5 * component.tangential_wavenumber_rad_m * dl) / dl;
-  const double kappa_n = std::sqrt(std::max(s - kappa_t * kappa_t, 0.01 * s));
+  const double kappa_t = 2.0 * std::sin(0.5 * l * dl) / dl;
+  Pole p;
+  p.wavenumber_rad_m = k;
+  p.kappa_n = std::sqrt(std::max(s - kappa_t * kappa_t, 0.01 * s));
   // A wave shorter than about three cells normal to the line has no discrete pole (kappa dx / 2 -> 1):
   // the grid cannot carry it, and the continuous transfer is kept for it.
-  const double sine = 0.5 * kappa_n * dn;
-  const double k_n = sine < 0.95 ? 2.0 * std::asin(sine) / dn : kappa_n;
-  const double slope = sine < 0.95 ? std::cos(0.5 * k_n * dn) : 1.0;  // d kappa_n / d k_n
-  const double M = 1.0 + B3 * d2 * s;
-  const double F_prime = g * d * (1.0 + B * d2 * s) + s * g * d * B * d2 - w_grid * w_grid * B3 * d2;
-  double I = 0.0;
+  const double sine = 0.5 * p.kappa_n * dn;
+  const double k_n = sine < 0.95 ? 2.0 * std::asin(sine) / dn : p.kappa_n;
+  p.slope = sine < 0.95 ? std::cos(0.5 * k_n * dn) : 1.0;  // d kappa_n / d k_n
+  p.M = 1.0 + B3 * d2 * s;
   for (int i = strip_begin_; i < strip_end_; ++i)
-    I += profile_[static_cast<std::size_t>(i - strip_begin_)] * std::cos(k_n * (i - line_index_) * dn) * dn;
-  if (!current_) return component.amplitude_m * time_factor * 2.0 * kappa_n * slope * F_prime / (w_grid * M * I);
-  // On a current U (docs/solver.md, "Currents"): linearised about P = U d, the flux-form momentum
-  // equation moves with the water, M D u/Dt + grad(G eta / d) ... = -U S / d (the source adds mass
-  // without momentum), so the forced response is eta = i S (w_r M - k.U) / (|k|^2 G - w_r^2 M) and
-  // its residue at the pole k_n is A = D I (w_r M - k.U) / (2 k_n F'_r + 2 U_n w_r M), with
-  // F'_r = F' at w_r and U_n the current along the travel direction normal to the line (the
-  // discrete kappa_n and its slope as above). U = 0 gives the still-water transfer.
-  const double U_along = component.current_along_m_s, w_r = w_grid - k * U_along;
-  const double F_prime_r = g * d * (1.0 + B * d2 * s) + s * g * d * B * d2 - w_r * w_r * B3 * d2;
-  return component.amplitude_m * time_factor * (2.0 * kappa_n * slope * F_prime_r + 2.0 * current_normal_m_s_ * w_r * M) /
-         ((w_r * M - k * U_along) * I);
+    p.I += profile_[static_cast<std::size_t>(i - strip_begin_)] * std::cos(k_n * (i - line_index_) * dn) * dn;
+  return p;
+}
+
+// On a current U (docs/solver.md, "Currents"): linearised about P = U d, the flux-form momentum
+// equation moves with the water, M D u/Dt + grad(G eta / d) ... = -U S / d (the source adds mass
+// without momentum), so the forced response is eta = i S (w_r M - k.U) / (|k|^2 G - w_r^2 M) and its
+// residue at the pole k_n is A = D I (w_r M - k.U) / (2 k_n F'_r + 2 U_n w_r M), with F'_r = F' at
+// the intrinsic frequency w_r = w - k.U, k the Doppler-shifted wavenumber and U_n the current along
+// the travel direction normal to the line (the discrete kappa_n and its slope as above). U = 0
+// gives the still-water transfer.
+double SourceFunction::twin_amplitude_ratio(double w, double l, double U_along, double U_twin_along) const {
+  // A twin the current blocks (its group speed below the current against it) is not radiated.
+  if (boussinesq_wavenumber_in_current(w, depth_m_, dispersion_coefficient_, U_twin_along) == 0.0) return 0.0;
+  return strength_per_amplitude_in_current(w, l, U_along, current_normal_m_s_) /
+         strength_per_amplitude_in_current(w, l, U_twin_along, -current_normal_m_s_);
+}
+
+double SourceFunction::strength_per_amplitude_in_current(double w_grid, double l, double U_along, double U_normal) const {
+  const double g = kGravity_m_s2, B = dispersion_coefficient_, d = depth_m_, d2 = d * d;
+  const Pole p = pole(boussinesq_wavenumber_in_current(w_grid, d, B, U_along), l);
+  const double k = p.wavenumber_rad_m, s = k * k, w_r = w_grid - k * U_along;
+  const double F_prime_r = g * d * (1.0 + B * d2 * s) + s * g * d * B * d2 - w_r * w_r * (B + 1.0 / 3.0) * d2;
+  return (2.0 * p.kappa_n * p.slope * F_prime_r + 2.0 * U_normal * w_r * p.M) / ((w_r * p.M - k * U_along) * p.I);
 }
 
 void SourceFunction::add(double time_s, double dt, double* eta_base, std::size_t x_stride, std::size_t y_stride) {

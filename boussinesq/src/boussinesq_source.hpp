@@ -38,6 +38,20 @@ class SourceFunction {
   /// D for a component on this grid and time step: the discrete transfer of the scheme (docs/solver.md,
   /// "Wave maker"), which tends to the continuous equations' as dx, dt -> 0.
   double discrete_strength_m_s(const Component& component, double dt) const;
+  /// On a current: D per metre of radiated amplitude for a wave of (grid) frequency w_grid and
+  /// wavenumber l along the line, with U_along the current along its travel and U_normal the
+  /// current's component normal to the line along its travel (the residue of "Currents").
+  /// The pole of the grid's forced response at wavenumber k (wavenumber l along the line): kappa_n,
+  /// its slope d kappa_n / d k_n, M(k^2) and I, the Gaussian's transform at k_n (discrete_strength_m_s).
+  struct Pole {
+    double wavenumber_rad_m = 0.0, kappa_n = 0.0, slope = 1.0, M = 1.0, I = 0.0;
+  };
+  Pole pole(double k, double l) const;
+  double strength_per_amplitude_in_current(double w_grid, double l, double U_along, double U_normal) const;
+  /// On a current: the amplitude of the twin a component of frequency w and wavenumber l along the
+  /// line radiates behind the line (the wave the other way, the current U_twin_along along its
+  /// travel) per metre of the component's amplitude; 0 when the current blocks the twin.
+  double twin_amplitude_ratio(double w, double l, double U_along, double U_twin_along) const;
   std::vector<Component> components_;
   double time_step_s_ = 0.0;             // the dt the strengths were computed for (set on first add)
   double depth_m_ = 0.0, dispersion_coefficient_ = 1.0 / 15.0, line_index_ = 0.0;

@@ -216,7 +216,8 @@ void BoussinesqSolver::Implementation::choose_time_step(double max_depth) {
   // cell of min(dx, dy) fastest (FUNWAVE-TVD and MIKE 21 BW likewise).
   const double smaller_spacing = std::min(dx, dy);
   if (max_depth <= 0.0) throw Error(kSubject, "the grid holds no water (every depth <= 0)", "check the sign of the depths (positive down)");
-  const double celerity = std::sqrt(kGravity_m_s2 * max_depth);
+  // The gravity wave carried by the imposed current (courant_speed_m_s): sqrt(g d_max) without one.
+  const double celerity = courant_speed_m_s(max_depth, parameters.current);
   dt = parameters.time_step_s > 0.0 ? parameters.time_step_s : parameters.courant_number * smaller_spacing / celerity;
   if (!(dt > 0.0)) throw Error(kSubject, "no time step: time_step_s and courant_number are both 0", "set one of them");
   const double courant = celerity * dt / smaller_spacing;
@@ -228,8 +229,14 @@ void BoussinesqSolver::Implementation::choose_time_step(double max_depth) {
       problem << "SolverParameters::time_step_s = " << dt << " s gives";
     else
       problem << "SolverParameters::courant_number = " << parameters.courant_number << " (a time step of " << dt << " s) gives";
-    problem << " a Courant number sqrt(g d_max) dt/min(dx, dy) = " << courant << " (d_max " << max_depth
-            << " m, the deepest cell; min(dx, dy) " << smaller_spacing << " m), above the stability limit " << kMaxCourantNumber;
+    if (parameters.current.any())
+      problem << " a Courant number (|U| + sqrt(g d_max)) dt/min(dx, dy) = " << courant << " (|U| "
+              << std::hypot(parameters.current.velocity_x_m_s, parameters.current.velocity_y_m_s)
+              << " m/s, SolverParameters::current; d_max " << max_depth << " m, the deepest cell; min(dx, dy) " << smaller_spacing
+              << " m), above the stability limit " << kMaxCourantNumber;
+    else
+      problem << " a Courant number sqrt(g d_max) dt/min(dx, dy) = " << courant << " (d_max " << max_depth
+              << " m, the deepest cell; min(dx, dy) " << smaller_spacing << " m), above the stability limit " << kMaxCourantNumber;
     throw Error(kSubject, problem.str(),
                 step_given ? "set SolverParameters::time_step_s to at most " + std::to_string(kMaxCourantNumber * smaller_spacing / celerity) +
                                  " s, or to 0 with SolverParameters::courant_number at most " + std::to_string(kMaxCourantNumber)

@@ -89,6 +89,14 @@ TEST(BakeCase, ResolvedTimeStepDividesTheOutputInterval) {
   }
   EXPECT_DOUBLE_EQ(resolve_time_step(0.03, 0.5, grid, 0.1), 0.025);  // 0.03 -> 4 steps per 0.1 s
   EXPECT_DOUBLE_EQ(resolve_time_step(0.05, 0.5, grid, 0.1), 0.05);
+  // With a [current] the Courant number is (|U| + sqrt(g d_max)) dt / dx (docs/solver.md, "Currents"):
+  // 3 m/s beside sqrt(g 10 m) = 9.9 m/s makes the step shorter by that ratio (1 s divided in whole steps).
+  const double still = resolve_time_step(0.0, 0.5, grid, 1.0);
+  const double on_current = resolve_time_step(0.0, 0.5, grid, 1.0, {3.0, 0.0});
+  EXPECT_LE(on_current, 0.5 * 2.0 / (3.0 + std::sqrt(kGravity_m_s2 * 10.0)) * (1 + 1e-12));
+  EXPECT_GT(on_current, 0.9 * 0.5 * 2.0 / (3.0 + std::sqrt(kGravity_m_s2 * 10.0)));
+  EXPECT_LT(on_current, still);
+  EXPECT_EQ(resolve_time_step(0.0, 0.5, grid, 1.0, {}), still);
 }
 
 TEST(BakeCase, UnknownKeysAreErrors) {

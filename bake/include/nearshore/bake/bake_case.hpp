@@ -126,11 +126,12 @@ BakeCase parse_bake_case(const nlohmann::json& document, const std::filesystem::
 /// reading (`nearshore bench bake`'s seed configuration) sets it again, so the sequence records what ran.
 nlohmann::json solver_record_of(const BakeCase& bake_case);
 
-/// The time step used: the requested one (time_step_s, or courant_number * dx / sqrt(g d_max) with
-/// d_max the deepest wet cell), reduced to the largest value that divides `output_interval_s` into
-/// a whole number of steps, so frames fall exactly on steps and a periodic bake repeats exactly.
+/// The time step used: the requested one (time_step_s, or courant_number * dx / (|U| + sqrt(g d_max))
+/// with d_max the deepest wet cell and U the imposed current, boussinesq::courant_speed_m_s), reduced to
+/// the largest value that divides `output_interval_s` into a whole number of steps, so frames fall
+/// exactly on steps and a periodic bake repeats exactly.
 double resolve_time_step(double requested_time_step_s, double courant_number, const HarbourGrid& harbour,
-                         double output_interval_s);
+                         double output_interval_s, const boussinesq::ImposedCurrent& current = {});
 
 /// What the bake carries of the sea asked for, in words for the bake's report: the effective-depth
 /// limit when one is active (docs/solver.md, "Effective depth") and an irregular sea's split between

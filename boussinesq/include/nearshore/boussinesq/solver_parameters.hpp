@@ -8,10 +8,12 @@
 // Units: metres, seconds, radians throughout (angles named _deg are degrees). x = 0 is the west edge
 // of the grid, y = 0 the south edge (GridGeometry origin); positions such as WaveMaker::source_line_m
 // are in the grid's own frame (origin included).
+#include <cmath>
 #include <limits>
 #include <vector>
 
 #include "nearshore/boussinesq/model_nonlinear.hpp"
+#include "nearshore/ocean/linear_waves.hpp"
 #include "nearshore/ocean/wave_component.hpp"
 
 namespace nearshore::boussinesq {
@@ -131,7 +133,19 @@ struct ImposedCurrent {
   bool any() const { return velocity_x_m_s != 0.0 || velocity_y_m_s != 0.0; }
 };
 
-/// The stability limit of the Courant number sqrt(g d_max) dt / dx: beyond it the iterated explicit
+/// The speed the Courant number is taken of (docs/solver.md, "Currents"): the fastest signal on the
+/// grid, the shallow-water gravity wave over the deepest cell carried by the imposed current,
+/// |U| + sqrt(g d_max). Without a current it is sqrt(g d_max) exactly. The current matters because
+/// what the scheme advances explicitly is advection at the current's speed: the convection
+/// (P^2/h)_x is iterated from the step's first guess, and the fully nonlinear terms' remainder,
+/// extrapolated from the steps before, carries -2 (B+1/3) U d^2 P_xxx (the Serre and enhancement
+/// terms linearised about P = U d), which is the whole of the advection M (D/Dt) of the waves at
+/// short wavelengths; gravity alone is implicit.
+inline double courant_speed_m_s(double deepest_m, const ImposedCurrent& current) {
+  return std::hypot(current.velocity_x_m_s, current.velocity_y_m_s) + std::sqrt(ocean::kGravity_m_s2 * deepest_m);
+}
+
+/// The stability limit of the Courant number (|U| + sqrt(g d_max)) dt / dx: beyond it the iterated explicit
 /// terms stop converging (docs/solver.md). The solver refuses a larger step; the bake's case reader
 /// checks the same limit first, so that its message names the case file's key.
 inline constexpr double kMaxCourantNumber = 2.0;
@@ -143,14 +157,16 @@ inline constexpr double kMaxCourantNumber = 2.0;
 /// The list of revisions is docs/solver.md, "Physics revision". 1: the solver of 2026-11-28 (issue 19's
 /// defaults, Kennedy et al.'s thresholds on the still-water depth, the laminar film's bed stress).
 /// 2: the fully nonlinear terms fade where waves break (BreakingParameters::fade_fully_nonlinear_terms).
-inline constexpr int kSolverPhysicsRevision = 2;
+/// 3: on an imposed current, the Courant number counts the current (courant_speed_m_s) and the wave
+/// maker radiates its second-harmonic correction only where it is carried (docs/solver.md "Currents").
+inline constexpr int kSolverPhysicsRevision = 3;
 
 /// Porosity below which a cell is a solid wall (a quay): no flux through its faces, no shoreline on it.
 inline constexpr double kWallPorosity = 0.05;
 
 struct SolverParameters {
   double time_step_s = 0.0;           ///< 0 = from courant_number
-  double courant_number = 0.5;        ///< sqrt(g d_max) dt / dx when time_step_s = 0
+  double courant_number = 0.5;        ///< (|U| + sqrt(g d_max)) dt / dx when time_step_s = 0 (courant_speed_m_s)
   double dispersion_coefficient = 1.0 / 15.0;  ///< B, Madsen & Sorensen (1992)
   /// The nonlinear terms of the momentum equations (model_nonlinear.hpp, docs/solver.md "Fully
   /// nonlinear dispersion"): kFullyNonlinear (default since issue 19) adds to seed 003 eq. (1)-(7)
