@@ -79,7 +79,7 @@ void check_time_step(TableReader& time, const TimeRequest& request, const BakeCa
     const double largest_step_s = kMaxCourantNumber * spacing_m / speed_m_s;
     const std::string speed_text =
         current.any() ? fmt::format("(|U| + sqrt(g d_max)) dt / min(dx, dy) = {:.3g} (|U| {:.3g} m/s, the [current]; ", courant,
-                                    std::hypot(current.velocity_x_m_s, current.velocity_y_m_s))
+                                    current.speed_m_s())
                       : fmt::format("sqrt(g d_max) dt / min(dx, dy) = {:.3g} (", courant);
     if (courant > kMaxCourantNumber)  // only a given time step gets here: courant_number is bounded above
       time.fail(time.full("time_step_s"),

@@ -230,13 +230,12 @@ void BoussinesqSolver::Implementation::choose_time_step(double max_depth) {
     else
       problem << "SolverParameters::courant_number = " << parameters.courant_number << " (a time step of " << dt << " s) gives";
     if (parameters.current.any())
-      problem << " a Courant number (|U| + sqrt(g d_max)) dt/min(dx, dy) = " << courant << " (|U| "
-              << std::hypot(parameters.current.velocity_x_m_s, parameters.current.velocity_y_m_s)
-              << " m/s, SolverParameters::current; d_max " << max_depth << " m, the deepest cell; min(dx, dy) " << smaller_spacing
-              << " m), above the stability limit " << kMaxCourantNumber;
+      problem << " a Courant number (|U| + sqrt(g d_max)) dt/min(dx, dy) = " << courant << " (|U| " << parameters.current.speed_m_s()
+              << " m/s, SolverParameters::current; ";
     else
-      problem << " a Courant number sqrt(g d_max) dt/min(dx, dy) = " << courant << " (d_max " << max_depth
-              << " m, the deepest cell; min(dx, dy) " << smaller_spacing << " m), above the stability limit " << kMaxCourantNumber;
+      problem << " a Courant number sqrt(g d_max) dt/min(dx, dy) = " << courant << " (";
+    problem << "d_max " << max_depth << " m, the deepest cell; min(dx, dy) " << smaller_spacing << " m), above the stability limit "
+            << kMaxCourantNumber;
     throw Error(kSubject, problem.str(),
                 step_given ? "set SolverParameters::time_step_s to at most " + std::to_string(kMaxCourantNumber * smaller_spacing / celerity) +
                                  " s, or to 0 with SolverParameters::courant_number at most " + std::to_string(kMaxCourantNumber)

@@ -131,6 +131,7 @@ struct ImposedCurrent {
   double velocity_x_m_s = 0.0;
   double velocity_y_m_s = 0.0;
   bool any() const { return velocity_x_m_s != 0.0 || velocity_y_m_s != 0.0; }
+  double speed_m_s() const { return std::hypot(velocity_x_m_s, velocity_y_m_s); }  ///< |U|
 };
 
 /// The speed the Courant number is taken of (docs/solver.md, "Currents"): the fastest signal on the
@@ -142,7 +143,7 @@ struct ImposedCurrent {
 /// terms linearised about P = U d), which is the whole of the advection M (D/Dt) of the waves at
 /// short wavelengths; gravity alone is implicit.
 inline double courant_speed_m_s(double deepest_m, const ImposedCurrent& current) {
-  return std::hypot(current.velocity_x_m_s, current.velocity_y_m_s) + std::sqrt(ocean::kGravity_m_s2 * deepest_m);
+  return current.speed_m_s() + std::sqrt(ocean::kGravity_m_s2 * deepest_m);
 }
 
 /// The stability limit of the Courant number (|U| + sqrt(g d_max)) dt / dx: beyond it the iterated explicit
