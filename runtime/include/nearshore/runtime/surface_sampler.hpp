@@ -157,6 +157,9 @@ class SurfaceSampler {
     const ocean::DeepWaterFrame* to = nullptr;
   };
   double weight(double x_m, double y_m) const;
+  // w (with_slope: and its gradient) at a point of the site rectangle: inline in the band where
+  // only the maker's ramp varies (surface_sampler.cpp), else harbour_weight(_and_gradient).
+  HarbourWeight site_weight(double x_m, double y_m, bool with_slope) const;
   double harbour_eta(double x_m, double y_m) const;
   struct EtaAndRate {
     double eta = 0.0, rate = 0.0;
@@ -198,6 +201,11 @@ class SurfaceSampler {
   double spacing_x_m_ = 1.0, spacing_y_m_ = 1.0, inverse_spacing_x_ = 1.0, inverse_spacing_y_ = 1.0;  // dx, dy
   double harbour_fraction_ = 0.0, deep_fraction_ = 0.0, choppiness_ = 0.0;
   double frame_interval_s_ = 0.0;    // T of the Hermite (0: linear, no rate)
+  // harbour_eta's Hermite weights {h00, h10 T, h01, h11 T}, each twice (columns i0 and i0 + 1).
+  float hermite_by_channel_[8] = {};
+  // The maker's ramp (HarbourSite's blending record) and the edge fade, for site_weight.
+  int ramp_axis_ = 1;
+  double ramp_inward_sign_ = 1.0, ramp_line_m_ = 0.0, ramp_start_m_ = 0.0, ramp_width_m_ = 0.0, edge_fade_m_ = 0.0;
   double inverse_deep_interval_ = 0.0;  // 1 / (t_to - t_from) of the deep keyframes (0 when equal)
   HermiteWeights hermite_;
   // Where w = 1 exactly (beyond the maker's zone and every edge fade): no ramp to evaluate.
