@@ -501,19 +501,13 @@ void BoussinesqSolver::Implementation::apply_sponges() {
       for (std::size_t k = range.begin(); k < range.end(); ++k) body(points[k]);
     });
   };
-  if (still_water_level_m != 0.0) {
-    // Towards the still-water level of a tide (set_still_water_level), not the grid's.
-    const double level = still_water_level_m;
-    damp(sponge_cells, [&](const SpongePoint& point) {
-      const std::size_t i = point.index;
-      if (depth[i] > 0.0f && depth[i] + eta[i] > dry) eta[i] = level + (eta[i] - level) * point.factor;
-    });
-  } else {
-    damp(sponge_cells, [&](const SpongePoint& point) {
-      const std::size_t i = point.index;
-      if (depth[i] > 0.0f && depth[i] + eta[i] > dry) eta[i] *= point.factor;
-    });
-  }
+  // Towards the still-water level: a tide's (set_still_water_level), else the grid's 0, where
+  // level + (eta - level) f is eta f to the bit (x - 0 and 0 + x are exact; a -0 becomes +0).
+  const double level = still_water_level_m;
+  damp(sponge_cells, [&](const SpongePoint& point) {
+    const std::size_t i = point.index;
+    if (depth[i] > 0.0f && depth[i] + eta[i] > dry) eta[i] = level + (eta[i] - level) * point.factor;
+  });
   if (parameters.current.any()) {
     // Towards the imposed current's flux, not rest (docs/solver.md, "Currents"): the waves are
     // absorbed, the current passes through.
