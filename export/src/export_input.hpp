@@ -50,9 +50,10 @@ void write_agitation_map(const ExportInput& input, const Raster<float>& coeffici
 struct FrameTimes {
   double first_s = 0.0, last_s = 0.0;
 };
-/// wave_statistics_hs.png: `hs_m` (the GeoTIFF's band 1) as a map with axes (wave_height_map.cpp);
-/// the geotiff export writes it beside the GeoTIFF.
-void write_wave_height_map(const ExportInput& input, const Raster<float>& hs_m, const FrameTimes& times,
-                           ExportSummary& summary);
+/// wave_statistics_hs.png: `hs_m` (the GeoTIFF's band 1) as a map with axes, the water cells whose
+/// `wet_fraction` (band 4) is below 1 drawn as swash (wave_height_map.cpp); the geotiff export writes
+/// it beside the GeoTIFF.
+void write_wave_height_map(const ExportInput& input, const Raster<float>& hs_m, const Raster<float>& wet_fraction,
+                           const FrameTimes& times, ExportSummary& summary);
 
 }  // namespace nearshore::exports

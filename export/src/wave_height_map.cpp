@@ -47,8 +47,8 @@ std::string sequence_name(const std::filesystem::path& folder) {
 
 }  // namespace
 
-void write_wave_height_map(const ExportInput& input, const Raster<float>& hs_m, const FrameTimes& times,
-                           ExportSummary& summary) {
+void write_wave_height_map(const ExportInput& input, const Raster<float>& hs_m, const Raster<float>& wet_fraction,
+                           const FrameTimes& times, ExportSummary& summary) {
   const GridGeometry& g = input.harbour.geometry;
   const std::filesystem::path path = input.output_folder / "wave_statistics_hs.png";
   HeatMapStyle style;
@@ -62,8 +62,25 @@ void write_wave_height_map(const ExportInput& input, const Raster<float>& hs_m, 
   style.second_mask_colour = no_data_colour;
   Image map = render_heat_map(hs_m, style, &input.harbour.land);
 
-  // The legend below the field: what the masks are and which frames the statistics average.
   const HeatMapPlacement placement = heat_map_placement(g.columns, g.rows, style);
+  // The swash: water cells dry in some frames, where the bake pins eta at -d, so 4 std. dev. of eta
+  // measures the moving shoreline rather than a wave height (surface_statistics.hpp). White, which
+  // viridis never reaches; a cell smaller than a pixel still takes its pixel.
+  const Rgb swash_colour{1.0f, 1.0f, 1.0f};
+  int swash_cells = 0;
+  const double cell_px = placement.pixels_per_cell;
+  for (int row = 0; row < g.rows; ++row)
+    for (int column = 0; column < g.columns; ++column) {
+      const std::size_t cell = static_cast<std::size_t>(row) * g.columns + column;
+      if (input.is_land(cell) || !(wet_fraction.values()[cell] < 1.0f)) continue;
+      ++swash_cells;
+      const double left = placement.left_px + column * cell_px, top = placement.top_px + (g.rows - 1 - row) * cell_px;
+      const int x0 = static_cast<int>(std::floor(left)), y0 = static_cast<int>(std::floor(top));
+      map.fill_rectangle(x0, y0, std::max(x0, static_cast<int>(std::ceil(left + cell_px)) - 1),
+                         std::max(y0, static_cast<int>(std::ceil(top + cell_px)) - 1), swash_colour);
+    }
+
+  // The legend below the field: what the masks are and which frames the statistics average.
   const Rgb ink{0.1f, 0.1f, 0.1f};
   const int x = static_cast<int>(placement.left_px), y = placement.legend_top_px + 14;
   map.fill_rectangle(x, y - 11, x + 20, y + 1, style.mask_colour);
@@ -71,6 +88,13 @@ void write_wave_height_map(const ExportInput& input, const Raster<float>& hs_m, 
   map.fill_rectangle(x + 70, y - 11, x + 90, y + 1, no_data_colour);
   draw_line(map, x + 70, y + 1, x + 82, y - 11, Rgb{0.45f, 0.45f, 0.45f}, 1);
   draw_text(map, x + 96, y, "no data (outside the chart)", ink, 14);
+  if (swash_cells > 0) {
+    map.fill_rectangle(x + 310, y - 11, x + 330, y + 1, swash_colour);
+    draw_line(map, x + 310, y - 11, x + 330, y - 11, ink, 1);
+    draw_line(map, x + 310, y + 1, x + 330, y + 1, ink, 1);
+    draw_text(map, x + 336, y, fmt::format("swash: dry part of the time ({} cells; Hs there is not a wave height)", swash_cells),
+              ink, 14);
+  }
   draw_text(map, x, y + 20,
             fmt::format("4 std. dev. of eta over frames {}-{}: t = {:.1f}-{:.1f} s, {:.1f} s averaged",
                         input.first_frame, input.end_frame - 1, times.first_s, times.last_s,

@@ -48,8 +48,7 @@ HarbourSite read_harbour_site(const sequence::SequenceReader& reader, double edg
       site.blend_width_m = blending.width_m;
     }
   }
-  if (manifest.solver.is_object() && manifest.solver.contains("dry_depth_m") && manifest.solver["dry_depth_m"].is_number())
-    site.dry_depth_m = manifest.solver["dry_depth_m"].get<double>();
+  if (const std::optional<double> dry_depth_m = manifest.recorded_dry_depth_m()) site.dry_depth_m = *dry_depth_m;
   const double smaller_side_m = std::min(site.width_m, site.height_m);
   if (edge_fade_m >= 0.0) {
     site.edge_fade_m = edge_fade_m;

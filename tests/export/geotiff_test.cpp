@@ -41,7 +41,7 @@ TEST(ExportGeotiff, GdalReadsHsMeanLevelAndBreakingFractionWithLandNodata) {
   const int columns = TestWave::kColumns, rows = TestWave::kRows;
   EXPECT_EQ(dataset->GetRasterXSize(), columns);
   EXPECT_EQ(dataset->GetRasterYSize(), rows);
-  ASSERT_EQ(dataset->GetRasterCount(), 3);
+  ASSERT_EQ(dataset->GetRasterCount(), 4);
   double geotransform[6] = {};
   ASSERT_EQ(dataset->GetGeoTransform(geotransform), CE_None);
   EXPECT_DOUBLE_EQ(geotransform[0], TestWave::kOriginX_m);
@@ -54,13 +54,13 @@ TEST(ExportGeotiff, GdalReadsHsMeanLevelAndBreakingFractionWithLandNodata) {
   EXPECT_TRUE(dataset->GetSpatialRef()->IsSame(&utm51));
   EXPECT_EQ(std::string(dataset->GetMetadataItem("NEARSHORE_FRAMES")), "10:50");
 
-  std::vector<float> bands[3];
-  for (int b = 0; b < 3; ++b) {
+  std::vector<float> bands[4];
+  for (int b = 0; b < 4; ++b) {
     GDALRasterBand* band = dataset->GetRasterBand(b + 1);
     int has_nodata = 0;
     EXPECT_EQ(band->GetNoDataValue(&has_nodata), -9999.0);
     EXPECT_TRUE(has_nodata);
-    EXPECT_EQ(std::string(band->GetUnitType()), b == 2 ? "1" : "m");
+    EXPECT_EQ(std::string(band->GetUnitType()), b >= 2 ? "1" : "m");
     bands[b].resize(static_cast<std::size_t>(columns) * rows);
     ASSERT_EQ(band->RasterIO(GF_Read, 0, 0, columns, rows, bands[b].data(), columns, rows, GDT_Float32, 0, 0), CE_None);
   }
@@ -78,6 +78,7 @@ TEST(ExportGeotiff, GdalReadsHsMeanLevelAndBreakingFractionWithLandNodata) {
       EXPECT_NEAR(bands[0][pixel], hs_m, 1e-5) << column << ", " << row;
       EXPECT_NEAR(bands[1][pixel], 0.0, 1e-6);
       EXPECT_FLOAT_EQ(bands[2][pixel], column < 2 ? 0.5f : 0.0f);
+      EXPECT_FLOAT_EQ(bands[3][pixel], 1.0f);  // 10 m of water under a 0.1 m wave never dries
     }
 }
 

@@ -1,4 +1,5 @@
 // The two computations behind the exports, against their analytic values on a linear wave.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -39,6 +40,31 @@ TEST(SurfaceStatistics, LinearWaveHasHsOfTwoRootTwoAmplitudeAndItsSetUp) {
       EXPECT_FLOAT_EQ(fraction(column, row), column == 3 ? 0.5f : 0.0f);
     }
   EXPECT_EQ(statistics.frame_count(), kFrames);
+}
+
+// A cell of 0.2 m under eta = 0.4 cos(2 pi n / 20) holds water while 0.2 + eta > 0.01 (the dry
+// depth), i.e. cos > -0.475: n = 0..6 and 14..19 of every 20 (cos(126 deg) = -0.588 and
+// cos(108 deg) = -0.309 bracket it), 13 of 20 frames; the 5 m cells never dry. Without a depth every
+// cell counts as wet.
+TEST(SurfaceStatistics, AShoreCellThatDriesPartOfTheTimeHasItsWetFraction) {
+  constexpr int kColumns = 3, kRows = 2, kFrames = 40;
+  Raster<float> depth(kColumns, kRows, 5.0f);
+  depth(1, 0) = 0.2f;
+  SurfaceStatistics statistics(depth, 0.01);
+  SurfaceStatistics without_depth(kColumns, kRows);
+  Raster<float> eta(kColumns, kRows), foam(kColumns, kRows, 0.0f);
+  for (int n = 0; n < kFrames; ++n) {
+    for (float& value : eta.values()) value = static_cast<float>(0.4 * std::cos(2.0 * std::numbers::pi * n / 20.0));
+    eta(1, 0) = std::max(eta(1, 0), -0.2f);  // the solver pins a dry cell's eta at -d
+    statistics.add_frame(eta, foam);
+    without_depth.add_frame(eta, foam);
+  }
+  const Raster<float> wet = statistics.wet_fraction();
+  for (int row = 0; row < kRows; ++row)
+    for (int column = 0; column < kColumns; ++column) {
+      EXPECT_FLOAT_EQ(wet(column, row), column == 1 && row == 0 ? 0.65f : 1.0f) << column << "," << row;
+      EXPECT_FLOAT_EQ(without_depth.wet_fraction()(column, row), 1.0f);
+    }
 }
 
 // Over depth d, eta = a cos(k x - w t) with P = (w / k) eta gives the depth-averaged velocity

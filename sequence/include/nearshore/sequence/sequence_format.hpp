@@ -73,6 +73,13 @@ struct SequenceManifest {
   std::vector<FileEntry> frames;  ///< frame_count entries, index order
 
   double frame_time_s(int index) const { return first_frame_time_s + index * frame_interval_s; }
+  /// The bake's wet/dry threshold (m) from the solver record (`solver.dry_depth_m`): a cell whose
+  /// total depth d + eta is at most this was dry. nullopt when the record has none (older bakes).
+  std::optional<double> recorded_dry_depth_m() const {
+    if (solver.is_object() && solver.contains("dry_depth_m") && solver["dry_depth_m"].is_number())
+      return solver["dry_depth_m"].get<double>();
+    return std::nullopt;
+  }
 };
 
 nlohmann::json manifest_to_json(const SequenceManifest& manifest);
