@@ -223,7 +223,14 @@ float still_water_depth_at(vec2 p) {
 
 // The skirt's ground beyond the grid (playback::skirt_ground_m, site_terrain.cpp: the same rule):
 // the edge's ground averaged along the edge (9 taps over +-the distance beyond, at most a quarter
-// of the shorter side) stays at that height on land and deepens to the open sea's depth on water.
+// of the shorter side) stays at that height on land and deepens to the open sea's depth on water;
+// where the grid carries surroundings (the chart's ground round it), their ground instead: RG =
+// (w * elevation, w), w 0 where they have no data, turned to over u_surroundings_blend_m from the
+// grid's edge (playback::SurroundingGround).
+uniform bool u_has_surroundings;
+uniform sampler2D u_surroundings;
+uniform vec2 u_surroundings_origin_m, u_surroundings_size_m;  // their box, site frame
+uniform float u_surroundings_blend_m;
 vec2 perimeter_point(float s) {
   float w = u_site_size_m.x, h = u_site_size_m.y, perimeter = 2.0 * (w + h);
   s = mod(s, perimeter);
@@ -248,7 +255,11 @@ float skirt_ground_m(vec2 p) {
     elevation -= harbour_bilinear(u_still_water_depth, perimeter_point(s0 + reach * (2.0 * float(t) / 8.0 - 1.0))) / 9.0;
   float drop = elevation + u_open_sea_depth_m;
   float as_water = elevation - drop * smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond);
-  return mix(as_water, elevation, smoothstep(-1.0, 1.0, elevation));
+  float edge_rule = mix(as_water, elevation, smoothstep(-1.0, 1.0, elevation));
+  if (!u_has_surroundings) return edge_rule;
+  vec2 around = texture(u_surroundings, (p - u_surroundings_origin_m) / u_surroundings_size_m).rg;
+  float t = around.g * smoothstep(0.0, u_surroundings_blend_m, beyond);
+  return t > 0.0 ? mix(edge_rule, around.r / around.g, t) : edge_rule;
 }
 // Beyond the grid the sea is not drawn where the skirt's ground stands above still water: the land
 // goes on to the horizon (and a sea drawn under it would fight it for depth kilometres off).
@@ -261,7 +272,9 @@ bool on_skirt_land(vec2 p) {
   float w = u_site_size_m.x, h = u_site_size_m.y, perimeter = 2.0 * (w + h);
   float reach = min(length(p - q), 0.25 * min(w, h)), s0 = perimeter_position(q);
   float ends[5] = float[5](0.0, w, w + h, 2.0 * w + h, perimeter);
-  bool land_near = false;
+  // Within the surroundings' box, land may stand anywhere (an island off an all-water edge).
+  bool land_near = u_has_surroundings && all(greaterThanEqual(p, u_surroundings_origin_m)) &&
+                   all(lessThan(p, u_surroundings_origin_m + u_surroundings_size_m));
   for (int side = 0; side < 4; ++side)
     for (int wrap = -1; wrap <= 1; ++wrap) {
       float a = s0 - reach + float(wrap) * perimeter, b = s0 + reach + float(wrap) * perimeter;

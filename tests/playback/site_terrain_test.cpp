@@ -67,7 +67,7 @@ TEST(SiteTerrain, TheGroundIsTheBilinearDepthAndItsSkirtContinuesTheLandAndTheSe
       }
     } else {
       // every skirt vertex is its twin's ground (what the water shader tests it against)
-      EXPECT_NEAR(v.z, playback::skirt_ground_m(h, 20.0, v.x, v.y), 1e-3 + 1e-6 * std::abs(v.z)) << "(" << v.x << ", " << v.y << ")";
+      EXPECT_NEAR(v.z, playback::skirt_ground_m(h, playback::SurroundingGround{}, 20.0, v.x, v.y), 1e-3 + 1e-6 * std::abs(v.z)) << "(" << v.x << ", " << v.y << ")";
       if (v.x >= 40 && v.x <= 160 && v.y > 150) {
         ++beyond_north;  // the land beyond the north edge (clear of its ends) stands at the edge's 3 m, to the end
         EXPECT_NEAR(v.z, 3.0, 1e-4) << "(" << v.x << ", " << v.y << ")";
