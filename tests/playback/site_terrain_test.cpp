@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "nearshore/playback/site_terrain.hpp"
+#include "surroundings_fixture.hpp"
 
 namespace nearshore {
 namespace {
@@ -184,21 +185,10 @@ namespace {
 // data (NaN) east of x = 330 m (the chart ends there); land 3 m up north of the grid.
 HarbourGrid harbour_with_surroundings() {
   HarbourGrid h = sloping_harbour();
-  Surroundings& s = h.surroundings;
-  s.geometry = h.geometry;
-  s.geometry.spacing_m = 10.0;
-  s.geometry.columns = 60;
-  s.geometry.rows = 55;
-  s.geometry.origin_x_m = kOriginX - 200.0;
-  s.geometry.origin_y_m = kOriginY - 200.0;
-  s.still_water_depth_m = Raster<float>(60, 55);
-  for (int j = 0; j < 55; ++j)
-    for (int i = 0; i < 60; ++i) {
-      const double x = -200.0 + (i + 0.5) * 10.0, y = -200.0 + (j + 0.5) * 10.0;  // site frame
-      float depth = float(std::clamp(0.1 * (110.0 - y), -3.0, 10.0));  // the grid's own slope, continued
-      if (std::hypot(x - 100.0, y + 120.0) < 40.0) depth = -4.0f;
-      s.still_water_depth_m(i, j) = x > 330.0 ? NAN : depth;
-    }
+  h.surroundings = test::surroundings_round(h.geometry, 10.0, 200.0, [](double x, double y) {
+    const double depth = std::hypot(x - 100.0, y + 120.0) < 40.0 ? -4.0 : std::clamp(0.1 * (110.0 - y), -3.0, 10.0);
+    return x > 330.0 ? NAN : depth;  // the grid's own slope continued, the island, no data east
+  });
   return h;
 }
 

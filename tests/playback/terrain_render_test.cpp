@@ -13,6 +13,7 @@
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
+#include "surroundings_fixture.hpp"
 
 namespace nearshore {
 namespace {
@@ -213,21 +214,11 @@ TEST(TerrainRender, TheLandContinuesPastTheGridsEdge) {
 TEST(TerrainRender, AnIslandInTheSurroundingsIsDrawnWhereTheTwinPutsIt) {
   playback::GlWindow window(64, 64, "test", false);
   HarbourGrid h = grid(64, 48, 4.0);
-  Surroundings& outer = h.surroundings;
-  outer.geometry = h.geometry;
-  outer.geometry.spacing_m = 10.0;
-  outer.geometry.columns = 86;
-  outer.geometry.rows = 80;
-  outer.geometry.origin_x_m = kOriginX - 300.0;
-  outer.geometry.origin_y_m = kOriginY - 300.0;
-  outer.still_water_depth_m = Raster<float>(86, 80);
-  for (int j = 0; j < 80; ++j)
-    for (int i = 0; i < 86; ++i) {
-      const double x = -300.0 + (i + 0.5) * 10.0, y = -300.0 + (j + 0.5) * 10.0;
-      const double r = std::hypot(x - 128.0, y + 150.0);
-      outer.still_water_depth_m(i, j) = x > 450.0 ? NAN : float(std::clamp(0.2 * (r - 50.0), -3.0, 8.0));
-      if (i == 40 || j == 5) outer.still_water_depth_m(i, j) = -3.0f;  // two reefs one cell wide
-    }
+  h.surroundings = test::surroundings_round(h.geometry, 10.0, 300.0, [](double x, double y) {
+    const int i = int(std::floor((x + 300.0) / 10.0)), j = int(std::floor((y + 300.0) / 10.0));
+    if (i == 40 || j == 5) return -3.0;  // two reefs one cell wide
+    return x > 450.0 ? NAN : std::clamp(0.2 * (std::hypot(x - 128.0, y + 150.0) - 50.0), -3.0, 8.0);
+  });
   const playback::SurroundingGround ground = playback::surrounding_ground(h);
   const double open_sea_depth_m = 8.0;  // SiteTextures: the deepest edge depth, at least 5 m
   const int width = 512, height = 256;
@@ -268,20 +259,9 @@ TEST(TerrainRender, AnIslandInTheSurroundingsIsDrawnWhereTheTwinPutsIt) {
 TEST(TerrainRender, AFarLowIslandInTheSurroundingsIsDrawn) {
   playback::GlWindow window(64, 64, "test", false);
   HarbourGrid h = grid(64, 48, 4.0);
-  Surroundings& outer = h.surroundings;
-  outer.geometry = h.geometry;
-  outer.geometry.spacing_m = 200.0;
-  outer.geometry.columns = 260;
-  outer.geometry.rows = 260;
-  outer.geometry.origin_x_m = kOriginX - 26000.0 + 128.0;
-  outer.geometry.origin_y_m = kOriginY - 26000.0 + 96.0;
-  outer.still_water_depth_m = Raster<float>(260, 260);
-  for (int j = 0; j < 260; ++j)
-    for (int i = 0; i < 260; ++i) {
-      const double x = -26000.0 + 128.0 + (i + 0.5) * 200.0, y = -26000.0 + 96.0 + (j + 0.5) * 200.0;
-      const double r = std::hypot(x - 128.0, y - 20000.0);
-      outer.still_water_depth_m(i, j) = float(std::clamp(0.01 * (r - 3000.0), -2.5, 8.0));
-    }
+  h.surroundings = test::surroundings_round(h.geometry, 200.0, 25872.0, [](double x, double y) {
+    return std::clamp(0.01 * (std::hypot(x - 128.0, y - 20000.0) - 3000.0), -2.5, 8.0);
+  });
   const int width = 640, height = 360;
   const Picture picture = look(h, {128.0, 40.0, 100.0}, {128.0, 20000.0, 0.0}, 2.0, width, height);
   int land = 0, samples = 0;
