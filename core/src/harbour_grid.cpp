@@ -76,11 +76,12 @@ Surroundings read_surroundings_part(const fs::path& depth_exr, Imf::MultiPartInp
   if (!(g.spacing_x_m() > 0) || !(g.spacing_y_m() > 0) || g.crs_wkt != grid.crs_wkt || g.projection != grid.projection)
     throw Error(where, "is not in the harbour grid's projection, or its cells have no positive size",
                 "rewrite it with `nearshore bathy` (the surroundings are gridded in the grid's own projection)");
-  // Holding the grid's box (a millimetre of slack for the rounding of projected metres).
-  if (g.origin_x_m > grid.origin_x_m + 1e-3 || g.origin_y_m > grid.origin_y_m + 1e-3 ||
-      g.origin_x_m + g.width_m() < grid.origin_x_m + grid.width_m() - 1e-3 ||
-      g.origin_y_m + g.height_m() < grid.origin_y_m + grid.height_m() - 1e-3)
-    throw Error(where, fmt::format("x {:.1f}..{:.1f} m, y {:.1f}..{:.1f} m do not hold the grid's x {:.1f}..{:.1f} m, y {:.1f}..{:.1f} m",
+  // Round the grid: `nearshore bathy` grids them over a box holding the grid's, but a bake that
+  // resamples the grid may round its box out by half a cell; surroundings that do not even overlap
+  // the grid are another place's.
+  if (g.origin_x_m >= grid.origin_x_m + grid.width_m() || g.origin_x_m + g.width_m() <= grid.origin_x_m ||
+      g.origin_y_m >= grid.origin_y_m + grid.height_m() || g.origin_y_m + g.height_m() <= grid.origin_y_m)
+    throw Error(where, fmt::format("x {:.1f}..{:.1f} m, y {:.1f}..{:.1f} m do not overlap the grid's x {:.1f}..{:.1f} m, y {:.1f}..{:.1f} m",
                                    g.origin_x_m, g.origin_x_m + g.width_m(), g.origin_y_m, g.origin_y_m + g.height_m(),
                                    grid.origin_x_m, grid.origin_x_m + grid.width_m(), grid.origin_y_m,
                                    grid.origin_y_m + grid.height_m()),

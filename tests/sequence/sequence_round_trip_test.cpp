@@ -92,7 +92,7 @@ TEST(SequenceRoundTrip, TheHarbourGridsSurroundingsComeBackExactly) {
   EXPECT_TRUE(SequenceReader(plain).read_harbour_grid(Verify::kYes).surroundings.empty());
 }
 
-// Surroundings that do not hold the grid, or not in its projection, are refused naming the file's
+// Surroundings that miss the grid, or are not in its projection, are refused naming the file's
 // part and the boxes.
 TEST(SequenceRoundTrip, SurroundingsThatMissTheGridAreRefusedNamingThePart) {
   const auto folder = fresh_folder("surroundings-bad");
@@ -100,7 +100,7 @@ TEST(SequenceRoundTrip, SurroundingsThatMissTheGridAreRefusedNamingThePart) {
   const GridGeometry geometry = test_geometry();
   HarbourGrid harbour = test_harbour(geometry);
   harbour.surroundings.geometry = geometry;
-  harbour.surroundings.geometry.origin_x_m += 40.0;  // the grid's west edge outside them
+  harbour.surroundings.geometry.origin_x_m += 200.0;  // east of the grid's 148 m
   harbour.surroundings.still_water_depth_m = Raster<float>(geometry.columns, geometry.rows, 5.0f);
   write_harbour_grid(folder / "depth.exr", harbour);
   try {
@@ -108,7 +108,7 @@ TEST(SequenceRoundTrip, SurroundingsThatMissTheGridAreRefusedNamingThePart) {
     FAIL() << "surroundings that miss the grid were read";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("part 1, \"surroundings\""), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("do not hold the grid's"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("do not overlap the grid's"), std::string::npos) << e.what();
   }
   harbour.surroundings.geometry = geometry;
   harbour.surroundings.geometry.projection = {{"kind", "utm"}, {"zone", 50}, {"north", true}};

@@ -73,7 +73,7 @@ struct HarbourGrid {
 /// Writes atomically. Throws nearshore::Error naming the path on failure.
 void write_harbour_grid(const std::filesystem::path& depth_exr, const HarbourGrid& grid);
 /// Reads and validates (channels present, sizes agree, no NaN depth; the surroundings in the grid's
-/// projection, holding the grid's box, their depths NaN or finite). Throws
+/// projection, overlapping its box, their depths NaN or finite). Throws
 /// nearshore::Error naming the file, the problem and where.
 HarbourGrid read_harbour_grid(const std::filesystem::path& depth_exr);
 
