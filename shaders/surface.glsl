@@ -208,29 +208,41 @@ float curvature_drop_m(vec2 p) {
   return rho2 / (u_earth_radius_m + sqrt(max(u_earth_radius_m * u_earth_radius_m - rho2, 0.0)));
 }
 
+// The surroundings (playback::SurroundingGround, site_terrain.hpp): the chart's ground round the
+// grid, RG = (w * elevation, w), w 0 where they have no data. At p, `beyond` metres past the grid's
+// edge: (their elevation, how far the ground has turned to it: w * smoothstep(0,
+// u_surroundings_blend_m, beyond)); y = 0 without them or where they have no data.
+uniform bool u_has_surroundings;
+uniform sampler2D u_surroundings;
+uniform vec2 u_surroundings_origin_m, u_surroundings_size_m;  // their box, site frame
+uniform float u_surroundings_blend_m;
+vec2 surroundings_at(vec2 p, float beyond) {
+  if (!u_has_surroundings) return vec2(0.0);
+  vec2 around = texture(u_surroundings, (p - u_surroundings_origin_m) / u_surroundings_size_m).rg;
+  float t = around.g * smoothstep(0.0, u_surroundings_blend_m, beyond);
+  return t > 0.0 ? vec2(around.r / around.g, t) : vec2(0.0);
+}
+
 // Still-water depth d at p (m), for the water's colour: bilinear inside the harbour. Beyond it the
 // seabed continues from the rectangle's nearest edge and deepens to the open sea's depth over one
 // harbour extent, so the colour of the water (which sees the seabed through shallow water) shows
-// no edge where the rectangle ends.
+// no edge where the rectangle ends; where the surroundings have data, their depth instead, turned
+// to as the skirt's ground turns to it (skirt_ground_m below).
 float still_water_depth_at(vec2 p) {
   if (!u_has_site) return u_open_sea_depth_m;
   vec2 inside = clamp(p, vec2(0.0), u_site_size_m);
   float edge = texture(u_still_water_depth, inside / u_site_size_m).r;
   if (all(equal(inside, p))) return edge;
   float beyond = length(p - inside);
-  return mix(max(edge, 2.0), u_open_sea_depth_m, smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond));
+  float rule = mix(max(edge, 2.0), u_open_sea_depth_m, smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond));
+  vec2 around = surroundings_at(p, beyond);
+  return mix(rule, max(-around.x, 0.0), around.y);
 }
 
 // The skirt's ground beyond the grid (playback::skirt_ground_m, site_terrain.cpp: the same rule):
 // the edge's ground averaged along the edge (9 taps over +-the distance beyond, at most a quarter
 // of the shorter side) stays at that height on land and deepens to the open sea's depth on water;
-// where the grid carries surroundings (the chart's ground round it), their ground instead: RG =
-// (w * elevation, w), w 0 where they have no data, turned to over u_surroundings_blend_m from the
-// grid's edge (playback::SurroundingGround).
-uniform bool u_has_surroundings;
-uniform sampler2D u_surroundings;
-uniform vec2 u_surroundings_origin_m, u_surroundings_size_m;  // their box, site frame
-uniform float u_surroundings_blend_m;
+// where the grid carries surroundings, their ground instead (surroundings_at above).
 vec2 perimeter_point(float s) {
   float w = u_site_size_m.x, h = u_site_size_m.y, perimeter = 2.0 * (w + h);
   s = mod(s, perimeter);
@@ -256,10 +268,8 @@ float skirt_ground_m(vec2 p) {
   float drop = elevation + u_open_sea_depth_m;
   float as_water = elevation - drop * smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond);
   float edge_rule = mix(as_water, elevation, smoothstep(-1.0, 1.0, elevation));
-  if (!u_has_surroundings) return edge_rule;
-  vec2 around = texture(u_surroundings, (p - u_surroundings_origin_m) / u_surroundings_size_m).rg;
-  float t = around.g * smoothstep(0.0, u_surroundings_blend_m, beyond);
-  return t > 0.0 ? mix(edge_rule, around.r / around.g, t) : edge_rule;
+  vec2 around = surroundings_at(p, beyond);
+  return mix(edge_rule, around.x, around.y);
 }
 // Beyond the grid the sea is not drawn where the skirt's ground stands above still water: the land
 // goes on to the horizon (and a sea drawn under it would fight it for depth kilometres off).
