@@ -102,7 +102,7 @@ void run_demo(const DemoOptions& options) {
   bathymetry::DemoHarbourFiles chart;
   run_stage("chart", [&] {
     chart = bathymetry::write_demo_harbour(chart_folder);
-    return fmt::format("{}/ (depth.tif, coastline, land, structures .geojson)", chart_folder.string());
+    return fmt::format("{}/ (depth.tif, coastline, land, structures .geojson, surroundings.tif)", chart_folder.string());
   });
 
   run_stage("bathy", [&] {
