@@ -208,22 +208,41 @@ float curvature_drop_m(vec2 p) {
   return rho2 / (u_earth_radius_m + sqrt(max(u_earth_radius_m * u_earth_radius_m - rho2, 0.0)));
 }
 
+// The surroundings (playback::SurroundingGround, site_terrain.hpp): the chart's ground round the
+// grid, RG = (w * elevation, w), w 0 where they have no data. At p, `beyond` metres past the grid's
+// edge: (their elevation, how far the ground has turned to it: w * smoothstep(0,
+// u_surroundings_blend_m, beyond)); y = 0 without them or where they have no data.
+uniform bool u_has_surroundings;
+uniform sampler2D u_surroundings;
+uniform vec2 u_surroundings_origin_m, u_surroundings_size_m;  // their box, site frame
+uniform float u_surroundings_blend_m;
+vec2 surroundings_at(vec2 p, float beyond) {
+  if (!u_has_surroundings) return vec2(0.0);
+  vec2 around = texture(u_surroundings, (p - u_surroundings_origin_m) / u_surroundings_size_m).rg;
+  float t = around.g * smoothstep(0.0, u_surroundings_blend_m, beyond);
+  return t > 0.0 ? vec2(around.r / around.g, t) : vec2(0.0);
+}
+
 // Still-water depth d at p (m), for the water's colour: bilinear inside the harbour. Beyond it the
 // seabed continues from the rectangle's nearest edge and deepens to the open sea's depth over one
 // harbour extent, so the colour of the water (which sees the seabed through shallow water) shows
-// no edge where the rectangle ends.
+// no edge where the rectangle ends; where the surroundings have data, their depth instead, turned
+// to as the skirt's ground turns to it (skirt_ground_m below).
 float still_water_depth_at(vec2 p) {
   if (!u_has_site) return u_open_sea_depth_m;
   vec2 inside = clamp(p, vec2(0.0), u_site_size_m);
   float edge = texture(u_still_water_depth, inside / u_site_size_m).r;
   if (all(equal(inside, p))) return edge;
   float beyond = length(p - inside);
-  return mix(max(edge, 2.0), u_open_sea_depth_m, smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond));
+  float rule = mix(max(edge, 2.0), u_open_sea_depth_m, smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond));
+  vec2 around = surroundings_at(p, beyond);
+  return mix(rule, max(-around.x, 0.0), around.y);
 }
 
 // The skirt's ground beyond the grid (playback::skirt_ground_m, site_terrain.cpp: the same rule):
 // the edge's ground averaged along the edge (9 taps over +-the distance beyond, at most a quarter
-// of the shorter side) stays at that height on land and deepens to the open sea's depth on water.
+// of the shorter side) stays at that height on land and deepens to the open sea's depth on water;
+// where the grid carries surroundings, their ground instead (surroundings_at above).
 vec2 perimeter_point(float s) {
   float w = u_site_size_m.x, h = u_site_size_m.y, perimeter = 2.0 * (w + h);
   s = mod(s, perimeter);
@@ -248,7 +267,9 @@ float skirt_ground_m(vec2 p) {
     elevation -= harbour_bilinear(u_still_water_depth, perimeter_point(s0 + reach * (2.0 * float(t) / 8.0 - 1.0))) / 9.0;
   float drop = elevation + u_open_sea_depth_m;
   float as_water = elevation - drop * smoothstep(0.0, max(u_site_size_m.x, u_site_size_m.y), beyond);
-  return mix(as_water, elevation, smoothstep(-1.0, 1.0, elevation));
+  float edge_rule = mix(as_water, elevation, smoothstep(-1.0, 1.0, elevation));
+  vec2 around = surroundings_at(p, beyond);
+  return mix(edge_rule, around.x, around.y);
 }
 // Beyond the grid the sea is not drawn where the skirt's ground stands above still water: the land
 // goes on to the horizon (and a sea drawn under it would fight it for depth kilometres off).
@@ -261,7 +282,9 @@ bool on_skirt_land(vec2 p) {
   float w = u_site_size_m.x, h = u_site_size_m.y, perimeter = 2.0 * (w + h);
   float reach = min(length(p - q), 0.25 * min(w, h)), s0 = perimeter_position(q);
   float ends[5] = float[5](0.0, w, w + h, 2.0 * w + h, perimeter);
-  bool land_near = false;
+  // Within the surroundings' box, land may stand anywhere (an island off an all-water edge).
+  bool land_near = u_has_surroundings && all(greaterThanEqual(p, u_surroundings_origin_m)) &&
+                   all(lessThan(p, u_surroundings_origin_m + u_surroundings_size_m));
   for (int side = 0; side < 4; ++side)
     for (int wrap = -1; wrap <= 1; ++wrap) {
       float a = s0 - reach + float(wrap) * perimeter, b = s0 + reach + float(wrap) * perimeter;

@@ -104,6 +104,7 @@ FlagTable bathy_flags() {
           {"BathyRequest::fill_uncovered_from_nearest", "--fill-uncovered"},
           {"BathyRequest::coastline_band_m", "--coastline-band"},
           {"BathyRequest::leave_one_out", "--leave-one-out"},
+          {"BathyRequest::surroundings_margin_m", "--surroundings-margin"},
           {"write_bathymetry_outputs(folder)", "-o"}};
 }
 
@@ -116,6 +117,7 @@ void add_bathy_command(CLI::App& app) {
     std::string bbox, bbox_m, sign = "auto", projection = "utm", output, xyz_crs;
     std::vector<std::string> structures;
     double water_level_m = 0.0, minimum_depth_m = 0.5, maximum_slope = 0.0, land_elevation_m = 2.0, band_m = 200.0;
+    double surroundings_margin_m = -1.0;  // the grid's longer side
     bool json = false, leave_one_out = false, fill_uncovered = false;
     std::vector<std::string> marks;  // NAME:POSITION, drawn on the preview
   };
@@ -156,6 +158,10 @@ void add_bathy_command(CLI::App& app) {
   command->add_flag("--fill-uncovered", options->fill_uncovered,
                     "Cells no input covers take the nearest covered depth (default: they are no data, outside the chart; the bake's [bathymetry] outside_chart decides)");
   command->add_flag("--leave-one-out", options->leave_one_out, "Cross-validate: re-grid each chart sounding from the others");
+  command->add_option("--surroundings-margin", options->surroundings_margin_m,
+                      "How far (m) the surroundings (the coarse ground round the grid the renderer draws beyond it) reach "
+                      "beyond the grid on every side; 0: none (default: the grid's longer side)")
+      ->check(number_in(at_least(0), at_most(1e6)));
   command->add_option("--mark", options->marks,
                       "Draw a named place on the preview, NAME:POSITION with POSITION as lat=..,lon=.., "
                       "easting_m=..,northing_m=.. (the grid's CRS) or X,Y from the grid's south-west corner; repeatable "
@@ -184,6 +190,7 @@ void add_bathy_command(CLI::App& app) {
     request.coastline_band_m = options->band_m;
     request.leave_one_out = options->leave_one_out;
     request.fill_uncovered_from_nearest = options->fill_uncovered;
+    request.surroundings_margin_m = options->surroundings_margin_m;
     if (options->json) ProgressBar::set_quiet(true);
     const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
     // Marks are placed through the one position parser (core/geo_position.hpp), as the bake
@@ -226,6 +233,15 @@ void add_bathy_command(CLI::App& app) {
                                       summary["leave_one_out"]["soundings"].get<std::size_t>(),
                                       summary["leave_one_out"]["median_absolute_error_m"].get<double>(),
                                       summary["leave_one_out"]["p90_absolute_error_m"].get<double>()).c_str());
+    if (summary.contains("surroundings")) {
+      const auto& outer = summary["surroundings"];
+      std::printf("%s\n", fmt::format("surroundings {} x {} cells at {:.0f} m, {:.0f} m beyond the grid: {} water, {} land, "
+                                      "{} no data (beyond every input)",
+                                      outer["columns"].get<int>(), outer["rows"].get<int>(), outer["spacing_m"].get<double>(),
+                                      outer["margin_m"].get<double>(), outer["cells"]["water"].get<std::size_t>(),
+                                      outer["cells"]["land"].get<std::size_t>(), outer["cells"]["no_data"].get<std::size_t>())
+                             .c_str());
+    }
     std::printf("wrote %s/{depth.tif, depth.exr, coastline.vdb, preview.png, summary.json}\n", options->output.c_str());
   }));
 }

@@ -102,13 +102,16 @@ void run_demo(const DemoOptions& options) {
   bathymetry::DemoHarbourFiles chart;
   run_stage("chart", [&] {
     chart = bathymetry::write_demo_harbour(chart_folder);
-    return fmt::format("{}/ (depth.tif, coastline, land, structures .geojson)", chart_folder.string());
+    return fmt::format("{}/ (depth.tif, coastline, land, structures .geojson, surroundings.tif)", chart_folder.string());
   });
 
   run_stage("bathy", [&] {
     bathymetry::BathyRequest request;
+    // surroundings.tif last (the survey wins inside the site), the grid over the site alone: the
+    // coarse ground beyond it becomes the grid's surroundings (harbour_builder.hpp step 8).
     request.inputs = {chart.depth_geotiff, chart.structures_geojson, chart.land_geojson,
-                      chart.coastline_geojson};
+                      chart.coastline_geojson, chart.surroundings_geotiff};
+    request.bbox_projected_m = chart.site_box_m;
     request.spacing_m = options.spacing_m;
     const bathymetry::BathyResult result = bathymetry::build_harbour_grid(request);
     bathymetry::write_bathymetry_outputs(harbour_folder, result);

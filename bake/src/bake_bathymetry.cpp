@@ -37,6 +37,8 @@ void mark_land_from_depth(HarbourGrid& grid) {
 void raise_still_water_level(HarbourGrid& grid, double level_m) {
   if (level_m == 0.0) return;
   for (float& depth_m : grid.still_water_depth_m.values()) depth_m += static_cast<float>(level_m);
+  // The surroundings' depths are measured from the same still water (NaN, no data, stays NaN).
+  for (float& depth_m : grid.surroundings.still_water_depth_m.values()) depth_m += static_cast<float>(level_m);
   mark_land_from_depth(grid);
 }
 
@@ -171,6 +173,8 @@ HarbourGrid resample_harbour_grid(const HarbourGrid& grid, CellSize spacing) {
   // The structures' geometry is in metres: the bake lays their footprints again at these cells
   // (structure_layers.hpp), so walls stay closed whatever the new cell size.
   out.structures = grid.structures;
+  // The surroundings have their own cells, in projected metres: the same ground round the grid.
+  out.surroundings = grid.surroundings;
   return out;
 }
 

@@ -77,14 +77,16 @@ void require_gdal_ok(bool ok, const fs::path& path, const std::string& what) {
   if (!ok) throw Error(path.string(), what + ": " + CPLGetLastErrorMsg(), "check the output folder is writable");
 }
 
-// The survey grid, sampled from the analytic depth at cell centres, in the site's UTM frame.
-void write_survey_geotiff(const fs::path& path, const DemoHarbourOptions& o, const SiteFrame& frame) {
+// A survey grid over the site grown by `margin_m` on every side at `spacing_m`, sampled from the
+// analytic depth at cell centres, in the site's UTM frame: depth.tif (no margin) and surroundings.tif.
+void write_survey_geotiff(const fs::path& path, const DemoHarbourOptions& o, const SiteFrame& frame, double margin_m,
+                          double spacing_m) {
   GridGeometry geometry;
-  geometry.columns = static_cast<int>(std::lround(o.width_m / o.source_spacing_m));
-  geometry.rows = static_cast<int>(std::lround(o.height_m / o.source_spacing_m));
-  geometry.spacing_m = o.source_spacing_m;
-  geometry.origin_x_m = frame.origin_easting_m;
-  geometry.origin_y_m = frame.origin_northing_m;
+  geometry.columns = static_cast<int>(std::lround((o.width_m + 2 * margin_m) / spacing_m));
+  geometry.rows = static_cast<int>(std::lround((o.height_m + 2 * margin_m) / spacing_m));
+  geometry.spacing_m = spacing_m;
+  geometry.origin_x_m = frame.origin_easting_m - margin_m;
+  geometry.origin_y_m = frame.origin_northing_m - margin_m;
   const MapProjection projection = MapProjection::utm(frame.zone, frame.northp);
   geometry.crs_wkt = crs_wkt(projection);
   geometry.projection = projection.to_json();
@@ -92,7 +94,7 @@ void write_survey_geotiff(const fs::path& path, const DemoHarbourOptions& o, con
   for (int row = 0; row < geometry.rows; ++row)
     for (int column = 0; column < geometry.columns; ++column)
       depth(column, row) = static_cast<float>(
-          demo_harbour_depth_m(o, (column + 0.5) * o.source_spacing_m, (row + 0.5) * o.source_spacing_m));
+          demo_harbour_depth_m(o, (column + 0.5) * spacing_m - margin_m, (row + 0.5) * spacing_m - margin_m));
   write_depth_geotiff(path, geometry, depth, "mean sea level");
 }
 
@@ -201,8 +203,12 @@ DemoHarbourFiles write_demo_harbour(const fs::path& folder, const DemoHarbourOpt
   GDALAllRegister();
   const SiteFrame frame(o);
   DemoHarbourFiles files{folder / "depth.tif", folder / "coastline.geojson", folder / "land.geojson",
-                         folder / "structures.geojson"};
-  write_survey_geotiff(files.depth_geotiff, o, frame);
+                         folder / "structures.geojson", folder / "surroundings.tif",
+                         {frame.origin_easting_m, frame.origin_northing_m, frame.origin_easting_m + o.width_m,
+                          frame.origin_northing_m + o.height_m}};
+  write_survey_geotiff(files.depth_geotiff, o, frame, 0.0, o.source_spacing_m);
+  if (o.surroundings_margin_m > 0)
+    write_survey_geotiff(files.surroundings_geotiff, o, frame, o.surroundings_margin_m, o.surroundings_spacing_m);
 
   const std::vector<LocalPoint> shore = shoreline_points(o);
   std::vector<Feature> coastline;

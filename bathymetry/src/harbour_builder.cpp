@@ -389,6 +389,20 @@ std::map<std::string, StructureStyle> default_structure_styles() {
           {"wave_absorbing_quay", absorbing_quay}, {"pier", pier}};
 }
 
+GridGeometry surroundings_geometry(const GridGeometry& grid, double margin_m) {
+  const double width_m = grid.width_m() + 2 * margin_m, height_m = grid.height_m() + 2 * margin_m;
+  GridGeometry g = grid;
+  g.rectangular_spacing_y_m = 0.0;  // square cells
+  g.spacing_m = std::max(kSurroundingsCellFactor * std::max(grid.spacing_x_m(), grid.spacing_y_m()),
+                         std::max(width_m, height_m) / kSurroundingsMaxCells);
+  g.columns = std::max(2, static_cast<int>(std::ceil(width_m / g.spacing_m - 1e-9)));
+  g.rows = std::max(2, static_cast<int>(std::ceil(height_m / g.spacing_m - 1e-9)));
+  // Centred on the grid's box (whole cells hold it and the margin, a little more where they round up).
+  g.origin_x_m = grid.origin_x_m + 0.5 * grid.width_m() - 0.5 * g.width_m();
+  g.origin_y_m = grid.origin_y_m + 0.5 * grid.height_m() - 0.5 * g.height_m();
+  return g;
+}
+
 double estimated_peak_bytes(double cells, std::size_t input_count) {
   // Per cell: depth, porosity, distance (3 x 4 B), land and masks (3 x 1 B), bounds (8 B), one
   // float layer per input, the distance transform's working set (column pass 8 + 4 B, result 12 B,
@@ -986,6 +1000,51 @@ nlohmann::json summarise_harbour_grid(const BathyRequest& request, const MapProj
   return summary;
 }
 
+// Step 8: the surroundings (harbour_builder.hpp): steps 3-6, the same functions, on the coarser
+// cells of surroundings_geometry, without leave-one-out (the grid's pass did it) and without the
+// solver's conditioning. Cells no input covers stay NaN (no data: the renderer keeps its own rule
+// there), whatever fill_uncovered_from_nearest says (it is the solver's need, not the eye's).
+// Gives the surroundings and their summary entry.
+std::pair<Surroundings, nlohmann::json> grid_surroundings(const BathyRequest& request, const ChartInputs& inputs,
+                                                          const GridFrame& frame) {
+  const double longer_side_m = std::max(frame.geometry.width_m(), frame.geometry.height_m());
+  const double margin_m = request.surroundings_margin_m < 0 ? longer_side_m : request.surroundings_margin_m;
+  if (!(margin_m > 0)) return {};
+  BathyRequest outer_request = request;
+  outer_request.leave_one_out = false;
+  outer_request.fill_uncovered_from_nearest = false;
+  const GridFrame outer{frame.projection, surroundings_geometry(frame.geometry, margin_m)};
+  const GridGeometry& g = outer.geometry;
+  const std::vector<SourceData>& sources = inputs.sources;
+  const DepthAreaBounds bounds = rasterise_depth_area_bounds(sources, g, outer.projection);
+  Raster<std::uint8_t> land = rasterise_land_polygons(sources, g, outer.projection);
+  nlohmann::json inputs_json = nlohmann::json::array();
+  std::vector<double> no_errors;
+  MergedDepth merged = grid_depth_by_priority(sources, outer, land, bounds, outer_request, inputs_json, no_errors);
+  bound_by_depth_areas(sources, bounds, merged);
+  Raster<float> depth = std::move(merged.depth_m);
+  const ChangeReport uncovered = fill_uncovered_cells(outer_request, outer, depth, land);
+  Raster<std::uint8_t> no_data = land;  // kOutsideChartCell where no input covers (step 5)
+  std::size_t land_cells = 0;
+  try {
+    land_cells = lay_land_mask(outer_request, sources, outer, bounds.chart_water, depth, land);
+  } catch (const Error&) {
+    land_cells = depth.size();  // every cell land: a valid picture of the surroundings, no failure
+  }
+  for (std::size_t i = 0; i < depth.size(); ++i)
+    if (no_data.values()[i] == kOutsideChartCell) depth.values()[i] = kNaNf;
+  const std::size_t outside = uncovered.cells;
+  nlohmann::json summary = {{"margin_m", margin_m},
+                            {"spacing_m", g.spacing_m},
+                            {"columns", g.columns},
+                            {"rows", g.rows},
+                            {"extent_m", {{"x_min", g.origin_x_m}, {"y_min", g.origin_y_m}, {"x_max", g.origin_x_m + g.width_m()},
+                                          {"y_max", g.origin_y_m + g.height_m()}}},
+                            {"cells", {{"total", g.cell_count()}, {"land", land_cells - outside},
+                                       {"water", g.cell_count() - land_cells}, {"no_data", outside}}}};
+  return {Surroundings{g, std::move(depth)}, summary};
+}
+
 }  // namespace
 
 // The steps in order (harbour_builder.hpp numbers them; each function above says what it takes and
@@ -1021,6 +1080,10 @@ BathyResult build_harbour_grid(const BathyRequest& request) {
   grid.coast_distance_m = signed_coast_distance(grid.land, g.spacing_m);
   trace_preview_coastline(sources, frame.projection, result);
   result.summary = summarise_harbour_grid(request, frame.projection, result, reports);
+  // 8. The ground round the grid, for the renderer.
+  auto [surroundings, surroundings_summary] = grid_surroundings(request, inputs, frame);
+  grid.surroundings = std::move(surroundings);
+  if (!grid.surroundings.empty()) result.summary["surroundings"] = surroundings_summary;
   return result;
 }
 

@@ -44,7 +44,8 @@ constexpr const char* kSamplerUnits[] = {"u_harbour_eta_from",
                                          "u_scene_depth",
                                          "u_structure_mask",
                                          "u_harbour_slope_moments_from",
-                                         "u_harbour_slope_moments_to"};
+                                         "u_harbour_slope_moments_to",
+                                         "u_surroundings"};
 static_assert(std::size(kSamplerUnits) == kSamplerUnitCount, "one name per SamplerUnit, in order");
 
 // Empty when `status` (GL_COMPILE_STATUS of a shader, GL_LINK_STATUS of a program) is true; else

@@ -35,7 +35,8 @@ enum SamplerUnit {
   kSceneDepth = 27,
   kStructureMask = 28,
   kHarbourSlopeMoments = 29,  // from, to: the keyframes' slope moments (slope_moments.hpp), 29 and 30
-  kSamplerUnitCount = 31      // within the 32 fragment units of every GL 3.3 driver the project meets
+  kSurroundings = 31,         // the skirt's ground beyond the grid (site_terrain.hpp SurroundingGround)
+  kSamplerUnitCount = 32      // the 32 fragment units of every GL 3.3 driver the project meets: all taken
 };
 
 /// A linked program: its vertex stage is `#version`, then the shared files `vertex_prefixes` in

@@ -34,8 +34,11 @@ double smoothstep(double edge0, double edge1, double x) {
 
 // Vertex positions along one axis of the lattice: the site's edge, the cell centres (every
 // `stride`-th, each interval cut into `subdivisions`), the far edge; then the skirt beyond both
-// edges in steps growing geometrically from the lattice's own to `skirt_m`.
-std::vector<double> axis_positions(int cells, double spacing_m, int stride, int subdivisions, double skirt_m) {
+// edges in steps growing geometrically from the lattice's own to `skirt_m`, no longer than
+// `fine_step_m` while within `fine_before_m` (before 0) or `fine_after_m` (beyond the far edge):
+// the surroundings' cells, where the skirt follows their ground.
+std::vector<double> axis_positions(int cells, double spacing_m, int stride, int subdivisions, double skirt_m,
+                                   double fine_before_m = 0.0, double fine_after_m = 0.0, double fine_step_m = 0.0) {
   const double length = cells * spacing_m;
   std::vector<double> inner{0.0};
   std::vector<int> centres;
@@ -59,13 +62,27 @@ std::vector<double> axis_positions(int cells, double spacing_m, int stride, int 
     ratio = 0.5 * (lo + hi);
     (first * (std::pow(ratio, steps) - 1) / (ratio - 1) < skirt_m ? lo : hi) = ratio;
   }
-  std::vector<double> outward;
-  double step = first, reach = 0;
-  for (int s = 0; s < steps; ++s) outward.push_back(reach += step), step *= ratio;
+  // Outwards from an edge: without fine steps the 24 geometric ones; with them, each step the
+  // last times the ratio but at most fine_step_m within the fine reach, until skirt_m.
+  const auto outward = [&](double fine_m) {
+    std::vector<double> out;
+    double step = first, reach = 0;
+    if (!(fine_m > 0 && fine_step_m > 0)) {
+      for (int s = 0; s < steps; ++s) out.push_back(reach += step), step *= ratio;
+      return out;
+    }
+    while (reach < skirt_m * (1 - 1e-9) && out.size() < 4096) {
+      if (reach < fine_m) step = std::min(step, fine_step_m);
+      out.push_back(reach = std::min(reach + step, skirt_m));
+      step *= ratio;
+    }
+    return out;
+  };
+  const std::vector<double> before = outward(fine_before_m), after = outward(fine_after_m);
   std::vector<double> positions;
-  for (auto it = outward.rbegin(); it != outward.rend(); ++it) positions.push_back(-*it);
+  for (auto it = before.rbegin(); it != before.rend(); ++it) positions.push_back(-*it);
   positions.insert(positions.end(), inner.begin(), inner.end());
-  for (double d : outward) positions.push_back(length + d);
+  for (double d : after) positions.push_back(length + d);
   return positions;
 }
 
@@ -98,7 +115,8 @@ struct SkirtProfile {
   double elevation_m = 0.0, inland_m = 0.0;
 };
 double inland_of(const HarbourGrid& harbour, double x, double y);
-SkirtProfile skirt_profile(const HarbourGrid& harbour, double open_sea_depth_m, double x, double y, bool with_inland) {
+SkirtProfile skirt_profile(const HarbourGrid& harbour, const SurroundingGround& surroundings, double open_sea_depth_m,
+                           double x, double y, bool with_inland) {
   const double width_m = harbour.geometry.width_m(), height_m = harbour.geometry.height_m();
   const Point q{std::clamp(x, 0.0, width_m), std::clamp(y, 0.0, height_m)};
   const double beyond = std::hypot(x - q[0], y - q[1]);
@@ -112,8 +130,22 @@ SkirtProfile skirt_profile(const HarbourGrid& harbour, double open_sea_depth_m, 
   }
   const double drop = elevation + open_sea_depth_m;
   const double as_water = elevation - drop * smoothstep(0.0, std::max(width_m, height_m), beyond);
-  const double landness = smoothstep(-1.0, 1.0, elevation);
-  return {as_water + (elevation - as_water) * landness, inland_sum + landness * beyond};
+  const double edge_rule = as_water + (elevation - as_water) * smoothstep(-1.0, 1.0, elevation);
+  // The surroundings where they have data (SurroundingGround): w times the elevation and w read
+  // bilinearly (GL_LINEAR, clamped to the outer cells, whose w is 0), turned to from the edge's rule.
+  double ground = edge_rule;
+  if (!surroundings.empty()) {
+    const auto same = [](float v) { return double(v); };
+    const double w = cell_bilinear(surroundings.weight, surroundings.cells, x - surroundings.cells.origin_x_m,
+                                   y - surroundings.cells.origin_y_m, same);
+    const double t = w * smoothstep(0.0, surroundings.edge_blend_m, beyond);
+    if (t > 0.0) {
+      const double weighted = cell_bilinear(surroundings.weighted_elevation_m, surroundings.cells,
+                                            x - surroundings.cells.origin_x_m, y - surroundings.cells.origin_y_m, same);
+      ground = edge_rule + (weighted / w - edge_rule) * t;
+    }
+  }
+  return {ground, inland_sum + smoothstep(-1.0, 1.0, ground) * beyond};
 }
 
 // Distance inland of the still-water line: minus the coast distance channel, bilinear; where
@@ -132,6 +164,7 @@ double inland_of(const HarbourGrid& harbour, double x, double y) {
 
 struct Builder {
   const HarbourGrid& harbour;
+  const SurroundingGround& surroundings;
   const TerrainOptions& options;
   double width_m, height_m, skirt_m;
   bool cell_structures;  // structures known only by porous cells
@@ -156,7 +189,7 @@ struct Builder {
 
   // Beyond the grid: the skirt's rule (skirt_profile below).
   void skirt_point(double x, double y, double& z, double& land_inland) const {
-    const SkirtProfile profile = skirt_profile(harbour, options.open_sea_depth_m, x, y, true);
+    const SkirtProfile profile = skirt_profile(harbour, surroundings, options.open_sea_depth_m, x, y, true);
     z = profile.elevation_m;
     land_inland = profile.inland_m;
   }
@@ -170,8 +203,18 @@ struct Builder {
       stride = int(std::ceil(std::sqrt(double(cells) / budget)));
     else
       subdivisions = std::clamp(int(std::sqrt(budget / double(cells))), 1, 2);
-    const std::vector<double> xs = axis_positions(g.columns, g.spacing_x_m(), stride, subdivisions, skirt_m);
-    const std::vector<double> ys = axis_positions(g.rows, g.spacing_y_m(), stride, subdivisions, skirt_m);
+    // Within the surroundings' box the skirt's steps are at most their cells.
+    double west = 0, east = 0, south = 0, north = 0, fine_step = 0;
+    if (!surroundings.empty()) {
+      const GridGeometry& s = surroundings.cells;
+      west = -s.origin_x_m, east = s.origin_x_m + s.width_m() - width_m;
+      south = -s.origin_y_m, north = s.origin_y_m + s.height_m() - height_m;
+      fine_step = s.smaller_spacing_m();
+    }
+    const std::vector<double> xs =
+        axis_positions(g.columns, g.spacing_x_m(), stride, subdivisions, skirt_m, west, east, fine_step);
+    const std::vector<double> ys =
+        axis_positions(g.rows, g.spacing_y_m(), stride, subdivisions, skirt_m, south, north, fine_step);
     const int nx = int(xs.size()), ny = int(ys.size());
     std::vector<double> z(std::size_t(nx) * ny);
     for (int j = 0; j < ny; ++j)
@@ -415,8 +458,49 @@ double ground_elevation_m(const HarbourGrid& harbour, double x_m, double y_m) {
   return -cell_bilinear(harbour.still_water_depth_m, harbour.geometry, x_m, y_m, [](float d) { return double(d); });
 }
 
-double skirt_ground_m(const HarbourGrid& harbour, double open_sea_depth_m, double x_m, double y_m) {
-  return skirt_profile(harbour, open_sea_depth_m, x_m, y_m, false).elevation_m;
+SurroundingGround surrounding_ground(const HarbourGrid& harbour) {
+  const Surroundings& outer = harbour.surroundings;
+  SurroundingGround ground;
+  if (outer.empty()) return ground;
+  ground.cells = outer.geometry;
+  ground.cells.origin_x_m -= harbour.geometry.origin_x_m;  // into the site frame
+  ground.cells.origin_y_m -= harbour.geometry.origin_y_m;
+  ground.edge_blend_m = 2.0 * std::max(outer.geometry.spacing_x_m(), outer.geometry.spacing_y_m());
+  const int columns = outer.geometry.columns, rows = outer.geometry.rows;
+  // Cells (8-connected steps) to the nearest cell without data, the box's outside counting as
+  // such, up to kSurroundingsFadeCells + 1: a few sweeps of d = min(d, neighbour + 1).
+  const int far = kSurroundingsFadeCells + 1;
+  Raster<int> steps(columns, rows, far);
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i)
+      if (!std::isfinite(outer.still_water_depth_m(i, j))) steps(i, j) = 0;
+  for (int sweep = 0; sweep < far; ++sweep) {
+    Raster<int> next = steps;
+    for (int j = 0; j < rows; ++j)
+      for (int i = 0; i < columns; ++i)
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int ii = i + di, jj = j + dj;
+            const int neighbour = ii < 0 || jj < 0 || ii >= columns || jj >= rows ? 0 : steps(ii, jj);
+            next(i, j) = std::min(next(i, j), neighbour + 1);
+          }
+    steps = std::move(next);
+  }
+  ground.weight = Raster<float>(columns, rows, 0.f);
+  ground.weighted_elevation_m = Raster<float>(columns, rows, 0.f);
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i) {
+      if (steps(i, j) == 0) continue;  // no data
+      const float w = float(smoothstep(1.0, 1.0 + kSurroundingsFadeCells, steps(i, j)));
+      ground.weight(i, j) = w;
+      ground.weighted_elevation_m(i, j) = -w * outer.still_water_depth_m(i, j);
+    }
+  return ground;
+}
+
+double skirt_ground_m(const HarbourGrid& harbour, const SurroundingGround& surroundings, double open_sea_depth_m,
+                      double x_m, double y_m) {
+  return skirt_profile(harbour, surroundings, open_sea_depth_m, x_m, y_m, false).elevation_m;
 }
 
 TerrainMesh build_site_terrain(const HarbourGrid& harbour, const TerrainOptions& options) {
@@ -425,8 +509,10 @@ TerrainMesh build_site_terrain(const HarbourGrid& harbour, const TerrainOptions&
   const double skirt = options.skirt_width_m > 0 ? options.skirt_width_m : std::max(kDefaultSkirtWidthM, std::max(width, height));
   bool geometry = false;
   for (const CoastalStructure& s : harbour.structures) geometry = geometry || !s.lines.empty() || !s.polygons.empty();
-  Builder builder{harbour, options, width, height, skirt, !geometry, {}};
+  const SurroundingGround surroundings = surrounding_ground(harbour);
+  Builder builder{harbour, surroundings, options, width, height, skirt, !geometry, {}};
   builder.mesh.skirt_width_m = skirt;
+  builder.mesh.surroundings = surroundings;
   builder.ground_lattice();
   builder.structures();
   builder.dry_mask();

@@ -99,7 +99,23 @@ std::size_t SiteTextures::bind_site(const std::shared_ptr<const runtime::Harbour
   const Raster<float>& mask = mesh.structure_mask;
   structure_mask_ = site_texture(GL_R8, GL_FLOAT, mask.columns(), mask.rows(), mask.data(), GL_LINEAR);
   terrain_ = upload_mesh(mesh.vertices, mesh.indices, {3, 1, 1});
-  return bytes + mask.size();  // texture bytes (FrameStatistics::upload_bytes)
+  bytes += mask.size();
+  // The skirt's ground beyond the grid (surface.glsl u_surroundings): w * elevation and w, read
+  // bilinearly like the CPU's twin (SurroundingGround).
+  const SurroundingGround& outer = mesh.surroundings;
+  if (!outer.empty()) {
+    std::vector<float> texels(outer.weight.size() * 2);
+    for (std::size_t k = 0; k < outer.weight.size(); ++k)
+      texels[2 * k] = outer.weighted_elevation_m.data()[k], texels[2 * k + 1] = outer.weight.data()[k];
+    glActiveTexture(GLenum(GL_TEXTURE0 + kSurroundings));
+    surroundings_ = new_texture(GL_TEXTURE_2D, GL_LINEAR, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, outer.weight.columns(), outer.weight.rows(), 0, GL_RG, GL_FLOAT, texels.data());
+    glActiveTexture(GL_TEXTURE0);
+    surroundings_cells_ = outer.cells;
+    surroundings_edge_blend_m_ = outer.edge_blend_m;
+    bytes += texels.size() * sizeof(float);
+  }
+  return bytes;  // texture bytes (FrameStatistics::upload_bytes)
 }
 
 void SiteTextures::bind_units() const {
@@ -113,12 +129,15 @@ void SiteTextures::bind_units() const {
   bind(kLand, land_);
   bind(kCoast, coast_);
   bind(kRelativeWaveHeight, relative_wave_height_);
+  bind(kSurroundings, surroundings_);
 }
 
 void SiteTextures::release() {
-  for (GLuint* texture : {&depth_, &porosity_, &structure_mask_, &land_, &coast_, &relative_wave_height_})
+  for (GLuint* texture : {&depth_, &porosity_, &structure_mask_, &land_, &coast_, &relative_wave_height_, &surroundings_})
     if (*texture) glDeleteTextures(1, texture), *texture = 0;
   terrain_.release();
+  surroundings_cells_ = GridGeometry{};
+  surroundings_edge_blend_m_ = 0.0;
   site_.reset();
 }
 

@@ -34,6 +34,11 @@ class SiteTextures {
   /// The ground lattice over the site and its skirt, then the structures: attribute 0 the
   /// position (metres, site frame), 1 the distance inland, 2 the TerrainMaterial.
   const Mesh& terrain() const { return terrain_; }
+  /// The surroundings the skirt reads (site_terrain.hpp), in the site frame; empty without. Their
+  /// cells are what surface.glsl's u_surroundings_origin_m / u_surroundings_size_m place.
+  const GridGeometry& surroundings_cells() const { return surroundings_cells_; }
+  double surroundings_edge_blend_m() const { return surroundings_edge_blend_m_; }
+  bool has_surroundings() const { return surroundings_ != 0; }
 
   /// Depth, porosity, the structure mask, land, coast distance and K on their SamplerUnits (0 without a site); leaves
   /// the last of those units active.
@@ -43,7 +48,10 @@ class SiteTextures {
   void release();
   std::shared_ptr<const runtime::HarbourSite> site_;
   GLuint depth_ = 0, porosity_ = 0, structure_mask_ = 0, land_ = 0, coast_ = 0, relative_wave_height_ = 0;
+  GLuint surroundings_ = 0;  // RG: w * elevation, w (SurroundingGround); 0 without surroundings
   Mesh terrain_;
+  GridGeometry surroundings_cells_;
+  double surroundings_edge_blend_m_ = 0.0;
   float open_sea_depth_m_ = 20.f;
 };
 

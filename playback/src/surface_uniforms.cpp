@@ -47,7 +47,16 @@ void set_surface_uniforms(GLuint program, const SurfaceFormula& formula, const V
       edge_max[3] = std::max(edge_max[3], -d(0, j));
     }
     glUniform1fv(at(program, "u_edge_max_ground_m"), 4, edge_max);
+    // The surroundings (site_terrain.hpp SurroundingGround), their texture on kSurroundings.
+    set_uniform(program, "u_has_surroundings", formula.surroundings ? 1 : 0);
+    if (formula.surroundings) {
+      const GridGeometry& s = *formula.surroundings;
+      glUniform2f(at(program, "u_surroundings_origin_m"), float(s.origin_x_m), float(s.origin_y_m));
+      glUniform2f(at(program, "u_surroundings_size_m"), float(s.width_m()), float(s.height_m()));
+      set_uniform(program, "u_surroundings_blend_m", formula.surroundings_edge_blend_m);
+    }
   } else {
+    set_uniform(program, "u_has_surroundings", 0);
     set_uniform(program, "u_choppiness", 1.f);
   }
   set_uniform(program, "u_has_relative_wave_height", formula.has_relative_wave_height ? 1 : 0);

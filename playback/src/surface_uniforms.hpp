@@ -22,6 +22,10 @@ struct SurfaceFormula {
   bool has_relative_wave_height;     ///< the site's K texture is on its unit
   const PatchUniforms& patches;
   int patch_count;  ///< of `patches`, how many this draw adds (0: none)
+  /// The site's surroundings as the skirt reads them (SiteTextures; their texture on its unit):
+  /// their cells in the site frame, null without.
+  const GridGeometry* surroundings = nullptr;
+  float surroundings_edge_blend_m = 0.f;  ///< SurroundingGround::edge_blend_m
 };
 
 /// The uniforms of surface.glsl for `program` (in use), seen from `eye_m` on an earth of

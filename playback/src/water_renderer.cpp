@@ -103,7 +103,9 @@ struct WaterRenderer::Impl {
                           site_textures.open_sea_depth_m(),
                           site_textures.has_relative_wave_height(),
                           patches,
-                          patches_active ? patches.count : 0};
+                          patches_active ? patches.count : 0,
+                          site_textures.has_surroundings() ? &site_textures.surroundings_cells() : nullptr,
+                          float(site_textures.surroundings_edge_blend_m())};
   }
 
   // The layers' height patches onto their unit (before any surface uniforms are set).

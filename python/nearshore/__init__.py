@@ -398,14 +398,16 @@ def bathy(inputs, output_folder, spacing_m: float, bbox=None, bbox_m=None, sign:
           projection: str = "utm", xyz_crs: str = "", structures: Optional[dict] = None,
           water_level_m: float = 0.0, min_depth_m: float = 0.5, max_slope: float = 0.0,
           land_elevation_m: float = 2.0, coastline_band_m: float = 200.0, fill_uncovered: bool = False,
-          leave_one_out: bool = False, marks: Optional[dict] = None, progress: bool = False) -> dict:
+          leave_one_out: bool = False, marks: Optional[dict] = None, progress: bool = False,
+          surroundings_margin_m: Optional[float] = None) -> dict:
     """`nearshore bathy INPUTS --spacing S -o DIR` with its options (docs/commands/bathy.md):
     `bbox` (lon0, lat0, lon1, lat1) is --bbox, `bbox_m` (x0, y0, x1, y1) --bbox-m, `sign`,
     `projection`, `xyz_crs` --xyz-crs, `structures` {name: (crest_width_m, porosity)} the repeated
     --structure NAME=WIDTH_M:POROSITY, `water_level_m` --water-level, `min_depth_m` --min-depth,
     `max_slope` --max-slope, `land_elevation_m` --land-elevation, `coastline_band_m`
-    --coastline-band, `fill_uncovered` --fill-uncovered, `leave_one_out` --leave-one-out and
-    `marks` {name: position} the repeated --mark NAME:POSITION. Writes depth.tif, depth.exr,
+    --coastline-band, `fill_uncovered` --fill-uncovered, `leave_one_out` --leave-one-out,
+    `marks` {name: position} the repeated --mark NAME:POSITION and `surroundings_margin_m`
+    --surroundings-margin (None: the grid's longer side; 0: no surroundings). Writes depth.tif, depth.exr,
     coastline.vdb, preview.png and summary.json into output_folder and returns the summary
     `--json` prints; its warnings also go through :mod:`warnings`."""
     if isinstance(inputs, (str, os.PathLike)):
@@ -422,7 +424,8 @@ def bathy(inputs, output_folder, spacing_m: float, bbox=None, bbox_m=None, sign:
                                _box(bbox, "bbox"), _box(bbox_m, "bbox_m"), sign, projection, xyz_crs, styles,
                                float(water_level_m), float(min_depth_m), float(max_slope), float(land_elevation_m),
                                float(coastline_band_m), bool(fill_uncovered), bool(leave_one_out),
-                               [(str(k), str(v)) for k, v in (marks or {}).items()], bool(progress))
+                               [(str(k), str(v)) for k, v in (marks or {}).items()], bool(progress),
+                               -1.0 if surroundings_margin_m is None else float(surroundings_margin_m))
     for warning in summary.get("warnings", []):
         warnings.warn(_nearshore.with_keywords(warning), stacklevel=2)
     return summary

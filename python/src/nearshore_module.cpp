@@ -368,6 +368,7 @@ std::string with_keywords(std::string message) {
       {"BathyRequest::fill_uncovered_from_nearest", "fill_uncovered=True"},
       {"BathyRequest::coastline_band_m", "coastline_band_m"},
       {"BathyRequest::leave_one_out", "leave_one_out=True"},
+      {"BathyRequest::surroundings_margin_m", "surroundings_margin_m"},
       {"write_bathymetry_outputs(folder)", "output_folder"},
       {"LibraryOptions::output_folder", "output_folder"},
       {"LibraryOptions::overwrite", "overwrite=True"},
@@ -393,7 +394,7 @@ py::dict bathy_grid(const std::vector<fs::path>& inputs, const fs::path& output_
                     const std::map<std::string, std::pair<double, double>>& structures, double water_level_m,
                     double min_depth_m, double max_slope, double land_elevation_m, double coastline_band_m,
                     bool fill_uncovered, bool leave_one_out, const std::vector<std::pair<std::string, std::string>>& marks,
-                    bool progress) {
+                    bool progress, double surroundings_margin_m) {
   ProgressBar::set_quiet(!progress);
   bathymetry::BathyRequest request;
   request.inputs = inputs;
@@ -420,6 +421,10 @@ py::dict bathy_grid(const std::vector<fs::path>& inputs, const fs::path& output_
   request.coastline_band_m = coastline_band_m;
   request.leave_one_out = leave_one_out;
   request.fill_uncovered_from_nearest = fill_uncovered;
+  if (!(surroundings_margin_m < 0 || (surroundings_margin_m >= 0 && surroundings_margin_m <= 1e6)))
+    throw Error(fmt::format("surroundings_margin_m = {}", surroundings_margin_m), "is not a margin in metres",
+                "give 0 .. 1e6 m (0: no surroundings), or None for the grid's longer side");
+  request.surroundings_margin_m = surroundings_margin_m;
   nlohmann::json summary;
   {
     py::gil_scoped_release unlocked;
@@ -614,7 +619,7 @@ PYBIND11_MODULE(_nearshore, m) {
         py::arg("bbox_m"), py::arg("sign"), py::arg("projection"), py::arg("xyz_crs"), py::arg("structures"),
         py::arg("water_level_m"), py::arg("min_depth_m"), py::arg("max_slope"), py::arg("land_elevation_m"),
         py::arg("coastline_band_m"), py::arg("fill_uncovered"), py::arg("leave_one_out"), py::arg("marks"),
-        py::arg("progress"));
+        py::arg("progress"), py::arg("surroundings_margin_m"));
   m.def("library", &library_run, py::arg("library_file"), py::arg("output_folder"), py::arg("overwrite"),
         py::arg("threads"), py::arg("progress"));
   m.def("operability", &library_operability, py::arg("library_folder"), py::arg("occurrence"), py::arg("berths"),

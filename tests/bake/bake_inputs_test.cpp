@@ -82,6 +82,27 @@ TEST(Resample, ToAndFromRectangularCells) {
   EXPECT_EQ(resample_harbour_grid(rectangular, CellSize(0.5, 2.0)).geometry.rows, 10);
 }
 
+// Issue 41: the surroundings (the ground round the grid, for the renderer) are in projected
+// metres with cells of their own: resampling the grid keeps them as they are; a still-water level
+// above the datum deepens them as it deepens the grid (no data, NaN, stays NaN).
+TEST(Resample, KeepsTheSurroundingsAndTheWaterLevelDeepensThem) {
+  HarbourGrid grid = flume_from_profile(40.0, 20.0, 1.0, {{0.0, 10.0}, {40.0, 2.0}}, "test");
+  grid.surroundings.geometry = grid.geometry;
+  grid.surroundings.geometry.spacing_m = 4.0;
+  grid.surroundings.geometry.columns = 20;
+  grid.surroundings.geometry.rows = 10;
+  grid.surroundings.geometry.origin_x_m -= 20.0;
+  grid.surroundings.geometry.origin_y_m -= 10.0;
+  grid.surroundings.still_water_depth_m = Raster<float>(20, 10, -3.0f);
+  grid.surroundings.still_water_depth_m(0, 0) = NAN;
+  const HarbourGrid fine = resample_harbour_grid(grid, 0.5);
+  EXPECT_EQ(nlohmann::json(fine.surroundings.geometry), nlohmann::json(grid.surroundings.geometry));
+  EXPECT_EQ(fine.surroundings.still_water_depth_m(5, 5), -3.0f);
+  raise_still_water_level(grid, 1.25);
+  EXPECT_EQ(grid.surroundings.still_water_depth_m(5, 5), -1.75f);
+  EXPECT_TRUE(std::isnan(grid.surroundings.still_water_depth_m(0, 0)));
+}
+
 TEST(TimeSeries, ReadsOneColumnInCentimetresAndTimedColumns) {
   const auto folder = scratch_folder();
   const auto one = write_text(folder / "r2d.dat", "   -2.5\n   1.5\n# comment\n\n   3.0\n");

@@ -5,6 +5,7 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <memory>
@@ -201,4 +202,78 @@ TEST(BathyOutputs, WaterLevelDeepensEveryCellAndFloodsLowLand) {
   }
   EXPECT_GT(flooded, 0);  // the 1:15 beach above the shoreline goes under
   EXPECT_EQ(raised.summary["water_level_m"], 1.5);
+}
+
+// Issue 41: the surroundings. The demo's surroundings.tif (its analytic ground 1600 m beyond the
+// site, 32 m cells) after depth.tif in the inputs, the grid over the site alone: the grid is as
+// before (80 x 60 cells of 20 m) and its surroundings (80 m cells: 4 of the grid's, over the site
+// grown by its longer side on every side) hold the analytic ground beyond it, water and land,
+// with no cell without data; depth.exr carries them back exactly. Without surroundings.tif the
+// cells beyond the survey are no data (NaN); with a margin of 0 there are none.
+TEST(BathyOutputs, TheDemosSurroundingsAreItsAnalyticGroundBeyondTheGrid) {
+  const auto folder = fresh_test_folder("");
+  nearshore::ProgressBar::set_quiet(true);
+  const nb::DemoHarbourOptions site;
+  const auto files = nb::write_demo_harbour(folder / "demo", site);
+  nb::BathyRequest request;
+  request.inputs = {files.depth_geotiff, files.coastline_geojson, files.land_geojson, files.structures_geojson,
+                    files.surroundings_geotiff};
+  request.bbox_projected_m = files.site_box_m;
+  request.spacing_m = 20.0;
+  const nb::BathyResult result = nb::build_harbour_grid(request);
+  const auto& g = result.grid.geometry;
+  EXPECT_EQ(g.columns, 80);
+  EXPECT_EQ(g.rows, 60);
+  const nearshore::Surroundings& outer = result.grid.surroundings;
+  ASSERT_FALSE(outer.empty());
+  const auto& s = outer.geometry;
+  EXPECT_DOUBLE_EQ(s.spacing_m, 80.0);
+  EXPECT_EQ(s.columns, 60);  // (1600 + 2 x 1600) / 80
+  EXPECT_EQ(s.rows, 55);     // (1200 + 2 x 1600) / 80
+  EXPECT_EQ(s.crs_wkt, g.crs_wkt);
+  EXPECT_NEAR(s.origin_x_m, g.origin_x_m - 1600.0, 1e-6);
+  EXPECT_EQ(result.summary["surroundings"]["cells"]["no_data"], 0);
+  std::vector<double> errors;
+  int water = 0, land = 0, land_disagreements = 0;
+  for (int r = 0; r < s.rows; ++r)
+    for (int c = 0; c < s.columns; ++c) {
+      const double x = s.cell_centre_x_m(c) - files.site_box_m[0], y = s.cell_centre_y_m(r) - files.site_box_m[1];
+      const float depth = outer.still_water_depth_m(c, r);
+      ASSERT_TRUE(std::isfinite(depth)) << c << ", " << r;
+      if (x > 0 && x < site.width_m && y > 0 && y < site.height_m) continue;  // the grid's own box
+      const double truth = nb::demo_harbour_depth_m(site, x, y);
+      if (truth > 0.5) ++water, errors.push_back(std::abs(depth - truth));
+      if (truth < -0.5) ++land, land_disagreements += !(depth < 0);
+    }
+  std::sort(errors.begin(), errors.end());
+  EXPECT_GT(water, 1000);
+  EXPECT_GT(land, 1000);
+  EXPECT_LT(errors[errors.size() / 2], 0.05);  // bilinear of 32 m samples at 80 m cells
+  EXPECT_LE(land_disagreements, s.columns);    // a shoreline cell per column at most
+  // The terrace 12 m up in the far north.
+  EXPECT_NEAR(outer.still_water_depth_m(30, s.rows - 1), -12.0, 0.01);
+  const auto summary = nb::write_bathymetry_outputs(folder / "out", result);
+  const nearshore::HarbourGrid again = nearshore::read_harbour_grid(folder / "out" / "depth.exr");
+  EXPECT_EQ(again.still_water_depth_m.values(), result.grid.still_water_depth_m.values());
+  EXPECT_EQ(again.surroundings.still_water_depth_m.values(), outer.still_water_depth_m.values());
+  EXPECT_EQ(nlohmann::json(again.surroundings.geometry), nlohmann::json(s));
+
+  // The survey alone: no data beyond it, and the grid's box fully covered.
+  request.inputs = {files.depth_geotiff};
+  const nb::BathyResult survey_only = nb::build_harbour_grid(request);
+  const nearshore::Surroundings& bare = survey_only.grid.surroundings;
+  ASSERT_FALSE(bare.empty());
+  int no_data = 0;
+  for (int r = 0; r < bare.geometry.rows; ++r)
+    for (int c = 0; c < bare.geometry.columns; ++c) {
+      const double x = bare.geometry.cell_centre_x_m(c) - files.site_box_m[0];
+      const double y = bare.geometry.cell_centre_y_m(r) - files.site_box_m[1];
+      const bool inside = x > 0 && x < site.width_m && y > 0 && y < site.height_m;
+      no_data += std::isnan(bare.still_water_depth_m(c, r));
+      if (inside) EXPECT_TRUE(std::isfinite(bare.still_water_depth_m(c, r))) << c << ", " << r;
+    }
+  EXPECT_GT(no_data, bare.geometry.columns * bare.geometry.rows * 8 / 10);  // the site is 1/9 of the box
+  EXPECT_EQ(survey_only.summary["surroundings"]["cells"]["no_data"], no_data);
+  request.surroundings_margin_m = 0.0;
+  EXPECT_TRUE(nb::build_harbour_grid(request).grid.surroundings.empty());
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "nearshore/playback/site_terrain.hpp"
+#include "surroundings_fixture.hpp"
 
 namespace nearshore {
 namespace {
@@ -67,7 +68,7 @@ TEST(SiteTerrain, TheGroundIsTheBilinearDepthAndItsSkirtContinuesTheLandAndTheSe
       }
     } else {
       // every skirt vertex is its twin's ground (what the water shader tests it against)
-      EXPECT_NEAR(v.z, playback::skirt_ground_m(h, 20.0, v.x, v.y), 1e-3 + 1e-6 * std::abs(v.z)) << "(" << v.x << ", " << v.y << ")";
+      EXPECT_NEAR(v.z, playback::skirt_ground_m(h, playback::SurroundingGround{}, 20.0, v.x, v.y), 1e-3 + 1e-6 * std::abs(v.z)) << "(" << v.x << ", " << v.y << ")";
       if (v.x >= 40 && v.x <= 160 && v.y > 150) {
         ++beyond_north;  // the land beyond the north edge (clear of its ends) stands at the edge's 3 m, to the end
         EXPECT_NEAR(v.z, 3.0, 1e-4) << "(" << v.x << ", " << v.y << ")";
@@ -171,6 +172,84 @@ TEST(SiteTerrain, PorousCellsWithoutGeometryAreRaisedAlongTheirSmoothOutline) {
   }
   EXPECT_GT(raised, 30);
   EXPECT_GT(untouched, 30);
+}
+
+}  // namespace nearshore
+
+namespace nearshore {
+namespace {
+
+// The sloping harbour (200 x 150 m, land 3 m up along its north edge) inside surroundings of 10 m
+// cells reaching 200 m beyond it on every side: 10 m deep water to the south with an island 4 m
+// high (a disc of 40 m radius) 120 m south of the grid, where the edge's rule says open water; no
+// data (NaN) east of x = 330 m (the chart ends there); land 3 m up north of the grid.
+HarbourGrid harbour_with_surroundings() {
+  HarbourGrid h = sloping_harbour();
+  h.surroundings = test::surroundings_round(h.geometry, 10.0, 200.0, [](double x, double y) {
+    const double depth = std::hypot(x - 100.0, y + 120.0) < 40.0 ? -4.0 : std::clamp(0.1 * (110.0 - y), -3.0, 10.0);
+    return x > 330.0 ? NAN : depth;  // the grid's own slope continued, the island, no data east
+  });
+  return h;
+}
+
+}  // namespace
+
+// Issue 41: the skirt's ground is the surroundings' where they have data: the island south of the
+// grid stands at its 4 m (the edge's rule alone puts 16 m of water there), the grid's edge stays
+// continuous (the turn to the surroundings starts at zero there), and where they end (no data to
+// the east, their box's edge to the south) the skirt is the edge's rule again. Every skirt vertex
+// is its twin's ground, the twin of what the shader draws (terrain_render_test.cpp).
+TEST(SiteTerrain, TheSkirtTakesTheSurroundingsGroundAndTheEdgesRuleWhereTheyEnd) {
+  const HarbourGrid h = harbour_with_surroundings();
+  const playback::SurroundingGround ground = playback::surrounding_ground(h);
+  const playback::SurroundingGround none;
+  ASSERT_FALSE(ground.empty());
+  EXPECT_DOUBLE_EQ(ground.cells.origin_x_m, -200.0);  // in the site frame
+  EXPECT_DOUBLE_EQ(ground.edge_blend_m, 20.0);
+  // The weight: 0 on the box's outer cells and on cells without data, 1 from 4 cells inside.
+  EXPECT_EQ(ground.weight(0, 20), 0.f);
+  EXPECT_EQ(ground.weight(56, 20), 0.f);  // x = 365 m: no data
+  EXPECT_EQ(ground.weight(20, 20), 1.f);
+  EXPECT_GT(ground.weight(2, 20), 0.f);
+  EXPECT_LT(ground.weight(2, 20), 1.f);
+  const auto skirt = [&](const playback::SurroundingGround& g, double x, double y) {
+    return playback::skirt_ground_m(h, g, 20.0, x, y);
+  };
+  // The island, and the edge's rule there.
+  EXPECT_NEAR(skirt(ground, 100.0, -120.0), 4.0, 1e-4);
+  EXPECT_LT(skirt(none, 100.0, -120.0), -10.0);
+  // The sea south of the grid deepens as the surroundings say (10 m), not to the open sea's 20 m.
+  EXPECT_NEAR(skirt(ground, 20.0, -150.0), -10.0, 1e-4);
+  // Continuous at the grid's edge, on water (south) and on land (north).
+  for (double x : {30.0, 100.0, 170.0}) {
+    EXPECT_NEAR(skirt(ground, x, -1e-6), playback::ground_elevation_m(h, x, 0.0), 1e-4) << x;
+    EXPECT_NEAR(skirt(ground, x, 150.0 + 1e-6), playback::ground_elevation_m(h, x, 150.0), 1e-4) << x;
+  }
+  // Beyond their data (east of 330 m) and beyond their box: the edge's rule, exactly.
+  for (const auto& [x, y] : {std::pair{345.0, 75.0}, {360.0, -100.0}, {100.0, -230.0}, {-300.0, 75.0}, {100.0, 2000.0}})
+    EXPECT_EQ(skirt(ground, x, y), skirt(none, x, y)) << x << ", " << y;
+  // The mesh: every skirt vertex is the twin's ground; within the surroundings' box its steps are
+  // at most their cells (so the island is drawn), beyond it they grow to the skirt's end.
+  const TerrainMesh mesh = playback::build_site_terrain(h);
+  int on_island = 0;
+  double widest_step_south = 0, previous_y = 0;
+  bool first = true;
+  for (std::size_t k = 0; k < mesh.ground_vertex_count; ++k) {
+    const Vertex v = vertex(mesh, k);
+    if (v.x >= 0 && v.x <= 200 && v.y >= 0 && v.y <= 150) continue;
+    EXPECT_NEAR(v.z, skirt(ground, v.x, v.y), 1e-3 + 1e-6 * std::abs(v.z)) << "(" << v.x << ", " << v.y << ")";
+    if (std::hypot(v.x - 100.0, v.y + 120.0) < 25.0) {
+      ++on_island;
+      EXPECT_GT(v.z, 2.0) << "(" << v.x << ", " << v.y << ")";
+    }
+    if (v.x > 99.0 && v.x < 101.0) {  // one column of the lattice (x = 100 m)
+      if (!first && v.y > -200.0 && v.y <= 0.0) widest_step_south = std::max(widest_step_south, v.y - previous_y);
+      previous_y = v.y, first = false;
+    }
+  }
+  EXPECT_GT(on_island, 9);
+  EXPECT_LE(widest_step_south, 10.0 + 1e-3);  // float vertices
+  EXPECT_EQ(mesh.surroundings.weight.values(), ground.weight.values());
 }
 
 }  // namespace nearshore

@@ -9,9 +9,11 @@
 #include <memory>
 #include <vector>
 
+#include "nearshore/playback/site_terrain.hpp"
 #include "nearshore/playback/water_renderer.hpp"
 #include "nearshore/playback/window.hpp"
 #include "nearshore/runtime/surface_snapshot.hpp"
+#include "surroundings_fixture.hpp"
 
 namespace nearshore {
 namespace {
@@ -197,6 +199,82 @@ TEST(TerrainRender, TheLandContinuesPastTheGridsEdge) {
       EXPECT_FALSE(is_sea(c)) << x_m << " m east, " << beyond_m << " m beyond the north edge: the open sea";
       EXPECT_FALSE(is_background(c)) << x_m << " m east, " << beyond_m << " m beyond the north edge: nothing";
     }
+}
+
+// Issue 41: the surroundings on Mesa. An all-water grid (8 m) inside surroundings of 10 m cells
+// holding an island 3 m high (a disc of 50 m radius) 150 m south of it, two reefs one cell wide
+// (3 m up) across them, and no data east of x = 450 m. Seen from straight above (about 1.1 m a
+// pixel), each pixel shows land where the CPU twin (playback::skirt_ground_m with the same
+// SurroundingGround) puts the ground above still water and the sea where it puts it below (pixels
+// within 0.3 m of still water are not judged), on at least 99.9 % of the pixels (measured: 13
+// of 129 482 differ). The reefs are narrower than the skirt's mesh resolves, so along them the
+// mesh stays under water where the twin stands above it: only the shader's own twin (surface.glsl
+// skirt_ground_m, on_skirt_land: no sea drawn on the skirt's land) shows them; with its
+// surroundings term removed, 850 pixels differ. Without the surroundings the view is all sea.
+TEST(TerrainRender, AnIslandInTheSurroundingsIsDrawnWhereTheTwinPutsIt) {
+  playback::GlWindow window(64, 64, "test", false);
+  HarbourGrid h = grid(64, 48, 4.0);
+  h.surroundings = test::surroundings_round(h.geometry, 10.0, 300.0, [](double x, double y) {
+    const int i = int(std::floor((x + 300.0) / 10.0)), j = int(std::floor((y + 300.0) / 10.0));
+    if (i == 40 || j == 5) return -3.0;  // two reefs one cell wide
+    return x > 450.0 ? NAN : std::clamp(0.2 * (std::hypot(x - 128.0, y + 150.0) - 50.0), -3.0, 8.0);
+  });
+  const playback::SurroundingGround ground = playback::surrounding_ground(h);
+  const double open_sea_depth_m = 8.0;  // SiteTextures: the deepest edge depth, at least 5 m
+  const int width = 512, height = 256;
+  const playback::Vector3 eye{250.0, -150.0 - 0.01, 3000.0}, target{250.0, -150.0, 0.0};
+  const double field_of_view_deg = 2.0 * std::atan(140.0 / 3000.0) * 180 / M_PI;
+  const Picture picture = look(h, eye, target, field_of_view_deg, width, height);
+  int judged = 0, disagree = 0, land = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const auto p = on_plane(picture.view, x, y, 0.0);
+      const double twin = playback::skirt_ground_m(h, ground, open_sea_depth_m, p[0], p[1]);
+      if (std::abs(twin) < 0.3 || (p[0] >= 0 && p[0] <= 256 && p[1] >= 0 && p[1] <= 192)) continue;
+      const Rgb c = picture.image.get(x, y);
+      ASSERT_FALSE(is_background(c)) << "nothing drawn at (" << p[0] << ", " << p[1] << ")";
+      ++judged;
+      land += twin > 0;
+      disagree += is_sea(c) != (twin < 0);
+    }
+  // The island's disc above 0.3 m (radius 48.5 m, 7400 m^2, about 6000 pixels of 1.1 m) and the reefs.
+  EXPECT_GT(land, 6000);
+  EXPECT_GT(judged, width * height / 2);
+  EXPECT_LE(disagree, judged / 1000) << disagree << " of " << judged << " pixels disagree with the twin";
+  std::printf("surroundings island: %d land pixels, %d of %d judged pixels disagree with the CPU twin\n", land, disagree,
+              judged);
+  HarbourGrid without = h;
+  without.surroundings = Surroundings{};
+  const Picture before = look(without, eye, target, field_of_view_deg, width, height);
+  int not_sea = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) not_sea += !is_sea(before.image.get(x, y));
+  EXPECT_EQ(not_sea, 0) << "without surroundings the edge's rule makes open water here";
+}
+
+// Far off: the skirt's mesh keeps the surroundings' cells as its steps out to their box's edge, so
+// a low island 2.5 m high and 6 km across, 17 to 23 km north of an all-water grid, seen from 100 m
+// through a 2 degree lens, is drawn as land (its near half: the far half is hidden by the Earth's
+// curvature).
+TEST(TerrainRender, AFarLowIslandInTheSurroundingsIsDrawn) {
+  playback::GlWindow window(64, 64, "test", false);
+  HarbourGrid h = grid(64, 48, 4.0);
+  h.surroundings = test::surroundings_round(h.geometry, 200.0, 25872.0, [](double x, double y) {
+    return std::clamp(0.01 * (std::hypot(x - 128.0, y - 20000.0) - 3000.0), -2.5, 8.0);
+  });
+  const int width = 640, height = 360;
+  const Picture picture = look(h, {128.0, 40.0, 100.0}, {128.0, 20000.0, 0.0}, 2.0, width, height);
+  int land = 0, samples = 0;
+  for (double y_m : {17500.0, 18500.0, 19500.0})
+    for (double x_m : {-300.0, 128.0, 500.0}) {
+      const auto pixel = pixel_of(picture.view, x_m, y_m, 2.5);
+      const int px = int(std::lround(pixel[0])), py = int(std::lround(pixel[1]));
+      ASSERT_TRUE(px >= 0 && px < width && py >= 0 && py < height) << x_m << ", " << y_m;
+      ++samples;
+      const Rgb c = picture.image.get(px, py);
+      land += !is_sea(c) && !is_background(c);
+    }
+  EXPECT_EQ(land, samples) << "points of the island drawn as land";
 }
 
 }  // namespace nearshore

@@ -44,19 +44,22 @@ def same_files(a, b, names):
 def test_bathy_writes_what_the_cli_writes(tmp_path, cli):
     soundings = write_soundings(tmp_path / "bay.xyz")
     options = dict(spacing_m=25.0, bbox=(-122.438, 47.2705, -122.426, 47.277), water_level_m=0.5, min_depth_m=1.0, max_slope=0.3,
-                   structures={"breakwater": (20.0, 0.4)}, marks={"gauge": "lat=47.274,lon=-122.432"})
+                   structures={"breakwater": (20.0, 0.4)}, marks={"gauge": "lat=47.274,lon=-122.432"},
+                   surroundings_margin_m=400.0)
     with pytest.warns(UserWarning, match=r"shallower than min_depth_m = 1 m"):  # the library's warning, named by keyword
         summary = nearshore.bathy(soundings, tmp_path / "py", **options)
     printed = json.loads(run_cli(cli, "bathy", soundings, "--spacing", 25, "--bbox", "-122.438,47.2705,-122.426,47.277",
                                  "--water-level", 0.5, "--min-depth", 1.0,
                                  "--max-slope", 0.3, "--structure", "breakwater=20:0.4",
-                                 "--mark", "gauge:lat=47.274,lon=-122.432", "--json", "-o", tmp_path / "cli"))
+                                 "--mark", "gauge:lat=47.274,lon=-122.432", "--surroundings-margin", 400,
+                                 "--json", "-o", tmp_path / "cli"))
     # The grid, its GeoTIFF and the preview byte for byte; the summary up to the output folder's name.
     same_files(tmp_path / "py", tmp_path / "cli", ["depth.exr", "depth.tif", "preview.png"])
     assert json.dumps(summary).replace(str(tmp_path / "py"), "OUT") == \
         json.dumps(printed).replace(str(tmp_path / "cli"), "OUT")
     assert summary["columns"] > 0 and summary["cells"]["water"] > 0
     assert summary["water_depth_m"]["min"] >= 1.0 - 1e-6   # min_depth_m reached the library
+    assert summary["surroundings"]["margin_m"] == 400.0     # and surroundings_margin_m
     with pytest.raises(nearshore.Error, match="spacing_m"):
         nearshore.bathy(soundings, tmp_path / "bad", spacing_m=-1.0)
     with pytest.raises(nearshore.Error, match="bbox"):

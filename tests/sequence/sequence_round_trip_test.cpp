@@ -51,6 +51,71 @@ TEST(SequenceRoundTrip, FloatFramesComeBackBitExactWithManifest) {
   reader.verify_checksums();
 }
 
+// Issue 41: the harbour grid's surroundings (the ground round it, coarser cells over a larger box,
+// a second part of depth.exr) travel with the sequence and come back exactly, no-data cells (NaN)
+// included; a sequence without them reads as before (the manifest does not change: depth.exr is
+// one file with one checksum, its first part the grid a reader of one part reads).
+TEST(SequenceRoundTrip, TheHarbourGridsSurroundingsComeBackExactly) {
+  const auto folder = fresh_folder("surroundings");
+  const GridGeometry geometry = test_geometry();
+  HarbourGrid harbour = test_harbour(geometry);
+  Surroundings& outer = harbour.surroundings;
+  outer.geometry = geometry;
+  outer.geometry.spacing_m = 16.0;
+  outer.geometry.columns = 30;
+  outer.geometry.rows = 20;
+  outer.geometry.origin_x_m = geometry.origin_x_m - 166.0;
+  outer.geometry.origin_y_m = geometry.origin_y_m - 114.0;
+  outer.still_water_depth_m = Raster<float>(30, 20);
+  for (int row = 0; row < 20; ++row)
+    for (int column = 0; column < 30; ++column)
+      outer.still_water_depth_m(column, row) = column > 25 ? NAN : 12.0f - 0.75f * float(row) + 0.01f * float(column);
+  {
+    SequenceWriter writer(folder, harbour, test_description());
+    for (int index = 0; index < 2; ++index) writer.write_frame(index, TestFields(geometry, index).fields());
+    writer.finish(2);
+  }
+  const SequenceReader reader(folder);
+  const HarbourGrid again = reader.read_harbour_grid(Verify::kYes);
+  EXPECT_EQ(again.still_water_depth_m.values(), harbour.still_water_depth_m.values());
+  ASSERT_FALSE(again.surroundings.empty());
+  EXPECT_EQ(nlohmann::json(again.surroundings.geometry), nlohmann::json(outer.geometry));
+  for (int row = 0; row < 20; ++row)
+    for (int column = 0; column < 30; ++column) {
+      const float a = again.surroundings.still_water_depth_m(column, row), b = outer.still_water_depth_m(column, row);
+      EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << column << ", " << row;
+    }
+  reader.verify_checksums();
+  // Without surroundings: one part, as before.
+  const auto plain = fresh_folder("no-surroundings");
+  write_test_sequence(plain, 1);
+  EXPECT_TRUE(SequenceReader(plain).read_harbour_grid(Verify::kYes).surroundings.empty());
+}
+
+// Surroundings that miss the grid, or are not in its projection, are refused naming the file's
+// part and the boxes.
+TEST(SequenceRoundTrip, SurroundingsThatMissTheGridAreRefusedNamingThePart) {
+  const auto folder = fresh_folder("surroundings-bad");
+  std::filesystem::create_directories(folder);
+  const GridGeometry geometry = test_geometry();
+  HarbourGrid harbour = test_harbour(geometry);
+  harbour.surroundings.geometry = geometry;
+  harbour.surroundings.geometry.origin_x_m += 200.0;  // east of the grid's 148 m
+  harbour.surroundings.still_water_depth_m = Raster<float>(geometry.columns, geometry.rows, 5.0f);
+  write_harbour_grid(folder / "depth.exr", harbour);
+  try {
+    read_harbour_grid(folder / "depth.exr");
+    FAIL() << "surroundings that miss the grid were read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("part 1, \"surroundings\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("do not overlap the grid's"), std::string::npos) << e.what();
+  }
+  harbour.surroundings.geometry = geometry;
+  harbour.surroundings.geometry.projection = {{"kind", "utm"}, {"zone", 50}, {"north", true}};
+  write_harbour_grid(folder / "depth.exr", harbour);
+  EXPECT_THROW(read_harbour_grid(folder / "depth.exr"), Error);
+}
+
 // Issue 15: rectangular cells. The manifest records both spacings (and no "spacing_m", so a reader
 // that predates them refuses the file instead of taking dx for dy); a square grid's manifest keeps
 // the one key it always had, and both read back.

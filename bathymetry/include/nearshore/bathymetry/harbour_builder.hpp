@@ -16,7 +16,10 @@
 //   6. still water raised by water_level_m above the sounding datum (depths grow by it); land: land
 //      polygons and cells with depth <= 0; porosity: structures rasterised with a crest
 //      width and porosity per category; signed coastline distance (negative on land);
-//   7. conditioning for the Boussinesq solver: minimum depth clamp, optional slope limiting.
+//   7. conditioning for the Boussinesq solver: minimum depth clamp, optional slope limiting;
+//   8. the surroundings (issue 41): steps 3-6 again, on coarser cells over a larger box round the
+//      grid (surroundings_geometry), for the renderer's ground beyond the grid; cells no input covers
+//      stay NaN (no data), and no conditioning (the solver never sees them).
 #include <array>
 #include <filesystem>
 #include <map>
@@ -81,7 +84,22 @@ struct BathyRequest {
   double coastline_band_m = 200.0;    ///< half-width of the narrow band stored in coastline.vdb
   double memory_limit_bytes = 0.0;    ///< 0 = the machine's available memory (/proc/meminfo)
   bool leave_one_out = false;         ///< also cross-validate the chart soundings (summary "leave_one_out")
+  /// How far the surroundings reach beyond the grid on every side, metres; negative: the grid's
+  /// longer side (the box three times the grid's); 0: no surroundings.
+  double surroundings_margin_m = -1.0;
 };
+
+/// Cells of the surroundings: at least kSurroundingsCellFactor times the grid's, and at most
+/// kSurroundingsMaxCells along the box's longer side. The renderer draws them beyond the grid,
+/// seen from hundreds of metres to kilometres off, where a cell of 4 grid cells (40-120 m for
+/// harbour grids of 10-30 m) is a few pixels; 384 cells a side keep the texture and the skirt's
+/// mesh small (147 k cells, 0.6 MB of float) whatever the margin.
+inline constexpr double kSurroundingsCellFactor = 4.0;
+inline constexpr int kSurroundingsMaxCells = 384;
+
+/// The surroundings' cells round `grid` (its projection, a box grown by `margin_m` on every side,
+/// centred on the grid's): see kSurroundingsCellFactor. `margin_m` > 0.
+GridGeometry surroundings_geometry(const GridGeometry& grid, double margin_m);
 
 struct BathyResult {
   HarbourGrid grid;
@@ -96,7 +114,7 @@ struct BathyResult {
   std::vector<std::string> warnings;
 };
 
-/// Runs steps 1-7. Throws nearshore::Error (naming the file, the problem and the fix) before
+/// Runs steps 1-8. Throws nearshore::Error (naming the file, the problem and the fix) before
 /// anything is written: missing or unreadable input, bbox outside the data, a grid too large for
 /// memory, no water cell, ...
 BathyResult build_harbour_grid(const BathyRequest& request);

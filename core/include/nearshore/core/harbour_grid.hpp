@@ -17,6 +17,12 @@
 // "nearshore_structures" (absent in grids written before it: no structures, porosity as stored).
 // EXR line 0 is the NORTHERN row (so image viewers show north up); Raster row 0 is the southern
 // row; the reader and writer here are the one place that flips.
+// Optional, the surroundings (issue 41): the ground round the grid, coarser cells over a larger box
+// (HarbourGrid::surroundings), as a second part "surroundings" of the same EXR file (multi-part
+// OpenEXR), channel "depth" (NaN: no data, beyond the chart) and its own geometry in
+// "nearshore_geometry". The grid stays part 0, so a reader that knows only one part (OpenEXR's
+// InputFile reads a multi-part file's first part) reads the grid as before; a file with one part has
+// no surroundings.
 #include <cstdint>
 #include <filesystem>
 
@@ -30,6 +36,19 @@ namespace nearshore {
 /// Values of HarbourGrid::land. Code that tests `land(c, r)` as a flag treats outside-chart cells as land.
 inline constexpr std::uint8_t kWaterCell = 0, kLandCell = 1, kOutsideChartCell = 2;
 
+/// The ground round the harbour grid, for the renderer's land and seabed beyond the grid (the
+/// sequence carries it in depth.exr; playback/site_terrain.hpp draws it). Gridded by `nearshore
+/// bathy` from the same inputs as the grid (docs/commands/bathy.md, "Surroundings").
+struct Surroundings {
+  /// Its cells, in the grid's projection (crs_wkt and projection equal to the grid's): a box that
+  /// holds the grid's, with cells several times the grid's. x, y in the same projected metres.
+  GridGeometry geometry;
+  /// d, positive down, land = -elevation (as the grid's); NaN where no input says anything (beyond
+  /// the chart's coverage or the rasters' extent): there the renderer keeps its own rule.
+  Raster<float> still_water_depth_m;
+  bool empty() const { return still_water_depth_m.empty(); }
+};
+
 struct HarbourGrid {
   GridGeometry geometry;
   Raster<float> still_water_depth_m;  ///< d, positive down; land = -elevation
@@ -42,6 +61,9 @@ struct HarbourGrid {
   /// The structures whose footprints the porosity channel holds, as the chart describes them; the
   /// bake re-lays their porous layers at its own cells and wave period (bake/structure_layers.hpp).
   std::vector<CoastalStructure> structures;
+  /// The ground round the grid; empty (no cells) in grids without it (laboratory grids, grids
+  /// written before it).
+  Surroundings surroundings;
 
   /// An open-water grid of the given geometry: depth `depth_m` everywhere, porosity 1,
   /// no land, coast distance +infinity. Laboratory cases start from this.
@@ -50,8 +72,9 @@ struct HarbourGrid {
 
 /// Writes atomically. Throws nearshore::Error naming the path on failure.
 void write_harbour_grid(const std::filesystem::path& depth_exr, const HarbourGrid& grid);
-/// Reads and validates (channels present, sizes agree, no NaN depth). Throws nearshore::Error
-/// naming the file, the problem and where.
+/// Reads and validates (channels present, sizes agree, no NaN depth; the surroundings in the grid's
+/// projection, overlapping its box, their depths NaN or finite). Throws
+/// nearshore::Error naming the file, the problem and where.
 HarbourGrid read_harbour_grid(const std::filesystem::path& depth_exr);
 
 }  // namespace nearshore

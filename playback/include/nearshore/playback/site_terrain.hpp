@@ -9,7 +9,10 @@
 //  - the skirt: beyond the grid's edges the ground continues from the edge's elevation (smoothed
 //    along the edge more the further out), land standing at its edge height out to the skirt's
 //    end (as far as the sea is drawn: the land meets the sky at the horizon), water deepening to
-//    the open sea's depth; no cut-off slab;
+//    the open sea's depth; no cut-off slab. Where the grid carries surroundings (HarbourGrid::
+//    surroundings: the chart's ground round the grid, `nearshore bathy`), the skirt takes their
+//    ground instead, turning to it over two of their cells from the grid's edge and back to the
+//    edge's rule over four cells towards where they end (no data beyond the chart, or their box);
 //  - the structures: extruded from the CoastalStructure geometry the grid carries (centre lines a
 //    crest width wide, polygons' outer rings) up to their crest, with faces sloped at their side
 //    slope (rubble) or vertical (side slope 0: quays, piers, walls) down to the bed. A grid
@@ -33,6 +36,27 @@ enum class TerrainMaterial : int { ground = 0, rubble = 1, concrete = 2 };
 /// The skirt's default reach beyond the grid (m): the water grids' (RadialGridSettings::
 /// outer_radius_m, QuadtreeSettings::reach_m), so land beyond the edge goes on as far as the sea.
 inline constexpr double kDefaultSkirtWidthM = 100000.0;
+
+/// The surroundings as the skirt reads them: the twin of the RG texture surface.glsl samples
+/// (u_surroundings). Per cell of HarbourGrid::surroundings, the weight w (0 on cells without data
+/// and on the box's outer cells, rising to 1 over kSurroundingsFadeCells cells inwards) and w times
+/// the elevation (-depth); both read bilinearly, the elevation is their quotient, so cells without
+/// data never enter it.
+struct SurroundingGround {
+  GridGeometry cells;                  ///< their cells, origin in the site frame (from the grid's south-west corner)
+  Raster<float> weighted_elevation_m;  ///< w * elevation, metres up from still water
+  Raster<float> weight;                ///< w, 0 .. 1
+  /// How far beyond the grid's edge the skirt has turned from the edge's rule to the surroundings
+  /// (two of their cells: the grid's edge and their cells there hold the same chart).
+  double edge_blend_m = 0.0;
+  bool empty() const { return weight.empty(); }
+};
+
+/// Cells over which the surroundings' weight rises from 0 at their last cell with data to 1.
+inline constexpr int kSurroundingsFadeCells = 4;
+
+/// The surroundings of `harbour` as the skirt reads them; empty when it has none.
+SurroundingGround surrounding_ground(const HarbourGrid& harbour);
 
 struct TerrainOptions {
   /// The crest, above still water, of structures known only by their porous cells (metres).
@@ -58,6 +82,8 @@ struct TerrainMesh {
   Raster<float> structure_mask;
   std::size_t ground_vertex_count = 0;  ///< the first vertices are the ground's lattice
   double skirt_width_m = 0.0;
+  /// The surroundings the skirt was built on (empty without): the shader's u_surroundings.
+  SurroundingGround surroundings;
 };
 
 /// The ground's elevation at a site point inside the grid (metres up from still water): minus the
@@ -67,9 +93,12 @@ double ground_elevation_m(const HarbourGrid& harbour, double x_m, double y_m);
 /// The skirt's ground at a site point beyond the grid (metres up from still water): the edge's
 /// ground averaged along the edge over +-the distance beyond (at most a quarter of the shorter
 /// side); land (average above still water) stays at that height, water deepens to
-/// `open_sea_depth_m` over the site's extent, blended by the average from -1 to 1 m. The twin of
-/// shaders/surface.glsl skirt_ground_m, where the sea is not drawn over the skirt's land.
-double skirt_ground_m(const HarbourGrid& harbour, double open_sea_depth_m, double x_m, double y_m);
+/// `open_sea_depth_m` over the site's extent, blended by the average from -1 to 1 m. Where
+/// `surroundings` has data, that rule turns to their ground: weight w(p) * smoothstep(0,
+/// edge_blend_m, distance beyond). The twin of shaders/surface.glsl skirt_ground_m, where the sea
+/// is not drawn over the skirt's land.
+double skirt_ground_m(const HarbourGrid& harbour, const SurroundingGround& surroundings, double open_sea_depth_m,
+                      double x_m, double y_m);
 
 /// Builds the ground, skirt and structures of `harbour` (see the top of this file).
 TerrainMesh build_site_terrain(const HarbourGrid& harbour, const TerrainOptions& options = {});
