@@ -270,7 +270,9 @@ TEST(BathyOutputs, TheDemosSurroundingsAreItsAnalyticGroundBeyondTheGrid) {
       const double y = bare.geometry.cell_centre_y_m(r) - files.site_box_m[1];
       const bool inside = x > 0 && x < site.width_m && y > 0 && y < site.height_m;
       no_data += std::isnan(bare.still_water_depth_m(c, r));
-      if (inside) EXPECT_TRUE(std::isfinite(bare.still_water_depth_m(c, r))) << c << ", " << r;
+      if (inside) {
+        EXPECT_TRUE(std::isfinite(bare.still_water_depth_m(c, r))) << c << ", " << r;
+      }
     }
   EXPECT_GT(no_data, bare.geometry.columns * bare.geometry.rows * 8 / 10);  // the site is 1/9 of the box
   EXPECT_EQ(survey_only.summary["surroundings"]["cells"]["no_data"], no_data);
