@@ -40,8 +40,9 @@ inline constexpr std::uint8_t kWaterCell = 0, kLandCell = 1, kOutsideChartCell =
 /// sequence carries it in depth.exr; playback/site_terrain.hpp draws it). Gridded by `nearshore
 /// bathy` from the same inputs as the grid (docs/commands/bathy.md, "Surroundings").
 struct Surroundings {
-  /// Its cells, in the grid's projection (crs_wkt and projection equal to the grid's): a box that
-  /// holds the grid's, with cells several times the grid's. x, y in the same projected metres.
+  /// Its cells, in the grid's projection (crs_wkt and projection equal to the grid's): a box round
+  /// the grid's (read_harbour_grid asks only that they overlap: a bake's resampling may round the
+  /// grid's box out by half a cell), with cells several times the grid's. x, y in the same metres.
   GridGeometry geometry;
   /// d, positive down, land = -elevation (as the grid's); NaN where no input says anything (beyond
   /// the chart's coverage or the rasters' extent): there the renderer keeps its own rule.
