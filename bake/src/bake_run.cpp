@@ -492,7 +492,8 @@ BakeSummary run_bake(const BakeCase& bake_case, const BakeOptions& options) {
     }
   };
 
-  ProgressBar progress("baking", plan.total * summary.time_step_s, "s");
+  // A resumed bake starts from its checkpoint's time: its ETA is projected from the steps it takes.
+  ProgressBar progress("baking", plan.total * summary.time_step_s, "s", solver.time_s());
   const long first_step = solver.step_count();
   if (!options.resume) outputs_at(0);
   const auto stepping_start = std::chrono::steady_clock::now();

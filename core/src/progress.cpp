@@ -24,8 +24,15 @@ std::string format_duration(double seconds) {
   return fmt::format("{} h {:02} min", whole / 3600, (whole % 3600) / 60);
 }
 
-ProgressBar::ProgressBar(std::string label, double total, std::string unit)
+double remaining_seconds(double elapsed_s, double fraction_done, double fraction_at_start) {
+  const double done_here = fraction_done - fraction_at_start;
+  if (!(done_here > 1e-9) || !std::isfinite(elapsed_s)) return NAN;
+  return elapsed_s * (1.0 - fraction_done) / done_here;
+}
+
+ProgressBar::ProgressBar(std::string label, double total, std::string unit, double done_at_start)
     : label_(std::move(label)), unit_(std::move(unit)), total_(std::max(total, 1e-300)),
+      fraction_at_start_(std::isfinite(done_at_start) ? std::clamp(done_at_start / total_, 0.0, 1.0) : 0.0),
       start_(std::chrono::steady_clock::now()), last_draw_(start_), terminal_(::isatty(STDERR_FILENO) == 1) {}
 
 ProgressBar::~ProgressBar() {
@@ -61,13 +68,14 @@ void ProgressBar::finish(std::string_view detail) {
 void ProgressBar::draw(double done, std::string_view detail, bool final_line) {
   const double fraction = std::clamp(done / total_, 0.0, 1.0);
   const double elapsed = elapsed_seconds();
-  const double eta = fraction > 1e-9 ? elapsed * (1.0 - fraction) / fraction : NAN;
+  const double eta = remaining_seconds(elapsed, fraction, fraction_at_start_);
   constexpr int kWidth = 28;
   const int filled = static_cast<int>(std::round(fraction * kWidth));
   std::string bar(filled, '#');
   bar.append(kWidth - filled, '.');
   std::string line =
-      final_line ? fmt::format("{:<12} [{}] done in {}", label_, bar, format_duration(elapsed))
+      final_line ? fmt::format("{:<12} [{}] done in {}{}", label_, bar, format_duration(elapsed),
+                               fraction_at_start_ > 0.0 ? fmt::format(" (resumed at {:.1f}%)", 100.0 * fraction_at_start_) : "")
                  : fmt::format("{:<12} [{}] {:5.1f}% {:.4g}/{:.4g} {}  elapsed {}  ETA {}", label_, bar,
                                100.0 * fraction, done, total_, unit_, format_duration(elapsed),
                                format_duration(eta));

@@ -11,7 +11,9 @@ namespace nearshore {
 class ProgressBar {
  public:
   /// label: what is being done ("gridding"); total: the amount of work in `unit`s ("cells", "s").
-  ProgressBar(std::string label, double total, std::string unit);
+  /// done_at_start: the work a resumed run found done (from its checkpoint); the ETA is projected
+  /// from what this run has done since, not from the whole fraction.
+  ProgressBar(std::string label, double total, std::string unit, double done_at_start = 0.0);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
@@ -29,11 +31,16 @@ class ProgressBar {
   void draw(double done, std::string_view detail, bool final_line);
   std::string label_, unit_;
   double total_;
+  double fraction_at_start_ = 0.0;
   std::chrono::steady_clock::time_point start_, last_draw_;
   int last_decile_ = -1;
   bool finished_ = false;
   bool terminal_ = false;
 };
+
+/// The wall time still to go when `fraction_done` of the work is done after `elapsed_s`, at the
+/// rate of this run (the work from `fraction_at_start` on); NaN before any progress.
+double remaining_seconds(double elapsed_s, double fraction_done, double fraction_at_start = 0.0);
 
 /// "1 h 02 min", "3 min 05 s", "12.3 s": a duration as people read it.
 std::string format_duration(double seconds);
