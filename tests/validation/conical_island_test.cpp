@@ -14,6 +14,7 @@
 #include <fmt/core.h>
 #include <gtest/gtest.h>
 
+#include "laboratory_data.hpp"
 #include "nearshore/bake/bake_gauges.hpp"
 #include "validation_bake.hpp"
 #include "validation_plots.hpp"
@@ -48,20 +49,11 @@ IslandRecord read_island_record(const std::string& file_name) {
   return record;
 }
 
-double interpolate(const std::vector<double>& t, const std::vector<double>& v, double at) {
-  if (at < t.front() || at > t.back()) return NAN;
-  const auto upper = std::upper_bound(t.begin(), t.end(), at);
-  if (upper == t.end()) return v.back();
-  const std::size_t i = static_cast<std::size_t>(upper - t.begin());
-  const double f = (at - t[i - 1]) / (t[i] - t[i - 1]);
-  return v[i - 1] + f * (v[i] - v[i - 1]);
-}
-
 std::size_t largest_index(const std::vector<double>& v) {
   return static_cast<std::size_t>(std::max_element(v.begin(), v.end()) - v.begin());
 }
 
-struct GaugeScore {
+struct IslandGaugeScore {
   double crest_measured_m = 0, crest_model_m = 0, crest_ratio = 0;
   double travel_error_s = 0;  ///< (model's crest time - its gauge 6 crest time) - the same measured
   double rms_over_height = 0;  ///< RMS difference over 2 s before to 6 s after the measured crest, / H
@@ -84,15 +76,15 @@ IslandRecord zeroed(IslandRecord record) {
   return record;
 }
 
-std::array<GaugeScore, 4> score_island(const IslandRecord& measured_as_read, const IslandRecord& model, double height_m) {
+std::array<IslandGaugeScore, 4> score_island(const IslandRecord& measured_as_read, const IslandRecord& model, double height_m) {
   const IslandRecord measured = zeroed(measured_as_read);
   const std::array<std::vector<double>, 4>& lab = measured.elevation_m;
   const double lab_crest6_s = measured.time_s[largest_index(lab[0])];
   const double model_crest6_s = model.time_s[largest_index(model.elevation_m[0])];
   const double shift_s = lab_crest6_s - model_crest6_s;
-  std::array<GaugeScore, 4> scores;
+  std::array<IslandGaugeScore, 4> scores;
   for (int g = 0; g < 4; ++g) {
-    GaugeScore& s = scores[g];
+    IslandGaugeScore& s = scores[g];
     const std::size_t crest = largest_index(lab[g]);
     const double crest_s = measured.time_s[crest];
     s.crest_measured_m = lab[g][crest];
@@ -102,7 +94,7 @@ std::array<GaugeScore, 4> score_island(const IslandRecord& measured_as_read, con
     for (std::size_t i = 0; i < measured.time_s.size(); ++i) {
       const double t = measured.time_s[i];
       if (t <= crest_s - 2.0 || t >= crest_s + 6.0) continue;
-      const double m = interpolate(model.time_s, model.elevation_m[g], t - shift_s);
+      const double m = sample_at(model.time_s, model.elevation_m[g], t - shift_s);
       if (!std::isfinite(m)) continue;
       if (m > s.crest_model_m) s.crest_model_m = m, model_crest_s = t;
       sum += (m - lab[g][i]) * (m - lab[g][i]);
@@ -148,7 +140,7 @@ fs::path island_grid(double cell_m) {
 constexpr double kCrestRatioBar = 0.30, kRmsBar = 0.35;
 constexpr double kTravelBar_s = kFull ? 0.35 : 0.50;
 
-void print_scores(const std::string& who, const std::array<GaugeScore, 4>& scores) {
+void print_scores(const std::string& who, const std::array<IslandGaugeScore, 4>& scores) {
   std::printf("%s\n  gauge  crest measured  model  ratio  travel error  RMS/H\n", who.c_str());
   for (int g = 0; g < 4; ++g)
     std::printf("  %-5s  %13.4f  %6.4f  %5.2f  %+11.2f s  %5.3f\n", kGauges[g], scores[g].crest_measured_m, scores[g].crest_model_m,

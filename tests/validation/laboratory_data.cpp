@@ -139,4 +139,12 @@ double root_mean_square_error(const std::vector<double>& model, const std::vecto
   return std::sqrt(sum / static_cast<double>(model.size()));
 }
 
+double sample_at(const std::vector<double>& time_s, const std::vector<double>& values, double t) {
+  if (time_s.empty() || !(t >= time_s.front()) || t > time_s.back()) return NAN;
+  const auto upper = std::upper_bound(time_s.begin(), time_s.end(), t);
+  if (upper == time_s.end()) return values.back();
+  const std::size_t i = static_cast<std::size_t>(upper - time_s.begin());
+  return values[i - 1] + (t - time_s[i - 1]) / (time_s[i] - time_s[i - 1]) * (values[i] - values[i - 1]);
+}
+
 }  // namespace nearshore::validation

@@ -60,5 +60,7 @@ double mean_wave_height_m(const std::vector<double>& time_s, const std::vector<d
 double significant_wave_height_m(const std::vector<double>& elevation_m, std::size_t first, std::size_t last);
 double mean_level_m(const std::vector<double>& elevation_m, std::size_t first, std::size_t last);
 double root_mean_square_error(const std::vector<double>& model, const std::vector<double>& data);
+/// The series (`values` at increasing `time_s`) at time t, linear between samples; NaN outside them.
+double sample_at(const std::vector<double>& time_s, const std::vector<double>& values, double t);
 
 }  // namespace nearshore::validation
