@@ -58,13 +58,14 @@ FlumeRecord read_dingemans() {
 // front passed the last gauge by 25 s; the model's ramp ended 35 s before).
 constexpr double kWindowStart_s = 40.0;
 constexpr int kWindowPeriods = 7;
+bool in_window(double t_s) { return t_s >= kWindowStart_s && t_s < kWindowStart_s + kWindowPeriods * kPeriod_s; }
 
 // Amplitude of harmonic n (n / T) of `v` sampled at `t`, over the window's whole periods.
 double harmonic_amplitude(const std::vector<double>& t, const std::vector<double>& v, int n) {
   std::complex<double> sum = 0;
   int count = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    if (t[i] < kWindowStart_s || t[i] >= kWindowStart_s + kWindowPeriods * kPeriod_s) continue;
+    if (!in_window(t[i])) continue;
     sum += v[i] * std::exp(std::complex<double>(0, -2 * M_PI * n * t[i] / kPeriod_s));
     ++count;
   }
@@ -91,14 +92,11 @@ void check_dingemans() {
   // The model's clock against the flume's: the wave maker's phase is not the paddle's, so the one
   // free parameter, a lag within one period, is the one that best matches gauge 1 (in front of
   // the bar) over the window; every other gauge is compared at that lag.
-  std::vector<double> in_window;
-  for (double t : measured.time_s)
-    if (t >= kWindowStart_s && t < kWindowStart_s + kWindowPeriods * kPeriod_s) in_window.push_back(t);
   double lag_s = 0, best = -1e300;
   for (double lag = 0; lag < kPeriod_s; lag += 0.005) {
     double c = 0;
     for (std::size_t i = 0; i < measured.time_s.size(); ++i)
-      if (measured.time_s[i] >= kWindowStart_s && measured.time_s[i] < kWindowStart_s + kWindowPeriods * kPeriod_s)
+      if (in_window(measured.time_s[i]))
         c += measured.elevation_m[0][i] * sample_at(table.time_s, *model[0], measured.time_s[i] - lag);
     if (c > best) best = c, lag_s = lag;
   }
@@ -107,14 +105,11 @@ void check_dingemans() {
   std::array<std::vector<double>, kGaugeCount> model_on_lab_clock;
   for (int g = 0; g < kGaugeCount; ++g) {
     for (double t : measured.time_s) model_on_lab_clock[g].push_back(sample_at(table.time_s, *model[g], t - lag_s));
-    double sum = 0;
-    int count = 0;
-    for (std::size_t i = 0; i < measured.time_s.size(); ++i) {
-      const double t = measured.time_s[i];
-      if (t < kWindowStart_s || t >= kWindowStart_s + kWindowPeriods * kPeriod_s) continue;
-      sum += std::pow(model_on_lab_clock[g][i] - measured.elevation_m[g][i], 2), ++count;
-    }
-    scores[g].rms_over_height = std::sqrt(sum / count) / (2 * kAmplitude_m);
+    std::vector<double> model_in_window, measured_in_window;
+    for (std::size_t i = 0; i < measured.time_s.size(); ++i)
+      if (in_window(measured.time_s[i]))
+        model_in_window.push_back(model_on_lab_clock[g][i]), measured_in_window.push_back(measured.elevation_m[g][i]);
+    scores[g].rms_over_height = root_mean_square_error(model_in_window, measured_in_window) / (2 * kAmplitude_m);
     for (int n = 1; n <= 3; ++n) {
       scores[g].measured_m[n - 1] = harmonic_amplitude(measured.time_s, measured.elevation_m[g], n);
       scores[g].model_m[n - 1] = harmonic_amplitude(measured.time_s, model_on_lab_clock[g], n);
