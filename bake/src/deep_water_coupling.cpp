@@ -249,11 +249,13 @@ CoupledWaveMaker couple_wave_maker(const DeepWaterField& field, const WaveMaker&
     coupled.inland.depth_m.push_back(wet > 0 ? sum_m / wet : 0.0);
   }
 
-  // 4. The blending zone. The source strip is +-3 / sqrt(beta), beta = 20 / L_p^2, L_p the model
-  //    wavelength of the largest component (boussinesq_source.cpp, docs/solver.md "Wave maker"):
+  // 4. The blending zone. The source strip is +-3 / sqrt(beta), beta = 20 / L^2, L the model
+  //    wavelength of the shortest component (boussinesq_source.cpp, docs/solver.md "Wave maker"):
   //    inside it the field is the outgoing wave plus the source's near field, beyond it (Gaussian
-  //    < e^-9) the outgoing wave alone. The cross-fade takes the next peak wavelength, or less (not
-  //    below half of it) where the predicted difference would pass the seam criterion before.
+  //    < e^-9) the outgoing wave alone. The zone starts at 3 L_p / sqrt(20), L_p the largest
+  //    component's wavelength: the strip's edge when the source is one wave, beyond it otherwise.
+  //    The cross-fade takes the next peak wavelength, or less (not below half of it) where the
+  //    predicted difference would pass the seam criterion before.
   BlendingZone& zone = coupled.blending;
   zone.side = maker.facing;
   zone.source_line_m = line_local_m;

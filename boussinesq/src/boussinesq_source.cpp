@@ -111,8 +111,7 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
                                          ? maker.sea_state.components
                                          : components_from_series(maker, mean_direction);
   if (waves.empty()) return;
-  // Gaussian source width from the longest-energy (peak) component: beta = 20 / L^2 (the e-folding
-  // half-width L/4.5 keeps the source compact yet resolved at 20 cells per wavelength).
+  // The largest component: its amplitude is the scale below which components are not made.
   const auto peak = std::max_element(waves.begin(), waves.end(),
                                      [](const WaveComponent& a, const WaveComponent& b) { return a.amplitude_m < b.amplitude_m; });
   // On a current (SolverParameters::current) every wave has its Doppler-shifted wavenumber: the
@@ -141,8 +140,32 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   };
   const double peak_k = wavenumber(peak->angular_frequency_rad_s, peak->direction_rad);
   if (current_ && peak_k == 0.0) throw blocked(peak->angular_frequency_rad_s);
-  const double peak_length = 2.0 * std::numbers::pi / peak_k;
-  const double beta = 20.0 / (peak_length * peak_length);
+  const double largest = peak->amplitude_m;
+  // Which components the line makes (the loop below): a time series' harmonics beyond the
+  // equations' range (k d > 3), or blocked by a current, are not generated.
+  auto significant = [&](const WaveComponent& wave) {
+    return wave.amplitude_m > 1e-6 * largest && wave.angular_frequency_rad_s > 0.0;
+  };
+  auto in_range = [&](double k) { return maker.kind != WaveMaker::Kind::kTimeSeries || (k * d <= 3.0 && k != 0.0); };
+  // Gaussian width from the shortest wave the line makes: beta = 20 / L^2 (Wei, Kirby & Sun 1999's
+  // choice for one wave; the e-folding half-width L/4.5 keeps the source compact yet resolved at 20
+  // cells per wavelength). The transfer I falls as exp(-k^2 / 4 beta), so each component's strength
+  // D grows by its inverse, and D is also the size of the source's near field, the local response
+  // that does not radiate: sized for the peak, a component of k = 4 k_p needs 2600 times the
+  // strength per amplitude. A measured record's DFT carries its noise floor at full strength up to
+  // k d = 3: Dingemans' gauge-1 record (docs/validation.md) has 0.3 mm components up to 4.5 times the
+  // peak's wavenumber, which the peak's width made into a near field of 0.8 m, drying the 0.8 m deep
+  // flume at the line. Sized for the shortest, every component's transfer is at least e^-0.49 = 0.61
+  // of the Gaussian's full weight, and no component needs a near field much larger than its wave.
+  // One wave (a regular maker) gets the width it always had.
+  double shortest_k = peak_k;
+  for (const WaveComponent& wave : waves) {
+    if (!significant(wave)) continue;
+    const double k = wavenumber(wave.angular_frequency_rad_s, wave.direction_rad);
+    if (in_range(k)) shortest_k = std::max(shortest_k, k);
+  }
+  const double shortest_length = 2.0 * std::numbers::pi / shortest_k;
+  const double beta = 20.0 / (shortest_length * shortest_length);
   const double half_width = 3.0 / std::sqrt(beta);
   strip_begin_ = std::max(0, static_cast<int>(std::floor(line_index - half_width / spacing_m_)));
   strip_end_ = std::min(normal_count, static_cast<int>(std::ceil(line_index + half_width / spacing_m_)) + 1);
@@ -155,13 +178,11 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
   depth_m_ = d;
   dispersion_coefficient_ = B;
   line_index_ = line_index;
-  const double largest = peak->amplitude_m;
   for (const WaveComponent& wave : waves) {
-    if (wave.amplitude_m <= 1e-6 * largest || wave.angular_frequency_rad_s <= 0.0) continue;
+    if (!significant(wave)) continue;
     const double w = wave.angular_frequency_rad_s;
     const double k = wavenumber(w, wave.direction_rad);
-    // A time series' harmonics beyond the equations' range, or blocked by a current, are not generated.
-    if (maker.kind == WaveMaker::Kind::kTimeSeries && (k * d > 3.0 || k == 0.0)) continue;
+    if (!in_range(k)) continue;
     if (current_ && k == 0.0) throw blocked(w);
     // On a current a wave the still water carries can be too short for the equations: against
     // 0.5 m/s over 0.5 m the 1 s wave has k d = 5.7 (2.1 in still water). The line then barely
@@ -184,8 +205,14 @@ SourceFunction::SourceFunction(const WaveMaker& maker, const GridGeometry& geome
               << " side within 78 deg of its normal";
       throw Error("wave maker", problem.str(), "turn the source line (facing) or limit the directional spread");
     }
-    // eta = a cos(kx x + ky y - w t + phi) at the line s = line_m: the source phase at tangential 0.
-    const double phase = wave.phase_rad + k_normal * line_m;
+    // A component's phase phi is the field's, eta = a cos(kx x + ky y - w t + phi) (wave_component.hpp),
+    // so at the line s = line_m the source's phase at tangential 0 is phi + k_n line_m. A time
+    // series is eta(t) measured at the line itself (WaveMaker::series_elevation_m): its phases
+    // already are the line's. Adding k_n line_m to them reproduced the record at s = 0 instead, every
+    // component moved by its own k_n line_m: Dingemans' gauge-1 record, driven on its gauge's line
+    // 13.04 m from the grid's edge, came out 0.75 s early at the line (a 2.857 s wave moved by
+    // 0.84 rad/m x 13.04 m), its harmonics each by another shift.
+    const double phase = wave.phase_rad + (maker.kind == WaveMaker::Kind::kTimeSeries ? 0.0 : k_normal * line_m);
     // The strength D needs the time step, which the solver passes to add(): computed there.
     components_.push_back({wave.amplitude_m, w, k_tangential, phase, 0.0, current_along_m_s(wave.direction_rad)});
   }
