@@ -58,6 +58,7 @@ SolverParameters read_solver(TableReader& solver) {
                      ? SolverParameters::FaceDepth::kMeanWhereWet : SolverParameters::FaceDepth::kLargerOfMeanAndAboveBed;
   p.wall_dispersion = solver.choice("wall_dispersion", wall_dispersion_name(p.wall_dispersion), {"end_before_walls", "mirror_at_walls"}) == 1
                           ? SolverParameters::WallDispersion::kMirrorAtWalls : SolverParameters::WallDispersion::kEndBeforeWalls;
+  p.taper_dispersion_at_walls = solver.boolean("taper_dispersion_at_walls", p.taper_dispersion_at_walls);
   p.nonlinear_iterations = solver.integer("nonlinear_iterations", p.nonlinear_iterations, 1, 20, "iterations per half step");
   p.adi_passes = solver.integer("adi_passes", p.adi_passes, 1, 4, "x + y sweep pairs per step");
   p.alternate_sweep_order = solver.boolean("alternate_sweep_order", p.alternate_sweep_order);
@@ -116,6 +117,7 @@ json solver_record(const SolverParameters& p) {
           {"dispersion_depth", p.dispersion_depth == DispersionDepth::kTotal ? "total" : "still_water"},
           {"face_depth", face_depth_name(p.face_depth)},
           {"wall_dispersion", wall_dispersion_name(p.wall_dispersion)},
+          {"taper_dispersion_at_walls", p.taper_dispersion_at_walls},
           {"nonlinear_iterations", p.nonlinear_iterations},
           {"adi_passes", p.adi_passes},
           {"shapiro_filter_order", p.shapiro_filter_order},

@@ -69,6 +69,32 @@ double dispersion_weight(double depth_m, const SolverParameters& p, double peak_
   return w;
 }
 
+// Each cell's distance in cells from the nearest land (d <= 0) or wall cell (porosity below
+// kWallPorosity), counting a diagonal step as one (so a staircase's corner is as near as its faces),
+// at most `cap`: two passes of a chamfer transform over the frame's layout (cell (c, l) at c * rows + l).
+// The grid's edges are not land (the terms and the filter mirror there).
+std::vector<int> land_distance_cells(const std::vector<float>& depth, const std::vector<float>& porosity, int cols, int rows, int cap) {
+  std::vector<int> distance(depth.size(), cap);
+  auto at = [&](int c, int l) -> int& { return distance[static_cast<std::size_t>(c) * rows + l]; };
+  for (std::size_t i = 0; i < depth.size(); ++i)
+    if (depth[i] <= 0.0f || porosity[i] < detail::kWallPorosity) distance[i] = 0;
+  for (int c = 0; c < cols; ++c)
+    for (int l = 0; l < rows; ++l) {
+      int& d = at(c, l);
+      if (l > 0) d = std::min(d, at(c, l - 1) + 1);
+      if (c > 0)
+        for (int k = std::max(l - 1, 0); k <= std::min(l + 1, rows - 1); ++k) d = std::min(d, at(c - 1, k) + 1);
+    }
+  for (int c = cols - 1; c >= 0; --c)
+    for (int l = rows - 1; l >= 0; --l) {
+      int& d = at(c, l);
+      if (l + 1 < rows) d = std::min(d, at(c, l + 1) + 1);
+      if (c + 1 < cols)
+        for (int k = std::max(l - 1, 0); k <= std::min(l + 1, rows - 1); ++k) d = std::min(d, at(c + 1, k) + 1);
+    }
+  return distance;
+}
+
 // Builds the time-independent coefficients of one orientation from cell depth and porosity given
 // in the frame's layout (cell (c along, l line) at c * rows + l; boussinesq_sweep.hpp). The face
 // values the sweep derives from the cells (boussinesq_sweep.hpp) are used here for the taper and
@@ -99,12 +125,23 @@ StaticFrame build_frame(std::vector<float> depth, std::vector<float> porosity, s
   }
   const std::size_t faces = static_cast<std::size_t>(cols + 1) * rows;
   frame.face_dispersion_weight.assign(faces, 0.0f);
+  // The taper beside land and walls (SolverParameters::taper_dispersion_at_walls): a face's weight
+  // rises as smooth_step((n - 1) / p) with n the nearer of its two cells' distance from land in cells
+  // (1 beside it), p the filter's half-order: 0 in the first row, full from p + 1 rows out.
+  const int taper_cells = p.taper_dispersion_at_walls && p.shapiro_filter_order > 0 &&
+                                  p.wall_dispersion == SolverParameters::WallDispersion::kEndBeforeWalls
+                              ? p.shapiro_filter_order / 2
+                              : 0;
+  const std::vector<int> land_distance =
+      taper_cells > 0 ? land_distance_cells(frame.depth_m, frame.porosity, cols, rows, taper_cells + 1) : std::vector<int>{};
   frame.block_is_porous.assign(static_cast<std::size_t>((rows + detail::kBlockLines - 1) / detail::kBlockLines), 0);
   for (int f = 1; f < cols; ++f)
     for (int l = 0; l < rows; ++l) {
       const std::size_t R = static_cast<std::size_t>(f) * rows + l, L = R - rows;
+      const double wall_weight =
+          taper_cells > 0 ? smooth_step((std::min(land_distance[L], land_distance[R]) - 1.0) / taper_cells) : 1.0;
       frame.face_dispersion_weight[R] =
-          static_cast<float>(dispersion_weight(detail::face_depth(frame.depth_m.data(), L, R), p, peak_w));
+          static_cast<float>(wall_weight * dispersion_weight(detail::face_depth(frame.depth_m.data(), L, R), p, peak_w));
       // Blocks of lines with a porous face run the sweep with the porous terms (boussinesq_sweep.cpp).
       if (detail::face_porosity(frame.porosity.data(), frame.inverse_porosity.data(), L, R) != 1.0)
         frame.block_is_porous[static_cast<std::size_t>(l / detail::kBlockLines)] = 1;

@@ -69,10 +69,11 @@ TEST(BoussinesqWalls, AnInteriorWallReflectsAsTheGridEdgeDoes) {
 // A square pier aligned with the grid on cells of half the depth (a harbour bake's spacing) in still
 // water with 5 micrometres of noise and no waves, run to 150 s with the default grid-scale filter;
 // returns the largest |eta| in the water.
-double noise_beside_a_square_pier_m(SolverParameters::WallDispersion walls) {
+double noise_beside_a_square_pier_m(SolverParameters::WallDispersion walls, bool taper_dispersion_at_walls = true) {
   const double depth_m = 0.5, spacing_m = 0.25, half_side_m = 0.646, centre_x_m = 7.5, centre_y_m = 7.0, noise_m = 5e-6;
   SolverParameters parameters = testing::inviscid_parameters(0.5);
   parameters.wall_dispersion = walls;
+  parameters.taper_dispersion_at_walls = taper_dispersion_at_walls;
   parameters.sponges = {{Side::kWest, 2.0}, {Side::kEast, 4.0}};
   const int columns = static_cast<int>(std::lround(21.0 / spacing_m)), rows = static_cast<int>(std::lround(14.0 / spacing_m));
   HarbourGrid harbour = testing::flume(columns, rows, spacing_m, depth_m);
@@ -102,15 +103,20 @@ TEST(BoussinesqWalls, TheWaterBesideAMirroredPierStaysQuietWithTheGridScaleFilte
   EXPECT_LT(largest_m, 5e-6) << "the noise grew to " << largest_m << " m beside the pier";
 }
 
-// KNOWN INSTABILITY of the default, kept as a reproduction (--gtest_also_run_disabled_tests; 2 s):
-// with the dispersive terms ending one cell before the pier a mode two cells long along its faces,
-// in the first row of cells beside them, grows from the corners to about 0.2 m (two fifths of the
-// depth) by 100-150 s, where it saturates, so the solver's blow-up guard never sees it; with
-// shapiro_filter_order = 0 the noise decays, as it does with the filter on cells as long as the
-// depth or with the walls mirrored (above; docs/solver.md, "Grid-scale filter").
-TEST(BoussinesqWalls, DISABLED_TheWaterBesideAPierStaysQuietWithTheGridScaleFilter) {
+// The default: the dispersive terms end one cell before the pier and rise to full weight over the
+// filter's half-stencil (SolverParameters::taper_dispersion_at_walls): the noise decays.
+TEST(BoussinesqWalls, TheWaterBesideAPierStaysQuietWithTheGridScaleFilter) {
   const double largest_m = noise_beside_a_square_pier_m(SolverParameters::WallDispersion::kEndBeforeWalls);
   EXPECT_LT(largest_m, 5e-6) << "the noise grew to " << largest_m << " m beside the pier";
+}
+
+// What the taper cures, kept as a check that it still is the cure: at full weight from the second
+// row a mode two cells long along the pier's faces, in the first row beside them, grows from the
+// corners to about 0.2 m (two fifths of the depth) by 100-150 s, where it saturates, so the solver's
+// blow-up guard never sees it (docs/solver.md, "The water beside a wall").
+TEST(BoussinesqWalls, WithoutTheTaperTheWaterBesideAPierGrowsAMode) {
+  const double largest_m = noise_beside_a_square_pier_m(SolverParameters::WallDispersion::kEndBeforeWalls, false);
+  EXPECT_GT(largest_m, 0.05) << "the mode no longer grows without the taper: the taper may no longer be needed";
 }
 
 }  // namespace

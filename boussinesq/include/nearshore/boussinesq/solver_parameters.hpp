@@ -160,7 +160,10 @@ inline constexpr double kMaxCourantNumber = 2.0;
 /// 2: the fully nonlinear terms fade where waves break (BreakingParameters::fade_fully_nonlinear_terms).
 /// 3: on an imposed current, the Courant number counts the current (courant_speed_m_s) and the wave
 /// maker radiates its second-harmonic correction only where it is carried (docs/solver.md "Currents").
-inline constexpr int kSolverPhysicsRevision = 3;
+/// 4: the wave maker's source is as narrow as its shortest component needs and a time series' phases
+/// are its line's (docs/solver.md "Wave maker"); with the grid-scale filter on, the dispersive terms
+/// rise over the filter's half-stencil beside land and walls (taper_dispersion_at_walls).
+inline constexpr int kSolverPhysicsRevision = 4;
 
 /// Porosity below which a cell is a solid wall (a quay): no flux through its faces, no shoreline on it.
 inline constexpr double kWallPorosity = 0.05;
@@ -199,6 +202,13 @@ struct SolverParameters {
   /// RMS at 6.5 cells per radius), so it is not the default.
   enum class WallDispersion { kEndBeforeWalls, kMirrorAtWalls };
   WallDispersion wall_dispersion = WallDispersion::kEndBeforeWalls;
+  /// With the grid-scale filter on (shapiro_filter_order = 2p > 0) and kEndBeforeWalls, the
+  /// dispersive terms rise smoothly from nothing in the first row beside land or a wall to their full
+  /// weight p cells further out, where the filter's stencil no longer reaches the land: between the
+  /// dispersion mask's edge (the second row) and the filter's (p + 2 rows out) the water otherwise has
+  /// dispersion at full weight and no filter, where the mode of "The water beside a wall" grows
+  /// (docs/solver.md). No effect with the filter off or kMirrorAtWalls.
+  bool taper_dispersion_at_walls = true;
   /// Dispersion taper: the dispersive terms are multiplied by a weight that is 1 where the still-water
   /// depth d >= 2 * dispersion_cutoff_depth_m, 0 where d <= dispersion_cutoff_depth_m and a smooth
   /// (cubic) ramp between; likewise for the local k h of the peak wave when dispersion_cutoff_kh > 0
